@@ -1,0 +1,110 @@
+#pragma once
+/// The gateway's MQTT connection (Paho MQTT C++ underneath; Paho types stay in the .cpp).
+///
+/// Threading: every public member is called on the loop (the executor given at construction),
+/// and every handler is invoked there. Paho's callbacks run on Paho's threads; they only copy
+/// what they got and post it to the loop.
+///
+/// Publications go through a PublishQueue (latest value per topic wins, oldest dropped when
+/// full, both counted); a bounded number are in flight in Paho at a time, so Paho's own queue
+/// never grows without bound. While disconnected, the queue is the buffer of product.md.
+/// Reconnects use exponential backoff; after each connect the availability topic gets `online`,
+/// subscriptions are renewed and the on_connected handler runs so that the gateway republishes
+/// its retained state.
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <boost/asio/any_io_executor.hpp>
+
+#include "eip2mqtt/adapters/mqtt/message.hpp"
+
+namespace eip2mqtt::adapters::mqtt {
+
+struct TlsOptions {
+    std::string ca_file;
+    std::string cert_file;
+    std::string key_file;
+    bool verify = true;
+};
+
+struct ClientOptions {
+    std::string url = "tcp://localhost:1883";
+    std::string client_id = "eip2mqtt";
+    int version = 5;  ///< 5 or 3 (3.1.1)
+    std::string username;
+    std::string password;
+    std::optional<TlsOptions> tls;
+    std::chrono::seconds keepalive{30};
+    /// MQTT 5 session expiry; 0 ends the session with the connection. With a non-zero value and
+    /// clean_start false, the broker keeps subscriptions and QoS 1 messages while we are away.
+    std::chrono::seconds session_expiry{0};
+    bool clean_start = true;
+
+    /// Availability (zigbee2mqtt style): `online` retained on connect, `offline` as last will
+    /// and before a clean disconnect. Empty topic: none.
+    std::string availability_topic;
+    int availability_qos = 1;
+
+    std::size_t buffer_max_messages = 100000;
+    std::size_t max_in_flight = 1000;  ///< publications handed to Paho and not yet completed
+    std::chrono::milliseconds min_backoff{250};
+    std::chrono::milliseconds max_backoff{30000};
+};
+
+struct ClientStats {
+    bool connected = false;
+    std::uint64_t published = 0;  ///< completed (QoS 0: written; QoS 1: acknowledged)
+    std::uint64_t publish_failures = 0;
+    std::uint64_t queued = 0;  ///< waiting in the PublishQueue
+    std::uint64_t in_flight = 0;
+    std::uint64_t dropped_overflow = 0;  ///< oldest dropped because the queue was full
+    std::uint64_t coalesced = 0;         ///< replaced by a newer value of the same topic
+    std::uint64_t connects = 0;
+    std::uint64_t connection_losses = 0;
+    std::uint64_t received = 0;  ///< messages received on subscriptions
+};
+
+class Client {
+public:
+    using ConnectedHandler = std::function<void()>;
+    using MessageHandler = std::function<void(Incoming)>;
+
+    Client(boost::asio::any_io_executor loop, ClientOptions options);
+    ~Client();
+    Client(const Client&) = delete;
+    Client& operator=(const Client&) = delete;
+
+    /// Runs on the loop after every successful (re)connect, after `online` was published.
+    void set_on_connected(ConnectedHandler handler);
+    /// Runs on the loop for every message received on a subscription.
+    void set_on_message(MessageHandler handler);
+    /// Topic filters (QoS 1) subscribed on every connect; may be changed at any time.
+    void set_subscriptions(std::vector<std::string> filters);
+
+    /// Starts connecting (non-blocking); retries with backoff until stop().
+    void start();
+
+    /// Queues a publication; sent when connected, buffered while not.
+    void publish(Message message);
+
+    /// Publishes `offline`, waits up to `flush_timeout` for queued and in-flight publications,
+    /// then disconnects. Blocks the calling thread: call it after the loop stopped, or from a
+    /// thread other than the loop.
+    void stop(std::chrono::milliseconds flush_timeout);
+
+    bool connected() const;
+    ClientStats stats() const;
+    void set_buffer_capacity(std::size_t max_messages);
+
+private:
+    struct Impl;
+    std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace eip2mqtt::adapters::mqtt

@@ -1,0 +1,29 @@
+#pragma once
+/// An MQTT publication as the gateway hands it to the client adapter.
+
+#include <cstdint>
+#include <string>
+
+namespace eip2mqtt::adapters::mqtt {
+
+struct Message {
+    std::string topic;
+    std::string payload;
+    int qos = 0;
+    bool retain = false;
+    /// Latest value wins: a newer message with the same topic replaces this one while it is
+    /// still queued. Off for messages that must each be delivered (write results).
+    bool coalesce = true;
+};
+
+/// A message received on a subscription, copied off Paho's thread.
+struct Incoming {
+    std::string topic;
+    std::string payload;
+    bool retained = false;
+    std::string response_topic;    ///< MQTT 5 request/response; empty when absent
+    std::string correlation_data;  ///< MQTT 5; binary, may be empty
+    std::int64_t message_expiry_s = -1;  ///< MQTT 5 message expiry interval; -1 when absent
+};
+
+}  // namespace eip2mqtt::adapters::mqtt

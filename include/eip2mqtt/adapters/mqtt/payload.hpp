@@ -1,0 +1,30 @@
+#pragma once
+/// Payloads of the gateway's topics (product.md "MQTT"), written without a JSON library on the
+/// hot path: they are small, fixed-shape objects.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/exchange/consumed_exchange.hpp"
+#include "eip2mqtt/core/plan/value.hpp"
+#include "eip2mqtt/core/quality/quality.hpp"
+
+namespace eip2mqtt::adapters::mqtt {
+
+/// `{"value":90,"timestamp":1695231678000,"quality":"good"}`, or `90` with payload: raw.
+void format_tag_payload(std::string& out, const core::plan::Value& value,
+                        core::quality::Quality quality, std::int64_t timestamp_ms,
+                        core::config::PayloadFormat format);
+
+/// `{"state":"ok","request_id":…,"received":…,"missed":…,"duplicates":…,"out_of_order":…,
+/// "last_seen":…}` plus the mismatch and timeout counters. last_seen is the wall time of the
+/// last accepted datagram in ms, null before the first.
+std::string format_status_payload(const core::exchange::ConsumedExchange& exchange,
+                                  std::optional<std::int64_t> last_seen_ms);
+
+/// Milliseconds since 1970 UTC of a header timestamp (seconds + nanoseconds).
+std::int64_t timestamp_ms(std::uint32_t seconds, std::uint32_t nanoseconds);
+
+}  // namespace eip2mqtt::adapters::mqtt

@@ -1,0 +1,49 @@
+#pragma once
+/// The gateway's own bounded publication queue, instead of Paho's unbounded one: latest value
+/// wins per topic (a newer message replaces an unsent older one in place), and when full the
+/// oldest message is dropped. Both are counted (spdlog's overrun_oldest policy, for MQTT).
+/// Single-threaded: the loop owns it.
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <unordered_map>
+
+#include "eip2mqtt/adapters/mqtt/message.hpp"
+
+namespace eip2mqtt::adapters::mqtt {
+
+class PublishQueue {
+  public:
+    explicit PublishQueue(std::size_t capacity);
+
+    /// Queues `message`, replacing a queued one of the same topic when both coalesce.
+    void push(Message message);
+
+    /// Takes the oldest message; nullopt when empty.
+    std::optional<Message> pop();
+
+    std::size_t size() const { return slots_.size(); }
+    bool empty() const { return slots_.empty(); }
+    std::size_t capacity() const { return capacity_; }
+    void set_capacity(std::size_t capacity);
+
+    std::uint64_t dropped_overflow() const { return dropped_overflow_; }  ///< oldest dropped
+    std::uint64_t coalesced() const { return coalesced_; }  ///< replaced by a newer value
+
+  private:
+    void drop_oldest();
+
+    std::size_t capacity_;
+    std::uint64_t sequence_base_ = 0;  ///< sequence number of slots_.front()
+    std::deque<Message> slots_;
+    /// topic -> sequence number of its queued coalescing message. A message is replaced in
+    /// place only by a newer one, so slots_ stays in order and never has holes.
+    std::unordered_map<std::string, std::uint64_t> by_topic_;
+    std::uint64_t dropped_overflow_ = 0;
+    std::uint64_t coalesced_ = 0;
+};
+
+}  // namespace eip2mqtt::adapters::mqtt

@@ -1,0 +1,48 @@
+#pragma once
+/// Sends EIP datagrams from one UDP socket: unicast, broadcast (SO_BROADCAST) or multicast
+/// (TTL and interface configurable). Sends are non-blocking and never queue: a datagram the
+/// kernel refuses is counted, as the protocol repairs a loss with the next period.
+///
+/// Threading: used from the loop only.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include <boost/asio/any_io_executor.hpp>
+#include <boost/asio/ip/udp.hpp>
+
+#include "eip2mqtt/adapters/udp/endpoint.hpp"
+
+namespace eip2mqtt::adapters::udp {
+
+struct SenderOptions {
+    std::string bind = "0.0.0.0";
+    std::uint16_t port = 0;  ///< source port; 0: ephemeral
+    int multicast_ttl = 1;
+    std::string multicast_interface;  ///< IPv4 address of the outgoing interface; empty: default
+    bool multicast_loop = true;       ///< let local consumers (and tests) see our multicast
+};
+
+struct SenderStats {
+    std::uint64_t sent = 0;
+    std::uint64_t errors = 0;
+};
+
+class Sender {
+public:
+    /// Opens the socket (broadcast allowed); throws std::system_error on failure.
+    Sender(boost::asio::any_io_executor executor, const SenderOptions& options);
+
+    /// Sends one datagram; false (and counted) when the kernel refused it.
+    bool send_to(std::span<const std::byte> datagram, const Endpoint& to);
+
+    const SenderStats& stats() const { return stats_; }
+
+private:
+    boost::asio::ip::udp::socket socket_;
+    SenderStats stats_;
+};
+
+}  // namespace eip2mqtt::adapters::udp

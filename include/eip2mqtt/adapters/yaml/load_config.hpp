@@ -1,0 +1,22 @@
+#pragma once
+/// Reads a configuration file (YAML, plus the point-list CSV files it names) into the core's
+/// config model, then runs the core's semantic checks. Every problem is reported at once, each
+/// with file:line:column; yaml-cpp's exceptions stop here.
+
+#include <string>
+
+#include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/result.hpp"
+
+namespace eip2mqtt::adapters::yaml {
+
+/// Loads and validates `path`. Fails with every diagnostic (syntax, unknown keys, bad values,
+/// semantic checks) when anything is wrong.
+core::Result<core::config::Config, core::config::Diagnostics> load_config(const std::string& path);
+
+/// Same, from text already in memory; `file` names it in diagnostics and resolves relative
+/// `points:` paths (used by tests and the fuzzer).
+core::Result<core::config::Config, core::config::Diagnostics> load_config_text(
+    const std::string& text, const std::string& file);
+
+}  // namespace eip2mqtt::adapters::yaml

@@ -1,0 +1,82 @@
+#pragma once
+/// The daemon: wires the UDP receiver, the consumed exchanges and the MQTT client around one
+/// loop (one io_context on one thread), plus signals, timers and systemd notifications.
+/// Members are declared in dependency order so that handlers may capture `this`.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/adapters/systemd/notifier.hpp"
+#include "eip2mqtt/adapters/udp/receiver.hpp"
+#include "eip2mqtt/app/drop_log.hpp"
+#include "eip2mqtt/app/exchange_consumer.hpp"
+#include "eip2mqtt/core/config/config.hpp"
+
+namespace eip2mqtt::app {
+
+/// Gateway-wide counters, published on the metrics topic.
+struct GatewayCounters {
+    std::uint64_t datagrams = 0;
+    std::uint64_t accepted = 0;
+    std::array<std::uint64_t, core::wire::drop_reason_count> dropped{};
+};
+
+class Gateway {
+public:
+    /// Builds every adapter from a validated configuration; throws std::exception on start-up
+    /// failures (a port that cannot be bound, an unreadable password file).
+    explicit Gateway(core::config::Config config);
+    ~Gateway();
+
+    /// Runs until SIGTERM or SIGINT, then stops cleanly; returns the exit status.
+    int run();
+
+    /// Stops the loop from any thread (tests, signal handling).
+    void request_stop();
+
+private:
+    void start();
+    void on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
+                     bool truncated);
+    void on_connected();
+    void schedule_tick();
+    void on_tick();
+    void schedule_metrics();
+    void publish_metrics();
+    std::string status_line() const;
+    void wait_signal();
+
+    core::config::Config config_;
+    PublishSettings publish_settings_;
+    std::string availability_topic_;
+    std::string metrics_topic_;
+
+    boost::asio::io_context loop_;
+    boost::asio::signal_set signals_;
+    boost::asio::steady_timer tick_timer_;
+    boost::asio::steady_timer metrics_timer_;
+    adapters::systemd::Notifier notifier_;
+    std::unique_ptr<adapters::mqtt::Client> mqtt_;
+    std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
+    std::unordered_map<core::wire::ExchangeKey, ExchangeConsumer*, core::wire::ExchangeKeyHash>
+        by_key_;
+    std::unique_ptr<adapters::udp::Receiver> receiver_;
+
+    GatewayCounters counters_;
+    DropLog drop_log_;
+    core::MonoTime started_at_;
+    core::MonoTime last_refresh_scan_;
+    bool stopping_ = false;
+};
+
+}  // namespace eip2mqtt::app

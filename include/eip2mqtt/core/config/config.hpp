@@ -1,0 +1,106 @@
+#pragma once
+/// The configuration model: plain structs as the YAML adapter fills them, with the mark of every
+/// key they came from so that semantic checks can point at the offending line and column.
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eip2mqtt/core/config/diagnostic.hpp"
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+
+namespace eip2mqtt::core::config {
+
+/// Where each key of a mapping was written. `node` is the mapping itself.
+struct Marks {
+    Mark node;
+    std::map<std::string, Mark, std::less<>> keys;
+
+    /// The key's mark, or the node's when the key was not written.
+    const Mark& of(std::string_view key) const;
+};
+
+struct TagConfig {
+    plan::TagSpec spec;
+    Marks marks;
+};
+
+struct ExchangeConfig {
+    plan::ExchangeSpec spec;  ///< spec.tags is left empty: see `tags`
+    std::vector<TagConfig> tags;  ///< `tags:` entries, then the point-list rows
+    Marks marks;
+};
+
+struct GatewaySection {
+    std::string id = "eip2mqtt";
+    std::string state_dir = "/var/lib/eip2mqtt";
+    std::string log_level = "info";
+    Marks marks;
+};
+
+struct TlsSection {
+    std::string ca_file;
+    std::string cert_file;
+    std::string key_file;
+    bool verify = true;
+};
+
+enum class PayloadFormat : std::uint8_t { json, raw };
+
+struct MqttSection {
+    std::string url = "tcp://localhost:1883";
+    int version = 5;  ///< 5 or 3 (3.1.1)
+    std::string client_id;  ///< default: eip2mqtt-{gateway.id}
+    std::string username;
+    std::string password_file;
+    std::optional<TlsSection> tls;
+    std::string base_topic = "eip2mqtt";
+    int qos = 1;
+    bool retain = true;
+    PayloadFormat payload = PayloadFormat::json;
+    std::size_t buffer_max_messages = 100000;
+    bool batch = false;
+    std::chrono::seconds keepalive{30};
+    std::chrono::seconds metrics_interval{10};
+    Marks marks;
+};
+
+struct MulticastGroup {
+    std::string group;
+    std::string interface;  ///< interface name or IPv4 address; empty: the default
+};
+
+struct EipSection {
+    std::string bind = "0.0.0.0";
+    std::uint16_t port = 18246;
+    std::vector<MulticastGroup> multicast;
+    Marks marks;
+};
+
+struct MetricsSection {
+    std::string listen;  ///< host:port of the Prometheus endpoint; empty: off
+    Marks marks;
+};
+
+struct Config {
+    std::string file;  ///< path it was loaded from
+    GatewaySection gateway;
+    MqttSection mqtt;
+    EipSection eip;
+    MetricsSection metrics;
+    std::vector<ExchangeConfig> exchanges;
+};
+
+/// Semantic checks across the whole model: overlapping tags, tags past the end, lengths over
+/// 1400, bit addresses on non-bit types, duplicate names and (producer, exchange) pairs,
+/// writable tags on consumed exchanges, min > max, topic rules, topic collisions and reserved tag
+/// names. Returns every problem found, in file order.
+Diagnostics validate(const Config& config);
+
+/// Plans of every exchange of a valid configuration, in configuration order.
+std::vector<plan::ExchangePlan> make_plans(const Config& config);
+
+}  // namespace eip2mqtt::core::config

@@ -1,0 +1,94 @@
+#pragma once
+/// The consumer state of one exchange: signature, length and sequence rules, the update timeout
+/// and the counters of `_status` (eip-protocol.md §4 rules 4-8). Pure: time is passed in.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/time.hpp"
+#include "eip2mqtt/core/wire/decode.hpp"
+#include "eip2mqtt/core/wire/drop_reason.hpp"
+
+namespace eip2mqtt::core::exchange {
+
+enum class ConsumeState : std::uint8_t {
+    waiting,             ///< nothing accepted yet
+    ok,                  ///< receiving on time
+    stale,               ///< no accepted sample within the timeout
+    signature_mismatch,  ///< the last datagram's signature is incompatible
+    length_mismatch,     ///< the last datagram's length differs from the configured one
+};
+
+std::string_view to_string(ConsumeState state);
+
+struct ConsumeCounters {
+    std::uint64_t received = 0;  ///< datagrams for this exchange, whatever became of them
+    std::uint64_t accepted = 0;
+    std::uint64_t missed = 0;  ///< request ids skipped between two accepted samples
+    std::uint64_t duplicates = 0;
+    std::uint64_t out_of_order = 0;
+    std::uint64_t signature_mismatches = 0;
+    std::uint64_t length_mismatches = 0;
+    std::uint64_t no_data = 0;
+    std::uint64_t timeouts = 0;  ///< times the exchange went stale
+};
+
+/// What became of one datagram.
+struct ConsumeOutcome {
+    std::optional<wire::DropReason> dropped;  ///< nullopt: accepted
+    bool state_changed = false;               ///< state() differs from before the datagram
+
+    bool accepted() const { return !dropped.has_value(); }
+};
+
+class ConsumedExchange {
+public:
+    /// `length` and `timeout` come from the plan; `signature` is the configured one.
+    explicit ConsumedExchange(const plan::ExchangePlan& plan);
+
+    /// Applies rules 4-7 to a datagram of this exchange (the caller matched the key).
+    /// On acceptance, image() holds the first `length` data bytes.
+    ConsumeOutcome on_datagram(const wire::Datagram& datagram, MonoTime now);
+
+    /// Applies rule 8; returns true when the exchange has just become stale. Only `ok` and the
+    /// mismatch states time out (after `timeout` without an accepted sample, respectively
+    /// without any datagram); `waiting` never does, and `stale` is reported once.
+    bool on_tick(MonoTime now);
+
+    /// When on_tick next has something to do; nullopt when the timeout is disabled or the
+    /// exchange is not waiting for a sample (states `waiting` and `stale`).
+    std::optional<MonoTime> next_deadline() const;
+
+    ConsumeState state() const { return state_; }
+    const ConsumeCounters& counters() const { return counters_; }
+    /// The last accepted data; empty until a sample was accepted.
+    std::span<const std::byte> image() const;
+    bool has_image() const { return has_image_; }
+    /// Header of the last accepted datagram.
+    const wire::Header& last_header() const { return last_header_; }
+    /// Monotonic time of the last accepted datagram.
+    std::optional<MonoTime> last_accepted() const { return last_accepted_; }
+
+private:
+    std::size_t length_;
+    std::chrono::milliseconds timeout_;
+    wire::Signature signature_;
+    ConsumeState state_ = ConsumeState::waiting;
+    bool resync_ = true;  ///< the next datagram resynchronises the sequence without counting
+    bool has_image_ = false;
+    std::vector<std::byte> image_;
+    wire::Header last_header_;
+    std::optional<MonoTime> last_accepted_;
+    /// Where the update timeout counts from: the last accepted sample in `ok`, the last
+    /// datagram in a mismatch state (so a producer that keeps sending incompatible data stays
+    /// `bad`, and one that falls silent becomes `stale`).
+    MonoTime timer_start_{};
+    ConsumeCounters counters_;
+};
+
+}  // namespace eip2mqtt::core::exchange

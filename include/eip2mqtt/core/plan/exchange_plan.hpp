@@ -1,0 +1,54 @@
+#pragma once
+/// What the gateway knows of one exchange, built once from a validated configuration.
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eip2mqtt/core/plan/tag_plan.hpp"
+#include "eip2mqtt/core/wire/header.hpp"
+
+namespace eip2mqtt::core::plan {
+
+enum class Direction : std::uint8_t { consume, produce };
+
+/// An exchange as configured, independent of topics.
+struct ExchangeSpec {
+    std::string name;
+    Direction direction = Direction::consume;
+    wire::ProducerId producer_id;
+    std::uint32_t exchange_id = 0;
+    std::optional<std::uint16_t> length;  ///< data bytes; default: end of the last tag
+    wire::Signature signature;            ///< 0.0 = not used
+    std::chrono::milliseconds period{1000};
+    std::optional<std::chrono::milliseconds> timeout;  ///< consume; default 3 x period; 0 disables
+    std::optional<std::uint32_t> source;  ///< consume: IPv4 (host order) the datagrams must come from
+    std::string destination;              ///< produce: host or host:port
+    std::string topic;                    ///< under base_topic
+    std::string points;                   ///< point-list CSV file, relative to the config file
+    std::vector<TagSpec> tags;
+};
+
+/// An exchange with its tags' topics and derived figures.
+struct ExchangePlan {
+    ExchangeSpec spec;
+    std::uint16_t length = 0;             ///< resolved data length, 1..1400
+    std::chrono::milliseconds timeout{0};  ///< resolved update timeout; 0 disables
+    std::string topic;                    ///< {base}/{exchange.topic}
+    std::string status_topic;             ///< topic + "/_status"
+    std::string values_topic;             ///< topic + "/_values" (batch mode)
+    std::string set_topic;                ///< topic + "/set" (atomic multi-tag writes)
+    std::vector<TagPlan> tags;            ///< in configuration order
+
+    wire::ExchangeKey key() const { return {spec.producer_id, spec.exchange_id}; }
+};
+
+/// Length a spec resolves to: its `length`, else the end of its last tag.
+std::uint16_t resolved_length(const ExchangeSpec& spec);
+
+/// Builds the plan of a spec that passed validation.
+ExchangePlan make_exchange_plan(const ExchangeSpec& spec, const std::string& base_topic);
+
+}  // namespace eip2mqtt::core::plan

@@ -1,0 +1,35 @@
+#pragma once
+/// What the gateway knows of one tag, built once from the configuration.
+
+#include <chrono>
+#include <optional>
+#include <string>
+
+#include "eip2mqtt/core/plan/address.hpp"
+#include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/plan/value.hpp"
+
+namespace eip2mqtt::core::plan {
+
+/// A tag as configured (YAML `tags:` entry or point-list row).
+struct TagSpec {
+    std::string name;
+    Address address;
+    TagType type = TagType::byte;
+    std::string unit;
+    double deadband = 0.0;  ///< absolute; 0 publishes any change
+    std::chrono::seconds refresh{60};  ///< republish at least this often
+    bool writable = false;
+    std::optional<double> min;
+    std::optional<double> max;
+    std::optional<Value> initial;  ///< produced exchanges: value when no image is persisted
+};
+
+/// A tag with its precomputed topics.
+struct TagPlan {
+    TagSpec spec;
+    std::string topic;      ///< {base}/{exchange.topic}/{name}
+    std::string set_topic;  ///< topic + "/set"
+};
+
+}  // namespace eip2mqtt::core::plan

@@ -1,0 +1,47 @@
+#pragma once
+/// Tag data types of eip-protocol.md §3 and their names in YAML and in SCADA point lists.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+namespace eip2mqtt::core::plan {
+
+/// The wire types. Every value is little-endian and may start at any byte offset.
+enum class TagType : std::uint8_t {
+    bit,    ///< one bit of a byte; bit 0 is the least significant
+    byte,   ///< u8 (alias usint)
+    int_,   ///< i16 (the spec's `int`; a keyword in C++)
+    word,   ///< u16 (alias uint)
+    dint,   ///< i32
+    udint,  ///< u32 (alias dword)
+    real,   ///< IEEE-754 binary32
+    lint,   ///< i64 (alias long)
+    lreal,  ///< IEEE-754 binary64
+};
+
+/// Which naming convention a type name comes from: they disagree on `word`.
+enum class TypeNaming {
+    yaml,        ///< §3 names and aliases, case-insensitive: `word` is u16
+    point_list,  ///< §6: Bit/Word/Real/Long read as bit/int/real/lint, then the §3 names
+};
+
+/// Parses a type name; nullopt when unknown.
+std::optional<TagType> parse_tag_type(std::string_view name, TypeNaming naming);
+
+/// The canonical §3 name (`int`, `udint`...).
+std::string_view to_string(TagType type);
+
+/// Size in bytes a tag of this type occupies (1 for bit: it lives in one byte).
+std::size_t size_of(TagType type);
+
+/// True for the types whose value is an integer (not bit, real or lreal).
+bool is_integer(TagType type);
+
+/// The type's own range as doubles, for range checks of configuration and writes (lint's
+/// extremes round to the nearest double; exact integer checks are write validation's job).
+double type_min(TagType type);
+double type_max(TagType type);
+
+}  // namespace eip2mqtt::core::plan

@@ -1,0 +1,45 @@
+#pragma once
+/// Why a received datagram was not consumed. Each value is also a metric label.
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+namespace eip2mqtt::core::wire {
+
+enum class DropReason : std::uint8_t {
+    /// Fewer than 32 bytes (§4 rule 1).
+    too_short,
+    /// Bytes 0-1 are not `0D 01` (§4 rule 2).
+    not_data_pdu,
+    /// More than 32 + 1400 bytes.
+    too_long,
+    /// No configured consumed exchange has this (producer id, exchange id) (§4 rule 3).
+    unknown_exchange,
+    /// The source address is not the exchange's configured `source` (anti-spoofing).
+    wrong_source,
+    /// Header only, no data (§4 rule 5, N = 0).
+    no_data,
+    /// Signatures incompatible (§4 rule 4).
+    signature_mismatch,
+    /// Data length differs from the configured length (§4 rule 5).
+    length_mismatch,
+    /// Same request id as the last accepted one (§4 rule 6, d = 0).
+    duplicate,
+    /// Request id behind the last accepted one (§4 rule 6, d >= 32768).
+    out_of_order,
+};
+
+inline constexpr std::size_t drop_reason_count = 10;
+
+inline constexpr std::array<DropReason, drop_reason_count> all_drop_reasons{
+    DropReason::too_short,          DropReason::not_data_pdu,    DropReason::too_long,
+    DropReason::unknown_exchange,   DropReason::wrong_source,    DropReason::no_data,
+    DropReason::signature_mismatch, DropReason::length_mismatch, DropReason::duplicate,
+    DropReason::out_of_order,
+};
+
+/// snake_case name, as used in metrics and logs.
+std::string_view to_string(DropReason reason);
+
+}  // namespace eip2mqtt::core::wire

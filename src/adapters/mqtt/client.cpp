@@ -1,0 +1,709 @@
+#include "eip2mqtt/adapters/mqtt/client.hpp"
+
+#include <mqtt/async_client.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <atomic>
+#include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <set>
+#include <utility>
+
+#include "adapters/mqtt/detail/tcp_nodelay.hpp"
+#include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
+
+namespace eip2mqtt::adapters::mqtt {
+namespace {
+
+namespace paho = ::mqtt;
+using Clock = std::chrono::steady_clock;
+
+/// style.md "Errors": log the first, then one summary per interval.
+constexpr auto kLogInterval = std::chrono::seconds(30);
+constexpr auto kConnectTimeout = std::chrono::seconds(10);
+
+struct Endpoint {
+    std::string host;
+    std::uint16_t port = 0;
+    bool tls = false;
+};
+
+/// scheme://host[:port][/path]; host may be a bracketed IPv6 address.
+std::optional<Endpoint> parse_url(const std::string& url) {
+    const auto sep = url.find("://");
+    if (sep == std::string::npos) {
+        return std::nullopt;
+    }
+    const std::string scheme = url.substr(0, sep);
+    Endpoint ep;
+    ep.tls = scheme == "ssl" || scheme == "mqtts" || scheme == "wss";
+    ep.port = scheme == "ws" ? 80 : scheme == "wss" ? 443 : ep.tls ? 8883 : 1883;
+    std::string rest = url.substr(sep + 3);
+    rest = rest.substr(0, rest.find('/'));
+    std::string port;
+    if (!rest.empty() && rest.front() == '[') {
+        const auto close = rest.find(']');
+        if (close == std::string::npos) {
+            return std::nullopt;
+        }
+        ep.host = rest.substr(1, close - 1);
+        if (close + 1 < rest.size() && rest[close + 1] == ':') {
+            port = rest.substr(close + 2);
+        }
+    } else {
+        const auto colon = rest.rfind(':');
+        ep.host = rest.substr(0, colon);
+        if (colon != std::string::npos) {
+            port = rest.substr(colon + 1);
+        }
+    }
+    if (!port.empty()) {
+        try {
+            const int p = std::stoi(port);
+            if (p <= 0 || p > 65535) {
+                return std::nullopt;
+            }
+            ep.port = static_cast<std::uint16_t>(p);
+        } catch (const std::exception&) {
+            return std::nullopt;
+        }
+    }
+    return ep;
+}
+
+std::string describe_failure(const paho::token& tok) {
+    const int rc = tok.get_return_code();
+    const int reason = tok.get_reason_code();
+    std::string text = paho::exception::error_str(rc);
+    if (reason != 0) {
+        text += fmt::format(" ({})", paho::exception::reason_code_str(reason));
+    }
+    return text;
+}
+
+void* to_context(std::uint64_t id) {
+    return reinterpret_cast<void*>(static_cast<std::uintptr_t>(id));
+}
+std::uint64_t from_context(void* ctx) { return reinterpret_cast<std::uintptr_t>(ctx); }
+
+}  // namespace
+
+/// Threading: the loop runs connect, reconnect, pump and the user's handlers. Paho threads run
+/// the listeners below; they touch only the atomics and the mutex-guarded publication state,
+/// and post everything else to the loop. The mutex exists because stop() must drain that state
+/// while the loop is no longer running (style.md would otherwise have us post to the owner).
+struct Client::Impl : std::enable_shared_from_this<Impl> {
+    Impl(boost::asio::any_io_executor loop, ClientOptions options);
+    ~Impl();
+
+    // --- loop ----------------------------------------------------------------------------
+    void do_connect();
+    void on_connect(bool ok, std::string reason);
+    void on_connection_lost(std::string cause);
+    /// Arms the backoff timer; returns the delay.
+    std::chrono::milliseconds schedule_reconnect();
+    void renew_subscriptions(const std::vector<std::string>& filters);
+    void pump();
+    void log_publish_failure(std::string topic, std::string reason);
+
+    // --- any thread ----------------------------------------------------------------------
+    enum class SendResult { sent, not_connected, failed };
+    /// Registers `message` as in flight under `id` and hands it to Paho.
+    SendResult send(std::uint64_t id, Message message);
+    /// Takes the next publication (re-queued ones first); false when none.
+    bool take_next(std::unique_lock<std::mutex>& lock, std::uint64_t& id, Message& message);
+    /// A Paho listener: publication `id` completed with Paho return code `rc`.
+    void on_publish_done(std::uint64_t id, int rc, std::string reason);
+    void stop(std::chrono::milliseconds flush_timeout);
+
+    template <class F>
+    void post(F&& f) {
+        boost::asio::post(loop_, [w = weak_from_this(), f = std::forward<F>(f)]() mutable {
+            if (auto self = w.lock()) {
+                f(*self);
+            }
+        });
+    }
+
+    struct PublishListener final : paho::iaction_listener {
+        explicit PublishListener(Impl& impl) : impl_(impl) {}
+        void on_success(const paho::token& tok) override {
+            impl_.on_publish_done(from_context(tok.get_user_context()), 0, {});
+        }
+        void on_failure(const paho::token& tok) override {
+            impl_.on_publish_done(from_context(tok.get_user_context()),
+                                  tok.get_return_code() == 0 ? -1 : tok.get_return_code(),
+                                  describe_failure(tok));
+        }
+        Impl& impl_;
+    };
+
+    struct ConnectListener final : paho::iaction_listener {
+        explicit ConnectListener(Impl& impl) : impl_(impl) {}
+        void on_success(const paho::token&) override {
+            impl_.post([](Impl& self) { self.on_connect(true, {}); });
+        }
+        void on_failure(const paho::token& tok) override {
+            impl_.post([reason = describe_failure(tok)](Impl& self) mutable {
+                self.on_connect(false, std::move(reason));
+            });
+        }
+        Impl& impl_;
+    };
+
+    struct SubscribeListener final : paho::iaction_listener {
+        explicit SubscribeListener(Impl& impl) : impl_(impl) {}
+        void on_success(const paho::token&) override {}
+        void on_failure(const paho::token& tok) override {
+            impl_.post([reason = describe_failure(tok)](Impl& self) {
+                spdlog::warn("MQTT subscribe failed on {}: {}", self.options_.url, reason);
+            });
+        }
+        Impl& impl_;
+    };
+
+    enum class State { idle, connecting, connected, waiting, stopped };
+
+    const boost::asio::any_io_executor loop_;
+    const ClientOptions options_;
+    const std::optional<Endpoint> endpoint_;
+    /// QoS >= 1 publications in flight when the connection drops are sent again (see
+    /// on_publish_done).
+    const bool requeue_in_flight_;
+
+    // Loop-owned.
+    State state_ = State::idle;
+    boost::asio::steady_timer reconnect_timer_;
+    std::chrono::milliseconds next_backoff_;
+    ConnectedHandler on_connected_;
+    MessageHandler on_message_;
+    std::vector<std::string> subscriptions_;
+    std::uint64_t connect_failures_unlogged_ = 0;
+    Clock::time_point connect_failure_logged_{};
+    std::uint64_t publish_failures_unlogged_ = 0;
+    Clock::time_point publish_failure_logged_{};
+
+    // Guarded by mutex_ (touched by the loop, Paho's threads and stop()).
+    mutable std::mutex mutex_;
+    std::condition_variable completed_;  ///< an in-flight publication finished
+    PublishQueue queue_;
+    std::map<std::uint64_t, Message> retry_;      ///< re-queued, by original order
+    std::map<std::uint64_t, Message> in_flight_;  ///< handed to Paho, not yet completed
+    std::uint64_t next_id_ = 1;
+
+    std::atomic<bool> link_up_{false};  ///< Paho's view: set by the loop, cleared by Paho's thread
+    std::atomic<bool> connected_{false};  ///< the loop's view, for connected() and stats()
+    std::atomic<bool> stopping_{false};
+    std::atomic<std::uint64_t> published_{0};
+    std::atomic<std::uint64_t> publish_failures_{0};
+    std::atomic<std::uint64_t> connects_{0};
+    std::atomic<std::uint64_t> connection_losses_{0};
+    std::atomic<std::uint64_t> received_{0};
+
+    PublishListener publish_listener_{*this};
+    ConnectListener connect_listener_{*this};
+    SubscribeListener subscribe_listener_{*this};
+    paho::connect_options connect_options_;
+    /// Last member: destroyed first, so no Paho callback outlives what it touches.
+    std::unique_ptr<paho::async_client> client_;
+};
+
+Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
+    : loop_(std::move(loop)),
+      options_(std::move(options)),
+      endpoint_(parse_url(options_.url)),
+      // With a clean session Paho discards unacknowledged publications on reconnect, so we
+      // resend them; with a kept session Paho resends them itself and we must not duplicate.
+      requeue_in_flight_(options_.clean_start ||
+                         (options_.version == 5 && options_.session_expiry.count() == 0)),
+      reconnect_timer_(loop_),
+      next_backoff_(options_.min_backoff),
+      queue_(options_.buffer_max_messages) {
+    const bool v5 = options_.version == 5;
+    paho::create_options create(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
+    client_ =
+        std::make_unique<paho::async_client>(options_.url, options_.client_id, create, nullptr);
+
+    paho::connect_options& co = connect_options_;
+    co.set_mqtt_version(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
+    if (v5) {
+        co.set_clean_start(options_.clean_start);
+        if (options_.session_expiry.count() > 0) {
+            co.set_properties(
+                paho::properties{{paho::property::SESSION_EXPIRY_INTERVAL,
+                                  static_cast<int>(options_.session_expiry.count())}});
+        }
+    } else {
+        co.set_clean_session(options_.clean_start);
+    }
+    co.set_keep_alive_interval(options_.keepalive);
+    co.set_connect_timeout(kConnectTimeout);
+    co.set_automatic_reconnect(false);  // we reconnect ourselves, initial connect included
+    if (!options_.username.empty() || !options_.password.empty()) {
+        co.set_user_name(options_.username);
+        co.set_password(options_.password);
+    }
+    if (!options_.availability_topic.empty()) {
+        co.set_will(paho::will_options(options_.availability_topic, std::string("offline"),
+                                       options_.availability_qos, true));
+    }
+    // TLS when the URL asks for it or a tls block is given. A tls block with a tcp:// URL is
+    // passed to Paho as is, and Paho ignores it: the URL's scheme decides.
+    if ((endpoint_ && endpoint_->tls) || options_.tls) {
+        paho::ssl_options ssl;
+        if (options_.tls) {
+            if (!options_.tls->ca_file.empty()) {
+                ssl.set_trust_store(options_.tls->ca_file);
+            }
+            if (!options_.tls->cert_file.empty()) {
+                ssl.set_key_store(options_.tls->cert_file);
+            }
+            if (!options_.tls->key_file.empty()) {
+                ssl.set_private_key(options_.tls->key_file);
+            }
+            ssl.set_enable_server_cert_auth(options_.tls->verify);
+            ssl.set_verify(options_.tls->verify);
+        }
+        co.set_ssl(std::move(ssl));
+    }
+
+    // Paho's threads: copy, count, post; nothing else.
+    client_->set_connection_lost_handler([this](const std::string& cause) {
+        link_up_ = false;
+        post([cause](Impl& self) { self.on_connection_lost(cause.empty() ? "unknown" : cause); });
+    });
+    client_->set_disconnected_handler([this](const paho::properties&, paho::ReasonCode reason) {
+        link_up_ = false;
+        post([reason](Impl& self) {
+            self.on_connection_lost("broker sent DISCONNECT: " +
+                                    paho::exception::reason_code_str(reason));
+        });
+    });
+    client_->set_message_callback([this](paho::const_message_ptr msg) {
+        Incoming in;
+        in.topic = msg->get_topic();
+        in.payload = msg->get_payload_str();
+        in.retained = msg->is_retained();
+        const paho::properties& props = msg->get_properties();
+        if (props.contains(paho::property::RESPONSE_TOPIC)) {
+            in.response_topic = paho::get<std::string>(props, paho::property::RESPONSE_TOPIC);
+        }
+        if (props.contains(paho::property::CORRELATION_DATA)) {
+            in.correlation_data = paho::get<std::string>(props, paho::property::CORRELATION_DATA);
+        }
+        if (props.contains(paho::property::MESSAGE_EXPIRY_INTERVAL)) {
+            in.message_expiry_s =
+                paho::get<std::uint32_t>(props, paho::property::MESSAGE_EXPIRY_INTERVAL);
+        }
+        received_.fetch_add(1, std::memory_order_relaxed);
+        post([in = std::move(in)](Impl& self) mutable {
+            if (self.on_message_ && self.state_ != State::stopped) {
+                self.on_message_(std::move(in));
+            }
+        });
+    });
+}
+
+Client::Impl::~Impl() {
+    try {
+        client_->disable_callbacks();
+    } catch (const paho::exception&) {
+    }
+    // Without a clean stop() the broker publishes our will: that is what "offline" means.
+    client_.reset();
+}
+
+void Client::Impl::do_connect() {
+    if (state_ == State::stopped) {
+        return;
+    }
+    state_ = State::connecting;
+    try {
+        client_->connect(connect_options_, nullptr, connect_listener_);
+    } catch (const paho::exception& e) {
+        on_connect(false, e.what());
+    }
+}
+
+void Client::Impl::on_connect(bool ok, std::string reason) {
+    if (state_ != State::connecting) {
+        return;  // stopped meanwhile
+    }
+    if (ok && !client_->is_connected()) {
+        ok = false;  // lost again before this ran
+        reason = "connection lost right after connect";
+    }
+    if (!ok) {
+        const auto now = Clock::now();
+        ++connect_failures_unlogged_;
+        if (connect_failures_unlogged_ == 1 || now - connect_failure_logged_ >= kLogInterval) {
+            if (connect_failures_unlogged_ == 1) {
+                spdlog::warn("MQTT cannot connect to {}: {}", options_.url, reason);
+            } else {
+                spdlog::warn("MQTT cannot connect to {}: {} ({} failed attempts)", options_.url,
+                             reason, connect_failures_unlogged_);
+            }
+            connect_failure_logged_ = now;
+            connect_failures_unlogged_ = 0;
+            spdlog::info("MQTT reconnecting in {} ms", schedule_reconnect().count());
+        } else {
+            schedule_reconnect();
+        }
+        return;
+    }
+
+    state_ = State::connected;
+    link_up_ = true;
+    connected_ = true;
+    connects_.fetch_add(1, std::memory_order_relaxed);
+    next_backoff_ = options_.min_backoff;
+    connect_failures_unlogged_ = 0;
+    connect_failure_logged_ = {};
+    spdlog::info("MQTT connected to {}", options_.url);
+
+    if (endpoint_) {
+        detail::set_tcp_nodelay_to(endpoint_->host, endpoint_->port);
+    }
+    try {
+        if (!options_.availability_topic.empty()) {
+            client_->publish(paho::make_message(options_.availability_topic, "online",
+                                                options_.availability_qos, true));
+        }
+    } catch (const paho::exception& e) {
+        spdlog::warn("MQTT cannot publish availability: {}", e.what());
+    }
+    renew_subscriptions(subscriptions_);
+    if (on_connected_) {
+        on_connected_();
+    }
+    pump();
+}
+
+void Client::Impl::on_connection_lost(std::string cause) {
+    if (state_ != State::connected) {
+        return;
+    }
+    connected_ = false;
+    connection_losses_.fetch_add(1, std::memory_order_relaxed);
+    spdlog::warn("MQTT connection to {} lost: {}", options_.url, cause);
+    {
+        // Whatever Paho did not confirm is either sent again (QoS >= 1, clean session) or
+        // counted as failed. Completions arriving later find nothing and are ignored, so
+        // nothing is counted twice.
+        std::lock_guard lock(mutex_);
+        if (requeue_in_flight_) {
+            for (auto it = in_flight_.begin(); it != in_flight_.end();) {
+                if (it->second.qos > 0) {
+                    retry_.insert(in_flight_.extract(it++));
+                } else {
+                    publish_failures_.fetch_add(1, std::memory_order_relaxed);
+                    it = in_flight_.erase(it);
+                }
+            }
+        }
+    }
+    completed_.notify_all();
+    spdlog::info("MQTT reconnecting in {} ms", schedule_reconnect().count());
+}
+
+std::chrono::milliseconds Client::Impl::schedule_reconnect() {
+    state_ = State::waiting;
+    const auto delay = next_backoff_;
+    next_backoff_ = std::min(next_backoff_ * 2, options_.max_backoff);
+    reconnect_timer_.expires_after(delay);
+    reconnect_timer_.async_wait([w = weak_from_this()](boost::system::error_code ec) {
+        auto self = w.lock();
+        if (ec == boost::asio::error::operation_aborted || !self) {
+            return;
+        }
+        if (self->state_ == State::waiting) {
+            self->do_connect();
+        }
+    });
+    return delay;
+}
+
+void Client::Impl::renew_subscriptions(const std::vector<std::string>& filters) {
+    if (filters.empty() || state_ != State::connected) {
+        return;
+    }
+    std::vector<paho::subscribe_options> opts;
+    if (options_.version == 5) {
+        // no_local: never hear our own publications; retain-as-published off, so only retained
+        // messages sent because we subscribed carry the flag (and the gateway rejects them).
+        opts.assign(filters.size(), paho::subscribe_options(true, false));
+    }
+    try {
+        client_->subscribe(paho::string_collection::create(filters),
+                           paho::iasync_client::qos_collection(filters.size(), 1), nullptr,
+                           subscribe_listener_, opts);
+    } catch (const paho::exception& e) {
+        spdlog::warn("MQTT subscribe failed on {}: {}", options_.url, e.what());
+    }
+}
+
+bool Client::Impl::take_next(std::unique_lock<std::mutex>&, std::uint64_t& id, Message& message) {
+    if (!retry_.empty()) {
+        auto node = retry_.extract(retry_.begin());
+        id = node.key();
+        message = std::move(node.mapped());
+        return true;
+    }
+    if (auto next = queue_.pop()) {
+        id = next_id_++;
+        message = std::move(*next);
+        return true;
+    }
+    return false;
+}
+
+Client::Impl::SendResult Client::Impl::send(std::uint64_t id, Message message) {
+    auto msg = paho::make_message(message.topic, message.payload, message.qos, message.retain);
+    {
+        std::lock_guard lock(mutex_);
+        in_flight_.emplace(id, std::move(message));
+    }
+    try {
+        client_->publish(msg, to_context(id), publish_listener_);
+        return SendResult::sent;
+    } catch (const paho::exception& e) {
+        std::unique_lock lock(mutex_);
+        auto node = in_flight_.extract(id);
+        if (node.empty()) {
+            return SendResult::failed;  // already completed by a listener
+        }
+        if (e.get_return_code() == MQTTASYNC_DISCONNECTED) {
+            retry_.insert(std::move(node));  // never left: no duplicate possible
+            return SendResult::not_connected;
+        }
+        publish_failures_.fetch_add(1, std::memory_order_relaxed);
+        lock.unlock();
+        completed_.notify_all();
+        post([topic = msg->get_topic(), reason = std::string(e.what())](Impl& self) mutable {
+            self.log_publish_failure(std::move(topic), std::move(reason));
+        });
+        return SendResult::failed;
+    }
+}
+
+void Client::Impl::pump() {
+    while (state_ == State::connected && link_up_ && !stopping_) {
+        std::uint64_t id = 0;
+        Message message;
+        {
+            std::unique_lock lock(mutex_);
+            if (in_flight_.size() >= options_.max_in_flight || !take_next(lock, id, message)) {
+                return;
+            }
+        }
+        if (send(id, std::move(message)) == SendResult::not_connected) {
+            return;
+        }
+    }
+}
+
+void Client::Impl::on_publish_done(std::uint64_t id, int rc, std::string reason) {
+    std::string failed_topic;
+    {
+        std::lock_guard lock(mutex_);
+        auto it = in_flight_.find(id);
+        if (it == in_flight_.end()) {
+            return;  // already re-queued or counted by on_connection_lost
+        }
+        if (rc == 0) {
+            published_.fetch_add(1, std::memory_order_relaxed);
+            in_flight_.erase(it);
+        } else if (requeue_in_flight_ && it->second.qos > 0 && !stopping_ &&
+                   (rc == MQTTASYNC_DISCONNECTED || rc == MQTTASYNC_OPERATION_INCOMPLETE ||
+                    !link_up_)) {
+            // Failed because the connection went: send it again after reconnect.
+            retry_.insert(in_flight_.extract(it));
+        } else {
+            publish_failures_.fetch_add(1, std::memory_order_relaxed);
+            failed_topic = it->second.topic;
+            in_flight_.erase(it);
+        }
+    }
+    completed_.notify_all();
+    if (stopping_) {
+        return;
+    }
+    if (!failed_topic.empty()) {
+        post([topic = std::move(failed_topic), reason = std::move(reason)](Impl& self) mutable {
+            self.log_publish_failure(std::move(topic), std::move(reason));
+        });
+    }
+    post([](Impl& self) { self.pump(); });
+}
+
+void Client::Impl::log_publish_failure(std::string topic, std::string reason) {
+    const auto now = Clock::now();
+    ++publish_failures_unlogged_;
+    if (publish_failures_unlogged_ == 1 || now - publish_failure_logged_ >= kLogInterval) {
+        spdlog::warn("MQTT publish to {} failed: {} ({} failures since last report)", topic, reason,
+                     publish_failures_unlogged_);
+        publish_failures_unlogged_ = 0;
+        publish_failure_logged_ = now;
+    }
+}
+
+void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
+    if (stopping_.exchange(true)) {
+        return;
+    }
+    // The loop may no longer run: cancel its timer there if it does, and touch nothing of it
+    // here. Paho is driven directly from this thread.
+    post([](Impl& self) {
+        self.state_ = State::stopped;
+        self.connected_ = false;
+        self.reconnect_timer_.cancel();
+    });
+    const auto deadline = Clock::now() + flush_timeout;
+    if (!link_up_ || !client_->is_connected()) {
+        std::lock_guard lock(mutex_);
+        const auto lost = queue_.size() + retry_.size();
+        if (lost > 0) {
+            spdlog::warn("MQTT stopping while disconnected: {} queued publications dropped", lost);
+        }
+        connected_ = false;
+        return;
+    }
+
+    paho::delivery_token_ptr offline;
+    try {
+        if (!options_.availability_topic.empty()) {
+            offline = client_->publish(paho::make_message(options_.availability_topic, "offline",
+                                                          options_.availability_qos, true));
+        }
+    } catch (const paho::exception& e) {
+        spdlog::warn("MQTT cannot publish availability: {}", e.what());
+    }
+
+    // Drain the queue straight into Paho, at most max_in_flight at a time.
+    std::size_t unsent = 0;
+    {
+        std::unique_lock lock(mutex_);
+        for (;;) {
+            if (!completed_.wait_until(
+                    lock, deadline, [&] { return in_flight_.size() < options_.max_in_flight; })) {
+                break;
+            }
+            std::uint64_t id = 0;
+            Message message;
+            if (!take_next(lock, id, message)) {
+                break;
+            }
+            lock.unlock();
+            const auto result = send(id, std::move(message));
+            lock.lock();
+            if (result == SendResult::not_connected) {
+                break;
+            }
+        }
+        completed_.wait_until(lock, deadline, [&] { return in_flight_.empty(); });
+        unsent = queue_.size() + retry_.size() + in_flight_.size();
+    }
+    if (offline) {
+        const auto left = std::max(Clock::duration::zero(), deadline - Clock::now());
+        try {
+            offline->wait_for(std::chrono::duration_cast<std::chrono::milliseconds>(left));
+        } catch (const paho::exception&) {
+        }
+    }
+    if (unsent > 0) {
+        spdlog::warn("MQTT stop: {} publications not confirmed within {} ms", unsent,
+                     flush_timeout.count());
+    }
+    try {
+        client_->disconnect(paho::disconnect_options(std::chrono::seconds(1)))
+            ->wait_for(std::chrono::seconds(2));
+    } catch (const paho::exception& e) {
+        spdlog::warn("MQTT disconnect failed: {}", e.what());
+    }
+    link_up_ = false;
+    connected_ = false;
+    spdlog::info("MQTT disconnected from {}", options_.url);
+}
+
+// --- Client ------------------------------------------------------------------------------
+
+Client::Client(boost::asio::any_io_executor loop, ClientOptions options)
+    : impl_(std::make_shared<Impl>(std::move(loop), std::move(options))) {}
+
+Client::~Client() = default;
+
+void Client::set_on_connected(ConnectedHandler handler) {
+    impl_->on_connected_ = std::move(handler);
+}
+
+void Client::set_on_message(MessageHandler handler) { impl_->on_message_ = std::move(handler); }
+
+void Client::set_subscriptions(std::vector<std::string> filters) {
+    Impl& impl = *impl_;
+    std::set<std::string> old(impl.subscriptions_.begin(), impl.subscriptions_.end());
+    std::set<std::string> now(filters.begin(), filters.end());
+    std::vector<std::string> added;
+    std::vector<std::string> removed;
+    std::set_difference(now.begin(), now.end(), old.begin(), old.end(), std::back_inserter(added));
+    std::set_difference(old.begin(), old.end(), now.begin(), now.end(),
+                        std::back_inserter(removed));
+    impl.subscriptions_ = std::move(filters);
+    if (impl.state_ != Impl::State::connected) {
+        return;  // subscribed on the next connect
+    }
+    impl.renew_subscriptions(added);
+    if (!removed.empty()) {
+        try {
+            impl.client_->unsubscribe(paho::string_collection::create(removed));
+        } catch (const paho::exception& e) {
+            spdlog::warn("MQTT unsubscribe failed on {}: {}", impl.options_.url, e.what());
+        }
+    }
+}
+
+void Client::start() {
+    if (impl_->state_ == Impl::State::idle) {
+        impl_->do_connect();
+    }
+}
+
+void Client::publish(Message message) {
+    {
+        std::lock_guard lock(impl_->mutex_);
+        impl_->queue_.push(std::move(message));
+    }
+    impl_->pump();
+}
+
+void Client::stop(std::chrono::milliseconds flush_timeout) { impl_->stop(flush_timeout); }
+
+bool Client::connected() const { return impl_->connected_; }
+
+ClientStats Client::stats() const {
+    const Impl& impl = *impl_;
+    ClientStats s;
+    s.connected = impl.connected_;
+    s.published = impl.published_;
+    s.publish_failures = impl.publish_failures_;
+    s.connects = impl.connects_;
+    s.connection_losses = impl.connection_losses_;
+    s.received = impl.received_;
+    std::lock_guard lock(impl.mutex_);
+    s.queued = impl.queue_.size() + impl.retry_.size();
+    s.in_flight = impl.in_flight_.size();
+    s.dropped_overflow = impl.queue_.dropped_overflow();
+    s.coalesced = impl.queue_.coalesced();
+    return s;
+}
+
+void Client::set_buffer_capacity(std::size_t max_messages) {
+    std::lock_guard lock(impl_->mutex_);
+    impl_->queue_.set_capacity(max_messages);
+}
+
+}  // namespace eip2mqtt::adapters::mqtt

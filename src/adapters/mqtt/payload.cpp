@@ -1,0 +1,40 @@
+#include "eip2mqtt/adapters/mqtt/payload.hpp"
+
+#include <fmt/format.h>
+
+#include <iterator>
+
+namespace eip2mqtt::adapters::mqtt {
+
+void format_tag_payload(std::string& out, const core::plan::Value& value,
+                        core::quality::Quality quality, std::int64_t timestamp_ms,
+                        core::config::PayloadFormat format) {
+    out.clear();
+    if (format == core::config::PayloadFormat::raw) {
+        out = core::plan::to_json(value);
+        return;
+    }
+    fmt::format_to(std::back_inserter(out), R"({{"value":{},"timestamp":{},"quality":"{}"}})",
+                   core::plan::to_json(value), timestamp_ms, core::quality::to_string(quality));
+}
+
+std::string format_status_payload(const core::exchange::ConsumedExchange& exchange,
+                                  std::optional<std::int64_t> last_seen_ms) {
+    const auto& c = exchange.counters();
+    const std::string last_seen = last_seen_ms ? std::to_string(*last_seen_ms) : "null";
+    const std::string request_id =
+        exchange.has_image() ? std::to_string(exchange.last_header().request_id) : "null";
+    return fmt::format(
+        R"({{"state":"{}","request_id":{},"received":{},"accepted":{},"missed":{},"duplicates":{},)"
+        R"("out_of_order":{},"signature_mismatches":{},"length_mismatches":{},"timeouts":{},)"
+        R"("last_seen":{}}})",
+        core::exchange::to_string(exchange.state()), request_id, c.received, c.accepted, c.missed,
+        c.duplicates, c.out_of_order, c.signature_mismatches, c.length_mismatches, c.timeouts,
+        last_seen);
+}
+
+std::int64_t timestamp_ms(std::uint32_t seconds, std::uint32_t nanoseconds) {
+    return static_cast<std::int64_t>(seconds) * 1000 + nanoseconds / 1000000;
+}
+
+}  // namespace eip2mqtt::adapters::mqtt

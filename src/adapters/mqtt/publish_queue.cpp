@@ -1,0 +1,62 @@
+#include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
+
+#include <utility>
+
+namespace eip2mqtt::adapters::mqtt {
+
+PublishQueue::PublishQueue(std::size_t capacity) : capacity_(capacity) {}
+
+void PublishQueue::push(Message message) {
+    if (message.coalesce) {
+        if (auto it = by_topic_.find(message.topic); it != by_topic_.end()) {
+            slots_[it->second - sequence_base_] = std::move(message);
+            ++coalesced_;
+            return;
+        }
+    } else {
+        // A newer value queued after a non-coalescing message must not jump ahead of it by
+        // replacing an older slot, or the topic would end on a stale value.
+        by_topic_.erase(message.topic);
+    }
+    if (capacity_ == 0) {
+        ++dropped_overflow_;
+        return;
+    }
+    while (slots_.size() >= capacity_) {
+        drop_oldest();
+    }
+    const std::uint64_t sequence = sequence_base_ + slots_.size();
+    if (message.coalesce) {
+        by_topic_.emplace(message.topic, sequence);
+    }
+    slots_.push_back(std::move(message));
+}
+
+std::optional<Message> PublishQueue::pop() {
+    if (slots_.empty()) {
+        return std::nullopt;
+    }
+    Message message = std::move(slots_.front());
+    slots_.pop_front();
+    if (auto it = by_topic_.find(message.topic);
+        it != by_topic_.end() && it->second == sequence_base_) {
+        by_topic_.erase(it);
+    }
+    ++sequence_base_;
+    return message;
+}
+
+void PublishQueue::set_capacity(std::size_t capacity) {
+    capacity_ = capacity;
+    while (slots_.size() > capacity_) {
+        drop_oldest();
+    }
+}
+
+void PublishQueue::drop_oldest() {
+    if (pop()) {
+        ++dropped_overflow_;
+    }
+}
+
+}  // namespace eip2mqtt::adapters::mqtt

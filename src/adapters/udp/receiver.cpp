@@ -1,0 +1,159 @@
+#include "eip2mqtt/adapters/udp/receiver.hpp"
+
+#include <arpa/inet.h>
+#include <net/if.h>
+
+#include <boost/asio/error.hpp>
+#include <boost/asio/ip/address_v4.hpp>
+#include <cerrno>
+#include <spdlog/spdlog.h>
+#include <system_error>
+
+namespace eip2mqtt::adapters::udp {
+namespace {
+
+// Room for any datagram EIP allows (1432 bytes) and then some, so an oversized one is seen
+// whole enough to be counted as too long rather than silently cut to a valid size.
+constexpr std::size_t slot_size = 2048;
+// Datagrams read per wake-up before yielding to other handlers on the loop.
+constexpr std::size_t max_batches_per_wakeup = 16;
+
+void join_group(int fd, const MulticastMembership& membership) {
+    const auto group = parse_ipv4(membership.group);
+    if (!group) {
+        throw std::system_error(std::make_error_code(std::errc::invalid_argument),
+                                "multicast group '" + membership.group + "' is not an IPv4 address");
+    }
+    ip_mreqn request{};
+    request.imr_multiaddr.s_addr = htonl(*group);
+    if (!membership.interface.empty()) {
+        if (auto address = parse_ipv4(membership.interface)) {
+            request.imr_address.s_addr = htonl(*address);
+        } else {
+            const unsigned index = if_nametoindex(membership.interface.c_str());
+            if (index == 0) {
+                throw std::system_error(errno, std::generic_category(),
+                                        "multicast interface '" + membership.interface + "'");
+            }
+            request.imr_ifindex = static_cast<int>(index);
+        }
+    }
+    if (setsockopt(fd, IPPROTO_IP, IP_ADD_MEMBERSHIP, &request, sizeof request) != 0) {
+        throw std::system_error(errno, std::generic_category(),
+                                "cannot join multicast group " + membership.group);
+    }
+    spdlog::info("joined multicast group {} on {}", membership.group,
+                 membership.interface.empty() ? "the default interface" : membership.interface);
+}
+
+}  // namespace
+
+Receiver::Receiver(boost::asio::any_io_executor executor, const ReceiverOptions& options)
+    : socket_(executor), batch_(options.batch == 0 ? 1 : options.batch) {
+    namespace ip = boost::asio::ip;
+    boost::system::error_code ec;
+    const auto address = ip::make_address_v4(options.bind, ec);
+    if (ec) {
+        throw std::system_error(ec, "eip.bind '" + options.bind + "' is not an IPv4 address");
+    }
+    const ip::udp::endpoint endpoint(address, options.port);
+    socket_.open(ip::udp::v4());
+    socket_.set_option(ip::udp::socket::reuse_address(true));
+    socket_.non_blocking(true);
+    const int fd = socket_.native_handle();
+    const int rcvbuf = options.receive_buffer_bytes;
+    if (rcvbuf > 0) setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
+    socket_.bind(endpoint, ec);
+    if (ec) {
+        throw std::system_error(ec, "cannot bind UDP " + options.bind + ":" +
+                                        std::to_string(options.port));
+    }
+    for (const auto& membership : options.multicast) join_group(fd, membership);
+
+    storage_.resize(batch_ * slot_size);
+    messages_.resize(batch_);
+    iovecs_.resize(batch_);
+    sources_.resize(batch_);
+    for (std::size_t i = 0; i < batch_; ++i) {
+        iovecs_[i].iov_base = storage_.data() + i * slot_size;
+        iovecs_[i].iov_len = slot_size;
+    }
+}
+
+Receiver::~Receiver() { stop(); }
+
+void Receiver::start(Handler handler) {
+    handler_ = std::move(handler);
+    do_wait();
+}
+
+void Receiver::stop() {
+    stopped_ = true;
+    boost::system::error_code ignored;
+    socket_.close(ignored);
+}
+
+std::uint16_t Receiver::local_port() const {
+    boost::system::error_code ec;
+    return socket_.local_endpoint(ec).port();
+}
+
+void Receiver::do_wait() {
+    socket_.async_wait(boost::asio::ip::udp::socket::wait_read,
+                       [this](const boost::system::error_code& error) { on_readable(error); });
+}
+
+void Receiver::on_readable(const boost::system::error_code& error) {
+    if (error == boost::asio::error::operation_aborted || stopped_) return;
+    if (error) {
+        ++stats_.errors;
+        spdlog::error("UDP receive wait failed: {}", error.message());
+    } else {
+        for (std::size_t i = 0; i < max_batches_per_wakeup; ++i) {
+            if (drain() < batch_) break;
+        }
+    }
+    if (!stopped_) do_wait();
+}
+
+std::size_t Receiver::drain() {
+    for (std::size_t i = 0; i < batch_; ++i) {
+        auto& header = messages_[i].msg_hdr;
+        header = {};
+        header.msg_name = &sources_[i];
+        header.msg_namelen = sizeof(sockaddr_in);
+        header.msg_iov = &iovecs_[i];
+        header.msg_iovlen = 1;
+        messages_[i].msg_len = 0;
+    }
+    const int fd = socket_.native_handle();
+    const int count = ::recvmmsg(fd, messages_.data(), static_cast<unsigned>(batch_),
+                                 MSG_DONTWAIT | MSG_TRUNC, nullptr);
+    if (count < 0) {
+        if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
+            ++stats_.errors;
+            spdlog::error("recvmmsg failed: {}", std::strerror(errno));
+        }
+        return 0;
+    }
+    ++stats_.batches;
+    for (int i = 0; i < count; ++i) {
+        const auto& message = messages_[static_cast<std::size_t>(i)];
+        std::size_t length = message.msg_len;
+        const bool truncated = (message.msg_hdr.msg_flags & MSG_TRUNC) != 0 || length > slot_size;
+        if (truncated) {
+            ++stats_.truncated;
+            length = slot_size;
+        }
+        const auto& source = sources_[static_cast<std::size_t>(i)];
+        const Endpoint from{ntohl(source.sin_addr.s_addr), ntohs(source.sin_port)};
+        ++stats_.datagrams;
+        handler_(std::span<const std::byte>(storage_.data() + static_cast<std::size_t>(i) * slot_size,
+                                            length),
+                 from, truncated);
+        if (stopped_) break;
+    }
+    return static_cast<std::size_t>(count);
+}
+
+}  // namespace eip2mqtt::adapters::udp

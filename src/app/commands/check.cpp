@@ -1,0 +1,116 @@
+// `eip2mqtt check -c FILE`: every configuration error, or each exchange's byte map and topics.
+
+#include <algorithm>
+#include <cstddef>
+#include <iomanip>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "eip2mqtt/adapters/yaml/load_config.hpp"
+#include "eip2mqtt/app/commands.hpp"
+#include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/plan/address.hpp"
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/wire/header.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using core::plan::Direction;
+using core::plan::ExchangePlan;
+using core::plan::TagPlan;
+using core::plan::TagType;
+
+std::string size_text(TagType type) {
+    if (type == TagType::bit) return "1 bit";
+    const auto size = core::plan::size_of(type);
+    return std::to_string(size) + (size == 1 ? " byte" : " bytes");
+}
+
+/// "bytes 0-118, 121-125 unused", or "no unused bytes".
+std::string unused_ranges(const ExchangePlan& plan) {
+    std::vector<bool> used(plan.length, false);
+    for (const auto& tag : plan.tags) {
+        const std::size_t first = tag.spec.address.byte;
+        const std::size_t end = std::min<std::size_t>(
+            first + core::plan::size_of(tag.spec.type), plan.length);
+        for (std::size_t b = first; b < end; ++b) used[b] = true;
+    }
+    std::string ranges;
+    std::size_t count = 0;
+    for (std::size_t b = 0; b < used.size();) {
+        if (used[b]) {
+            ++b;
+            continue;
+        }
+        std::size_t e = b;
+        while (e + 1 < used.size() && !used[e + 1]) ++e;
+        if (!ranges.empty()) ranges += ", ";
+        ranges += e == b ? std::to_string(b) : std::to_string(b) + "-" + std::to_string(e);
+        count += e - b + 1;
+        b = e + 1;
+    }
+    if (count == 0) return "no unused bytes";
+    return (count == 1 ? "byte " : "bytes ") + ranges + " unused";
+}
+
+void print_exchange(const ExchangePlan& plan, std::ostream& out) {
+    const auto& spec = plan.spec;
+    const bool produce = spec.direction == Direction::produce;
+    out << "exchange " << spec.name << ": " << (produce ? "produce" : "consume") << ", producer "
+        << core::wire::to_string(spec.producer_id) << ", exchange " << spec.exchange_id << ", "
+        << plan.length << " bytes, period " << spec.period.count() << " ms";
+    if (!produce) {
+        out << ", timeout ";
+        if (plan.timeout.count() == 0) {
+            out << "off";
+        } else {
+            out << plan.timeout.count() << " ms";
+        }
+    }
+    out << ", signature "
+        << (spec.signature.is_set() ? core::wire::to_string(spec.signature) : "none");
+    if (produce) out << ", destination " << spec.destination;
+    out << "\n  topic " << plan.topic << " (" << plan.status_topic;
+    if (produce) out << ", writes " << plan.set_topic;
+    out << ")\n";
+
+    std::vector<const TagPlan*> tags;
+    for (const auto& tag : plan.tags) tags.push_back(&tag);
+    std::stable_sort(tags.begin(), tags.end(), [](const TagPlan* a, const TagPlan* b) {
+        return std::make_pair(a->spec.address.byte, a->spec.address.bit) <
+               std::make_pair(b->spec.address.byte, b->spec.address.bit);
+    });
+    for (const auto* tag : tags) {
+        out << "  " << std::left << std::setw(7) << core::plan::to_string(tag->spec.address)
+            << std::setw(7) << core::plan::to_string(tag->spec.type) << std::setw(9)
+            << size_text(tag->spec.type) << tag->topic;
+        if (tag->spec.writable) out << "  writable";
+        out << std::right << "\n";
+    }
+    out << "  " << unused_ranges(plan) << "\n";
+}
+
+}  // namespace
+
+int run_check(const std::string& config_path, std::ostream& out, std::ostream& err) {
+    const auto config = adapters::yaml::load_config(config_path);
+    if (!config) {
+        for (const auto& diagnostic : config.error()) err << diagnostic.to_string() << "\n";
+        err << config.error().size() << " error(s)\n";
+        return 1;
+    }
+    const auto plans = core::config::make_plans(*config);
+    out << config_path << ": valid, " << plans.size()
+        << (plans.size() == 1 ? " exchange" : " exchanges") << ", base topic "
+        << config->mqtt.base_topic << "\n";
+    for (const auto& plan : plans) {
+        out << "\n";
+        print_exchange(plan, out);
+    }
+    return 0;
+}
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,120 @@
+#include "eip2mqtt/app/exchange_consumer.hpp"
+
+#include <chrono>
+#include <fmt/format.h>
+
+#include "eip2mqtt/adapters/mqtt/payload.hpp"
+#include "eip2mqtt/core/wire/value_codec.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using std::chrono::duration_cast;
+using std::chrono::milliseconds;
+
+// product.md: `_status` is published on every state change, then at most once a second while
+// its counters move.
+constexpr auto status_interval = std::chrono::seconds(1);
+
+std::int64_t to_ms(core::WallTime wall) {
+    return duration_cast<milliseconds>(wall.time_since_epoch()).count();
+}
+
+}  // namespace
+
+ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, PublishSettings settings,
+                                   PublishSink sink)
+    : plan_(std::move(plan)),
+      settings_(settings),
+      sink_(std::move(sink)),
+      exchange_(plan_) {
+    filters_.reserve(plan_.tags.size());
+    for (const auto& tag : plan_.tags) filters_.emplace_back(tag.spec.deadband, tag.spec.refresh);
+}
+
+std::int64_t ExchangeConsumer::sample_time_ms(core::WallTime wall) const {
+    const auto& header = exchange_.last_header();
+    // product.md: the producer's timestamp when the datagram has one, otherwise receive time.
+    return header.has_timestamp() ? adapters::mqtt::timestamp_ms(header.time_s, header.time_ns)
+                                  : to_ms(wall);
+}
+
+core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::Datagram& datagram,
+                                                             core::MonoTime now,
+                                                             core::WallTime wall) {
+    const auto outcome = exchange_.on_datagram(datagram, now);
+    if (outcome.accepted()) {
+        last_seen_ms_ = to_ms(wall);
+        timestamp_ms_ = sample_time_ms(wall);
+        publish_tags(now, false);
+    } else if (outcome.state_changed) {
+        // Entering signature or length mismatch: the last values are republished as bad.
+        timestamp_ms_ = to_ms(wall);
+        publish_tags(now, false);
+    }
+    if (outcome.state_changed) {
+        publish_status(now, wall);
+    } else {
+        status_dirty_ = true;
+    }
+    return outcome;
+}
+
+void ExchangeConsumer::on_tick(core::MonoTime now, core::WallTime wall, bool refresh_scan) {
+    if (exchange_.on_tick(now)) {
+        // eip-protocol.md §4 rule 8: every tag of a stale exchange is republished as stale,
+        // keeping its last value; the timestamp says when it was found stale.
+        timestamp_ms_ = to_ms(wall);
+        publish_tags(now, false);
+        publish_status(now, wall);
+        return;
+    }
+    if (refresh_scan) publish_tags(now, false);
+    if (status_dirty_ && exchange_.counters().received != last_status_received_ &&
+        (!last_status_at_ || now - *last_status_at_ >= status_interval)) {
+        publish_status(now, wall);
+    }
+}
+
+void ExchangeConsumer::republish(core::MonoTime now, core::WallTime wall) {
+    publish_tags(now, true);
+    publish_status(now, wall);
+}
+
+void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
+    const auto quality = core::quality::quality_of(exchange_.state());
+    if (!quality || !exchange_.has_image()) return;
+    const auto image = exchange_.image();
+    std::string batch_values;
+    for (std::size_t i = 0; i < plan_.tags.size(); ++i) {
+        const auto& tag = plan_.tags[i];
+        auto& filter = filters_[i];
+        const auto value = core::wire::decode_value(image, tag.spec.type, tag.spec.address);
+        if (!force && !filter.should_publish(value, *quality, now)) continue;
+        filter.published(value, *quality, now);
+        adapters::mqtt::format_tag_payload(payload_, value, *quality, timestamp_ms_,
+                                           settings_.format);
+        sink_({tag.topic, payload_, settings_.qos, settings_.retain, true});
+        if (settings_.batch) {
+            fmt::format_to(std::back_inserter(batch_values), R"({}"{}":{})",
+                           batch_values.empty() ? "" : ",", tag.spec.name,
+                           core::plan::to_json(value));
+        }
+    }
+    if (settings_.batch && !batch_values.empty()) {
+        sink_({plan_.values_topic,
+               fmt::format(R"({{"timestamp":{},"quality":"{}","values":{{{}}}}})", timestamp_ms_,
+                           core::quality::to_string(*quality), batch_values),
+               settings_.qos, false, false});
+    }
+}
+
+void ExchangeConsumer::publish_status(core::MonoTime now, core::WallTime) {
+    sink_({plan_.status_topic, adapters::mqtt::format_status_payload(exchange_, last_seen_ms_),
+           settings_.qos, true, true});
+    last_status_at_ = now;
+    last_status_received_ = exchange_.counters().received;
+    status_dirty_ = false;
+}
+
+}  // namespace eip2mqtt::app

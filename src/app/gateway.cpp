@@ -1,0 +1,282 @@
+#include "eip2mqtt/app/gateway.hpp"
+
+#include <sys/stat.h>
+
+#include <boost/asio/post.hpp>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+#include <stdexcept>
+
+#include "eip2mqtt/core/wire/decode.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using namespace std::chrono_literals;
+
+// How often timeouts and `_status` throttling are checked: a tenth of the shortest default
+// timeout in practice, and cheap (one comparison per exchange).
+constexpr auto tick_interval = 10ms;
+// refresh_s is counted in seconds, so the tags are scanned for it once a second.
+constexpr auto refresh_scan_interval = 1s;
+// How long a clean stop waits for queued publications before giving up.
+constexpr auto stop_flush_timeout = 3s;
+
+std::string read_password(const core::config::MqttSection& mqtt) {
+    if (!mqtt.password_file.empty()) {
+        struct stat info {};
+        if (::stat(mqtt.password_file.c_str(), &info) == 0 && (info.st_mode & S_IROTH) != 0) {
+            spdlog::warn("password file {} is readable by others; chmod o-r it",
+                         mqtt.password_file);
+        }
+        std::ifstream file(mqtt.password_file);
+        if (!file) {
+            throw std::runtime_error("cannot read mqtt.password_file " + mqtt.password_file);
+        }
+        std::string password;
+        std::getline(file, password);
+        return password;
+    }
+    if (const char* env = std::getenv("EIP2MQTT_MQTT_PASSWORD")) return env;
+    return {};
+}
+
+adapters::mqtt::ClientOptions client_options(const core::config::Config& config,
+                                             const std::string& availability_topic) {
+    const auto& mqtt = config.mqtt;
+    adapters::mqtt::ClientOptions options;
+    options.url = mqtt.url;
+    options.client_id = mqtt.client_id.empty() ? "eip2mqtt-" + config.gateway.id : mqtt.client_id;
+    options.version = mqtt.version;
+    options.username = mqtt.username;
+    options.password = read_password(mqtt);
+    if (mqtt.tls) {
+        options.tls = adapters::mqtt::TlsOptions{mqtt.tls->ca_file, mqtt.tls->cert_file,
+                                                 mqtt.tls->key_file, mqtt.tls->verify};
+    }
+    options.keepalive = mqtt.keepalive;
+    options.availability_topic = availability_topic;
+    options.buffer_max_messages = mqtt.buffer_max_messages;
+    return options;
+}
+
+}  // namespace
+
+Gateway::Gateway(core::config::Config config)
+    : config_(std::move(config)),
+      publish_settings_{config_.mqtt.qos, config_.mqtt.retain, config_.mqtt.payload,
+                        config_.mqtt.batch},
+      availability_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/state"),
+      metrics_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/metrics"),
+      signals_(loop_, SIGINT, SIGTERM),
+      tick_timer_(loop_),
+      metrics_timer_(loop_) {
+    mqtt_ = std::make_unique<adapters::mqtt::Client>(loop_.get_executor(),
+                                                     client_options(config_, availability_topic_));
+    auto sink = [this](adapters::mqtt::Message&& message) { mqtt_->publish(std::move(message)); };
+    for (auto& plan : core::config::make_plans(config_)) {
+        if (plan.spec.direction != core::plan::Direction::consume) continue;
+        const auto key = plan.key();
+        consumers_.push_back(
+            std::make_unique<ExchangeConsumer>(std::move(plan), publish_settings_, sink));
+        by_key_.emplace(key, consumers_.back().get());
+    }
+
+    adapters::udp::ReceiverOptions receiver_options;
+    receiver_options.bind = config_.eip.bind;
+    receiver_options.port = config_.eip.port;
+    for (const auto& group : config_.eip.multicast) {
+        receiver_options.multicast.push_back({group.group, group.interface});
+    }
+    receiver_ = std::make_unique<adapters::udp::Receiver>(loop_.get_executor(), receiver_options);
+}
+
+Gateway::~Gateway() = default;
+
+void Gateway::request_stop() {
+    boost::asio::post(loop_, [this] {
+        stopping_ = true;
+        loop_.stop();
+    });
+}
+
+int Gateway::run() {
+    start();
+    loop_.run();
+
+    notifier_.stopping();
+    spdlog::info("stopping: flushing publications and publishing offline");
+    receiver_->stop();
+    mqtt_->stop(stop_flush_timeout);
+    const auto stats = mqtt_->stats();
+    spdlog::info("stopped: {} datagrams received, {} publications made, {} still queued",
+                 counters_.datagrams, stats.published, stats.queued);
+    return 0;
+}
+
+void Gateway::start() {
+    started_at_ = std::chrono::steady_clock::now();
+    last_refresh_scan_ = started_at_;
+    std::vector<std::string> subscriptions;  // writes (issue #3) subscribe here
+    mqtt_->set_subscriptions(subscriptions);
+    mqtt_->set_on_connected([this] { on_connected(); });
+    receiver_->start([this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
+                            bool truncated) { on_datagram(bytes, from, truncated); });
+    mqtt_->start();
+    wait_signal();
+    schedule_tick();
+    schedule_metrics();
+    spdlog::info("eip2mqtt {} listening on UDP {}:{} with {} consumed exchange(s); MQTT {}",
+                 config_.gateway.id, config_.eip.bind, receiver_->local_port(), consumers_.size(),
+                 config_.mqtt.url);
+    // Sockets are bound and the first connection attempt is under way.
+    notifier_.ready(status_line());
+}
+
+void Gateway::wait_signal() {
+    signals_.async_wait([this](const boost::system::error_code& error, int signo) {
+        if (error) return;
+        spdlog::info("received signal {}", signo == SIGINT ? "SIGINT" : "SIGTERM");
+        stopping_ = true;
+        loop_.stop();
+    });
+}
+
+void Gateway::on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
+                          bool truncated) {
+    const auto now = std::chrono::steady_clock::now();
+    ++counters_.datagrams;
+    if (truncated) {
+        ++counters_.dropped[static_cast<std::size_t>(core::wire::DropReason::too_long)];
+        drop_log_.record_lazy(core::wire::DropReason::too_long, now, [&] {
+            return "datagram from " + adapters::udp::to_string(from) + " is larger than 1432 bytes";
+        });
+        return;
+    }
+    const auto decoded = core::wire::decode_datagram(bytes);
+    if (!decoded) {
+        const auto reason = decoded.error();
+        ++counters_.dropped[static_cast<std::size_t>(reason)];
+        drop_log_.record_lazy(reason, now, [&] {
+            return std::to_string(bytes.size()) + " bytes from " + adapters::udp::to_string(from);
+        });
+        return;
+    }
+    const auto& datagram = decoded.value();
+    const auto it = by_key_.find(datagram.header.key());
+    if (it == by_key_.end()) {
+        ++counters_.dropped[static_cast<std::size_t>(core::wire::DropReason::unknown_exchange)];
+        drop_log_.record_lazy(core::wire::DropReason::unknown_exchange, now, [&] {
+            return "producer " + core::wire::to_string(datagram.header.producer_id) +
+                   " exchange " + std::to_string(datagram.header.exchange_id) + " from " +
+                   adapters::udp::to_string(from) + " is not configured";
+        });
+        return;
+    }
+    ExchangeConsumer& consumer = *it->second;
+    const auto& spec = consumer.plan().spec;
+    if (spec.source && *spec.source != from.address) {
+        ++counters_.dropped[static_cast<std::size_t>(core::wire::DropReason::wrong_source)];
+        drop_log_.record_lazy(core::wire::DropReason::wrong_source, now, [&] {
+            return "exchange " + spec.name + " came from " + adapters::udp::to_string(from) +
+                   ", expected " + adapters::udp::ipv4_to_string(*spec.source);
+        });
+        return;
+    }
+    const auto outcome = consumer.on_datagram(datagram, now, std::chrono::system_clock::now());
+    if (outcome.accepted()) {
+        ++counters_.accepted;
+        return;
+    }
+    ++counters_.dropped[static_cast<std::size_t>(*outcome.dropped)];
+    if (outcome.state_changed) {
+        spdlog::warn("exchange {}: {} (received {} data bytes, configured {}, signature {})",
+                     spec.name, core::exchange::to_string(consumer.exchange().state()),
+                     datagram.data.size(), consumer.plan().length,
+                     core::wire::to_string(core::wire::Signature::from_wire(datagram.header.signature)));
+    }
+}
+
+void Gateway::on_connected() {
+    spdlog::info("republishing retained state of {} exchange(s)", consumers_.size());
+    const auto now = std::chrono::steady_clock::now();
+    const auto wall = std::chrono::system_clock::now();
+    for (auto& consumer : consumers_) consumer->republish(now, wall);
+}
+
+void Gateway::schedule_tick() {
+    tick_timer_.expires_after(tick_interval);
+    tick_timer_.async_wait([this](const boost::system::error_code& error) {
+        if (error) return;
+        on_tick();
+        schedule_tick();
+    });
+}
+
+void Gateway::on_tick() {
+    const auto now = std::chrono::steady_clock::now();
+    const auto wall = std::chrono::system_clock::now();
+    const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
+    if (refresh_scan) last_refresh_scan_ = now;
+    for (auto& consumer : consumers_) {
+        const auto before = consumer->exchange().state();
+        consumer->on_tick(now, wall, refresh_scan);
+        const auto after = consumer->exchange().state();
+        if (before != after && after == core::exchange::ConsumeState::stale) {
+            spdlog::warn("exchange {} is stale: no datagram for {} ms; tags marked stale",
+                         consumer->plan().spec.name, consumer->plan().timeout.count());
+        } else if (before != after) {
+            spdlog::info("exchange {} is {}", consumer->plan().spec.name,
+                         core::exchange::to_string(after));
+        }
+    }
+}
+
+void Gateway::schedule_metrics() {
+    metrics_timer_.expires_after(config_.mqtt.metrics_interval);
+    metrics_timer_.async_wait([this](const boost::system::error_code& error) {
+        if (error) return;
+        publish_metrics();
+        schedule_metrics();
+    });
+}
+
+void Gateway::publish_metrics() {
+    const auto stats = mqtt_->stats();
+    nlohmann::json dropped = nlohmann::json::object();
+    for (const auto reason : core::wire::all_drop_reasons) {
+        dropped[std::string(core::wire::to_string(reason))] =
+            counters_.dropped[static_cast<std::size_t>(reason)];
+    }
+    const nlohmann::json metrics = {
+        {"uptime_s",
+         std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() -
+                                                          started_at_)
+             .count()},
+        {"datagrams", counters_.datagrams},
+        {"accepted", counters_.accepted},
+        {"dropped", dropped},
+        {"published", stats.published},
+        {"buffered", stats.queued},
+        {"publications_dropped", stats.dropped_overflow},
+        {"publications_coalesced", stats.coalesced},
+        {"mqtt_connects", stats.connects},
+        {"writes_ok", 0},
+        {"writes_rejected", 0},
+    };
+    mqtt_->publish({metrics_topic_, metrics.dump(), 0, false, true});
+    notifier_.status(status_line());
+}
+
+std::string Gateway::status_line() const {
+    const auto stats = mqtt_->stats();
+    return std::to_string(counters_.datagrams) + " datagrams, " +
+           std::to_string(counters_.accepted) + " accepted, " + std::to_string(stats.published) +
+           " published, MQTT " + (stats.connected ? "connected" : "disconnected");
+}
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,425 @@
+#include "eip2mqtt/core/config/config.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <map>
+#include <set>
+#include <string_view>
+#include <tuple>
+#include <unordered_map>
+#include <variant>
+
+#include "eip2mqtt/core/plan/address.hpp"
+#include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/wire/header.hpp"
+
+namespace eip2mqtt::core::config {
+
+const Mark& Marks::of(std::string_view key) const {
+    const auto it = keys.find(key);
+    return it == keys.end() ? node : it->second;
+}
+
+namespace {
+
+using plan::Direction;
+using plan::TagType;
+
+constexpr long long min_period_ms = 2;        // eip-protocol.md §5
+constexpr long long max_period_ms = 3600000;  // eip-protocol.md §5
+
+std::string in_quotes(std::string_view text) { return "'" + std::string(text) + "'"; }
+
+std::string format_number(double value) {
+    std::string text = std::to_string(value);
+    if (text.find('.') != std::string::npos) {
+        text.erase(text.find_last_not_of('0') + 1);
+        if (text.back() == '.') text.pop_back();
+    }
+    return text;
+}
+
+double as_double(const plan::Value& value) {
+    return std::visit([](auto v) { return static_cast<double>(v); }, value);
+}
+
+/// Why `topic` is not a valid MQTT publication topic (or a part of one), or empty when it is.
+std::string topic_problem(std::string_view topic) {
+    if (topic.empty()) return "is empty";
+    if (topic.find_first_of("+#") != std::string_view::npos) {
+        return "contains a wildcard ('+' or '#')";
+    }
+    if (topic.front() == '/' || topic.back() == '/' || topic.find("//") != std::string_view::npos) {
+        return "has an empty level (leading, trailing or double '/')";
+    }
+    if (topic.find('\0') != std::string_view::npos) return "contains a NUL character";
+    return {};
+}
+
+/// Why a tag name cannot be a topic level of its own, or empty when it can.
+std::string tag_name_problem(std::string_view name) {
+    if (name.empty()) return "a tag has an empty name";
+    if (name.find_first_of("/+#") != std::string_view::npos) {
+        return "tag name " + in_quotes(name) + " contains '/', '+' or '#'";
+    }
+    // The gateway's own words under an exchange topic: {exchange}/set, {exchange}/_status...
+    if (name == "set" || name.front() == '_') {
+        return "tag name " + in_quotes(name) +
+               " is reserved for the gateway's own topics ('set' and names starting with '_')";
+    }
+    return {};
+}
+
+class Validator {
+public:
+    explicit Validator(const Config& config) : config_(config) {}
+
+    Diagnostics run() {
+        check_gateway();
+        check_mqtt();
+        check_exchanges();
+        std::stable_sort(out_.begin(), out_.end(), [this](const Diagnostic& a, const Diagnostic& b) {
+            return std::make_tuple(a.mark.file != config_.file, a.mark.file, a.mark.line,
+                                   a.mark.column) < std::make_tuple(b.mark.file != config_.file,
+                                                                    b.mark.file, b.mark.line,
+                                                                    b.mark.column);
+        });
+        return std::move(out_);
+    }
+
+private:
+    void error(const Mark& mark, std::string message) {
+        out_.push_back({mark, std::move(message)});
+    }
+
+    void check_gateway() {
+        const auto& gateway = config_.gateway;
+        if (gateway.id.empty()) {
+            error(gateway.marks.of("id"), "gateway id is empty");
+        } else if (gateway.id.find_first_of("/+#") != std::string::npos) {
+            error(gateway.marks.of("id"), "gateway id " + in_quotes(gateway.id) +
+                                              " contains '/', '+' or '#' (it is a topic level)");
+        }
+        static constexpr std::array<std::string_view, 7> levels{
+            "trace", "debug", "info", "warn", "error", "critical", "off"};
+        if (std::find(levels.begin(), levels.end(), gateway.log_level) == levels.end()) {
+            error(gateway.marks.of("log_level"),
+                  "log_level " + in_quotes(gateway.log_level) +
+                      " is not one of trace, debug, info, warn, error, critical, off");
+        }
+    }
+
+    void check_mqtt() {
+        const auto& mqtt = config_.mqtt;
+        if (mqtt.version != 5 && mqtt.version != 3) {
+            error(mqtt.marks.of("version"), "mqtt version must be 5 or 3.1.1");
+        }
+        if (mqtt.qos < 0 || mqtt.qos > 2) {
+            error(mqtt.marks.of("qos"), "mqtt qos " + std::to_string(mqtt.qos) + " is not 0, 1 or 2");
+        }
+        if (const auto problem = topic_problem(mqtt.base_topic); !problem.empty()) {
+            error(mqtt.marks.of("base_topic"), "base_topic " + in_quotes(mqtt.base_topic) + " " + problem);
+        } else if (mqtt.base_topic.front() == '$') {
+            error(mqtt.marks.of("base_topic"),
+                  "base_topic " + in_quotes(mqtt.base_topic) + " starts with '$' (reserved by brokers)");
+        }
+        if (mqtt.url.empty()) error(mqtt.marks.of("url"), "mqtt url is empty");
+        if (mqtt.buffer_max_messages == 0) {
+            error(mqtt.marks.of("buffer"), "buffer max_messages must be at least 1");
+        }
+        if (mqtt.keepalive.count() <= 0) {
+            error(mqtt.marks.of("keepalive_s"), "keepalive_s must be at least 1");
+        }
+        if (mqtt.metrics_interval.count() <= 0) {
+            error(mqtt.marks.of("metrics_interval_s"), "metrics_interval_s must be at least 1");
+        }
+    }
+
+    void check_exchanges() {
+        if (config_.exchanges.empty()) {
+            error({config_.file, 1, 1}, "no exchanges configured");
+            return;
+        }
+        std::map<std::string, const ExchangeConfig*> names;
+        std::map<std::tuple<Direction, wire::ExchangeKey>, const ExchangeConfig*> keys;
+        std::set<const ExchangeConfig*> duplicate_names;
+        for (const auto& exchange : config_.exchanges) {
+            const auto& spec = exchange.spec;
+            if (spec.name.empty()) {
+                error(exchange.marks.of("name"), "an exchange has an empty name");
+            } else if (const auto [it, fresh] = names.emplace(spec.name, &exchange); !fresh) {
+                error(exchange.marks.of("name"),
+                      "duplicate exchange name " + in_quotes(spec.name) + " (first at line " +
+                          std::to_string(it->second->marks.of("name").line) + ")");
+                duplicate_names.insert(&exchange);
+            }
+            const auto key = std::make_tuple(spec.direction, wire::ExchangeKey{spec.producer_id,
+                                                                               spec.exchange_id});
+            if (const auto [it, fresh] = keys.emplace(key, &exchange); !fresh) {
+                error(exchange.marks.of("exchange_id"),
+                      std::string(spec.direction == Direction::consume ? "consumed" : "produced") +
+                          " exchange " + in_quotes(spec.name) + " has the same producer_id " +
+                          wire::to_string(spec.producer_id) + " and exchange_id " +
+                          std::to_string(spec.exchange_id) + " as exchange " +
+                          in_quotes(it->second->spec.name));
+            }
+            check_exchange(exchange);
+        }
+        check_topic_collisions(duplicate_names);
+    }
+
+    void check_exchange(const ExchangeConfig& exchange) {
+        const auto& spec = exchange.spec;
+        const auto& marks = exchange.marks;
+        const std::string what = "exchange " + in_quotes(spec.name);
+        if (spec.length && (*spec.length == 0 || *spec.length > wire::max_data_size)) {
+            error(marks.of("length"), what + " length " + std::to_string(*spec.length) +
+                                          " is outside 1.." +
+                                          std::to_string(wire::max_data_size));
+        }
+        if (!spec.length && exchange.tags.empty()) {
+            error(marks.of("name"), what + " needs a length or at least one tag");
+        }
+        const auto period = spec.period.count();
+        if (period < min_period_ms || period > max_period_ms) {
+            error(marks.of("period_ms"), what + " period_ms " + std::to_string(period) +
+                                             " is outside 2..3600000");
+        }
+        if (spec.direction == Direction::consume) {
+            if (!spec.destination.empty()) {
+                error(marks.of("destination"),
+                      "consumed " + what + " has a destination (only produced exchanges send)");
+            }
+            if (spec.timeout && spec.timeout->count() < 0) {
+                error(marks.of("timeout_ms"), what + " timeout_ms is negative");
+            }
+        } else {
+            if (spec.destination.empty()) {
+                error(marks.of("name"), "produced " + what + " has no destination");
+            }
+            if (spec.timeout) {
+                error(marks.of("timeout_ms"),
+                      "produced " + what + " has a timeout_ms (consumed exchanges only)");
+            }
+            if (spec.source) {
+                error(marks.of("source"),
+                      "produced " + what + " has a source (consumed exchanges only)");
+            }
+        }
+        if (const auto problem = topic_problem(spec.topic); !problem.empty()) {
+            error(marks.of("topic"), what + " topic " + in_quotes(spec.topic) + " " + problem);
+        } else {
+            std::size_t start = 0;
+            while (start <= spec.topic.size()) {
+                const auto end = std::min(spec.topic.find('/', start), spec.topic.size());
+                if (spec.topic[start] == '_') {
+                    error(marks.of("topic"),
+                          what + " topic " + in_quotes(spec.topic) +
+                              " has a level starting with '_' (reserved for the gateway)");
+                    break;
+                }
+                start = end + 1;
+            }
+        }
+        check_tags(exchange);
+    }
+
+    void check_tags(const ExchangeConfig& exchange) {
+        const auto& spec = exchange.spec;
+        const std::size_t limit = spec.length ? *spec.length : wire::max_data_size;
+        const std::string of_exchange = " of exchange " + in_quotes(spec.name);
+
+        // Who occupies each byte: a whole-byte owner, or owners of single bits.
+        struct Occupant {
+            int whole = -1;
+            std::array<int, 8> bits{-1, -1, -1, -1, -1, -1, -1, -1};
+        };
+        std::vector<Occupant> bytes;
+        std::map<std::string, int> names;
+
+        for (std::size_t i = 0; i < exchange.tags.size(); ++i) {
+            const auto& tag = exchange.tags[i];
+            const auto& t = tag.spec;
+            const auto& marks = tag.marks;
+            const std::string what = "tag " + in_quotes(t.name) + of_exchange;
+
+            if (const auto problem = tag_name_problem(t.name); !problem.empty()) {
+                error(marks.of("name"), problem + of_exchange);
+            } else if (const auto [it, fresh] = names.emplace(t.name, static_cast<int>(i));
+                       !fresh) {
+                const auto& first = exchange.tags[it->second].marks.of("name");
+                error(marks.of("name"), "duplicate tag name " + in_quotes(t.name) + of_exchange +
+                                            " (first at " + first.file + ":" +
+                                            std::to_string(first.line) + ")");
+            }
+
+            const bool is_bit = t.type == TagType::bit;
+            if (!is_bit && t.address.bit != 0) {
+                error(marks.of("address"), what + ": address " + plan::to_string(t.address) +
+                                               " has a bit number but type " +
+                                               std::string(plan::to_string(t.type)) +
+                                               " is not bit (use " +
+                                               std::to_string(t.address.byte) + ".0)");
+            }
+            const std::size_t size = plan::size_of(t.type);
+            const std::size_t end = std::size_t{t.address.byte} + size;
+            if (end > limit) {
+                error(marks.of("address"),
+                      what + " (" + plan::to_string(t.address) + ", " +
+                          std::string(plan::to_string(t.type)) + ") ends at byte " +
+                          std::to_string(end) + ", past the exchange " +
+                          (spec.length ? "length " : "maximum length ") + std::to_string(limit));
+            } else {
+                check_overlap(exchange, i, bytes);
+            }
+
+            check_values(exchange, tag);
+        }
+    }
+
+    template <class Occupants>
+    void check_overlap(const ExchangeConfig& exchange, std::size_t index, Occupants& bytes) {
+        const auto& t = exchange.tags[index].spec;
+        const std::size_t first = t.address.byte;
+        const std::size_t size = plan::size_of(t.type);
+        if (bytes.size() < first + size) bytes.resize(first + size);
+        const int me = static_cast<int>(index);
+        int other = -1;
+        if (t.type == TagType::bit) {
+            auto& byte = bytes[first];
+            const unsigned bit = t.address.bit & 7u;
+            other = byte.whole >= 0 ? byte.whole : byte.bits[bit];
+            if (other < 0) byte.bits[bit] = me;
+        } else {
+            for (std::size_t b = first; b < first + size && other < 0; ++b) {
+                if (bytes[b].whole >= 0) {
+                    other = bytes[b].whole;
+                } else {
+                    for (int owner : bytes[b].bits) {
+                        if (owner >= 0) {
+                            other = owner;
+                            break;
+                        }
+                    }
+                }
+            }
+            if (other < 0) {
+                for (std::size_t b = first; b < first + size; ++b) bytes[b].whole = me;
+            }
+        }
+        if (other >= 0) {
+            const auto& o = exchange.tags[static_cast<std::size_t>(other)].spec;
+            error(exchange.tags[index].marks.of("address"),
+                  "tag " + in_quotes(t.name) + " (" + plan::to_string(t.address) + ", " +
+                      std::string(plan::to_string(t.type)) + ") overlaps tag " + in_quotes(o.name) +
+                      " (" + plan::to_string(o.address) + ", " +
+                      std::string(plan::to_string(o.type)) + ") of exchange " +
+                      in_quotes(exchange.spec.name));
+        }
+    }
+
+    void check_values(const ExchangeConfig& exchange, const TagConfig& tag) {
+        const auto& t = tag.spec;
+        const auto& marks = tag.marks;
+        const std::string what = "tag " + in_quotes(t.name) + " of exchange " + in_quotes(exchange.spec.name);
+        if (t.writable && exchange.spec.direction == Direction::consume) {
+            error(marks.of("writable"),
+                  what + " is writable, but only tags of produced exchanges can be written");
+        }
+        if (t.deadband < 0) error(marks.of("deadband"), what + " has a negative deadband");
+        if (t.refresh.count() < 0) error(marks.of("refresh_s"), what + " has a negative refresh_s");
+
+        const double lo = plan::type_min(t.type);
+        const double hi = plan::type_max(t.type);
+        const std::string type = std::string(plan::to_string(t.type));
+        const auto in_range = [&](std::string_view key, double value) {
+            if (value < lo || value > hi) {
+                error(marks.of(key), what + " " + std::string(key) + " " + format_number(value) +
+                                         " is outside the range of " + type + " (" +
+                                         format_number(lo) + ".." + format_number(hi) + ")");
+                return false;
+            }
+            return true;
+        };
+        const bool min_ok = !t.min || in_range("min", *t.min);
+        const bool max_ok = !t.max || in_range("max", *t.max);
+        if (t.min && t.max && min_ok && max_ok && *t.min > *t.max) {
+            error(marks.of("max"), what + " has min " + format_number(*t.min) + " above max " +
+                                       format_number(*t.max));
+        }
+        if (t.initial) {
+            const double initial = as_double(*t.initial);
+            if (in_range("initial", initial)) {
+                if (t.min && initial < *t.min) {
+                    error(marks.of("initial"), what + " initial " + format_number(initial) +
+                                                   " is below min " + format_number(*t.min));
+                } else if (t.max && initial > *t.max) {
+                    error(marks.of("initial"), what + " initial " + format_number(initial) +
+                                                   " is above max " + format_number(*t.max));
+                }
+            }
+        }
+    }
+
+    /// product.md "MQTT": each tag and exchange topic, and the topics subscribed for writes,
+    /// must belong to one owner.
+    void check_topic_collisions(const std::set<const ExchangeConfig*>& skip) {
+        const std::string& base = config_.mqtt.base_topic;
+        std::unordered_map<std::string, std::string> owners;
+        const auto claim = [&](const std::vector<std::string>& topics, const std::string& owner,
+                               const Mark& mark) {
+            for (const auto& topic : topics) {
+                const auto [it, fresh] = owners.emplace(topic, owner);
+                if (!fresh) {
+                    error(mark, owner + " uses topic " + in_quotes(topic) + ", already used by " +
+                                    it->second);
+                    return;
+                }
+            }
+        };
+        for (const auto& exchange : config_.exchanges) {
+            if (skip.contains(&exchange)) continue;
+            if (!topic_problem(exchange.spec.topic).empty()) continue;
+            const std::string topic = base.empty() ? exchange.spec.topic
+                                                   : base + "/" + exchange.spec.topic;
+            const auto& topic_mark = exchange.marks.keys.contains("topic")
+                                         ? exchange.marks.of("topic")
+                                         : exchange.marks.of("name");
+            claim({topic + "/_status", topic + "/_values", topic + "/set"},
+                  "exchange " + in_quotes(exchange.spec.name), topic_mark);
+            std::set<std::string> seen;
+            for (const auto& tag : exchange.tags) {
+                if (!tag_name_problem(tag.spec.name).empty()) continue;
+                if (!seen.insert(tag.spec.name).second) continue;  // reported as a duplicate
+                const std::string tag_topic = topic + "/" + tag.spec.name;
+                claim({tag_topic, tag_topic + "/set"},
+                      "tag " + in_quotes(tag.spec.name) + " of exchange " +
+                          in_quotes(exchange.spec.name),
+                      tag.marks.of("name"));
+            }
+        }
+    }
+
+    const Config& config_;
+    Diagnostics out_;
+};
+
+}  // namespace
+
+Diagnostics validate(const Config& config) { return Validator(config).run(); }
+
+std::vector<plan::ExchangePlan> make_plans(const Config& config) {
+    std::vector<plan::ExchangePlan> plans;
+    plans.reserve(config.exchanges.size());
+    for (const auto& exchange : config.exchanges) {
+        plan::ExchangeSpec spec = exchange.spec;
+        spec.tags.clear();
+        spec.tags.reserve(exchange.tags.size());
+        for (const auto& tag : exchange.tags) spec.tags.push_back(tag.spec);
+        plans.push_back(plan::make_exchange_plan(spec, config.mqtt.base_topic));
+    }
+    return plans;
+}
+
+}  // namespace eip2mqtt::core::config

@@ -1,0 +1,184 @@
+#include "eip2mqtt/core/config/point_list.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <optional>
+
+#include "eip2mqtt/core/plan/address.hpp"
+#include "eip2mqtt/core/plan/tag_type.hpp"
+
+namespace eip2mqtt::core::config {
+namespace {
+
+struct Field {
+    std::string text;
+    int column = 1;  ///< 1-based column where the field starts
+};
+
+std::string_view trim(std::string_view text) {
+    const auto first = text.find_first_not_of(" \t");
+    if (first == std::string_view::npos) return {};
+    const auto last = text.find_last_not_of(" \t");
+    return text.substr(first, last - first + 1);
+}
+
+std::string lower(std::string_view text) {
+    std::string out(text);
+    std::transform(out.begin(), out.end(), out.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return out;
+}
+
+/// Splits one CSV line; fields may be double-quoted, with "" for a quote inside. Returns nullopt
+/// on an unterminated quote (a field spanning lines is not supported).
+std::optional<std::vector<Field>> split(std::string_view line) {
+    std::vector<Field> fields;
+    std::size_t i = 0;
+    while (true) {
+        Field field;
+        field.column = static_cast<int>(i) + 1;
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+        if (i < line.size() && line[i] == '"') {
+            ++i;
+            bool closed = false;
+            while (i < line.size()) {
+                if (line[i] == '"') {
+                    if (i + 1 < line.size() && line[i + 1] == '"') {
+                        field.text += '"';
+                        i += 2;
+                        continue;
+                    }
+                    ++i;
+                    closed = true;
+                    break;
+                }
+                field.text += line[i++];
+            }
+            if (!closed) return std::nullopt;
+            while (i < line.size() && line[i] != ',') ++i;  // tolerate spaces after the quote
+        } else {
+            const auto end = std::min(line.find(',', i), line.size());
+            field.text = std::string(trim(line.substr(i, end - i)));
+            i = end;
+        }
+        fields.push_back(std::move(field));
+        if (i >= line.size()) break;
+        ++i;  // the comma
+    }
+    return fields;
+}
+
+constexpr std::array<std::string_view, 5> column_names{"tagname", "node", "address", "datatype",
+                                                       "accesstype"};
+enum Column : std::size_t { tag_name, node, address, data_type, access_type };
+
+}  // namespace
+
+PointList parse_point_list(std::string_view text, const std::string& file) {
+    PointList list;
+    std::array<std::size_t, column_names.size()> index{};
+    bool have_header = false;
+    int line_number = 0;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        auto end = text.find('\n', pos);
+        if (end == std::string_view::npos) end = text.size();
+        std::string_view line = text.substr(pos, end - pos);
+        pos = end + 1;
+        ++line_number;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        if (line_number == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);  // BOM
+        const auto trimmed = trim(line);
+        if (trimmed.empty() || trimmed.front() == '#') continue;
+
+        const Mark row_mark{file, line_number, 1};
+        const auto fields = split(line);
+        if (!fields) {
+            list.errors.push_back({row_mark, "unterminated quoted field"});
+            continue;
+        }
+
+        if (!have_header) {
+            have_header = true;
+            std::vector<std::string> missing;
+            for (std::size_t c = 0; c < column_names.size(); ++c) {
+                const auto it = std::find_if(fields->begin(), fields->end(), [&](const Field& f) {
+                    return lower(f.text) == column_names[c];
+                });
+                if (it == fields->end()) {
+                    missing.emplace_back(column_names[c]);
+                } else {
+                    index[c] = static_cast<std::size_t>(it - fields->begin());
+                }
+            }
+            if (!missing.empty()) {
+                std::string names;
+                for (const auto& name : missing) names += (names.empty() ? "" : ", ") + name;
+                list.errors.push_back(
+                    {row_mark, "point list header lacks column(s) " + names +
+                                   " (expected TagName, Node, Address, DataType, AccessType)"});
+                return list;
+            }
+            continue;
+        }
+
+        const std::size_t needed = *std::max_element(index.begin(), index.end()) + 1;
+        if (fields->size() < needed) {
+            list.errors.push_back({row_mark, "row has " + std::to_string(fields->size()) +
+                                                 " fields, expected at least " +
+                                                 std::to_string(needed)});
+            continue;
+        }
+        const auto field = [&](Column c) -> const Field& { return (*fields)[index[c]]; };
+        const auto at = [&](Column c) { return Mark{file, line_number, field(c).column}; };
+
+        PointRow row;
+        row.mark = row_mark;
+        bool ok = true;
+        row.tag.name = field(tag_name).text;
+        if (row.tag.name.empty()) {
+            list.errors.push_back({at(tag_name), "empty TagName"});
+            ok = false;
+        }
+        row.node = field(node).text;
+        if (row.node.empty()) {
+            list.errors.push_back({at(node), "empty Node"});
+            ok = false;
+        }
+        if (const auto parsed = plan::parse_address(field(address).text)) {
+            row.tag.address = *parsed;
+        } else {
+            list.errors.push_back(
+                {at(address), "bad address '" + field(address).text + "' (expected byte.bit)"});
+            ok = false;
+        }
+        if (const auto type = plan::parse_tag_type(field(data_type).text,
+                                                   plan::TypeNaming::point_list)) {
+            row.tag.type = *type;
+        } else {
+            list.errors.push_back({at(data_type), "unknown DataType '" + field(data_type).text +
+                                                      "' (expected Bit, Word, Real, Long or a "
+                                                      "type of eip-protocol.md section 3)"});
+            ok = false;
+        }
+        const auto access = lower(field(access_type).text);
+        if (access == "write") {
+            row.write = true;
+            row.tag.writable = true;
+        } else if (access != "read") {
+            list.errors.push_back({at(access_type), "unknown AccessType '" +
+                                                        field(access_type).text +
+                                                        "' (expected Read or Write)"});
+            ok = false;
+        }
+        if (ok) list.rows.push_back(std::move(row));
+    }
+    if (!have_header) {
+        list.errors.push_back({{file, line_number == 0 ? 1 : line_number, 1},
+                               "point list is empty (no header row)"});
+    }
+    return list;
+}
+
+}  // namespace eip2mqtt::core::config

@@ -1,0 +1,127 @@
+#include "eip2mqtt/core/exchange/consumed_exchange.hpp"
+
+#include <cstddef>
+
+namespace eip2mqtt::core::exchange {
+namespace {
+
+// eip-protocol.md §4 rule 4: consume only when both are set, the majors are equal and the
+// received minor is not older than the configured one; an unset side disables the check.
+bool compatible(wire::Signature configured, wire::Signature received) {
+    if (!configured.is_set() || !received.is_set()) return true;
+    return received.major == configured.major && received.minor >= configured.minor;
+}
+
+// §4 rule 5: a compatible newer minor may append data after the configured bytes.
+bool may_append(wire::Signature configured, wire::Signature received) {
+    return configured.is_set() && received.is_set() && received.minor > configured.minor;
+}
+
+bool times_out(ConsumeState state) {
+    return state == ConsumeState::ok || state == ConsumeState::signature_mismatch ||
+           state == ConsumeState::length_mismatch;
+}
+
+}  // namespace
+
+std::string_view to_string(ConsumeState state) {
+    switch (state) {
+        case ConsumeState::waiting: return "waiting";
+        case ConsumeState::ok: return "ok";
+        case ConsumeState::stale: return "stale";
+        case ConsumeState::signature_mismatch: return "signature_mismatch";
+        case ConsumeState::length_mismatch: return "length_mismatch";
+    }
+    return "unknown";
+}
+
+ConsumedExchange::ConsumedExchange(const plan::ExchangePlan& plan)
+    : length_(plan.length), timeout_(plan.timeout), signature_(plan.spec.signature) {
+    image_.reserve(length_);
+}
+
+ConsumeOutcome ConsumedExchange::on_datagram(const wire::Datagram& datagram, MonoTime now) {
+    ++counters_.received;
+    const ConsumeState before = state_;
+    const auto drop = [&](wire::DropReason reason) {
+        return ConsumeOutcome{reason, state_ != before};
+    };
+    // A mismatch leaves the sequence unknown: the next accepted datagram resynchronises.
+    const auto mismatch = [&](ConsumeState state, wire::DropReason reason) {
+        state_ = state;
+        resync_ = true;
+        timer_start_ = now;
+        return drop(reason);
+    };
+
+    const wire::Header& header = datagram.header;
+    const auto received = wire::Signature::from_wire(header.signature);
+
+    // §4 rule 4.
+    if (!compatible(signature_, received)) {
+        ++counters_.signature_mismatches;
+        return mismatch(ConsumeState::signature_mismatch, wire::DropReason::signature_mismatch);
+    }
+
+    // §4 rule 5.
+    const std::size_t size = datagram.data.size();
+    if (size == 0) {
+        ++counters_.no_data;
+        return drop(wire::DropReason::no_data);
+    }
+    if (size != length_ && !(size > length_ && may_append(signature_, received))) {
+        ++counters_.length_mismatches;
+        return mismatch(ConsumeState::length_mismatch, wire::DropReason::length_mismatch);
+    }
+
+    // §4 rule 6: a new signature resynchronises, as do start-up, timeout and mismatches.
+    if (has_image_ && wire::Signature::from_wire(last_header_.signature) != received) {
+        resync_ = true;
+    }
+    if (!resync_) {
+        const auto d = static_cast<std::uint16_t>(header.request_id - last_header_.request_id);
+        if (d == 0) {
+            // Proves the producer alive, but is no new sample: the update timer keeps running.
+            ++counters_.duplicates;
+            return drop(wire::DropReason::duplicate);
+        }
+        if (d >= 32768) {
+            ++counters_.out_of_order;
+            return drop(wire::DropReason::out_of_order);
+        }
+        counters_.missed += d - 1U;
+    }
+
+    // §4 rule 7.
+    image_.assign(datagram.data.begin(), datagram.data.begin() + static_cast<std::ptrdiff_t>(length_));
+    has_image_ = true;
+    last_header_ = header;
+    last_accepted_ = now;
+    timer_start_ = now;
+    resync_ = false;
+    state_ = ConsumeState::ok;
+    ++counters_.accepted;
+    return ConsumeOutcome{std::nullopt, state_ != before};
+}
+
+bool ConsumedExchange::on_tick(MonoTime now) {
+    // §4 rule 8.
+    const auto deadline = next_deadline();
+    if (!deadline || now < *deadline) return false;
+    state_ = ConsumeState::stale;
+    resync_ = true;
+    ++counters_.timeouts;
+    return true;
+}
+
+std::optional<MonoTime> ConsumedExchange::next_deadline() const {
+    if (timeout_.count() <= 0 || !times_out(state_)) return std::nullopt;
+    return timer_start_ + timeout_;
+}
+
+std::span<const std::byte> ConsumedExchange::image() const {
+    if (!has_image_) return {};
+    return image_;
+}
+
+}  // namespace eip2mqtt::core::exchange

@@ -1,0 +1,49 @@
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <limits>
+
+namespace eip2mqtt::core::plan {
+namespace {
+
+std::string join(const std::string& base, const std::string& level) {
+    if (base.empty()) return level;
+    if (level.empty()) return base;
+    return base + "/" + level;
+}
+
+}  // namespace
+
+std::uint16_t resolved_length(const ExchangeSpec& spec) {
+    if (spec.length) return *spec.length;
+    std::size_t end = 0;
+    for (const auto& tag : spec.tags) {
+        end = std::max(end, std::size_t{tag.address.byte} + size_of(tag.type));
+    }
+    return static_cast<std::uint16_t>(
+        std::min<std::size_t>(end, std::numeric_limits<std::uint16_t>::max()));
+}
+
+ExchangePlan make_exchange_plan(const ExchangeSpec& spec, const std::string& base_topic) {
+    ExchangePlan plan;
+    plan.spec = spec;
+    plan.length = resolved_length(spec);
+    if (spec.direction == Direction::consume) {
+        // eip-protocol.md §4 rule 8: default 3 x the expected period; 0 disables.
+        plan.timeout = spec.timeout.value_or(3 * spec.period);
+    }
+    plan.topic = join(base_topic, spec.topic);
+    plan.status_topic = plan.topic + "/_status";
+    plan.values_topic = plan.topic + "/_values";
+    plan.set_topic = plan.topic + "/set";
+    plan.tags.reserve(spec.tags.size());
+    for (const auto& tag : spec.tags) {
+        TagPlan tag_plan{tag, plan.topic + "/" + tag.name, {}};
+        tag_plan.set_topic = tag_plan.topic + "/set";
+        plan.tags.push_back(std::move(tag_plan));
+    }
+    return plan;
+}
+
+}  // namespace eip2mqtt::core::plan

@@ -1,0 +1,113 @@
+#include "eip2mqtt/core/plan/tag_type.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <limits>
+#include <string>
+#include <utility>
+
+namespace eip2mqtt::core::plan {
+namespace {
+
+std::string lower(std::string_view text) {
+    std::string out(text);
+    std::transform(out.begin(), out.end(), out.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return out;
+}
+
+constexpr std::array<std::pair<std::string_view, TagType>, 14> yaml_names{{
+    {"bit", TagType::bit},
+    {"bool", TagType::bit},
+    {"byte", TagType::byte},
+    {"usint", TagType::byte},
+    {"int", TagType::int_},
+    {"word", TagType::word},
+    {"uint", TagType::word},
+    {"dint", TagType::dint},
+    {"udint", TagType::udint},
+    {"dword", TagType::udint},
+    {"real", TagType::real},
+    {"lint", TagType::lint},
+    {"long", TagType::lint},
+    {"lreal", TagType::lreal},
+}};
+
+}  // namespace
+
+std::optional<TagType> parse_tag_type(std::string_view name, TypeNaming naming) {
+    const std::string key = lower(name);
+    // eip-protocol.md §6: point lists say Word for a signed 16-bit value.
+    if (naming == TypeNaming::point_list && key == "word") return TagType::int_;
+    for (const auto& [text, type] : yaml_names) {
+        if (text == key) return type;
+    }
+    return std::nullopt;
+}
+
+std::string_view to_string(TagType type) {
+    switch (type) {
+        case TagType::bit: return "bit";
+        case TagType::byte: return "byte";
+        case TagType::int_: return "int";
+        case TagType::word: return "word";
+        case TagType::dint: return "dint";
+        case TagType::udint: return "udint";
+        case TagType::real: return "real";
+        case TagType::lint: return "lint";
+        case TagType::lreal: return "lreal";
+    }
+    return "?";
+}
+
+std::size_t size_of(TagType type) {
+    switch (type) {
+        case TagType::bit:
+        case TagType::byte: return 1;
+        case TagType::int_:
+        case TagType::word: return 2;
+        case TagType::dint:
+        case TagType::udint:
+        case TagType::real: return 4;
+        case TagType::lint:
+        case TagType::lreal: return 8;
+    }
+    return 1;
+}
+
+bool is_integer(TagType type) {
+    return type != TagType::bit && type != TagType::real && type != TagType::lreal;
+}
+
+double type_min(TagType type) {
+    switch (type) {
+        case TagType::bit:
+        case TagType::byte:
+        case TagType::word:
+        case TagType::udint: return 0.0;
+        case TagType::int_: return std::numeric_limits<std::int16_t>::min();
+        case TagType::dint: return std::numeric_limits<std::int32_t>::min();
+        case TagType::lint: return static_cast<double>(std::numeric_limits<std::int64_t>::min());
+        case TagType::real: return -std::numeric_limits<float>::max();
+        case TagType::lreal: return -std::numeric_limits<double>::max();
+    }
+    return 0.0;
+}
+
+double type_max(TagType type) {
+    switch (type) {
+        case TagType::bit: return 1.0;
+        case TagType::byte: return std::numeric_limits<std::uint8_t>::max();
+        case TagType::int_: return std::numeric_limits<std::int16_t>::max();
+        case TagType::word: return std::numeric_limits<std::uint16_t>::max();
+        case TagType::dint: return std::numeric_limits<std::int32_t>::max();
+        case TagType::udint: return std::numeric_limits<std::uint32_t>::max();
+        case TagType::lint: return static_cast<double>(std::numeric_limits<std::int64_t>::max());
+        case TagType::real: return std::numeric_limits<float>::max();
+        case TagType::lreal: return std::numeric_limits<double>::max();
+    }
+    return 0.0;
+}
+
+}  // namespace eip2mqtt::core::plan

@@ -1,0 +1,55 @@
+// Parses the command line, runs one command, and holds the process's only catch-all.
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "eip2mqtt/app/commands.hpp"
+
+int main(int argc, char** argv) {
+    using namespace eip2mqtt::app;
+    CLI::App cli{"eip2mqtt: EIP (Ethernet Global Data) to MQTT gateway"};
+    cli.set_version_flag("--version", std::string("eip2mqtt ") + EIP2MQTT_VERSION);
+    cli.require_subcommand(0, 1);
+
+    RunOptions run;
+    auto* run_cmd = cli.add_subcommand("run", "Run the gateway daemon (default command)");
+    // Options of the default command are also accepted without `run`.
+    cli.add_option("-c,--config", run.config_path, "Configuration file");
+    cli.add_option("--log-level", run.log_level, "Override gateway.log_level");
+    run_cmd->add_option("-c,--config", run.config_path, "Configuration file")->required();
+    run_cmd->add_option("--log-level", run.log_level, "Override gateway.log_level");
+
+    std::string check_path;
+    auto* check_cmd = cli.add_subcommand("check", "Validate a configuration and show its layout");
+    check_cmd->add_option("-c,--config", check_path, "Configuration file")->required();
+
+    SimOptions sim;
+    auto* sim_cmd = cli.add_subcommand("sim", "Send the consumed exchanges of a configuration");
+    sim_cmd->add_option("-c,--config", sim.config_path, "Configuration file")->required();
+    sim_cmd->add_option("--target", sim.target, "Destination address")->capture_default_str();
+    sim_cmd->add_option("--port", sim.port, "Destination port (default: eip.port)");
+    sim_cmd->add_option("--duration", sim.duration_s, "Seconds to run (default: until stopped)");
+    sim_cmd->add_option("--log-level", sim.log_level, "Log level")->capture_default_str();
+
+    try {
+        cli.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return cli.exit(e);
+    }
+
+    try {
+        if (*check_cmd) return run_check(check_path, std::cout, std::cerr);
+        if (*sim_cmd) return run_sim(sim);
+        if (run.config_path.empty()) {
+            std::cerr << "eip2mqtt: no configuration given (use -c FILE); see --help\n";
+            return 2;
+        }
+        return run_gateway(run);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "eip2mqtt: fatal: %s\n", e.what());
+        return 1;
+    }
+}

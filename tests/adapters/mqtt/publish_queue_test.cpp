@@ -1,0 +1,133 @@
+#include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace eip2mqtt::adapters::mqtt {
+namespace {
+
+Message msg(std::string topic, std::string payload, bool coalesce = true) {
+    Message m;
+    m.topic = std::move(topic);
+    m.payload = std::move(payload);
+    m.coalesce = coalesce;
+    return m;
+}
+
+std::vector<std::string> drain(PublishQueue& q) {
+    std::vector<std::string> out;
+    while (auto m = q.pop()) {
+        out.push_back(m->topic + "=" + m->payload);
+    }
+    return out;
+}
+
+TEST(PublishQueue, PopsInOrder) {
+    PublishQueue q(10);
+    EXPECT_TRUE(q.empty());
+    EXPECT_FALSE(q.pop());
+    q.push(msg("a", "1"));
+    q.push(msg("b", "2"));
+    q.push(msg("c", "3"));
+    EXPECT_EQ(q.size(), 3u);
+    EXPECT_EQ(drain(q), (std::vector<std::string>{"a=1", "b=2", "c=3"}));
+    EXPECT_TRUE(q.empty());
+}
+
+TEST(PublishQueue, LatestValueReplacesInPlace) {
+    PublishQueue q(10);
+    q.push(msg("a", "1"));
+    q.push(msg("b", "1"));
+    q.push(msg("a", "2"));
+    q.push(msg("a", "3"));
+    EXPECT_EQ(q.size(), 2u);
+    EXPECT_EQ(q.coalesced(), 2u);
+    EXPECT_EQ(drain(q), (std::vector<std::string>{"a=3", "b=1"}));
+}
+
+TEST(PublishQueue, PoppedMessageIsNotReplaced) {
+    PublishQueue q(10);
+    q.push(msg("a", "1"));
+    ASSERT_EQ(q.pop()->payload, "1");
+    q.push(msg("a", "2"));
+    EXPECT_EQ(q.coalesced(), 0u);
+    EXPECT_EQ(drain(q), (std::vector<std::string>{"a=2"}));
+}
+
+TEST(PublishQueue, NonCoalescingMessagesAreEachKept) {
+    PublishQueue q(10);
+    q.push(msg("r", "1", false));
+    q.push(msg("r", "2", false));
+    q.push(msg("r", "3"));  // coalescing, but the queued ones do not coalesce
+    EXPECT_EQ(q.coalesced(), 0u);
+    EXPECT_EQ(drain(q), (std::vector<std::string>{"r=1", "r=2", "r=3"}));
+}
+
+TEST(PublishQueue, NewerValueDoesNotJumpAheadOfNonCoalescingOne) {
+    PublishQueue q(10);
+    q.push(msg("t", "1"));
+    q.push(msg("t", "2", false));
+    q.push(msg("t", "3"));
+    // "3" must come last: replacing "1" in place would leave the topic at "2".
+    EXPECT_EQ(drain(q), (std::vector<std::string>{"t=1", "t=2", "t=3"}));
+}
+
+TEST(PublishQueue, OverflowDropsOldestAndCounts) {
+    PublishQueue q(3);
+    for (int i = 0; i < 5; ++i) {
+        q.push(msg("t" + std::to_string(i), std::to_string(i)));
+    }
+    EXPECT_EQ(q.size(), 3u);
+    EXPECT_EQ(q.dropped_overflow(), 2u);
+    EXPECT_EQ(drain(q), (std::vector<std::string>{"t2=2", "t3=3", "t4=4"}));
+}
+
+TEST(PublishQueue, CoalescingAfterOverflowStillFindsTheRightSlot) {
+    PublishQueue q(2);
+    q.push(msg("a", "1"));
+    q.push(msg("b", "1"));
+    q.push(msg("c", "1"));  // drops a
+    q.push(msg("a", "2"));  // a is gone: queued anew, drops b
+    q.push(msg("c", "2"));  // replaces c in place
+    EXPECT_EQ(q.dropped_overflow(), 2u);
+    EXPECT_EQ(q.coalesced(), 1u);
+    EXPECT_EQ(drain(q), (std::vector<std::string>{"c=2", "a=2"}));
+}
+
+TEST(PublishQueue, ShrinkingCapacityDropsOldest) {
+    PublishQueue q(5);
+    for (int i = 0; i < 5; ++i) {
+        q.push(msg("t" + std::to_string(i), "x"));
+    }
+    q.set_capacity(2);
+    EXPECT_EQ(q.capacity(), 2u);
+    EXPECT_EQ(q.dropped_overflow(), 3u);
+    EXPECT_EQ(drain(q), (std::vector<std::string>{"t3=x", "t4=x"}));
+}
+
+TEST(PublishQueue, ZeroCapacityDropsEverything) {
+    PublishQueue q(0);
+    q.push(msg("a", "1"));
+    EXPECT_TRUE(q.empty());
+    EXPECT_EQ(q.dropped_overflow(), 1u);
+}
+
+TEST(PublishQueue, LongRunKeepsSequenceConsistent) {
+    PublishQueue q(4);
+    for (int round = 0; round < 1000; ++round) {
+        q.push(msg("a", std::to_string(round)));
+        q.push(msg("b", std::to_string(round)));
+        if (round % 3 == 0) {
+            q.pop();
+        }
+    }
+    auto rest = drain(q);
+    ASSERT_FALSE(rest.empty());
+    EXPECT_LE(rest.size(), 2u);
+    EXPECT_EQ(rest.back().substr(2), "999");
+}
+
+}  // namespace
+}  // namespace eip2mqtt::adapters::mqtt

@@ -1,0 +1,398 @@
+#include "eip2mqtt/core/config/config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace eip2mqtt::core::config {
+namespace {
+
+using namespace std::chrono_literals;
+using plan::Direction;
+using plan::TagType;
+
+int next_line = 1;
+
+Mark at(int line, int column = 1) { return {"c.yaml", line, column}; }
+
+/// A tag whose every key sits on its own fresh line, so diagnostics can be located.
+TagConfig tag(std::string name, std::uint16_t byte, std::uint8_t bit, TagType type) {
+    TagConfig t;
+    t.spec.name = std::move(name);
+    t.spec.address = {byte, bit};
+    t.spec.type = type;
+    t.marks.node = at(next_line, 7);
+    for (const char* key : {"name", "address", "type", "writable", "min", "max", "initial",
+                            "deadband", "refresh_s"}) {
+        t.marks.keys[key] = at(next_line++, 9);
+    }
+    return t;
+}
+
+ExchangeConfig exchange(std::string name, Direction direction, std::uint32_t id) {
+    ExchangeConfig e;
+    e.spec.name = name;
+    e.spec.topic = name;
+    e.spec.direction = direction;
+    e.spec.producer_id = wire::ProducerId{0x7F000001};
+    e.spec.exchange_id = id;
+    e.spec.length = 16;
+    e.spec.period = 100ms;
+    if (direction == Direction::produce) e.spec.destination = "127.0.0.1";
+    e.marks.node = at(next_line, 5);
+    for (const char* key : {"name", "direction", "producer_id", "exchange_id", "length",
+                            "period_ms", "timeout_ms", "source", "destination", "topic"}) {
+        e.marks.keys[key] = at(next_line++, 5);
+    }
+    return e;
+}
+
+Config valid() {
+    next_line = 1;
+    Config c;
+    c.file = "c.yaml";
+    c.gateway.id = "gw";
+    c.mqtt.base_topic = "acme/site";
+    for (const char* key : {"url", "version", "qos", "base_topic"}) {
+        c.mqtt.marks.keys[key] = at(next_line++, 3);
+    }
+    c.gateway.marks.keys["id"] = at(next_line++, 3);
+    c.gateway.marks.keys["log_level"] = at(next_line++, 3);
+    auto consumed = exchange("turbine1", Direction::consume, 2);
+    consumed.tags.push_back(tag("RUNNING", 0, 0, TagType::bit));
+    consumed.tags.push_back(tag("PRESSAO", 2, 0, TagType::int_));
+    c.exchanges.push_back(consumed);
+    auto produced = exchange("setpoints", Direction::produce, 10);
+    produced.tags.push_back(tag("SPEED_SP", 0, 0, TagType::real));
+    produced.tags.back().spec.writable = true;
+    c.exchanges.push_back(produced);
+    return c;
+}
+
+/// The one diagnostic expected; fails the test when there are none or more.
+Diagnostic only(const Diagnostics& found) {
+    EXPECT_EQ(found.size(), 1u);
+    if (found.size() != 1) {
+        for (const auto& d : found) ADD_FAILURE() << d.mark.line << ":" << d.mark.column << " " << d.message;
+    }
+    return found.empty() ? Diagnostic{} : found.front();
+}
+
+bool mentions(const Diagnostic& d, std::string_view text) {
+    return d.message.find(text) != std::string::npos;
+}
+
+TEST(Marks, OfFallsBackToTheNode) {
+    Marks marks;
+    marks.node = at(3, 5);
+    marks.keys["name"] = at(4, 7);
+    EXPECT_EQ(marks.of("name").line, 4);
+    EXPECT_EQ(marks.of("name").column, 7);
+    EXPECT_EQ(marks.of("length").line, 3);
+    EXPECT_EQ(marks.of("length").column, 5);
+}
+
+TEST(Validate, ValidConfigHasNoDiagnostics) { EXPECT_TRUE(validate(valid()).empty()); }
+
+TEST(Validate, OverlappingByteTags) {
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag("OVER", 3, 0, TagType::int_));  // 3..4 overlaps 2..3
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].tags.back().marks.of("address").line);
+    EXPECT_TRUE(mentions(d, "'OVER'"));
+    EXPECT_TRUE(mentions(d, "'PRESSAO'"));
+}
+
+TEST(Validate, BitsOfOneByteOverlapOnlyOnTheSameBit) {
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag("B1", 0, 1, TagType::bit));
+    c.exchanges[0].tags.push_back(tag("B7", 0, 7, TagType::bit));
+    EXPECT_TRUE(validate(c).empty());
+    c.exchanges[0].tags.push_back(tag("B1_AGAIN", 0, 1, TagType::bit));
+    const auto d = only(validate(c));
+    EXPECT_TRUE(mentions(d, "'B1_AGAIN'"));
+    EXPECT_TRUE(mentions(d, "'B1'"));
+}
+
+TEST(Validate, BitAndByteTagOfTheSameByteOverlap) {
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag("BITS", 0, 0, TagType::byte));  // RUNNING is 0.0
+    EXPECT_TRUE(mentions(only(validate(c)), "overlaps tag 'RUNNING'"));
+    c = valid();
+    c.exchanges[0].tags.push_back(tag("IN_PRESSAO", 3, 4, TagType::bit));  // PRESSAO is 2..3
+    EXPECT_TRUE(mentions(only(validate(c)), "overlaps tag 'PRESSAO'"));
+}
+
+TEST(Validate, TagPastTheExchangeLength) {
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag("LAST", 14, 0, TagType::real));  // ends at 18 > 16
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].tags.back().marks.of("address").line);
+    EXPECT_TRUE(mentions(d, "ends at byte 18"));
+    c.exchanges[0].tags.back().spec.address.byte = 12;  // ends at 16: fits
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, WithoutLengthTagsMustEndWithin1400) {
+    auto c = valid();
+    c.exchanges[0].spec.length.reset();
+    c.exchanges[0].tags.push_back(tag("FAR", 1396, 0, TagType::real));
+    EXPECT_TRUE(validate(c).empty());
+    c.exchanges[0].tags.back().spec.address.byte = 1397;
+    EXPECT_TRUE(mentions(only(validate(c)), "1400"));
+}
+
+TEST(Validate, LengthZeroOrOver1400) {
+    auto c = valid();
+    c.exchanges[0].spec.length = 0;
+    c.exchanges[0].tags.clear();
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("length").line);
+    c.exchanges[0].spec.length = 1401;
+    d = only(validate(c));
+    EXPECT_TRUE(mentions(d, "1401"));
+    c.exchanges[0].spec.length = 1400;
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, NoLengthAndNoTags) {
+    auto c = valid();
+    c.exchanges[0].spec.length.reset();
+    c.exchanges[0].tags.clear();
+    EXPECT_TRUE(mentions(only(validate(c)), "needs a length"));
+}
+
+TEST(Validate, BitAddressOnNonBitType) {
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag("ODD", 8, 3, TagType::word));
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].tags.back().marks.of("address").line);
+    EXPECT_TRUE(mentions(d, "8.3"));
+}
+
+TEST(Validate, DuplicateExchangeNames) {
+    auto c = valid();
+    c.exchanges.push_back(exchange("turbine1", Direction::consume, 3));
+    c.exchanges.back().spec.topic = "other";
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges.back().marks.of("name").line);
+    EXPECT_TRUE(mentions(d, "duplicate exchange name 'turbine1'"));
+}
+
+TEST(Validate, DuplicateProducerExchangePairsPerDirection) {
+    auto c = valid();
+    c.exchanges.push_back(exchange("again", Direction::consume, 2));
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges.back().marks.of("exchange_id").line);
+    EXPECT_TRUE(mentions(d, "'turbine1'"));
+
+    c = valid();
+    c.exchanges.push_back(exchange("again", Direction::produce, 10));
+    EXPECT_TRUE(mentions(only(validate(c)), "'setpoints'"));
+
+    // A produced and a consumed exchange may share a pair (a loopback demo).
+    c = valid();
+    c.exchanges.push_back(exchange("loop", Direction::produce, 2));
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, DuplicateTagNamesWithinAnExchange) {
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag("PRESSAO", 8, 0, TagType::int_));
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].tags.back().marks.of("name").line);
+    EXPECT_TRUE(mentions(d, "duplicate tag name 'PRESSAO'"));
+    // The same name in two exchanges is fine: the topics differ.
+    c = valid();
+    c.exchanges[1].tags.push_back(tag("PRESSAO", 8, 0, TagType::int_));
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, WritableTagsOnConsumedExchanges) {
+    auto c = valid();
+    c.exchanges[0].tags[1].spec.writable = true;
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].tags[1].marks.of("writable").line);
+}
+
+TEST(Validate, MinAboveMax) {
+    auto c = valid();
+    auto& t = c.exchanges[1].tags[0];
+    t.spec.min = 10;
+    t.spec.max = 5;
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, t.marks.of("max").line);
+}
+
+TEST(Validate, MinMaxInitialOutsideTheTypeRange) {
+    auto c = valid();
+    auto& t = c.exchanges[0].tags[1];  // int
+    t.spec.min = -40000;
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, t.marks.of("min").line);
+    t.spec.min.reset();
+    t.spec.max = 32768;
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, t.marks.of("max").line);
+    t.spec.max = 32767;
+    t.spec.initial = plan::Value{std::int64_t{-32769}};
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, t.marks.of("initial").line);
+    t.spec.initial = plan::Value{std::int64_t{-32768}};
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, InitialOutsideMinMax) {
+    auto c = valid();
+    auto& t = c.exchanges[1].tags[0];
+    t.spec.min = 0;
+    t.spec.max = 4000;
+    t.spec.initial = plan::Value{5000.0f};
+    EXPECT_TRUE(mentions(only(validate(c)), "above max 4000"));
+    t.spec.initial = plan::Value{3000.0f};
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, TopicsWithWildcardsOrEmptyLevels) {
+    for (const char* topic : {"a/+", "#", "a/#/b", "", "/a", "a/", "a//b"}) {
+        auto c = valid();
+        c.exchanges[0].spec.topic = topic;
+        const auto d = only(validate(c));
+        EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("topic").line) << topic;
+    }
+    for (const char* topic : {"acme/+/x", "a//b", "/acme", "acme/", "", "$SYS/x"}) {
+        auto c = valid();
+        c.mqtt.base_topic = topic;
+        const auto d = only(validate(c));
+        EXPECT_EQ(d.mark.line, c.mqtt.marks.of("base_topic").line) << topic;
+    }
+}
+
+TEST(Validate, ExchangeTopicLevelsStartingWithUnderscoreAreReserved) {
+    auto c = valid();
+    c.exchanges[0].spec.topic = "_gateway";
+    only(validate(c));
+    c.exchanges[0].spec.topic = "area/_x";
+    only(validate(c));
+}
+
+TEST(Validate, TwoExchangesOnOneTopic) {
+    auto c = valid();
+    c.exchanges[1].spec.topic = "turbine1";
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[1].marks.of("topic").line);
+    EXPECT_TRUE(mentions(d, "exchange 'turbine1'"));
+}
+
+TEST(Validate, TagTopicCollidingAcrossExchanges) {
+    // turbine1/PRESSAO/set (tag write topic) == exchange turbine1/PRESSAO's set topic.
+    auto c = valid();
+    c.exchanges[1].spec.topic = "turbine1/PRESSAO";
+    const auto d = only(validate(c));
+    EXPECT_TRUE(mentions(d, "turbine1/PRESSAO/set"));
+}
+
+TEST(Validate, ReservedTagNames) {
+    for (const char* name : {"set", "_status", "_x", "a/b", "a+", "a#", ""}) {
+        auto c = valid();
+        c.exchanges[0].tags[1].spec.name = name;
+        const auto d = only(validate(c));
+        EXPECT_EQ(d.mark.line, c.exchanges[0].tags[1].marks.of("name").line) << name;
+    }
+    auto c = valid();
+    c.exchanges[0].tags[1].spec.name = "SET";  // topics are case-sensitive
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, PeriodRange) {
+    for (auto period : {0ms, 1ms, 3600001ms}) {
+        auto c = valid();
+        c.exchanges[0].spec.period = period;
+        EXPECT_EQ(only(validate(c)).mark.line, c.exchanges[0].marks.of("period_ms").line);
+    }
+    for (auto period : {2ms, 3600000ms}) {
+        auto c = valid();
+        c.exchanges[0].spec.period = period;
+        EXPECT_TRUE(validate(c).empty());
+    }
+}
+
+TEST(Validate, DestinationOnlyOnProducedExchanges) {
+    auto c = valid();
+    c.exchanges[1].spec.destination.clear();
+    EXPECT_TRUE(mentions(only(validate(c)), "no destination"));
+    c = valid();
+    c.exchanges[0].spec.destination = "10.0.0.1";
+    EXPECT_EQ(only(validate(c)).mark.line, c.exchanges[0].marks.of("destination").line);
+}
+
+TEST(Validate, TimeoutAndSourceOnlyOnConsumedExchanges) {
+    auto c = valid();
+    c.exchanges[1].spec.timeout = 300ms;
+    EXPECT_EQ(only(validate(c)).mark.line, c.exchanges[1].marks.of("timeout_ms").line);
+    c = valid();
+    c.exchanges[1].spec.source = 0x7F000001;
+    EXPECT_EQ(only(validate(c)).mark.line, c.exchanges[1].marks.of("source").line);
+}
+
+TEST(Validate, MqttSection) {
+    auto c = valid();
+    c.mqtt.qos = 3;
+    EXPECT_EQ(only(validate(c)).mark.line, c.mqtt.marks.of("qos").line);
+    c = valid();
+    c.mqtt.version = 4;
+    EXPECT_EQ(only(validate(c)).mark.line, c.mqtt.marks.of("version").line);
+    c.mqtt.version = 3;
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, GatewaySection) {
+    auto c = valid();
+    c.gateway.id.clear();
+    EXPECT_EQ(only(validate(c)).mark.line, c.gateway.marks.of("id").line);
+    c = valid();
+    c.gateway.log_level = "verbose";
+    EXPECT_EQ(only(validate(c)).mark.line, c.gateway.marks.of("log_level").line);
+}
+
+TEST(Validate, NoExchanges) {
+    auto c = valid();
+    c.exchanges.clear();
+    only(validate(c));
+}
+
+TEST(Validate, DiagnosticsComeInFileOrder) {
+    auto c = valid();
+    c.exchanges[1].tags[0].spec.min = 5;  // later line
+    c.exchanges[1].tags[0].spec.max = 1;
+    c.exchanges[0].spec.period = 0ms;     // earlier line
+    c.gateway.id.clear();                 // earliest line
+    auto found = validate(c);
+    ASSERT_EQ(found.size(), 3u);
+    EXPECT_TRUE(std::is_sorted(found.begin(), found.end(), [](const auto& a, const auto& b) {
+        return a.mark.line < b.mark.line;
+    }));
+    // Rows of other files (point lists) follow the configuration file's own.
+    c.exchanges[0].tags.push_back(tag("PL", 0, 0, TagType::byte));
+    c.exchanges[0].tags.back().marks = {};
+    c.exchanges[0].tags.back().marks.node = {"a.csv", 2, 1};
+    found = validate(c);
+    ASSERT_EQ(found.size(), 4u);
+    EXPECT_EQ(found.back().mark.file, "a.csv");
+}
+
+TEST(MakePlans, OnePlanPerExchangeWithEveryTag) {
+    const auto c = valid();
+    const auto plans = make_plans(c);
+    ASSERT_EQ(plans.size(), 2u);
+    EXPECT_EQ(plans[0].topic, "acme/site/turbine1");
+    ASSERT_EQ(plans[0].spec.tags.size(), 2u);
+    EXPECT_EQ(plans[0].spec.tags[1].name, "PRESSAO");
+    EXPECT_EQ(plans[0].tags[1].topic, "acme/site/turbine1/PRESSAO");
+    EXPECT_EQ(plans[0].timeout, 300ms);
+    EXPECT_EQ(plans[1].tags[0].set_topic, "acme/site/setpoints/SPEED_SP/set");
+    EXPECT_EQ(plans[1].length, 16);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::core::config

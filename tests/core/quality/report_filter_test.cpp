@@ -1,0 +1,132 @@
+#include "eip2mqtt/core/quality/report_filter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace eip2mqtt::core::quality {
+namespace {
+
+using namespace std::chrono_literals;
+using plan::Value;
+
+MonoTime at(std::chrono::milliseconds offset) { return MonoTime{} + offset; }
+
+TEST(ReportFilter, FirstValueIsPublished) {
+    const ReportFilter filter(0.0, 60s);
+    EXPECT_TRUE(filter.should_publish(Value{std::int64_t{0}}, Quality::good, at(0ms)));
+    EXPECT_EQ(filter.last_value(), nullptr);
+    EXPECT_EQ(filter.refresh_due(), std::nullopt);
+}
+
+TEST(ReportFilter, ShouldPublishDoesNotRecord) {
+    ReportFilter filter(0.0, 60s);
+    const Value v{std::int64_t{1}};
+    EXPECT_TRUE(filter.should_publish(v, Quality::good, at(0ms)));
+    EXPECT_TRUE(filter.should_publish(v, Quality::good, at(1ms)));
+    filter.published(v, Quality::good, at(1ms));
+    EXPECT_FALSE(filter.should_publish(v, Quality::good, at(2ms)));
+    ASSERT_NE(filter.last_value(), nullptr);
+    EXPECT_EQ(*filter.last_value(), v);
+}
+
+TEST(ReportFilter, ZeroDeadbandPublishesAnyChange) {
+    ReportFilter filter(0.0, 60s);
+    filter.published(Value{1.0f}, Quality::good, at(0ms));
+    EXPECT_FALSE(filter.should_publish(Value{1.0f}, Quality::good, at(1ms)));
+    EXPECT_TRUE(filter.should_publish(Value{std::nextafter(1.0f, 2.0f)}, Quality::good, at(1ms)));
+}
+
+TEST(ReportFilter, DeadbandIsStrict) {
+    ReportFilter filter(0.5, 60s);
+    filter.published(Value{10.0}, Quality::good, at(0ms));
+    EXPECT_FALSE(filter.should_publish(Value{10.5}, Quality::good, at(1ms)));
+    EXPECT_FALSE(filter.should_publish(Value{9.5}, Quality::good, at(1ms)));
+    EXPECT_TRUE(filter.should_publish(Value{10.51}, Quality::good, at(1ms)));
+    EXPECT_TRUE(filter.should_publish(Value{9.49}, Quality::good, at(1ms)));
+}
+
+TEST(ReportFilter, DeadbandCountsFromTheLastPublication) {
+    ReportFilter filter(5.0, 60s);
+    filter.published(Value{std::int64_t{100}}, Quality::good, at(0ms));
+    // Creeping by 3 each time: measured from 100, not from the previous sample.
+    EXPECT_FALSE(filter.should_publish(Value{std::int64_t{103}}, Quality::good, at(1ms)));
+    EXPECT_TRUE(filter.should_publish(Value{std::int64_t{106}}, Quality::good, at(2ms)));
+}
+
+TEST(ReportFilter, DeadbandOnUnsignedIntegers) {
+    ReportFilter filter(2.0, 60s);
+    filter.published(Value{std::uint64_t{10}}, Quality::good, at(0ms));
+    EXPECT_FALSE(filter.should_publish(Value{std::uint64_t{8}}, Quality::good, at(1ms)));
+    EXPECT_TRUE(filter.should_publish(Value{std::uint64_t{7}}, Quality::good, at(1ms)));
+}
+
+TEST(ReportFilter, BoolsIgnoreTheDeadband) {
+    ReportFilter filter(5.0, 60s);
+    filter.published(Value{false}, Quality::good, at(0ms));
+    EXPECT_TRUE(filter.should_publish(Value{true}, Quality::good, at(1ms)));
+    EXPECT_FALSE(filter.should_publish(Value{false}, Quality::good, at(1ms)));
+}
+
+TEST(ReportFilter, NanIsAChangeOnceOnly) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    ReportFilter filter(1.0, 60s);
+    filter.published(Value{1.0f}, Quality::good, at(0ms));
+    EXPECT_TRUE(filter.should_publish(Value{nan}, Quality::good, at(1ms)));
+    filter.published(Value{nan}, Quality::good, at(1ms));
+    EXPECT_FALSE(filter.should_publish(Value{nan}, Quality::good, at(2ms)));
+    EXPECT_TRUE(filter.should_publish(Value{1.0f}, Quality::good, at(2ms)));
+}
+
+TEST(ReportFilter, InfinityIsComparedExactly) {
+    const double inf = std::numeric_limits<double>::infinity();
+    ReportFilter filter(1.0, 60s);
+    filter.published(Value{inf}, Quality::good, at(0ms));
+    EXPECT_FALSE(filter.should_publish(Value{inf}, Quality::good, at(1ms)));
+    EXPECT_TRUE(filter.should_publish(Value{-inf}, Quality::good, at(1ms)));
+    EXPECT_TRUE(filter.should_publish(Value{1e300}, Quality::good, at(1ms)));
+}
+
+TEST(ReportFilter, QualityChangeIsPublished) {
+    ReportFilter filter(10.0, 60s);
+    filter.published(Value{1.0}, Quality::good, at(0ms));
+    EXPECT_TRUE(filter.should_publish(Value{1.0}, Quality::stale, at(1ms)));
+    EXPECT_TRUE(filter.should_publish(Value{1.0}, Quality::bad, at(1ms)));
+}
+
+TEST(ReportFilter, ValueTypeChangeIsPublished) {
+    ReportFilter filter(10.0, 60s);
+    filter.published(Value{std::int64_t{1}}, Quality::good, at(0ms));
+    EXPECT_TRUE(filter.should_publish(Value{std::uint64_t{1}}, Quality::good, at(1ms)));
+    EXPECT_TRUE(filter.should_publish(Value{1.0}, Quality::good, at(1ms)));
+}
+
+TEST(ReportFilter, RefreshRepublishesAnUnchangedValue) {
+    ReportFilter filter(0.0, 60s);
+    filter.published(Value{true}, Quality::good, at(1000ms));
+    EXPECT_EQ(filter.refresh_due(), at(61000ms));
+    EXPECT_FALSE(filter.should_publish(Value{true}, Quality::good, at(60999ms)));
+    EXPECT_TRUE(filter.should_publish(Value{true}, Quality::good, at(61000ms)));
+    filter.published(Value{true}, Quality::good, at(61000ms));
+    EXPECT_EQ(filter.refresh_due(), at(121000ms));
+    EXPECT_FALSE(filter.should_publish(Value{true}, Quality::good, at(61001ms)));
+}
+
+TEST(ReportFilter, ZeroRefreshNeverRepublishes) {
+    ReportFilter filter(0.0, 0s);
+    filter.published(Value{true}, Quality::good, at(0ms));
+    EXPECT_EQ(filter.refresh_due(), std::nullopt);
+    EXPECT_FALSE(filter.should_publish(Value{true}, Quality::good, at(24h)));
+}
+
+TEST(ReportFilter, ResetPublishesTheNextValue) {
+    ReportFilter filter(0.0, 60s);
+    filter.published(Value{true}, Quality::good, at(0ms));
+    filter.reset();
+    EXPECT_EQ(filter.last_value(), nullptr);
+    EXPECT_EQ(filter.refresh_due(), std::nullopt);
+    EXPECT_TRUE(filter.should_publish(Value{true}, Quality::good, at(1ms)));
+}
+
+}  // namespace
+}  // namespace eip2mqtt::core::quality

@@ -1,0 +1,65 @@
+// `check` reports every configuration error with line and column; `run` refuses a bad file;
+// the example configuration in etc/ is valid.
+
+#include <gtest/gtest.h>
+
+#include "tests/support/child_process.hpp"
+#include "tests/support/gateway_fixture.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+const std::string bad_config = R"(gateway:
+  id: gw
+mqtt:
+  url: tcp://127.0.0.1:1
+  base_topic: test
+exchanges:
+  - name: unit1
+    direction: consume
+    producer_id: 10.0.0.1
+    exchange_id: 1
+    length: 8
+    period_ms: 100
+    colour: blue
+    tags:
+      - { name: A, address: "0.0", type: dint }
+      - { name: B, address: "2.0", type: int }
+      - { name: C, address: "7.0", type: int }
+)";
+
+TEST(CheckCommand, ReportsOverlapPastEndAndUnknownKeyWithLineAndColumn) {
+    TempDir dir;
+    const auto path = dir.write("bad.yaml", bad_config);
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    EXPECT_NE(result.output.find(path + ":13:5:"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("colour"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find(path + ":16:"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("overlap"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find(path + ":17:"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("past"), std::string::npos) << result.output;
+}
+
+TEST(RunCommand, RefusesToStartOnAnInvalidConfiguration) {
+    TempDir dir;
+    const auto path = dir.write("bad.yaml", bad_config);
+    const auto result = run_command({EIP2MQTT_BINARY, "run", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    EXPECT_NE(result.output.find("colour"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("not starting"), std::string::npos) << result.output;
+}
+
+TEST(CheckCommand, ExampleConfigurationIsValidAndShowsItsLayout) {
+    const std::string path = std::string(EIP2MQTT_SOURCE_DIR) + "/etc/eip2mqtt/eip2mqtt.yaml";
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 0) << result.output;
+    EXPECT_NE(result.output.find("PRESSAO"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("acme/demo/turbine1/PRESSAO"), std::string::npos)
+        << result.output;
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test

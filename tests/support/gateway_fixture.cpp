@@ -1,0 +1,98 @@
+#include "tests/support/gateway_fixture.hpp"
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "tests/support/free_port.hpp"
+
+namespace eip2mqtt::test {
+
+TempDir::TempDir() {
+    char name[] = "/tmp/eip2mqtt-test-XXXXXX";
+    if (::mkdtemp(name) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = name;
+}
+
+TempDir::~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+}
+
+std::string TempDir::write(const std::string& name, const std::string& content) const {
+    const std::string file = path_ + "/" + name;
+    std::ofstream(file) << content;
+    return file;
+}
+
+void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mqtt_extra) {
+    broker_ = std::make_unique<Mosquitto>();
+    udp_port_ = free_udp_port();
+    udp_ = std::make_unique<UdpClient>();
+    const std::string config = "gateway:\n"
+                               "  id: test-gw\n"
+                               "  state_dir: " + dir_.path() + "/state\n"
+                               "  log_level: debug\n"
+                               "mqtt:\n"
+                               "  url: " + broker_->url() + "\n"
+                               "  base_topic: test\n"
+                               "  qos: 1\n"
+                               "  metrics_interval_s: 1\n" +
+                               mqtt_extra +
+                               "eip:\n"
+                               "  bind: 127.0.0.1\n"
+                               "  port: " + std::to_string(udp_port_) + "\n"
+                               "exchanges:\n" + exchanges_yaml;
+    config_path_ = dir_.write("gateway.yaml", config);
+    recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"test/#"});
+    start_gateway();
+}
+
+void GatewayTest::start_gateway() {
+    const std::size_t from = recorder_->count();
+    gateway_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", config_path_});
+    wait_online(from);
+}
+
+void GatewayTest::wait_online(std::size_t from) {
+    const auto online = recorder_->wait_for_message(
+        availability_topic(), [](const std::string& p) { return p == "online"; },
+        std::chrono::seconds(15), from);
+    ASSERT_TRUE(online.has_value()) << "gateway never came online; its output:\n"
+                                    << (gateway_ ? gateway_->output() : "");
+}
+
+void GatewayTest::TearDown() {
+    if (HasFailure() && gateway_) {
+        std::cerr << "--- gateway output ---\n" << gateway_->output() << "--- end ---\n";
+    }
+    gateway_.reset();
+    recorder_.reset();
+    broker_.reset();
+}
+
+Received GatewayTest::expect_field(const std::string& topic, const std::string& field,
+                                   const std::string& expected, std::size_t from) {
+    const auto message = recorder_->wait_for_message(
+        topic,
+        [&](const std::string& payload) {
+            const auto json = nlohmann::json::parse(payload, nullptr, false);
+            return json.is_object() && json.contains(field) && json[field].dump() == expected;
+        },
+        std::chrono::seconds(10), from);
+    if (!message) {
+        std::string seen;
+        for (const auto& m : recorder_->messages_on(topic)) seen += "  " + m.payload + "\n";
+        ADD_FAILURE() << "no message on " << topic << " with " << field << "=" << expected
+                      << "; seen:\n"
+                      << seen;
+        return {};
+    }
+    return *message;
+}
+
+}  // namespace eip2mqtt::test

@@ -1,0 +1,65 @@
+#pragma once
+/// An integration-test harness: a real Mosquitto on a free port, the real eip2mqtt binary
+/// running a configuration written by the test, a recorder subscribed to everything under the
+/// base topic, and a UDP socket to feed the gateway.
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "tests/support/child_process.hpp"
+#include "tests/support/mosquitto.hpp"
+#include "tests/support/mqtt_recorder.hpp"
+#include "tests/support/udp_client.hpp"
+
+namespace eip2mqtt::test {
+
+/// A temporary directory removed (with its content) at destruction.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    const std::string& path() const { return path_; }
+    /// Writes `content` to `name` inside the directory; returns the full path.
+    std::string write(const std::string& name, const std::string& content) const;
+
+private:
+    std::string path_;
+};
+
+class GatewayTest : public ::testing::Test {
+protected:
+    static constexpr const char* base_topic = "test";
+
+    /// Starts broker, gateway and recorder. `exchanges_yaml` is the text of the `exchanges:`
+    /// list (indented by two spaces); `mqtt_extra` adds keys to the mqtt section.
+    void start(const std::string& exchanges_yaml, const std::string& mqtt_extra = "");
+    /// Starts only the gateway again (after stop_gateway or a kill), same configuration.
+    void start_gateway();
+    /// Waits for `online` on the availability topic, counting only messages after `from`.
+    void wait_online(std::size_t from = 0);
+    void TearDown() override;
+
+    std::string topic(const std::string& suffix) const {
+        return std::string(base_topic) + "/" + suffix;
+    }
+    std::string availability_topic() const { return topic("_gateway/test-gw/state"); }
+    std::string metrics_topic() const { return topic("_gateway/test-gw/metrics"); }
+    /// Sends a datagram to the gateway's UDP port.
+    void send(const std::vector<std::byte>& datagram) { udp_->send_to(udp_port_, datagram); }
+    /// Waits for the next message on `topic` (after index `from`) whose JSON payload has
+    /// `field` equal to the JSON text `expected`; fails the test on timeout.
+    Received expect_field(const std::string& topic, const std::string& field,
+                          const std::string& expected, std::size_t from = 0);
+
+    TempDir dir_;
+    std::unique_ptr<Mosquitto> broker_;
+    std::unique_ptr<ChildProcess> gateway_;
+    std::unique_ptr<MqttRecorder> recorder_;
+    std::unique_ptr<UdpClient> udp_;
+    std::uint16_t udp_port_ = 0;
+    std::string config_path_;
+};
+
+}  // namespace eip2mqtt::test

@@ -1,0 +1,156 @@
+#include "tests/support/mosquitto.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <pwd.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "tests/support/free_port.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+constexpr const char* kMosquitto = "/usr/sbin/mosquitto";
+constexpr auto kStartDeadline = std::chrono::seconds(10);
+constexpr auto kPollInterval = std::chrono::milliseconds(10);
+
+bool accepts_connections(std::uint16_t port) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) {
+        return false;
+    }
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    addr.sin_port = htons(port);
+    const bool ok = ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0;
+    ::close(fd);
+    return ok;
+}
+
+std::string read_file(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+std::string current_user() {
+    if (const passwd* pw = ::getpwuid(::geteuid())) {
+        return pw->pw_name;
+    }
+    return "root";
+}
+
+}  // namespace
+
+Mosquitto::Mosquitto(MosquittoOptions options) : options_(std::move(options)) {
+    port_ = options_.port != 0 ? options_.port : free_tcp_port();
+    std::string templ = (std::filesystem::temp_directory_path() / "eip2mqtt-mosquitto-XXXXXX");
+    if (::mkdtemp(templ.data()) == nullptr) {
+        throw std::runtime_error(std::string("mkdtemp: ") + std::strerror(errno));
+    }
+    dir_ = templ;
+
+    std::ofstream conf(dir_ + "/mosquitto.conf");
+    conf << "listener " << port_ << " 127.0.0.1\n"
+         << "allow_anonymous true\n"
+         // As root, Mosquitto would switch to the "mosquitto" user and lose access to dir_.
+         << "user " << current_user() << "\n"
+         << "log_dest file " << dir_ << "/mosquitto.log\n"
+         << "log_type all\n"
+         << "connection_messages true\n";
+    if (options_.persistence) {
+        conf << "persistence true\n"
+             << "persistence_location " << dir_ << "/\n"
+             << "persistence_file mosquitto.db\n";
+    } else {
+        conf << "persistence false\n";
+    }
+    conf << options_.extra_config << "\n";
+    conf.close();
+
+    try {
+        start();
+    } catch (...) {
+        std::error_code ec;
+        std::filesystem::remove_all(dir_, ec);
+        throw;
+    }
+}
+
+Mosquitto::~Mosquitto() {
+    stop();
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+}
+
+std::string Mosquitto::url() const { return "tcp://127.0.0.1:" + std::to_string(port_); }
+
+void Mosquitto::start() {
+    if (pid_ > 0) {
+        return;
+    }
+    const std::string conf = dir_ + "/mosquitto.conf";
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+        throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+    }
+    if (pid == 0) {
+        // Child: keep the test's output clean; the broker logs to its file.
+        const int devnull = ::open("/dev/null", O_RDWR);
+        if (devnull >= 0) {
+            ::dup2(devnull, STDIN_FILENO);
+            ::dup2(devnull, STDOUT_FILENO);
+            ::dup2(devnull, STDERR_FILENO);
+        }
+        ::execl(kMosquitto, kMosquitto, "-c", conf.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    pid_ = pid;
+
+    // Event polling with a bound: the broker gives no readiness signal but its listening port.
+    const auto deadline = std::chrono::steady_clock::now() + kStartDeadline;
+    while (!accepts_connections(port_)) {
+        int status = 0;
+        if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+            pid_ = -1;
+            throw std::runtime_error("mosquitto exited at start-up; log:\n" +
+                                     read_file(dir_ + "/mosquitto.log"));
+        }
+        if (std::chrono::steady_clock::now() > deadline) {
+            stop();
+            throw std::runtime_error("mosquitto did not accept connections within 10 s; log:\n" +
+                                     read_file(dir_ + "/mosquitto.log"));
+        }
+        std::this_thread::sleep_for(kPollInterval);
+    }
+}
+
+void Mosquitto::stop() {
+    if (pid_ <= 0) {
+        return;
+    }
+    ::kill(pid_, SIGTERM);
+    ::kill(pid_, SIGCONT);  // a test may have stopped it with SIGSTOP
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = -1;
+}
+
+}  // namespace eip2mqtt::test

@@ -1,0 +1,186 @@
+#include "tests/support/mqtt_recorder.hpp"
+
+#include <mqtt/async_client.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <stdexcept>
+#include <utility>
+
+namespace eip2mqtt::test {
+namespace {
+
+constexpr auto kOperationTimeout = std::chrono::seconds(10);
+/// Long enough for any test; the session is ended explicitly on destruction.
+constexpr int kSessionExpiry_s = 3600;
+
+std::string unique_client_id() {
+    static std::atomic<unsigned> counter{0};
+    return "recorder-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+void wait_ok(const ::mqtt::token_ptr& tok, const char* what) {
+    if (!tok->wait_for(kOperationTimeout)) {
+        throw std::runtime_error(std::string("MqttRecorder: ") + what + " timed out");
+    }
+    tok->get_return_code();
+}
+
+}  // namespace
+
+struct MqttRecorder::Impl {
+    Impl(const std::string& url, const std::string& id, std::vector<std::string> filters)
+        : client(url, id, ::mqtt::create_options(MQTTVERSION_5)), filters(std::move(filters)) {}
+
+    ::mqtt::async_client client;
+    std::vector<std::string> filters;
+    std::atomic<bool> subscribed_once{false};
+
+    mutable std::mutex mutex;
+    std::condition_variable cv;
+    std::vector<Received> messages;
+
+    void record(const ::mqtt::const_message_ptr& msg) {
+        Received r;
+        r.topic = msg->get_topic();
+        r.payload = msg->get_payload_str();
+        r.retained = msg->is_retained();
+        r.at = std::chrono::steady_clock::now();
+        const auto& props = msg->get_properties();
+        if (props.contains(::mqtt::property::CORRELATION_DATA)) {
+            r.correlation_data =
+                ::mqtt::get<std::string>(props, ::mqtt::property::CORRELATION_DATA);
+        }
+        {
+            std::lock_guard lock(mutex);
+            messages.push_back(std::move(r));
+        }
+        cv.notify_all();
+    }
+
+    /// retain_as_published so tests can assert the retain flag of live publications;
+    /// SEND_RETAINED_ON_NEW so a renewed subscription does not replay retained messages.
+    ::mqtt::token_ptr subscribe(::mqtt::subscribe_options::RetainHandling handling) {
+        auto topics = ::mqtt::string_collection::create(filters);
+        std::vector<int> qos(filters.size(), 1);
+        std::vector<::mqtt::subscribe_options> opts(
+            filters.size(), ::mqtt::subscribe_options(false, true, handling));
+        return client.subscribe(topics, qos, opts);
+    }
+};
+
+MqttRecorder::MqttRecorder(const std::string& url, const std::vector<std::string>& filters,
+                           const std::string& client_id)
+    : impl_(std::make_unique<Impl>(url, client_id.empty() ? unique_client_id() : client_id,
+                                   filters)) {
+    auto& cli = impl_->client;
+    Impl* impl = impl_.get();
+    cli.set_message_callback([impl](::mqtt::const_message_ptr msg) { impl->record(msg); });
+    // The broker may have lost the session (restart without persistence): subscribe again.
+    cli.set_connected_handler([impl](const std::string&) {
+        if (impl->subscribed_once && !impl->filters.empty()) {
+            impl->subscribe(::mqtt::subscribe_options::SEND_RETAINED_ON_NEW);
+        }
+    });
+
+    // First a clean start, so nothing of an earlier session with this id leaks in; then resume
+    // that session without clean start and with automatic reconnect, so that reconnects (after
+    // a broker restart) keep the subscriptions and the QoS 1 messages queued meanwhile.
+    ::mqtt::properties props{{::mqtt::property::SESSION_EXPIRY_INTERVAL, kSessionExpiry_s}};
+    ::mqtt::connect_options clean;
+    clean.set_mqtt_version(MQTTVERSION_5);
+    clean.set_clean_start(true);
+    clean.set_properties(props);
+    wait_ok(cli.connect(clean), "connect");
+    wait_ok(cli.disconnect(), "disconnect");
+
+    ::mqtt::connect_options resume;
+    resume.set_mqtt_version(MQTTVERSION_5);
+    resume.set_clean_start(false);
+    resume.set_properties(props);
+    resume.set_automatic_reconnect(std::chrono::seconds(1), std::chrono::seconds(1));
+    wait_ok(cli.connect(resume), "connect");
+    if (!filters.empty()) {
+        wait_ok(impl_->subscribe(::mqtt::subscribe_options::SEND_RETAINED_ON_SUBSCRIBE),
+                "subscribe");
+    }
+    impl_->subscribed_once = true;
+}
+
+MqttRecorder::~MqttRecorder() {
+    try {
+        auto& cli = impl_->client;
+        cli.disable_callbacks();
+        if (cli.is_connected()) {
+            // End the session on the broker with the connection.
+            ::mqtt::disconnect_options opts;
+            opts.set_properties(::mqtt::properties{{::mqtt::property::SESSION_EXPIRY_INTERVAL, 0}});
+            cli.disconnect(opts)->wait_for(std::chrono::seconds(2));
+        }
+    } catch (const ::mqtt::exception&) {
+        // The broker may already be gone; nothing to clean up there.
+    }
+}
+
+bool MqttRecorder::wait_for(const Predicate& pred, std::chrono::milliseconds timeout) {
+    std::unique_lock lock(impl_->mutex);
+    return impl_->cv.wait_for(lock, timeout, [&] { return pred(impl_->messages); });
+}
+
+std::optional<Received> MqttRecorder::wait_for_message(
+    const std::string& topic, const std::function<bool(const std::string&)>& pred,
+    std::chrono::milliseconds timeout, std::size_t from) {
+    std::optional<Received> found;
+    wait_for(
+        [&](const std::vector<Received>& all) {
+            for (std::size_t i = from; i < all.size(); ++i) {
+                if (all[i].topic == topic && (!pred || pred(all[i].payload))) {
+                    found = all[i];
+                    return true;
+                }
+            }
+            return false;
+        },
+        timeout);
+    return found;
+}
+
+std::vector<Received> MqttRecorder::messages() const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->messages;
+}
+
+std::vector<Received> MqttRecorder::messages_on(const std::string& topic) const {
+    std::lock_guard lock(impl_->mutex);
+    std::vector<Received> out;
+    for (const auto& m : impl_->messages) {
+        if (m.topic == topic) {
+            out.push_back(m);
+        }
+    }
+    return out;
+}
+
+std::size_t MqttRecorder::count() const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->messages.size();
+}
+
+std::optional<Received> MqttRecorder::last(const std::string& topic) const {
+    std::lock_guard lock(impl_->mutex);
+    for (auto it = impl_->messages.rbegin(); it != impl_->messages.rend(); ++it) {
+        if (it->topic == topic) {
+            return *it;
+        }
+    }
+    return std::nullopt;
+}
+
+void MqttRecorder::publish(const std::string& topic, const std::string& payload, bool retain) {
+    auto tok = impl_->client.publish(topic, payload.data(), payload.size(), 1, retain);
+    if (!tok->wait_for(kOperationTimeout)) {
+        throw std::runtime_error("MqttRecorder: publish timed out");
+    }
+}
+
+}  // namespace eip2mqtt::test

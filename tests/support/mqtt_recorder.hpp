@@ -1,0 +1,58 @@
+#pragma once
+/// A Paho subscriber that records everything it receives, for assertions in tests. Waiting is
+/// event-driven: wait_for() blocks on a condition variable until a predicate over the
+/// recorded messages holds, or the timeout passes.
+
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace eip2mqtt::test {
+
+struct Received {
+    std::string topic;
+    std::string payload;
+    bool retained = false;
+    std::chrono::steady_clock::time_point at;
+    /// MQTT 5 properties, when present.
+    std::string correlation_data;
+};
+
+class MqttRecorder {
+public:
+    /// Connects (MQTT 5, clean start) to `url` and subscribes to each filter at QoS 1;
+    /// returns once subscribed.
+    MqttRecorder(const std::string& url, const std::vector<std::string>& filters,
+                 const std::string& client_id = "");
+    ~MqttRecorder();
+
+    using Predicate = std::function<bool(const std::vector<Received>&)>;
+    /// True once `pred` holds over everything recorded so far; false after `timeout`.
+    bool wait_for(const Predicate& pred,
+                  std::chrono::milliseconds timeout = std::chrono::seconds(10));
+    /// Waits for a message on `topic` whose payload satisfies `pred` (any payload when null);
+    /// returns it, or nullopt after `timeout`. Only messages recorded after `from` count.
+    std::optional<Received> wait_for_message(
+        const std::string& topic, const std::function<bool(const std::string&)>& pred = nullptr,
+        std::chrono::milliseconds timeout = std::chrono::seconds(10), std::size_t from = 0);
+
+    std::vector<Received> messages() const;
+    std::vector<Received> messages_on(const std::string& topic) const;
+    std::size_t count() const;
+    /// The last message recorded on `topic`.
+    std::optional<Received> last(const std::string& topic) const;
+
+    /// Publishes from the recorder's own connection (QoS 1, waits for completion).
+    void publish(const std::string& topic, const std::string& payload, bool retain = false);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace eip2mqtt::test

@@ -1,0 +1,50 @@
+#include "tests/support/udp_client.hpp"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <stdexcept>
+
+namespace eip2mqtt::test {
+
+UdpClient::UdpClient(std::uint16_t port) {
+    fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
+    if (fd_ < 0) throw std::runtime_error("socket failed");
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    address.sin_port = htons(port);
+    if (::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+        throw std::runtime_error("bind failed");
+    }
+    socklen_t length = sizeof address;
+    ::getsockname(fd_, reinterpret_cast<sockaddr*>(&address), &length);
+    port_ = ntohs(address.sin_port);
+}
+
+UdpClient::~UdpClient() { ::close(fd_); }
+
+void UdpClient::send_to(std::uint16_t port, const std::vector<std::byte>& datagram) {
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    address.sin_port = htons(port);
+    const auto sent = ::sendto(fd_, datagram.data(), datagram.size(), 0,
+                               reinterpret_cast<sockaddr*>(&address), sizeof address);
+    if (sent != static_cast<ssize_t>(datagram.size())) throw std::runtime_error("sendto failed");
+}
+
+std::optional<std::vector<std::byte>> UdpClient::receive(std::chrono::milliseconds timeout) {
+    pollfd pfd{fd_, POLLIN, 0};
+    if (::poll(&pfd, 1, static_cast<int>(timeout.count())) <= 0) return std::nullopt;
+    std::vector<std::byte> buffer(65536);
+    const auto n = ::recv(fd_, buffer.data(), buffer.size(), 0);
+    if (n < 0) return std::nullopt;
+    buffer.resize(static_cast<std::size_t>(n));
+    return buffer;
+}
+
+}  // namespace eip2mqtt::test

@@ -1,0 +1,31 @@
+#pragma once
+/// A plain UDP socket on loopback, for feeding datagrams to the gateway and capturing the
+/// datagrams it produces.
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace eip2mqtt::test {
+
+class UdpClient {
+public:
+    /// Binds 127.0.0.1:`port` (0: ephemeral).
+    explicit UdpClient(std::uint16_t port = 0);
+    ~UdpClient();
+    UdpClient(const UdpClient&) = delete;
+    UdpClient& operator=(const UdpClient&) = delete;
+
+    std::uint16_t port() const { return port_; }
+    void send_to(std::uint16_t port, const std::vector<std::byte>& datagram);
+    /// Next datagram received, or nullopt after `timeout`.
+    std::optional<std::vector<std::byte>> receive(std::chrono::milliseconds timeout);
+
+private:
+    int fd_ = -1;
+    std::uint16_t port_ = 0;
+};
+
+}  // namespace eip2mqtt::test

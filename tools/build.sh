@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Configures and builds one flavour of eip2mqtt.
+#   tools/build.sh [release|asan|fuzz]   (default: release; build dirs build/, build-asan/, build-fuzz/)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+flavour=${1:-release}
+jobs=$(nproc)
+case "$flavour" in
+  release) dir=build; args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DEIP2MQTT_WERROR=ON) ;;
+  asan) dir=build-asan; args=(-DCMAKE_BUILD_TYPE=Debug -DEIP2MQTT_WERROR=ON -DEIP2MQTT_SANITIZE=ON -DEIP2MQTT_BENCH=OFF) ;;
+  fuzz) dir=build-fuzz; args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DEIP2MQTT_FUZZ=ON -DEIP2MQTT_TESTS=OFF -DEIP2MQTT_BENCH=OFF) ;;
+  *) echo "usage: $0 [release|asan|fuzz]" >&2; exit 2 ;;
+esac
+cmake -S . -B "$dir" -G Ninja "${args[@]}" >/dev/null
+cmake --build "$dir" -j "$jobs"

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The main job on one machine: a local Mosquitto, the bundled simulator producing the consumed
+# exchanges of etc/eip2mqtt/eip2mqtt.yaml, and the gateway on that configuration, with a
+# subscriber printing the values as they arrive. Ctrl-C stops everything.
+#   tools/demo.sh [--seconds N]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=0
+if [ "${1:-}" = "--seconds" ]; then seconds=${2:?}; fi
+
+tools/install-deps.sh
+tools/build.sh release
+
+config=etc/eip2mqtt/eip2mqtt.yaml
+pids=()
+cleanup() {
+  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+  wait 2>/dev/null || true
+}
+trap cleanup EXIT INT TERM
+
+if ! (exec 3<>/dev/tcp/127.0.0.1/1883) 2>/dev/null; then
+  echo "== starting Mosquitto on localhost:1883"
+  mosquitto -p 1883 >/tmp/eip2mqtt-demo-mosquitto.log 2>&1 &
+  pids+=($!)
+  for _ in $(seq 50); do (exec 3<>/dev/tcp/127.0.0.1/1883) 2>/dev/null && break; sleep 0.1; done
+else
+  echo "== using the MQTT broker already on localhost:1883"
+fi
+
+echo "== starting the gateway on $config"
+build/eip2mqtt run -c "$config" &
+pids+=($!)
+echo "== starting the simulator"
+build/eip2mqtt sim -c "$config" --log-level warn &
+pids+=($!)
+
+echo "== values as they arrive (mosquitto_sub -v -t 'acme/demo/#'):"
+if [ "$seconds" -gt 0 ]; then
+  timeout "$seconds" mosquitto_sub -h 127.0.0.1 -p 1883 -v -t 'acme/demo/#' || true
+else
+  mosquitto_sub -h 127.0.0.1 -p 1883 -v -t 'acme/demo/#'
+fi
