@@ -16,7 +16,9 @@ constexpr int kSessionExpiry_s = 3600;
 
 std::string unique_client_id() {
     static std::atomic<unsigned> counter{0};
-    return "recorder-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    const auto now = std::chrono::steady_clock::now().time_since_epoch().count();
+    return "recorder-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
+           std::to_string(now);
 }
 
 void wait_ok(const ::mqtt::token_ptr& tok, const char* what) {
@@ -61,10 +63,15 @@ struct MqttRecorder::Impl {
     /// retain_as_published so tests can assert the retain flag of live publications;
     /// SEND_RETAINED_ON_NEW so a renewed subscription does not replay retained messages.
     ::mqtt::token_ptr subscribe(::mqtt::subscribe_options::RetainHandling handling) {
+        const ::mqtt::subscribe_options opt(false, true, handling);
+        if (filters.size() == 1) {
+            // Paho C reads a one-topic SUBSCRIBE's options from a field Paho C++ 1.2's
+            // collection overload leaves unset: use the one-topic overload.
+            return client.subscribe(filters.front(), 1, opt);
+        }
         auto topics = ::mqtt::string_collection::create(filters);
         std::vector<int> qos(filters.size(), 1);
-        std::vector<::mqtt::subscribe_options> opts(
-            filters.size(), ::mqtt::subscribe_options(false, true, handling));
+        std::vector<::mqtt::subscribe_options> opts(filters.size(), opt);
         return client.subscribe(topics, qos, opts);
     }
 };
@@ -83,16 +90,20 @@ MqttRecorder::MqttRecorder(const std::string& url, const std::vector<std::string
         }
     });
 
-    // First a clean start, so nothing of an earlier session with this id leaks in; then resume
+    // A clean start, so nothing of an earlier session with this id leaks in, but then resume
     // that session without clean start and with automatic reconnect, so that reconnects (after
-    // a broker restart) keep the subscriptions and the QoS 1 messages queued meanwhile.
+    // a broker restart) keep the subscriptions and the QoS 1 messages queued meanwhile. A
+    // generated id is new to the broker: its first connect is clean already, and skipping the
+    // extra round saves Paho's one-second pause between a disconnect and the next connect.
     ::mqtt::properties props{{::mqtt::property::SESSION_EXPIRY_INTERVAL, kSessionExpiry_s}};
-    ::mqtt::connect_options clean;
-    clean.set_mqtt_version(MQTTVERSION_5);
-    clean.set_clean_start(true);
-    clean.set_properties(props);
-    wait_ok(cli.connect(clean), "connect");
-    wait_ok(cli.disconnect(), "disconnect");
+    if (!client_id.empty()) {
+        ::mqtt::connect_options clean;
+        clean.set_mqtt_version(MQTTVERSION_5);
+        clean.set_clean_start(true);
+        clean.set_properties(props);
+        wait_ok(cli.connect(clean), "connect");
+        wait_ok(cli.disconnect(), "disconnect");
+    }
 
     ::mqtt::connect_options resume;
     resume.set_mqtt_version(MQTTVERSION_5);

@@ -226,6 +226,10 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
       queue_(options_.buffer_max_messages) {
     const bool v5 = options_.version == 5;
     paho::create_options create(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
+    // Paho C refuses commands beyond maxBufferedMessages (default 100) even while connected:
+    // room for max_in_flight publications, availability, subscribes and the disconnect.
+    create.set_max_buffered_messages(
+        static_cast<int>(std::min<std::size_t>(options_.max_in_flight + 64, 1 << 30)));
     client_ =
         std::make_unique<paho::async_client>(options_.url, options_.client_id, create, nullptr);
 
@@ -432,16 +436,24 @@ void Client::Impl::renew_subscriptions(const std::vector<std::string>& filters) 
     if (filters.empty() || state_ != State::connected) {
         return;
     }
-    std::vector<paho::subscribe_options> opts;
-    if (options_.version == 5) {
-        // no_local: never hear our own publications; retain-as-published off, so only retained
-        // messages sent because we subscribed carry the flag (and the gateway rejects them).
-        opts.assign(filters.size(), paho::subscribe_options(true, false));
-    }
+    const bool v5 = options_.version == 5;
+    // no_local: never hear our own publications; retain-as-published off, so only retained
+    // messages sent because we subscribed carry the flag (and the gateway rejects them).
+    const paho::subscribe_options opt(v5, false);
     try {
-        client_->subscribe(paho::string_collection::create(filters),
-                           paho::iasync_client::qos_collection(filters.size(), 1), nullptr,
-                           subscribe_listener_, opts);
+        if (filters.size() == 1) {
+            // Paho C reads a one-topic SUBSCRIBE's options from a field that Paho C++ 1.2's
+            // collection overload leaves unset, so one topic takes the one-topic overload.
+            client_->subscribe(filters.front(), 1, nullptr, subscribe_listener_, opt);
+        } else {
+            std::vector<paho::subscribe_options> opts;
+            if (v5) {
+                opts.assign(filters.size(), opt);
+            }
+            client_->subscribe(paho::string_collection::create(filters),
+                               paho::iasync_client::qos_collection(filters.size(), 1), nullptr,
+                               subscribe_listener_, opts);
+        }
     } catch (const paho::exception& e) {
         spdlog::warn("MQTT subscribe failed on {}: {}", options_.url, e.what());
     }

@@ -42,20 +42,24 @@ using Keys = std::span<const std::string_view>;
 constexpr std::array<std::string_view, 5> top_keys{"gateway", "mqtt", "eip", "metrics",
                                                    "exchanges"};
 constexpr std::array<std::string_view, 3> gateway_keys{"id", "state_dir", "log_level"};
-constexpr std::array<std::string_view, 14> mqtt_keys{
-    "url",        "version", "client_id", "username", "password_file", "tls",         "base_topic",
-    "qos",        "retain",  "payload",   "buffer",   "batch",         "keepalive_s", "metrics_interval_s"};
+constexpr std::array<std::string_view, 14> mqtt_keys{"url",           "version",
+                                                     "client_id",     "username",
+                                                     "password_file", "tls",
+                                                     "base_topic",    "qos",
+                                                     "retain",        "payload",
+                                                     "buffer",        "batch",
+                                                     "keepalive_s",   "metrics_interval_s"};
 constexpr std::array<std::string_view, 4> tls_keys{"ca_file", "cert_file", "key_file", "verify"};
 constexpr std::array<std::string_view, 1> buffer_keys{"max_messages"};
 constexpr std::array<std::string_view, 3> eip_keys{"bind", "port", "multicast"};
 constexpr std::array<std::string_view, 2> multicast_keys{"group", "interface"};
 constexpr std::array<std::string_view, 1> metrics_keys{"listen"};
 constexpr std::array<std::string_view, 13> exchange_keys{
-    "name",      "direction", "producer_id", "exchange_id", "length", "signature", "period_ms",
-    "timeout_ms", "source",   "destination", "topic",       "points", "tags"};
-constexpr std::array<std::string_view, 11> tag_keys{
-    "name", "address", "type", "unit", "deadband", "refresh_s",
-    "writable", "min", "max", "initial", "description"};
+    "name",       "direction", "producer_id", "exchange_id", "length", "signature", "period_ms",
+    "timeout_ms", "source",    "destination", "topic",       "points", "tags"};
+constexpr std::array<std::string_view, 11> tag_keys{"name",     "address",   "type",       "unit",
+                                                    "deadband", "refresh_s", "writable",   "min",
+                                                    "max",      "initial",   "description"};
 
 std::string in_quotes(std::string_view text) { return "'" + std::string(text) + "'"; }
 
@@ -74,8 +78,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
         row[0] = i;
         for (std::size_t j = 1; j <= b.size(); ++j) {
             const std::size_t above = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1,
-                               diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            row[j] =
+                std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
             diagonal = above;
         }
     }
@@ -145,7 +149,9 @@ public:
             const YAML::Node root = YAML::Load(text);
             if (!root || root.IsNull()) {
                 error({file_, 1, 1}, "the configuration is empty");
-            } else if (!root.IsMap()) {
+                return core::fail(std::move(diagnostics_));
+            }
+            if (!root.IsMap()) {
                 error(mark(root), "expected a mapping at the top level");
             } else {
                 read_root(root, config);
@@ -163,10 +169,10 @@ public:
         if (diagnostics_.empty()) return config;
         std::stable_sort(diagnostics_.begin(), diagnostics_.end(),
                          [this](const Diagnostic& a, const Diagnostic& b) {
-                             return std::make_tuple(a.mark.file != file_, a.mark.file,
-                                                    a.mark.line, a.mark.column) <
-                                    std::make_tuple(b.mark.file != file_, b.mark.file,
-                                                    b.mark.line, b.mark.column);
+                             return std::make_tuple(a.mark.file != file_, a.mark.file, a.mark.line,
+                                                    a.mark.column) <
+                                    std::make_tuple(b.mark.file != file_, b.mark.file, b.mark.line,
+                                                    b.mark.column);
                          });
         return core::fail(std::move(diagnostics_));
     }
@@ -243,8 +249,8 @@ private:
             return std::nullopt;
         }
         if (*parsed < static_cast<long long>(min) ||
-            (*parsed > 0 && static_cast<unsigned long long>(*parsed) >
-                                static_cast<unsigned long long>(max))) {
+            (*parsed > 0 &&
+             static_cast<unsigned long long>(*parsed) > static_cast<unsigned long long>(max))) {
             error(at, in_quotes(key) + " " + std::to_string(*parsed) + " is outside " +
                           std::to_string(min) + ".." + std::to_string(max));
             return std::nullopt;
@@ -295,74 +301,74 @@ private:
 
     void read_mqtt(const YAML::Node& node, const Mark& at, Config& config) {
         auto& mqtt = config.mqtt;
-        mqtt.marks = walk(
-            node, at, "mqtt", "in mqtt", mqtt_keys,
-            [&](const std::string& key, const YAML::Node& value, const Mark& k) {
-                if (key == "url" || key == "client_id" || key == "username" ||
-                    key == "password_file" || key == "base_topic") {
-                    const auto s = text(value, key, k);
-                    if (!s) return;
-                    if (key == "url") mqtt.url = *s;
-                    if (key == "client_id") mqtt.client_id = *s;
-                    if (key == "username") mqtt.username = *s;
-                    if (key == "password_file") mqtt.password_file = *s;
-                    if (key == "base_topic") mqtt.base_topic = *s;
-                } else if (key == "version") {
-                    const std::string v = value.IsScalar() ? value.Scalar() : std::string();
-                    if (v == "3.1.1") {
-                        mqtt.version = 3;
-                    } else if (const auto n = parse_integer<int>(v)) {
-                        mqtt.version = *n;  // validate() accepts 5 and 3
-                    } else {
-                        error(k, "mqtt version must be 5 or 3.1.1");
-                    }
-                } else if (key == "qos") {
-                    if (const auto n = integer<int>(value, key, k)) mqtt.qos = *n;
-                } else if (key == "retain") {
-                    if (const auto b = boolean(value, key, k)) mqtt.retain = *b;
-                } else if (key == "batch") {
-                    if (const auto b = boolean(value, key, k)) mqtt.batch = *b;
-                } else if (key == "payload") {
-                    const auto s = text(value, key, k);
-                    if (s && *s == "json") {
-                        mqtt.payload = core::config::PayloadFormat::json;
-                    } else if (s && *s == "raw") {
-                        mqtt.payload = core::config::PayloadFormat::raw;
-                    } else if (s) {
-                        error(k, "payload " + in_quotes(*s) + " is not json or raw");
-                    }
-                } else if (key == "keepalive_s") {
-                    if (const auto n = integer<int>(value, key, k, 1, 65535)) {
-                        mqtt.keepalive = std::chrono::seconds(*n);
-                    }
-                } else if (key == "metrics_interval_s") {
-                    if (const auto n = integer<int>(value, key, k, 1, 86400)) {
-                        mqtt.metrics_interval = std::chrono::seconds(*n);
-                    }
-                } else if (key == "buffer") {
-                    walk(value, k, "buffer", "in mqtt.buffer", buffer_keys,
-                         [&](const std::string& key2, const YAML::Node& v2, const Mark& k2) {
-                             if (const auto n = integer<std::size_t>(v2, key2, k2, 1)) {
-                                 mqtt.buffer_max_messages = *n;
-                             }
-                         });
-                } else if (key == "tls") {
-                    core::config::TlsSection tls;
-                    walk(value, k, "tls", "in mqtt.tls", tls_keys,
-                         [&](const std::string& key2, const YAML::Node& v2, const Mark& k2) {
-                             if (key2 == "verify") {
-                                 if (const auto b = boolean(v2, key2, k2)) tls.verify = *b;
-                                 return;
-                             }
-                             const auto s = text(v2, key2, k2);
-                             if (!s) return;
-                             if (key2 == "ca_file") tls.ca_file = *s;
-                             if (key2 == "cert_file") tls.cert_file = *s;
-                             if (key2 == "key_file") tls.key_file = *s;
-                         });
-                    if (!value.IsNull()) mqtt.tls = tls;
-                }
-            });
+        mqtt.marks =
+            walk(node, at, "mqtt", "in mqtt", mqtt_keys,
+                 [&](const std::string& key, const YAML::Node& value, const Mark& k) {
+                     if (key == "url" || key == "client_id" || key == "username" ||
+                         key == "password_file" || key == "base_topic") {
+                         const auto s = text(value, key, k);
+                         if (!s) return;
+                         if (key == "url") mqtt.url = *s;
+                         if (key == "client_id") mqtt.client_id = *s;
+                         if (key == "username") mqtt.username = *s;
+                         if (key == "password_file") mqtt.password_file = *s;
+                         if (key == "base_topic") mqtt.base_topic = *s;
+                     } else if (key == "version") {
+                         const std::string v = value.IsScalar() ? value.Scalar() : std::string();
+                         if (v == "3.1.1") {
+                             mqtt.version = 3;
+                         } else if (const auto n = parse_integer<int>(v)) {
+                             mqtt.version = *n;  // validate() accepts 5 and 3
+                         } else {
+                             error(k, "mqtt version must be 5 or 3.1.1");
+                         }
+                     } else if (key == "qos") {
+                         if (const auto n = integer<int>(value, key, k)) mqtt.qos = *n;
+                     } else if (key == "retain") {
+                         if (const auto b = boolean(value, key, k)) mqtt.retain = *b;
+                     } else if (key == "batch") {
+                         if (const auto b = boolean(value, key, k)) mqtt.batch = *b;
+                     } else if (key == "payload") {
+                         const auto s = text(value, key, k);
+                         if (s && *s == "json") {
+                             mqtt.payload = core::config::PayloadFormat::json;
+                         } else if (s && *s == "raw") {
+                             mqtt.payload = core::config::PayloadFormat::raw;
+                         } else if (s) {
+                             error(k, "payload " + in_quotes(*s) + " is not json or raw");
+                         }
+                     } else if (key == "keepalive_s") {
+                         if (const auto n = integer<int>(value, key, k, 1, 65535)) {
+                             mqtt.keepalive = std::chrono::seconds(*n);
+                         }
+                     } else if (key == "metrics_interval_s") {
+                         if (const auto n = integer<int>(value, key, k, 1, 86400)) {
+                             mqtt.metrics_interval = std::chrono::seconds(*n);
+                         }
+                     } else if (key == "buffer") {
+                         walk(value, k, "buffer", "in mqtt.buffer", buffer_keys,
+                              [&](const std::string& key2, const YAML::Node& v2, const Mark& k2) {
+                                  if (const auto n = integer<std::size_t>(v2, key2, k2, 1)) {
+                                      mqtt.buffer_max_messages = *n;
+                                  }
+                              });
+                     } else if (key == "tls") {
+                         core::config::TlsSection tls;
+                         walk(value, k, "tls", "in mqtt.tls", tls_keys,
+                              [&](const std::string& key2, const YAML::Node& v2, const Mark& k2) {
+                                  if (key2 == "verify") {
+                                      if (const auto b = boolean(v2, key2, k2)) tls.verify = *b;
+                                      return;
+                                  }
+                                  const auto s = text(v2, key2, k2);
+                                  if (!s) return;
+                                  if (key2 == "ca_file") tls.ca_file = *s;
+                                  if (key2 == "cert_file") tls.cert_file = *s;
+                                  if (key2 == "key_file") tls.key_file = *s;
+                              });
+                         if (!value.IsNull()) mqtt.tls = tls;
+                     }
+                 });
     }
 
     void read_eip(const YAML::Node& node, const Mark& at, Config& config) {
@@ -412,18 +418,17 @@ private:
     }
 
     void read_metrics(const YAML::Node& node, const Mark& at, Config& config) {
-        config.metrics.marks = walk(node, at, "metrics", "in metrics", metrics_keys,
-                                    [&](const std::string& key, const YAML::Node& value,
-                                        const Mark& k) {
-                                        const auto s = text(value, key, k);
-                                        if (!s || s->empty()) return;
-                                        if (!valid_host_port(*s, true)) {
-                                            error(k, "listen " + in_quotes(*s) +
-                                                         " is not host:port");
-                                            return;
-                                        }
-                                        config.metrics.listen = *s;
-                                    });
+        config.metrics.marks =
+            walk(node, at, "metrics", "in metrics", metrics_keys,
+                 [&](const std::string& key, const YAML::Node& value, const Mark& k) {
+                     const auto s = text(value, key, k);
+                     if (!s || s->empty()) return;
+                     if (!valid_host_port(*s, true)) {
+                         error(k, "listen " + in_quotes(*s) + " is not host:port");
+                         return;
+                     }
+                     config.metrics.listen = *s;
+                 });
     }
 
     void read_exchanges(const YAML::Node& node, const Mark& at, Config& config) {
@@ -448,8 +453,7 @@ private:
             label = "exchange " + in_quotes(node["name"].Scalar());
         }
         const std::string where = "in " + label;
-        YAML::Node tags_node;
-        YAML::Node points_node;
+        std::optional<YAML::Node> tags_node;
         std::string points;
         bool topic_written = false;
 
@@ -469,7 +473,8 @@ private:
                     } else if (s && *s == "produce") {
                         spec.direction = Direction::produce;
                     } else {
-                        if (s) error(k, "direction " + in_quotes(*s) + " is not consume or produce");
+                        if (s)
+                            error(k, "direction " + in_quotes(*s) + " is not consume or produce");
                         broken = true;
                     }
                 } else if (key == "producer_id") {
@@ -493,8 +498,8 @@ private:
                 } else if (key == "length") {
                     if (const auto n = integer<long long>(value, key, k)) {
                         if (*n < 0 || *n > std::numeric_limits<std::uint16_t>::max()) {
-                            error(k, label + " length " + std::to_string(*n) +
-                                         " is outside 1..1400");
+                            error(k,
+                                  label + " length " + std::to_string(*n) + " is outside 1..1400");
                         } else {
                             spec.length = static_cast<std::uint16_t>(*n);
                         }
@@ -505,8 +510,8 @@ private:
                     if (sig) {
                         spec.signature = *sig;
                     } else if (s) {
-                        error(k, "signature " + in_quotes(*s) +
-                                     " is not major.minor (each 0..255)");
+                        error(k,
+                              "signature " + in_quotes(*s) + " is not major.minor (each 0..255)");
                     }
                 } else if (key == "period_ms") {
                     if (const auto n = integer<long long>(value, key, k)) {
@@ -538,7 +543,7 @@ private:
                 } else if (key == "points") {
                     if (const auto s = text(value, key, k)) points = *s;
                 } else if (key == "tags") {
-                    tags_node = value;
+                    tags_node.emplace(value);
                 }
             });
         if (!node.IsMap()) return;
@@ -551,11 +556,11 @@ private:
         if (!topic_written) spec.topic = spec.name;
         spec.points = points;
 
-        if (tags_node && !tags_node.IsNull()) {
-            if (!tags_node.IsSequence()) {
+        if (tags_node && !tags_node->IsNull()) {
+            if (!tags_node->IsSequence()) {
                 error(exchange.marks.of("tags"), "expected a list for 'tags'");
             } else {
-                for (const auto& item : tags_node) {
+                for (const auto& item : *tags_node) {
                     if (auto tag = read_tag(item, label)) exchange.tags.push_back(std::move(*tag));
                 }
             }
@@ -573,80 +578,80 @@ private:
             label = "tag " + in_quotes(node["name"].Scalar());
         }
         label += " of " + exchange_label;
-        YAML::Node initial;
+        std::optional<YAML::Node> initial;
         Mark initial_mark;
-        tag.marks = walk(
-            node, mark(node), "tag", "in " + label, tag_keys,
-            [&](const std::string& key, const YAML::Node& value, const Mark& k) {
-                if (key == "name" || key == "unit" || key == "description") {
-                    const auto s = text(value, key, k);
-                    if (!s) {
-                        broken = true;
-                    } else if (key == "name") {
-                        spec.name = *s;
-                    } else if (key == "unit") {
-                        spec.unit = *s;
-                    }
-                } else if (key == "address") {
-                    // `126.0` unquoted is a YAML float: its scalar text is what was written.
-                    const auto s = text(value, key, k);
-                    const auto address = s ? core::plan::parse_address(*s) : std::nullopt;
-                    if (address) {
-                        spec.address = *address;
-                    } else {
-                        if (s) {
-                            error(k, "address " + in_quotes(*s) +
-                                         " is not byte.bit (byte 0..65535, bit 0..7)");
-                        }
-                        broken = true;
-                    }
-                } else if (key == "type") {
-                    const auto s = text(value, key, k);
-                    const auto type =
-                        s ? core::plan::parse_tag_type(*s, core::plan::TypeNaming::yaml)
-                          : std::nullopt;
-                    if (type) {
-                        spec.type = *type;
-                    } else {
-                        if (s) {
-                            error(k, "unknown type " + in_quotes(*s) +
-                                         " (expected bit, byte, int, word, dint, udint, real, "
-                                         "lint or lreal)");
-                        }
-                        broken = true;
-                    }
-                } else if (key == "deadband") {
-                    if (const auto d = number(value, key, k)) {
-                        spec.deadband = *d;
-                    } else {
-                        broken = true;
-                    }
-                } else if (key == "refresh_s") {
-                    if (const auto n = integer<long long>(value, key, k, 0)) {
-                        spec.refresh = std::chrono::seconds(*n);
-                    } else {
-                        broken = true;
-                    }
-                } else if (key == "writable") {
-                    if (const auto b = boolean(value, key, k)) {
-                        spec.writable = *b;
-                    } else {
-                        broken = true;
-                    }
-                } else if (key == "min" || key == "max") {
-                    const auto d = number(value, key, k);
-                    if (!d) {
-                        broken = true;
-                    } else if (key == "min") {
-                        spec.min = *d;
-                    } else {
-                        spec.max = *d;
-                    }
-                } else if (key == "initial") {
-                    initial = value;
-                    initial_mark = k;
-                }
-            });
+        tag.marks =
+            walk(node, mark(node), "tag", "in " + label, tag_keys,
+                 [&](const std::string& key, const YAML::Node& value, const Mark& k) {
+                     if (key == "name" || key == "unit" || key == "description") {
+                         const auto s = text(value, key, k);
+                         if (!s) {
+                             broken = true;
+                         } else if (key == "name") {
+                             spec.name = *s;
+                         } else if (key == "unit") {
+                             spec.unit = *s;
+                         }
+                     } else if (key == "address") {
+                         // `126.0` unquoted is a YAML float: its scalar text is what was written.
+                         const auto s = text(value, key, k);
+                         const auto address = s ? core::plan::parse_address(*s) : std::nullopt;
+                         if (address) {
+                             spec.address = *address;
+                         } else {
+                             if (s) {
+                                 error(k, "address " + in_quotes(*s) +
+                                              " is not byte.bit (byte 0..65535, bit 0..7)");
+                             }
+                             broken = true;
+                         }
+                     } else if (key == "type") {
+                         const auto s = text(value, key, k);
+                         const auto type =
+                             s ? core::plan::parse_tag_type(*s, core::plan::TypeNaming::yaml)
+                               : std::nullopt;
+                         if (type) {
+                             spec.type = *type;
+                         } else {
+                             if (s) {
+                                 error(k, "unknown type " + in_quotes(*s) +
+                                              " (expected bit, byte, int, word, dint, udint, real, "
+                                              "lint or lreal)");
+                             }
+                             broken = true;
+                         }
+                     } else if (key == "deadband") {
+                         if (const auto d = number(value, key, k)) {
+                             spec.deadband = *d;
+                         } else {
+                             broken = true;
+                         }
+                     } else if (key == "refresh_s") {
+                         if (const auto n = integer<long long>(value, key, k, 0)) {
+                             spec.refresh = std::chrono::seconds(*n);
+                         } else {
+                             broken = true;
+                         }
+                     } else if (key == "writable") {
+                         if (const auto b = boolean(value, key, k)) {
+                             spec.writable = *b;
+                         } else {
+                             broken = true;
+                         }
+                     } else if (key == "min" || key == "max") {
+                         const auto d = number(value, key, k);
+                         if (!d) {
+                             broken = true;
+                         } else if (key == "min") {
+                             spec.min = *d;
+                         } else {
+                             spec.max = *d;
+                         }
+                     } else if (key == "initial") {
+                         initial.emplace(value);
+                         initial_mark = k;
+                     }
+                 });
         if (!node.IsMap()) return std::nullopt;
         for (const std::string_view required : {"name", "address", "type"}) {
             if (!tag.marks.keys.contains(required)) {
@@ -655,7 +660,7 @@ private:
             }
         }
         if (initial && !broken) {
-            spec.initial = read_initial(initial, spec.type, initial_mark);
+            spec.initial = read_initial(*initial, spec.type, initial_mark);
             if (!spec.initial) broken = true;
         }
         if (broken) return std::nullopt;

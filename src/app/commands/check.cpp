@@ -34,8 +34,8 @@ std::string unused_ranges(const ExchangePlan& plan) {
     std::vector<bool> used(plan.length, false);
     for (const auto& tag : plan.tags) {
         const std::size_t first = tag.spec.address.byte;
-        const std::size_t end = std::min<std::size_t>(
-            first + core::plan::size_of(tag.spec.type), plan.length);
+        const std::size_t end =
+            std::min<std::size_t>(first + core::plan::size_of(tag.spec.type), plan.length);
         for (std::size_t b = first; b < end; ++b) used[b] = true;
     }
     std::string ranges;
@@ -84,8 +84,9 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
                std::make_pair(b->spec.address.byte, b->spec.address.bit);
     });
     for (const auto* tag : tags) {
-        out << "  " << std::left << std::setw(7) << core::plan::to_string(tag->spec.address)
-            << std::setw(7) << core::plan::to_string(tag->spec.type) << std::setw(9)
+        const auto address = core::plan::to_string(tag->spec.address);
+        out << "  " << address << std::string(address.size() < 7 ? 7 - address.size() : 1, ' ')
+            << std::left << std::setw(7) << core::plan::to_string(tag->spec.type) << std::setw(9)
             << size_text(tag->spec.type) << tag->topic;
         if (tag->spec.writable) out << "  writable";
         out << std::right << "\n";

@@ -79,12 +79,13 @@ public:
         check_gateway();
         check_mqtt();
         check_exchanges();
-        std::stable_sort(out_.begin(), out_.end(), [this](const Diagnostic& a, const Diagnostic& b) {
-            return std::make_tuple(a.mark.file != config_.file, a.mark.file, a.mark.line,
-                                   a.mark.column) < std::make_tuple(b.mark.file != config_.file,
-                                                                    b.mark.file, b.mark.line,
-                                                                    b.mark.column);
-        });
+        std::stable_sort(
+            out_.begin(), out_.end(), [this](const Diagnostic& a, const Diagnostic& b) {
+                return std::make_tuple(a.mark.file != config_.file, a.mark.file, a.mark.line,
+                                       a.mark.column) < std::make_tuple(b.mark.file != config_.file,
+                                                                        b.mark.file, b.mark.line,
+                                                                        b.mark.column);
+            });
         return std::move(out_);
     }
 
@@ -101,8 +102,8 @@ private:
             error(gateway.marks.of("id"), "gateway id " + in_quotes(gateway.id) +
                                               " contains '/', '+' or '#' (it is a topic level)");
         }
-        static constexpr std::array<std::string_view, 7> levels{
-            "trace", "debug", "info", "warn", "error", "critical", "off"};
+        static constexpr std::array<std::string_view, 7> levels{"trace", "debug",    "info", "warn",
+                                                                "error", "critical", "off"};
         if (std::find(levels.begin(), levels.end(), gateway.log_level) == levels.end()) {
             error(gateway.marks.of("log_level"),
                   "log_level " + in_quotes(gateway.log_level) +
@@ -116,13 +117,15 @@ private:
             error(mqtt.marks.of("version"), "mqtt version must be 5 or 3.1.1");
         }
         if (mqtt.qos < 0 || mqtt.qos > 2) {
-            error(mqtt.marks.of("qos"), "mqtt qos " + std::to_string(mqtt.qos) + " is not 0, 1 or 2");
+            error(mqtt.marks.of("qos"),
+                  "mqtt qos " + std::to_string(mqtt.qos) + " is not 0, 1 or 2");
         }
         if (const auto problem = topic_problem(mqtt.base_topic); !problem.empty()) {
-            error(mqtt.marks.of("base_topic"), "base_topic " + in_quotes(mqtt.base_topic) + " " + problem);
-        } else if (mqtt.base_topic.front() == '$') {
             error(mqtt.marks.of("base_topic"),
-                  "base_topic " + in_quotes(mqtt.base_topic) + " starts with '$' (reserved by brokers)");
+                  "base_topic " + in_quotes(mqtt.base_topic) + " " + problem);
+        } else if (mqtt.base_topic.front() == '$') {
+            error(mqtt.marks.of("base_topic"), "base_topic " + in_quotes(mqtt.base_topic) +
+                                                   " starts with '$' (reserved by brokers)");
         }
         if (mqtt.url.empty()) error(mqtt.marks.of("url"), "mqtt url is empty");
         if (mqtt.buffer_max_messages == 0) {
@@ -154,8 +157,8 @@ private:
                           std::to_string(it->second->marks.of("name").line) + ")");
                 duplicate_names.insert(&exchange);
             }
-            const auto key = std::make_tuple(spec.direction, wire::ExchangeKey{spec.producer_id,
-                                                                               spec.exchange_id});
+            const auto key = std::make_tuple(spec.direction,
+                                             wire::ExchangeKey{spec.producer_id, spec.exchange_id});
             if (const auto [it, fresh] = keys.emplace(key, &exchange); !fresh) {
                 error(exchange.marks.of("exchange_id"),
                       std::string(spec.direction == Direction::consume ? "consumed" : "produced") +
@@ -175,16 +178,15 @@ private:
         const std::string what = "exchange " + in_quotes(spec.name);
         if (spec.length && (*spec.length == 0 || *spec.length > wire::max_data_size)) {
             error(marks.of("length"), what + " length " + std::to_string(*spec.length) +
-                                          " is outside 1.." +
-                                          std::to_string(wire::max_data_size));
+                                          " is outside 1.." + std::to_string(wire::max_data_size));
         }
         if (!spec.length && exchange.tags.empty()) {
             error(marks.of("name"), what + " needs a length or at least one tag");
         }
         const auto period = spec.period.count();
         if (period < min_period_ms || period > max_period_ms) {
-            error(marks.of("period_ms"), what + " period_ms " + std::to_string(period) +
-                                             " is outside 2..3600000");
+            error(marks.of("period_ms"),
+                  what + " period_ms " + std::to_string(period) + " is outside 2..3600000");
         }
         if (spec.direction == Direction::consume) {
             if (!spec.destination.empty()) {
@@ -256,11 +258,10 @@ private:
 
             const bool is_bit = t.type == TagType::bit;
             if (!is_bit && t.address.bit != 0) {
-                error(marks.of("address"), what + ": address " + plan::to_string(t.address) +
-                                               " has a bit number but type " +
-                                               std::string(plan::to_string(t.type)) +
-                                               " is not bit (use " +
-                                               std::to_string(t.address.byte) + ".0)");
+                error(marks.of("address"),
+                      what + ": address " + plan::to_string(t.address) +
+                          " has a bit number but type " + std::string(plan::to_string(t.type)) +
+                          " is not bit (use " + std::to_string(t.address.byte) + ".0)");
             }
             const std::size_t size = plan::size_of(t.type);
             const std::size_t end = std::size_t{t.address.byte} + size;
@@ -322,7 +323,8 @@ private:
     void check_values(const ExchangeConfig& exchange, const TagConfig& tag) {
         const auto& t = tag.spec;
         const auto& marks = tag.marks;
-        const std::string what = "tag " + in_quotes(t.name) + " of exchange " + in_quotes(exchange.spec.name);
+        const std::string what =
+            "tag " + in_quotes(t.name) + " of exchange " + in_quotes(exchange.spec.name);
         if (t.writable && exchange.spec.direction == Direction::consume) {
             error(marks.of("writable"),
                   what + " is writable, but only tags of produced exchanges can be written");
@@ -381,8 +383,8 @@ private:
         for (const auto& exchange : config_.exchanges) {
             if (skip.contains(&exchange)) continue;
             if (!topic_problem(exchange.spec.topic).empty()) continue;
-            const std::string topic = base.empty() ? exchange.spec.topic
-                                                   : base + "/" + exchange.spec.topic;
+            const std::string topic =
+                base.empty() ? exchange.spec.topic : base + "/" + exchange.spec.topic;
             const auto& topic_mark = exchange.marks.keys.contains("topic")
                                          ? exchange.marks.of("topic")
                                          : exchange.marks.of("name");

@@ -153,8 +153,8 @@ PointList parse_point_list(std::string_view text, const std::string& file) {
                 {at(address), "bad address '" + field(address).text + "' (expected byte.bit)"});
             ok = false;
         }
-        if (const auto type = plan::parse_tag_type(field(data_type).text,
-                                                   plan::TypeNaming::point_list)) {
+        if (const auto type =
+                plan::parse_tag_type(field(data_type).text, plan::TypeNaming::point_list)) {
             row.tag.type = *type;
         } else {
             list.errors.push_back({at(data_type), "unknown DataType '" + field(data_type).text +
@@ -167,16 +167,16 @@ PointList parse_point_list(std::string_view text, const std::string& file) {
             row.write = true;
             row.tag.writable = true;
         } else if (access != "read") {
-            list.errors.push_back({at(access_type), "unknown AccessType '" +
-                                                        field(access_type).text +
-                                                        "' (expected Read or Write)"});
+            list.errors.push_back(
+                {at(access_type),
+                 "unknown AccessType '" + field(access_type).text + "' (expected Read or Write)"});
             ok = false;
         }
         if (ok) list.rows.push_back(std::move(row));
     }
     if (!have_header) {
-        list.errors.push_back({{file, line_number == 0 ? 1 : line_number, 1},
-                               "point list is empty (no header row)"});
+        list.errors.push_back(
+            {{file, line_number == 0 ? 1 : line_number, 1}, "point list is empty (no header row)"});
     }
     return list;
 }

@@ -26,11 +26,16 @@ bool times_out(ConsumeState state) {
 
 std::string_view to_string(ConsumeState state) {
     switch (state) {
-        case ConsumeState::waiting: return "waiting";
-        case ConsumeState::ok: return "ok";
-        case ConsumeState::stale: return "stale";
-        case ConsumeState::signature_mismatch: return "signature_mismatch";
-        case ConsumeState::length_mismatch: return "length_mismatch";
+        case ConsumeState::waiting:
+            return "waiting";
+        case ConsumeState::ok:
+            return "ok";
+        case ConsumeState::stale:
+            return "stale";
+        case ConsumeState::signature_mismatch:
+            return "signature_mismatch";
+        case ConsumeState::length_mismatch:
+            return "length_mismatch";
     }
     return "unknown";
 }
@@ -93,7 +98,8 @@ ConsumeOutcome ConsumedExchange::on_datagram(const wire::Datagram& datagram, Mon
     }
 
     // §4 rule 7.
-    image_.assign(datagram.data.begin(), datagram.data.begin() + static_cast<std::ptrdiff_t>(length_));
+    image_.assign(datagram.data.begin(),
+                  datagram.data.begin() + static_cast<std::ptrdiff_t>(length_));
     has_image_ = true;
     last_header_ = header;
     last_accepted_ = now;

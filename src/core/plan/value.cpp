@@ -16,7 +16,11 @@ std::string float_to_json(Float value) {
     if (std::isinf(value)) return value > 0 ? "\"Infinity\"" : "\"-Infinity\"";
     std::array<char, 64> buffer{};
     const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-    return std::string(buffer.data(), result.ptr);
+    std::string text(buffer.data(), result.ptr);
+    // A real stays a JSON float even when integral (65900.0, not 65900), so that consumers
+    // which type fields by their first value (InfluxDB, Telegraf) never see it change type.
+    if (text.find_first_of(".e") == std::string::npos) text += ".0";
+    return text;
 }
 
 }  // namespace

@@ -4,9 +4,12 @@ namespace eip2mqtt::core::quality {
 
 std::string_view to_string(Quality quality) {
     switch (quality) {
-        case Quality::good: return "good";
-        case Quality::stale: return "stale";
-        case Quality::bad: return "bad";
+        case Quality::good:
+            return "good";
+        case Quality::stale:
+            return "stale";
+        case Quality::bad:
+            return "bad";
     }
     return "bad";
 }
@@ -14,11 +17,15 @@ std::string_view to_string(Quality quality) {
 std::optional<Quality> quality_of(exchange::ConsumeState state) {
     using exchange::ConsumeState;
     switch (state) {
-        case ConsumeState::waiting: return std::nullopt;
-        case ConsumeState::ok: return Quality::good;
-        case ConsumeState::stale: return Quality::stale;
+        case ConsumeState::waiting:
+            return std::nullopt;
+        case ConsumeState::ok:
+            return Quality::good;
+        case ConsumeState::stale:
+            return Quality::stale;
         case ConsumeState::signature_mismatch:
-        case ConsumeState::length_mismatch: return Quality::bad;
+        case ConsumeState::length_mismatch:
+            return Quality::bad;
     }
     return Quality::bad;
 }

@@ -22,7 +22,8 @@ std::uint32_t u32le_at(std::span<const std::byte> bytes, std::size_t offset) {
 
 // eip-protocol.md §2: the Producer ID is the one field sent in dotted (network) order.
 std::uint32_t u32be_at(std::span<const std::byte> bytes, std::size_t offset) {
-    return std::uint32_t{u8_at(bytes, offset)} << 24 | std::uint32_t{u8_at(bytes, offset + 1)} << 16 |
+    return std::uint32_t{u8_at(bytes, offset)} << 24 |
+           std::uint32_t{u8_at(bytes, offset + 1)} << 16 |
            std::uint32_t{u8_at(bytes, offset + 2)} << 8 | std::uint32_t{u8_at(bytes, offset + 3)};
 }
 

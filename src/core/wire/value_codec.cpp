@@ -69,17 +69,24 @@ plan::Value decode_value(std::span<const std::byte> data, plan::TagType type,
         case TagType::bit:
             // §3: bit 0 is the least significant bit (0x01).
             return (std::to_integer<unsigned>(data[at]) >> address.bit & 1U) != 0;
-        case TagType::byte: return std::uint64_t{load_le(data, at, 1)};
+        case TagType::byte:
+            return std::uint64_t{load_le(data, at, 1)};
         case TagType::int_:
-            return std::int64_t{static_cast<std::int16_t>(static_cast<std::uint16_t>(load_le(data, at, 2)))};
-        case TagType::word: return std::uint64_t{load_le(data, at, 2)};
+            return std::int64_t{
+                static_cast<std::int16_t>(static_cast<std::uint16_t>(load_le(data, at, 2)))};
+        case TagType::word:
+            return std::uint64_t{load_le(data, at, 2)};
         case TagType::dint:
-            return std::int64_t{static_cast<std::int32_t>(static_cast<std::uint32_t>(load_le(data, at, 4)))};
-        case TagType::udint: return std::uint64_t{load_le(data, at, 4)};
+            return std::int64_t{
+                static_cast<std::int32_t>(static_cast<std::uint32_t>(load_le(data, at, 4)))};
+        case TagType::udint:
+            return std::uint64_t{load_le(data, at, 4)};
         case TagType::real:
             return std::bit_cast<float>(static_cast<std::uint32_t>(load_le(data, at, 4)));
-        case TagType::lint: return static_cast<std::int64_t>(load_le(data, at, 8));
-        case TagType::lreal: return std::bit_cast<double>(load_le(data, at, 8));
+        case TagType::lint:
+            return static_cast<std::int64_t>(load_le(data, at, 8));
+        case TagType::lreal:
+            return std::bit_cast<double>(load_le(data, at, 8));
     }
     return false;
 }
@@ -97,15 +104,21 @@ void encode_value(std::span<std::byte> data, plan::TagType type, plan::Address a
             data[at] = set ? (data[at] | mask) : (data[at] & ~mask);
             return;
         }
-        case TagType::byte: store_le(data, at, 1, to_int<std::uint8_t>(value)); return;
+        case TagType::byte:
+            store_le(data, at, 1, to_int<std::uint8_t>(value));
+            return;
         case TagType::int_:
             store_le(data, at, 2, static_cast<std::uint16_t>(to_int<std::int16_t>(value)));
             return;
-        case TagType::word: store_le(data, at, 2, to_int<std::uint16_t>(value)); return;
+        case TagType::word:
+            store_le(data, at, 2, to_int<std::uint16_t>(value));
+            return;
         case TagType::dint:
             store_le(data, at, 4, static_cast<std::uint32_t>(to_int<std::int32_t>(value)));
             return;
-        case TagType::udint: store_le(data, at, 4, to_int<std::uint32_t>(value)); return;
+        case TagType::udint:
+            store_le(data, at, 4, to_int<std::uint32_t>(value));
+            return;
         case TagType::real:
             store_le(data, at, 4, std::bit_cast<std::uint32_t>(to_float<float>(value)));
             return;

@@ -73,7 +73,8 @@ Config valid() {
 Diagnostic only(const Diagnostics& found) {
     EXPECT_EQ(found.size(), 1u);
     if (found.size() != 1) {
-        for (const auto& d : found) ADD_FAILURE() << d.mark.line << ":" << d.mark.column << " " << d.message;
+        for (const auto& d : found)
+            ADD_FAILURE() << d.mark.line << ":" << d.mark.column << " " << d.message;
     }
     return found.empty() ? Diagnostic{} : found.front();
 }
@@ -365,8 +366,8 @@ TEST(Validate, DiagnosticsComeInFileOrder) {
     auto c = valid();
     c.exchanges[1].tags[0].spec.min = 5;  // later line
     c.exchanges[1].tags[0].spec.max = 1;
-    c.exchanges[0].spec.period = 0ms;     // earlier line
-    c.gateway.id.clear();                 // earliest line
+    c.exchanges[0].spec.period = 0ms;  // earlier line
+    c.gateway.id.clear();              // earliest line
     auto found = validate(c);
     ASSERT_EQ(found.size(), 3u);
     EXPECT_TRUE(std::is_sorted(found.begin(), found.end(), [](const auto& a, const auto& b) {

@@ -90,12 +90,12 @@ TEST(PointLists, MissingColumnIsAnError) {
 TEST(PointLists, BadRowsAreReportedWithFileAndLineAndGoodRowsKept) {
     const auto list = parse_point_list(
         "TagName,Node,Address,DataType,AccessType\n"
-        "A,N,1.8,Bit,Read\n"       // bit 8
-        "B,N,2.0,Float,Read\n"     // unknown type
-        "C,N,3.0,Bit,Maybe\n"      // unknown access
-        "D,N\n"                    // too few fields
+        "A,N,1.8,Bit,Read\n"    // bit 8
+        "B,N,2.0,Float,Read\n"  // unknown type
+        "C,N,3.0,Bit,Maybe\n"   // unknown access
+        "D,N\n"                 // too few fields
         "E,N,4.0,Bit,Read\n"
-        ",N,5.0,Bit,Read\n",       // empty name
+        ",N,5.0,Bit,Read\n",  // empty name
         "p.csv");
     ASSERT_EQ(list.rows.size(), 1u);
     EXPECT_EQ(list.rows[0].tag.name, "E");
@@ -118,8 +118,8 @@ TEST(PointLists, EmptyTextHasNoHeader) {
 }
 
 TEST(PointLists, UnterminatedQuote) {
-    const auto list = parse_point_list(
-        "TagName,Node,Address,DataType,AccessType\n\"A,N,0.0,Bit,Read\n", "p.csv");
+    const auto list =
+        parse_point_list("TagName,Node,Address,DataType,AccessType\n\"A,N,0.0,Bit,Read\n", "p.csv");
     EXPECT_TRUE(list.rows.empty());
     ASSERT_EQ(list.errors.size(), 1u);
     EXPECT_EQ(list.errors[0].mark.line, 2);

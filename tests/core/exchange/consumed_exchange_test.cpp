@@ -220,14 +220,12 @@ TEST(ConsumerRules, Rule5NewerMinorMayAppendData) {
 
 TEST(ConsumerRules, Rule5SameMinorMayNotAppendData) {
     ConsumedExchange exchange(make_plan(15, 3000ms, Signature{2, 5}));
-    EXPECT_EQ(feed(exchange, sample(1, 20, Signature{2, 5})).dropped,
-              DropReason::length_mismatch);
+    EXPECT_EQ(feed(exchange, sample(1, 20, Signature{2, 5})).dropped, DropReason::length_mismatch);
 }
 
 TEST(ConsumerRules, Rule5NewerMinorMayNotShortenData) {
     ConsumedExchange exchange(make_plan(15, 3000ms, Signature{2, 5}));
-    EXPECT_EQ(feed(exchange, sample(1, 14, Signature{2, 6})).dropped,
-              DropReason::length_mismatch);
+    EXPECT_EQ(feed(exchange, sample(1, 14, Signature{2, 6})).dropped, DropReason::length_mismatch);
 }
 
 TEST(ConsumerRules, Rule5WithoutSignaturesDataMayNotGrow) {

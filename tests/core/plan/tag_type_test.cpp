@@ -8,9 +8,9 @@
 namespace eip2mqtt::core::plan {
 namespace {
 
-constexpr std::array all_types{TagType::bit,   TagType::byte, TagType::int_,
-                               TagType::word,  TagType::dint, TagType::udint,
-                               TagType::real,  TagType::lint, TagType::lreal};
+constexpr std::array all_types{TagType::bit,  TagType::byte, TagType::int_,
+                               TagType::word, TagType::dint, TagType::udint,
+                               TagType::real, TagType::lint, TagType::lreal};
 
 TEST(DataTypes, YamlNamesAndAliases) {
     const auto yaml = [](std::string_view name) { return parse_tag_type(name, TypeNaming::yaml); };

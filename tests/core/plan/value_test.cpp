@@ -30,8 +30,8 @@ TEST(ValueJson, RealsPrintAsWrittenNotWidened) {
     EXPECT_EQ(to_json(Value{1.1f}), "1.1");
     EXPECT_EQ(to_json(Value{-273.15f}), "-273.15");
     EXPECT_EQ(to_json(Value{1.5f}), "1.5");
-    EXPECT_EQ(to_json(Value{65900.0f}), "65900");
-    EXPECT_EQ(to_json(Value{0.0f}), "0");
+    EXPECT_EQ(to_json(Value{65900.0f}), "65900.0");
+    EXPECT_EQ(to_json(Value{0.0f}), "0.0");
     EXPECT_EQ(to_json(Value{3.4028235e38f}), "3.4028235e+38");
 }
 
@@ -41,7 +41,7 @@ TEST(ValueJson, V1IntegerBytesReadAsRealPrintShortest) {
 
 TEST(ValueJson, LrealsRoundTripShortest) {
     EXPECT_EQ(to_json(Value{0.1}), "0.1");
-    EXPECT_EQ(to_json(Value{65900.0}), "65900");
+    EXPECT_EQ(to_json(Value{65900.0}), "65900.0");
     EXPECT_EQ(to_json(Value{static_cast<double>(1.1f)}), "1.100000023841858");
     EXPECT_EQ(to_json(Value{1.7976931348623157e308}), "1.7976931348623157e+308");
 }

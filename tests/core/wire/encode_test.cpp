@@ -71,8 +71,9 @@ TEST(ProducerRules, DatagramIsHeaderPlusExactlyTheData) {
     const std::vector<std::byte> data{std::byte{0x01}, std::byte{0x02}, std::byte{0x03}};
     std::vector<std::byte> out(40, std::byte{0xEE});
     EXPECT_EQ(encode_datagram(header, data, out), 35u);
-    EXPECT_EQ(to_hex(out), "0d01ffff000000000000000000000000000000000000000000000000000000000102"
-                           "03eeeeeeeeee");
+    EXPECT_EQ(to_hex(out),
+              "0d01ffff000000000000000000000000000000000000000000000000000000000102"
+              "03eeeeeeeeee");
 }
 
 }  // namespace

@@ -143,7 +143,7 @@ TEST(DataTypes, IntAndDintExtremes) {
     std::vector<std::byte> data(7);
     encode_value(data, TagType::int_, at(1), std::int64_t{-32768});
     encode_value(data, TagType::dint, at(3), std::int64_t{2147483647});
-    EXPECT_EQ(to_hex(data), "00008000ffffff7f");
+    EXPECT_EQ(to_hex(data), "000080ffffff7f");
     EXPECT_EQ(decode_value(data, TagType::int_, at(1)), Value{std::int64_t{-32768}});
     EXPECT_EQ(decode_value(data, TagType::dint, at(3)), Value{std::int64_t{2147483647}});
     EXPECT_EQ(decode_value(data, TagType::udint, at(3)), Value{std::uint64_t{0x7FFFFFFF}});
