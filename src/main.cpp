@@ -34,6 +34,11 @@ int main(int argc, char** argv) {
     sim_cmd->add_option("--duration", sim.duration_s, "Seconds to run (default: until stopped)");
     sim_cmd->add_option("--log-level", sim.log_level, "Log level")->capture_default_str();
 
+    std::string points_path;
+    auto* import_cmd =
+        cli.add_subcommand("import-points", "Convert a SCADA point list (CSV) into YAML exchanges");
+    import_cmd->add_option("FILE", points_path, "Point list CSV file")->required();
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -43,6 +48,7 @@ int main(int argc, char** argv) {
     try {
         if (*check_cmd) return run_check(check_path, std::cout, std::cerr);
         if (*sim_cmd) return run_sim(sim);
+        if (*import_cmd) return run_import_points(points_path, std::cout, std::cerr);
         if (run.config_path.empty()) {
             std::cerr << "eip2mqtt: no configuration given (use -c FILE); see --help\n";
             return 2;

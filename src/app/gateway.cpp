@@ -74,12 +74,32 @@ Gateway::Gateway(core::config::Config config)
       metrics_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/metrics"),
       signals_(loop_, SIGINT, SIGTERM),
       tick_timer_(loop_),
-      metrics_timer_(loop_) {
+      metrics_timer_(loop_),
+      image_store_(config_.gateway.state_dir) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(loop_.get_executor(),
                                                      client_options(config_, availability_topic_));
     auto sink = [this](adapters::mqtt::Message&& message) { mqtt_->publish(std::move(message)); };
     for (auto& plan : core::config::make_plans(config_)) {
-        if (plan.spec.direction != core::plan::Direction::consume) continue;
+        if (plan.spec.direction == core::plan::Direction::produce) {
+            if (!sender_) {
+                adapters::udp::SenderOptions sender_options;
+                sender_options.bind = config_.eip.bind;
+                sender_options.multicast_ttl = config_.eip.multicast_ttl;
+                sender_options.multicast_interface = config_.eip.multicast_interface;
+                sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(),
+                                                                  sender_options);
+            }
+            const auto destination =
+                adapters::udp::resolve_endpoint(plan.spec.destination, config_.eip.port);
+            if (!destination) {
+                throw std::runtime_error("exchange " + plan.spec.name + ": cannot resolve destination " +
+                                         plan.spec.destination);
+            }
+            producers_.push_back(std::make_unique<ExchangeProducer>(
+                std::move(plan), *destination, loop_.get_executor(), *sender_, image_store_,
+                publish_settings_, sink));
+            continue;
+        }
         const auto key = plan.key();
         consumers_.push_back(
             std::make_unique<ExchangeConsumer>(std::move(plan), publish_settings_, sink));
@@ -93,6 +113,7 @@ Gateway::Gateway(core::config::Config config)
         receiver_options.multicast.push_back({group.group, group.interface});
     }
     receiver_ = std::make_unique<adapters::udp::Receiver>(loop_.get_executor(), receiver_options);
+    build_write_routes();
 }
 
 Gateway::~Gateway() = default;
@@ -111,6 +132,7 @@ int Gateway::run() {
     notifier_.stopping();
     spdlog::info("stopping: flushing publications and publishing offline");
     receiver_->stop();
+    for (auto& producer : producers_) producer->stop();
     mqtt_->stop(stop_flush_timeout);
     const auto stats = mqtt_->stats();
     spdlog::info("stopped: {} datagrams received, {} publications made, {} still queued",
@@ -121,18 +143,30 @@ int Gateway::run() {
 void Gateway::start() {
     started_at_ = std::chrono::steady_clock::now();
     last_refresh_scan_ = started_at_;
-    std::vector<std::string> subscriptions;  // writes (issue #3) subscribe here
+    // One wildcard per exchange catches every tag's `/set` (unknown and read-only tags get a
+    // reasoned rejection rather than silence); produced exchanges also take atomic writes.
+    std::vector<std::string> subscriptions;
+    for (const auto& consumer : consumers_) subscriptions.push_back(consumer->plan().topic + "/+/set");
+    for (const auto& producer : producers_) {
+        subscriptions.push_back(producer->plan().topic + "/+/set");
+        subscriptions.push_back(producer->plan().set_topic);
+    }
     mqtt_->set_subscriptions(subscriptions);
     mqtt_->set_on_connected([this] { on_connected(); });
+    mqtt_->set_on_message([this](adapters::mqtt::Incoming message) { on_message(std::move(message)); });
+    for (std::size_t i = 0; i < producers_.size(); ++i) {
+        producers_[i]->start(started_at_, i, producers_.size());
+    }
     receiver_->start([this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
                             bool truncated) { on_datagram(bytes, from, truncated); });
     mqtt_->start();
     wait_signal();
     schedule_tick();
     schedule_metrics();
-    spdlog::info("eip2mqtt {} listening on UDP {}:{} with {} consumed exchange(s); MQTT {}",
-                 config_.gateway.id, config_.eip.bind, receiver_->local_port(), consumers_.size(),
-                 config_.mqtt.url);
+    spdlog::info(
+        "eip2mqtt {} listening on UDP {}:{}: {} consumed and {} produced exchange(s); MQTT {}",
+        config_.gateway.id, config_.eip.bind, receiver_->local_port(), consumers_.size(),
+        producers_.size(), config_.mqtt.url);
     // Sockets are bound and the first connection attempt is under way.
     notifier_.ready(status_line());
 }
@@ -202,10 +236,12 @@ void Gateway::on_datagram(std::span<const std::byte> bytes, const adapters::udp:
 }
 
 void Gateway::on_connected() {
-    spdlog::info("republishing retained state of {} exchange(s)", consumers_.size());
+    spdlog::info("republishing retained state of {} exchange(s)",
+                 consumers_.size() + producers_.size());
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
     for (auto& consumer : consumers_) consumer->republish(now, wall);
+    for (auto& producer : producers_) producer->republish(wall);
 }
 
 void Gateway::schedule_tick() {
@@ -252,6 +288,11 @@ void Gateway::publish_metrics() {
         dropped[std::string(core::wire::to_string(reason))] =
             counters_.dropped[static_cast<std::size_t>(reason)];
     }
+    nlohmann::json writes_rejected = nlohmann::json::object();
+    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
+        writes_rejected[std::string(core::write::to_string(static_cast<core::write::WriteError>(i)))] =
+            counters_.writes_rejected[i];
+    }
     const nlohmann::json metrics = {
         {"uptime_s",
          std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() -
@@ -265,8 +306,8 @@ void Gateway::publish_metrics() {
         {"publications_dropped", stats.dropped_overflow},
         {"publications_coalesced", stats.coalesced},
         {"mqtt_connects", stats.connects},
-        {"writes_ok", 0},
-        {"writes_rejected", 0},
+        {"writes_ok", counters_.writes_ok},
+        {"writes_rejected", writes_rejected},
     };
     mqtt_->publish({metrics_topic_, metrics.dump(), 0, false, true});
     notifier_.status(status_line());

@@ -30,7 +30,7 @@ std::string TempDir::write(const std::string& name, const std::string& content) 
 
 void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mqtt_extra) {
     broker_ = std::make_unique<Mosquitto>();
-    udp_port_ = free_udp_port();
+    if (udp_port_ == 0) udp_port_ = free_udp_port();
     udp_ = std::make_unique<UdpClient>();
     const std::string config = "gateway:\n"
                                "  id: test-gw\n"

@@ -58,7 +58,7 @@ protected:
     std::unique_ptr<ChildProcess> gateway_;
     std::unique_ptr<MqttRecorder> recorder_;
     std::unique_ptr<UdpClient> udp_;
-    std::uint16_t udp_port_ = 0;
+    std::uint16_t udp_port_ = 0;  ///< the gateway's EIP port; set before start() to choose it
     std::string config_path_;
 };
 

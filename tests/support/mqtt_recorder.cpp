@@ -194,4 +194,18 @@ void MqttRecorder::publish(const std::string& topic, const std::string& payload,
     }
 }
 
+void MqttRecorder::publish_request(const std::string& topic, const std::string& payload,
+                                   const std::string& response_topic,
+                                   const std::string& correlation_data) {
+    auto message = ::mqtt::make_message(topic, payload, 1, false);
+    message->set_properties(::mqtt::properties{
+        {::mqtt::property::RESPONSE_TOPIC, response_topic},
+        {::mqtt::property::CORRELATION_DATA, correlation_data},
+    });
+    auto tok = impl_->client.publish(message);
+    if (!tok->wait_for(kOperationTimeout)) {
+        throw std::runtime_error("MqttRecorder: publish timed out");
+    }
+}
+
 }  // namespace eip2mqtt::test

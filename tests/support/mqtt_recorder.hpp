@@ -49,6 +49,9 @@ public:
 
     /// Publishes from the recorder's own connection (QoS 1, waits for completion).
     void publish(const std::string& topic, const std::string& payload, bool retain = false);
+    /// Publishes an MQTT 5 request: with a response topic and correlation data.
+    void publish_request(const std::string& topic, const std::string& payload,
+                         const std::string& response_topic, const std::string& correlation_data);
 
 private:
     struct Impl;

@@ -28,4 +28,11 @@ struct SimOptions {
 /// `sim -c FILE`: sends every consumed exchange of the configuration with changing values.
 int run_sim(const SimOptions& options);
 
+/// `import-points FILE.csv`: prints to `out` a complete configuration with one exchange per Node
+/// of the point list (consumed for Read rows, produced for Write rows), its producer ids,
+/// exchange ids and destinations marked `# TODO`. Bad rows, and Nodes mixing Read and Write,
+/// go to `err` with file:line (exit 1, nothing printed to `out`). A result that would fail
+/// `check` (overlapping tags...) is printed all the same, its errors on `err` (exit 1).
+int run_import_points(const std::string& csv_path, std::ostream& out, std::ostream& err);
+
 }  // namespace eip2mqtt::app

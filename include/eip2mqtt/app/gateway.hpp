@@ -16,10 +16,13 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/adapters/state/image_store.hpp"
+#include "eip2mqtt/adapters/udp/sender.hpp"
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
 #include "eip2mqtt/app/drop_log.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
+#include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 
 namespace eip2mqtt::app {
@@ -29,6 +32,16 @@ struct GatewayCounters {
     std::uint64_t datagrams = 0;
     std::uint64_t accepted = 0;
     std::array<std::uint64_t, core::wire::drop_reason_count> dropped{};
+    std::uint64_t writes_ok = 0;  ///< writes staged for production
+    std::array<std::uint64_t, core::write::write_error_count> writes_rejected{};
+};
+
+/// Where a message on a `…/set` topic goes.
+struct WriteRoute {
+    ExchangeProducer* producer = nullptr;  ///< null: the exchange is consumed (read-only)
+    std::string exchange;                  ///< name, for messages
+    int tag_index = -1;                    ///< -1: an atomic multi-tag write to the exchange
+    std::string result_topic;              ///< `…/set/result`
 };
 
 class Gateway {
@@ -49,6 +62,10 @@ private:
     void on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
                      bool truncated);
     void on_connected();
+    void on_message(adapters::mqtt::Incoming message);
+    void reject_write(const WriteReply& reply, const std::string& target,
+                      const core::write::WriteRejection& rejection);
+    void build_write_routes();
     void schedule_tick();
     void on_tick();
     void schedule_metrics();
@@ -71,11 +88,17 @@ private:
     std::unordered_map<core::wire::ExchangeKey, ExchangeConsumer*, core::wire::ExchangeKeyHash>
         by_key_;
     std::unique_ptr<adapters::udp::Receiver> receiver_;
+    adapters::state::ImageStore image_store_;
+    std::unique_ptr<adapters::udp::Sender> sender_;
+    std::vector<std::unique_ptr<ExchangeProducer>> producers_;
+    std::unordered_map<std::string, WriteRoute> write_routes_;  ///< exact `…/set` topics
+    std::unordered_map<std::string, WriteRoute> exchange_routes_;  ///< exchange topic -> route
 
     GatewayCounters counters_;
     DropLog drop_log_;
     core::MonoTime started_at_;
     core::MonoTime last_refresh_scan_;
+    core::MonoTime last_write_log_;
     bool stopping_ = false;
 };
 

@@ -105,6 +105,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     void do_connect();
     void on_connect(bool ok, std::string reason);
     void on_connection_lost(std::string cause);
+    void update_in_flight_limit();
     /// Arms the backoff timer; returns the delay.
     std::chrono::milliseconds schedule_reconnect();
     void renew_subscriptions(const std::vector<std::string>& filters);
@@ -196,6 +197,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     std::map<std::uint64_t, Message> in_flight_;  ///< handed to Paho, not yet completed
     std::uint64_t next_id_ = 1;
 
+    /// max_in_flight, lowered to the broker's receive maximum on each connect.
+    std::atomic<std::size_t> in_flight_limit_;
     std::atomic<bool> link_up_{false};  ///< Paho's view: set by the loop, cleared by Paho's thread
     std::atomic<bool> connected_{false};  ///< the loop's view, for connected() and stats()
     std::atomic<bool> stopping_{false};
@@ -211,6 +214,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     paho::connect_options connect_options_;
     /// Last member: destroyed first, so no Paho callback outlives what it touches.
     std::unique_ptr<paho::async_client> client_;
+    paho::token_ptr connect_token_;  ///< loop-owned; read for the CONNACK's properties
 };
 
 Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
@@ -223,7 +227,8 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
                          (options_.version == 5 && options_.session_expiry.count() == 0)),
       reconnect_timer_(loop_),
       next_backoff_(options_.min_backoff),
-      queue_(options_.buffer_max_messages) {
+      queue_(options_.buffer_max_messages),
+      in_flight_limit_(std::max<std::size_t>(1, options_.max_in_flight)) {
     const bool v5 = options_.version == 5;
     paho::create_options create(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
     // Paho C refuses commands beyond maxBufferedMessages (default 100) even while connected:
@@ -328,7 +333,7 @@ void Client::Impl::do_connect() {
     }
     state_ = State::connecting;
     try {
-        client_->connect(connect_options_, nullptr, connect_listener_);
+        connect_token_ = client_->connect(connect_options_, nullptr, connect_listener_);
     } catch (const paho::exception& e) {
         on_connect(false, e.what());
     }
@@ -366,6 +371,7 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     connected_ = true;
     connects_.fetch_add(1, std::memory_order_relaxed);
     next_backoff_ = options_.min_backoff;
+    update_in_flight_limit();
     connect_failures_unlogged_ = 0;
     connect_failure_logged_ = {};
     spdlog::info("MQTT connected to {}", options_.url);
@@ -386,6 +392,32 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
         on_connected_();
     }
     pump();
+}
+
+void Client::Impl::update_in_flight_limit() {
+    // MQTT 5 §3.2.2.3.3: the broker's Receive Maximum, 65535 when absent (Mosquitto sends 20).
+    // Paho C sends no more QoS >= 1 publications than that and queues the rest until its next
+    // one-second cycle rather than on PUBACK, which capped us at 20 messages/s: the pump must
+    // not hand it more. (The token the listener sees lacks the CONNACK properties in Paho C++
+    // 1.2; the one connect() returned has them.)
+    std::size_t receive_maximum = 65535;
+    try {
+        // The listener posted on_connect just before Paho marks the token complete and
+        // stores the response: wait for that (microseconds; bounded).
+        if (connect_token_ && connect_token_->wait_for(std::chrono::seconds(1))) {
+            const paho::connect_response response = connect_token_->get_connect_response();
+            const paho::properties& props = response.get_properties();
+            if (props.contains(paho::property::RECEIVE_MAXIMUM)) {
+                receive_maximum = paho::get<std::uint16_t>(props, paho::property::RECEIVE_MAXIMUM);
+            }
+        }
+    } catch (const std::exception&) {
+        // No CONNACK properties (MQTT 3.1.1): no limit beyond ours.
+    }
+    if (!options_.availability_topic.empty() && receive_maximum > 1) {
+        --receive_maximum;  // room for `online` and `offline`
+    }
+    in_flight_limit_ = std::max<std::size_t>(1, std::min(options_.max_in_flight, receive_maximum));
 }
 
 void Client::Impl::on_connection_lost(std::string cause) {
@@ -476,6 +508,10 @@ bool Client::Impl::take_next(std::unique_lock<std::mutex>&, std::uint64_t& id, M
 
 Client::Impl::SendResult Client::Impl::send(std::uint64_t id, Message message) {
     auto msg = paho::make_message(message.topic, message.payload, message.qos, message.retain);
+    if (!message.correlation_data.empty() && options_.version == 5) {
+        msg->set_properties(
+            paho::properties{{paho::property::CORRELATION_DATA, message.correlation_data}});
+    }
     {
         std::lock_guard lock(mutex_);
         in_flight_.emplace(id, std::move(message));
@@ -509,7 +545,7 @@ void Client::Impl::pump() {
         Message message;
         {
             std::unique_lock lock(mutex_);
-            if (in_flight_.size() >= options_.max_in_flight || !take_next(lock, id, message)) {
+            if (in_flight_.size() >= in_flight_limit_ || !take_next(lock, id, message)) {
                 return;
             }
         }
@@ -601,8 +637,8 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
     {
         std::unique_lock lock(mutex_);
         for (;;) {
-            if (!completed_.wait_until(
-                    lock, deadline, [&] { return in_flight_.size() < options_.max_in_flight; })) {
+            if (!completed_.wait_until(lock, deadline,
+                                       [&] { return in_flight_.size() < in_flight_limit_; })) {
                 break;
             }
             std::uint64_t id = 0;

@@ -51,7 +51,8 @@ constexpr std::array<std::string_view, 14> mqtt_keys{"url",           "version",
                                                      "keepalive_s",   "metrics_interval_s"};
 constexpr std::array<std::string_view, 4> tls_keys{"ca_file", "cert_file", "key_file", "verify"};
 constexpr std::array<std::string_view, 1> buffer_keys{"max_messages"};
-constexpr std::array<std::string_view, 3> eip_keys{"bind", "port", "multicast"};
+constexpr std::array<std::string_view, 5> eip_keys{"bind", "port", "multicast", "multicast_ttl",
+                                                   "multicast_interface"};
 constexpr std::array<std::string_view, 2> multicast_keys{"group", "interface"};
 constexpr std::array<std::string_view, 1> metrics_keys{"listen"};
 constexpr std::array<std::string_view, 13> exchange_keys{
@@ -385,6 +386,16 @@ private:
                     }
                 } else if (key == "port") {
                     if (const auto n = integer<std::uint16_t>(value, key, k)) eip.port = *n;
+                } else if (key == "multicast_ttl") {
+                    if (const auto n = integer<int>(value, key, k, 0, 255)) eip.multicast_ttl = *n;
+                } else if (key == "multicast_interface") {
+                    const auto s = text(value, key, k);
+                    if (s && !parse_ipv4(*s)) {
+                        error(k, "multicast_interface " + in_quotes(*s) +
+                                     " is not an IPv4 address");
+                    } else if (s) {
+                        eip.multicast_interface = *s;
+                    }
                 } else if (key == "multicast") {
                     if (value.IsNull()) return;
                     if (!value.IsSequence()) {

@@ -1,13 +1,19 @@
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <mqtt/async_client.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
 
 #include <atomic>
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/post.hpp>
 #include <condition_variable>
+#include <cstdlib>
+#include <filesystem>
 #include <future>
 #include <mutex>
 #include <thread>
@@ -38,7 +44,7 @@ Message msg(std::string topic, std::string payload, int qos = 1, bool retain = f
 
 /// A Client driven by an io_context on its own thread, as the gateway drives it.
 class ClientFixture : public ::testing::Test {
-  protected:
+protected:
     ClientOptions options_for(const Mosquitto& broker) {
         ClientOptions o;
         o.url = broker.url();
@@ -198,19 +204,47 @@ TEST_F(ClientFixture, StopAfterLoopEndedFlushesQueueThenPublishesOffline) {
     EXPECT_FALSE(client_->connected());
 }
 
-TEST_F(ClientFixture, LastWillSaysOfflineWhenTheClientVanishes) {
+/// This process's TCP sockets connected to 127.0.0.1:`port`.
+std::vector<int> sockets_to(std::uint16_t port) {
+    std::vector<int> fds;
+    for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd")) {
+        const int fd = std::atoi(entry.path().filename().c_str());
+        sockaddr_in peer{};
+        socklen_t len = sizeof peer;
+        if (::getpeername(fd, reinterpret_cast<sockaddr*>(&peer), &len) == 0 &&
+            peer.sin_family == AF_INET && ntohs(peer.sin_port) == port) {
+            fds.push_back(fd);
+        }
+    }
+    return fds;
+}
+
+TEST_F(ClientFixture, CutConnectionFiresWillThenReconnectsOnline) {
     Mosquitto broker;
-    MqttRecorder recorder(broker.url(), {"gw/state"});
     make_client(options_for(broker));
     on_loop([&] { client_->start(); });
-    ASSERT_TRUE(recorder.wait_for_message("gw/state", [](auto& p) { return p == "online"; }));
+    ASSERT_TRUE(wait_connected_count(1));
+    const auto client_sockets = sockets_to(broker.port());  // before the recorder connects
+    ASSERT_EQ(client_sockets.size(), 1u);
+    int nodelay = 0;
+    socklen_t len = sizeof nodelay;
+    ASSERT_EQ(::getsockopt(client_sockets[0], IPPROTO_TCP, TCP_NODELAY, &nodelay, &len), 0);
+    EXPECT_NE(nodelay, 0);  // detail/tcp_nodelay.hpp
 
-    // No stop(): the connection ends without DISCONNECT, so the broker publishes the will.
-    stop_loop();
-    client_.reset();
-    auto offline = recorder.wait_for_message("gw/state", [](auto& p) { return p == "offline"; });
+    MqttRecorder recorder(broker.url(), {"gw/state"});
+    ASSERT_TRUE(recorder.wait_for_message("gw/state", [](auto& p) { return p == "online"; }));
+    const auto from = recorder.count();
+
+    // No DISCONNECT: the broker publishes the will; the client reconnects.
+    ::shutdown(client_sockets[0], SHUT_RDWR);
+    auto offline = recorder.wait_for_message(
+        "gw/state", [](auto& p) { return p == "offline"; }, kTimeout, from);
     ASSERT_TRUE(offline);
     EXPECT_TRUE(offline->retained);
+    ASSERT_TRUE(wait_connected_count(2));
+    EXPECT_TRUE(recorder.wait_for_message(
+        "gw/state", [](auto& p) { return p == "online"; }, kTimeout, from + 1));
+    EXPECT_EQ(client_->stats().connection_losses, 1u);
 }
 
 TEST_F(ClientFixture, CoalescesAndDropsOldestWhileNotConnected) {

@@ -14,6 +14,8 @@ struct Message {
     /// Latest value wins: a newer message with the same topic replaces this one while it is
     /// still queued. Off for messages that must each be delivered (write results).
     bool coalesce = true;
+    /// MQTT 5 correlation data (binary), for a write result sent to a request's response topic.
+    std::string correlation_data;
 };
 
 /// A message received on a subscription, copied off Paho's thread.

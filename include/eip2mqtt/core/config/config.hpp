@@ -77,6 +77,8 @@ struct EipSection {
     std::string bind = "0.0.0.0";
     std::uint16_t port = 18246;
     std::vector<MulticastGroup> multicast;
+    int multicast_ttl = 1;            ///< TTL of produced multicast datagrams
+    std::string multicast_interface;  ///< IPv4 address of the interface produced multicast leaves by
     Marks marks;
 };
 

@@ -1,0 +1,29 @@
+#pragma once
+/// Parsing of MQTT write payloads with a real JSON library (nlohmann-json), as product.md
+/// specifies: a tag write is `42`, `true`, `12.5` or `{"value":42}`; an exchange write is
+/// `{"SPEED_SP":3100,"START":true}` (each value a scalar or {"value": scalar}). Hostile input
+/// (deep nesting, huge numbers, invalid UTF-8, trailing garbage) yields `malformed`, never an
+/// exception.
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "eip2mqtt/core/result.hpp"
+#include "eip2mqtt/core/write/write_request.hpp"
+
+namespace eip2mqtt::adapters::mqtt {
+
+/// One tag's input. Strings and other non-scalars are `wrong_type`; unparsable text, objects
+/// without exactly the key "value", arrays and empty payloads are `malformed`.
+core::Result<core::write::WriteInput, core::write::WriteRejection> parse_tag_write(
+    std::string_view payload);
+
+/// A multi-tag write: tag names with their inputs, in payload order. A non-object, an empty
+/// object, or any value that is not a scalar or {"value": scalar} fails the whole write.
+core::Result<std::vector<std::pair<std::string, core::write::WriteInput>>,
+             core::write::WriteRejection>
+parse_exchange_write(std::string_view payload);
+
+}  // namespace eip2mqtt::adapters::mqtt

@@ -1,0 +1,93 @@
+#pragma once
+/// One produced exchange at run time (issue #3): sends its datagram every period against
+/// absolute deadlines, applies queued writes between two productions, answers each write once
+/// the datagram carrying it has left, echoes the produced values on the tag topics, and
+/// persists the image when it changes.
+///
+/// Threading: the loop only.
+
+#include <boost/asio/any_io_executor.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "eip2mqtt/adapters/state/image_store.hpp"
+#include "eip2mqtt/adapters/udp/endpoint.hpp"
+#include "eip2mqtt/adapters/udp/sender.hpp"
+#include "eip2mqtt/app/exchange_consumer.hpp"
+#include "eip2mqtt/core/exchange/produced_image.hpp"
+#include "eip2mqtt/core/exchange/production_schedule.hpp"
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/write/write_request.hpp"
+
+namespace eip2mqtt::app {
+
+/// Where a write's result goes: the MQTT 5 response topic with its correlation data, or the
+/// `…/set/result` topic.
+struct WriteReply {
+    std::string topic;
+    std::string correlation_data;
+};
+
+struct ProducerCounters {
+    std::uint64_t sent = 0;
+    std::uint64_t send_errors = 0;
+    std::uint64_t skipped_deadlines = 0;  ///< periods lost because the loop fell behind
+    std::uint64_t writes_applied = 0;
+    std::uint64_t persist_failures = 0;
+};
+
+class ExchangeProducer {
+public:
+    /// The image is restored from `store` when a file of the same layout exists. `index` of
+    /// `count` spreads the first send over the period.
+    ExchangeProducer(core::plan::ExchangePlan plan, adapters::udp::Endpoint destination,
+                     boost::asio::any_io_executor executor, adapters::udp::Sender& sender,
+                     const adapters::state::ImageStore& store, PublishSettings settings,
+                     PublishSink sink);
+
+    /// Starts producing; the first send is at start + period * index / count.
+    void start(core::MonoTime start, std::size_t index, std::size_t count);
+    void stop();
+
+    /// Queues a validated write; its result is published after the datagram carrying it is
+    /// sent. Fails with queue_full when the queue is full.
+    std::optional<core::write::WriteRejection> stage(std::vector<core::write::TagWrite> writes,
+                                                     WriteReply reply);
+
+    /// Publishes the echo topics and `_status` again (after a reconnect).
+    void republish(core::WallTime wall);
+
+    const core::plan::ExchangePlan& plan() const { return plan_; }
+    const ProducerCounters& counters() const { return counters_; }
+    const core::exchange::ProducedImage& image() const { return image_; }
+
+private:
+    void schedule();
+    void on_deadline(const boost::system::error_code& error);
+    void publish_echo(core::WallTime wall, bool all);
+    void publish_status();
+
+    core::plan::ExchangePlan plan_;
+    adapters::udp::Endpoint destination_;
+    boost::asio::steady_timer timer_;
+    adapters::udp::Sender& sender_;
+    const adapters::state::ImageStore& store_;
+    PublishSettings settings_;
+    PublishSink sink_;
+    core::exchange::ProducedImage image_;
+    std::optional<core::exchange::ProductionSchedule> schedule_;
+    std::vector<std::byte> datagram_;
+    std::vector<std::byte> echoed_;  ///< data bytes as last echoed on the tag topics
+    std::vector<std::uint64_t> carried_;
+    std::unordered_map<std::uint64_t, WriteReply> replies_;
+    std::uint64_t next_write_id_ = 1;
+    ProducerCounters counters_;
+    bool failing_ = false;  ///< the last send failed: `_status` says paused
+    std::string payload_;
+};
+
+}  // namespace eip2mqtt::app

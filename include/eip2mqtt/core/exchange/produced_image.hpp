@@ -1,0 +1,62 @@
+#pragma once
+/// The image of one produced exchange: its data bytes, the request id counter, and the queue of
+/// accepted writes waiting for the next production (eip-protocol.md §5; issue #3). Writes are
+/// applied only between two productions, whole batches at a time, so one datagram never
+/// carries half a multi-tag write. Pure: time is passed in.
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <span>
+#include <vector>
+
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/time.hpp"
+#include "eip2mqtt/core/wire/header.hpp"
+#include "eip2mqtt/core/write/write_request.hpp"
+
+namespace eip2mqtt::core::exchange {
+
+class ProducedImage {
+public:
+    /// The request id of the first datagram after start-up. Consumers must not assume a start
+    /// value (eip-protocol.md §2); 1 rather than 0 because some tools read 0 as "never sent".
+    static constexpr std::uint16_t first_request_id = 1;
+
+    /// Starts from `restored` when it has the plan's length, else from zeros with each tag's
+    /// `initial` value applied. `max_pending` bounds the write queue (batches).
+    ProducedImage(const plan::ExchangePlan& plan, std::span<const std::byte> restored,
+                  std::size_t max_pending = 1024);
+
+    /// Queues a validated batch for the next production; false when the queue is full.
+    bool stage(write::WriteBatch batch);
+
+    /// Builds the next datagram into `out` (at least 32 + length bytes): applies every staged
+    /// batch (bits by read-modify-write of their byte), stamps the header (request id, `wall`
+    /// as seconds + nanoseconds, status 0, the configured signature), then advances the request
+    /// id (wrapping). Returns the datagram size. The ids of the batches this datagram is the
+    /// first to carry are appended to `carried` (not cleared first), in staging order.
+    std::size_t produce(WallTime wall, std::span<std::byte> out,
+                        std::vector<std::uint64_t>& carried);
+
+    /// The data bytes as they stand (the last produced values plus nothing staged).
+    std::span<const std::byte> data() const { return data_; }
+    /// True when produce() changed the data since the last call to clear_dirty().
+    bool dirty() const { return dirty_; }
+    void clear_dirty() { dirty_ = false; }
+    /// True when data was restored rather than initialised.
+    bool restored() const { return restored_; }
+    std::size_t pending() const { return pending_.size(); }
+    std::uint16_t next_request_id() const { return request_id_; }
+
+private:
+    const plan::ExchangePlan* plan_;
+    std::vector<std::byte> data_;
+    std::deque<write::WriteBatch> pending_;
+    std::size_t max_pending_;
+    std::uint16_t request_id_ = first_request_id;
+    bool dirty_ = false;
+    bool restored_ = false;
+};
+
+}  // namespace eip2mqtt::core::exchange

@@ -1,0 +1,67 @@
+#pragma once
+/// MQTT writes to produced tags (product.md "MQTT"; issue #3): what a write asks for, why one is
+/// rejected, and the validation of a value against its tag. Pure: the JSON parsing that yields a
+/// WriteInput lives in the MQTT adapter.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "eip2mqtt/core/plan/tag_plan.hpp"
+#include "eip2mqtt/core/plan/value.hpp"
+#include "eip2mqtt/core/result.hpp"
+
+namespace eip2mqtt::core::write {
+
+/// A JSON scalar as written by the client, before it meets a tag's type: `true`, `-2`,
+/// `18446744073709551615`, `12.5`. Integers keep their exact value.
+using WriteInput = std::variant<bool, std::int64_t, std::uint64_t, double>;
+
+/// Why a write was rejected. Each value is also a metric label.
+enum class WriteError : std::uint8_t {
+    malformed,     ///< payload is not a JSON scalar or {"value": scalar} (or an object of them)
+    unknown_tag,   ///< no such tag in the exchange
+    read_only,     ///< the tag is not `writable`
+    wrong_type,    ///< e.g. a string, or a number for a bit tag, or true for a real
+    not_integer,   ///< a fractional number for an integer tag
+    below_min,     ///< under the tag's `min`
+    above_max,     ///< over the tag's `max`
+    out_of_range,  ///< outside the type's own range (e.g. 70000 for an int)
+    not_finite,    ///< NaN or infinity (never accepted from MQTT)
+    retained,      ///< a retained message: a stale command must never fire
+    expired,       ///< its MQTT 5 message expiry passed before it could be applied
+    queue_full,    ///< the exchange's write queue is full; try again
+    empty,         ///< a multi-tag write with no tag
+};
+
+inline constexpr std::size_t write_error_count = 13;
+
+std::string_view to_string(WriteError error);
+
+/// A rejection with the message the client gets back: `"above max 4000"`.
+struct WriteRejection {
+    WriteError error;
+    std::string message;
+};
+
+/// Checks `input` against the tag (writable, type, the type's range, min/max) and converts it
+/// to the tag's Value. Bits take true/false, and also 0/1.
+Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
+                                                   const WriteInput& input);
+
+/// One tag's validated new value, by index into the exchange plan's tags.
+struct TagWrite {
+    std::size_t tag_index = 0;
+    plan::Value value;
+};
+
+/// A validated write of one or more tags of one produced exchange, applied atomically.
+struct WriteBatch {
+    std::uint64_t id = 0;  ///< assigned by the caller; returned when the batch was sent
+    std::vector<TagWrite> writes;
+};
+
+}  // namespace eip2mqtt::core::write

@@ -1,0 +1,142 @@
+#include "eip2mqtt/app/exchange_producer.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+#include "eip2mqtt/adapters/mqtt/payload.hpp"
+#include "eip2mqtt/core/wire/header.hpp"
+#include "eip2mqtt/core/wire/value_codec.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+std::vector<std::byte> restore(const adapters::state::ImageStore& store,
+                               const core::plan::ExchangePlan& plan) {
+    auto saved = store.load(plan);
+    return saved ? std::move(*saved) : std::vector<std::byte>{};
+}
+
+std::int64_t to_ms(core::WallTime wall) {
+    return std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch()).count();
+}
+
+}  // namespace
+
+ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
+                                   adapters::udp::Endpoint destination,
+                                   boost::asio::any_io_executor executor,
+                                   adapters::udp::Sender& sender,
+                                   const adapters::state::ImageStore& store,
+                                   PublishSettings settings, PublishSink sink)
+    : plan_(std::move(plan)),
+      destination_(destination),
+      timer_(executor),
+      sender_(sender),
+      store_(store),
+      settings_(settings),
+      sink_(std::move(sink)),
+      image_(plan_, restore(store_, plan_)),
+      datagram_(core::wire::header_size + plan_.length) {
+    spdlog::info("exchange {}: producing to {} every {} ms, {} image", plan_.spec.name,
+                 adapters::udp::to_string(destination_), plan_.spec.period.count(),
+                 image_.restored() ? "restored" : "initial");
+}
+
+void ExchangeProducer::start(core::MonoTime start, std::size_t index, std::size_t count) {
+    schedule_.emplace(start, plan_.spec.period, index, count);
+    schedule();
+}
+
+void ExchangeProducer::stop() { timer_.cancel(); }
+
+void ExchangeProducer::schedule() {
+    timer_.expires_at(schedule_->deadline());
+    timer_.async_wait([this](const boost::system::error_code& error) { on_deadline(error); });
+}
+
+std::optional<core::write::WriteRejection> ExchangeProducer::stage(
+    std::vector<core::write::TagWrite> writes, WriteReply reply) {
+    const auto id = next_write_id_++;
+    if (!image_.stage({id, std::move(writes)})) {
+        return core::write::WriteRejection{core::write::WriteError::queue_full,
+                                           "write queue of exchange " + plan_.spec.name +
+                                               " is full; try again"};
+    }
+    replies_.emplace(id, std::move(reply));
+    return std::nullopt;
+}
+
+void ExchangeProducer::on_deadline(const boost::system::error_code& error) {
+    if (error) return;
+    const auto wall = std::chrono::system_clock::now();
+    carried_.clear();
+    const auto size = image_.produce(wall, datagram_, carried_);
+    const bool sent = sender_.send_to(std::span(datagram_.data(), size), destination_);
+    if (sent) {
+        ++counters_.sent;
+    } else {
+        ++counters_.send_errors;
+    }
+    if (sent == failing_) {
+        failing_ = !sent;
+        if (failing_) {
+            spdlog::warn("exchange {}: cannot send to {}; paused until sends succeed again",
+                         plan_.spec.name, adapters::udp::to_string(destination_));
+        } else {
+            spdlog::info("exchange {}: sending again", plan_.spec.name);
+        }
+        publish_status();
+    }
+
+    if (image_.dirty()) {
+        image_.clear_dirty();
+        if (!store_.save(plan_, image_.data())) ++counters_.persist_failures;
+        publish_echo(wall, false);
+    }
+    // product.md: a write's result is published once the datagram carrying it has been sent.
+    for (const auto id : carried_) {
+        ++counters_.writes_applied;
+        const auto it = replies_.find(id);
+        if (it == replies_.end()) continue;
+        sink_({it->second.topic, R"({"ok":true})", 1, false, false,
+               std::move(it->second.correlation_data)});
+        replies_.erase(it);
+    }
+
+    counters_.skipped_deadlines += schedule_->advance(std::chrono::steady_clock::now());
+    schedule();
+}
+
+void ExchangeProducer::publish_echo(core::WallTime wall, bool all) {
+    const auto data = image_.data();
+    for (const auto& tag : plan_.tags) {
+        const auto value = core::wire::decode_value(data, tag.spec.type, tag.spec.address);
+        if (!all && echoed_.size() == data.size()) {
+            const auto old = core::wire::decode_value(echoed_, tag.spec.type, tag.spec.address);
+            if (core::plan::same_value(old, value)) continue;
+        }
+        adapters::mqtt::format_tag_payload(payload_, value, core::quality::Quality::good,
+                                           to_ms(wall), settings_.format);
+        sink_({tag.topic, payload_, settings_.qos, settings_.retain, true});
+    }
+    echoed_.assign(data.begin(), data.end());
+}
+
+void ExchangeProducer::publish_status() {
+    sink_({plan_.status_topic,
+           fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
+                       R"("writes_applied":{},"writes_pending":{}}})",
+                       failing_ ? "paused" : "producing", image_.next_request_id(),
+                       counters_.sent, counters_.send_errors, counters_.writes_applied,
+                       image_.pending()),
+           settings_.qos, true, true});
+}
+
+void ExchangeProducer::republish(core::WallTime wall) {
+    publish_echo(wall, true);
+    publish_status();
+}
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,78 @@
+#include "eip2mqtt/core/exchange/produced_image.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <chrono>
+#include <utility>
+
+#include "eip2mqtt/core/wire/encode.hpp"
+#include "eip2mqtt/core/wire/value_codec.hpp"
+
+namespace eip2mqtt::core::exchange {
+
+ProducedImage::ProducedImage(const plan::ExchangePlan& plan, std::span<const std::byte> restored,
+                             std::size_t max_pending)
+    : plan_(&plan), data_(plan.length), max_pending_(max_pending) {
+    if (!restored.empty() && restored.size() == plan.length) {
+        std::copy(restored.begin(), restored.end(), data_.begin());
+        restored_ = true;
+        return;
+    }
+    // A missing image, or one saved under another length, starts from zeros plus `initial`.
+    for (const auto& tag : plan.tags) {
+        if (tag.spec.initial) {
+            wire::encode_value(data_, tag.spec.type, tag.spec.address, *tag.spec.initial);
+        }
+    }
+}
+
+bool ProducedImage::stage(write::WriteBatch batch) {
+    if (pending_.size() >= max_pending_) return false;
+    pending_.push_back(std::move(batch));
+    return true;
+}
+
+std::size_t ProducedImage::produce(WallTime wall, std::span<std::byte> out,
+                                   std::vector<std::uint64_t>& carried) {
+    // product.md "MQTT": whole batches between two productions, so one datagram never carries
+    // half a multi-tag write.
+    for (const auto& batch : pending_) {
+        for (const auto& write : batch.writes) {
+            assert(write.tag_index < plan_->tags.size());
+            const auto& tag = plan_->tags[write.tag_index].spec;
+            const auto bytes = std::span(data_).subspan(tag.address.byte, plan::size_of(tag.type));
+            std::array<std::byte, 8> before{};
+            std::copy(bytes.begin(), bytes.end(), before.begin());
+            wire::encode_value(data_, tag.type, tag.address, write.value);
+            if (!std::equal(bytes.begin(), bytes.end(), before.begin())) dirty_ = true;
+        }
+        carried.push_back(batch.id);
+    }
+    pending_.clear();
+
+    // eip-protocol.md §5: the time at which the image was sampled, as seconds + nanoseconds.
+    const auto since_epoch = wall.time_since_epoch();
+    const auto seconds = std::chrono::floor<std::chrono::seconds>(since_epoch);
+    const auto nanoseconds =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(since_epoch - seconds);
+
+    wire::Header header;
+    header.pdu_type = wire::pdu_type_data;
+    header.pdu_version = wire::pdu_version;
+    header.request_id = request_id_;
+    header.producer_id = plan_->spec.producer_id;
+    header.exchange_id = plan_->spec.exchange_id;
+    header.time_s = static_cast<std::uint32_t>(seconds.count());
+    header.time_ns = static_cast<std::uint32_t>(nanoseconds.count());
+    header.status = 0;
+    header.signature = plan_->spec.signature.to_wire();
+    header.reserved = 0;
+    const std::size_t size = wire::encode_datagram(header, data_, out);
+
+    // §5: one counter per exchange, +1 per datagram, wrapping 65535 -> 0.
+    request_id_ = static_cast<std::uint16_t>(request_id_ + 1);
+    return size;
+}
+
+}  // namespace eip2mqtt::core::exchange

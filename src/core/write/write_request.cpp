@@ -1,0 +1,206 @@
+#include "eip2mqtt/core/write/write_request.hpp"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <compare>
+#include <limits>
+#include <utility>
+
+namespace eip2mqtt::core::write {
+namespace {
+
+using plan::TagType;
+
+// 2^63 and 2^64 are exact doubles; int64 max and uint64 max are not.
+constexpr double two_pow_63 = 9223372036854775808.0;
+constexpr double two_pow_64 = 18446744073709551616.0;
+
+/// Shortest text that reads back to the same double, as the YAML wrote it: 4000, 0.5, 1e+20.
+template <class Float>
+std::string shortest(Float value) {
+    std::array<char, 64> buffer{};
+    const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+    return std::string(buffer.data(), result.ptr);
+}
+
+WriteRejection reject(WriteError error, std::string message) { return {error, std::move(message)}; }
+
+/// The exact range of an integer type.
+struct IntRange {
+    std::int64_t min;
+    std::uint64_t max;
+};
+
+IntRange int_range(TagType type) {
+    switch (type) {
+        case TagType::byte:
+            return {0, std::numeric_limits<std::uint8_t>::max()};
+        case TagType::int_:
+            return {std::numeric_limits<std::int16_t>::min(),
+                    std::numeric_limits<std::int16_t>::max()};
+        case TagType::word:
+            return {0, std::numeric_limits<std::uint16_t>::max()};
+        case TagType::dint:
+            return {std::numeric_limits<std::int32_t>::min(),
+                    std::numeric_limits<std::int32_t>::max()};
+        case TagType::udint:
+            return {0, std::numeric_limits<std::uint32_t>::max()};
+        case TagType::lint:
+            return {std::numeric_limits<std::int64_t>::min(),
+                    std::numeric_limits<std::int64_t>::max()};
+        default:
+            return {0, 1};  // bit
+    }
+}
+
+WriteRejection out_of_range(TagType type) {
+    std::string range;
+    if (type == TagType::real) {
+        const float max = std::numeric_limits<float>::max();
+        range = shortest(-max) + ".." + shortest(max);
+    } else {
+        const IntRange r = int_range(type);
+        range = std::to_string(r.min) + ".." + std::to_string(r.max);
+    }
+    return reject(WriteError::out_of_range,
+                  "out of range for " + std::string(plan::to_string(type)) + " (" + range + ")");
+}
+
+bool is_signed(TagType type) {
+    return type == TagType::int_ || type == TagType::dint || type == TagType::lint;
+}
+
+/// An integer input converted to an integer tag's Value, with exact range checks.
+template <class Int>
+Result<plan::Value, WriteRejection> integer_value(TagType type, Int v) {
+    const IntRange r = int_range(type);
+    if (std::cmp_less(v, r.min) || std::cmp_greater(v, r.max)) return fail(out_of_range(type));
+    if (is_signed(type)) return plan::Value{static_cast<std::int64_t>(v)};
+    return plan::Value{static_cast<std::uint64_t>(v)};
+}
+
+Result<plan::Value, WriteRejection> to_integer_tag(TagType type, const WriteInput& input) {
+    if (const auto* v = std::get_if<std::int64_t>(&input)) return integer_value(type, *v);
+    if (const auto* v = std::get_if<std::uint64_t>(&input)) return integer_value(type, *v);
+    if (const auto* d = std::get_if<double>(&input)) {
+        // 12.0 is the integer 12; 12.5 is no integer at all.
+        if (std::trunc(*d) != *d)
+            return fail(reject(WriteError::not_integer, "expected an integer"));
+        if (*d < -two_pow_63 || *d >= two_pow_64) return fail(out_of_range(type));
+        if (*d < two_pow_63) return integer_value(type, static_cast<std::int64_t>(*d));
+        return integer_value(type, static_cast<std::uint64_t>(*d));
+    }
+    return fail(reject(WriteError::wrong_type, "expected a number"));
+}
+
+Result<plan::Value, WriteRejection> to_bit_tag(const WriteInput& input) {
+    if (const auto* b = std::get_if<bool>(&input)) return plan::Value{*b};
+    // Bits also take the integers 0 and 1; any other integer is outside a bit's range, and a
+    // float (even 1.0) is not how anyone writes a bit.
+    if (const auto* v = std::get_if<std::int64_t>(&input)) {
+        if (*v == 0 || *v == 1) return plan::Value{*v == 1};
+        return fail(out_of_range(TagType::bit));
+    }
+    if (const auto* v = std::get_if<std::uint64_t>(&input)) {
+        if (*v <= 1) return plan::Value{*v == 1};
+        return fail(out_of_range(TagType::bit));
+    }
+    return fail(reject(WriteError::wrong_type, "expected true or false"));
+}
+
+Result<plan::Value, WriteRejection> to_float_tag(TagType type, const WriteInput& input) {
+    if (std::holds_alternative<bool>(input)) {
+        return fail(reject(WriteError::wrong_type, "expected a number"));
+    }
+    const double d = std::visit([](auto v) { return static_cast<double>(v); }, input);
+    if (type == TagType::lreal) return plan::Value{d};
+    const double max = std::numeric_limits<float>::max();
+    if (d < -max || d > max) return fail(out_of_range(type));
+    return plan::Value{static_cast<float>(d)};
+}
+
+/// Three-way comparison of an integer with a double, exact where a cast to double would round
+/// (lint values beyond 2^53).
+std::partial_ordering compare(std::int64_t v, double limit) {
+    if (std::isnan(limit)) return std::partial_ordering::unordered;
+    if (limit >= two_pow_63) return std::partial_ordering::less;
+    if (limit < -two_pow_63) return std::partial_ordering::greater;
+    const double floor = std::floor(limit);
+    const auto f = static_cast<std::int64_t>(floor);  // exact: floor is in int64's range
+    if (v < f) return std::partial_ordering::less;
+    if (v > f) return std::partial_ordering::greater;  // v >= floor + 1 > limit
+    return floor == limit ? std::partial_ordering::equivalent : std::partial_ordering::less;
+}
+
+/// The value compared with a tag's min or max. Integer values are compared exactly; the input,
+/// not its binary32 rounding, is what a real's limits are checked against.
+std::partial_ordering compare(const plan::Value& value, const WriteInput& input, double limit) {
+    if (const auto* v = std::get_if<std::int64_t>(&value)) return compare(*v, limit);
+    if (const auto* v = std::get_if<std::uint64_t>(&value)) {
+        // Unsigned tags end at udint: every value fits an int64.
+        return compare(static_cast<std::int64_t>(*v), limit);
+    }
+    if (std::holds_alternative<float>(value)) {
+        return std::visit([](auto v) { return static_cast<double>(v); }, input) <=> limit;
+    }
+    return plan::to_double(value) <=> limit;
+}
+
+}  // namespace
+
+std::string_view to_string(WriteError error) {
+    switch (error) {
+        case WriteError::malformed:
+            return "malformed";
+        case WriteError::unknown_tag:
+            return "unknown_tag";
+        case WriteError::read_only:
+            return "read_only";
+        case WriteError::wrong_type:
+            return "wrong_type";
+        case WriteError::not_integer:
+            return "not_integer";
+        case WriteError::below_min:
+            return "below_min";
+        case WriteError::above_max:
+            return "above_max";
+        case WriteError::out_of_range:
+            return "out_of_range";
+        case WriteError::not_finite:
+            return "not_finite";
+        case WriteError::retained:
+            return "retained";
+        case WriteError::expired:
+            return "expired";
+        case WriteError::queue_full:
+            return "queue_full";
+        case WriteError::empty:
+            return "empty";
+    }
+    return "unknown";
+}
+
+Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
+                                                   const WriteInput& input) {
+    if (!tag.writable) return fail(reject(WriteError::read_only, "tag is read-only"));
+    if (const auto* d = std::get_if<double>(&input); d != nullptr && !std::isfinite(*d)) {
+        return fail(reject(WriteError::not_finite, "not a finite number"));
+    }
+
+    auto converted = tag.type == TagType::bit     ? to_bit_tag(input)
+                     : plan::is_integer(tag.type) ? to_integer_tag(tag.type, input)
+                                                  : to_float_tag(tag.type, input);
+    if (!converted) return converted;
+
+    // Limits come after the type's own checks, so "expected an integer" wins over "above max".
+    if (tag.min && compare(*converted, input, *tag.min) < 0) {
+        return fail(reject(WriteError::below_min, "below min " + shortest(*tag.min)));
+    }
+    if (tag.max && compare(*converted, input, *tag.max) > 0) {
+        return fail(reject(WriteError::above_max, "above max " + shortest(*tag.max)));
+    }
+    return converted;
+}
+
+}  // namespace eip2mqtt::core::write
