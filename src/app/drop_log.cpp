@@ -4,8 +4,7 @@
 
 namespace eip2mqtt::app {
 
-void DropLog::record(core::wire::DropReason reason, core::MonoTime now,
-                     const std::string& detail) {
+void DropLog::record(core::wire::DropReason reason, core::MonoTime now, const std::string& detail) {
     record_lazy(reason, now, [&] { return detail; });
 }
 

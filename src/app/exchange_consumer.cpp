@@ -1,7 +1,8 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 
-#include <chrono>
 #include <fmt/format.h>
+
+#include <chrono>
 
 #include "eip2mqtt/adapters/mqtt/payload.hpp"
 #include "eip2mqtt/core/wire/value_codec.hpp"
@@ -24,10 +25,7 @@ std::int64_t to_ms(core::WallTime wall) {
 
 ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, PublishSettings settings,
                                    PublishSink sink)
-    : plan_(std::move(plan)),
-      settings_(settings),
-      sink_(std::move(sink)),
-      exchange_(plan_) {
+    : plan_(std::move(plan)), settings_(settings), sink_(std::move(sink)), exchange_(plan_) {
     filters_.reserve(plan_.tags.size());
     for (const auto& tag : plan_.tags) filters_.emplace_back(tag.spec.deadband, tag.spec.refresh);
 }

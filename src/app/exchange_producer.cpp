@@ -60,9 +60,9 @@ std::optional<core::write::WriteRejection> ExchangeProducer::stage(
     std::vector<core::write::TagWrite> writes, WriteReply reply) {
     const auto id = next_write_id_++;
     if (!image_.stage({id, std::move(writes)})) {
-        return core::write::WriteRejection{core::write::WriteError::queue_full,
-                                           "write queue of exchange " + plan_.spec.name +
-                                               " is full; try again"};
+        return core::write::WriteRejection{
+            core::write::WriteError::queue_full,
+            "write queue of exchange " + plan_.spec.name + " is full; try again"};
     }
     replies_.emplace(id, std::move(reply));
     return std::nullopt;
@@ -128,9 +128,8 @@ void ExchangeProducer::publish_status() {
     sink_({plan_.status_topic,
            fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
                        R"("writes_applied":{},"writes_pending":{}}})",
-                       failing_ ? "paused" : "producing", image_.next_request_id(),
-                       counters_.sent, counters_.send_errors, counters_.writes_applied,
-                       image_.pending()),
+                       failing_ ? "paused" : "producing", image_.next_request_id(), counters_.sent,
+                       counters_.send_errors, counters_.writes_applied, image_.pending()),
            settings_.qos, true, true});
 }
 

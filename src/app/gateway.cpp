@@ -1,5 +1,6 @@
 #include "eip2mqtt/app/gateway.hpp"
 
+#include <spdlog/spdlog.h>
 #include <sys/stat.h>
 
 #include <boost/asio/post.hpp>
@@ -8,7 +9,6 @@
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <spdlog/spdlog.h>
 #include <stdexcept>
 
 #include "eip2mqtt/core/wire/decode.hpp"
@@ -86,14 +86,14 @@ Gateway::Gateway(core::config::Config config)
                 sender_options.bind = config_.eip.bind;
                 sender_options.multicast_ttl = config_.eip.multicast_ttl;
                 sender_options.multicast_interface = config_.eip.multicast_interface;
-                sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(),
-                                                                  sender_options);
+                sender_ =
+                    std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
             }
             const auto destination =
                 adapters::udp::resolve_endpoint(plan.spec.destination, config_.eip.port);
             if (!destination) {
-                throw std::runtime_error("exchange " + plan.spec.name + ": cannot resolve destination " +
-                                         plan.spec.destination);
+                throw std::runtime_error("exchange " + plan.spec.name +
+                                         ": cannot resolve destination " + plan.spec.destination);
             }
             producers_.push_back(std::make_unique<ExchangeProducer>(
                 std::move(plan), *destination, loop_.get_executor(), *sender_, image_store_,
@@ -143,17 +143,10 @@ int Gateway::run() {
 void Gateway::start() {
     started_at_ = std::chrono::steady_clock::now();
     last_refresh_scan_ = started_at_;
-    // One wildcard per exchange catches every tag's `/set` (unknown and read-only tags get a
-    // reasoned rejection rather than silence); produced exchanges also take atomic writes.
-    std::vector<std::string> subscriptions;
-    for (const auto& consumer : consumers_) subscriptions.push_back(consumer->plan().topic + "/+/set");
-    for (const auto& producer : producers_) {
-        subscriptions.push_back(producer->plan().topic + "/+/set");
-        subscriptions.push_back(producer->plan().set_topic);
-    }
-    mqtt_->set_subscriptions(subscriptions);
+    mqtt_->set_subscriptions(write_subscriptions());
     mqtt_->set_on_connected([this] { on_connected(); });
-    mqtt_->set_on_message([this](adapters::mqtt::Incoming message) { on_message(std::move(message)); });
+    mqtt_->set_on_message(
+        [this](adapters::mqtt::Incoming message) { on_message(std::move(message)); });
     for (std::size_t i = 0; i < producers_.size(); ++i) {
         producers_[i]->start(started_at_, i, producers_.size());
     }
@@ -205,8 +198,8 @@ void Gateway::on_datagram(std::span<const std::byte> bytes, const adapters::udp:
     if (it == by_key_.end()) {
         ++counters_.dropped[static_cast<std::size_t>(core::wire::DropReason::unknown_exchange)];
         drop_log_.record_lazy(core::wire::DropReason::unknown_exchange, now, [&] {
-            return "producer " + core::wire::to_string(datagram.header.producer_id) +
-                   " exchange " + std::to_string(datagram.header.exchange_id) + " from " +
+            return "producer " + core::wire::to_string(datagram.header.producer_id) + " exchange " +
+                   std::to_string(datagram.header.exchange_id) + " from " +
                    adapters::udp::to_string(from) + " is not configured";
         });
         return;
@@ -228,10 +221,11 @@ void Gateway::on_datagram(std::span<const std::byte> bytes, const adapters::udp:
     }
     ++counters_.dropped[static_cast<std::size_t>(*outcome.dropped)];
     if (outcome.state_changed) {
-        spdlog::warn("exchange {}: {} (received {} data bytes, configured {}, signature {})",
-                     spec.name, core::exchange::to_string(consumer.exchange().state()),
-                     datagram.data.size(), consumer.plan().length,
-                     core::wire::to_string(core::wire::Signature::from_wire(datagram.header.signature)));
+        spdlog::warn(
+            "exchange {}: {} (received {} data bytes, configured {}, signature {})", spec.name,
+            core::exchange::to_string(consumer.exchange().state()), datagram.data.size(),
+            consumer.plan().length,
+            core::wire::to_string(core::wire::Signature::from_wire(datagram.header.signature)));
     }
 }
 
@@ -290,14 +284,13 @@ void Gateway::publish_metrics() {
     }
     nlohmann::json writes_rejected = nlohmann::json::object();
     for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
-        writes_rejected[std::string(core::write::to_string(static_cast<core::write::WriteError>(i)))] =
-            counters_.writes_rejected[i];
+        writes_rejected[std::string(core::write::to_string(
+            static_cast<core::write::WriteError>(i)))] = counters_.writes_rejected[i];
     }
     const nlohmann::json metrics = {
-        {"uptime_s",
-         std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() -
-                                                          started_at_)
-             .count()},
+        {"uptime_s", std::chrono::duration_cast<std::chrono::seconds>(
+                         std::chrono::steady_clock::now() - started_at_)
+                         .count()},
         {"datagrams", counters_.datagrams},
         {"accepted", counters_.accepted},
         {"dropped", dropped},

@@ -3,8 +3,11 @@
 // result is published once the datagram carrying it has left, or rejected at once with a
 // reason. Nothing is changed by a rejected write, and one bad value rejects a multi-tag write.
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <set>
 
 #include "eip2mqtt/adapters/mqtt/write_payload.hpp"
 #include "eip2mqtt/app/gateway.hpp"
@@ -30,13 +33,30 @@ void Gateway::build_write_routes() {
             write_routes_[tag.set_topic] = {producer, plan.spec.name, static_cast<int>(i),
                                             tag.set_topic + "/result"};
         }
-        if (producer != nullptr) {
-            write_routes_[plan.set_topic] = {producer, plan.spec.name, -1,
-                                             plan.set_topic + "/result"};
-        }
+        write_routes_[plan.set_topic] = {producer, plan.spec.name, -1, plan.set_topic + "/result"};
     };
     for (const auto& consumer : consumers_) add_exchange(consumer->plan(), nullptr);
     for (const auto& producer : producers_) add_exchange(producer->plan(), producer.get());
+}
+
+std::vector<std::string> Gateway::write_subscriptions() const {
+    // One filter per depth of `…/set` topic (`{base}/+/+/set`...) rather than one per tag or
+    // exchange: a few SUBSCRIBEs for any configuration size, every tag's `/set` is heard
+    // (unknown and read-only tags get a reasoned rejection rather than silence), and none of
+    // our own publications match, since tag names cannot be `set`.
+    const auto base_levels =
+        std::count(config_.mqtt.base_topic.begin(), config_.mqtt.base_topic.end(), '/') + 1;
+    std::set<long> depths;
+    for (const auto& [topic, route] : write_routes_) {
+        depths.insert(std::count(topic.begin(), topic.end(), '/') + 1 - base_levels);
+    }
+    std::vector<std::string> filters;
+    for (const auto depth : depths) {
+        std::string filter = config_.mqtt.base_topic;
+        for (long i = 1; i < depth; ++i) filter += "/+";
+        filters.push_back(filter + "/set");
+    }
+    return filters;
 }
 
 void Gateway::reject_write(const WriteReply& reply, const std::string& target,
@@ -81,8 +101,8 @@ void Gateway::on_message(adapters::mqtt::Incoming message) {
         reject_write(reply, message.topic, WriteRejection{error, std::move(text)});
     };
     if (!tag_name.empty()) {
-        return reject(WriteError::unknown_tag, "unknown tag " + tag_name + " in exchange " +
-                                                   route.exchange);
+        return reject(WriteError::unknown_tag,
+                      "unknown tag " + tag_name + " in exchange " + route.exchange);
     }
     // A retained command would fire again on every reconnect: never act on one.
     if (message.retained) {

@@ -58,10 +58,9 @@ TEST_F(ConsumeTest, EveryTypeIsPublishedRetainedWithProducerTimestamp) {
     start(every_type_exchange);
     send(every_type_datagram(1).build());
     const std::vector<std::pair<std::string, std::string>> expected = {
-        {"RUN", "true"},         {"TRIP", "false"},        {"MODE", "200"},
-        {"PRESSURE", "-2"},      {"COUNT", "65535"},       {"FLOW", "-100000"},
-        {"ENERGY", "3000000000"}, {"TEMP", "-273.15"},     {"TOTAL", "-2"},
-        {"PRECISE", "65900.0"},
+        {"RUN", "true"},    {"TRIP", "false"},      {"MODE", "200"},          {"PRESSURE", "-2"},
+        {"COUNT", "65535"}, {"FLOW", "-100000"},    {"ENERGY", "3000000000"}, {"TEMP", "-273.15"},
+        {"TOTAL", "-2"},    {"PRECISE", "65900.0"},
     };
     for (const auto& [tag, value] : expected) {
         const auto m = expect_field(topic("unit1/" + tag), "value", value);
@@ -92,13 +91,15 @@ TEST_F(ConsumeTest, DeadbandSuppressesSmallChangesAndUnchangedValuesAreNotRepubl
     expect_field(topic("unit1/PRESSURE"), "value", "100");
     const auto after_first = recorder_->messages_on(topic("unit1/RUN")).size();
 
-    d.request_id(2).set("2.0", TagType::int_, std::int64_t{104}).set("35.0", TagType::word,
-                                                                      std::uint64_t{2});
+    d.request_id(2)
+        .set("2.0", TagType::int_, std::int64_t{104})
+        .set("35.0", TagType::word, std::uint64_t{2});
     send(d.build());
     // MARKER changes with every datagram; once it is seen, the datagram was fully handled.
     expect_field(topic("unit1/MARKER"), "value", "2");
-    d.request_id(3).set("2.0", TagType::int_, std::int64_t{106}).set("35.0", TagType::word,
-                                                                      std::uint64_t{3});
+    d.request_id(3)
+        .set("2.0", TagType::int_, std::int64_t{106})
+        .set("35.0", TagType::word, std::uint64_t{3});
     send(d.build());
     expect_field(topic("unit1/MARKER"), "value", "3");
 
@@ -165,10 +166,11 @@ TEST_F(ConsumeTest, DuplicatesAndGapsAreCountedInStatus) {
         send(every_type_datagram(rid).build());
     }
     // 65535 -> 0 is in sequence; 0 -> 3 misses 2; 2 after 3 is out of order.
-    const auto status = recorder_->wait_for_message(topic("unit1/_status"), [](const std::string& p) {
-        const auto j = json::parse(p);
-        return j["received"] == 6;
-    });
+    const auto status =
+        recorder_->wait_for_message(topic("unit1/_status"), [](const std::string& p) {
+            const auto j = json::parse(p);
+            return j["received"] == 6;
+        });
     ASSERT_TRUE(status.has_value());
     const auto j = json::parse(status->payload);
     EXPECT_EQ(j["accepted"], 4);

@@ -25,7 +25,10 @@ const std::string one_exchange = R"(  - name: pump
 )";
 
 std::vector<std::byte> speed_datagram(std::uint16_t rid, float speed) {
-    return DatagramBuilder("10.0.0.2", 7, 4).request_id(rid).set("0.0", TagType::real, speed).build();
+    return DatagramBuilder("10.0.0.2", 7, 4)
+        .request_id(rid)
+        .set("0.0", TagType::real, speed)
+        .build();
 }
 
 class AvailabilityTest : public GatewayTest {};

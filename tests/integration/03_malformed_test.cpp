@@ -24,7 +24,10 @@ const std::string one_exchange = R"(  - name: pump
 )";
 
 std::vector<std::byte> valid(std::uint16_t rid, std::int64_t value) {
-    return DatagramBuilder("10.0.0.2", 7, 4).request_id(rid).set("0.0", TagType::dint, value).build();
+    return DatagramBuilder("10.0.0.2", 7, 4)
+        .request_id(rid)
+        .set("0.0", TagType::dint, value)
+        .build();
 }
 
 class MalformedTest : public GatewayTest {};
@@ -55,9 +58,8 @@ TEST_F(MalformedTest, EveryMalformedDatagramIsCountedByReasonAndTheGatewayGoesOn
     send(valid(2, 12));
     expect_field(topic("pump/SPEED"), "value", "12");
 
-    const auto metrics = recorder_->wait_for_message(metrics_topic(), [](const std::string& p) {
-        return json::parse(p)["accepted"] == 2;
-    });
+    const auto metrics = recorder_->wait_for_message(
+        metrics_topic(), [](const std::string& p) { return json::parse(p)["accepted"] == 2; });
     ASSERT_TRUE(metrics.has_value());
     const auto dropped = json::parse(metrics->payload)["dropped"];
     EXPECT_EQ(dropped["too_short"], 2);  // 31 bytes and an empty datagram
@@ -72,8 +74,8 @@ TEST_F(MalformedTest, LengthMismatchIsCountedAndNotConsumed) {
     start(one_exchange);
     send(valid(1, 10));
     expect_field(topic("pump/SPEED"), "value", "10");
-    auto longer = DatagramBuilder("10.0.0.2", 7, 5).request_id(2).set("0.0", TagType::dint,
-                                                                      std::int64_t{99});
+    auto longer =
+        DatagramBuilder("10.0.0.2", 7, 5).request_id(2).set("0.0", TagType::dint, std::int64_t{99});
     send(longer.build());
     expect_field(topic("pump/_status"), "state", "\"length_mismatch\"");
     const auto metrics = recorder_->wait_for_message(metrics_topic(), [](const std::string& p) {

@@ -57,8 +57,7 @@ TEST(CheckCommand, ExampleConfigurationIsValidAndShowsItsLayout) {
     const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
     EXPECT_EQ(result.status, 0) << result.output;
     EXPECT_NE(result.output.find("PRESSAO"), std::string::npos) << result.output;
-    EXPECT_NE(result.output.find("acme/demo/turbine1/PRESSAO"), std::string::npos)
-        << result.output;
+    EXPECT_NE(result.output.find("acme/demo/turbine1/PRESSAO"), std::string::npos) << result.output;
 }
 
 }  // namespace

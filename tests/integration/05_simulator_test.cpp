@@ -1,7 +1,7 @@
 // The simulator drives a gateway: values of every type flow and change.
 
-#include <nlohmann/json.hpp>
 #include <csignal>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "tests/support/gateway_fixture.hpp"

@@ -25,7 +25,8 @@ std::string produced_exchange(std::uint16_t port, int period_ms) {
     signature: "3.7"
     destination: 127.0.0.1:)" +
            std::to_string(port) + R"(
-    period_ms: )" + std::to_string(period_ms) +
+    period_ms: )" +
+           std::to_string(period_ms) +
            R"(
     topic: sp
     tags:

@@ -18,7 +18,8 @@ TEST_F(RoundTripTest, WriteComesBackAsTheConsumedValue) {
     direction: produce
     producer_id: 10.5.5.5
     exchange_id: 42
-    destination: 127.0.0.1:)" + port + R"(
+    destination: 127.0.0.1:)" +
+          port + R"(
     period_ms: 20
     topic: out
     tags:

@@ -2,12 +2,13 @@
 /// Runs a program (usually the real eip2mqtt binary) as a child process with its stderr and
 /// stdout captured to a file, for integration tests.
 
+#include <sys/types.h>
+
 #include <chrono>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
-#include <sys/types.h>
 
 namespace eip2mqtt::test {
 

@@ -1,10 +1,10 @@
 #include "tests/support/gateway_fixture.hpp"
 
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "tests/support/free_port.hpp"
@@ -32,20 +32,28 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
     broker_ = std::make_unique<Mosquitto>();
     if (udp_port_ == 0) udp_port_ = free_udp_port();
     udp_ = std::make_unique<UdpClient>();
-    const std::string config = "gateway:\n"
-                               "  id: test-gw\n"
-                               "  state_dir: " + dir_.path() + "/state\n"
-                               "  log_level: debug\n"
-                               "mqtt:\n"
-                               "  url: " + broker_->url() + "\n"
-                               "  base_topic: test\n"
-                               "  qos: 1\n"
-                               "  metrics_interval_s: 1\n" +
-                               mqtt_extra +
-                               "eip:\n"
-                               "  bind: 127.0.0.1\n"
-                               "  port: " + std::to_string(udp_port_) + "\n"
-                               "exchanges:\n" + exchanges_yaml;
+    const std::string config =
+        "gateway:\n"
+        "  id: test-gw\n"
+        "  state_dir: " +
+        dir_.path() +
+        "/state\n"
+        "  log_level: debug\n"
+        "mqtt:\n"
+        "  url: " +
+        broker_->url() +
+        "\n"
+        "  base_topic: test\n"
+        "  qos: 1\n"
+        "  metrics_interval_s: 1\n" +
+        mqtt_extra +
+        "eip:\n"
+        "  bind: 127.0.0.1\n"
+        "  port: " +
+        std::to_string(udp_port_) +
+        "\n"
+        "exchanges:\n" +
+        exchanges_yaml;
     config_path_ = dir_.write("gateway.yaml", config);
     recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"test/#"});
     start_gateway();

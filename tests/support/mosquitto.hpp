@@ -1,17 +1,18 @@
 #pragma once
 /// A real Mosquitto broker on a free loopback port, started and stopped by the test.
 
+#include <sys/types.h>
+
 #include <chrono>
 #include <cstdint>
 #include <string>
-#include <sys/types.h>
 
 namespace eip2mqtt::test {
 
 struct MosquittoOptions {
-    std::uint16_t port = 0;        ///< 0: pick a free one
-    bool persistence = false;      ///< keep sessions and retained messages across restarts
-    std::string extra_config;      ///< appended to the generated mosquitto.conf
+    std::uint16_t port = 0;    ///< 0: pick a free one
+    bool persistence = false;  ///< keep sessions and retained messages across restarts
+    std::string extra_config;  ///< appended to the generated mosquitto.conf
 };
 
 class Mosquitto {

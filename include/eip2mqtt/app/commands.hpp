@@ -21,8 +21,8 @@ int run_gateway(const RunOptions& options);
 struct SimOptions {
     std::string config_path;
     std::string target = "127.0.0.1";  ///< where the consumed exchanges are sent
-    int port = 0;                       ///< 0: eip.port of the configuration
-    double duration_s = 0;              ///< 0: until SIGINT/SIGTERM
+    int port = 0;                      ///< 0: eip.port of the configuration
+    double duration_s = 0;             ///< 0: until SIGINT/SIGTERM
     std::string log_level = "info";
 };
 /// `sim -c FILE`: sends every consumed exchange of the configuration with changing values.

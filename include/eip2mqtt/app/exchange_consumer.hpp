@@ -58,7 +58,7 @@ private:
     PublishSink sink_;
     core::exchange::ConsumedExchange exchange_;
     std::vector<core::quality::ReportFilter> filters_;
-    std::int64_t timestamp_ms_ = 0;            ///< of the values the tags publish
+    std::int64_t timestamp_ms_ = 0;             ///< of the values the tags publish
     std::optional<std::int64_t> last_seen_ms_;  ///< wall time of the last accepted datagram
     std::optional<core::MonoTime> last_status_at_;
     std::uint64_t last_status_received_ = 0;

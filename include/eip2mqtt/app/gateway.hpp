@@ -4,6 +4,9 @@
 /// Members are declared in dependency order so that handlers may capture `this`.
 
 #include <array>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -11,15 +14,11 @@
 #include <unordered_map>
 #include <vector>
 
-#include <boost/asio/io_context.hpp>
-#include <boost/asio/signal_set.hpp>
-#include <boost/asio/steady_timer.hpp>
-
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 #include "eip2mqtt/adapters/state/image_store.hpp"
-#include "eip2mqtt/adapters/udp/sender.hpp"
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
+#include "eip2mqtt/adapters/udp/sender.hpp"
 #include "eip2mqtt/app/drop_log.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
@@ -66,6 +65,7 @@ private:
     void reject_write(const WriteReply& reply, const std::string& target,
                       const core::write::WriteRejection& rejection);
     void build_write_routes();
+    std::vector<std::string> write_subscriptions() const;
     void schedule_tick();
     void on_tick();
     void schedule_metrics();
@@ -91,7 +91,7 @@ private:
     adapters::state::ImageStore image_store_;
     std::unique_ptr<adapters::udp::Sender> sender_;
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
-    std::unordered_map<std::string, WriteRoute> write_routes_;  ///< exact `…/set` topics
+    std::unordered_map<std::string, WriteRoute> write_routes_;     ///< exact `…/set` topics
     std::unordered_map<std::string, WriteRoute> exchange_routes_;  ///< exchange topic -> route
 
     GatewayCounters counters_;

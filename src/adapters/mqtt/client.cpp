@@ -469,22 +469,16 @@ void Client::Impl::renew_subscriptions(const std::vector<std::string>& filters) 
         return;
     }
     const bool v5 = options_.version == 5;
-    // no_local: never hear our own publications; retain-as-published off, so only retained
-    // messages sent because we subscribed carry the flag (and the gateway rejects them).
-    const paho::subscribe_options opt(v5, false);
+    // no_local: never hear our own publications. retain-as-published: a write published
+    // with retain keeps its flag when forwarded live, as it has when a new subscription
+    // fetches it later, so the gateway can refuse retained writes either way.
+    const paho::subscribe_options opt(v5, v5);
     try {
-        if (filters.size() == 1) {
-            // Paho C reads a one-topic SUBSCRIBE's options from a field that Paho C++ 1.2's
-            // collection overload leaves unset, so one topic takes the one-topic overload.
-            client_->subscribe(filters.front(), 1, nullptr, subscribe_listener_, opt);
-        } else {
-            std::vector<paho::subscribe_options> opts;
-            if (v5) {
-                opts.assign(filters.size(), opt);
-            }
-            client_->subscribe(paho::string_collection::create(filters),
-                               paho::iasync_client::qos_collection(filters.size(), 1), nullptr,
-                               subscribe_listener_, opts);
+        // One SUBSCRIBE per filter: Paho C++ 1.2's many-topic overload crashes inside
+        // MQTTAsync_subscribeMany when given subscribe options, and its one-topic overload is
+        // the only one that passes them on.
+        for (const auto& filter : filters) {
+            client_->subscribe(filter, 1, nullptr, subscribe_listener_, opt);
         }
     } catch (const paho::exception& e) {
         spdlog::warn("MQTT subscribe failed on {}: {}", options_.url, e.what());

@@ -2,11 +2,11 @@
 
 #include <arpa/inet.h>
 #include <net/if.h>
+#include <spdlog/spdlog.h>
 
 #include <boost/asio/error.hpp>
 #include <boost/asio/ip/address_v4.hpp>
 #include <cerrno>
-#include <spdlog/spdlog.h>
 #include <system_error>
 
 namespace eip2mqtt::adapters::udp {
@@ -21,8 +21,9 @@ constexpr std::size_t max_batches_per_wakeup = 16;
 void join_group(int fd, const MulticastMembership& membership) {
     const auto group = parse_ipv4(membership.group);
     if (!group) {
-        throw std::system_error(std::make_error_code(std::errc::invalid_argument),
-                                "multicast group '" + membership.group + "' is not an IPv4 address");
+        throw std::system_error(
+            std::make_error_code(std::errc::invalid_argument),
+            "multicast group '" + membership.group + "' is not an IPv4 address");
     }
     ip_mreqn request{};
     request.imr_multiaddr.s_addr = htonl(*group);
@@ -65,8 +66,8 @@ Receiver::Receiver(boost::asio::any_io_executor executor, const ReceiverOptions&
     if (rcvbuf > 0) setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
     socket_.bind(endpoint, ec);
     if (ec) {
-        throw std::system_error(ec, "cannot bind UDP " + options.bind + ":" +
-                                        std::to_string(options.port));
+        throw std::system_error(
+            ec, "cannot bind UDP " + options.bind + ":" + std::to_string(options.port));
     }
     for (const auto& membership : options.multicast) join_group(fd, membership);
 
@@ -148,8 +149,8 @@ std::size_t Receiver::drain() {
         const auto& source = sources_[static_cast<std::size_t>(i)];
         const Endpoint from{ntohl(source.sin_addr.s_addr), ntohs(source.sin_port)};
         ++stats_.datagrams;
-        handler_(std::span<const std::byte>(storage_.data() + static_cast<std::size_t>(i) * slot_size,
-                                            length),
+        handler_(std::span<const std::byte>(
+                     storage_.data() + static_cast<std::size_t>(i) * slot_size, length),
                  from, truncated);
         if (stopped_) break;
     }

@@ -29,8 +29,8 @@ Sender::Sender(boost::asio::any_io_executor executor, const SenderOptions& optio
     if (options.port != 0) socket_.set_option(ip::udp::socket::reuse_address(true));
     socket_.bind(ip::udp::endpoint(address, options.port), ec);
     if (ec) {
-        throw std::system_error(ec, "cannot bind UDP sender to " + options.bind + ":" +
-                                        std::to_string(options.port));
+        throw std::system_error(
+            ec, "cannot bind UDP sender to " + options.bind + ":" + std::to_string(options.port));
     }
     socket_.non_blocking(true);
 }
@@ -40,9 +40,9 @@ bool Sender::send_to(std::span<const std::byte> datagram, const Endpoint& to) {
     destination.sin_family = AF_INET;
     destination.sin_addr.s_addr = htonl(to.address);
     destination.sin_port = htons(to.port);
-    const auto sent = ::sendto(socket_.native_handle(), datagram.data(), datagram.size(),
-                               MSG_DONTWAIT, reinterpret_cast<const sockaddr*>(&destination),
-                               sizeof destination);
+    const auto sent =
+        ::sendto(socket_.native_handle(), datagram.data(), datagram.size(), MSG_DONTWAIT,
+                 reinterpret_cast<const sockaddr*>(&destination), sizeof destination);
     if (sent != static_cast<ssize_t>(datagram.size())) {
         ++stats_.errors;
         return false;

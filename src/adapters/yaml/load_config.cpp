@@ -391,8 +391,8 @@ private:
                 } else if (key == "multicast_interface") {
                     const auto s = text(value, key, k);
                     if (s && !parse_ipv4(*s)) {
-                        error(k, "multicast_interface " + in_quotes(*s) +
-                                     " is not an IPv4 address");
+                        error(k,
+                              "multicast_interface " + in_quotes(*s) + " is not an IPv4 address");
                     } else if (s) {
                         eip.multicast_interface = *s;
                     }

@@ -2,13 +2,14 @@
 // configuration, on its period, with values that change (ramps, toggles, waves), so that a
 // gateway can be tried and tested without a PLC.
 
+#include <spdlog/spdlog.h>
+
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <cmath>
 #include <csignal>
-#include <spdlog/spdlog.h>
 #include <vector>
 
 #include "eip2mqtt/adapters/udp/sender.hpp"
@@ -28,17 +29,25 @@ using core::plan::Value;
 Value simulated_value(const core::plan::TagSpec& tag, std::uint64_t cycle, std::size_t index) {
     const std::uint64_t step = cycle + index * 7;
     switch (tag.type) {
-        case TagType::bit: return (step / 10 + tag.address.bit) % 2 == 0;
-        case TagType::byte: return static_cast<std::uint64_t>(step % 256);
-        case TagType::int_: return static_cast<std::int64_t>(step % 2000) - 1000;
-        case TagType::word: return static_cast<std::uint64_t>(step % 65536);
-        case TagType::dint: return static_cast<std::int64_t>(step * 1000 % 200000) - 100000;
-        case TagType::udint: return static_cast<std::uint64_t>(step * 100000);
+        case TagType::bit:
+            return (step / 10 + tag.address.bit) % 2 == 0;
+        case TagType::byte:
+            return static_cast<std::uint64_t>(step % 256);
+        case TagType::int_:
+            return static_cast<std::int64_t>(step % 2000) - 1000;
+        case TagType::word:
+            return static_cast<std::uint64_t>(step % 65536);
+        case TagType::dint:
+            return static_cast<std::int64_t>(step * 1000 % 200000) - 100000;
+        case TagType::udint:
+            return static_cast<std::uint64_t>(step * 100000);
         case TagType::real:
             return static_cast<float>(std::round(1000.0 * (100.0 + 50.0 * std::sin(step / 20.0))) /
                                       1000.0);
-        case TagType::lint: return static_cast<std::int64_t>(step) * 1000000 - 500000000;
-        case TagType::lreal: return 1000.0 + 0.5 * static_cast<double>(step);
+        case TagType::lint:
+            return static_cast<std::int64_t>(step) * 1000000 - 500000000;
+        case TagType::lreal:
+            return 1000.0 + 0.5 * static_cast<double>(step);
     }
     return false;
 }
@@ -63,7 +72,8 @@ int run_sim(const SimOptions& options) {
         return 1;
     }
     const auto& config = loaded.value();
-    const auto port = options.port != 0 ? static_cast<std::uint16_t>(options.port) : config.eip.port;
+    const auto port =
+        options.port != 0 ? static_cast<std::uint16_t>(options.port) : config.eip.port;
     const auto target = adapters::udp::resolve_endpoint(options.target, port);
     if (!target) {
         spdlog::error("cannot resolve target {}", options.target);
@@ -122,10 +132,11 @@ int run_sim(const SimOptions& options) {
         sim.timer->async_wait([&, p = &sim](const boost::system::error_code& error) {
             if (!error) send_and_schedule(*p);
         });
-        spdlog::info("simulating exchange {} (producer {}, exchange {}, {} bytes, every {} ms) to {}",
-                     sim.plan.spec.name, core::wire::to_string(sim.plan.spec.producer_id),
-                     sim.plan.spec.exchange_id, sim.plan.length, sim.plan.spec.period.count(),
-                     adapters::udp::to_string(*target));
+        spdlog::info(
+            "simulating exchange {} (producer {}, exchange {}, {} bytes, every {} ms) to {}",
+            sim.plan.spec.name, core::wire::to_string(sim.plan.spec.producer_id),
+            sim.plan.spec.exchange_id, sim.plan.length, sim.plan.spec.period.count(),
+            adapters::udp::to_string(*target));
     }
 
     boost::asio::signal_set signals(loop, SIGINT, SIGTERM);

@@ -48,15 +48,24 @@ std::optional<TagType> parse_tag_type(std::string_view name, TypeNaming naming) 
 
 std::string_view to_string(TagType type) {
     switch (type) {
-        case TagType::bit: return "bit";
-        case TagType::byte: return "byte";
-        case TagType::int_: return "int";
-        case TagType::word: return "word";
-        case TagType::dint: return "dint";
-        case TagType::udint: return "udint";
-        case TagType::real: return "real";
-        case TagType::lint: return "lint";
-        case TagType::lreal: return "lreal";
+        case TagType::bit:
+            return "bit";
+        case TagType::byte:
+            return "byte";
+        case TagType::int_:
+            return "int";
+        case TagType::word:
+            return "word";
+        case TagType::dint:
+            return "dint";
+        case TagType::udint:
+            return "udint";
+        case TagType::real:
+            return "real";
+        case TagType::lint:
+            return "lint";
+        case TagType::lreal:
+            return "lreal";
     }
     return "?";
 }
@@ -64,14 +73,18 @@ std::string_view to_string(TagType type) {
 std::size_t size_of(TagType type) {
     switch (type) {
         case TagType::bit:
-        case TagType::byte: return 1;
+        case TagType::byte:
+            return 1;
         case TagType::int_:
-        case TagType::word: return 2;
+        case TagType::word:
+            return 2;
         case TagType::dint:
         case TagType::udint:
-        case TagType::real: return 4;
+        case TagType::real:
+            return 4;
         case TagType::lint:
-        case TagType::lreal: return 8;
+        case TagType::lreal:
+            return 8;
     }
     return 1;
 }
@@ -85,27 +98,42 @@ double type_min(TagType type) {
         case TagType::bit:
         case TagType::byte:
         case TagType::word:
-        case TagType::udint: return 0.0;
-        case TagType::int_: return std::numeric_limits<std::int16_t>::min();
-        case TagType::dint: return std::numeric_limits<std::int32_t>::min();
-        case TagType::lint: return static_cast<double>(std::numeric_limits<std::int64_t>::min());
-        case TagType::real: return -std::numeric_limits<float>::max();
-        case TagType::lreal: return -std::numeric_limits<double>::max();
+        case TagType::udint:
+            return 0.0;
+        case TagType::int_:
+            return std::numeric_limits<std::int16_t>::min();
+        case TagType::dint:
+            return std::numeric_limits<std::int32_t>::min();
+        case TagType::lint:
+            return static_cast<double>(std::numeric_limits<std::int64_t>::min());
+        case TagType::real:
+            return -std::numeric_limits<float>::max();
+        case TagType::lreal:
+            return -std::numeric_limits<double>::max();
     }
     return 0.0;
 }
 
 double type_max(TagType type) {
     switch (type) {
-        case TagType::bit: return 1.0;
-        case TagType::byte: return std::numeric_limits<std::uint8_t>::max();
-        case TagType::int_: return std::numeric_limits<std::int16_t>::max();
-        case TagType::word: return std::numeric_limits<std::uint16_t>::max();
-        case TagType::dint: return std::numeric_limits<std::int32_t>::max();
-        case TagType::udint: return std::numeric_limits<std::uint32_t>::max();
-        case TagType::lint: return static_cast<double>(std::numeric_limits<std::int64_t>::max());
-        case TagType::real: return std::numeric_limits<float>::max();
-        case TagType::lreal: return std::numeric_limits<double>::max();
+        case TagType::bit:
+            return 1.0;
+        case TagType::byte:
+            return std::numeric_limits<std::uint8_t>::max();
+        case TagType::int_:
+            return std::numeric_limits<std::int16_t>::max();
+        case TagType::word:
+            return std::numeric_limits<std::uint16_t>::max();
+        case TagType::dint:
+            return std::numeric_limits<std::int32_t>::max();
+        case TagType::udint:
+            return std::numeric_limits<std::uint32_t>::max();
+        case TagType::lint:
+            return static_cast<double>(std::numeric_limits<std::int64_t>::max());
+        case TagType::real:
+            return std::numeric_limits<float>::max();
+        case TagType::lreal:
+            return std::numeric_limits<double>::max();
     }
     return 0.0;
 }

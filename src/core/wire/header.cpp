@@ -22,8 +22,8 @@ std::optional<ProducerId> parse_producer_id(std::string_view text) {
         // GE's "decimal" form: the 4 wire bytes read as a little-endian u32.
         std::uint32_t le = 0;
         if (!parse_decimal(text, le)) return std::nullopt;
-        const std::uint32_t dotted = (le & 0xFF) << 24 | (le >> 8 & 0xFF) << 16 |
-                                     (le >> 16 & 0xFF) << 8 | (le >> 24 & 0xFF);
+        const std::uint32_t dotted =
+            (le & 0xFF) << 24 | (le >> 8 & 0xFF) << 16 | (le >> 16 & 0xFF) << 8 | (le >> 24 & 0xFF);
         return ProducerId{dotted};
     }
     std::uint32_t value = 0;

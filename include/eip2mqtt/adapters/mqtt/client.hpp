@@ -12,6 +12,7 @@
 /// subscriptions are renewed and the on_connected handler runs so that the gateway republishes
 /// its retained state.
 
+#include <boost/asio/any_io_executor.hpp>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -19,8 +20,6 @@
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <boost/asio/any_io_executor.hpp>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 

@@ -23,8 +23,8 @@ struct Incoming {
     std::string topic;
     std::string payload;
     bool retained = false;
-    std::string response_topic;    ///< MQTT 5 request/response; empty when absent
-    std::string correlation_data;  ///< MQTT 5; binary, may be empty
+    std::string response_topic;          ///< MQTT 5 request/response; empty when absent
+    std::string correlation_data;        ///< MQTT 5; binary, may be empty
     std::int64_t message_expiry_s = -1;  ///< MQTT 5 message expiry interval; -1 when absent
 };
 

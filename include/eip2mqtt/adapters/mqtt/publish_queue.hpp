@@ -16,7 +16,7 @@
 namespace eip2mqtt::adapters::mqtt {
 
 class PublishQueue {
-  public:
+public:
     explicit PublishQueue(std::size_t capacity);
 
     /// Queues `message`, replacing a queued one of the same topic when both coalesce.
@@ -33,7 +33,7 @@ class PublishQueue {
     std::uint64_t dropped_overflow() const { return dropped_overflow_; }  ///< oldest dropped
     std::uint64_t coalesced() const { return coalesced_; }  ///< replaced by a newer value
 
-  private:
+private:
     void drop_oldest();
 
     std::size_t capacity_;

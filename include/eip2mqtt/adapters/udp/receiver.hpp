@@ -4,19 +4,18 @@
 ///
 /// Threading: constructed, started and stopped on the loop; the handler runs on the loop.
 
-#include <cstddef>
-#include <cstdint>
-#include <functional>
-#include <span>
-#include <string>
-#include <vector>
-
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <sys/uio.h>
 
 #include <boost/asio/any_io_executor.hpp>
 #include <boost/asio/ip/udp.hpp>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
 
@@ -31,7 +30,7 @@ struct ReceiverOptions {
     std::string bind = "0.0.0.0";
     std::uint16_t port = 18246;  ///< 0: an ephemeral port (tests)
     std::vector<MulticastMembership> multicast;
-    std::size_t batch = 64;                    ///< datagrams per recvmmsg
+    std::size_t batch = 64;                      ///< datagrams per recvmmsg
     int receive_buffer_bytes = 8 * 1024 * 1024;  ///< SO_RCVBUF request (the kernel may cap it)
 };
 

@@ -5,13 +5,12 @@
 ///
 /// Threading: used from the loop only.
 
+#include <boost/asio/any_io_executor.hpp>
+#include <boost/asio/ip/udp.hpp>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
-
-#include <boost/asio/any_io_executor.hpp>
-#include <boost/asio/ip/udp.hpp>
 
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
 

@@ -29,7 +29,7 @@ struct TagConfig {
 };
 
 struct ExchangeConfig {
-    plan::ExchangeSpec spec;  ///< spec.tags is left empty: see `tags`
+    plan::ExchangeSpec spec;      ///< spec.tags is left empty: see `tags`
     std::vector<TagConfig> tags;  ///< `tags:` entries, then the point-list rows
     Marks marks;
 };
@@ -52,7 +52,7 @@ enum class PayloadFormat : std::uint8_t { json, raw };
 
 struct MqttSection {
     std::string url = "tcp://localhost:1883";
-    int version = 5;  ///< 5 or 3 (3.1.1)
+    int version = 5;        ///< 5 or 3 (3.1.1)
     std::string client_id;  ///< default: eip2mqtt-{gateway.id}
     std::string username;
     std::string password_file;
@@ -77,8 +77,9 @@ struct EipSection {
     std::string bind = "0.0.0.0";
     std::uint16_t port = 18246;
     std::vector<MulticastGroup> multicast;
-    int multicast_ttl = 1;            ///< TTL of produced multicast datagrams
-    std::string multicast_interface;  ///< IPv4 address of the interface produced multicast leaves by
+    int multicast_ttl = 1;  ///< TTL of produced multicast datagrams
+    std::string
+        multicast_interface;  ///< IPv4 address of the interface produced multicast leaves by
     Marks marks;
 };
 

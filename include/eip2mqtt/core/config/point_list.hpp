@@ -14,8 +14,8 @@
 namespace eip2mqtt::core::config {
 
 struct PointRow {
-    plan::TagSpec tag;  ///< name, address, type; writable when AccessType is Write
-    std::string node;   ///< the exchange it belongs to
+    plan::TagSpec tag;   ///< name, address, type; writable when AccessType is Write
+    std::string node;    ///< the exchange it belongs to
     bool write = false;  ///< AccessType Write (produced) rather than Read (consumed)
     Mark mark;           ///< file and line of the row (column 1)
 };

@@ -24,23 +24,24 @@ struct ExchangeSpec {
     wire::Signature signature;            ///< 0.0 = not used
     std::chrono::milliseconds period{1000};
     std::optional<std::chrono::milliseconds> timeout;  ///< consume; default 3 x period; 0 disables
-    std::optional<std::uint32_t> source;  ///< consume: IPv4 (host order) the datagrams must come from
-    std::string destination;              ///< produce: host or host:port
-    std::string topic;                    ///< under base_topic
-    std::string points;                   ///< point-list CSV file, relative to the config file
+    std::optional<std::uint32_t>
+        source;               ///< consume: IPv4 (host order) the datagrams must come from
+    std::string destination;  ///< produce: host or host:port
+    std::string topic;        ///< under base_topic
+    std::string points;       ///< point-list CSV file, relative to the config file
     std::vector<TagSpec> tags;
 };
 
 /// An exchange with its tags' topics and derived figures.
 struct ExchangePlan {
     ExchangeSpec spec;
-    std::uint16_t length = 0;             ///< resolved data length, 1..1400
+    std::uint16_t length = 0;              ///< resolved data length, 1..1400
     std::chrono::milliseconds timeout{0};  ///< resolved update timeout; 0 disables
-    std::string topic;                    ///< {base}/{exchange.topic}
-    std::string status_topic;             ///< topic + "/_status"
-    std::string values_topic;             ///< topic + "/_values" (batch mode)
-    std::string set_topic;                ///< topic + "/set" (atomic multi-tag writes)
-    std::vector<TagPlan> tags;            ///< in configuration order
+    std::string topic;                     ///< {base}/{exchange.topic}
+    std::string status_topic;              ///< topic + "/_status"
+    std::string values_topic;              ///< topic + "/_values" (batch mode)
+    std::string set_topic;                 ///< topic + "/set" (atomic multi-tag writes)
+    std::vector<TagPlan> tags;             ///< in configuration order
 
     wire::ExchangeKey key() const { return {spec.producer_id, spec.exchange_id}; }
 };

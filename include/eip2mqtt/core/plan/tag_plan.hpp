@@ -17,7 +17,7 @@ struct TagSpec {
     Address address;
     TagType type = TagType::byte;
     std::string unit;
-    double deadband = 0.0;  ///< absolute; 0 publishes any change
+    double deadband = 0.0;             ///< absolute; 0 publishes any change
     std::chrono::seconds refresh{60};  ///< republish at least this often
     bool writable = false;
     std::optional<double> min;

@@ -38,7 +38,8 @@ struct Signature {
     bool is_set() const { return major != 0 || minor != 0; }
     std::uint16_t to_wire() const { return static_cast<std::uint16_t>(major << 8 | minor); }
     static Signature from_wire(std::uint32_t field) {
-        return {static_cast<std::uint8_t>(field >> 8 & 0xFF), static_cast<std::uint8_t>(field & 0xFF)};
+        return {static_cast<std::uint8_t>(field >> 8 & 0xFF),
+                static_cast<std::uint8_t>(field & 0xFF)};
     }
     friend bool operator==(const Signature&, const Signature&) = default;
 };
@@ -58,7 +59,7 @@ struct ExchangeKey {
 struct ExchangeKeyHash {
     std::size_t operator()(const ExchangeKey& key) const noexcept {
         return std::hash<std::uint64_t>{}(std::uint64_t{key.producer_id.value} << 32 |
-                                           key.exchange_id);
+                                          key.exchange_id);
     }
 };
 
@@ -69,9 +70,9 @@ struct Header {
     std::uint16_t request_id = 0;
     ProducerId producer_id;
     std::uint32_t exchange_id = 0;
-    std::uint32_t time_s = 0;   ///< seconds since 1970 UTC; 0 means "no timestamp"
-    std::uint32_t time_ns = 0;  ///< 0..999 999 999
-    std::uint32_t status = 0;   ///< recorded, never rejected on
+    std::uint32_t time_s = 0;     ///< seconds since 1970 UTC; 0 means "no timestamp"
+    std::uint32_t time_ns = 0;    ///< 0..999 999 999
+    std::uint32_t status = 0;     ///< recorded, never rejected on
     std::uint32_t signature = 0;  ///< raw field; see Signature::from_wire
     std::uint32_t reserved = 0;
 
