@@ -59,6 +59,8 @@ adapters::mqtt::ClientOptions client_options(const core::config::Config& config,
                                                  mqtt.tls->key_file, mqtt.tls->verify};
     }
     options.keepalive = mqtt.keepalive;
+    options.session_expiry = mqtt.session_expiry;
+    options.clean_start = mqtt.session_expiry.count() == 0;
     options.availability_topic = availability_topic;
     options.buffer_max_messages = mqtt.buffer_max_messages;
     return options;

@@ -42,13 +42,10 @@ using Keys = std::span<const std::string_view>;
 constexpr std::array<std::string_view, 5> top_keys{"gateway", "mqtt", "eip", "metrics",
                                                    "exchanges"};
 constexpr std::array<std::string_view, 3> gateway_keys{"id", "state_dir", "log_level"};
-constexpr std::array<std::string_view, 14> mqtt_keys{"url",           "version",
-                                                     "client_id",     "username",
-                                                     "password_file", "tls",
-                                                     "base_topic",    "qos",
-                                                     "retain",        "payload",
-                                                     "buffer",        "batch",
-                                                     "keepalive_s",   "metrics_interval_s"};
+constexpr std::array<std::string_view, 15> mqtt_keys{
+    "url",    "version", "client_id", "username",    "password_file",      "tls",
+    "base_topic", "qos", "retain",    "payload",     "buffer",             "batch",
+    "keepalive_s", "metrics_interval_s", "session_expiry_s"};
 constexpr std::array<std::string_view, 4> tls_keys{"ca_file", "cert_file", "key_file", "verify"};
 constexpr std::array<std::string_view, 1> buffer_keys{"max_messages"};
 constexpr std::array<std::string_view, 5> eip_keys{"bind", "port", "multicast", "multicast_ttl",
@@ -58,9 +55,9 @@ constexpr std::array<std::string_view, 1> metrics_keys{"listen"};
 constexpr std::array<std::string_view, 13> exchange_keys{
     "name",       "direction", "producer_id", "exchange_id", "length", "signature", "period_ms",
     "timeout_ms", "source",    "destination", "topic",       "points", "tags"};
-constexpr std::array<std::string_view, 11> tag_keys{"name",     "address",   "type",       "unit",
-                                                    "deadband", "refresh_s", "writable",   "min",
-                                                    "max",      "initial",   "description"};
+constexpr std::array<std::string_view, 12> tag_keys{
+    "name", "address", "type", "unit", "deadband", "refresh_s", "writable", "min", "max",
+    "initial", "description", "max_writes_per_s"};
 
 std::string in_quotes(std::string_view text) { return "'" + std::string(text) + "'"; }
 
@@ -341,6 +338,10 @@ private:
                      } else if (key == "keepalive_s") {
                          if (const auto n = integer<int>(value, key, k, 1, 65535)) {
                              mqtt.keepalive = std::chrono::seconds(*n);
+                         }
+                     } else if (key == "session_expiry_s") {
+                         if (const auto n = integer<long long>(value, key, k, 0, 4294967295LL)) {
+                             mqtt.session_expiry = std::chrono::seconds(*n);
                          }
                      } else if (key == "metrics_interval_s") {
                          if (const auto n = integer<int>(value, key, k, 1, 86400)) {
@@ -641,6 +642,13 @@ private:
                          if (const auto n = integer<long long>(value, key, k, 0)) {
                              spec.refresh = std::chrono::seconds(*n);
                          } else {
+                             broken = true;
+                         }
+                     } else if (key == "max_writes_per_s") {
+                         if (const auto d = number(value, key, k); d && *d >= 0) {
+                             spec.max_writes_per_s = *d;
+                         } else {
+                             if (d) error(k, "'max_writes_per_s' must be 0 (no limit) or more");
                              broken = true;
                          }
                      } else if (key == "writable") {

@@ -64,6 +64,9 @@ struct MqttSection {
     std::size_t buffer_max_messages = 100000;
     bool batch = false;
     std::chrono::seconds keepalive{30};
+    /// MQTT 5 session expiry: 0 starts clean every time; more keeps the session (and the QoS 1
+    /// writes sent to it) on the broker while the gateway is away, up to this long.
+    std::chrono::seconds session_expiry{0};
     std::chrono::seconds metrics_interval{10};
     Marks marks;
 };

@@ -23,6 +23,7 @@ struct TagSpec {
     std::optional<double> min;
     std::optional<double> max;
     std::optional<Value> initial;  ///< produced exchanges: value when no image is persisted
+    double max_writes_per_s = 0;   ///< writes accepted per second (burst of 1 s); 0: no limit
 };
 
 /// A tag with its precomputed topics.
