@@ -39,6 +39,18 @@ int main(int argc, char** argv) {
         cli.add_subcommand("import-points", "Convert a SCADA point list (CSV) into YAML exchanges");
     import_cmd->add_option("FILE", points_path, "Point list CSV file")->required();
 
+    SniffOptions sniff;
+    auto* sniff_cmd =
+        cli.add_subcommand("sniff", "Print received datagrams and per-exchange statistics");
+    sniff_cmd->add_option("--port", sniff.port, "UDP port (default: eip.port with -c, else 18246)");
+    sniff_cmd->add_option("--bind", sniff.bind, "Local address (default: eip.bind, else 0.0.0.0)");
+    sniff_cmd->add_option("-c,--config", sniff.config_path, "Configuration: decode its tags");
+    sniff_cmd->add_option("--duration", sniff.duration_s,
+                          "Seconds to run (default: until stopped)");
+    sniff_cmd->add_option("--interval", sniff.interval_s, "Seconds between statistics tables")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -49,6 +61,7 @@ int main(int argc, char** argv) {
         if (*check_cmd) return run_check(check_path, std::cout, std::cerr);
         if (*sim_cmd) return run_sim(sim);
         if (*import_cmd) return run_import_points(points_path, std::cout, std::cerr);
+        if (*sniff_cmd) return run_sniff(sniff, std::cout);
         if (run.config_path.empty()) {
             std::cerr << "eip2mqtt: no configuration given (use -c FILE); see --help\n";
             return 2;

@@ -21,3 +21,6 @@ tools/build.sh asan
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 (cd build-asan && ctest --output-on-failure -j "$(nproc)" --timeout 600)
+
+echo "== fuzzing"
+tools/fuzz.sh

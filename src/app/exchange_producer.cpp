@@ -39,6 +39,8 @@ ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
       sink_(std::move(sink)),
       image_(plan_, restore(store_, plan_)),
       datagram_(core::wire::header_size + plan_.length) {
+    limiters_.reserve(plan_.tags.size());
+    for (const auto& tag : plan_.tags) limiters_.emplace_back(tag.spec.max_writes_per_s);
     spdlog::info("exchange {}: producing to {} every {} ms, {} image", plan_.spec.name,
                  adapters::udp::to_string(destination_), plan_.spec.period.count(),
                  image_.restored() ? "restored" : "initial");
@@ -53,11 +55,22 @@ void ExchangeProducer::stop() { timer_.cancel(); }
 
 void ExchangeProducer::schedule() {
     timer_.expires_at(schedule_->deadline());
-    timer_.async_wait([this](const boost::system::error_code& error) { on_deadline(error); });
+    // On operation_aborted the producer may be gone (stopped on reload): touch nothing.
+    timer_.async_wait([this](const boost::system::error_code& error) {
+        if (!error) on_deadline(error);
+    });
 }
 
 std::optional<core::write::WriteRejection> ExchangeProducer::stage(
-    std::vector<core::write::TagWrite> writes, WriteReply reply) {
+    std::vector<core::write::TagWrite> writes, WriteReply reply, core::MonoTime now) {
+    for (const auto& write : writes) {
+        const auto& tag = plan_.tags[write.tag_index].spec;
+        if (!limiters_[write.tag_index].allow(now)) {
+            return core::write::WriteRejection{
+                core::write::WriteError::rate_limited,
+                fmt::format("{}: more than {} writes per second", tag.name, tag.max_writes_per_s)};
+        }
+    }
     const auto id = next_write_id_++;
     if (!image_.stage({id, std::move(writes)})) {
         return core::write::WriteRejection{
@@ -124,7 +137,15 @@ void ExchangeProducer::publish_echo(core::WallTime wall, bool all) {
     echoed_.assign(data.begin(), data.end());
 }
 
+void ExchangeProducer::on_tick(core::MonoTime now) {
+    if (counters_.sent == last_status_sent_) return;
+    if (last_status_at_ && now - *last_status_at_ < std::chrono::seconds(1)) return;
+    last_status_at_ = now;
+    publish_status();
+}
+
 void ExchangeProducer::publish_status() {
+    last_status_sent_ = counters_.sent;
     sink_({plan_.status_topic,
            fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
                        R"("writes_applied":{},"writes_pending":{}}})",

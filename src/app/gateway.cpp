@@ -74,39 +74,14 @@ Gateway::Gateway(core::config::Config config)
                         config_.mqtt.batch},
       availability_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/state"),
       metrics_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/metrics"),
-      signals_(loop_, SIGINT, SIGTERM),
+      signals_(loop_, SIGINT, SIGTERM, SIGHUP),
       tick_timer_(loop_),
       metrics_timer_(loop_),
+      watchdog_timer_(loop_),
       image_store_(config_.gateway.state_dir) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(loop_.get_executor(),
                                                      client_options(config_, availability_topic_));
-    auto sink = [this](adapters::mqtt::Message&& message) { mqtt_->publish(std::move(message)); };
-    for (auto& plan : core::config::make_plans(config_)) {
-        if (plan.spec.direction == core::plan::Direction::produce) {
-            if (!sender_) {
-                adapters::udp::SenderOptions sender_options;
-                sender_options.bind = config_.eip.bind;
-                sender_options.multicast_ttl = config_.eip.multicast_ttl;
-                sender_options.multicast_interface = config_.eip.multicast_interface;
-                sender_ =
-                    std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
-            }
-            const auto destination =
-                adapters::udp::resolve_endpoint(plan.spec.destination, config_.eip.port);
-            if (!destination) {
-                throw std::runtime_error("exchange " + plan.spec.name +
-                                         ": cannot resolve destination " + plan.spec.destination);
-            }
-            producers_.push_back(std::make_unique<ExchangeProducer>(
-                std::move(plan), *destination, loop_.get_executor(), *sender_, image_store_,
-                publish_settings_, sink));
-            continue;
-        }
-        const auto key = plan.key();
-        consumers_.push_back(
-            std::make_unique<ExchangeConsumer>(std::move(plan), publish_settings_, sink));
-        by_key_.emplace(key, consumers_.back().get());
-    }
+    apply_exchanges(core::config::make_plans(config_), false);
 
     adapters::udp::ReceiverOptions receiver_options;
     receiver_options.bind = config_.eip.bind;
@@ -115,7 +90,6 @@ Gateway::Gateway(core::config::Config config)
         receiver_options.multicast.push_back({group.group, group.interface});
     }
     receiver_ = std::make_unique<adapters::udp::Receiver>(loop_.get_executor(), receiver_options);
-    build_write_routes();
 }
 
 Gateway::~Gateway() = default;
@@ -158,6 +132,7 @@ void Gateway::start() {
     wait_signal();
     schedule_tick();
     schedule_metrics();
+    schedule_watchdog();
     spdlog::info(
         "eip2mqtt {} listening on UDP {}:{}: {} consumed and {} produced exchange(s); MQTT {}",
         config_.gateway.id, config_.eip.bind, receiver_->local_port(), consumers_.size(),
@@ -167,11 +142,30 @@ void Gateway::start() {
 }
 
 void Gateway::wait_signal() {
+    // Signals only reach the loop through the signal_set: handlers run here, between two
+    // events, never in signal context (mosquitto's signals.c sets flags for the same reason).
     signals_.async_wait([this](const boost::system::error_code& error, int signo) {
         if (error) return;
+        if (signo == SIGHUP) {
+            reload();
+            wait_signal();
+            return;
+        }
         spdlog::info("received signal {}", signo == SIGINT ? "SIGINT" : "SIGTERM");
         stopping_ = true;
         loop_.stop();
+    });
+}
+
+void Gateway::schedule_watchdog() {
+    const auto interval = notifier_.watchdog_interval();
+    if (!interval) return;
+    // Pinged from the loop that does the work: a wedged loop stops the pings and systemd
+    // restarts the service.
+    notifier_.watchdog();
+    watchdog_timer_.expires_after(*interval);
+    watchdog_timer_.async_wait([this](const boost::system::error_code& error) {
+        if (!error) schedule_watchdog();
     });
 }
 
@@ -253,7 +247,10 @@ void Gateway::on_tick() {
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
-    if (refresh_scan) last_refresh_scan_ = now;
+    if (refresh_scan) {
+        last_refresh_scan_ = now;
+        for (auto& producer : producers_) producer->on_tick(now);
+    }
     for (auto& consumer : consumers_) {
         const auto before = consumer->exchange().state();
         consumer->on_tick(now, wall, refresh_scan);

@@ -145,7 +145,8 @@ void Gateway::on_message(adapters::mqtt::Incoming message) {
             if (!add(index, input)) return;
         }
     }
-    if (auto rejection = route.producer->stage(std::move(writes), reply)) {
+    if (auto rejection =
+            route.producer->stage(std::move(writes), reply, std::chrono::steady_clock::now())) {
         return reject_write(reply, message.topic, *rejection);
     }
     ++counters_.writes_ok;

@@ -28,8 +28,10 @@ std::string TempDir::write(const std::string& name, const std::string& content) 
     return file;
 }
 
-void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mqtt_extra) {
-    broker_ = std::make_unique<Mosquitto>();
+void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mqtt_extra,
+                        GatewayOptions options) {
+    options_ = std::move(options);
+    broker_ = std::make_unique<Mosquitto>(options_.broker);
     if (udp_port_ == 0) udp_port_ = free_udp_port();
     udp_ = std::make_unique<UdpClient>();
     const std::string config =
@@ -41,7 +43,7 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
         "  log_level: debug\n"
         "mqtt:\n"
         "  url: " +
-        broker_->url() +
+        (options_.secure ? broker_->secure_url() : broker_->url()) +
         "\n"
         "  base_topic: test\n"
         "  qos: 1\n"
@@ -61,9 +63,11 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
 
 void GatewayTest::start_gateway() {
     const std::size_t from = recorder_->count();
+    auto env = gateway_env_;
+    env.insert(options_.env.begin(), options_.env.end());
     gateway_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", config_path_});
-    wait_online(from);
+        std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", config_path_}, std::move(env));
+    if (options_.wait_online) wait_online(from);
 }
 
 void GatewayTest::wait_online(std::size_t from) {

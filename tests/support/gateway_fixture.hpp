@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -28,13 +29,26 @@ private:
     std::string path_;
 };
 
+/// Optional settings of GatewayTest::start; the defaults give the plain set-up.
+struct GatewayOptions {
+    MosquittoOptions broker;  ///< how the broker is started
+    /// The gateway connects to the broker's secure listener (Mosquitto::secure_url()) instead
+    /// of the plain one; the recorder always uses the plain one.
+    bool secure = false;
+    std::map<std::string, std::string> env;  ///< added to the gateway's environment
+    /// false: start() and start_gateway() return once the process is started, for tests
+    /// where the gateway must not come online.
+    bool wait_online = true;
+};
+
 class GatewayTest : public ::testing::Test {
 protected:
     static constexpr const char* base_topic = "test";
 
     /// Starts broker, gateway and recorder. `exchanges_yaml` is the text of the `exchanges:`
     /// list (indented by two spaces); `mqtt_extra` adds keys to the mqtt section.
-    void start(const std::string& exchanges_yaml, const std::string& mqtt_extra = "");
+    void start(const std::string& exchanges_yaml, const std::string& mqtt_extra = "",
+               GatewayOptions options = {});
     /// Starts only the gateway again (after stop_gateway or a kill), same configuration.
     void start_gateway();
     /// Waits for `online` on the availability topic, counting only messages after `from`.
@@ -60,6 +74,8 @@ protected:
     std::unique_ptr<UdpClient> udp_;
     std::uint16_t udp_port_ = 0;  ///< the gateway's EIP port; set before start() to choose it
     std::string config_path_;
+    std::map<std::string, std::string> gateway_env_;  ///< added to the gateway's environment
+    GatewayOptions options_;                          ///< as given to start()
 };
 
 }  // namespace eip2mqtt::test

@@ -19,12 +19,14 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/child_process.hpp"
 #include "tests/support/free_port.hpp"
 
 namespace eip2mqtt::test {
 namespace {
 
 constexpr const char* kMosquitto = "/usr/sbin/mosquitto";
+constexpr const char* kMosquittoPasswd = "/usr/bin/mosquitto_passwd";
 constexpr auto kStartDeadline = std::chrono::seconds(10);
 constexpr auto kPollInterval = std::chrono::milliseconds(10);
 
@@ -65,8 +67,30 @@ Mosquitto::Mosquitto(MosquittoOptions options) : options_(std::move(options)) {
         throw std::runtime_error(std::string("mkdtemp: ") + std::strerror(errno));
     }
     dir_ = templ;
+    const bool secure = options_.tls.has_value() || !options_.users.empty();
+    if (secure) {
+        do {
+            secure_port_ = free_tcp_port();
+        } while (secure_port_ == port_);
+    }
+    for (std::size_t i = 0; i < options_.users.size(); ++i) {
+        std::vector<std::string> argv{kMosquittoPasswd, "-b"};
+        if (i == 0) {
+            argv.emplace_back("-c");
+        }
+        argv.insert(argv.end(),
+                    {dir_ + "/passwd", options_.users[i].first, options_.users[i].second});
+        const auto result = run_command(std::move(argv), kStartDeadline);
+        if (result.status != 0) {
+            throw std::runtime_error("mosquitto_passwd failed: " + result.output);
+        }
+    }
 
     std::ofstream conf(dir_ + "/mosquitto.conf");
+    if (secure) {
+        // allow_anonymous and password_file then apply to the listener they follow.
+        conf << "per_listener_settings true\n";
+    }
     conf << "listener " << port_ << " 127.0.0.1\n"
          << "allow_anonymous true\n"
          // As root, Mosquitto would switch to the "mosquitto" user and lose access to dir_.
@@ -80,6 +104,22 @@ Mosquitto::Mosquitto(MosquittoOptions options) : options_(std::move(options)) {
              << "persistence_file mosquitto.db\n";
     } else {
         conf << "persistence false\n";
+    }
+    if (secure) {
+        conf << "listener " << secure_port_ << " 127.0.0.1\n";
+        if (options_.tls) {
+            conf << "cafile " << options_.tls->ca_file << "\n"
+                 << "certfile " << options_.tls->cert_file << "\n"
+                 << "keyfile " << options_.tls->key_file << "\n"
+                 << "require_certificate " << (options_.tls->require_certificate ? "true" : "false")
+                 << "\n";
+        }
+        if (options_.users.empty()) {
+            conf << "allow_anonymous true\n";
+        } else {
+            conf << "allow_anonymous false\n"
+                 << "password_file " << dir_ << "/passwd\n";
+        }
     }
     conf << options_.extra_config << "\n";
     conf.close();
@@ -100,6 +140,12 @@ Mosquitto::~Mosquitto() {
 }
 
 std::string Mosquitto::url() const { return "tcp://127.0.0.1:" + std::to_string(port_); }
+
+std::string Mosquitto::secure_url() const {
+    return (options_.tls ? "ssl://127.0.0.1:" : "tcp://127.0.0.1:") + std::to_string(secure_port_);
+}
+
+std::string Mosquitto::log() const { return read_file(dir_ + "/mosquitto.log"); }
 
 void Mosquitto::start() {
     if (pid_ > 0) {
@@ -125,7 +171,8 @@ void Mosquitto::start() {
 
     // Event polling with a bound: the broker gives no readiness signal but its listening port.
     const auto deadline = std::chrono::steady_clock::now() + kStartDeadline;
-    while (!accepts_connections(port_)) {
+    while (!accepts_connections(port_) ||
+           (secure_port_ != 0 && !accepts_connections(secure_port_))) {
         int status = 0;
         if (::waitpid(pid_, &status, WNOHANG) == pid_) {
             pid_ = -1;

@@ -208,4 +208,16 @@ void MqttRecorder::publish_request(const std::string& topic, const std::string& 
     }
 }
 
+void MqttRecorder::publish_with_expiry(const std::string& topic, const std::string& payload,
+                                       std::chrono::seconds expiry) {
+    auto message = ::mqtt::make_message(topic, payload, 1, false);
+    message->set_properties(::mqtt::properties{
+        {::mqtt::property::MESSAGE_EXPIRY_INTERVAL, static_cast<int>(expiry.count())},
+    });
+    auto tok = impl_->client.publish(message);
+    if (!tok->wait_for(kOperationTimeout)) {
+        throw std::runtime_error("MqttRecorder: publish timed out");
+    }
+}
+
 }  // namespace eip2mqtt::test

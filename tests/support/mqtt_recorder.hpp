@@ -52,6 +52,10 @@ public:
     /// Publishes an MQTT 5 request: with a response topic and correlation data.
     void publish_request(const std::string& topic, const std::string& payload,
                          const std::string& response_topic, const std::string& correlation_data);
+    /// Publishes (QoS 1, not retained) with an MQTT 5 message expiry interval: the broker
+    /// discards the message if it cannot deliver it within `expiry`.
+    void publish_with_expiry(const std::string& topic, const std::string& payload,
+                             std::chrono::seconds expiry);
 
 private:
     struct Impl;

@@ -35,4 +35,19 @@ int run_sim(const SimOptions& options);
 /// `check` (overlapping tags...) is printed all the same, its errors on `err` (exit 1).
 int run_import_points(const std::string& csv_path, std::ostream& out, std::ostream& err);
 
+struct SniffOptions {
+    std::string bind;         ///< empty: eip.bind of the configuration, else 0.0.0.0
+    int port = 0;             ///< 0: eip.port of the configuration, else 18246
+    std::string config_path;  ///< optional: decode the tags of the configured exchanges
+    double duration_s = 0;    ///< 0: until SIGINT/SIGTERM
+    double interval_s = 1;    ///< seconds between statistics tables; > 0
+};
+/// `sniff`: a live decoder. Prints to `out` one line per datagram (receive time, source, header
+/// fields, data length; or why it is malformed), with `config_path` the decoded tags of the
+/// exchange matching its key (consumed or produced), and every `interval_s` a table per exchange
+/// (rate, mean period, jitter, missed, duplicates, out of order; eip-protocol.md §4 rule 6). With
+/// a configuration it also joins eip.multicast. Returns when stopped or after `duration_s`, with
+/// a last table; throws std::system_error when it cannot bind (a start-up error).
+int run_sniff(const SniffOptions& options, std::ostream& out);
+
 }  // namespace eip2mqtt::app

@@ -25,6 +25,8 @@ struct PublishSettings {
     bool retain = true;
     core::config::PayloadFormat format = core::config::PayloadFormat::json;
     bool batch = false;
+
+    friend bool operator==(const PublishSettings&, const PublishSettings&) = default;
 };
 
 /// Where publications go (the MQTT client's queue, or a recorder in tests).
@@ -46,6 +48,7 @@ public:
     void republish(core::MonoTime now, core::WallTime wall);
 
     const core::plan::ExchangePlan& plan() const { return plan_; }
+    const PublishSettings& settings() const { return settings_; }
     const core::exchange::ConsumedExchange& exchange() const { return exchange_; }
 
 private:

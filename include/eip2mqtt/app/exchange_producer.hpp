@@ -21,6 +21,7 @@
 #include "eip2mqtt/core/exchange/produced_image.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/write/rate_limiter.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
 
 namespace eip2mqtt::app {
@@ -54,14 +55,19 @@ public:
     void stop();
 
     /// Queues a validated write; its result is published after the datagram carrying it is
-    /// sent. Fails with queue_full when the queue is full.
+    /// sent. Fails with rate_limited when a tag is written more often than its
+    /// `max_writes_per_s`, and with queue_full when the queue is full.
     std::optional<core::write::WriteRejection> stage(std::vector<core::write::TagWrite> writes,
-                                                     WriteReply reply);
+                                                     WriteReply reply, core::MonoTime now);
+
+    /// `_status` at most once a second while its counters move (product.md).
+    void on_tick(core::MonoTime now);
 
     /// Publishes the echo topics and `_status` again (after a reconnect).
     void republish(core::WallTime wall);
 
     const core::plan::ExchangePlan& plan() const { return plan_; }
+    const PublishSettings& settings() const { return settings_; }
     const ProducerCounters& counters() const { return counters_; }
     const core::exchange::ProducedImage& image() const { return image_; }
 
@@ -84,6 +90,9 @@ private:
     std::vector<std::byte> echoed_;  ///< data bytes as last echoed on the tag topics
     std::vector<std::uint64_t> carried_;
     std::unordered_map<std::uint64_t, WriteReply> replies_;
+    std::vector<core::write::RateLimiter> limiters_;  ///< one per tag
+    std::optional<core::MonoTime> last_status_at_;
+    std::uint64_t last_status_sent_ = 0;
     std::uint64_t next_write_id_ = 1;
     ProducerCounters counters_;
     bool failing_ = false;  ///< the last send failed: `_status` says paused

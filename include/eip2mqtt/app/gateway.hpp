@@ -65,6 +65,12 @@ private:
     void reject_write(const WriteReply& reply, const std::string& target,
                       const core::write::WriteRejection& rejection);
     void build_write_routes();
+    /// Builds the exchanges of `plans`, keeping running ones whose plan is unchanged, stopping
+    /// removed and changed ones and clearing their retained topics that no new exchange uses.
+    void apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running);
+    /// SIGHUP: a valid new file is applied, an invalid one refused with its errors logged.
+    void reload();
+    void schedule_watchdog();
     std::vector<std::string> write_subscriptions() const;
     void schedule_tick();
     void on_tick();
@@ -82,6 +88,7 @@ private:
     boost::asio::signal_set signals_;
     boost::asio::steady_timer tick_timer_;
     boost::asio::steady_timer metrics_timer_;
+    boost::asio::steady_timer watchdog_timer_;
     adapters::systemd::Notifier notifier_;
     std::unique_ptr<adapters::mqtt::Client> mqtt_;
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;

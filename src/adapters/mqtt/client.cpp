@@ -80,6 +80,11 @@ std::string describe_failure(const paho::token& tok) {
     const int rc = tok.get_return_code();
     const int reason = tok.get_reason_code();
     std::string text = paho::exception::error_str(rc);
+    if (reason == 0 && rc >= 0x80) {
+        // Paho C++ 1.2 reports a refused MQTT 5 CONNACK as a return code holding the reason
+        // code (e.g. 135, Not authorized), which error_str does not know.
+        return paho::exception::reason_code_str(rc);
+    }
     if (reason != 0) {
         text += fmt::format(" ({})", paho::exception::reason_code_str(reason));
     }
@@ -105,6 +110,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     void do_connect();
     void on_connect(bool ok, std::string reason);
     void on_connection_lost(std::string cause);
+    /// Adds what connect_token_ knows and, over TLS, what to check, to a generic reason.
+    std::string explain_connect_failure(std::string reason) const;
     void update_in_flight_limit();
     /// Arms the backoff timer; returns the delay.
     std::chrono::milliseconds schedule_reconnect();
@@ -278,7 +285,13 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
             ssl.set_enable_server_cert_auth(options_.tls->verify);
             ssl.set_verify(options_.tls->verify);
         }
+        // No set_error_handler: Paho C++ 1.2 keeps, through the copies connect() makes, a
+        // pointer to a temporary ssl_options as the callback's context, and OpenSSL's first
+        // error then crashes the process. on_connect explains a TLS failure instead.
         co.set_ssl(std::move(ssl));
+    }
+    if (options_.tls && endpoint_ && !endpoint_->tls) {
+        spdlog::warn("MQTT url {} is not ssl:// or wss://: mqtt.tls is ignored", options_.url);
     }
 
     // Paho's threads: copy, count, post; nothing else.
@@ -348,6 +361,7 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
         reason = "connection lost right after connect";
     }
     if (!ok) {
+        reason = explain_connect_failure(std::move(reason));
         const auto now = Clock::now();
         ++connect_failures_unlogged_;
         if (connect_failures_unlogged_ == 1 || now - connect_failure_logged_ >= kLogInterval) {
@@ -392,6 +406,31 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
         on_connected_();
     }
     pump();
+}
+
+std::string Client::Impl::explain_connect_failure(std::string reason) const {
+    if (reason != paho::exception::error_str(MQTTASYNC_FAILURE)) {
+        return reason;  // the broker gave a reason code, or Paho a specific error
+    }
+    try {
+        // Completed (or about to be, see update_in_flight_limit): throws its error, which
+        // carries Paho's message.
+        if (connect_token_) {
+            connect_token_->wait_for(std::chrono::seconds(1));
+        }
+    } catch (const paho::exception& e) {
+        if (!e.get_message().empty() && e.get_message() != reason) {
+            reason += ": " + e.get_message();
+        }
+    }
+    if (endpoint_ && endpoint_->tls) {
+        // Paho C++ 1.2 cannot safely report OpenSSL's reason (see the constructor).
+        reason +=
+            " (TLS handshake failed or the broker closed the connection: check that "
+            "mqtt.tls.ca_file signed the broker's certificate, that the certificate names " +
+            endpoint_->host + ", and whether the broker requires a client certificate)";
+    }
+    return reason;
 }
 
 void Client::Impl::update_in_flight_limit() {

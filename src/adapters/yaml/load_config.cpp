@@ -42,10 +42,21 @@ using Keys = std::span<const std::string_view>;
 constexpr std::array<std::string_view, 5> top_keys{"gateway", "mqtt", "eip", "metrics",
                                                    "exchanges"};
 constexpr std::array<std::string_view, 3> gateway_keys{"id", "state_dir", "log_level"};
-constexpr std::array<std::string_view, 15> mqtt_keys{
-    "url",    "version", "client_id", "username",    "password_file",      "tls",
-    "base_topic", "qos", "retain",    "payload",     "buffer",             "batch",
-    "keepalive_s", "metrics_interval_s", "session_expiry_s"};
+constexpr std::array<std::string_view, 15> mqtt_keys{"url",
+                                                     "version",
+                                                     "client_id",
+                                                     "username",
+                                                     "password_file",
+                                                     "tls",
+                                                     "base_topic",
+                                                     "qos",
+                                                     "retain",
+                                                     "payload",
+                                                     "buffer",
+                                                     "batch",
+                                                     "keepalive_s",
+                                                     "metrics_interval_s",
+                                                     "session_expiry_s"};
 constexpr std::array<std::string_view, 4> tls_keys{"ca_file", "cert_file", "key_file", "verify"};
 constexpr std::array<std::string_view, 1> buffer_keys{"max_messages"};
 constexpr std::array<std::string_view, 5> eip_keys{"bind", "port", "multicast", "multicast_ttl",
@@ -56,8 +67,8 @@ constexpr std::array<std::string_view, 13> exchange_keys{
     "name",       "direction", "producer_id", "exchange_id", "length", "signature", "period_ms",
     "timeout_ms", "source",    "destination", "topic",       "points", "tags"};
 constexpr std::array<std::string_view, 12> tag_keys{
-    "name", "address", "type", "unit", "deadband", "refresh_s", "writable", "min", "max",
-    "initial", "description", "max_writes_per_s"};
+    "name",     "address", "type", "unit",    "deadband",    "refresh_s",
+    "writable", "min",     "max",  "initial", "description", "max_writes_per_s"};
 
 std::string in_quotes(std::string_view text) { return "'" + std::string(text) + "'"; }
 

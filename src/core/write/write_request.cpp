@@ -177,6 +177,8 @@ std::string_view to_string(WriteError error) {
             return "queue_full";
         case WriteError::empty:
             return "empty";
+        case WriteError::rate_limited:
+            return "rate_limited";
     }
     return "unknown";
 }

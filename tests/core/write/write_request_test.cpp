@@ -60,6 +60,7 @@ TEST(WriteError, NamesAreSnakeCaseAndDistinct) {
     EXPECT_EQ(to_string(WriteError::expired), "expired");
     EXPECT_EQ(to_string(WriteError::queue_full), "queue_full");
     EXPECT_EQ(to_string(WriteError::empty), "empty");
+    EXPECT_EQ(to_string(WriteError::rate_limited), "rate_limited");
     std::set<std::string_view> names;
     for (std::size_t i = 0; i < write_error_count; ++i) {
         names.insert(to_string(static_cast<WriteError>(i)));

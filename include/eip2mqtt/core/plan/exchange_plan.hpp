@@ -30,6 +30,8 @@ struct ExchangeSpec {
     std::string topic;        ///< under base_topic
     std::string points;       ///< point-list CSV file, relative to the config file
     std::vector<TagSpec> tags;
+
+    friend bool operator==(const ExchangeSpec&, const ExchangeSpec&) = default;
 };
 
 /// An exchange with its tags' topics and derived figures.
@@ -44,6 +46,8 @@ struct ExchangePlan {
     std::vector<TagPlan> tags;             ///< in configuration order
 
     wire::ExchangeKey key() const { return {spec.producer_id, spec.exchange_id}; }
+    /// Equal plans mean nothing to do on reload: the running exchange is kept as it is.
+    friend bool operator==(const ExchangePlan&, const ExchangePlan&) = default;
 };
 
 /// Length a spec resolves to: its `length`, else the end of its last tag.

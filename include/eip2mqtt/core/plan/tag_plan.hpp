@@ -24,6 +24,8 @@ struct TagSpec {
     std::optional<double> max;
     std::optional<Value> initial;  ///< produced exchanges: value when no image is persisted
     double max_writes_per_s = 0;   ///< writes accepted per second (burst of 1 s); 0: no limit
+
+    friend bool operator==(const TagSpec&, const TagSpec&) = default;
 };
 
 /// A tag with its precomputed topics.
@@ -31,6 +33,8 @@ struct TagPlan {
     TagSpec spec;
     std::string topic;      ///< {base}/{exchange.topic}/{name}
     std::string set_topic;  ///< topic + "/set"
+
+    friend bool operator==(const TagPlan&, const TagPlan&) = default;
 };
 
 }  // namespace eip2mqtt::core::plan

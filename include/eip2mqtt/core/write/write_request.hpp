@@ -35,9 +35,10 @@ enum class WriteError : std::uint8_t {
     expired,       ///< its MQTT 5 message expiry passed before it could be applied
     queue_full,    ///< the exchange's write queue is full; try again
     empty,         ///< a multi-tag write with no tag
+    rate_limited,  ///< more writes to the tag than its `max_writes_per_s` allows
 };
 
-inline constexpr std::size_t write_error_count = 13;
+inline constexpr std::size_t write_error_count = 14;
 
 std::string_view to_string(WriteError error);
 

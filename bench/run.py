@@ -1,0 +1,680 @@
+#!/usr/bin/env python3
+"""The benchmark driver behind bench/run.sh (issue #6); see bench/README.md.
+
+Starts its own Mosquitto on a free loopback port, runs every scenario against the gateway built
+from this repository and against its same-run baseline, and writes one markdown table to
+bench/results/latest.md (also printed). Every wait is bounded in time; only 127.0.0.1 is used.
+"""
+
+import argparse
+import datetime
+import json
+import os
+import platform
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+BUILD = os.environ.get("EIP2MQTT_BENCH_BUILD", os.path.join(ROOT, "build-bench"))
+GATEWAY = os.path.join(BUILD, "eip2mqtt")
+TOOLS = os.path.join(BUILD, "bench")
+HOST = "127.0.0.1"
+FINAL_VALUE = 2000000007  # the overload run's last value of every tag
+TAGS = 100
+
+
+def tool(name):
+    return os.path.join(TOOLS, name)
+
+
+def free_port(kind=socket.SOCK_STREAM):
+    with socket.socket(socket.AF_INET, kind) as s:
+        s.bind((HOST, 0))
+        return s.getsockname()[1]
+
+
+def last_json(text):
+    for line in reversed(text.strip().splitlines()):
+        line = line.strip()
+        if line.startswith("{"):
+            return json.loads(line)
+    raise RuntimeError("no JSON in output: " + text[-500:])
+
+
+def run_json(args, timeout):
+    out = subprocess.run(args, capture_output=True, text=True, timeout=timeout)
+    if out.returncode != 0:
+        raise RuntimeError(f"{args[0]} failed ({out.returncode}): {out.stderr[-500:]}")
+    return last_json(out.stdout)
+
+
+def wait_file(path, timeout):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if os.path.exists(path):
+            return True
+        time.sleep(0.01)
+    return False
+
+
+def rss_kb(pid, field="VmRSS"):
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            for line in f:
+                if line.startswith(field + ":"):
+                    return int(line.split()[1])
+    except OSError:
+        pass
+    return 0
+
+
+def stop(proc, timeout=10):
+    if proc is None or proc.poll() is not None:
+        return
+    proc.send_signal(signal.SIGTERM)
+    try:
+        proc.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait(timeout=5)
+
+
+class Bench:
+    def __init__(self, quick, only):
+        self.quick = quick
+        self.only = only
+        self.tmp = tempfile.mkdtemp(prefix="eip2mqtt-bench-")
+        self.rows = []
+        self.notes = []
+        self.broker = None
+        self.broker_port = 0
+        self.procs = []
+        self.counter_seq = 0
+        self.d = 2 if quick else 5  # seconds per throughput run
+
+    # --- infrastructure ------------------------------------------------------------------
+    def start_broker(self):
+        self.broker_port = free_port()
+        conf = os.path.join(self.tmp, "mosquitto.conf")
+        with open(conf, "w") as f:
+            f.write(
+                f"listener {self.broker_port} {HOST}\n"
+                "allow_anonymous true\n"
+                "persistence false\n"
+                "log_dest none\n"
+                "set_tcp_nodelay true\n"
+                "max_inflight_messages 1000\n"
+                "max_queued_messages 1000000\n"
+                "max_queued_bytes 0\n"
+            )
+        self.broker = subprocess.Popen(["mosquitto", "-c", conf], stdout=subprocess.DEVNULL,
+                                       stderr=subprocess.DEVNULL)
+        deadline = time.monotonic() + 5
+        while time.monotonic() < deadline:
+            try:
+                socket.create_connection((HOST, self.broker_port), timeout=0.2).close()
+                return
+            except OSError:
+                time.sleep(0.05)
+        raise RuntimeError("mosquitto did not start")
+
+    def close(self):
+        for p in self.procs:
+            stop(p)
+        stop(self.broker)
+        if os.environ.get("EIP2MQTT_BENCH_KEEP"):
+            print(f"kept {self.tmp}")
+        else:
+            shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def write_config(self, name, consumed=(), produced=(), qos=1, batch=False, udp_port=0):
+        """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
+        destination). Tag 0 is the lint "ts", tags 1.. dints (load_generator's layout)."""
+        path = os.path.join(self.tmp, name + ".yaml")
+        state = os.path.join(self.tmp, name + "-state")
+        os.makedirs(state, exist_ok=True)
+        lines = [
+            f"gateway: {{ id: {name}, state_dir: {state}, log_level: warn }}",
+            "mqtt:",
+            f"  url: tcp://{HOST}:{self.broker_port}",
+            "  version: 5",
+            "  base_topic: b",
+            f"  qos: {qos}",
+            "  retain: false",
+            "  payload: json",
+            f"  batch: {'true' if batch else 'false'}",
+            "  metrics_interval_s: 1",
+            "  buffer: { max_messages: 100000 }",
+            f"eip: {{ bind: {HOST}, port: {udp_port} }}",
+            "exchanges:",
+        ]
+
+        def tag_lines(tags, writable):
+            w = ", writable: true" if writable else ""
+            out = [f'      - {{ name: ts, address: "0.0", type: lint{w} }}']
+            for t in range(1, tags):
+                out.append(f'      - {{ name: t{t}, address: "{8 + 4 * (t - 1)}.0", type: dint{w} }}')
+            return out
+
+        for exchange_id, tags in consumed:
+            lines += [
+                f"  - name: e{exchange_id}",
+                "    direction: consume",
+                "    producer_id: 10.0.0.1",
+                f"    exchange_id: {exchange_id}",
+                f"    length: {8 + 4 * (tags - 1)}",
+                "    period_ms: 1000",
+                "    timeout_ms: 0",
+                f"    topic: e{exchange_id}",
+                "    tags:",
+            ] + tag_lines(tags, False)
+        for exchange_id, tags, period, destination in produced:
+            lines += [
+                f"  - name: p{exchange_id}",
+                "    direction: produce",
+                "    producer_id: 10.0.0.2",
+                f"    exchange_id: {exchange_id}",
+                f"    destination: {destination}",
+                f"    period_ms: {period}",
+                f"    topic: p{exchange_id}",
+                "    tags:",
+            ] + tag_lines(tags, True)
+        with open(path, "w") as f:
+            f.write("\n".join(lines) + "\n")
+        return path
+
+    def start_gateway(self, name, config, notify_socket=None):
+        log = open(os.path.join(self.tmp, name + ".log"), "w")
+        env = dict(os.environ)
+        env.pop("NOTIFY_SOCKET", None)
+        if notify_socket:
+            env["NOTIFY_SOCKET"] = notify_socket
+        proc = subprocess.Popen([GATEWAY, "run", "-c", config], stdout=log, stderr=log, env=env)
+        self.procs.append(proc)
+        return proc
+
+    def wait_online(self, name, timeout=10):
+        out = subprocess.run(["mosquitto_sub", "-h", HOST, "-p", str(self.broker_port), "-C", "1",
+                              "-W", str(timeout), "-t", f"b/_gateway/{name}/state"],
+                             capture_output=True, text=True, timeout=timeout + 5)
+        if out.stdout.strip() != "online":
+            raise RuntimeError(f"gateway {name} did not come online: {out.stdout!r}")
+
+    def metrics(self, name, timeout=4):
+        """The next metrics publication of gateway `name` (every second)."""
+        out = subprocess.run(["mosquitto_sub", "-h", HOST, "-p", str(self.broker_port), "-C", "1",
+                              "-W", str(timeout), "-t", f"b/_gateway/{name}/metrics"],
+                             capture_output=True, text=True, timeout=timeout + 5)
+        return json.loads(out.stdout) if out.stdout.strip() else None
+
+    def settled_metrics(self, name, key="accepted", reads=6):
+        """Metrics once `key` stopped moving between two publications (bounded reads)."""
+        previous = None
+        for _ in range(reads):
+            m = self.metrics(name)
+            if m is None:
+                return previous
+            if previous is not None and m[key] == previous[key] and m.get("buffered", 0) == 0:
+                return m
+            previous = m
+        return previous
+
+    def start_counter(self, filters, qos, extra=(), max_s=120, idle_ms=1500):
+        self.counter_seq += 1
+        ready = os.path.join(self.tmp, f"counter{self.counter_seq}.ready")
+        args = [tool("mqtt_counter"), "--port", str(self.broker_port), "--filter", filters,
+                "--qos", str(qos), "--max-s", str(max_s), "--idle-ms", str(idle_ms),
+                "--ready-file", ready, "--id", f"bench-counter-{self.counter_seq}"] + list(extra)
+        proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.procs.append(proc)
+        if not wait_file(ready, 5):
+            raise RuntimeError("mqtt_counter did not subscribe")
+        return proc
+
+    def finish(self, proc, timeout=150):
+        out, err = proc.communicate(timeout=timeout)
+        return last_json(out)
+
+    def generate(self, port, exchanges, rate, duration=None, count=None, change=0.1,
+                 stamp=True, tags=TAGS, first=1, extra=()):
+        args = [tool("load_generator"), "--port", str(port), "--exchanges", str(exchanges),
+                "--first-exchange", str(first), "--tags", str(tags), "--rate", str(rate),
+                "--change", str(change)]
+        args += ["--count", str(count)] if count is not None else ["--duration", str(duration)]
+        if not stamp:
+            args.append("--no-stamp")
+        args += list(extra)
+        return run_json(args, timeout=(duration or 10) + 60)
+
+    def row(self, figure, gateway, baseline, ratio, target, met):
+        self.rows.append((figure, gateway, baseline, ratio, target, met))
+        print(f"  {figure}: {gateway} | {baseline} | {ratio} | {target} | {met}", flush=True)
+
+    def wanted(self, n):
+        return not self.only or n in self.only
+
+    # --- scenarios ------------------------------------------------------------------------
+    def s1_udp(self):
+        print("[1] datagrams/s accepted with zero loss, no changes", flush=True)
+        duration = 1 if self.quick else 2
+        steps = 2 if self.quick else 3
+
+        def ceiling(trial):
+            ok_rate, bad, rate, trials = 0.0, None, 25000, 0
+            while rate <= 3200000 and trials < 10:
+                trials += 1
+                ok, achieved = trial(rate, trials)
+                if not ok:
+                    bad = rate
+                    break
+                ok_rate = max(ok_rate, achieved)
+                if achieved < 0.9 * rate:  # the generator itself cannot go faster
+                    self.notes.append(f"scenario 1: the load generator topped out at "
+                                      f"{achieved:.0f} datagrams/s")
+                    return ok_rate, trials
+                rate *= 2
+            good = rate / 2 if bad else rate
+            for _ in range(steps if bad else 0):
+                mid = (good + bad) / 2
+                trials += 1
+                ok, achieved = trial(mid, trials)
+                if ok:
+                    good, ok_rate = mid, max(ok_rate, achieved)
+                else:
+                    bad = mid
+            return ok_rate, trials
+
+        def sink_trial(rate, n):
+            port = free_port(socket.SOCK_DGRAM)
+            ready = os.path.join(self.tmp, f"sink{n}.ready")
+            sink = subprocess.Popen([tool("udp_sink"), "--port", str(port), "--idle-ms", "500",
+                                     "--max-s", str(duration + 20), "--ready-file", ready],
+                                    stdout=subprocess.PIPE, text=True)
+            wait_file(ready, 5)
+            gen = self.generate(port, 1, rate, duration=duration, change=0, stamp=False)
+            got = last_json(sink.communicate(timeout=duration + 30)[0])
+            ok = got["received"] == gen["sent"] and gen["errors"] == 0
+            print(f"    udp_sink  {rate:9.0f}/s: sent {gen['sent']} received {got['received']} "
+                  f"({gen['rate']:.0f}/s)", flush=True)
+            return ok, gen["rate"]
+
+        udp_ceiling, _ = ceiling(sink_trial)
+
+        name = "g1"
+        udp_port = free_port(socket.SOCK_DGRAM)
+        config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, 17)], qos=1,
+                                   udp_port=udp_port)
+        gw = self.start_gateway(name, config)
+        self.wait_online(name)
+
+        def gateway_trial(rate, n):
+            before = self.settled_metrics(name)
+            gen = self.generate(udp_port, 1, rate, duration=duration, change=0, stamp=False,
+                                first=n)
+            time.sleep(0.3)
+            after = self.settled_metrics(name)
+            accepted = after["accepted"] - before["accepted"]
+            ok = accepted == gen["sent"] and gen["errors"] == 0
+            print(f"    gateway   {rate:9.0f}/s: sent {gen['sent']} accepted {accepted} "
+                  f"({gen['rate']:.0f}/s)", flush=True)
+            return ok, gen["rate"]
+
+        gw_ceiling, _ = ceiling(gateway_trial)
+        stop(gw)
+        ratio = gw_ceiling / udp_ceiling if udp_ceiling else 0
+        self.row("datagrams/s accepted, zero loss, no changes (1 x 100 tags)",
+                 f"{gw_ceiling:,.0f}", f"{udp_ceiling:,.0f} (recvmmsg sink)", f"{ratio:.2f}",
+                 ">= 0.70", "yes" if ratio >= 0.70 else "no")
+
+    def paho_ceiling(self, qos):
+        counter = self.start_counter("p/+/+", qos)
+        pub = run_json([tool("paho_publisher"), "--url", f"tcp://{HOST}:{self.broker_port}",
+                        "--qos", str(qos), "--duration", str(self.d), "--topics", str(TAGS)],
+                       timeout=self.d + 60)
+        got = self.finish(counter)
+        print(f"    paho qos{qos}: published {pub['published']} received {got['messages']} "
+              f"at {got['rate']:.0f}/s", flush=True)
+        return got["rate"]
+
+    def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1):
+        udp_port = free_port(socket.SOCK_DGRAM)
+        config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, exchanges + 1)],
+                                   qos=qos, batch=batch, udp_port=udp_port)
+        gw = self.start_gateway(name, config)
+        self.wait_online(name)
+        if batch:
+            counter = self.start_counter("b/+/_values", qos, extra=["--batch"])
+        else:
+            counter = self.start_counter("b/+/+", qos)
+        per_datagram = max(1, round(change * TAGS))
+        rate = max(100, round(1.5 * ceiling / per_datagram))  # offer 1.5 x the ceiling
+        gen = self.generate(udp_port, exchanges, rate, duration=self.d, change=change)
+        got = self.finish(counter)
+        m = self.metrics(name)
+        stop(gw)
+        print(f"    gateway {name}: offered {gen['rate']:.0f} datagrams/s x {per_datagram} tags; "
+              f"received {got['messages']} msgs, {got['updates']} updates at "
+              f"{got['update_rate']:.0f}/s; coalesced {m and m.get('publications_coalesced')}",
+              flush=True)
+        return got
+
+    def s2_s3_publications(self):
+        print("[2,3] tag publications/s vs bare Paho", flush=True)
+        self.ceilings = {}
+        for qos in (0, 1):
+            paho = self.paho_ceiling(qos)
+            self.ceilings[qos] = paho
+            for change, label in ((1.0, "100 % changing"), (0.1, "10 % changing")):
+                got = self.gateway_rate(f"g2q{qos}c{int(change * 100)}", qos, change, paho)
+                ratio = got["rate"] / paho if paho else 0
+                self.row(f"tag publications/s, QoS {qos}, {label}", f"{got['rate']:,.0f}",
+                         f"{paho:,.0f} (bare Paho)", f"{ratio:.2f}", ">= 0.90",
+                         "yes" if ratio >= 0.9 else "no")
+                if change == 1.0:
+                    self.ceilings[("gw", qos)] = got["rate"]
+
+    def s4_batch(self):
+        print("[4] batch mode, QoS 1", flush=True)
+        per_tag = self.ceilings.get(("gw", 1)) or self.paho_ceiling(1)
+        # Offer 2 x the target: 20 x the per-tag figure in tag updates.
+        got = self.gateway_rate("g4", 1, 1.0, 20 * per_tag / 1.5, batch=True)
+        ratio = got["update_rate"] / per_tag if per_tag else 0
+        self.row("tag updates/s carried in batch mode (_values), QoS 1",
+                 f"{got['update_rate']:,.0f} ({got['rate']:,.0f} msgs/s)",
+                 f"{per_tag:,.0f} (gateway per-tag QoS 1)", f"{ratio:.1f}", ">= 10",
+                 "yes" if ratio >= 10 else "no")
+
+    def s5_latency(self):
+        print("[5] latency at 10k datagrams/s, 10 % changing (10 exchanges x 10 tags)", flush=True)
+        duration = 3 if self.quick else 10
+        for qos in (0, 1):
+            counter = self.start_counter("p/+/+", qos, extra=["--stamp-all"])
+            run_json([tool("paho_publisher"), "--url", f"tcp://{HOST}:{self.broker_port}",
+                      "--qos", str(qos), "--rate", "10000", "--stamp", "--duration",
+                      str(duration), "--topics", "10"], timeout=duration + 60)
+            paho = self.finish(counter)
+
+            name = f"g5q{qos}"
+            udp_port = free_port(socket.SOCK_DGRAM)
+            config = self.write_config(name, consumed=[(i, 10) for i in range(1, 11)], qos=qos,
+                                       udp_port=udp_port)
+            gw = self.start_gateway(name, config)
+            self.wait_online(name)
+            counter = self.start_counter("b/+/+", qos)
+            self.generate(udp_port, 10, 10000, duration=duration, change=0.1, tags=10)
+            got = self.finish(counter)
+            stop(gw)
+            print(f"    qos{qos}: gateway n={got['latency_n']} p50 {got['p50_us']} p99 "
+                  f"{got['p99_us']} max {got['max_us']}; paho n={paho['latency_n']} p50 "
+                  f"{paho['p50_us']} p99 {paho['p99_us']} max {paho['max_us']}", flush=True)
+            ratio = got["p99_us"] / paho["p99_us"] if paho["p99_us"] else 0
+            ok = got["p99_us"] <= 1000 and ratio <= 1.5
+            self.row(f"latency datagram -> subscriber p99, QoS {qos} (us)",
+                     f"{got['p99_us']:,.0f} (p50 {got['p50_us']:,.0f}, max {got['max_us']:,.0f})",
+                     f"{paho['p99_us']:,.0f} (bare Paho p50 {paho['p50_us']:,.0f}, "
+                     f"max {paho['max_us']:,.0f})", f"{ratio:.2f}", "<= 1,000 us and <= 1.5",
+                     "yes" if ok else "no")
+
+    def s6_memory(self):
+        print("[6] memory and start-up: 1,000 x 100 tags consumed + 100 produced", flush=True)
+        sink_port = free_port(socket.SOCK_DGRAM)  # nobody listens: produced datagrams vanish
+        udp_port = free_port(socket.SOCK_DGRAM)
+        name = "g6"
+        config = self.write_config(
+            name, consumed=[(i, TAGS) for i in range(1, 1001)],
+            produced=[(5000 + i, 10, 100, f"{HOST}:{sink_port}") for i in range(100)], qos=1,
+            udp_port=udp_port)
+        times = []
+        runs = 1 if self.quick else 3
+        rss_idle = rss_data = hwm = 0
+        for run in range(runs):
+            path = os.path.join(self.tmp, f"notify{run}.sock")
+            listener = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
+            listener.bind(path)
+            listener.settimeout(0.5)
+            start = time.monotonic()
+            gw = self.start_gateway(name, config, notify_socket=path)
+            ready = None
+            deadline = start + 30
+            while ready is None and time.monotonic() < deadline and gw.poll() is None:
+                try:
+                    if b"READY=1" in listener.recv(4096):
+                        ready = time.monotonic() - start
+                except socket.timeout:
+                    pass
+            listener.close()
+            if ready is None:
+                stop(gw)
+                raise RuntimeError("gateway did not send READY=1")
+            times.append(ready * 1000)
+            if run == runs - 1:
+                self.wait_online(name)
+                time.sleep(1)
+                rss_idle = rss_kb(gw.pid)
+                # One datagram per consumed exchange: every image filled, every tag published.
+                self.generate(udp_port, 1000, 10000, count=1000, change=1.0)
+                m = None
+                deadline = time.monotonic() + 60
+                while time.monotonic() < deadline:
+                    m = self.metrics(name)
+                    if m and m["accepted"] >= 1000 and m["buffered"] == 0:
+                        break
+                rss_data = rss_kb(gw.pid)
+                hwm = rss_kb(gw.pid, "VmHWM")
+            stop(gw)
+        times.sort()
+        startup = times[len(times) // 2]
+        print(f"    READY after {', '.join(f'{t:.0f}' for t in times)} ms; RSS idle "
+              f"{rss_idle / 1024:.1f} MB, with data {rss_data / 1024:.1f} MB, peak "
+              f"{hwm / 1024:.1f} MB", flush=True)
+        self.row("resident memory, 1,000 x 100 consumed + 100 produced, all tags published (MB)",
+                 f"{rss_data / 1024:.1f} (idle {rss_idle / 1024:.1f}, peak {hwm / 1024:.1f})",
+                 "-", "-", "<= 32 MB", "yes" if 0 < rss_data <= 32 * 1024 else "no")
+        self.row("start-up to READY, same configuration (ms, median of "
+                 f"{runs})", f"{startup:,.0f}", "-", "-", "<= 200 ms",
+                 "yes" if startup <= 200 else "no")
+
+    def s7_periods(self):
+        print("[7] produced period accuracy at 10 ms", flush=True)
+        duration = 3 if self.quick else 6
+        for count, jitter_target in ((100, 200), (1000, 1000)):
+            def capture(sender):
+                port = free_port(socket.SOCK_DGRAM)
+                ready = os.path.join(self.tmp, f"psink{count}{sender}.ready")
+                sink = subprocess.Popen([tool("udp_sink"), "--port", str(port), "--period-ms",
+                                         "10", "--skip-ms", "1000", "--duration",
+                                         str(duration + 1), "--ready-file", ready],
+                                        stdout=subprocess.PIPE, text=True)
+                wait_file(ready, 5)
+                return sink, port
+
+            sink, port = capture("gen")
+            self.generate(port, count, count * 100, duration=duration + 1.5, change=0,
+                          stamp=False, tags=10, first=5000)
+            base = last_json(sink.communicate(timeout=duration + 30)[0])
+
+            sink, port = capture("gw")
+            name = f"g7n{count}"
+            config = self.write_config(
+                name, produced=[(5000 + i, 10, 10, f"{HOST}:{port}") for i in range(count)],
+                udp_port=free_port(socket.SOCK_DGRAM))
+            gw = self.start_gateway(name, config)
+            got = last_json(sink.communicate(timeout=duration + 30)[0])
+            stop(gw)
+            print(f"    {count} exchanges: gateway {got}; generator {base}", flush=True)
+            err_ok = got["mean_error_pct"] < 0.1 and got["exchanges"] == count
+            self.row(f"produced period, {count} x 10 ms: mean error (%)",
+                     f"{got['mean_error_pct']:.3f} (worst exchange "
+                     f"{got['worst_exchange_error_pct']:.3f}, {got['exchanges']} seen)",
+                     f"{base['mean_error_pct']:.3f} (load_generator)", "-", "< 0.1 %",
+                     "yes" if err_ok else "no")
+            ratio = got["p99_jitter_us"] / base["p99_jitter_us"] if base["p99_jitter_us"] else 0
+            self.row(f"produced period, {count} x 10 ms: p99 jitter (us)",
+                     f"{got['p99_jitter_us']:,.0f} (max {got['max_jitter_us']:,.0f})",
+                     f"{base['p99_jitter_us']:,.0f} (load_generator)", f"{ratio:.2f}",
+                     f"<= {jitter_target:,} us",
+                     "yes" if got["p99_jitter_us"] <= jitter_target else "no")
+
+    def s8_overload(self):
+        print("[8] overload: 5 x the publication ceiling for 10 s (100 x 100 tags, QoS 1)",
+              flush=True)
+        duration = 3 if self.quick else 10
+        ceiling = self.ceilings.get(("gw", 1)) or self.ceilings.get(1) or self.paho_ceiling(1)
+        rate = max(100, round(5 * ceiling / TAGS))
+        name = "g8"
+        udp_port = free_port(socket.SOCK_DGRAM)
+        config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, 101)], qos=1,
+                                   udp_port=udp_port)
+        gw = self.start_gateway(name, config)
+        self.wait_online(name)
+        metrics_log = open(os.path.join(self.tmp, "g8-metrics.log"), "w")
+        metrics = subprocess.Popen(["mosquitto_sub", "-h", HOST, "-p", str(self.broker_port),
+                                    "-W", str(duration + 90), "-t", f"b/_gateway/{name}/metrics"],
+                                   stdout=metrics_log, stderr=subprocess.DEVNULL)
+        self.procs.append(metrics)
+        counter = self.start_counter("b/+/+", 1, extra=["--expect-last", str(FINAL_VALUE),
+                                            "--expect-topics", str(100 * TAGS)],
+                                     idle_ms=10000, max_s=duration + 120)
+        time.sleep(0.5)
+        rss0 = rss_kb(gw.pid)
+        gen = subprocess.Popen([tool("load_generator"), "--port", str(udp_port), "--exchanges",
+                                "100", "--tags", str(TAGS), "--rate", str(rate), "--duration",
+                                str(duration), "--change", "1.0", "--final-value",
+                                str(FINAL_VALUE)], stdout=subprocess.PIPE, text=True)
+        peak = rss0
+        deadline = time.monotonic() + duration + 30
+        while gen.poll() is None and time.monotonic() < deadline:
+            peak = max(peak, rss_kb(gw.pid))
+            time.sleep(0.1)
+        sent = last_json(gen.communicate(timeout=10)[0])
+        sent_at = time.monotonic()
+        got = self.finish(counter, timeout=duration + 150)
+        settle_ms = (time.monotonic() - sent_at) * 1000
+        peak = max(peak, rss_kb(gw.pid))
+        stop(metrics)
+        metrics_log.close()
+        stop(gw)
+        samples = []
+        with open(os.path.join(self.tmp, "g8-metrics.log")) as f:
+            for line in f:
+                try:
+                    samples.append(json.loads(line))
+                except ValueError:
+                    pass
+        max_buffered = max((s.get("buffered", 0) for s in samples), default=-1)
+        last = samples[-1] if samples else {}
+        growth = (peak - rss0) / 1024
+        topics = 100 * TAGS
+        print(f"    offered {sent['rate']:.0f} datagrams/s x {TAGS} = "
+              f"{sent['rate'] * TAGS:.0f} tag updates/s (ceiling {ceiling:.0f}/s); RSS "
+              f"{rss0 / 1024:.1f} -> peak {peak / 1024:.1f} MB; delivered {got['messages']} at "
+              f"{got['rate']:.0f}/s; last value ok {got['last_ok']}/{topics} bad {got['last_bad']};"
+              f" max buffered {max_buffered}; coalesced {last.get('publications_coalesced')}, "
+              f"dropped {last.get('publications_dropped')}", flush=True)
+        self.row("overload 5 x ceiling: RSS growth (MB)", f"{growth:.1f}",
+                 f"{rss0 / 1024:.1f} MB before", "-", "<= 5 MB", "yes" if growth <= 5 else "no")
+        self.row("overload: newest value of each tag wins (topics ending on the last value)",
+                 f"{got['last_ok']:,} / {topics:,} (all seen {settle_ms:,.0f} ms after the last send)",
+                 "-", "-", "all",
+                 "yes" if got["last_ok"] == topics and got["last_bad"] == 0 else "no")
+        total = sent["sent"] + sent["final"]
+        accepted = last.get("accepted", 0)
+        self.row("overload: datagrams accepted / sent (UDP drops before the gateway reads them)",
+                 f"{accepted:,} / {total:,}", "-", "-", "all (incl. the final ones)",
+                 "yes" if accepted == total else "no")
+        bound = topics + 2 * 100 + 10
+        self.row("overload: largest publish queue seen (messages)", f"{max_buffered:,}",
+                 f"{topics:,} tag topics", "-", "bounded (<= topics)",
+                 "yes" if 0 <= max_buffered <= bound else "no")
+
+    # --- output ---------------------------------------------------------------------------
+    def machine(self):
+        model = "unknown"
+        try:
+            with open("/proc/cpuinfo") as f:
+                for line in f:
+                    if line.startswith("model name"):
+                        model = line.split(":", 1)[1].strip()
+                        break
+        except OSError:
+            pass
+        return (f"{os.cpu_count()} CPUs ({len(os.sched_getaffinity(0))} usable), {model}, "
+                f"Linux {platform.release()}")
+
+    def report(self, command):
+        lines = [
+            "# eip2mqtt benchmark results",
+            "",
+            f"- date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M UTC}",
+            f"- machine: {self.machine()}",
+            f"- load average at the end (1/5/15 min): "
+            f"{' / '.join(f'{x:.1f}' for x in os.getloadavg())} (shared machine: other work "
+            "shows here and in the noisier rows)",
+            f"- command: `{command}`",
+            f"- gateway: `{os.path.relpath(GATEWAY, ROOT)}` (Release); Mosquitto "
+            f"{mosquitto_version()} on 127.0.0.1; subscriber: bench/mqtt_counter (libmosquitto)",
+            "",
+            "| figure | gateway | baseline (same run) | ratio | target | met? |",
+            "|---|---|---|---|---|---|",
+        ]
+        for r in self.rows:
+            lines.append("| " + " | ".join(str(c) for c in r) + " |")
+        if self.notes:
+            lines += ["", "Notes:"] + [f"- {n}" for n in self.notes]
+        text = "\n".join(lines) + "\n"
+        os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
+        name = "quick.md" if self.quick else "partial.md" if self.only else "latest.md"
+        with open(os.path.join(HERE, "results", name), "w") as f:
+            f.write(text)
+        print()
+        print(text)
+
+
+def mosquitto_version():
+    out = subprocess.run(["mosquitto", "-h"], capture_output=True, text=True, timeout=5)
+    first = (out.stdout or out.stderr).splitlines()
+    return first[0].split()[-1] if first else "?"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
+    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-8)")
+    args = parser.parse_args()
+    only = {int(x) for x in args.only.split(",") if x}
+    for path in (GATEWAY, tool("load_generator"), tool("mqtt_counter")):
+        if not os.access(path, os.X_OK):
+            sys.exit(f"missing {path}: run bench/run.sh, which builds first")
+    bench = Bench(args.quick, only)
+    command = "bench/run.sh" + (" --quick" if args.quick else "") + \
+        (f" --only {args.only}" if args.only else "")
+    try:
+        bench.start_broker()
+        bench.ceilings = {}
+        if bench.wanted(1):
+            bench.s1_udp()
+        if bench.wanted(2) or bench.wanted(3):
+            bench.s2_s3_publications()
+        if bench.wanted(4):
+            bench.s4_batch()
+        if bench.wanted(5):
+            bench.s5_latency()
+        if bench.wanted(6):
+            bench.s6_memory()
+        if bench.wanted(7):
+            bench.s7_periods()
+        if bench.wanted(8):
+            bench.s8_overload()
+    finally:
+        bench.close()
+    bench.report(command)
+
+
+if __name__ == "__main__":
+    main()

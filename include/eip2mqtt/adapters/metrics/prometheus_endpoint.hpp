@@ -1,0 +1,96 @@
+#pragma once
+/// The optional Prometheus endpoint (`metrics.listen`): serves GET /metrics in the text
+/// exposition format from the last MetricsSnapshot it was given (prometheus-cpp's civetweb
+/// server, on threads of its own).
+///
+/// Metrics, all prefixed `eip2mqtt_` (counters end in `_total`):
+///   exchange_state{exchange,direction,state}            gauge, 1 for the current state, 0 for
+///                                                       the other states of its direction
+///   exchange_{received,accepted,missed,duplicates,out_of_order,signature_mismatches,
+///             length_mismatches,wrong_source}_total{exchange,direction}   consume counters
+///   exchange_{sent,send_errors}_total{exchange,direction}                 produce counters
+///   exchange_last_seen_age_seconds, exchange_jitter_seconds,
+///   exchange_mean_period_seconds{exchange,direction}    gauges; absent while unknown
+///   datagrams_total, datagrams_accepted_total, datagrams_dropped_total{reason}
+///   mqtt_connected (0/1), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total
+///   writes_ok_total, writes_rejected_total{reason}
+/// Counters are the gateway's own counts, copied as they are: a reload that restarts them
+/// shows as a counter reset, which Prometheus's rate() handles.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace eip2mqtt::adapters::metrics {
+
+/// What one exchange reports.
+struct ExchangeMetrics {
+    std::string name;
+    std::string direction;  ///< "consume" or "produce"
+    std::string state;      ///< core::exchange::ConsumeState names, or "producing"/"paused"
+    // consume
+    std::uint64_t received = 0;
+    std::uint64_t accepted = 0;
+    std::uint64_t missed = 0;
+    std::uint64_t duplicates = 0;
+    std::uint64_t out_of_order = 0;
+    std::uint64_t signature_mismatches = 0;
+    std::uint64_t length_mismatches = 0;
+    std::uint64_t wrong_source = 0;
+    /// Seconds since the last accepted datagram; negative or NaN: never (the gauge is omitted).
+    double last_seen_age_seconds = -1;
+    /// Inter-arrival jitter and mean period (core::exchange::ArrivalStats); negative or NaN:
+    /// unknown (omitted).
+    double jitter_seconds = -1;
+    double mean_period_seconds = -1;
+    // produce
+    std::uint64_t sent = 0;
+    std::uint64_t send_errors = 0;
+};
+
+/// What the gateway as a whole reports.
+struct GatewayMetrics {
+    std::uint64_t datagrams = 0;  ///< received on the EIP socket
+    std::uint64_t accepted = 0;
+    std::map<std::string, std::uint64_t> dropped;  ///< by core::wire::DropReason name
+    bool mqtt_connected = false;
+    std::uint64_t published = 0;
+    std::uint64_t buffered = 0;  ///< publications waiting for the broker (a gauge)
+    std::uint64_t publications_dropped = 0;
+    std::uint64_t writes_ok = 0;
+    std::map<std::string, std::uint64_t> writes_rejected;  ///< by rejection reason
+};
+
+/// Everything the endpoint serves, as plain values: the gateway loop fills one and hands it
+/// over, so no scrape thread ever touches the loop's state.
+struct MetricsSnapshot {
+    std::vector<ExchangeMetrics> exchanges;
+    GatewayMetrics gateway;
+};
+
+class PrometheusEndpoint {
+public:
+    /// Listens on `listen` (`host:port`; port 0 picks a free one). Throws std::runtime_error
+    /// naming the address when it cannot listen (a start-up error). Serves an empty page until
+    /// the first update().
+    explicit PrometheusEndpoint(const std::string& listen);
+    /// Stops the server; civetweb's listener polls, so this can take up to about 2 s.
+    ~PrometheusEndpoint();
+    PrometheusEndpoint(const PrometheusEndpoint&) = delete;
+    PrometheusEndpoint& operator=(const PrometheusEndpoint&) = delete;
+
+    /// Replaces what scrapes see. Called from the loop, about once a second; safe against
+    /// concurrent scrapes (one short lock).
+    void update(const MetricsSnapshot& snapshot);
+
+    /// The port actually listened on.
+    std::uint16_t port() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace eip2mqtt::adapters::metrics

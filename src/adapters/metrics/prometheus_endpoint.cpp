@@ -1,0 +1,224 @@
+#include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
+
+#include <prometheus/collectable.h>
+#include <prometheus/exposer.h>
+#include <prometheus/metric_family.h>
+
+#include <array>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <span>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
+
+namespace eip2mqtt::adapters::metrics {
+namespace {
+
+using prometheus::ClientMetric;
+using prometheus::MetricFamily;
+using prometheus::MetricType;
+
+constexpr std::array<std::string_view, 5> consume_states{"waiting", "ok", "stale",
+                                                         "signature_mismatch", "length_mismatch"};
+constexpr std::array<std::string_view, 2> produce_states{"producing", "paused"};
+
+MetricFamily family(std::string name, std::string help, MetricType type) {
+    MetricFamily result;
+    result.name = "eip2mqtt_" + std::move(name);
+    result.help = std::move(help);
+    result.type = type;
+    return result;
+}
+
+/// Labels in name order, as prometheus-cpp's own families print them.
+ClientMetric sample(MetricType type, double value, std::vector<ClientMetric::Label> labels = {}) {
+    ClientMetric metric;
+    metric.label = std::move(labels);
+    if (type == MetricType::Counter) {
+        metric.counter.value = value;
+    } else {
+        metric.gauge.value = value;
+    }
+    return metric;
+}
+
+std::vector<ClientMetric::Label> exchange_labels(const ExchangeMetrics& exchange) {
+    return {{"direction", exchange.direction}, {"exchange", exchange.name}};
+}
+
+bool known(double value) { return !std::isnan(value) && value >= 0; }
+
+/// One family per metric, a sample per exchange of the direction it applies to (both when
+/// `direction` is empty).
+void add_exchange_family(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot,
+                         std::string name, std::string help, MetricType type,
+                         std::string_view direction, double (*value)(const ExchangeMetrics&)) {
+    auto result = family(std::move(name), std::move(help), type);
+    for (const auto& exchange : snapshot.exchanges) {
+        if (!direction.empty() && exchange.direction != direction) continue;
+        const double v = value(exchange);
+        if (type == MetricType::Gauge && !known(v)) continue;
+        result.metric.push_back(sample(type, v, exchange_labels(exchange)));
+    }
+    if (!result.metric.empty()) out.push_back(std::move(result));
+}
+
+void add_reason_family(std::vector<MetricFamily>& out, std::string name, std::string help,
+                       const std::map<std::string, std::uint64_t>& counts) {
+    auto result = family(std::move(name), std::move(help), MetricType::Counter);
+    for (const auto& [reason, count] : counts) {
+        result.metric.push_back(
+            sample(MetricType::Counter, static_cast<double>(count), {{"reason", reason}}));
+    }
+    if (!result.metric.empty()) out.push_back(std::move(result));
+}
+
+void add_single(std::vector<MetricFamily>& out, std::string name, std::string help, MetricType type,
+                double value) {
+    auto result = family(std::move(name), std::move(help), type);
+    result.metric.push_back(sample(type, value));
+    out.push_back(std::move(result));
+}
+
+std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
+    std::vector<MetricFamily> out;
+    constexpr auto counter = MetricType::Counter;
+    constexpr auto gauge = MetricType::Gauge;
+
+    auto states =
+        family("exchange_state", "Current state of the exchange (1) among its states", gauge);
+    for (const auto& exchange : snapshot.exchanges) {
+        const std::span<const std::string_view> all =
+            exchange.direction == "produce" ? std::span<const std::string_view>(produce_states)
+                                            : consume_states;
+        bool listed = false;
+        for (const auto state : all) {
+            const bool current = exchange.state == state;
+            listed = listed || current;
+            states.metric.push_back(sample(gauge, current ? 1 : 0,
+                                           {{"direction", exchange.direction},
+                                            {"exchange", exchange.name},
+                                            {"state", std::string(state)}}));
+        }
+        if (!listed) {
+            states.metric.push_back(sample(gauge, 1,
+                                           {{"direction", exchange.direction},
+                                            {"exchange", exchange.name},
+                                            {"state", exchange.state}}));
+        }
+    }
+    if (!states.metric.empty()) out.push_back(std::move(states));
+
+    // clang-format off
+    add_exchange_family(out, snapshot, "exchange_received_total",
+        "Datagrams received for the exchange", counter, "consume",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.received); });
+    add_exchange_family(out, snapshot, "exchange_accepted_total",
+        "Datagrams accepted as new samples", counter, "consume",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.accepted); });
+    add_exchange_family(out, snapshot, "exchange_missed_total",
+        "Request ids skipped between accepted samples", counter, "consume",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.missed); });
+    add_exchange_family(out, snapshot, "exchange_duplicates_total",
+        "Datagrams repeating the last request id", counter, "consume",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.duplicates); });
+    add_exchange_family(out, snapshot, "exchange_out_of_order_total",
+        "Datagrams behind the last request id", counter, "consume",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.out_of_order); });
+    add_exchange_family(out, snapshot, "exchange_signature_mismatches_total",
+        "Datagrams with an incompatible signature", counter, "consume",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.signature_mismatches); });
+    add_exchange_family(out, snapshot, "exchange_length_mismatches_total",
+        "Datagrams with another data length than configured", counter, "consume",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.length_mismatches); });
+    add_exchange_family(out, snapshot, "exchange_wrong_source_total",
+        "Datagrams from another address than the configured source", counter, "consume",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.wrong_source); });
+    add_exchange_family(out, snapshot, "exchange_last_seen_age_seconds",
+        "Seconds since the last accepted datagram", gauge, "consume",
+        [](const ExchangeMetrics& e) { return e.last_seen_age_seconds; });
+    add_exchange_family(out, snapshot, "exchange_jitter_seconds",
+        "Smoothed inter-arrival jitter (RFC 3550 estimator)", gauge, "",
+        [](const ExchangeMetrics& e) { return e.jitter_seconds; });
+    add_exchange_family(out, snapshot, "exchange_mean_period_seconds",
+        "Mean inter-arrival period", gauge, "",
+        [](const ExchangeMetrics& e) { return e.mean_period_seconds; });
+    add_exchange_family(out, snapshot, "exchange_sent_total",
+        "Datagrams produced", counter, "produce",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.sent); });
+    add_exchange_family(out, snapshot, "exchange_send_errors_total",
+        "Productions the socket refused", counter, "produce",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.send_errors); });
+    // clang-format on
+
+    const auto& g = snapshot.gateway;
+    add_single(out, "datagrams_total", "Datagrams received on the EIP socket", counter,
+               static_cast<double>(g.datagrams));
+    add_single(out, "datagrams_accepted_total", "Datagrams accepted by an exchange", counter,
+               static_cast<double>(g.accepted));
+    add_reason_family(out, "datagrams_dropped_total", "Datagrams dropped, by reason", g.dropped);
+    add_single(out, "mqtt_connected", "1 while connected to the broker", gauge,
+               g.mqtt_connected ? 1 : 0);
+    add_single(out, "mqtt_published_total", "Messages handed to the broker", counter,
+               static_cast<double>(g.published));
+    add_single(out, "mqtt_buffered", "Publications waiting for the broker", gauge,
+               static_cast<double>(g.buffered));
+    add_single(out, "mqtt_publications_dropped_total", "Publications dropped from a full buffer",
+               counter, static_cast<double>(g.publications_dropped));
+    add_single(out, "writes_ok_total", "Writes accepted", counter,
+               static_cast<double>(g.writes_ok));
+    add_reason_family(out, "writes_rejected_total", "Writes rejected, by reason",
+                      g.writes_rejected);
+    return out;
+}
+
+/// Serves the families built by the last update; scrapes copy them under the lock.
+class SnapshotCollectable : public prometheus::Collectable {
+public:
+    std::vector<MetricFamily> Collect() const override {
+        std::lock_guard lock(mutex_);
+        return families_;
+    }
+
+    void set(std::vector<MetricFamily> families) {
+        std::lock_guard lock(mutex_);
+        families_.swap(families);
+    }  // the lock is released before the parameter, now holding the old families, is freed
+
+private:
+    mutable std::mutex mutex_;
+    std::vector<MetricFamily> families_;
+};
+
+}  // namespace
+
+struct PrometheusEndpoint::Impl {
+    std::shared_ptr<SnapshotCollectable> collectable = std::make_shared<SnapshotCollectable>();
+    std::unique_ptr<prometheus::Exposer> exposer;
+};
+
+PrometheusEndpoint::PrometheusEndpoint(const std::string& listen)
+    : impl_(std::make_unique<Impl>()) {
+    try {
+        impl_->exposer = std::make_unique<prometheus::Exposer>(listen, 2);
+    } catch (const std::exception& e) {
+        // civetweb's CivetException: typically the port is taken or the address is not ours.
+        throw std::runtime_error("cannot listen for metrics on " + listen + ": " + e.what());
+    }
+    impl_->exposer->RegisterCollectable(impl_->collectable);
+}
+
+PrometheusEndpoint::~PrometheusEndpoint() = default;
+
+void PrometheusEndpoint::update(const MetricsSnapshot& snapshot) {
+    impl_->collectable->set(to_families(snapshot));
+}
+
+std::uint16_t PrometheusEndpoint::port() const {
+    const auto ports = impl_->exposer->GetListeningPorts();
+    return ports.empty() ? 0 : static_cast<std::uint16_t>(ports.front());
+}
+
+}  // namespace eip2mqtt::adapters::metrics

@@ -1,0 +1,293 @@
+// `eip2mqtt sniff`: a live decoder for the field. Prints every datagram's header (and, given a
+// configuration, its tags), then per-exchange arrival statistics at each interval, so that an
+// engineer can see what a producer really sends before configuring the gateway for it.
+
+#include <fmt/format.h>
+#include <time.h>
+
+#include <algorithm>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <csignal>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "eip2mqtt/adapters/udp/receiver.hpp"
+#include "eip2mqtt/adapters/yaml/load_config.hpp"
+#include "eip2mqtt/app/commands.hpp"
+#include "eip2mqtt/core/exchange/arrival_stats.hpp"
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/wire/decode.hpp"
+#include "eip2mqtt/core/wire/drop_reason.hpp"
+#include "eip2mqtt/core/wire/value_codec.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using core::wire::ExchangeKey;
+
+/// One exchange seen on the wire, configured or not.
+struct SniffedExchange {
+    std::string label;                               ///< configured name, else producer/exchange
+    const core::plan::ExchangePlan* plan = nullptr;  ///< nullptr when not configured
+    core::exchange::ArrivalStats arrivals;
+    bool synchronised = false;
+    std::uint16_t last_rid = 0;
+    std::uint64_t received = 0;
+    std::uint64_t missed = 0;
+    std::uint64_t duplicates = 0;
+    std::uint64_t out_of_order = 0;
+};
+
+/// What became of a datagram under eip-protocol.md §4 rule 6.
+enum class Sequence { sample, duplicate, out_of_order };
+
+/// §4 rule 6: d = (rid - last) mod 65536; 0 duplicate, 1..32767 new sample (d - 1 missed),
+/// >= 32768 late or reordered. The first datagram, and with a configuration the first after a
+/// silence longer than the exchange's timeout, resynchronises without counting.
+Sequence apply_sequence(SniffedExchange& exchange, std::uint16_t rid, Clock::time_point now) {
+    if (exchange.synchronised && exchange.plan != nullptr && exchange.plan->timeout.count() > 0 &&
+        exchange.arrivals.last_arrival() &&
+        now - *exchange.arrivals.last_arrival() > exchange.plan->timeout) {
+        exchange.synchronised = false;
+    }
+    if (!exchange.synchronised) {
+        exchange.synchronised = true;
+        exchange.last_rid = rid;
+        return Sequence::sample;
+    }
+    const auto d = static_cast<std::uint16_t>(rid - exchange.last_rid);
+    if (d == 0) {
+        ++exchange.duplicates;
+        return Sequence::duplicate;
+    }
+    if (d >= 32768) {
+        ++exchange.out_of_order;
+        return Sequence::out_of_order;
+    }
+    exchange.missed += d - 1U;
+    exchange.last_rid = rid;
+    return Sequence::sample;
+}
+
+/// Local wall time as tcpdump prints it: HH:MM:SS.uuuuuu.
+std::string local_time(std::chrono::system_clock::time_point now) {
+    const auto since_epoch = now.time_since_epoch();
+    const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(since_epoch);
+    const auto micros =
+        std::chrono::duration_cast<std::chrono::microseconds>(since_epoch - seconds).count();
+    const time_t t = static_cast<time_t>(seconds.count());
+    struct tm parts {};
+    localtime_r(&t, &parts);
+    return fmt::format("{:02}:{:02}:{:02}.{:06}", parts.tm_hour, parts.tm_min, parts.tm_sec,
+                       micros);
+}
+
+/// The producer's time stamp in UTC (ISO 8601), or `none` for 0.
+std::string producer_time(const core::wire::Header& header) {
+    if (!header.has_timestamp()) return "none";
+    const time_t t = static_cast<time_t>(header.time_s);
+    struct tm parts {};
+    gmtime_r(&t, &parts);
+    return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}.{:09}Z", parts.tm_year + 1900,
+                       parts.tm_mon + 1, parts.tm_mday, parts.tm_hour, parts.tm_min, parts.tm_sec,
+                       header.time_ns);
+}
+
+std::string milliseconds(std::optional<double> seconds) {
+    return seconds ? fmt::format("{:.3f}", *seconds * 1000.0) : "-";
+}
+
+class Sniffer {
+public:
+    Sniffer(std::ostream& out, std::vector<core::plan::ExchangePlan> plans,
+            std::chrono::nanoseconds interval)
+        : out_(out), plans_(std::move(plans)), interval_(interval) {}
+
+    void on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from) {
+        const auto now = Clock::now();
+        std::string line = fmt::format("{} {}", local_time(std::chrono::system_clock::now()),
+                                       adapters::udp::to_string(from));
+        auto decoded = core::wire::decode_datagram(bytes);
+        if (!decoded) {
+            ++dropped_[decoded.error()];
+            line += fmt::format(" dropped={} length={}", core::wire::to_string(decoded.error()),
+                                bytes.size());
+            out_ << line << std::endl;
+            return;
+        }
+        const auto& datagram = decoded.value();
+        const auto& header = datagram.header;
+        auto& exchange = find_or_add(header.key());
+        ++exchange.received;
+        const auto sequence = apply_sequence(exchange, header.request_id, now);
+        if (sequence == Sequence::sample) exchange.arrivals.on_arrival(now);
+
+        const auto signature = core::wire::Signature::from_wire(header.signature);
+        line +=
+            fmt::format(" rid={} producer={} exchange={} time={} status={} signature={} length={}",
+                        header.request_id, core::wire::to_string(header.producer_id),
+                        header.exchange_id, producer_time(header), header.status,
+                        core::wire::to_string(signature), datagram.data.size());
+        if (sequence == Sequence::duplicate) line += " duplicate";
+        if (sequence == Sequence::out_of_order) line += " out_of_order";
+        if (exchange.plan != nullptr) {
+            line += " [" + exchange.label + "]";
+            for (const auto& tag : exchange.plan->tags) {
+                const auto& spec = tag.spec;
+                // A datagram shorter than configured (length mismatch) lacks some tags.
+                if (spec.address.byte + core::plan::size_of(spec.type) > datagram.data.size()) {
+                    line += fmt::format(" {}=?", spec.name);
+                    continue;
+                }
+                const auto value = core::wire::decode_value(datagram.data, spec.type, spec.address);
+                line += fmt::format(" {}={}", spec.name, core::plan::to_json(value));
+            }
+        }
+        out_ << line << std::endl;
+    }
+
+    /// The per-exchange table, rates over the last interval.
+    void print_statistics() {
+        const auto now = Clock::now();
+        if (exchanges_.empty() && dropped_.empty()) return;
+        std::size_t width = 8;
+        for (const auto& exchange : exchanges_) width = std::max(width, exchange.label.size());
+        out_ << fmt::format("-- statistics at {} --\n",
+                            local_time(std::chrono::system_clock::now()));
+        if (!exchanges_.empty()) {
+            out_ << fmt::format("{:<{}} {:>9} {:>9} {:>10} {:>10} {:>8} {:>10} {:>12}\n",
+                                "exchange", width, "received", "rate/s", "period_ms", "jitter_ms",
+                                "missed", "duplicates", "out_of_order");
+        }
+        for (const auto& exchange : exchanges_) {
+            const auto& arrivals = exchange.arrivals;
+            const auto mean = arrivals.mean_period();
+            out_ << fmt::format(
+                "{:<{}} {:>9} {:>9.1f} {:>10} {:>10} {:>8} {:>10} {:>12}\n", exchange.label, width,
+                exchange.received, arrivals.rate(now),
+                milliseconds(mean ? std::optional(mean->count()) : std::nullopt),
+                milliseconds(arrivals.count() > 1 ? std::optional(arrivals.jitter().count())
+                                                  : std::nullopt),
+                exchange.missed, exchange.duplicates, exchange.out_of_order);
+        }
+        if (!dropped_.empty()) {
+            std::string line = "dropped:";
+            for (const auto& [reason, count] : dropped_) {
+                line += fmt::format(" {}={}", core::wire::to_string(reason), count);
+            }
+            out_ << line << '\n';
+        }
+        out_ << std::flush;
+    }
+
+private:
+    SniffedExchange& find_or_add(const ExchangeKey& key) {
+        const auto found = index_.find(key);
+        if (found != index_.end()) return exchanges_[found->second];
+        const core::plan::ExchangePlan* plan = nullptr;
+        for (const auto& candidate : plans_) {
+            if (candidate.key() == key) {
+                plan = &candidate;
+                break;
+            }
+        }
+        std::optional<std::chrono::nanoseconds> expected;
+        if (plan != nullptr) expected = plan->spec.period;
+        exchanges_.push_back(SniffedExchange{
+            .label = plan != nullptr ? plan->spec.name
+                                     : fmt::format("{}/{}", core::wire::to_string(key.producer_id),
+                                                   key.exchange_id),
+            .plan = plan,
+            .arrivals = core::exchange::ArrivalStats(expected, interval_),
+        });
+        index_.emplace(key, exchanges_.size() - 1);
+        return exchanges_.back();
+    }
+
+    std::ostream& out_;
+    std::vector<core::plan::ExchangePlan> plans_;  ///< never resized: exchanges_ points into it
+    std::chrono::nanoseconds interval_;
+    std::vector<SniffedExchange> exchanges_;  ///< in order of first sight
+    std::map<ExchangeKey, std::size_t> index_;
+    std::map<core::wire::DropReason, std::uint64_t> dropped_;
+};
+
+}  // namespace
+
+int run_sniff(const SniffOptions& options, std::ostream& out) {
+    if (!(options.interval_s > 0)) {
+        std::cerr << "eip2mqtt sniff: --interval must be positive\n";
+        return 2;
+    }
+    adapters::udp::ReceiverOptions receiver_options;
+    std::vector<core::plan::ExchangePlan> plans;
+    if (!options.config_path.empty()) {
+        auto loaded = adapters::yaml::load_config(options.config_path);
+        if (!loaded) {
+            for (const auto& diagnostic : loaded.error()) {
+                std::cerr << diagnostic.to_string() << '\n';
+            }
+            return 1;
+        }
+        const auto& config = loaded.value();
+        plans = core::config::make_plans(config);
+        receiver_options.bind = config.eip.bind;
+        receiver_options.port = config.eip.port;
+        for (const auto& group : config.eip.multicast) {
+            receiver_options.multicast.push_back({group.group, group.interface});
+        }
+    }
+    if (!options.bind.empty()) receiver_options.bind = options.bind;
+    if (options.port != 0) receiver_options.port = static_cast<std::uint16_t>(options.port);
+
+    const auto interval = std::chrono::duration_cast<std::chrono::nanoseconds>(
+        std::chrono::duration<double>(options.interval_s));
+    Sniffer sniffer(out, std::move(plans), interval);
+
+    boost::asio::io_context loop;
+    adapters::udp::Receiver receiver(loop.get_executor(), receiver_options);
+    receiver.start([&](std::span<const std::byte> datagram, const adapters::udp::Endpoint& from,
+                       bool) { sniffer.on_datagram(datagram, from); });
+    out << fmt::format("sniffing {}:{}", receiver_options.bind, receiver.local_port()) << std::endl;
+
+    boost::asio::steady_timer tick(loop);
+    auto deadline = Clock::now() + interval;
+    std::function<void()> schedule = [&] {
+        tick.expires_at(deadline);
+        tick.async_wait([&](const boost::system::error_code& error) {
+            if (error) return;
+            sniffer.print_statistics();
+            deadline += interval;  // absolute deadlines: the interval never drifts
+            schedule();
+        });
+    };
+    schedule();
+
+    boost::asio::signal_set signals(loop, SIGINT, SIGTERM);
+    signals.async_wait([&](const boost::system::error_code& error, int) {
+        if (!error) loop.stop();
+    });
+    boost::asio::steady_timer duration_timer(loop);
+    if (options.duration_s > 0) {
+        duration_timer.expires_after(std::chrono::duration_cast<std::chrono::nanoseconds>(
+            std::chrono::duration<double>(options.duration_s)));
+        duration_timer.async_wait([&](const boost::system::error_code& error) {
+            if (!error) loop.stop();
+        });
+    }
+    loop.run();
+    receiver.stop();
+    sniffer.print_statistics();
+    return 0;
+}
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,179 @@
+#include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
+
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace eip2mqtt::adapters::metrics {
+namespace {
+
+/// GET `path` over a plain HTTP/1.0 connection to 127.0.0.1:`port`; the whole response.
+std::string http_get(std::uint16_t port, const std::string& path) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    if (fd < 0) return {};
+    timeval timeout{5, 0};
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(port);
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    std::string response;
+    if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0) {
+        const std::string request = "GET " + path + " HTTP/1.0\r\nHost: localhost\r\n\r\n";
+        if (::send(fd, request.data(), request.size(), 0) == static_cast<ssize_t>(request.size())) {
+            char buffer[4096];
+            for (;;) {
+                const auto n = ::recv(fd, buffer, sizeof buffer, 0);
+                if (n <= 0) break;
+                response.append(buffer, static_cast<std::size_t>(n));
+            }
+        }
+    }
+    ::close(fd);
+    return response;
+}
+
+bool has_line(const std::string& text, const std::string& line) {
+    return ("\n" + text + "\n").find("\n" + line + "\n") != std::string::npos;
+}
+
+MetricsSnapshot snapshot(std::uint64_t received) {
+    MetricsSnapshot s;
+    ExchangeMetrics turbine;
+    turbine.name = "turbine1";
+    turbine.direction = "consume";
+    turbine.state = "ok";
+    turbine.received = received;
+    turbine.accepted = received - 2;
+    turbine.missed = 3;
+    turbine.duplicates = 1;
+    turbine.last_seen_age_seconds = 0.25;
+    turbine.jitter_seconds = 0.002;
+    turbine.mean_period_seconds = 0.1;
+    s.exchanges.push_back(turbine);
+
+    ExchangeMetrics idle;
+    idle.name = "idle";
+    idle.direction = "consume";
+    idle.state = "waiting";
+    s.exchanges.push_back(idle);
+
+    ExchangeMetrics setpoints;
+    setpoints.name = "setpoints";
+    setpoints.direction = "produce";
+    setpoints.state = "producing";
+    setpoints.sent = 17;
+    s.exchanges.push_back(setpoints);
+
+    s.gateway.datagrams = received + 5;
+    s.gateway.accepted = received - 2;
+    s.gateway.dropped = {{"too_short", 4}, {"unknown_exchange", 1}};
+    s.gateway.mqtt_connected = true;
+    s.gateway.published = 99;
+    s.gateway.buffered = 7;
+    s.gateway.writes_ok = 2;
+    s.gateway.writes_rejected = {{"above_max", 1}};
+    return s;
+}
+
+TEST(PrometheusEndpoint, ServesTheSnapshotInTextFormat) {
+    PrometheusEndpoint endpoint("127.0.0.1:0");
+    ASSERT_NE(endpoint.port(), 0);
+    endpoint.update(snapshot(42));
+
+    const auto page = http_get(endpoint.port(), "/metrics");
+    ASSERT_NE(page.find("200 OK"), std::string::npos) << page;
+    for (
+        const auto* line : {
+            "# TYPE eip2mqtt_exchange_received_total counter",
+            R"(eip2mqtt_exchange_received_total{direction="consume",exchange="turbine1"} 42)",
+            R"(eip2mqtt_exchange_accepted_total{direction="consume",exchange="turbine1"} 40)",
+            R"(eip2mqtt_exchange_missed_total{direction="consume",exchange="turbine1"} 3)",
+            R"(eip2mqtt_exchange_duplicates_total{direction="consume",exchange="turbine1"} 1)",
+            "# TYPE eip2mqtt_exchange_state gauge",
+            R"(eip2mqtt_exchange_state{direction="consume",exchange="turbine1",state="ok"} 1)",
+            R"(eip2mqtt_exchange_state{direction="consume",exchange="turbine1",state="stale"} 0)",
+            R"(eip2mqtt_exchange_state{direction="consume",exchange="idle",state="waiting"} 1)",
+            R"(eip2mqtt_exchange_state{direction="produce",exchange="setpoints",state="producing"} 1)",
+            R"(eip2mqtt_exchange_state{direction="produce",exchange="setpoints",state="paused"} 0)",
+            R"(eip2mqtt_exchange_last_seen_age_seconds{direction="consume",exchange="turbine1"} 0.25)",
+            R"(eip2mqtt_exchange_jitter_seconds{direction="consume",exchange="turbine1"} 0.002)",
+            R"(eip2mqtt_exchange_mean_period_seconds{direction="consume",exchange="turbine1"} 0.1)",
+            R"(eip2mqtt_exchange_sent_total{direction="produce",exchange="setpoints"} 17)",
+            "eip2mqtt_datagrams_total 47",
+            "eip2mqtt_datagrams_accepted_total 40",
+            R"(eip2mqtt_datagrams_dropped_total{reason="too_short"} 4)",
+            R"(eip2mqtt_datagrams_dropped_total{reason="unknown_exchange"} 1)",
+            "# TYPE eip2mqtt_mqtt_connected gauge",
+            "eip2mqtt_mqtt_connected 1",
+            "eip2mqtt_mqtt_published_total 99",
+            "eip2mqtt_mqtt_buffered 7",
+            "eip2mqtt_mqtt_publications_dropped_total 0",
+            "eip2mqtt_writes_ok_total 2",
+            R"(eip2mqtt_writes_rejected_total{reason="above_max"} 1)",
+        }) {
+        EXPECT_TRUE(has_line(page, line)) << "missing: " << line << "\nin:\n" << page;
+    }
+    // Unknown gauges are absent rather than a made-up value; counters follow the direction.
+    EXPECT_EQ(
+        page.find(
+            R"(eip2mqtt_exchange_last_seen_age_seconds{direction="consume",exchange="idle"})"),
+        std::string::npos);
+    EXPECT_EQ(page.find(R"(eip2mqtt_exchange_received_total{direction="produce")"),
+              std::string::npos);
+    EXPECT_EQ(page.find(R"(eip2mqtt_exchange_sent_total{direction="consume")"), std::string::npos);
+}
+
+TEST(PrometheusEndpoint, AnUpdateReplacesTheValues) {
+    PrometheusEndpoint endpoint("127.0.0.1:0");
+    endpoint.update(snapshot(42));
+    ASSERT_TRUE(has_line(
+        http_get(endpoint.port(), "/metrics"),
+        R"(eip2mqtt_exchange_received_total{direction="consume",exchange="turbine1"} 42)"));
+
+    auto next = snapshot(1000);
+    next.exchanges[0].state = "stale";
+    next.exchanges.pop_back();  // an exchange removed by a reload disappears
+    next.gateway.mqtt_connected = false;
+    endpoint.update(next);
+    const auto page = http_get(endpoint.port(), "/metrics");
+    for (const auto* line : {
+             R"(eip2mqtt_exchange_received_total{direction="consume",exchange="turbine1"} 1000)",
+             R"(eip2mqtt_exchange_state{direction="consume",exchange="turbine1",state="ok"} 0)",
+             R"(eip2mqtt_exchange_state{direction="consume",exchange="turbine1",state="stale"} 1)",
+             "eip2mqtt_mqtt_connected 0",
+             "eip2mqtt_datagrams_total 1005",
+         }) {
+        EXPECT_TRUE(has_line(page, line)) << "missing: " << line << "\nin:\n" << page;
+    }
+    EXPECT_EQ(page.find("setpoints"), std::string::npos) << page;
+}
+
+TEST(PrometheusEndpoint, ServesAnEmptyPageBeforeTheFirstUpdate) {
+    PrometheusEndpoint endpoint("127.0.0.1:0");
+    const auto page = http_get(endpoint.port(), "/metrics");
+    EXPECT_NE(page.find("200 OK"), std::string::npos) << page;
+    EXPECT_EQ(page.find("eip2mqtt_"), std::string::npos) << page;
+}
+
+TEST(PrometheusEndpoint, APortInUseIsAClearStartUpError) {
+    PrometheusEndpoint first("127.0.0.1:0");
+    const std::string taken = "127.0.0.1:" + std::to_string(first.port());
+    try {
+        PrometheusEndpoint second(taken);
+        FAIL() << "listened twice on " << taken;
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot listen for metrics on " + taken),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace eip2mqtt::adapters::metrics

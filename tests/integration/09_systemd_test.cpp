@@ -1,0 +1,100 @@
+// systemd integration: notifications on a NOTIFY_SOCKET of the test's own, the unit file
+// accepted by systemd-analyze, and what `cmake --install` puts where.
+
+#include <signal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tests/support/gateway_fixture.hpp"
+#include "tests/support/notify_socket.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+const std::string one_exchange = R"(  - name: pump
+    direction: consume
+    producer_id: 10.0.0.2
+    exchange_id: 7
+    length: 4
+    period_ms: 1000
+    topic: pump
+    tags:
+      - { name: SPEED, address: "0.0", type: real }
+)";
+
+class SystemdTest : public GatewayTest {};
+
+TEST_F(SystemdTest, ReadyWatchdogReloadingAndStoppingAreNotified) {
+    NotifySocket notify(dir_.path() + "/notify");
+    // WatchdogSec=400ms: the daemon pings every 200 ms.
+    gateway_env_ = {{"NOTIFY_SOCKET", notify.path()}, {"WATCHDOG_USEC", "400000"}};
+    start(one_exchange);
+    // READY came before `online`, so it is already waiting in the socket.
+    ASSERT_TRUE(notify.wait_for("READY=1", 5s).has_value());
+
+    std::vector<std::chrono::steady_clock::time_point> pings;
+    while (pings.size() < 6) {
+        const auto at = notify.wait_for("WATCHDOG=1", 5s);
+        ASSERT_TRUE(at.has_value()) << "after " << pings.size() << " pings";
+        pings.push_back(*at);
+    }
+    const auto mean = (pings.back() - pings.front()) / (pings.size() - 1);
+    EXPECT_GT(mean, 100ms);
+    EXPECT_LT(mean, 400ms);  // within WatchdogSec, or systemd would kill us
+
+    gateway_->signal(SIGHUP);
+    EXPECT_TRUE(notify.wait_for("RELOADING=1", 5s).has_value());
+    EXPECT_TRUE(notify.wait_for("READY=1", 5s).has_value());
+
+    gateway_->signal(SIGTERM);
+    EXPECT_TRUE(notify.wait_for("STOPPING=1", 5s).has_value());
+    EXPECT_EQ(gateway_->wait(10s), 0);
+}
+
+TEST(SystemdUnit, SystemdAnalyzeVerifyAcceptsTheUnit) {
+    TempDir dir;
+    // The unit names the installed binary; point it at the one under test.
+    std::ifstream in(std::string(EIP2MQTT_SOURCE_DIR) + "/systemd/eip2mqtt.service");
+    std::stringstream unit;
+    unit << in.rdbuf();
+    std::string text = unit.str();
+    for (std::size_t at; (at = text.find("/usr/local/bin/eip2mqtt")) != std::string::npos;) {
+        text.replace(at, std::string("/usr/local/bin/eip2mqtt").size(), EIP2MQTT_BINARY);
+    }
+    for (const auto* key :
+         {"Type=notify", "WatchdogSec=", "ExecReload=", "Restart=on-failure",
+          "StateDirectory=", "ProtectSystem=strict", "PrivateTmp=yes", "NoNewPrivileges=yes",
+          "CapabilityBoundingSet=\n", "RestrictAddressFamilies="}) {
+        EXPECT_NE(text.find(key), std::string::npos) << key;
+    }
+    const auto path = dir.write("eip2mqtt.service", text);
+    const auto result = run_command({"/usr/bin/systemd-analyze", "verify", path}, 60s);
+    EXPECT_EQ(result.status, 0) << result.output;
+}
+
+TEST(Install, CmakeInstallPutsBinaryUnitAndExampleConfig) {
+    TempDir dir;
+    const std::string build_dir = std::filesystem::path(EIP2MQTT_BINARY).parent_path();
+    const auto result = run_command(
+        {"/usr/bin/cmake", "--install", build_dir, "--prefix", dir.path() + "/usr"}, 60s);
+    ASSERT_EQ(result.status, 0) << result.output;
+    std::vector<std::string> installed;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir.path())) {
+        installed.push_back(entry.path().string().substr(dir.path().size()));
+    }
+    auto has = [&](const std::string& suffix) {
+        return std::any_of(installed.begin(), installed.end(),
+                           [&](const std::string& p) { return p.ends_with(suffix); });
+    };
+    EXPECT_TRUE(has("/bin/eip2mqtt"));
+    EXPECT_TRUE(has("/eip2mqtt/eip2mqtt.yaml"));
+    EXPECT_TRUE(has("/systemd/system/eip2mqtt.service"));
+    EXPECT_TRUE(has("/doc/eip2mqtt/README.md"));
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test
