@@ -42,6 +42,7 @@ core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::D
                                                              core::WallTime wall) {
     const auto outcome = exchange_.on_datagram(datagram, now);
     if (outcome.accepted()) {
+        arrivals_.on_arrival(now);
         last_seen_ms_ = to_ms(wall);
         timestamp_ms_ = sample_time_ms(wall);
         publish_tags(now, false);

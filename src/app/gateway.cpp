@@ -90,6 +90,11 @@ Gateway::Gateway(core::config::Config config)
         receiver_options.multicast.push_back({group.group, group.interface});
     }
     receiver_ = std::make_unique<adapters::udp::Receiver>(loop_.get_executor(), receiver_options);
+    if (!config_.metrics.listen.empty()) {
+        prometheus_ =
+            std::make_unique<adapters::metrics::PrometheusEndpoint>(config_.metrics.listen);
+        spdlog::info("Prometheus metrics on http://{}/metrics", config_.metrics.listen);
+    }
 }
 
 Gateway::~Gateway() = default;
@@ -204,6 +209,7 @@ void Gateway::on_datagram(std::span<const std::byte> bytes, const adapters::udp:
     const auto& spec = consumer.plan().spec;
     if (spec.source && *spec.source != from.address) {
         ++counters_.dropped[static_cast<std::size_t>(core::wire::DropReason::wrong_source)];
+        consumer.count_wrong_source();
         drop_log_.record_lazy(core::wire::DropReason::wrong_source, now, [&] {
             return "exchange " + spec.name + " came from " + adapters::udp::to_string(from) +
                    ", expected " + adapters::udp::ipv4_to_string(*spec.source);
@@ -250,6 +256,7 @@ void Gateway::on_tick() {
     if (refresh_scan) {
         last_refresh_scan_ = now;
         for (auto& producer : producers_) producer->on_tick(now);
+        if (prometheus_) prometheus_->update(metrics_snapshot(now));
     }
     for (auto& consumer : consumers_) {
         const auto before = consumer->exchange().state();
@@ -303,6 +310,61 @@ void Gateway::publish_metrics() {
     };
     mqtt_->publish({metrics_topic_, metrics.dump(), 0, false, true});
     notifier_.status(status_line());
+}
+
+adapters::metrics::MetricsSnapshot Gateway::metrics_snapshot(core::MonoTime now) const {
+    adapters::metrics::MetricsSnapshot snapshot;
+    for (const auto& consumer : consumers_) {
+        const auto& c = consumer->exchange().counters();
+        adapters::metrics::ExchangeMetrics m;
+        m.name = consumer->plan().spec.name;
+        m.direction = "consume";
+        m.state = std::string(core::exchange::to_string(consumer->exchange().state()));
+        m.received = c.received;
+        m.accepted = c.accepted;
+        m.missed = c.missed;
+        m.duplicates = c.duplicates;
+        m.out_of_order = c.out_of_order;
+        m.signature_mismatches = c.signature_mismatches;
+        m.length_mismatches = c.length_mismatches;
+        m.wrong_source = consumer->wrong_source();
+        if (const auto last = consumer->exchange().last_accepted()) {
+            m.last_seen_age_seconds = std::chrono::duration<double>(now - *last).count();
+        }
+        const auto& arrivals = consumer->arrivals();
+        if (arrivals.count() >= 2) {
+            m.jitter_seconds = arrivals.jitter().count();
+            if (const auto mean = arrivals.mean_period()) m.mean_period_seconds = mean->count();
+        }
+        snapshot.exchanges.push_back(std::move(m));
+    }
+    for (const auto& producer : producers_) {
+        adapters::metrics::ExchangeMetrics m;
+        m.name = producer->plan().spec.name;
+        m.direction = "produce";
+        m.state = producer->paused() ? "paused" : "producing";
+        m.sent = producer->counters().sent;
+        m.send_errors = producer->counters().send_errors;
+        snapshot.exchanges.push_back(std::move(m));
+    }
+    const auto stats = mqtt_->stats();
+    auto& g = snapshot.gateway;
+    g.datagrams = counters_.datagrams;
+    g.accepted = counters_.accepted;
+    for (const auto reason : core::wire::all_drop_reasons) {
+        g.dropped[std::string(core::wire::to_string(reason))] =
+            counters_.dropped[static_cast<std::size_t>(reason)];
+    }
+    g.mqtt_connected = stats.connected;
+    g.published = stats.published;
+    g.buffered = stats.queued;
+    g.publications_dropped = stats.dropped_overflow;
+    g.writes_ok = counters_.writes_ok;
+    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
+        g.writes_rejected[std::string(core::write::to_string(
+            static_cast<core::write::WriteError>(i)))] = counters_.writes_rejected[i];
+    }
+    return snapshot;
 }
 
 std::string Gateway::status_line() const {

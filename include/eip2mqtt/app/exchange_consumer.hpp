@@ -12,6 +12,7 @@
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/exchange/arrival_stats.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/quality/report_filter.hpp"
@@ -50,6 +51,11 @@ public:
     const core::plan::ExchangePlan& plan() const { return plan_; }
     const PublishSettings& settings() const { return settings_; }
     const core::exchange::ConsumedExchange& exchange() const { return exchange_; }
+    /// Inter-arrival period and jitter of accepted datagrams.
+    const core::exchange::ArrivalStats& arrivals() const { return arrivals_; }
+    /// A datagram of this exchange from an address other than its `source`.
+    void count_wrong_source() { ++wrong_source_; }
+    std::uint64_t wrong_source() const { return wrong_source_; }
 
 private:
     void publish_tags(core::MonoTime now, bool force);
@@ -61,6 +67,8 @@ private:
     PublishSink sink_;
     core::exchange::ConsumedExchange exchange_;
     std::vector<core::quality::ReportFilter> filters_;
+    core::exchange::ArrivalStats arrivals_;
+    std::uint64_t wrong_source_ = 0;
     std::int64_t timestamp_ms_ = 0;             ///< of the values the tags publish
     std::optional<std::int64_t> last_seen_ms_;  ///< wall time of the last accepted datagram
     std::optional<core::MonoTime> last_status_at_;

@@ -69,6 +69,8 @@ public:
     const core::plan::ExchangePlan& plan() const { return plan_; }
     const PublishSettings& settings() const { return settings_; }
     const ProducerCounters& counters() const { return counters_; }
+    /// True while sends fail (`_status` says paused).
+    bool paused() const { return failing_; }
     const core::exchange::ProducedImage& image() const { return image_; }
 
 private:

@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
@@ -77,6 +78,7 @@ private:
     void schedule_metrics();
     void publish_metrics();
     std::string status_line() const;
+    adapters::metrics::MetricsSnapshot metrics_snapshot(core::MonoTime now) const;
     void wait_signal();
 
     core::config::Config config_;
@@ -100,6 +102,7 @@ private:
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
     std::unordered_map<std::string, WriteRoute> write_routes_;     ///< exact `…/set` topics
     std::unordered_map<std::string, WriteRoute> exchange_routes_;  ///< exchange topic -> route
+    std::unique_ptr<adapters::metrics::PrometheusEndpoint> prometheus_;
 
     GatewayCounters counters_;
     DropLog drop_log_;

@@ -1,0 +1,68 @@
+// The gateway's optional Prometheus endpoint serves its live counters.
+
+#include <signal.h>
+
+#include <fstream>
+#include <thread>
+
+#include "tests/support/datagram_builder.hpp"
+#include "tests/support/free_port.hpp"
+#include "tests/support/gateway_fixture.hpp"
+#include "tests/support/http_get.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using core::plan::TagType;
+using namespace std::chrono_literals;
+
+class PrometheusTest : public GatewayTest {};
+
+TEST_F(PrometheusTest, EndpointServesPerExchangeCountersAndMqttState) {
+    const auto port = free_tcp_port();
+    start(R"(  - name: pump
+    direction: consume
+    producer_id: 10.0.0.2
+    exchange_id: 7
+    length: 4
+    period_ms: 1000
+    topic: pump
+    tags:
+      - { name: SPEED, address: "0.0", type: dint }
+)");
+    // The metrics section is added by rewriting the file and restarting the gateway.
+    gateway_->signal(SIGTERM);
+    ASSERT_EQ(gateway_->wait(10s), 0);
+    std::ofstream(config_path_, std::ios::app) << "metrics:\n  listen: 127.0.0.1:" << port << "\n";
+    start_gateway();
+    for (std::uint16_t rid = 1; rid <= 3; ++rid) {
+        send(DatagramBuilder("10.0.0.2", 7, 4)
+                 .request_id(rid * 2)
+                 .set("0.0", TagType::dint, std::int64_t{rid})
+                 .build());
+    }
+    expect_field(topic("pump/SPEED"), "value", "3");
+    // The endpoint is refreshed once a second: poll it (bounded) until it shows the datagrams.
+    std::string page;
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while (std::chrono::steady_clock::now() < deadline) {
+        page = http_get(port, "/metrics");
+        if (page.find(
+                R"(eip2mqtt_exchange_accepted_total{direction="consume",exchange="pump"} 3)") !=
+            std::string::npos) {
+            break;
+        }
+        std::this_thread::sleep_for(100ms);
+    }
+    EXPECT_NE(
+        page.find(R"(eip2mqtt_exchange_accepted_total{direction="consume",exchange="pump"} 3)"),
+        std::string::npos)
+        << page;
+    EXPECT_NE(page.find(R"(eip2mqtt_exchange_missed_total{direction="consume",exchange="pump"} 2)"),
+              std::string::npos)
+        << page;
+    EXPECT_NE(page.find("eip2mqtt_mqtt_connected 1"), std::string::npos) << page;
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test
