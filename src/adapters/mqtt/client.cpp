@@ -393,6 +393,9 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     if (endpoint_) {
         detail::set_tcp_nodelay_to(endpoint_->host, endpoint_->port);
     }
+    // Subscribe before announcing `online`: the broker handles one connection's packets in
+    // order, so whoever sees `online` can already write to us.
+    renew_subscriptions(subscriptions_);
     try {
         if (!options_.availability_topic.empty()) {
             client_->publish(paho::make_message(options_.availability_topic, "online",
@@ -401,7 +404,6 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     } catch (const paho::exception& e) {
         spdlog::warn("MQTT cannot publish availability: {}", e.what());
     }
-    renew_subscriptions(subscriptions_);
     if (on_connected_) {
         on_connected_();
     }

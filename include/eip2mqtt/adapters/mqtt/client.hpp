@@ -8,9 +8,9 @@
 /// Publications go through a PublishQueue (latest value per topic wins, oldest dropped when
 /// full, both counted); a bounded number are in flight in Paho at a time, so Paho's own queue
 /// never grows without bound. While disconnected, the queue is the buffer of product.md.
-/// Reconnects use exponential backoff; after each connect the availability topic gets `online`,
-/// subscriptions are renewed and the on_connected handler runs so that the gateway republishes
-/// its retained state.
+/// Reconnects use exponential backoff; after each connect subscriptions are renewed, the
+/// availability topic gets `online`, and the on_connected handler runs so that the gateway
+/// republishes its retained state.
 
 #include <boost/asio/any_io_executor.hpp>
 #include <chrono>

@@ -1,0 +1,86 @@
+// Anti-spoofing `source` on consumed exchanges, and per-tag write rate limits.
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/datagram_builder.hpp"
+#include "tests/support/gateway_fixture.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using core::plan::TagType;
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+class SourceAndRateLimitTest : public GatewayTest {};
+
+TEST_F(SourceAndRateLimitTest, DatagramsFromAnotherSourceAreDroppedAndCounted) {
+    start(R"(  - name: trusted
+    direction: consume
+    producer_id: 10.0.0.1
+    exchange_id: 1
+    length: 4
+    period_ms: 1000
+    source: 127.0.0.1
+    topic: trusted
+    tags:
+      - { name: A, address: "0.0", type: dint }
+  - name: spoofed
+    direction: consume
+    producer_id: 10.0.0.1
+    exchange_id: 2
+    length: 4
+    period_ms: 1000
+    source: 10.0.0.1
+    topic: spoofed
+    tags:
+      - { name: A, address: "0.0", type: dint }
+)");
+    // The test sends from 127.0.0.1: right for `trusted`, wrong for `spoofed`.
+    send(DatagramBuilder("10.0.0.1", 2, 4)
+             .request_id(1)
+             .set("0.0", TagType::dint, std::int64_t{666})
+             .build());
+    send(DatagramBuilder("10.0.0.1", 1, 4)
+             .request_id(1)
+             .set("0.0", TagType::dint, std::int64_t{7})
+             .build());
+    expect_field(topic("trusted/A"), "value", "7");
+    const auto metrics = recorder_->wait_for_message(metrics_topic(), [](const std::string& p) {
+        return json::parse(p)["dropped"]["wrong_source"] == 1;
+    });
+    EXPECT_TRUE(metrics.has_value());
+    EXPECT_TRUE(recorder_->messages_on(topic("spoofed/A")).empty());
+}
+
+TEST_F(SourceAndRateLimitTest, WritesBeyondTheTagRateAreRejected) {
+    UdpClient capture;
+    start(R"(  - name: sp
+    direction: produce
+    producer_id: 10.1.2.3
+    exchange_id: 10
+    destination: 127.0.0.1:)" +
+          std::to_string(capture.port()) + R"(
+    period_ms: 20
+    topic: sp
+    tags:
+      - { name: SP, address: "0.0", type: dint, writable: true, max_writes_per_s: 0.2 }
+)");
+    // A burst of one write is allowed; the next within 5 s is refused with its reason.
+    std::vector<json> results;
+    for (int i = 1; i <= 2; ++i) {
+        const auto from = recorder_->count();
+        recorder_->publish(topic("sp/SP/set"), std::to_string(i));
+        const auto result =
+            recorder_->wait_for_message(topic("sp/SP/set/result"), nullptr, 10s, from);
+        ASSERT_TRUE(result.has_value());
+        results.push_back(json::parse(result->payload));
+    }
+    EXPECT_EQ(results[0], json({{"ok", true}}));
+    EXPECT_EQ(results[1].value("ok", true), false);
+    EXPECT_NE(results[1].value("error", std::string()).find("writes per second"), std::string::npos)
+        << results[1].dump();
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test
