@@ -19,6 +19,7 @@ build/eip2mqtt check -c etc/eip2mqtt/eip2mqtt.yaml >/dev/null
 echo "== AddressSanitizer + UBSan build and tests"
 tools/build.sh asan
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export LSAN_OPTIONS=suppressions=$PWD/tools/lsan.supp
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 (cd build-asan && ctest --output-on-failure -j "$(nproc)" --timeout 600)
 
