@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "app/commands/detail/run_until_stopped.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/commands.hpp"
@@ -272,19 +273,7 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
     };
     schedule();
 
-    boost::asio::signal_set signals(loop, SIGINT, SIGTERM);
-    signals.async_wait([&](const boost::system::error_code& error, int) {
-        if (!error) loop.stop();
-    });
-    boost::asio::steady_timer duration_timer(loop);
-    if (options.duration_s > 0) {
-        duration_timer.expires_after(std::chrono::duration_cast<std::chrono::nanoseconds>(
-            std::chrono::duration<double>(options.duration_s)));
-        duration_timer.async_wait([&](const boost::system::error_code& error) {
-            if (!error) loop.stop();
-        });
-    }
-    loop.run();
+    detail::run_until_stopped(loop, options.duration_s);
     receiver.stop();
     sniffer.print_statistics();
     return 0;
