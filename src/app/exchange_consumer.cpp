@@ -101,10 +101,13 @@ void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
         }
     }
     if (settings_.batch && !batch_values.empty()) {
-        sink_({plan_.values_topic,
-               fmt::format(R"({{"timestamp":{},"quality":"{}","values":{{{}}}}})", timestamp_ms_,
-                           core::quality::to_string(*quality), batch_values),
-               settings_.qos, false, false});
+        adapters::mqtt::Message values{
+            plan_.values_topic,
+            fmt::format(R"({{"timestamp":{},"quality":"{}","values":{{{}}}}})", timestamp_ms_,
+                        core::quality::to_string(*quality), batch_values),
+            settings_.qos, false, false};
+        values.batch_lane = true;
+        sink_(std::move(values));
     }
 }
 

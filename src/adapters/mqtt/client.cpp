@@ -12,8 +12,10 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <thread>
 #include <utility>
 
+#include "adapters/mqtt/detail/in_flight_window.hpp"
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
 
@@ -98,10 +100,11 @@ std::uint64_t from_context(void* ctx) { return reinterpret_cast<std::uintptr_t>(
 
 }  // namespace
 
-/// Threading: the loop runs connect, reconnect, pump and the user's handlers. Paho threads run
-/// the listeners below; they touch only the atomics and the mutex-guarded publication state,
-/// and post everything else to the loop. The mutex exists because stop() must drain that state
-/// while the loop is no longer running (style.md would otherwise have us post to the owner).
+/// Threading: the loop runs connect, reconnect and the user's handlers. The sender thread hands
+/// queued publications to Paho. Paho's threads run the listeners below. Publication state (the
+/// queues, what is in flight, the sender's wake-up conditions) is guarded by mutex_, held for
+/// queue operations only, never across a Paho call; everything else the listeners learn is
+/// posted to the loop.
 struct Client::Impl : std::enable_shared_from_this<Impl> {
     Impl(boost::asio::any_io_executor loop, ClientOptions options);
     ~Impl();
@@ -116,18 +119,30 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     /// Arms the backoff timer; returns the delay.
     std::chrono::milliseconds schedule_reconnect();
     void renew_subscriptions(const std::vector<std::string>& filters);
-    void pump();
-    void log_publish_failure(std::string topic, std::string reason);
 
     // --- any thread ----------------------------------------------------------------------
-    enum class SendResult { sent, not_connected, failed };
-    /// Registers `message` as in flight under `id` and hands it to Paho.
-    SendResult send(std::uint64_t id, Message message);
-    /// Takes the next publication (re-queued ones first); false when none.
-    bool take_next(std::unique_lock<std::mutex>& lock, std::uint64_t& id, Message& message);
+    /// Queues `message` in its lane and wakes the sender if it sleeps.
+    void enqueue(Message message);
+    /// Lets the sender hand publications to Paho (after a connect) or stops it (loss, stop).
+    void set_sending(bool enabled);
     /// A Paho listener: publication `id` completed with Paho return code `rc`.
-    void on_publish_done(std::uint64_t id, int rc, std::string reason);
+    void on_publish_done(std::uint64_t id, int rc, const std::string& reason);
+    void log_publish_failure(const std::string& topic, const std::string& reason);
     void stop(std::chrono::milliseconds flush_timeout);
+
+    // --- sender thread -------------------------------------------------------------------
+    void sender_main();
+    /// Paho's publish of one taken message; a synchronous refusal is handled here.
+    void send(std::uint64_t id, const paho::message_ptr& message);
+
+    // --- under mutex_ --------------------------------------------------------------------
+    bool has_queued() const { return !retry_.empty() || !queue_.empty() || !batch_queue_.empty(); }
+    /// Whether the sender has something to send and room to send it. After it filled the
+    /// window it waits for the window to drain to a quarter, so that it wakes once per burst
+    /// rather than once per completion.
+    bool ready_to_send() const;
+    /// Takes the next publication: re-queued ones first, then the two lanes in turn.
+    bool take_next(Message& message);
 
     template <class F>
     void post(F&& f) {
@@ -193,16 +208,22 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     std::vector<std::string> subscriptions_;
     std::uint64_t connect_failures_unlogged_ = 0;
     Clock::time_point connect_failure_logged_{};
+
+    // Guarded by mutex_ (touched by the loop, the sender, Paho's threads and stop()).
+    mutable std::mutex mutex_;
+    std::condition_variable wake_sender_;  ///< work and room, or quit
+    std::condition_variable completed_;    ///< an in-flight publication finished (for stop())
+    PublishQueue queue_;
+    PublishQueue batch_queue_;
+    bool next_from_batch_ = false;               ///< whose turn when both lanes wait
+    std::map<std::uint64_t, Message> retry_;     ///< re-queued, by original order
+    detail::InFlightWindow<Message> in_flight_;  ///< handed to Paho, not yet completed
+    bool sending_ = false;                       ///< connected and announced: the sender may send
+    bool sender_idle_ = false;                   ///< the sender waits on wake_sender_
+    bool window_full_ = false;  ///< the sender stopped at the limit: wait for the low mark
+    bool quit_ = false;         ///< the sender thread must end
     std::uint64_t publish_failures_unlogged_ = 0;
     Clock::time_point publish_failure_logged_{};
-
-    // Guarded by mutex_ (touched by the loop, Paho's threads and stop()).
-    mutable std::mutex mutex_;
-    std::condition_variable completed_;  ///< an in-flight publication finished
-    PublishQueue queue_;
-    std::map<std::uint64_t, Message> retry_;      ///< re-queued, by original order
-    std::map<std::uint64_t, Message> in_flight_;  ///< handed to Paho, not yet completed
-    std::uint64_t next_id_ = 1;
 
     /// max_in_flight, lowered to the broker's receive maximum on each connect.
     std::atomic<std::size_t> in_flight_limit_;
@@ -214,14 +235,17 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     std::atomic<std::uint64_t> connects_{0};
     std::atomic<std::uint64_t> connection_losses_{0};
     std::atomic<std::uint64_t> received_{0};
+    detail::NagleSwitch nagle_;
 
     PublishListener publish_listener_{*this};
     ConnectListener connect_listener_{*this};
     SubscribeListener subscribe_listener_{*this};
     paho::connect_options connect_options_;
-    /// Last member: destroyed first, so no Paho callback outlives what it touches.
+    /// Destroyed before the members above (declared after them), so no Paho callback outlives
+    /// what it touches; the sender thread is joined in ~Impl before that.
     std::unique_ptr<paho::async_client> client_;
     paho::token_ptr connect_token_;  ///< loop-owned; read for the CONNACK's properties
+    std::thread sender_;
 };
 
 Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
@@ -235,6 +259,7 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
       reconnect_timer_(loop_),
       next_backoff_(options_.min_backoff),
       queue_(options_.buffer_max_messages),
+      batch_queue_(options_.batch_lane_max_messages),
       in_flight_limit_(std::max<std::size_t>(1, options_.max_in_flight)) {
     const bool v5 = options_.version == 5;
     paho::create_options create(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
@@ -329,9 +354,18 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
             }
         });
     });
+    sender_ = std::thread([this] { sender_main(); });
 }
 
 Client::Impl::~Impl() {
+    {
+        std::lock_guard lock(mutex_);
+        quit_ = true;
+    }
+    wake_sender_.notify_all();
+    if (sender_.joinable()) {
+        sender_.join();
+    }
     try {
         client_->disable_callbacks();
     } catch (const paho::exception&) {
@@ -391,7 +425,7 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     spdlog::info("MQTT connected to {}", options_.url);
 
     if (endpoint_) {
-        detail::set_tcp_nodelay_to(endpoint_->host, endpoint_->port);
+        nagle_.attach(detail::sockets_connected_to(endpoint_->host, endpoint_->port));
     }
     // Subscribe before announcing `online`: the broker handles one connection's packets in
     // order, so whoever sees `online` can already write to us.
@@ -407,7 +441,7 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     if (on_connected_) {
         on_connected_();
     }
-    pump();
+    set_sending(true);
 }
 
 std::string Client::Impl::explain_connect_failure(std::string reason) const {
@@ -438,7 +472,7 @@ std::string Client::Impl::explain_connect_failure(std::string reason) const {
 void Client::Impl::update_in_flight_limit() {
     // MQTT 5 §3.2.2.3.3: the broker's Receive Maximum, 65535 when absent (Mosquitto sends 20).
     // Paho C sends no more QoS >= 1 publications than that and queues the rest until its next
-    // one-second cycle rather than on PUBACK, which capped us at 20 messages/s: the pump must
+    // one-second cycle rather than on PUBACK, which capped us at 20 messages/s: the sender must
     // not hand it more. (The token the listener sees lacks the CONNACK properties in Paho C++
     // 1.2; the one connect() returned has them.)
     std::size_t receive_maximum = 65535;
@@ -468,20 +502,21 @@ void Client::Impl::on_connection_lost(std::string cause) {
     connected_ = false;
     connection_losses_.fetch_add(1, std::memory_order_relaxed);
     spdlog::warn("MQTT connection to {} lost: {}", options_.url, cause);
+    nagle_.detach();
     {
         // Whatever Paho did not confirm is either sent again (QoS >= 1, clean session) or
         // counted as failed. Completions arriving later find nothing and are ignored, so
         // nothing is counted twice.
         std::lock_guard lock(mutex_);
+        sending_ = false;
         if (requeue_in_flight_) {
-            for (auto it = in_flight_.begin(); it != in_flight_.end();) {
-                if (it->second.qos > 0) {
-                    retry_.insert(in_flight_.extract(it++));
+            in_flight_.abandon_all([this](std::uint64_t id, Message&& message) {
+                if (message.qos > 0) {
+                    retry_.emplace(id, std::move(message));
                 } else {
                     publish_failures_.fetch_add(1, std::memory_order_relaxed);
-                    it = in_flight_.erase(it);
                 }
-            }
+            });
         }
     }
     completed_.notify_all();
@@ -526,112 +561,161 @@ void Client::Impl::renew_subscriptions(const std::vector<std::string>& filters) 
     }
 }
 
-bool Client::Impl::take_next(std::unique_lock<std::mutex>&, std::uint64_t& id, Message& message) {
-    if (!retry_.empty()) {
-        auto node = retry_.extract(retry_.begin());
-        id = node.key();
-        message = std::move(node.mapped());
-        return true;
-    }
-    if (auto next = queue_.pop()) {
-        id = next_id_++;
-        message = std::move(*next);
-        return true;
-    }
-    return false;
-}
+// --- publications ------------------------------------------------------------------------
 
-Client::Impl::SendResult Client::Impl::send(std::uint64_t id, Message message) {
-    auto msg = paho::make_message(message.topic, message.payload, message.qos, message.retain);
-    if (!message.correlation_data.empty() && options_.version == 5) {
-        msg->set_properties(
-            paho::properties{{paho::property::CORRELATION_DATA, message.correlation_data}});
-    }
+void Client::Impl::enqueue(Message message) {
+    bool wake = false;
     {
         std::lock_guard lock(mutex_);
-        in_flight_.emplace(id, std::move(message));
+        (message.batch_lane ? batch_queue_ : queue_).push(std::move(message));
+        wake = sender_idle_ && ready_to_send();
     }
+    if (wake) {
+        wake_sender_.notify_one();
+    }
+}
+
+void Client::Impl::set_sending(bool enabled) {
+    {
+        std::lock_guard lock(mutex_);
+        sending_ = enabled;
+    }
+    wake_sender_.notify_all();
+}
+
+bool Client::Impl::ready_to_send() const {
+    if (quit_ || !sending_ || !link_up_.load(std::memory_order_relaxed) || !has_queued()) {
+        return false;
+    }
+    const std::size_t limit = in_flight_limit_.load(std::memory_order_relaxed);
+    return in_flight_.pending() <= (window_full_ ? limit / 4 : limit - 1);
+}
+
+bool Client::Impl::take_next(Message& message) {
+    if (!retry_.empty()) {
+        message = std::move(retry_.extract(retry_.begin()).mapped());
+        return true;
+    }
+    bool from_batch = !batch_queue_.empty();
+    if (from_batch && !queue_.empty()) {
+        from_batch = next_from_batch_;
+        next_from_batch_ = !next_from_batch_;
+    }
+    auto next = (from_batch ? batch_queue_ : queue_).pop();
+    if (!next) {
+        return false;
+    }
+    message = std::move(*next);
+    return true;
+}
+
+void Client::Impl::sender_main() {
+    struct Outgoing {
+        std::uint64_t id;
+        paho::message_ptr message;
+    };
+    std::vector<Outgoing> burst;
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        sender_idle_ = true;
+        wake_sender_.wait(lock, [this] { return quit_ || ready_to_send(); });
+        sender_idle_ = false;
+        if (quit_) {
+            return;
+        }
+        // Take a burst under the lock (Paho copies topic and payload in make_message, so the
+        // window keeps our Message only for a re-send), then publish it without the lock.
+        const std::size_t limit = in_flight_limit_;
+        Message message;
+        while (in_flight_.pending() < limit && take_next(message)) {
+            auto out =
+                paho::make_message(message.topic, message.payload, message.qos, message.retain);
+            if (!message.correlation_data.empty() && options_.version == 5) {
+                out->set_properties(
+                    paho::properties{{paho::property::CORRELATION_DATA, message.correlation_data}});
+            }
+            burst.push_back({in_flight_.add(std::move(message)), std::move(out)});
+        }
+        window_full_ = in_flight_.pending() >= limit;
+        const bool backlog = window_full_ && has_queued();
+        lock.unlock();
+        nagle_.set_backlogged(backlog);
+        for (const auto& out : burst) {
+            send(out.id, out.message);
+        }
+        burst.clear();
+        lock.lock();
+    }
+}
+
+void Client::Impl::send(std::uint64_t id, const paho::message_ptr& message) {
     try {
-        client_->publish(msg, to_context(id), publish_listener_);
-        return SendResult::sent;
+        client_->publish(message, to_context(id), publish_listener_);
     } catch (const paho::exception& e) {
         std::unique_lock lock(mutex_);
-        auto node = in_flight_.extract(id);
-        if (node.empty()) {
-            return SendResult::failed;  // already completed by a listener
+        auto item = in_flight_.complete(id);
+        if (!item) {
+            return;  // abandoned meanwhile by on_connection_lost
         }
         if (e.get_return_code() == MQTTASYNC_DISCONNECTED) {
-            retry_.insert(std::move(node));  // never left: no duplicate possible
-            return SendResult::not_connected;
+            retry_.emplace(id, std::move(*item));  // never left: no duplicate possible
+            return;
         }
         publish_failures_.fetch_add(1, std::memory_order_relaxed);
         lock.unlock();
         completed_.notify_all();
-        post([topic = msg->get_topic(), reason = std::string(e.what())](Impl& self) mutable {
-            self.log_publish_failure(std::move(topic), std::move(reason));
-        });
-        return SendResult::failed;
+        log_publish_failure(message->get_topic(), e.what());
     }
 }
 
-void Client::Impl::pump() {
-    while (state_ == State::connected && link_up_ && !stopping_) {
-        std::uint64_t id = 0;
-        Message message;
-        {
-            std::unique_lock lock(mutex_);
-            if (in_flight_.size() >= in_flight_limit_ || !take_next(lock, id, message)) {
-                return;
-            }
-        }
-        if (send(id, std::move(message)) == SendResult::not_connected) {
-            return;
-        }
-    }
-}
-
-void Client::Impl::on_publish_done(std::uint64_t id, int rc, std::string reason) {
+void Client::Impl::on_publish_done(std::uint64_t id, int rc, const std::string& reason) {
     std::string failed_topic;
+    bool wake = false;
     {
         std::lock_guard lock(mutex_);
-        auto it = in_flight_.find(id);
-        if (it == in_flight_.end()) {
+        auto item = in_flight_.complete(id);
+        if (!item) {
             return;  // already re-queued or counted by on_connection_lost
         }
         if (rc == 0) {
             published_.fetch_add(1, std::memory_order_relaxed);
-            in_flight_.erase(it);
-        } else if (requeue_in_flight_ && it->second.qos > 0 && !stopping_ &&
+        } else if (requeue_in_flight_ && item->qos > 0 && !stopping_ &&
                    (rc == MQTTASYNC_DISCONNECTED || rc == MQTTASYNC_OPERATION_INCOMPLETE ||
                     !link_up_)) {
             // Failed because the connection went: send it again after reconnect.
-            retry_.insert(in_flight_.extract(it));
+            retry_.emplace(id, std::move(*item));
         } else {
             publish_failures_.fetch_add(1, std::memory_order_relaxed);
-            failed_topic = it->second.topic;
-            in_flight_.erase(it);
+            failed_topic = std::move(item->topic);
         }
+        wake = sender_idle_ && ready_to_send();
     }
-    completed_.notify_all();
     if (stopping_) {
-        return;
+        completed_.notify_all();
+    }
+    if (wake) {
+        wake_sender_.notify_one();
     }
     if (!failed_topic.empty()) {
-        post([topic = std::move(failed_topic), reason = std::move(reason)](Impl& self) mutable {
-            self.log_publish_failure(std::move(topic), std::move(reason));
-        });
+        log_publish_failure(failed_topic, reason);
     }
-    post([](Impl& self) { self.pump(); });
 }
 
-void Client::Impl::log_publish_failure(std::string topic, std::string reason) {
-    const auto now = Clock::now();
-    ++publish_failures_unlogged_;
-    if (publish_failures_unlogged_ == 1 || now - publish_failure_logged_ >= kLogInterval) {
+void Client::Impl::log_publish_failure(const std::string& topic, const std::string& reason) {
+    std::uint64_t count = 0;
+    {
+        std::lock_guard lock(mutex_);
+        const auto now = Clock::now();
+        ++publish_failures_unlogged_;
+        if (publish_failures_unlogged_ == 1 || now - publish_failure_logged_ >= kLogInterval) {
+            count = publish_failures_unlogged_;
+            publish_failures_unlogged_ = 0;
+            publish_failure_logged_ = now;
+        }
+    }
+    if (count > 0) {
         spdlog::warn("MQTT publish to {} failed: {} ({} failures since last report)", topic, reason,
-                     publish_failures_unlogged_);
-        publish_failures_unlogged_ = 0;
-        publish_failure_logged_ = now;
+                     count);
     }
 }
 
@@ -640,16 +724,30 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         return;
     }
     // The loop may no longer run: cancel its timer there if it does, and touch nothing of it
-    // here. Paho is driven directly from this thread.
+    // here. The sender thread keeps sending until the queue is flushed or the time is up.
     post([](Impl& self) {
         self.state_ = State::stopped;
         self.connected_ = false;
         self.reconnect_timer_.cancel();
     });
+    const auto end_sender = [this] {
+        {
+            std::lock_guard lock(mutex_);
+            quit_ = true;
+        }
+        wake_sender_.notify_all();
+        if (sender_.joinable()) {
+            sender_.join();
+        }
+    };
     const auto deadline = Clock::now() + flush_timeout;
     if (!link_up_ || !client_->is_connected()) {
-        std::lock_guard lock(mutex_);
-        const auto lost = queue_.size() + retry_.size();
+        std::size_t lost = 0;
+        {
+            std::lock_guard lock(mutex_);
+            lost = queue_.size() + batch_queue_.size() + retry_.size();
+        }
+        end_sender();
         if (lost > 0) {
             spdlog::warn("MQTT stopping while disconnected: {} queued publications dropped", lost);
         }
@@ -667,30 +765,14 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         spdlog::warn("MQTT cannot publish availability: {}", e.what());
     }
 
-    // Drain the queue straight into Paho, at most max_in_flight at a time.
     std::size_t unsent = 0;
     {
         std::unique_lock lock(mutex_);
-        for (;;) {
-            if (!completed_.wait_until(lock, deadline,
-                                       [&] { return in_flight_.size() < in_flight_limit_; })) {
-                break;
-            }
-            std::uint64_t id = 0;
-            Message message;
-            if (!take_next(lock, id, message)) {
-                break;
-            }
-            lock.unlock();
-            const auto result = send(id, std::move(message));
-            lock.lock();
-            if (result == SendResult::not_connected) {
-                break;
-            }
-        }
-        completed_.wait_until(lock, deadline, [&] { return in_flight_.empty(); });
-        unsent = queue_.size() + retry_.size() + in_flight_.size();
+        completed_.wait_until(lock, deadline,
+                              [this] { return !has_queued() && in_flight_.empty(); });
+        unsent = queue_.size() + batch_queue_.size() + retry_.size() + in_flight_.pending();
     }
+    end_sender();
     if (offline) {
         const auto left = std::max(Clock::duration::zero(), deadline - Clock::now());
         try {
@@ -755,13 +837,7 @@ void Client::start() {
     }
 }
 
-void Client::publish(Message message) {
-    {
-        std::lock_guard lock(impl_->mutex_);
-        impl_->queue_.push(std::move(message));
-    }
-    impl_->pump();
-}
+void Client::publish(Message message) { impl_->enqueue(std::move(message)); }
 
 void Client::stop(std::chrono::milliseconds flush_timeout) { impl_->stop(flush_timeout); }
 
@@ -777,9 +853,9 @@ ClientStats Client::stats() const {
     s.connection_losses = impl.connection_losses_;
     s.received = impl.received_;
     std::lock_guard lock(impl.mutex_);
-    s.queued = impl.queue_.size() + impl.retry_.size();
-    s.in_flight = impl.in_flight_.size();
-    s.dropped_overflow = impl.queue_.dropped_overflow();
+    s.queued = impl.queue_.size() + impl.batch_queue_.size() + impl.retry_.size();
+    s.in_flight = impl.in_flight_.pending();
+    s.dropped_overflow = impl.queue_.dropped_overflow() + impl.batch_queue_.dropped_overflow();
     s.coalesced = impl.queue_.coalesced();
     return s;
 }

@@ -295,6 +295,34 @@ TEST_F(ClientFixture, LatestValueWinsPerTopicWhileQueued) {
     EXPECT_EQ(client_->stats().coalesced, 8u);
 }
 
+TEST_F(ClientFixture, BatchLaneIsServedInTurnWithTheMainQueueAndBounded) {
+    Mosquitto broker;
+    MqttRecorder recorder(broker.url(), {"gw/#"});
+    auto options = options_for(broker);
+    options.availability_topic.clear();
+    options.batch_lane_max_messages = 3;
+    make_client(options);
+    on_loop([&] {
+        for (int i = 0; i < 5; ++i) {
+            client_->publish(msg("gw/t/" + std::to_string(i), "t" + std::to_string(i)));
+        }
+        for (int i = 0; i < 4; ++i) {  // the first is dropped: the lane holds 3
+            auto m = msg("gw/_values", "v" + std::to_string(i), 1, false, false);
+            m.batch_lane = true;
+            client_->publish(std::move(m));
+        }
+    });
+    EXPECT_EQ(client_->stats().dropped_overflow, 1u);
+    EXPECT_EQ(client_->stats().queued, 8u);
+    on_loop([&] { client_->start(); });
+    ASSERT_TRUE(
+        recorder.wait_for([](const std::vector<Received>& all) { return all.size() >= 8; }));
+    std::vector<std::string> order;
+    for (const auto& r : recorder.messages()) order.push_back(r.payload);
+    // One connection, QoS 1: the broker forwards in the order the client took them.
+    EXPECT_EQ(order, (std::vector<std::string>{"t0", "v1", "t1", "v2", "t2", "v3", "t3", "t4"}));
+}
+
 TEST_F(ClientFixture, BuffersWhileBrokerIsDownAndDeliversInOrder) {
     test::MosquittoOptions bo;
     bo.persistence = true;  // the recorder's session (and its queue) survives the restart

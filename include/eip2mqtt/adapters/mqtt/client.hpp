@@ -1,13 +1,19 @@
 #pragma once
 /// The gateway's MQTT connection (Paho MQTT C++ underneath; Paho types stay in the .cpp).
 ///
-/// Threading: every public member is called on the loop (the executor given at construction),
-/// and every handler is invoked there. Paho's callbacks run on Paho's threads; they only copy
-/// what they got and post it to the loop.
+/// Threading: every public member but stop() and stats() is called on the loop (the executor
+/// given at construction), and every handler is invoked there. Publications are handed to Paho
+/// by a sender thread of the client's own, never by the loop: Paho C writes to its socket under
+/// one global mutex, and a loop waiting on it would neither drain UDP nor keep production
+/// deadlines. publish() only queues (a short lock of our own) and wakes the sender when it
+/// sleeps. Paho's callbacks run on Paho's threads: a completed publication updates the queue's
+/// state under that lock; everything else is copied and posted to the loop.
 ///
 /// Publications go through a PublishQueue (latest value per topic wins, oldest dropped when
 /// full, both counted); a bounded number are in flight in Paho at a time, so Paho's own queue
-/// never grows without bound. While disconnected, the queue is the buffer of product.md.
+/// never grows without bound (and stays short: Paho C walks its whole command list on every
+/// publish). Batch mode's `_values` have a lane of their own (Message::batch_lane), served in
+/// turn with the main queue. While disconnected, the queue is the buffer of product.md.
 /// Reconnects use exponential backoff; after each connect subscriptions are renewed, the
 /// availability topic gets `online`, and the on_connected handler runs so that the gateway
 /// republishes its retained state.
@@ -51,6 +57,7 @@ struct ClientOptions {
     int availability_qos = 1;
 
     std::size_t buffer_max_messages = 100000;
+    std::size_t batch_lane_max_messages = 1000;  ///< `_values` waiting; oldest dropped beyond
     std::size_t max_in_flight = 1000;  ///< publications handed to Paho and not yet completed
     std::chrono::milliseconds min_backoff{250};
     std::chrono::milliseconds max_backoff{30000};
@@ -60,7 +67,7 @@ struct ClientStats {
     bool connected = false;
     std::uint64_t published = 0;  ///< completed (QoS 0: written; QoS 1: acknowledged)
     std::uint64_t publish_failures = 0;
-    std::uint64_t queued = 0;  ///< waiting in the PublishQueue
+    std::uint64_t queued = 0;  ///< waiting in the PublishQueue (both lanes)
     std::uint64_t in_flight = 0;
     std::uint64_t dropped_overflow = 0;  ///< oldest dropped because the queue was full
     std::uint64_t coalesced = 0;         ///< replaced by a newer value of the same topic
@@ -93,8 +100,8 @@ public:
     void publish(Message message);
 
     /// Publishes `offline`, waits up to `flush_timeout` for queued and in-flight publications,
-    /// then disconnects. Blocks the calling thread: call it after the loop stopped, or from a
-    /// thread other than the loop.
+    /// then disconnects and ends the sender thread. Blocks the calling thread: call it after
+    /// the loop stopped, or from a thread other than the loop.
     void stop(std::chrono::milliseconds flush_timeout);
 
     bool connected() const;

@@ -16,6 +16,9 @@ struct Message {
     bool coalesce = true;
     /// MQTT 5 correlation data (binary), for a write result sent to a request's response topic.
     std::string correlation_data;
+    /// Batch mode's `{exchange}/_values`: queued in a lane of its own, served in turn with the
+    /// others, so that a saturated per-tag flow cannot starve it (nor it the per-tag topics).
+    bool batch_lane = false;
 };
 
 /// A message received on a subscription, copied off Paho's thread.

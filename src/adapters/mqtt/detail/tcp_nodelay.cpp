@@ -60,17 +60,17 @@ bool is_stream_socket(int fd) {
 
 }  // namespace
 
-std::size_t set_tcp_nodelay_to(const std::string& host, std::uint16_t port) {
+std::vector<int> sockets_connected_to(const std::string& host, std::uint16_t port) {
+    std::vector<int> fds;
     const auto broker = resolve(host, port);
     if (broker.empty()) {
-        return 0;
+        return fds;
     }
     DIR* dir = ::opendir("/proc/self/fd");
     if (dir == nullptr) {
-        return 0;
+        return fds;
     }
     const int dir_fd = ::dirfd(dir);
-    std::size_t changed = 0;
     while (const dirent* entry = ::readdir(dir)) {
         char* end = nullptr;
         const long fd_long = std::strtol(entry->d_name, &end, 10);
@@ -87,25 +87,53 @@ std::size_t set_tcp_nodelay_to(const std::string& host, std::uint16_t port) {
             (peer.ss_family != AF_INET && peer.ss_family != AF_INET6)) {
             continue;
         }
-        bool match = false;
         for (const auto& b : broker) {
-            match = match || same_endpoint(peer, b);
-        }
-        if (!match) {
-            continue;
-        }
-        int on = 0;
-        socklen_t on_len = sizeof on;
-        if (::getsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &on, &on_len) == 0 && on != 0) {
-            continue;
-        }
-        on = 1;
-        if (::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on) == 0) {
-            ++changed;
+            if (same_endpoint(peer, b)) {
+                fds.push_back(fd);
+                break;
+            }
         }
     }
     ::closedir(dir);
-    return changed;
+    return fds;
+}
+
+bool set_tcp_nodelay(int fd, bool on) {
+    const int value = on ? 1 : 0;
+    return ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &value, sizeof value) == 0;
+}
+
+void NagleSwitch::attach(std::vector<int> fds) {
+    std::lock_guard lock(mutex_);
+    fds_ = std::move(fds);
+    backlogged_ = false;
+    wanted_backlogged_ = false;
+    for (const int fd : fds_) {
+        set_tcp_nodelay(fd, true);
+    }
+}
+
+void NagleSwitch::detach() {
+    std::lock_guard lock(mutex_);
+    fds_.clear();
+    backlogged_ = false;
+    wanted_backlogged_ = false;
+}
+
+void NagleSwitch::set_backlogged(bool backlogged) {
+    // The common case, no change, costs one relaxed load and no lock.
+    if (wanted_backlogged_.load(std::memory_order_relaxed) == backlogged) {
+        return;
+    }
+    std::lock_guard lock(mutex_);
+    wanted_backlogged_ = backlogged;
+    if (backlogged_ == backlogged) {
+        return;
+    }
+    backlogged_ = backlogged;
+    for (const int fd : fds_) {
+        set_tcp_nodelay(fd, !backlogged);
+    }
 }
 
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -1,0 +1,68 @@
+#pragma once
+/// The publications handed to Paho and not yet completed, by id. Ids are given in order, and
+/// Paho completes them nearly in order (QoS 0 as written, QoS 1 as acknowledged), so a deque
+/// indexed by `id - first id` finds one in O(1) and completed ones leave from the front. A
+/// completion for an id no longer here (abandoned on a connection loss, or never given) is
+/// ignored, so nothing is counted twice.
+///
+/// Module-private (src/adapters/mqtt/detail); not thread-safe: the client guards it.
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <utility>
+
+namespace eip2mqtt::adapters::mqtt::detail {
+
+template <class T>
+class InFlightWindow {
+public:
+    /// Registers `item`; returns its id (1, 2, ...).
+    std::uint64_t add(T item) {
+        entries_.push_back({std::move(item), false});
+        ++pending_;
+        return next_id_++;
+    }
+
+    /// Takes the item of a pending id out of the window; nullopt when unknown or done.
+    std::optional<T> complete(std::uint64_t id) {
+        if (id < first_id_ || id >= next_id_) return std::nullopt;
+        Entry& entry = entries_[static_cast<std::size_t>(id - first_id_)];
+        if (entry.done) return std::nullopt;
+        entry.done = true;
+        --pending_;
+        std::optional<T> item(std::move(entry.item));
+        while (!entries_.empty() && entries_.front().done) {
+            entries_.pop_front();
+            ++first_id_;
+        }
+        return item;
+    }
+
+    /// Hands every pending item to `f(id, T&&)` in id order and forgets them all.
+    template <class F>
+    void abandon_all(F&& f) {
+        for (std::size_t i = 0; i < entries_.size(); ++i) {
+            if (!entries_[i].done) f(first_id_ + i, std::move(entries_[i].item));
+        }
+        entries_.clear();
+        first_id_ = next_id_;
+        pending_ = 0;
+    }
+
+    std::size_t pending() const { return pending_; }
+    bool empty() const { return pending_ == 0; }
+
+private:
+    struct Entry {
+        T item;
+        bool done;
+    };
+    std::deque<Entry> entries_;
+    std::uint64_t first_id_ = 1;  ///< id of entries_.front()
+    std::uint64_t next_id_ = 1;
+    std::size_t pending_ = 0;
+};
+
+}  // namespace eip2mqtt::adapters::mqtt::detail
