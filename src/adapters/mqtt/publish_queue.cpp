@@ -9,7 +9,14 @@ PublishQueue::PublishQueue(std::size_t capacity) : capacity_(capacity) {}
 void PublishQueue::push(Message message) {
     if (message.coalesce) {
         if (auto it = by_topic_.find(message.topic); it != by_topic_.end()) {
-            slots_[it->second - sequence_base_] = std::move(message);
+            // Same topic: everything but the topic is replaced, so the key (a view of the
+            // queued message's topic) stays valid.
+            Message& queued = slots_[it->second - sequence_base_];
+            queued.payload = std::move(message.payload);
+            queued.qos = message.qos;
+            queued.retain = message.retain;
+            queued.correlation_data = std::move(message.correlation_data);
+            queued.batch_lane = message.batch_lane;
             ++coalesced_;
             return;
         }
@@ -26,22 +33,24 @@ void PublishQueue::push(Message message) {
         drop_oldest();
     }
     const std::uint64_t sequence = sequence_base_ + slots_.size();
-    if (message.coalesce) {
-        by_topic_.emplace(message.topic, sequence);
-    }
     slots_.push_back(std::move(message));
+    if (slots_.back().coalesce) {
+        // A deque never moves its elements on push_back or pop_front: the view stays valid
+        // until this slot leaves, which erases it first.
+        by_topic_.emplace(slots_.back().topic, sequence);
+    }
 }
 
 std::optional<Message> PublishQueue::pop() {
     if (slots_.empty()) {
         return std::nullopt;
     }
+    if (auto it = by_topic_.find(slots_.front().topic);
+        it != by_topic_.end() && it->second == sequence_base_) {
+        by_topic_.erase(it);  // before the topic it views moves away
+    }
     Message message = std::move(slots_.front());
     slots_.pop_front();
-    if (auto it = by_topic_.find(message.topic);
-        it != by_topic_.end() && it->second == sequence_base_) {
-        by_topic_.erase(it);
-    }
     ++sequence_base_;
     return message;
 }

@@ -129,5 +129,26 @@ TEST(PublishQueue, LongRunKeepsSequenceConsistent) {
     EXPECT_EQ(rest.back().substr(2), "999");
 }
 
+TEST(PublishQueue, LongTopicsKeepTheirKeysAcrossReplacementsAndPops) {
+    // Topics longer than the small-string buffer live on the heap: the map's keys view them,
+    // so a replaced or popped message must never leave a key dangling (ASan would see it).
+    PublishQueue q(64);
+    auto topic = [](int i) {
+        return "acme/plant/turbine1/exchange/tag-number-" + std::to_string(i);
+    };
+    for (int round = 0; round < 200; ++round) {
+        for (int i = 0; i < 20; ++i) q.push(msg(topic(i), std::to_string(round)));
+        q.push(msg(topic(round % 20), "final-" + std::to_string(round), false));
+        for (int i = 0; i < 7; ++i) q.pop();
+    }
+    EXPECT_LE(q.size(), 64u);
+    const auto rest = drain(q);
+    ASSERT_FALSE(rest.empty());
+    EXPECT_TRUE(q.empty());
+    q.push(msg(topic(1), "again"));
+    q.push(msg(topic(1), "again2"));
+    EXPECT_EQ(drain(q), (std::vector<std::string>{topic(1) + "=again2"}));
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::mqtt

@@ -58,7 +58,8 @@ struct ClientOptions {
 
     std::size_t buffer_max_messages = 100000;
     std::size_t batch_lane_max_messages = 1000;  ///< `_values` waiting; oldest dropped beyond
-    std::size_t max_in_flight = 1000;  ///< publications handed to Paho and not yet completed
+    std::size_t max_in_flight = 256;  ///< publications handed to Paho and not yet completed (Paho C
+                                      ///< scans its lists per publish: keep it short)
     std::chrono::milliseconds min_backoff{250};
     std::chrono::milliseconds max_backoff{30000};
 };

@@ -9,6 +9,7 @@
 #include <deque>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
@@ -39,9 +40,10 @@ private:
     std::size_t capacity_;
     std::uint64_t sequence_base_ = 0;  ///< sequence number of slots_.front()
     std::deque<Message> slots_;
-    /// topic -> sequence number of its queued coalescing message. A message is replaced in
-    /// place only by a newer one, so slots_ stays in order and never has holes.
-    std::unordered_map<std::string, std::uint64_t> by_topic_;
+    /// topic (a view of the queued message's own topic, so no copy) -> sequence number of its
+    /// queued coalescing message. A message is replaced in place only by a newer one, so
+    /// slots_ stays in order and never has holes.
+    std::unordered_map<std::string_view, std::uint64_t> by_topic_;
     std::uint64_t dropped_overflow_ = 0;
     std::uint64_t coalesced_ = 0;
 };
