@@ -13,12 +13,14 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <sstream>
 #include <string_view>
 #include <tuple>
 
+#include "eip2mqtt/core/config/point_index.hpp"
 #include "eip2mqtt/core/config/point_list.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
@@ -745,37 +747,48 @@ private:
             if (!in) {
                 error(at, "cannot read point list " + in_quotes(path.string()) + ": " +
                               std::strerror(errno));
-                point_lists_.emplace(key, std::nullopt);
+                point_lists_.emplace(key, nullptr);
                 return;
             }
             std::ostringstream content;
             content << in.rdbuf();
-            auto list = core::config::parse_point_list(content.str(), path.string());
+            auto loaded = std::make_unique<LoadedPoints>(
+                core::config::parse_point_list(content.str(), path.string()));
             // Errors of a file shared by several exchanges are reported once.
-            diagnostics_.insert(diagnostics_.end(), list.errors.begin(), list.errors.end());
-            it = point_lists_.emplace(key, std::move(list)).first;
+            diagnostics_.insert(diagnostics_.end(), loaded->list.errors.begin(),
+                                loaded->list.errors.end());
+            it = point_lists_.emplace(key, std::move(loaded)).first;
         }
         if (!it->second) return;
-        std::size_t matched = 0;
-        for (const auto& row : it->second->rows) {
-            if (row.node != exchange.spec.name) continue;
-            ++matched;
+        const auto& [list, index] = *it->second;
+        const auto rows = index.rows_of(exchange.spec.name);
+        exchange.tags.reserve(exchange.tags.size() + rows.size());
+        for (const auto row_index : rows) {
+            const auto& row = list.rows[row_index];
             TagConfig tag;
             tag.spec = row.tag;
             tag.spec.writable = row.write;
             tag.marks.node = row.mark;
             exchange.tags.push_back(std::move(tag));
         }
-        if (matched == 0 && it->second->errors.empty()) {
+        if (rows.empty() && list.errors.empty()) {
             error(at, "point list " + in_quotes(points) + " has no rows whose Node is " +
                           in_quotes(exchange.spec.name));
         }
     }
 
+    /// A point list read once for all the exchanges that name it, with its rows by Node.
+    struct LoadedPoints {
+        explicit LoadedPoints(core::config::PointList parsed)
+            : list(std::move(parsed)), index(list) {}
+        core::config::PointList list;
+        core::config::PointIndex index;  ///< views into `list`: both live and die together
+    };
+
     std::string file_;
     std::filesystem::path dir_;
     Diagnostics diagnostics_;
-    std::map<std::string, std::optional<core::config::PointList>> point_lists_;
+    std::map<std::string, std::unique_ptr<LoadedPoints>> point_lists_;  ///< null: unreadable
 };
 
 }  // namespace
