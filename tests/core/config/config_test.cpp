@@ -391,7 +391,7 @@ TEST(MakePlans, OnePlanPerExchangeWithEveryTag) {
     EXPECT_EQ(plans[0].spec.tags[1].name, "PRESSAO");
     EXPECT_EQ(plans[0].tags[1].topic, "acme/site/turbine1/PRESSAO");
     EXPECT_EQ(plans[0].timeout, 300ms);
-    EXPECT_EQ(plans[1].tags[0].set_topic, "acme/site/setpoints/SPEED_SP/set");
+    EXPECT_EQ(plans[1].tags[0].topic, "acme/site/setpoints/SPEED_SP");
     EXPECT_EQ(plans[1].length, 16);
 }
 

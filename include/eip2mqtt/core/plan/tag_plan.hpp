@@ -28,11 +28,12 @@ struct TagSpec {
     friend bool operator==(const TagSpec&, const TagSpec&) = default;
 };
 
-/// A tag with its precomputed topics.
+/// A tag with its precomputed topic. Its write topic, topic + "/set", is not kept: a gateway
+/// holds one TagPlan per tag (100,000 in a large plant) and resolves writes by exchange topic
+/// and tag name instead.
 struct TagPlan {
     TagSpec spec;
-    std::string topic;      ///< {base}/{exchange.topic}/{name}
-    std::string set_topic;  ///< topic + "/set"
+    std::string topic;  ///< {base}/{exchange.topic}/{name}
 
     friend bool operator==(const TagPlan&, const TagPlan&) = default;
 };
