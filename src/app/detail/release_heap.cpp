@@ -1,6 +1,7 @@
 #include "app/detail/release_heap.hpp"
 
-#if defined(__GLIBC__)
+// __GLIBC__ comes from the C library's own headers: test it only after including one.
+#if __has_include(<malloc.h>)
 #include <malloc.h>
 #endif
 
