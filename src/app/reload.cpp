@@ -38,15 +38,24 @@ void collect_topics(const core::plan::ExchangePlan& plan, std::set<std::string>&
 }  // namespace
 
 std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
-    auto plans = core::config::make_plans(config_);
-    config_.exchanges.clear();
-    config_.exchanges.shrink_to_fit();
-    for (auto& plan : plans) {
+    // core::config::make_plans, but moving each tag out of the configuration as it goes, so
+    // that the start-up peak holds each tag twice at most, not four times.
+    std::vector<core::plan::ExchangePlan> plans;
+    plans.reserve(config_.exchanges.size());
+    for (auto& exchange : config_.exchanges) {
+        auto& spec = exchange.spec;
+        spec.tags.clear();
+        spec.tags.reserve(exchange.tags.size());
+        for (auto& tag : exchange.tags) spec.tags.push_back(std::move(tag.spec));
+        exchange.tags = {};
+        auto plan = core::plan::make_exchange_plan(spec, config_.mqtt.base_topic);
+        spec.tags = {};
         // plan.tags holds every tag spec again, with its topic: the running exchange reads only
         // that copy. Dropped on every plan, old and new alike, so that reload compares equals.
-        plan.spec.tags.clear();
-        plan.spec.tags.shrink_to_fit();
+        plan.spec.tags = {};
+        plans.push_back(std::move(plan));
     }
+    config_.exchanges = {};
     return plans;
 }
 
