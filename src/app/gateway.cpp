@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "app/detail/release_heap.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 
 namespace eip2mqtt::app {
@@ -81,7 +82,7 @@ Gateway::Gateway(core::config::Config config)
       image_store_(config_.gateway.state_dir) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(loop_.get_executor(),
                                                      client_options(config_, availability_topic_));
-    apply_exchanges(core::config::make_plans(config_), false);
+    apply_exchanges(take_plans(), false);
 
     adapters::udp::ReceiverOptions receiver_options;
     receiver_options.bind = config_.eip.bind;
@@ -95,6 +96,7 @@ Gateway::Gateway(core::config::Config config)
             std::make_unique<adapters::metrics::PrometheusEndpoint>(config_.metrics.listen);
         spdlog::info("Prometheus metrics on http://{}/metrics", config_.metrics.listen);
     }
+    detail::release_heap();
 }
 
 Gateway::~Gateway() = default;

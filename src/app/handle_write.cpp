@@ -27,13 +27,9 @@ constexpr std::string_view set_suffix = "/set";
 
 void Gateway::build_write_routes() {
     auto add_exchange = [&](const core::plan::ExchangePlan& plan, ExchangeProducer* producer) {
-        exchange_routes_[plan.topic] = {producer, plan.spec.name, -1, plan.set_topic + "/result"};
-        for (std::size_t i = 0; i < plan.tags.size(); ++i) {
-            const auto& tag = plan.tags[i];
-            write_routes_[tag.set_topic] = {producer, plan.spec.name, static_cast<int>(i),
-                                            tag.set_topic + "/result"};
-        }
-        write_routes_[plan.set_topic] = {producer, plan.spec.name, -1, plan.set_topic + "/result"};
+        const WriteRoute route{producer, &plan, plan.spec.name, -1, plan.set_topic + "/result"};
+        exchange_routes_[plan.topic] = route;
+        write_routes_[plan.set_topic] = route;
     };
     for (const auto& consumer : consumers_) add_exchange(consumer->plan(), nullptr);
     for (const auto& producer : producers_) add_exchange(producer->plan(), producer.get());
@@ -47,8 +43,10 @@ std::vector<std::string> Gateway::write_subscriptions() const {
     const auto base_levels =
         std::count(config_.mqtt.base_topic.begin(), config_.mqtt.base_topic.end(), '/') + 1;
     std::set<long> depths;
-    for (const auto& [topic, route] : write_routes_) {
-        depths.insert(std::count(topic.begin(), topic.end(), '/') + 1 - base_levels);
+    for (const auto& [topic, route] : exchange_routes_) {
+        const long levels = std::count(topic.begin(), topic.end(), '/') + 1 - base_levels;
+        depths.insert(levels + 1);                                 // {exchange topic}/set
+        if (!route.plan->tags.empty()) depths.insert(levels + 2);  // {exchange topic}/{tag}/set
     }
     std::vector<std::string> filters;
     for (const auto depth : depths) {
@@ -81,19 +79,28 @@ void Gateway::on_message(adapters::mqtt::Incoming message) {
     if (!topic.ends_with(set_suffix)) return;
 
     WriteRoute route;
-    std::string tag_name;
+    std::string tag_name;  ///< set when the tag does not exist
     if (const auto it = write_routes_.find(message.topic); it != write_routes_.end()) {
         route = it->second;
     } else {
-        // `{exchange topic}/{name}/set` of a tag that does not exist.
+        // `{exchange topic}/{name}/set`: tag names hold no '/', so the exchange topic is what
+        // comes before the last level, and the tag is found by its name in that exchange.
         const auto stem = topic.substr(0, topic.size() - set_suffix.size());
         const auto slash = stem.rfind('/');
         if (slash == std::string_view::npos) return;
         const auto exchange = exchange_routes_.find(std::string(stem.substr(0, slash)));
         if (exchange == exchange_routes_.end()) return;
         route = exchange->second;
-        tag_name = std::string(stem.substr(slash + 1));
         route.result_topic = message.topic + "/result";
+        const auto name = stem.substr(slash + 1);
+        const auto& tags = route.plan->tags;
+        const auto tag = std::find_if(tags.begin(), tags.end(),
+                                      [&](const auto& t) { return t.spec.name == name; });
+        if (tag == tags.end()) {
+            tag_name = std::string(name);
+        } else {
+            route.tag_index = static_cast<int>(tag - tags.begin());
+        }
     }
     WriteReply reply{message.response_topic.empty() ? route.result_topic : message.response_topic,
                      message.correlation_data};

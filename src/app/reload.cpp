@@ -8,8 +8,11 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <string_view>
 #include <tuple>
+#include <unordered_set>
 
+#include "app/detail/release_heap.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/gateway.hpp"
 #include "eip2mqtt/app/logging.hpp"
@@ -34,6 +37,21 @@ void collect_topics(const core::plan::ExchangePlan& plan, std::set<std::string>&
 
 }  // namespace
 
+std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
+    // Plans are built whole before the configuration is released, not exchange by exchange:
+    // the plans then sit together above the freed configuration, which malloc_trim can give
+    // back (interleaving them left RSS 16 MB higher for 100,000 tags).
+    auto plans = core::config::make_plans(config_);
+    // Swapped with empty vectors, not assigned `{}`: that keeps the capacity.
+    std::vector<core::config::ExchangeConfig>().swap(config_.exchanges);
+    for (auto& plan : plans) {
+        // plan.tags holds every tag spec again, with its topic: the running exchange reads only
+        // that copy. Dropped on every plan, old and new alike, so that reload compares equals.
+        std::vector<core::plan::TagSpec>().swap(plan.spec.tags);
+    }
+    return plans;
+}
+
 void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running) {
     auto sink = [this](adapters::mqtt::Message&& message) { mqtt_->publish(std::move(message)); };
     std::map<std::string, std::unique_ptr<ExchangeConsumer>> old_consumers;
@@ -49,12 +67,10 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
     consumers_.clear();
     producers_.clear();
 
-    std::set<std::string> new_topics;
     std::vector<ExchangeConsumer*> started_consumers;
     std::vector<ExchangeProducer*> started_producers;
     std::size_t kept = 0;
     for (auto& plan : plans) {
-        collect_topics(plan, new_topics);
         if (plan.spec.direction == core::plan::Direction::consume) {
             const auto old = old_consumers.find(plan.spec.name);
             if (old != old_consumers.end() && old->second->plan() == plan &&
@@ -106,6 +122,17 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
         collect_topics(producer->plan(), cleared);
     }
     for (auto& [name, consumer] : old_consumers) collect_topics(consumer->plan(), cleared);
+    // The new exchanges' topics, looked up only when something was removed or changed: a
+    // set of every tag topic would cost a string per tag at every start.
+    std::unordered_set<std::string_view> new_topics;
+    if (!cleared.empty()) {
+        const auto add = [&](const core::plan::ExchangePlan& plan) {
+            new_topics.insert(plan.status_topic);
+            for (const auto& tag : plan.tags) new_topics.insert(tag.topic);
+        };
+        for (const auto& consumer : consumers_) add(consumer->plan());
+        for (const auto& producer : producers_) add(producer->plan());
+    }
     std::size_t cleared_count = 0;
     for (const auto& topic : cleared) {
         if (new_topics.contains(topic)) continue;
@@ -160,13 +187,14 @@ void Gateway::reload() {
                          config_.mqtt.batch};
     mqtt_->set_buffer_capacity(config_.mqtt.buffer_max_messages);
     try {
-        apply_exchanges(core::config::make_plans(config_), true);
+        apply_exchanges(take_plans(), true);
     } catch (const std::exception& e) {
         spdlog::critical("reload failed half-way: {}; exiting for a clean restart", e.what());
         stopping_ = true;
         loop_.stop();
         return;
     }
+    detail::release_heap();
     notifier_.ready(status_line());
 }
 

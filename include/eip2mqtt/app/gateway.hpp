@@ -38,10 +38,11 @@ struct GatewayCounters {
 
 /// Where a message on a `…/set` topic goes.
 struct WriteRoute {
-    ExchangeProducer* producer = nullptr;  ///< null: the exchange is consumed (read-only)
-    std::string exchange;                  ///< name, for messages
-    int tag_index = -1;                    ///< -1: an atomic multi-tag write to the exchange
-    std::string result_topic;              ///< `…/set/result`
+    ExchangeProducer* producer = nullptr;            ///< null: the exchange is consumed (read-only)
+    const core::plan::ExchangePlan* plan = nullptr;  ///< of the exchange, owned by its runner
+    std::string exchange;                            ///< name, for messages
+    int tag_index = -1;        ///< -1: an atomic multi-tag write to the exchange
+    std::string result_topic;  ///< `…/set/result`
 };
 
 class Gateway {
@@ -66,6 +67,9 @@ private:
     void reject_write(const WriteReply& reply, const std::string& target,
                       const core::write::WriteRejection& rejection);
     void build_write_routes();
+    /// The plans of config_'s exchanges, for apply_exchanges. The exchange configs (every tag
+    /// again, with the marks of its keys) served validation only: they are released here.
+    std::vector<core::plan::ExchangePlan> take_plans();
     /// Builds the exchanges of `plans`, keeping running ones whose plan is unchanged, stopping
     /// removed and changed ones and clearing their retained topics that no new exchange uses.
     void apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running);
@@ -100,7 +104,9 @@ private:
     adapters::state::ImageStore image_store_;
     std::unique_ptr<adapters::udp::Sender> sender_;
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
-    std::unordered_map<std::string, WriteRoute> write_routes_;     ///< exact `…/set` topics
+    /// Exchanges' own `{exchange topic}/set` (atomic writes). A tag's `…/{tag}/set` is resolved
+    /// through exchange_routes_ and the tag's name: no entry per tag.
+    std::unordered_map<std::string, WriteRoute> write_routes_;
     std::unordered_map<std::string, WriteRoute> exchange_routes_;  ///< exchange topic -> route
     std::unique_ptr<adapters::metrics::PrometheusEndpoint> prometheus_;
 

@@ -1,6 +1,6 @@
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 
-#include <yaml-cpp/yaml.h>
+#include <yaml-cpp/exceptions.h>
 
 #include <algorithm>
 #include <array>
@@ -13,12 +13,15 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <sstream>
 #include <string_view>
 #include <tuple>
 
+#include "adapters/yaml/detail/tree.hpp"
+#include "eip2mqtt/core/config/point_index.hpp"
 #include "eip2mqtt/core/config/point_list.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
@@ -36,6 +39,7 @@ using core::config::Marks;
 using core::config::TagConfig;
 using core::plan::Direction;
 using core::plan::TagType;
+using detail::Node;
 
 using Keys = std::span<const std::string_view>;
 
@@ -155,12 +159,13 @@ public:
         Config config;
         config.file = file_;
         try {
-            const YAML::Node root = YAML::Load(text);
-            if (!root || root.IsNull()) {
+            const detail::Tree tree = detail::Tree::parse(text);
+            const Node root = tree.root();
+            if (!root.is_defined() || root.is_null()) {
                 error({file_, 1, 1}, "the configuration is empty");
                 return core::fail(std::move(diagnostics_));
             }
-            if (!root.IsMap()) {
+            if (!root.is_map()) {
                 error(mark(root), "expected a mapping at the top level");
             } else {
                 read_root(root, config);
@@ -187,14 +192,13 @@ public:
     }
 
 private:
-    using Handler =
-        std::function<void(const std::string& key, const YAML::Node& value, const Mark& at)>;
+    using Handler = std::function<void(const std::string& key, const Node& value, const Mark& at)>;
 
     Mark mark(const YAML::Mark& m) const {
         if (m.is_null()) return {file_, 0, 0};
         return {file_, m.line + 1, m.column + 1};
     }
-    Mark mark(const YAML::Node& node) const { return mark(node.Mark()); }
+    Mark mark(const Node& node) const { return mark(node.mark()); }
 
     void error(const Mark& at, std::string message) {
         diagnostics_.push_back({at, std::move(message)});
@@ -202,22 +206,23 @@ private:
 
     /// Walks a mapping: reports unknown and repeated keys, records every key's mark, and hands
     /// each known key to `handle`. `where` completes "unknown key 'x' in ...".
-    Marks walk(const YAML::Node& node, const Mark& at, const std::string& what,
-               const std::string& where, Keys allowed, const Handler& handle) {
+    Marks walk(const Node& node, const Mark& at, const std::string& what, const std::string& where,
+               Keys allowed, const Handler& handle) {
         Marks marks;
-        marks.node = node.IsDefined() && !node.IsNull() ? mark(node) : at;
-        if (!node.IsDefined() || node.IsNull()) return marks;
-        if (!node.IsMap()) {
+        marks.node = node.is_defined() && !node.is_null() ? mark(node) : at;
+        if (!node.is_defined() || node.is_null()) return marks;
+        if (!node.is_map()) {
             error(at, "expected a mapping for " + in_quotes(what));
             return marks;
         }
-        for (const auto& entry : node) {
-            const Mark key_mark = mark(entry.first);
-            if (!entry.first.IsScalar()) {
+        for (std::size_t i = 0; i < node.size(); ++i) {
+            const Node key_node = node.key(i);
+            const Mark key_mark = mark(key_node);
+            if (!key_node.is_scalar()) {
                 error(key_mark, "expected a plain key " + where);
                 continue;
             }
-            const std::string key = entry.first.Scalar();
+            const std::string key(key_node.scalar());
             if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
                 std::string message = "unknown key " + in_quotes(key) + " " + where;
                 if (const auto close = suggestion(key, allowed)) {
@@ -230,29 +235,28 @@ private:
                 error(key_mark, "duplicate key " + in_quotes(key) + " " + where);
                 continue;
             }
-            handle(key, entry.second, key_mark);
+            handle(key, node.value(i), key_mark);
         }
         return marks;
     }
 
     // --- scalars ------------------------------------------------------------------------------
 
-    std::optional<std::string> text(const YAML::Node& value, const std::string& key,
-                                    const Mark& at) {
-        if (value.IsNull()) return std::string();
-        if (!value.IsScalar()) {
+    std::optional<std::string> text(const Node& value, const std::string& key, const Mark& at) {
+        if (value.is_null()) return std::string();
+        if (!value.is_scalar()) {
             error(at, "expected a string for " + in_quotes(key));
             return std::nullopt;
         }
-        return value.Scalar();
+        return std::string(value.scalar());
     }
 
     template <class T>
-    std::optional<T> integer(const YAML::Node& value, const std::string& key, const Mark& at,
+    std::optional<T> integer(const Node& value, const std::string& key, const Mark& at,
                              T min = std::numeric_limits<T>::min(),
                              T max = std::numeric_limits<T>::max()) {
         const auto parsed =
-            value.IsScalar() ? parse_integer<long long>(value.Scalar()) : std::nullopt;
+            value.is_scalar() ? parse_integer<long long>(value.scalar()) : std::nullopt;
         if (!parsed) {
             error(at, "expected an integer for " + in_quotes(key));
             return std::nullopt;
@@ -267,15 +271,15 @@ private:
         return static_cast<T>(*parsed);
     }
 
-    std::optional<double> number(const YAML::Node& value, const std::string& key, const Mark& at) {
-        const auto parsed = value.IsScalar() ? parse_double(value.Scalar()) : std::nullopt;
+    std::optional<double> number(const Node& value, const std::string& key, const Mark& at) {
+        const auto parsed = value.is_scalar() ? parse_double(value.scalar()) : std::nullopt;
         if (!parsed) error(at, "expected a number for " + in_quotes(key));
         return parsed;
     }
 
-    std::optional<bool> boolean(const YAML::Node& value, const std::string& key, const Mark& at) {
-        if (value.IsScalar()) {
-            const auto word = lower(value.Scalar());
+    std::optional<bool> boolean(const Node& value, const std::string& key, const Mark& at) {
+        if (value.is_scalar()) {
+            const auto word = lower(value.scalar());
             if (word == "true" || word == "yes" || word == "on") return true;
             if (word == "false" || word == "no" || word == "off") return false;
         }
@@ -285,9 +289,9 @@ private:
 
     // --- sections -----------------------------------------------------------------------------
 
-    void read_root(const YAML::Node& root, Config& config) {
+    void read_root(const Node& root, Config& config) {
         walk(root, mark(root), "configuration", "at the top level", top_keys,
-             [&](const std::string& key, const YAML::Node& value, const Mark& at) {
+             [&](const std::string& key, const Node& value, const Mark& at) {
                  if (key == "gateway") read_gateway(value, at, config);
                  if (key == "mqtt") read_mqtt(value, at, config);
                  if (key == "eip") read_eip(value, at, config);
@@ -296,10 +300,10 @@ private:
              });
     }
 
-    void read_gateway(const YAML::Node& node, const Mark& at, Config& config) {
+    void read_gateway(const Node& node, const Mark& at, Config& config) {
         auto& gateway = config.gateway;
         gateway.marks = walk(node, at, "gateway", "in gateway", gateway_keys,
-                             [&](const std::string& key, const YAML::Node& value, const Mark& k) {
+                             [&](const std::string& key, const Node& value, const Mark& k) {
                                  const auto s = text(value, key, k);
                                  if (!s) return;
                                  if (key == "id") gateway.id = *s;
@@ -308,11 +312,11 @@ private:
                              });
     }
 
-    void read_mqtt(const YAML::Node& node, const Mark& at, Config& config) {
+    void read_mqtt(const Node& node, const Mark& at, Config& config) {
         auto& mqtt = config.mqtt;
         mqtt.marks =
             walk(node, at, "mqtt", "in mqtt", mqtt_keys,
-                 [&](const std::string& key, const YAML::Node& value, const Mark& k) {
+                 [&](const std::string& key, const Node& value, const Mark& k) {
                      if (key == "url" || key == "client_id" || key == "username" ||
                          key == "password_file" || key == "base_topic") {
                          const auto s = text(value, key, k);
@@ -323,7 +327,7 @@ private:
                          if (key == "password_file") mqtt.password_file = *s;
                          if (key == "base_topic") mqtt.base_topic = *s;
                      } else if (key == "version") {
-                         const std::string v = value.IsScalar() ? value.Scalar() : std::string();
+                         const std::string v(value.scalar());
                          if (v == "3.1.1") {
                              mqtt.version = 3;
                          } else if (const auto n = parse_integer<int>(v)) {
@@ -360,7 +364,7 @@ private:
                          }
                      } else if (key == "buffer") {
                          walk(value, k, "buffer", "in mqtt.buffer", buffer_keys,
-                              [&](const std::string& key2, const YAML::Node& v2, const Mark& k2) {
+                              [&](const std::string& key2, const Node& v2, const Mark& k2) {
                                   if (const auto n = integer<std::size_t>(v2, key2, k2, 1)) {
                                       mqtt.buffer_max_messages = *n;
                                   }
@@ -368,7 +372,7 @@ private:
                      } else if (key == "tls") {
                          core::config::TlsSection tls;
                          walk(value, k, "tls", "in mqtt.tls", tls_keys,
-                              [&](const std::string& key2, const YAML::Node& v2, const Mark& k2) {
+                              [&](const std::string& key2, const Node& v2, const Mark& k2) {
                                   if (key2 == "verify") {
                                       if (const auto b = boolean(v2, key2, k2)) tls.verify = *b;
                                       return;
@@ -379,16 +383,16 @@ private:
                                   if (key2 == "cert_file") tls.cert_file = *s;
                                   if (key2 == "key_file") tls.key_file = *s;
                               });
-                         if (!value.IsNull()) mqtt.tls = tls;
+                         if (!value.is_null()) mqtt.tls = tls;
                      }
                  });
     }
 
-    void read_eip(const YAML::Node& node, const Mark& at, Config& config) {
+    void read_eip(const Node& node, const Mark& at, Config& config) {
         auto& eip = config.eip;
         eip.marks = walk(
             node, at, "eip", "in eip", eip_keys,
-            [&](const std::string& key, const YAML::Node& value, const Mark& k) {
+            [&](const std::string& key, const Node& value, const Mark& k) {
                 if (key == "bind") {
                     const auto s = text(value, key, k);
                     if (s && !parse_ipv4(*s)) {
@@ -409,16 +413,17 @@ private:
                         eip.multicast_interface = *s;
                     }
                 } else if (key == "multicast") {
-                    if (value.IsNull()) return;
-                    if (!value.IsSequence()) {
+                    if (value.is_null()) return;
+                    if (!value.is_sequence()) {
                         error(k, "expected a list for 'multicast'");
                         return;
                     }
-                    for (const auto& item : value) {
+                    for (std::size_t i = 0; i < value.size(); ++i) {
+                        const Node item = value.item(i);
                         core::config::MulticastGroup group;
                         const auto item_marks = walk(
                             item, mark(item), "multicast", "in a multicast entry", multicast_keys,
-                            [&](const std::string& key2, const YAML::Node& v2, const Mark& k2) {
+                            [&](const std::string& key2, const Node& v2, const Mark& k2) {
                                 const auto s = text(v2, key2, k2);
                                 if (!s) return;
                                 if (key2 == "interface") group.interface = *s;
@@ -440,10 +445,10 @@ private:
             });
     }
 
-    void read_metrics(const YAML::Node& node, const Mark& at, Config& config) {
+    void read_metrics(const Node& node, const Mark& at, Config& config) {
         config.metrics.marks =
             walk(node, at, "metrics", "in metrics", metrics_keys,
-                 [&](const std::string& key, const YAML::Node& value, const Mark& k) {
+                 [&](const std::string& key, const Node& value, const Mark& k) {
                      const auto s = text(value, key, k);
                      if (!s || s->empty()) return;
                      if (!valid_host_port(*s, true)) {
@@ -454,35 +459,36 @@ private:
                  });
     }
 
-    void read_exchanges(const YAML::Node& node, const Mark& at, Config& config) {
-        if (node.IsNull()) return;
-        if (!node.IsSequence()) {
+    void read_exchanges(const Node& node, const Mark& at, Config& config) {
+        if (node.is_null()) return;
+        if (!node.is_sequence()) {
             error(at, "expected a list for 'exchanges'");
             return;
         }
         int index = 0;
-        for (const auto& item : node) {
+        for (std::size_t i = 0; i < node.size(); ++i) {
+            const Node item = node.item(i);
             ++index;
             read_exchange(item, index, config);
         }
     }
 
-    void read_exchange(const YAML::Node& node, int index, Config& config) {
+    void read_exchange(const Node& node, int index, Config& config) {
         ExchangeConfig exchange;
         auto& spec = exchange.spec;
         bool broken = false;  // an identity key is missing or bad: leave it out of the model
         std::string label = "exchange #" + std::to_string(index);
-        if (node.IsMap() && node["name"] && node["name"].IsScalar()) {
-            label = "exchange " + in_quotes(node["name"].Scalar());
+        if (const Node name = node.find("name"); name.is_scalar()) {
+            label = "exchange " + in_quotes(name.scalar());
         }
         const std::string where = "in " + label;
-        std::optional<YAML::Node> tags_node;
+        std::optional<Node> tags_node;
         std::string points;
         bool topic_written = false;
 
         exchange.marks = walk(
             node, mark(node), label, where, exchange_keys,
-            [&](const std::string& key, const YAML::Node& value, const Mark& k) {
+            [&](const std::string& key, const Node& value, const Mark& k) {
                 if (key == "name") {
                     if (const auto s = text(value, key, k)) {
                         spec.name = *s;
@@ -569,7 +575,7 @@ private:
                     tags_node.emplace(value);
                 }
             });
-        if (!node.IsMap()) return;
+        if (!node.is_map()) return;
         for (const std::string_view required : {"name", "producer_id", "exchange_id"}) {
             if (!exchange.marks.keys.contains(required)) {
                 error(exchange.marks.node, label + " lacks " + in_quotes(required));
@@ -579,11 +585,12 @@ private:
         if (!topic_written) spec.topic = spec.name;
         spec.points = points;
 
-        if (tags_node && !tags_node->IsNull()) {
-            if (!tags_node->IsSequence()) {
+        if (tags_node && !tags_node->is_null()) {
+            if (!tags_node->is_sequence()) {
                 error(exchange.marks.of("tags"), "expected a list for 'tags'");
             } else {
-                for (const auto& item : *tags_node) {
+                for (std::size_t i = 0; i < tags_node->size(); ++i) {
+                    const Node item = tags_node->item(i);
                     if (auto tag = read_tag(item, label)) exchange.tags.push_back(std::move(*tag));
                 }
             }
@@ -592,20 +599,20 @@ private:
         if (!broken) config.exchanges.push_back(std::move(exchange));
     }
 
-    std::optional<TagConfig> read_tag(const YAML::Node& node, const std::string& exchange_label) {
+    std::optional<TagConfig> read_tag(const Node& node, const std::string& exchange_label) {
         TagConfig tag;
         auto& spec = tag.spec;
         bool broken = false;  // a value failed to parse: leave the tag out of the model
         std::string label = "a tag";
-        if (node.IsMap() && node["name"] && node["name"].IsScalar()) {
-            label = "tag " + in_quotes(node["name"].Scalar());
+        if (const Node name = node.find("name"); name.is_scalar()) {
+            label = "tag " + in_quotes(name.scalar());
         }
         label += " of " + exchange_label;
-        std::optional<YAML::Node> initial;
+        std::optional<Node> initial;
         Mark initial_mark;
         tag.marks =
             walk(node, mark(node), "tag", "in " + label, tag_keys,
-                 [&](const std::string& key, const YAML::Node& value, const Mark& k) {
+                 [&](const std::string& key, const Node& value, const Mark& k) {
                      if (key == "name" || key == "unit" || key == "description") {
                          const auto s = text(value, key, k);
                          if (!s) {
@@ -682,7 +689,7 @@ private:
                          initial_mark = k;
                      }
                  });
-        if (!node.IsMap()) return std::nullopt;
+        if (!node.is_map()) return std::nullopt;
         for (const std::string_view required : {"name", "address", "type"}) {
             if (!tag.marks.keys.contains(required)) {
                 error(tag.marks.node, label + " lacks " + in_quotes(required));
@@ -699,9 +706,8 @@ private:
 
     /// `initial` as the tag's type holds it. Out-of-range values are kept (as int64 or double)
     /// for validate() to report against the type's range.
-    std::optional<core::plan::Value> read_initial(const YAML::Node& value, TagType type,
-                                                  const Mark& at) {
-        const std::string text = value.IsScalar() ? value.Scalar() : std::string();
+    std::optional<core::plan::Value> read_initial(const Node& value, TagType type, const Mark& at) {
+        const std::string_view text = value.scalar();
         switch (type) {
             case TagType::bit: {
                 if (text == "0") return core::plan::Value{false};
@@ -745,37 +751,48 @@ private:
             if (!in) {
                 error(at, "cannot read point list " + in_quotes(path.string()) + ": " +
                               std::strerror(errno));
-                point_lists_.emplace(key, std::nullopt);
+                point_lists_.emplace(key, nullptr);
                 return;
             }
             std::ostringstream content;
             content << in.rdbuf();
-            auto list = core::config::parse_point_list(content.str(), path.string());
+            auto loaded = std::make_unique<LoadedPoints>(
+                core::config::parse_point_list(content.str(), path.string()));
             // Errors of a file shared by several exchanges are reported once.
-            diagnostics_.insert(diagnostics_.end(), list.errors.begin(), list.errors.end());
-            it = point_lists_.emplace(key, std::move(list)).first;
+            diagnostics_.insert(diagnostics_.end(), loaded->list.errors.begin(),
+                                loaded->list.errors.end());
+            it = point_lists_.emplace(key, std::move(loaded)).first;
         }
         if (!it->second) return;
-        std::size_t matched = 0;
-        for (const auto& row : it->second->rows) {
-            if (row.node != exchange.spec.name) continue;
-            ++matched;
+        const auto& [list, index] = *it->second;
+        const auto rows = index.rows_of(exchange.spec.name);
+        exchange.tags.reserve(exchange.tags.size() + rows.size());
+        for (const auto row_index : rows) {
+            const auto& row = list.rows[row_index];
             TagConfig tag;
             tag.spec = row.tag;
             tag.spec.writable = row.write;
             tag.marks.node = row.mark;
             exchange.tags.push_back(std::move(tag));
         }
-        if (matched == 0 && it->second->errors.empty()) {
+        if (rows.empty() && list.errors.empty()) {
             error(at, "point list " + in_quotes(points) + " has no rows whose Node is " +
                           in_quotes(exchange.spec.name));
         }
     }
 
+    /// A point list read once for all the exchanges that name it, with its rows by Node.
+    struct LoadedPoints {
+        explicit LoadedPoints(core::config::PointList parsed)
+            : list(std::move(parsed)), index(list) {}
+        core::config::PointList list;
+        core::config::PointIndex index;  ///< views into `list`: both live and die together
+    };
+
     std::string file_;
     std::filesystem::path dir_;
     Diagnostics diagnostics_;
-    std::map<std::string, std::optional<core::config::PointList>> point_lists_;
+    std::map<std::string, std::unique_ptr<LoadedPoints>> point_lists_;  ///< null: unreadable
 };
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 #include <variant>
 
 #include "eip2mqtt/core/plan/address.hpp"
@@ -230,7 +231,8 @@ private:
     void check_tags(const ExchangeConfig& exchange) {
         const auto& spec = exchange.spec;
         const std::size_t limit = spec.length ? *spec.length : wire::max_data_size;
-        const std::string of_exchange = " of exchange " + in_quotes(spec.name);
+        // Messages are built only for tags in error: a configuration may hold 100,000 tags.
+        const auto of_exchange = [&] { return " of exchange " + in_quotes(spec.name); };
 
         // Who occupies each byte: a whole-byte owner, or owners of single bits.
         struct Occupant {
@@ -238,20 +240,20 @@ private:
             std::array<int, 8> bits{-1, -1, -1, -1, -1, -1, -1, -1};
         };
         std::vector<Occupant> bytes;
-        std::map<std::string, int> names;
+        find_repeated_names(exchange);
 
         for (std::size_t i = 0; i < exchange.tags.size(); ++i) {
             const auto& tag = exchange.tags[i];
             const auto& t = tag.spec;
             const auto& marks = tag.marks;
-            const std::string what = "tag " + in_quotes(t.name) + of_exchange;
+            const auto what = [&] { return "tag " + in_quotes(t.name) + of_exchange(); };
 
             if (const auto problem = tag_name_problem(t.name); !problem.empty()) {
-                error(marks.of("name"), problem + of_exchange);
-            } else if (const auto [it, fresh] = names.emplace(t.name, static_cast<int>(i));
-                       !fresh) {
-                const auto& first = exchange.tags[it->second].marks.of("name");
-                error(marks.of("name"), "duplicate tag name " + in_quotes(t.name) + of_exchange +
+                error(marks.of("name"), problem + of_exchange());
+            } else if (const int repeated = first_with_name_[i]; repeated >= 0) {
+                const auto& first =
+                    exchange.tags[static_cast<std::size_t>(repeated)].marks.of("name");
+                error(marks.of("name"), "duplicate tag name " + in_quotes(t.name) + of_exchange() +
                                             " (first at " + first.file + ":" +
                                             std::to_string(first.line) + ")");
             }
@@ -259,7 +261,7 @@ private:
             const bool is_bit = t.type == TagType::bit;
             if (!is_bit && t.address.bit != 0) {
                 error(marks.of("address"),
-                      what + ": address " + plan::to_string(t.address) +
+                      what() + ": address " + plan::to_string(t.address) +
                           " has a bit number but type " + std::string(plan::to_string(t.type)) +
                           " is not bit (use " + std::to_string(t.address.byte) + ".0)");
             }
@@ -267,7 +269,7 @@ private:
             const std::size_t end = std::size_t{t.address.byte} + size;
             if (end > limit) {
                 error(marks.of("address"),
-                      what + " (" + plan::to_string(t.address) + ", " +
+                      what() + " (" + plan::to_string(t.address) + ", " +
                           std::string(plan::to_string(t.type)) + ") ends at byte " +
                           std::to_string(end) + ", past the exchange " +
                           (spec.length ? "length " : "maximum length ") + std::to_string(limit));
@@ -276,6 +278,26 @@ private:
             }
 
             check_values(exchange, tag);
+        }
+    }
+
+    /// Fills first_with_name_: for each tag of `exchange`, the index of the first tag with the
+    /// same (valid) name, or -1. Sorting views of the names costs less than a hash-map node per
+    /// tag (a configuration may hold 100,000 tags).
+    void find_repeated_names(const ExchangeConfig& exchange) {
+        by_name_.clear();
+        for (std::size_t i = 0; i < exchange.tags.size(); ++i) {
+            const auto& name = exchange.tags[i].spec.name;
+            if (tag_name_problem(name).empty()) by_name_.emplace_back(name, i);
+        }
+        std::sort(by_name_.begin(), by_name_.end());  // by name, then by position
+        first_with_name_.assign(exchange.tags.size(), -1);
+        for (std::size_t k = 1; k < by_name_.size(); ++k) {
+            if (by_name_[k].first != by_name_[k - 1].first) continue;
+            const auto previous = by_name_[k - 1].second;
+            first_with_name_[by_name_[k].second] = first_with_name_[previous] >= 0
+                                                       ? first_with_name_[previous]
+                                                       : static_cast<int>(previous);
         }
     }
 
@@ -323,22 +345,25 @@ private:
     void check_values(const ExchangeConfig& exchange, const TagConfig& tag) {
         const auto& t = tag.spec;
         const auto& marks = tag.marks;
-        const std::string what =
-            "tag " + in_quotes(t.name) + " of exchange " + in_quotes(exchange.spec.name);
+        // Built only for a tag in error: a configuration may hold 100,000 tags.
+        const auto what = [&] {
+            return "tag " + in_quotes(t.name) + " of exchange " + in_quotes(exchange.spec.name);
+        };
         if (t.writable && exchange.spec.direction == Direction::consume) {
             error(marks.of("writable"),
-                  what + " is writable, but only tags of produced exchanges can be written");
+                  what() + " is writable, but only tags of produced exchanges can be written");
         }
-        if (t.deadband < 0) error(marks.of("deadband"), what + " has a negative deadband");
-        if (t.refresh.count() < 0) error(marks.of("refresh_s"), what + " has a negative refresh_s");
+        if (t.deadband < 0) error(marks.of("deadband"), what() + " has a negative deadband");
+        if (t.refresh.count() < 0)
+            error(marks.of("refresh_s"), what() + " has a negative refresh_s");
 
         const double lo = plan::type_min(t.type);
         const double hi = plan::type_max(t.type);
-        const std::string type = std::string(plan::to_string(t.type));
+        const auto type = [&] { return std::string(plan::to_string(t.type)); };
         const auto in_range = [&](std::string_view key, double value) {
             if (value < lo || value > hi) {
-                error(marks.of(key), what + " " + std::string(key) + " " + format_number(value) +
-                                         " is outside the range of " + type + " (" +
+                error(marks.of(key), what() + " " + std::string(key) + " " + format_number(value) +
+                                         " is outside the range of " + type() + " (" +
                                          format_number(lo) + ".." + format_number(hi) + ")");
                 return false;
             }
@@ -347,17 +372,17 @@ private:
         const bool min_ok = !t.min || in_range("min", *t.min);
         const bool max_ok = !t.max || in_range("max", *t.max);
         if (t.min && t.max && min_ok && max_ok && *t.min > *t.max) {
-            error(marks.of("max"), what + " has min " + format_number(*t.min) + " above max " +
+            error(marks.of("max"), what() + " has min " + format_number(*t.min) + " above max " +
                                        format_number(*t.max));
         }
         if (t.initial) {
             const double initial = as_double(*t.initial);
             if (in_range("initial", initial)) {
                 if (t.min && initial < *t.min) {
-                    error(marks.of("initial"), what + " initial " + format_number(initial) +
+                    error(marks.of("initial"), what() + " initial " + format_number(initial) +
                                                    " is below min " + format_number(*t.min));
                 } else if (t.max && initial > *t.max) {
-                    error(marks.of("initial"), what + " initial " + format_number(initial) +
+                    error(marks.of("initial"), what() + " initial " + format_number(initial) +
                                                    " is above max " + format_number(*t.max));
                 }
             }
@@ -368,43 +393,74 @@ private:
     /// must belong to one owner.
     void check_topic_collisions(const std::set<const ExchangeConfig*>& skip) {
         const std::string& base = config_.mqtt.base_topic;
-        std::unordered_map<std::string, std::string> owners;
-        const auto claim = [&](const std::vector<std::string>& topics, const std::string& owner,
-                               const Mark& mark) {
-            for (const auto& topic : topics) {
-                const auto [it, fresh] = owners.emplace(topic, owner);
-                if (!fresh) {
-                    error(mark, owner + " uses topic " + in_quotes(topic) + ", already used by " +
-                                    it->second);
-                    return;
-                }
+        // Who claimed a topic: an exchange, or one of its tags. Described only on a collision.
+        struct Owner {
+            const ExchangeConfig* exchange = nullptr;
+            const TagConfig* tag = nullptr;  ///< null: the exchange itself
+
+            std::string describe() const {
+                const std::string of = "exchange " + in_quotes(exchange->spec.name);
+                return tag ? "tag " + in_quotes(tag->spec.name) + " of " + of : of;
             }
+        };
+        const auto full_topic = [&](const ExchangeConfig& exchange) {
+            return base.empty() ? exchange.spec.topic : base + "/" + exchange.spec.topic;
+        };
+        // Tag names hold no '/' and are never `set` or `_…`, so a tag's topic {t}/{name} and
+        // its {t}/{name}/set can only meet a tag of another exchange with the same topic t, or
+        // the `set` topic of an exchange whose topic is {t}/{name}. An exchange whose topic is
+        // neither shared nor the parent of another's cannot collide through its tags, and its
+        // tags need not be claimed: 100,000 tags would otherwise cost 200,000 map entries.
+        std::unordered_map<std::string, int> topic_uses;
+        std::unordered_set<std::string> parents;
+        for (const auto& exchange : config_.exchanges) {
+            if (!topic_problem(exchange.spec.topic).empty()) continue;
+            const auto topic = full_topic(exchange);
+            ++topic_uses[topic];
+            if (const auto slash = topic.rfind('/'); slash != std::string::npos) {
+                parents.insert(topic.substr(0, slash));
+            }
+        }
+        std::unordered_map<std::string, Owner> owners;
+        const auto claim = [&](std::string topic, const Owner& owner, const Mark& mark) {
+            const auto [it, fresh] = owners.try_emplace(std::move(topic), owner);
+            if (!fresh) {
+                error(mark, owner.describe() + " uses topic " + in_quotes(it->first) +
+                                ", already used by " + it->second.describe());
+            }
+            return fresh;
         };
         for (const auto& exchange : config_.exchanges) {
             if (skip.contains(&exchange)) continue;
             if (!topic_problem(exchange.spec.topic).empty()) continue;
-            const std::string topic =
-                base.empty() ? exchange.spec.topic : base + "/" + exchange.spec.topic;
+            const std::string topic = full_topic(exchange);
             const auto& topic_mark = exchange.marks.keys.contains("topic")
                                          ? exchange.marks.of("topic")
                                          : exchange.marks.of("name");
-            claim({topic + "/_status", topic + "/_values", topic + "/set"},
-                  "exchange " + in_quotes(exchange.spec.name), topic_mark);
-            std::set<std::string> seen;
+            const Owner owner{&exchange, nullptr};
+            (void)(claim(topic + "/_status", owner, topic_mark) &&
+                   claim(topic + "/_values", owner, topic_mark) &&
+                   claim(topic + "/set", owner, topic_mark));
+            if (topic_uses[topic] < 2 && !parents.contains(topic)) continue;
+            std::unordered_set<std::string_view> seen;  // views of the tags' own names
+            seen.reserve(exchange.tags.size());
+            std::string tag_topic;
             for (const auto& tag : exchange.tags) {
                 if (!tag_name_problem(tag.spec.name).empty()) continue;
                 if (!seen.insert(tag.spec.name).second) continue;  // reported as a duplicate
-                const std::string tag_topic = topic + "/" + tag.spec.name;
-                claim({tag_topic, tag_topic + "/set"},
-                      "tag " + in_quotes(tag.spec.name) + " of exchange " +
-                          in_quotes(exchange.spec.name),
-                      tag.marks.of("name"));
+                tag_topic.assign(topic).append("/").append(tag.spec.name);
+                const Owner tag_owner{&exchange, &tag};
+                if (claim(tag_topic, tag_owner, tag.marks.of("name"))) {
+                    claim(tag_topic + "/set", tag_owner, tag.marks.of("name"));
+                }
             }
         }
     }
 
     const Config& config_;
     Diagnostics out_;
+    std::vector<std::pair<std::string_view, std::size_t>> by_name_;  ///< find_repeated_names
+    std::vector<int> first_with_name_;
 };
 
 }  // namespace

@@ -12,8 +12,9 @@ namespace eip2mqtt::core::config {
 namespace {
 
 struct Field {
-    std::string text;
-    int column = 1;  ///< 1-based column where the field starts
+    std::string_view text;  ///< into the line, or into `unquoted` for a quoted field
+    std::string unquoted;   ///< a quoted field without its quotes and with "" read as "
+    int column = 1;         ///< 1-based column where the field starts
 };
 
 std::string_view trim(std::string_view text) {
@@ -23,29 +24,30 @@ std::string_view trim(std::string_view text) {
     return text.substr(first, last - first + 1);
 }
 
-std::string lower(std::string_view text) {
-    std::string out(text);
-    std::transform(out.begin(), out.end(), out.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return out;
+bool equals_lower(std::string_view text, std::string_view lower_case) {
+    return std::equal(text.begin(), text.end(), lower_case.begin(), lower_case.end(),
+                      [](unsigned char a, unsigned char b) { return std::tolower(a) == b; });
 }
 
-/// Splits one CSV line; fields may be double-quoted, with "" for a quote inside. Returns nullopt
-/// on an unterminated quote (a field spanning lines is not supported).
-std::optional<std::vector<Field>> split(std::string_view line) {
-    std::vector<Field> fields;
+/// Splits one CSV line into `fields` (reused from line to line: a list of 100,000 rows would
+/// otherwise allocate a string per field); fields may be double-quoted, with "" for a quote
+/// inside. Returns false on an unterminated quote (a field spanning lines is not supported).
+bool split(std::string_view line, std::vector<Field>& fields) {
+    std::size_t count = 0;
     std::size_t i = 0;
     while (true) {
-        Field field;
+        if (fields.size() <= count) fields.emplace_back();
+        Field& field = fields[count++];
         field.column = static_cast<int>(i) + 1;
         while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
         if (i < line.size() && line[i] == '"') {
             ++i;
+            field.unquoted.clear();
             bool closed = false;
             while (i < line.size()) {
                 if (line[i] == '"') {
                     if (i + 1 < line.size() && line[i + 1] == '"') {
-                        field.text += '"';
+                        field.unquoted += '"';
                         i += 2;
                         continue;
                     }
@@ -53,20 +55,21 @@ std::optional<std::vector<Field>> split(std::string_view line) {
                     closed = true;
                     break;
                 }
-                field.text += line[i++];
+                field.unquoted += line[i++];
             }
-            if (!closed) return std::nullopt;
+            if (!closed) return false;
+            field.text = field.unquoted;
             while (i < line.size() && line[i] != ',') ++i;  // tolerate spaces after the quote
         } else {
             const auto end = std::min(line.find(',', i), line.size());
-            field.text = std::string(trim(line.substr(i, end - i)));
+            field.text = trim(line.substr(i, end - i));
             i = end;
         }
-        fields.push_back(std::move(field));
         if (i >= line.size()) break;
         ++i;  // the comma
     }
-    return fields;
+    fields.resize(count);
+    return true;
 }
 
 constexpr std::array<std::string_view, 5> column_names{"tagname", "node", "address", "datatype",
@@ -81,6 +84,8 @@ PointList parse_point_list(std::string_view text, const std::string& file) {
     bool have_header = false;
     int line_number = 0;
     std::size_t pos = 0;
+    std::vector<Field> fields;
+    list.rows.reserve(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')));
     while (pos < text.size()) {
         auto end = text.find('\n', pos);
         if (end == std::string_view::npos) end = text.size();
@@ -92,10 +97,9 @@ PointList parse_point_list(std::string_view text, const std::string& file) {
         const auto trimmed = trim(line);
         if (trimmed.empty() || trimmed.front() == '#') continue;
 
-        const Mark row_mark{file, line_number, 1};
-        const auto fields = split(line);
-        if (!fields) {
-            list.errors.push_back({row_mark, "unterminated quoted field"});
+        const auto row_mark = [&] { return Mark{file, line_number, 1}; };
+        if (!split(line, fields)) {
+            list.errors.push_back({row_mark(), "unterminated quoted field"});
             continue;
         }
 
@@ -103,38 +107,38 @@ PointList parse_point_list(std::string_view text, const std::string& file) {
             have_header = true;
             std::vector<std::string> missing;
             for (std::size_t c = 0; c < column_names.size(); ++c) {
-                const auto it = std::find_if(fields->begin(), fields->end(), [&](const Field& f) {
-                    return lower(f.text) == column_names[c];
+                const auto it = std::find_if(fields.begin(), fields.end(), [&](const Field& f) {
+                    return equals_lower(f.text, column_names[c]);
                 });
-                if (it == fields->end()) {
+                if (it == fields.end()) {
                     missing.emplace_back(column_names[c]);
                 } else {
-                    index[c] = static_cast<std::size_t>(it - fields->begin());
+                    index[c] = static_cast<std::size_t>(it - fields.begin());
                 }
             }
             if (!missing.empty()) {
                 std::string names;
                 for (const auto& name : missing) names += (names.empty() ? "" : ", ") + name;
                 list.errors.push_back(
-                    {row_mark, "point list header lacks column(s) " + names +
-                                   " (expected TagName, Node, Address, DataType, AccessType)"});
+                    {row_mark(), "point list header lacks column(s) " + names +
+                                     " (expected TagName, Node, Address, DataType, AccessType)"});
                 return list;
             }
             continue;
         }
 
         const std::size_t needed = *std::max_element(index.begin(), index.end()) + 1;
-        if (fields->size() < needed) {
-            list.errors.push_back({row_mark, "row has " + std::to_string(fields->size()) +
-                                                 " fields, expected at least " +
-                                                 std::to_string(needed)});
+        if (fields.size() < needed) {
+            list.errors.push_back({row_mark(), "row has " + std::to_string(fields.size()) +
+                                                   " fields, expected at least " +
+                                                   std::to_string(needed)});
             continue;
         }
-        const auto field = [&](Column c) -> const Field& { return (*fields)[index[c]]; };
+        const auto field = [&](Column c) -> const Field& { return fields[index[c]]; };
         const auto at = [&](Column c) { return Mark{file, line_number, field(c).column}; };
 
         PointRow row;
-        row.mark = row_mark;
+        row.mark = row_mark();
         bool ok = true;
         row.tag.name = field(tag_name).text;
         if (row.tag.name.empty()) {
@@ -149,27 +153,27 @@ PointList parse_point_list(std::string_view text, const std::string& file) {
         if (const auto parsed = plan::parse_address(field(address).text)) {
             row.tag.address = *parsed;
         } else {
-            list.errors.push_back(
-                {at(address), "bad address '" + field(address).text + "' (expected byte.bit)"});
+            list.errors.push_back({at(address), "bad address '" + std::string(field(address).text) +
+                                                    "' (expected byte.bit)"});
             ok = false;
         }
         if (const auto type =
                 plan::parse_tag_type(field(data_type).text, plan::TypeNaming::point_list)) {
             row.tag.type = *type;
         } else {
-            list.errors.push_back({at(data_type), "unknown DataType '" + field(data_type).text +
+            list.errors.push_back({at(data_type), "unknown DataType '" +
+                                                      std::string(field(data_type).text) +
                                                       "' (expected Bit, Word, Real, Long or a "
                                                       "type of eip-protocol.md section 3)"});
             ok = false;
         }
-        const auto access = lower(field(access_type).text);
-        if (access == "write") {
+        const auto access = field(access_type).text;
+        if (equals_lower(access, "write")) {
             row.write = true;
             row.tag.writable = true;
-        } else if (access != "read") {
-            list.errors.push_back(
-                {at(access_type),
-                 "unknown AccessType '" + field(access_type).text + "' (expected Read or Write)"});
+        } else if (!equals_lower(access, "read")) {
+            list.errors.push_back({at(access_type), "unknown AccessType '" + std::string(access) +
+                                                        "' (expected Read or Write)"});
             ok = false;
         }
         if (ok) list.rows.push_back(std::move(row));

@@ -38,11 +38,7 @@ ExchangePlan make_exchange_plan(const ExchangeSpec& spec, const std::string& bas
     plan.values_topic = plan.topic + "/_values";
     plan.set_topic = plan.topic + "/set";
     plan.tags.reserve(spec.tags.size());
-    for (const auto& tag : spec.tags) {
-        TagPlan tag_plan{tag, plan.topic + "/" + tag.name, {}};
-        tag_plan.set_topic = tag_plan.topic + "/set";
-        plan.tags.push_back(std::move(tag_plan));
-    }
+    for (const auto& tag : spec.tags) plan.tags.push_back({tag, plan.topic + "/" + tag.name});
     return plan;
 }
 

@@ -293,6 +293,48 @@ TEST(Validate, TagTopicCollidingAcrossExchanges) {
     EXPECT_TRUE(mentions(d, "turbine1/PRESSAO/set"));
 }
 
+TEST(Validate, TagTopicCollidingWithAnEarlierExchangesSetTopic) {
+    // The exchange on turbine1/PRESSAO comes first: the tag's write topic is the one refused.
+    auto c = valid();
+    auto child = c.exchanges[1];
+    child.spec.name = "child";
+    child.spec.topic = "turbine1/PRESSAO";
+    child.spec.exchange_id = 99;
+    c.exchanges.insert(c.exchanges.begin(), child);
+    const auto d = only(validate(c));
+    EXPECT_TRUE(mentions(d,
+                         "tag 'PRESSAO' of exchange 'turbine1' uses topic "
+                         "'acme/site/turbine1/PRESSAO/set', already used by exchange 'child'"))
+        << d.message;
+}
+
+TEST(Validate, SameTagNameOnTwoExchangesOfOneTopic) {
+    auto c = valid();
+    c.exchanges[1].spec.topic = "turbine1";
+    c.exchanges[1].tags.push_back(tag("PRESSAO", 8, 0, TagType::int_));
+    const auto d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_TRUE(mentions(d[1],
+                         "tag 'PRESSAO' of exchange 'setpoints' uses topic "
+                         "'acme/site/turbine1/PRESSAO', already used by tag 'PRESSAO' of "
+                         "exchange 'turbine1'"))
+        << d[1].message;
+}
+
+TEST(Validate, ThirdRepeatOfATagNamePointsAtTheFirst) {
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag("PRESSAO", 8, 0, TagType::int_));
+    c.exchanges[0].tags.push_back(tag("PRESSAO", 10, 0, TagType::int_));
+    const auto d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    const auto first = c.exchanges[0].tags[1].marks.of("name").line;
+    ASSERT_EQ(c.exchanges[0].tags[1].spec.name, "PRESSAO");
+    for (const auto& diagnostic : d) {
+        EXPECT_TRUE(mentions(diagnostic, "(first at c.yaml:" + std::to_string(first) + ")"))
+            << diagnostic.message;
+    }
+}
+
 TEST(Validate, ReservedTagNames) {
     for (const char* name : {"set", "_status", "_x", "a/b", "a+", "a#", ""}) {
         auto c = valid();
@@ -391,7 +433,7 @@ TEST(MakePlans, OnePlanPerExchangeWithEveryTag) {
     EXPECT_EQ(plans[0].spec.tags[1].name, "PRESSAO");
     EXPECT_EQ(plans[0].tags[1].topic, "acme/site/turbine1/PRESSAO");
     EXPECT_EQ(plans[0].timeout, 300ms);
-    EXPECT_EQ(plans[1].tags[0].set_topic, "acme/site/setpoints/SPEED_SP/set");
+    EXPECT_EQ(plans[1].tags[0].topic, "acme/site/setpoints/SPEED_SP");
     EXPECT_EQ(plans[1].length, 16);
 }
 

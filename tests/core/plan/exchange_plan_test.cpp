@@ -49,7 +49,6 @@ TEST(ExchangePlans, TopicsFollowTheContract) {
     EXPECT_EQ(plan.set_topic, "acme/blumenau/generation/turbine1/set");
     ASSERT_EQ(plan.tags.size(), 2u);
     EXPECT_EQ(plan.tags[0].topic, "acme/blumenau/generation/turbine1/PRESSAO_OK");
-    EXPECT_EQ(plan.tags[0].set_topic, "acme/blumenau/generation/turbine1/PRESSAO_OK/set");
     EXPECT_EQ(plan.tags[1].topic, "acme/blumenau/generation/turbine1/PRESSAO");
     EXPECT_EQ(plan.tags[1].spec.name, "PRESSAO");
     EXPECT_EQ(plan.spec.tags.size(), 2u);
