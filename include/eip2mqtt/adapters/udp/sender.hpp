@@ -5,12 +5,17 @@
 ///
 /// Threading: used from the loop only.
 
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/uio.h>
+
 #include <boost/asio/any_io_executor.hpp>
 #include <boost/asio/ip/udp.hpp>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
 
@@ -22,6 +27,12 @@ struct SenderOptions {
     int multicast_ttl = 1;
     std::string multicast_interface;  ///< IPv4 address of the outgoing interface; empty: default
     bool multicast_loop = true;       ///< let local consumers (and tests) see our multicast
+};
+
+/// One datagram of a batch: the bytes stay owned by the caller until send_batch returns.
+struct OutgoingDatagram {
+    std::span<const std::byte> bytes;
+    Endpoint to;
 };
 
 struct SenderStats {
@@ -37,11 +48,21 @@ public:
     /// Sends one datagram; false (and counted) when the kernel refused it.
     bool send_to(std::span<const std::byte> datagram, const Endpoint& to);
 
+    /// Sends every datagram of `batch`, in order, with as few sendmmsg calls as the kernel
+    /// allows (one when all succeed). `sent[i]` (resized to the batch) says whether datagram i
+    /// left: a datagram the kernel refuses is counted and skipped, and the rest still go, so
+    /// each exchange's counters and write results stay exact. Returns how many were sent.
+    std::size_t send_batch(std::span<const OutgoingDatagram> batch, std::vector<bool>& sent);
+
     const SenderStats& stats() const { return stats_; }
 
 private:
     boost::asio::ip::udp::socket socket_;
     SenderStats stats_;
+    // Reused by send_batch, so a steady batch size allocates nothing.
+    std::vector<sockaddr_in> addresses_;
+    std::vector<iovec> iovecs_;
+    std::vector<mmsghdr> messages_;
 };
 
 }  // namespace eip2mqtt::adapters::udp
