@@ -114,6 +114,8 @@ int Gateway::run() {
     spdlog::info("stopping: flushing publications and publishing offline");
     receiver_->stop();
     for (auto& producer : producers_) producer->stop();
+    // The last saves reach the disk, and their write results the MQTT queue before it flushes.
+    if (production_) production_->flush();
     mqtt_->stop(stop_flush_timeout);
     const auto stats = mqtt_->stats();
     spdlog::info("stopped: {} datagrams received, {} publications made, {} still queued",
