@@ -18,7 +18,7 @@ ProducerScheduler::Id ProducerScheduler::add(ExchangeProducer& producer,
                                              const core::exchange::ProductionSchedule& schedule) {
     const auto id = queue_.add(schedule);
     producers_.emplace(id, &producer);
-    if (!armed_for_ || schedule.deadline() < *armed_for_) arm();
+    if (!armed_for_ || queue_.next_wakeup() < *armed_for_) arm();
     return id;
 }
 
@@ -40,7 +40,7 @@ void ProducerScheduler::persist(Id id, std::shared_ptr<const core::plan::Exchang
 }
 
 void ProducerScheduler::arm() {
-    armed_for_ = queue_.next_deadline();
+    armed_for_ = queue_.next_wakeup();
     if (!armed_for_) {
         timer_.cancel();
         return;

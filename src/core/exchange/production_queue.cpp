@@ -14,8 +14,15 @@ bool later(const auto& a, const auto& b) {
 
 }  // namespace
 
-ProductionQueue::ProductionQueue(std::chrono::nanoseconds horizon) : horizon_(horizon) {
-    assert(horizon >= std::chrono::nanoseconds::zero());
+ProductionQueue::ProductionQueue(std::chrono::nanoseconds slot) : slot_(slot) {
+    assert(slot > std::chrono::nanoseconds::zero());
+}
+
+MonoTime ProductionQueue::slot_start(MonoTime t) const {
+    // Aligned on the clock's epoch, so that a deadline and the same deadline one period later
+    // sit at the same place in their slots whenever the period is a multiple of the slot.
+    return MonoTime{} +
+           std::chrono::floor<std::chrono::nanoseconds>(t.time_since_epoch()) / slot_ * slot_;
 }
 
 ProductionQueue::Id ProductionQueue::add(const ProductionSchedule& schedule) {
@@ -36,10 +43,15 @@ std::optional<MonoTime> ProductionQueue::next_deadline() const {
     return heap_.front().deadline;
 }
 
+std::optional<MonoTime> ProductionQueue::next_wakeup() const {
+    if (heap_.empty()) return std::nullopt;
+    return slot_start(heap_.front().deadline);
+}
+
 std::size_t ProductionQueue::take_due(MonoTime now, std::vector<Due>& due) {
-    const auto limit = now + horizon_;
+    const auto end = slot_start(now) + slot_;
     taken_.clear();
-    while (!heap_.empty() && heap_.front().deadline <= limit) {
+    while (!heap_.empty() && heap_.front().deadline < end) {
         std::pop_heap(heap_.begin(), heap_.end(), later<Entry, Entry>);
         const Entry entry = heap_.back();
         heap_.pop_back();
@@ -52,7 +64,7 @@ std::size_t ProductionQueue::take_due(MonoTime now, std::vector<Due>& due) {
         taken_.push_back({it->second.deadline(), entry.id});
     }
     // Pushed back only now, so that an exchange is taken at most once per call whatever the
-    // horizon.
+    // slot.
     for (const auto& entry : taken_) {
         heap_.push_back(entry);
         std::push_heap(heap_.begin(), heap_.end(), later<Entry, Entry>);

@@ -21,7 +21,7 @@ std::vector<ProductionQueue::Id> ids_of(const std::vector<Due>& due) {
 }
 
 TEST(ProductionQueue, EmptyHasNoDeadline) {
-    ProductionQueue queue(0ns);
+    ProductionQueue queue(1ns);  // no batching
     EXPECT_FALSE(queue.next_deadline());
     std::vector<Due> due;
     EXPECT_EQ(queue.take_due(start, due), 0u);
@@ -29,7 +29,7 @@ TEST(ProductionQueue, EmptyHasNoDeadline) {
 }
 
 TEST(ProductionQueue, NextDeadlineIsTheEarliest) {
-    ProductionQueue queue(0ns);
+    ProductionQueue queue(1ns);                               // no batching
     queue.add(ProductionSchedule(start, 10ms, 3, 4));         // +7.5 ms
     queue.add(ProductionSchedule(start, 10ms, 1, 4));         // +2.5 ms
     queue.add(ProductionSchedule(start + 1ms, 100ms, 0, 1));  // +1 ms
@@ -37,7 +37,7 @@ TEST(ProductionQueue, NextDeadlineIsTheEarliest) {
 }
 
 TEST(ProductionQueue, TakesOnlyWhatIsDueByNow) {
-    ProductionQueue queue(0ns);
+    ProductionQueue queue(1ns);                                       // no batching
     const auto a = queue.add(ProductionSchedule(start, 10ms, 0, 4));  // start
     const auto b = queue.add(ProductionSchedule(start, 10ms, 1, 4));  // +2.5 ms
     queue.add(ProductionSchedule(start, 10ms, 2, 4));                 // +5 ms
@@ -53,7 +53,7 @@ TEST(ProductionQueue, TakesOnlyWhatIsDueByNow) {
 }
 
 TEST(ProductionQueue, DueSetIsEarliestFirst) {
-    ProductionQueue queue(0ns);
+    ProductionQueue queue(1ns);  // no batching
     const auto late = queue.add(ProductionSchedule(start, 10ms, 2, 3));
     const auto early = queue.add(ProductionSchedule(start, 10ms, 0, 3));
     const auto middle = queue.add(ProductionSchedule(start, 10ms, 1, 3));
@@ -62,33 +62,76 @@ TEST(ProductionQueue, DueSetIsEarliestFirst) {
     EXPECT_EQ(ids_of(due), (std::vector{early, middle, late}));
 }
 
-TEST(ProductionQueue, HorizonTakesWhatIsDueSoonAndKeepsThePhase) {
+TEST(ProductionQueue, SlotBatchesWhatIsDueInItAndKeepsThePhase) {
     ProductionQueue queue(50us);
-    // 1,000 exchanges at 10 ms: deadlines 10 us apart.
+    // 1,000 exchanges at 10 ms: deadlines 10 us apart, 5 to a slot.
     for (std::size_t i = 0; i < 1000; ++i) queue.add(ProductionSchedule(start, 10ms, i, 1000));
     std::vector<Due> due;
-    EXPECT_EQ(queue.take_due(start, due), 6u);  // start .. start + 50 us
-    EXPECT_EQ(due.back().deadline, start + 50us);
-    EXPECT_EQ(queue.next_deadline(), start + 60us);
+    EXPECT_EQ(queue.next_wakeup(), start);
+    EXPECT_EQ(queue.take_due(start, due), 5u);  // start .. start + 40 us
+    EXPECT_EQ(due.back().deadline, start + 40us);
+    EXPECT_EQ(queue.next_deadline(), start + 50us);
     std::map<ProductionQueue::Id, std::vector<MonoTime>> deadlines_seen;
     for (const auto& d : due) deadlines_seen[d.id].push_back(d.deadline);
-    // Wake at each announced deadline for two periods: batches of 6 (the horizon spans 6
-    // deadlines), and each exchange, though taken up to 50 us early, is due again at its own
-    // deadline + the period.
-    while (*queue.next_deadline() < start + 20ms) {
+    // Wake at each announced slot for two periods: each exchange, though taken up to 40 us
+    // early, is due again at its own deadline + the period.
+    while (*queue.next_wakeup() < start + 20ms) {
         due.clear();
-        EXPECT_EQ(queue.take_due(*queue.next_deadline(), due), 6u);
+        EXPECT_EQ(queue.take_due(*queue.next_wakeup(), due), 5u);
         for (const auto& d : due) deadlines_seen[d.id].push_back(d.deadline);
     }
     ASSERT_EQ(deadlines_seen.size(), 1000u);
     for (const auto& [id, times] : deadlines_seen) {
         const auto phase = std::chrono::microseconds{static_cast<std::int64_t>(id - 1) * 10};
-        // Two periods, plus a third for those the last batch took early.
-        ASSERT_GE(times.size(), 2u) << "exchange " << id;
-        ASSERT_LE(times.size(), 3u) << "exchange " << id;
-        for (int k = 0; k < static_cast<int>(times.size()); ++k) {
-            EXPECT_EQ(times[static_cast<std::size_t>(k)], start + phase + k * 10ms);
-        }
+        ASSERT_EQ(times.size(), 2u) << "exchange " << id;
+        EXPECT_EQ(times[0], start + phase);
+        EXPECT_EQ(times[1], start + phase + 10ms);
+    }
+}
+
+TEST(ProductionQueue, WakeUpIsTheStartOfTheSlotOfTheEarliestDeadline) {
+    ProductionQueue queue(250us);
+    queue.add(ProductionSchedule(start + 1730us, 10ms, 0, 1));
+    EXPECT_EQ(queue.next_deadline(), start + 1730us);
+    EXPECT_EQ(queue.next_wakeup(), start + 1500us);  // early by less than a slot
+    std::vector<Due> due;
+    EXPECT_EQ(queue.take_due(start + 1499us, due), 0u);  // the slot before
+    EXPECT_EQ(queue.take_due(start + 1500us, due), 1u);
+}
+
+TEST(ProductionQueue, LateWakeUpTakesTheLateAndTheRestOfItsSlotOnly) {
+    ProductionQueue queue(250us);
+    queue.add(ProductionSchedule(start, 10ms, 0, 40));  // deadlines 250 us apart
+    queue.add(ProductionSchedule(start, 10ms, 1, 40));
+    queue.add(ProductionSchedule(start, 10ms, 2, 40));
+    queue.add(ProductionSchedule(start, 10ms, 3, 40));
+    std::vector<Due> due;
+    // Woken 300 us late, in the second slot: the first two, not the third (next slot).
+    EXPECT_EQ(queue.take_due(start + 300us, due), 2u);
+    EXPECT_EQ(due[1].deadline, start + 250us);
+    EXPECT_EQ(queue.next_wakeup(), start + 500us);
+}
+
+TEST(ProductionQueue, BatchingAddsNoJitterWhenThePeriodIsAMultipleOfTheSlot) {
+    // Whatever the wake-up latency (under a slot), each exchange is taken at the start of the
+    // same slot every period: a constant offset from its deadline, so no jitter from batching.
+    ProductionQueue queue(250us);
+    for (std::size_t i = 0; i < 7; ++i) queue.add(ProductionSchedule(start, 10ms, i, 7));
+    std::map<ProductionQueue::Id, std::vector<std::chrono::nanoseconds>> offsets;
+    std::vector<Due> due;
+    std::uint32_t seed = 99;
+    while (*queue.next_wakeup() < start + 1s) {
+        seed = seed * 1103515245U + 12345U;
+        const auto now = *queue.next_wakeup() + std::chrono::microseconds{(seed >> 16) % 200};
+        due.clear();
+        queue.take_due(now, due);
+        const auto slot = now - (now - start) % 250us;  // the slot this batch was taken in
+        for (const auto& d : due) offsets[d.id].push_back(slot - d.deadline);
+    }
+    ASSERT_EQ(offsets.size(), 7u);
+    for (const auto& [id, offset] : offsets) {
+        ASSERT_EQ(offset.size(), 100u);
+        for (const auto o : offset) EXPECT_EQ(o, offset.front()) << "exchange " << id;
     }
 }
 
@@ -100,14 +143,14 @@ TEST(ProductionQueue, EveryExchangeOncePerPeriodWithoutDrift) {
     std::map<ProductionQueue::Id, std::vector<MonoTime>> deadlines;
     std::vector<Due> due;
     std::uint32_t seed = 7;
-    while (*queue.next_deadline() < start + 1s) {
+    while (*queue.next_wakeup() < start + 1s) {
         seed = seed * 1103515245U + 12345U;
-        const auto now = *queue.next_deadline() + std::chrono::microseconds{(seed >> 16) % 41};
+        const auto now = *queue.next_wakeup() + std::chrono::microseconds{(seed >> 16) % 41};
         due.clear();
         queue.take_due(now, due);
         for (const auto& d : due) {
             EXPECT_EQ(d.skipped, 0u);
-            EXPECT_LE(d.deadline, now + 50us);  // early by at most the horizon
+            EXPECT_LT(d.deadline, now + 50us);  // early by less than a slot
             deadlines[d.id].push_back(d.deadline);
         }
     }
@@ -122,7 +165,7 @@ TEST(ProductionQueue, EveryExchangeOncePerPeriodWithoutDrift) {
     }
 }
 
-TEST(ProductionQueue, TakesAnExchangeOncePerCallEvenWithAHorizonOverAPeriod) {
+TEST(ProductionQueue, TakesAnExchangeOncePerCallEvenWithASlotOverAPeriod) {
     ProductionQueue queue(25ms);
     const auto a = queue.add(ProductionSchedule(start, 10ms, 0, 1));
     std::vector<Due> due;
@@ -132,7 +175,7 @@ TEST(ProductionQueue, TakesAnExchangeOncePerCallEvenWithAHorizonOverAPeriod) {
 }
 
 TEST(ProductionQueue, LateByMoreThanAPeriodSkipsAndCounts) {
-    ProductionQueue queue(0ns);
+    ProductionQueue queue(1ns);                        // no batching
     queue.add(ProductionSchedule(start, 10ms, 1, 2));  // phase 5 ms
     std::vector<Due> due;
     // The loop stalled: the deadline at +5 ms is served at +37 ms, missing +15, +25 and +35.
@@ -143,7 +186,7 @@ TEST(ProductionQueue, LateByMoreThanAPeriodSkipsAndCounts) {
 }
 
 TEST(ProductionQueue, RemovedExchangeIsNeverTaken) {
-    ProductionQueue queue(0ns);
+    ProductionQueue queue(1ns);  // no batching
     const auto a = queue.add(ProductionSchedule(start, 10ms, 0, 2));
     const auto b = queue.add(ProductionSchedule(start, 10ms, 1, 2));
     queue.remove(b);
@@ -158,7 +201,7 @@ TEST(ProductionQueue, RemovedExchangeIsNeverTaken) {
 }
 
 TEST(ProductionQueue, RemovingTheEarliestMovesTheNextDeadline) {
-    ProductionQueue queue(0ns);
+    ProductionQueue queue(1ns);  // no batching
     const auto a = queue.add(ProductionSchedule(start, 10ms, 0, 2));
     queue.add(ProductionSchedule(start, 10ms, 1, 2));
     queue.remove(a);
@@ -166,7 +209,7 @@ TEST(ProductionQueue, RemovingTheEarliestMovesTheNextDeadline) {
 }
 
 TEST(ProductionQueue, AddWhileRunningJoinsAtItsOwnPhase) {
-    ProductionQueue queue(0ns);
+    ProductionQueue queue(1ns);  // no batching
     const auto a = queue.add(ProductionSchedule(start, 10ms, 0, 1));
     std::vector<Due> due;
     queue.take_due(start, due);
@@ -182,7 +225,7 @@ TEST(ProductionQueue, AddWhileRunningJoinsAtItsOwnPhase) {
 }
 
 TEST(ProductionQueue, IdsAreNeverReused) {
-    ProductionQueue queue(0ns);
+    ProductionQueue queue(1ns);  // no batching
     const auto a = queue.add(ProductionSchedule(start, 10ms, 0, 1));
     queue.remove(a);
     const auto b = queue.add(ProductionSchedule(start, 10ms, 0, 1));

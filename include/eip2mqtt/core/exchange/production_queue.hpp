@@ -4,10 +4,15 @@
 /// ProductionSchedule: absolute deadlines, first sends spread over the period, missed deadlines
 /// skipped and counted when a send was more than a period late.
 ///
-/// take_due() also takes the exchanges due within a small horizon after `now`, so that 1,000
-/// exchanges spread 10 us apart leave in batches rather than in 100,000 wake-ups a second. A
-/// datagram taken that way leaves early by at most the horizon; its next deadline is still its
-/// own deadline plus the period, so the phase of each exchange never drifts.
+/// Deadlines are batched by slots: time is cut into slots of a fixed length, aligned on the
+/// clock's epoch, and an exchange is taken at the start of the slot that holds its deadline.
+/// So 1,000 exchanges spread 10 us apart leave in batches rather than in 100,000 wake-ups a
+/// second; a datagram leaves early by less than a slot; its next deadline is still its own
+/// deadline plus the period, so its phase never drifts; and when the period is a multiple of
+/// the slot (every whole-millisecond period, for a slot that divides 1 ms) the deadline falls
+/// at the same place in its slot every period, so batching adds no jitter. A horizon measured
+/// from the actual wake-up time would: the batch an exchange lands in would move with the
+/// wake-up latency.
 ///
 /// Pure: time is passed in. Not thread-safe.
 
@@ -35,9 +40,9 @@ public:
         std::size_t skipped;  ///< deadlines skipped before the next one (the send was late)
     };
 
-    /// `horizon`: how far ahead of `now` take_due() reaches; keep it well under the shortest
-    /// period (2 ms), since an exchange is taken at most once per call.
-    explicit ProductionQueue(std::chrono::nanoseconds horizon);
+    /// `slot`: the batching grid (> 0); keep it well under the shortest period (2 ms), since an
+    /// exchange is taken at most once per call.
+    explicit ProductionQueue(std::chrono::nanoseconds slot);
 
     /// Adds an exchange with its schedule; returns its id.
     Id add(const ProductionSchedule& schedule);
@@ -48,12 +53,15 @@ public:
     bool contains(Id id) const { return schedules_.contains(id); }
     std::size_t size() const { return schedules_.size(); }
 
-    /// The earliest deadline, when the next call to take_due() has work; nullopt when empty.
+    /// The earliest deadline; nullopt when empty.
     std::optional<MonoTime> next_deadline() const;
+    /// When to call take_due() next: the start of the slot holding the earliest deadline;
+    /// nullopt when empty.
+    std::optional<MonoTime> next_wakeup() const;
 
-    /// Appends to `due` every exchange whose deadline is at or before `now + horizon`, earliest
-    /// first, and moves each to its next deadline (ProductionSchedule::advance at `now`). Each
-    /// exchange appears at most once. Returns how many were appended.
+    /// Appends to `due` every exchange whose deadline is before the end of the slot holding
+    /// `now`, earliest first, and moves each to its next deadline (ProductionSchedule::advance
+    /// at `now`). Each exchange appears at most once. Returns how many were appended.
     std::size_t take_due(MonoTime now, std::vector<Due>& due);
 
 private:
@@ -63,8 +71,9 @@ private:
     };
     /// Pops heap entries of removed exchanges until the top is a live one.
     void drop_removed_tops();
+    MonoTime slot_start(MonoTime t) const;
 
-    std::chrono::nanoseconds horizon_;
+    std::chrono::nanoseconds slot_;
     std::unordered_map<Id, ProductionSchedule> schedules_;
     /// Min-heap on deadline. A removed exchange leaves its entry behind, dropped when it reaches
     /// the top; the top is always live, so next_deadline() needs no cleanup.
