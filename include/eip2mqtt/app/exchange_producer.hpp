@@ -109,7 +109,7 @@ private:
     std::vector<std::uint64_t> carried_;
     std::unordered_map<std::uint64_t, WriteReply> replies_;
     std::vector<core::write::RateLimiter> limiters_;  ///< one per tag
-    std::optional<core::MonoTime> last_status_at_;
+    core::MonoTime next_status_at_{};                 ///< `_status` grid: phase set by start()
     std::uint64_t last_status_sent_ = 0;
     std::uint64_t next_write_id_ = 1;
     ProducerCounters counters_;
