@@ -550,6 +550,49 @@ class Bench:
                      f"<= {jitter_target:,} us",
                      "yes" if got["p99_jitter_us"] <= jitter_target else "no")
 
+    def s9_write_latency(self):
+        print("[9] write latency: MQTT /set -> the datagram carrying it (10 ms period)", flush=True)
+        count = 150 if self.quick else 500  # at 47 writes/s: ~3 s or ~11 s
+        for background in (0, 100):
+            port = free_port(socket.SOCK_DGRAM)
+            produced = [(9001, 10, 10, f"{HOST}:{port}")]
+            sink = None
+            if background:
+                # The background exchanges go to a sink that reads them, so that no kernel
+                # buffer fills and no send fails.
+                bport = free_port(socket.SOCK_DGRAM)
+                ready = os.path.join(self.tmp, "wsink.ready")
+                sink = subprocess.Popen([tool("udp_sink"), "--port", str(bport), "--duration",
+                                         str(count / 47 + 20), "--ready-file", ready],
+                                        stdout=subprocess.DEVNULL)
+                self.procs.append(sink)
+                wait_file(ready, 5)
+                produced += [(9100 + i, 10, 10, f"{HOST}:{bport}") for i in range(background)]
+            name = f"g9b{background}"
+            config = self.write_config(name, produced=produced,
+                                       udp_port=free_port(socket.SOCK_DGRAM))
+            gw = self.start_gateway(name, config)
+            self.wait_online(name)
+            got = run_json([tool("write_latency"), "--port", str(self.broker_port), "--udp-port",
+                            str(port), "--topic", "b/p9001/t1/set", "--exchange-id", "9001",
+                            "--offset", "8", "--rate", "47", "--count", str(count),
+                            "--id", f"bench-writer-{background}"], timeout=count / 47 + 60)
+            stop(gw)
+            stop(sink)
+            print(f"    {1 + background} produced exchange(s): {got}", flush=True)
+            complete = got["seen"] == got["writes"] == got["results_ok"]
+            if not complete:
+                self.notes.append(f"scenario 9 ({1 + background} exchanges): {got['writes']} "
+                                  f"writes, {got['seen']} seen on the wire, "
+                                  f"{got['results_ok']} ok results")
+            what = "1 exchange" if not background else f"1 + {background} exchanges"
+            self.row(f"write latency /set -> datagram p99 (ms), {what} at 10 ms",
+                     f"{got['p99_ms']:.2f} (p50 {got['p50_ms']:.2f}, max {got['max_ms']:.2f}; "
+                     f"{got['seen']}/{got['writes']} seen, {got['results_ok']} ok results)",
+                     f"{got['hop_p99_ms']:.2f} (MQTT hop p99: /set publish -> a subscriber)",
+                     "-", "<= 11 ms (period + 1 ms)",
+                     "yes" if got["p99_ms"] <= 11 and complete else "no")
+
     def s8_overload(self):
         print("[8] overload: 5 x the publication ceiling for 10 s (100 x 100 tags, QoS 1)",
               flush=True)
@@ -674,10 +717,11 @@ def mosquitto_version():
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
-    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-8)")
+    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-9)")
     args = parser.parse_args()
     only = {int(x) for x in args.only.split(",") if x}
-    for path in (GATEWAY, tool("load_generator"), tool("mqtt_counter"), tool("yaml_parse")):
+    for path in (GATEWAY, tool("load_generator"), tool("mqtt_counter"), tool("yaml_parse"),
+                 tool("write_latency")):
         if not os.access(path, os.X_OK):
             sys.exit(f"missing {path}: run bench/run.sh, which builds first")
     bench = Bench(args.quick, only)
@@ -700,6 +744,8 @@ def main():
             bench.s7_periods()
         if bench.wanted(8):
             bench.s8_overload()
+        if bench.wanted(9):
+            bench.s9_write_latency()
     finally:
         bench.close()
     bench.report(command)

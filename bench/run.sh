@@ -13,5 +13,5 @@ jobs="${EIP2MQTT_BENCH_JOBS:-1}"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DEIP2MQTT_TESTS=OFF \
     -DEIP2MQTT_BENCH=ON >/dev/null
 cmake --build "$build" -j "$jobs" --target eip2mqtt bench_load_generator bench_udp_sink \
-    bench_mqtt_counter bench_paho_publisher bench_yaml_parse
+    bench_mqtt_counter bench_paho_publisher bench_yaml_parse bench_write_latency
 EIP2MQTT_BENCH_BUILD="$build" exec python3 "$here/run.py" "$@"

@@ -53,6 +53,8 @@ std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
 }
 
 void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running) {
+    // Saves still under way must reach the disk before a restarted exchange reads its image.
+    if (production_) production_->flush();
     auto sink = [this](adapters::mqtt::Message&& message) { mqtt_->publish(std::move(message)); };
     std::map<std::string, std::unique_ptr<ExchangeConsumer>> old_consumers;
     for (auto& consumer : consumers_) {
@@ -106,10 +108,11 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
             sender_options.multicast_ttl = config_.eip.multicast_ttl;
             sender_options.multicast_interface = config_.eip.multicast_interface;
             sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
+            production_ =
+                std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_, image_store_);
         }
-        producers_.push_back(
-            std::make_unique<ExchangeProducer>(std::move(plan), *destination, loop_.get_executor(),
-                                               *sender_, image_store_, publish_settings_, sink));
+        producers_.push_back(std::make_unique<ExchangeProducer>(
+            std::move(plan), *destination, *production_, image_store_, publish_settings_, sink));
         started_producers.push_back(producers_.back().get());
     }
 

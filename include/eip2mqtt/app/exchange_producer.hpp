@@ -1,23 +1,24 @@
 #pragma once
-/// One produced exchange at run time (issue #3): sends its datagram every period against
-/// absolute deadlines, applies queued writes between two productions, answers each write once
-/// the datagram carrying it has left, echoes the produced values on the tag topics, and
-/// persists the image when it changes.
+/// One produced exchange at run time (issue #3): produces its datagram when the
+/// ProducerScheduler says it is due (every period, against absolute deadlines), applies queued
+/// writes between two productions, echoes the produced values on the tag topics, persists the
+/// image when it changes, and answers each write once the datagram carrying it has left and
+/// the image carrying it is saved.
 ///
 /// Threading: the loop only.
 
-#include <boost/asio/any_io_executor.hpp>
-#include <boost/asio/steady_timer.hpp>
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
-#include "eip2mqtt/adapters/udp/sender.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
+#include "eip2mqtt/app/producer_scheduler.hpp"
 #include "eip2mqtt/core/exchange/produced_image.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
@@ -46,12 +47,15 @@ public:
     /// The image is restored from `store` when a file of the same layout exists. `index` of
     /// `count` spreads the first send over the period.
     ExchangeProducer(core::plan::ExchangePlan plan, adapters::udp::Endpoint destination,
-                     boost::asio::any_io_executor executor, adapters::udp::Sender& sender,
-                     const adapters::state::ImageStore& store, PublishSettings settings,
-                     PublishSink sink);
+                     ProducerScheduler& scheduler, const adapters::state::ImageStore& store,
+                     PublishSettings settings, PublishSink sink);
+    ~ExchangeProducer();
+    ExchangeProducer(const ExchangeProducer&) = delete;
+    ExchangeProducer& operator=(const ExchangeProducer&) = delete;
 
     /// Starts producing; the first send is at start + period * index / count.
     void start(core::MonoTime start, std::size_t index, std::size_t count);
+    /// Stops producing; saves under way still publish their write results.
     void stop();
 
     /// Queues a validated write; its result is published after the datagram carrying it is
@@ -66,7 +70,20 @@ public:
     /// Publishes the echo topics and `_status` again (after a reconnect).
     void republish(core::WallTime wall);
 
-    const core::plan::ExchangePlan& plan() const { return plan_; }
+    // --- called by the ProducerScheduler ------------------------------------------------
+    /// Builds the next datagram (staged writes applied, header stamped with `wall`); the bytes
+    /// stay valid until the next call.
+    std::span<const std::byte> produce(core::WallTime wall);
+    const adapters::udp::Endpoint& destination() const { return destination_; }
+    /// Deadlines skipped because the loop fell behind by more than a period.
+    void count_skipped(std::size_t skipped) { counters_.skipped_deadlines += skipped; }
+    /// After the datagram of produce() was sent (or refused): counters, `paused`, echo, and
+    /// the save whose completion publishes the results of the writes it carried.
+    void on_sent(bool sent, core::WallTime wall);
+    /// The image save asked by on_sent() is done: publishes the results of `write_ids`.
+    void on_saved(bool ok, const std::vector<std::uint64_t>& write_ids);
+
+    const core::plan::ExchangePlan& plan() const { return *plan_; }
     const PublishSettings& settings() const { return settings_; }
     const ProducerCounters& counters() const { return counters_; }
     /// True while sends fail (`_status` says paused).
@@ -74,26 +91,25 @@ public:
     const core::exchange::ProducedImage& image() const { return image_; }
 
 private:
-    void schedule();
-    void on_deadline(const boost::system::error_code& error);
     void publish_echo(core::WallTime wall, bool all);
     void publish_status();
+    void publish_results(const std::vector<std::uint64_t>& write_ids);
 
-    core::plan::ExchangePlan plan_;
+    /// Shared with the saves under way, which may outlive this producer (reload).
+    std::shared_ptr<const core::plan::ExchangePlan> plan_;
     adapters::udp::Endpoint destination_;
-    boost::asio::steady_timer timer_;
-    adapters::udp::Sender& sender_;
-    const adapters::state::ImageStore& store_;
+    ProducerScheduler& scheduler_;
+    std::optional<ProducerScheduler::Id> id_;  ///< set by start()
+    std::size_t saves_in_flight_ = 0;
     PublishSettings settings_;
     PublishSink sink_;
     core::exchange::ProducedImage image_;
-    std::optional<core::exchange::ProductionSchedule> schedule_;
     std::vector<std::byte> datagram_;
     std::vector<std::byte> echoed_;  ///< data bytes as last echoed on the tag topics
     std::vector<std::uint64_t> carried_;
     std::unordered_map<std::uint64_t, WriteReply> replies_;
     std::vector<core::write::RateLimiter> limiters_;  ///< one per tag
-    std::optional<core::MonoTime> last_status_at_;
+    core::MonoTime next_status_at_{};                 ///< `_status` grid: phase set by start()
     std::uint64_t last_status_sent_ = 0;
     std::uint64_t next_write_id_ = 1;
     ProducerCounters counters_;

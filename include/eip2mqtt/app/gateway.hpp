@@ -23,6 +23,7 @@
 #include "eip2mqtt/app/drop_log.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
+#include "eip2mqtt/app/producer_scheduler.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 
 namespace eip2mqtt::app {
@@ -103,6 +104,7 @@ private:
     std::unique_ptr<adapters::udp::Receiver> receiver_;
     adapters::state::ImageStore image_store_;
     std::unique_ptr<adapters::udp::Sender> sender_;
+    std::unique_ptr<ProducerScheduler> production_;  ///< with sender_; drives producers_
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
     /// Exchanges' own `{exchange topic}/set` (atomic writes). A tag's `…/{tag}/set` is resolved
     /// through exchange_routes_ and the tag's name: no entry per tag.

@@ -1,0 +1,84 @@
+#pragma once
+/// Saves produced images off the loop (issue #6). ImageStore::save fsyncs the file and its
+/// directory, which takes milliseconds on a disk: done on the loop, it would delay the
+/// datagrams of every other exchange by as much. One worker thread saves instead, and each
+/// completion comes back to the loop, where the write results waiting for it are published
+/// (product.md: a result only once the image is durably saved).
+///
+/// Saves of one exchange run in order; a save queued while an older one of the same exchange
+/// still waits replaces its data and adds its write ids (one fsync for both).
+///
+/// Threading: save() and flush() on the loop only; on_saved is called on the loop.
+
+#include <boost/asio/any_io_executor.hpp>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <thread>
+#include <vector>
+
+#include "eip2mqtt/adapters/state/image_store.hpp"
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+
+namespace eip2mqtt::app {
+
+class ImagePersister {
+public:
+    /// A finished save: the caller's key, whether the file was written, and the ids given
+    /// with the save (and with every save it absorbed), in order.
+    struct Saved {
+        std::uint64_t key;
+        bool ok;
+        std::vector<std::uint64_t> write_ids;
+    };
+    using OnSaved = std::function<void(Saved&&)>;
+
+    /// Starts the worker. `store` must outlive this object.
+    ImagePersister(const adapters::state::ImageStore& store, boost::asio::any_io_executor loop,
+                   OnSaved on_saved);
+    /// Finishes every queued save (the last written values must reach the disk), then joins.
+    /// Completions not delivered yet are dropped: call flush() first to publish them.
+    ~ImagePersister();
+    ImagePersister(const ImagePersister&) = delete;
+    ImagePersister& operator=(const ImagePersister&) = delete;
+
+    /// Queues a save of `data` (copied) for the exchange `key`. `plan` is kept alive by the
+    /// job, so the exchange may be removed before its save is done.
+    void save(std::uint64_t key, std::shared_ptr<const core::plan::ExchangePlan> plan,
+              std::span<const std::byte> data, std::vector<std::uint64_t> write_ids);
+
+    /// Blocks until every queued save is done, then delivers their completions at once (on
+    /// stop, before the last publications are flushed; on reload, before images are read).
+    void flush();
+
+private:
+    struct Job {
+        std::uint64_t key;
+        std::shared_ptr<const core::plan::ExchangePlan> plan;
+        std::vector<std::byte> data;
+        std::vector<std::uint64_t> write_ids;
+    };
+    void run();
+    void deliver();
+
+    const adapters::state::ImageStore& store_;
+    boost::asio::any_io_executor loop_;
+    OnSaved on_saved_;
+
+    std::mutex mutex_;
+    std::condition_variable work_;  ///< the worker waits for jobs
+    std::condition_variable idle_;  ///< flush() waits for an empty queue and an idle worker
+    std::deque<Job> queue_;         ///< guarded by mutex_
+    std::vector<Saved> done_;       ///< guarded by mutex_
+    bool busy_ = false;             ///< guarded by mutex_: the worker is saving
+    bool delivery_posted_ = false;  ///< guarded by mutex_
+    bool stopping_ = false;         ///< guarded by mutex_
+    std::thread worker_;            ///< last: starts once everything above exists
+};
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,80 @@
+#include "eip2mqtt/app/image_persister.hpp"
+
+#include <boost/asio/post.hpp>
+#include <utility>
+
+namespace eip2mqtt::app {
+
+ImagePersister::ImagePersister(const adapters::state::ImageStore& store,
+                               boost::asio::any_io_executor loop, OnSaved on_saved)
+    : store_(store),
+      loop_(std::move(loop)),
+      on_saved_(std::move(on_saved)),
+      worker_([this] { run(); }) {}
+
+ImagePersister::~ImagePersister() {
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+    }
+    work_.notify_one();
+    worker_.join();
+}
+
+void ImagePersister::save(std::uint64_t key, std::shared_ptr<const core::plan::ExchangePlan> plan,
+                          std::span<const std::byte> data, std::vector<std::uint64_t> write_ids) {
+    {
+        std::lock_guard lock(mutex_);
+        for (auto& job : queue_) {
+            if (job.key != key) continue;
+            // Not started yet: the newer image supersedes it, and one fsync answers both.
+            job.data.assign(data.begin(), data.end());
+            job.write_ids.insert(job.write_ids.end(), write_ids.begin(), write_ids.end());
+            return;
+        }
+        queue_.push_back({key, std::move(plan), {data.begin(), data.end()}, std::move(write_ids)});
+    }
+    work_.notify_one();
+}
+
+void ImagePersister::flush() {
+    {
+        std::unique_lock lock(mutex_);
+        idle_.wait(lock, [this] { return queue_.empty() && !busy_; });
+    }
+    deliver();
+}
+
+void ImagePersister::run() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        work_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+        if (queue_.empty()) return;  // stopping, and every save is done
+        Job job = std::move(queue_.front());
+        queue_.pop_front();
+        busy_ = true;
+        lock.unlock();
+        const bool ok = store_.save(*job.plan, job.data);
+        lock.lock();
+        busy_ = false;
+        done_.push_back({job.key, ok, std::move(job.write_ids)});
+        if (!delivery_posted_ && !stopping_) {
+            // One delivery handler for however many completions pile up before it runs.
+            delivery_posted_ = true;
+            boost::asio::post(loop_, [this] { deliver(); });
+        }
+        if (queue_.empty()) idle_.notify_all();
+    }
+}
+
+void ImagePersister::deliver() {
+    std::vector<Saved> done;
+    {
+        std::lock_guard lock(mutex_);
+        done.swap(done_);
+        delivery_posted_ = false;
+    }
+    for (auto& saved : done) on_saved_(std::move(saved));
+}
+
+}  // namespace eip2mqtt::app

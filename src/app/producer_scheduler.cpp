@@ -1,0 +1,80 @@
+#include "eip2mqtt/app/producer_scheduler.hpp"
+
+#include "eip2mqtt/app/exchange_producer.hpp"
+
+namespace eip2mqtt::app {
+
+ProducerScheduler::ProducerScheduler(boost::asio::any_io_executor loop,
+                                     adapters::udp::Sender& sender,
+                                     const adapters::state::ImageStore& store)
+    : timer_(loop), sender_(sender), persister_(store, loop, [this](ImagePersister::Saved&& saved) {
+          const auto it = producers_.find(saved.key);
+          if (it != producers_.end()) it->second->on_saved(saved.ok, saved.write_ids);
+      }) {}
+
+ProducerScheduler::~ProducerScheduler() = default;
+
+ProducerScheduler::Id ProducerScheduler::add(ExchangeProducer& producer,
+                                             const core::exchange::ProductionSchedule& schedule) {
+    const auto id = queue_.add(schedule);
+    producers_.emplace(id, &producer);
+    if (!armed_for_ || queue_.next_wakeup() < *armed_for_) arm();
+    return id;
+}
+
+void ProducerScheduler::remove(Id id) {
+    // The timer may stay armed for the removed exchange's deadline: that wake-up finds
+    // nothing due, or other exchanges, and arms for the next.
+    queue_.remove(id);
+}
+
+void ProducerScheduler::forget(Id id) {
+    queue_.remove(id);
+    producers_.erase(id);
+}
+
+void ProducerScheduler::persist(Id id, std::shared_ptr<const core::plan::ExchangePlan> plan,
+                                std::span<const std::byte> data,
+                                std::vector<std::uint64_t> write_ids) {
+    persister_.save(id, std::move(plan), data, std::move(write_ids));
+}
+
+void ProducerScheduler::arm() {
+    armed_for_ = queue_.next_wakeup();
+    if (!armed_for_) {
+        timer_.cancel();
+        return;
+    }
+    // expires_at cancels the wait armed before: exactly one wait is live at a time, and an
+    // aborted one returns without touching anything (the scheduler may be gone on stop).
+    timer_.expires_at(*armed_for_);
+    timer_.async_wait([this](const boost::system::error_code& error) {
+        if (!error) on_wake();
+    });
+}
+
+void ProducerScheduler::on_wake() {
+    const auto now = std::chrono::steady_clock::now();
+    due_.clear();
+    queue_.take_due(now, due_);
+    // eip-protocol.md §5: the time the image was sampled; one reading for the whole batch,
+    // which leaves within microseconds.
+    const auto wall = std::chrono::system_clock::now();
+    batch_producers_.clear();
+    batch_.clear();
+    for (const auto& due : due_) {
+        auto* producer = producers_.at(due.id);
+        producer->count_skipped(due.skipped);
+        batch_producers_.push_back(producer);
+        batch_.push_back({producer->produce(wall), producer->destination()});
+    }
+    if (!batch_.empty()) sender_.send_batch(batch_, sent_);
+    // Bookkeeping only once every datagram has left, so that MQTT publications, echo and
+    // persistence never delay a datagram of the same batch.
+    for (std::size_t i = 0; i < batch_producers_.size(); ++i) {
+        batch_producers_[i]->on_sent(sent_[i], wall);
+    }
+    arm();
+}
+
+}  // namespace eip2mqtt::app
