@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "bench_common.hpp"
+#include "mosquitto_session.hpp"
 
 namespace {
 
@@ -168,16 +169,8 @@ int main(int argc, char** argv) {
     const auto max_ns = static_cast<std::int64_t>(opt.num("max-s", 60) * 1e9);
     const auto expect = static_cast<std::uint64_t>(opt.num("expect", 0));
 
-    mosquitto_lib_init();
-    mosquitto* mosq = mosquitto_new(opt.str("id", "bench-counter").c_str(), true, &s);
-    mosquitto_connect_callback_set(mosq, on_connect);
-    mosquitto_subscribe_callback_set(mosq, on_subscribe);
-    mosquitto_message_callback_set(mosq, on_message);
-    if (mosquitto_connect(mosq, opt.str("host", "127.0.0.1").c_str(),
-                          static_cast<int>(opt.num("port", 1883)), 60) != MOSQ_ERR_SUCCESS) {
-        bench::Options::fail("cannot connect to the broker");
-    }
-    mosquitto_loop_start(mosq);
+    mosquitto* mosq = bench::start_mosquitto(opt, "bench-counter", &s,
+                                             {on_connect, on_subscribe, on_message}, false);
     const std::int64_t start = bench::mono_ns();
     for (;;) {
         std::this_thread::sleep_for(std::chrono::milliseconds(10));

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "bench_common.hpp"
+#include "mosquitto_session.hpp"
 
 namespace {
 
@@ -110,19 +111,10 @@ int main(int argc, char** argv) {
         bench::Options::fail("cannot bind the UDP port");
     }
 
-    mosquitto_lib_init();
-    mosquitto* mosq = mosquitto_new(opt.str("id", "bench-writer").c_str(), true, &s);
     // Like the broker (set_tcp_nodelay) and the gateway: without it Nagle and delayed ACKs add
     // up to 40 ms to each write, which would measure the bench's client, not the gateway.
-    mosquitto_int_option(mosq, MOSQ_OPT_TCP_NODELAY, 1);
-    mosquitto_connect_callback_set(mosq, on_connect);
-    mosquitto_subscribe_callback_set(mosq, on_subscribe);
-    mosquitto_message_callback_set(mosq, on_message);
-    if (mosquitto_connect(mosq, opt.str("host", "127.0.0.1").c_str(),
-                          static_cast<int>(opt.num("port", 1883)), 60) != MOSQ_ERR_SUCCESS) {
-        bench::Options::fail("cannot connect to the broker");
-    }
-    mosquitto_loop_start(mosq);
+    mosquitto* mosq = bench::start_mosquitto(opt, "bench-writer", &s,
+                                             {on_connect, on_subscribe, on_message}, true);
     for (const auto deadline = bench::mono_ns() + 5'000'000'000; s.subscribed < 2;) {
         if (bench::mono_ns() > deadline) bench::Options::fail("no subscription acknowledged");
         usleep(1000);
