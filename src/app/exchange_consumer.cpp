@@ -95,7 +95,7 @@ void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
         filter.published(value, *quality, now);
         adapters::mqtt::format_tag_payload(payload_, value, *quality, timestamp_ms_,
                                            settings_.format);
-        sink_({tag.topic, payload_, settings_.qos, settings_.retain, true});
+        sink_({plan_.tag_topic(tag), payload_, settings_.qos, settings_.retain, true});
         if (settings_.batch) {
             fmt::format_to(std::back_inserter(batch_values), R"({}"{}":{})",
                            batch_values.empty() ? "" : ",", tag.spec.name,

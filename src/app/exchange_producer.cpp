@@ -153,7 +153,7 @@ void ExchangeProducer::publish_echo(core::WallTime wall, bool all) {
         }
         adapters::mqtt::format_tag_payload(payload_, value, core::quality::Quality::good,
                                            to_ms(wall), settings_.format);
-        sink_({tag.topic, payload_, settings_.qos, settings_.retain, true});
+        sink_({plan_->tag_topic(tag), payload_, settings_.qos, settings_.retain, true});
     }
     echoed_.assign(data.begin(), data.end());
 }

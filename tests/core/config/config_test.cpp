@@ -431,9 +431,9 @@ TEST(MakePlans, OnePlanPerExchangeWithEveryTag) {
     EXPECT_EQ(plans[0].topic, "acme/site/turbine1");
     ASSERT_EQ(plans[0].spec.tags.size(), 2u);
     EXPECT_EQ(plans[0].spec.tags[1].name, "PRESSAO");
-    EXPECT_EQ(plans[0].tags[1].topic, "acme/site/turbine1/PRESSAO");
+    EXPECT_EQ(plans[0].tag_topic(plans[0].tags[1]), "acme/site/turbine1/PRESSAO");
     EXPECT_EQ(plans[0].timeout, 300ms);
-    EXPECT_EQ(plans[1].tags[0].topic, "acme/site/setpoints/SPEED_SP");
+    EXPECT_EQ(plans[1].tag_topic(plans[1].tags[0]), "acme/site/setpoints/SPEED_SP");
     EXPECT_EQ(plans[1].length, 16);
 }
 

@@ -51,12 +51,12 @@ private:
     OutOfLine<TagExtras> extras_;
 };
 
-/// A tag with its precomputed topic. Its write topic, topic + "/set", is not kept: a gateway
-/// holds one TagPlan per tag (100,000 in a large plant) and resolves writes by exchange topic
-/// and tag name instead.
+/// A tag of an ExchangePlan. Its topics are not kept: a gateway holds one TagPlan per tag
+/// (100,000 in a large plant, where a topic is rarely short enough to need no heap block).
+/// ExchangePlan::tag_topic builds the topic when publishing, which costs what copying a stored
+/// one into the message did; writes are resolved by exchange topic and tag name.
 struct TagPlan {
     TagSpec spec;
-    std::string topic;  ///< {base}/{exchange.topic}/{name}
 
     friend bool operator==(const TagPlan&, const TagPlan&) = default;
 };
