@@ -26,8 +26,7 @@ std::int64_t to_ms(core::WallTime wall) {
 ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, PublishSettings settings,
                                    PublishSink sink)
     : plan_(std::move(plan)), settings_(settings), sink_(std::move(sink)), exchange_(plan_) {
-    filters_.reserve(plan_.tags.size());
-    for (const auto& tag : plan_.tags) filters_.emplace_back(tag.spec.deadband, tag.spec.refresh);
+    filters_.resize(plan_.tags.size());
 }
 
 std::int64_t ExchangeConsumer::sample_time_ms(core::WallTime wall) const {
@@ -89,11 +88,14 @@ void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
         const auto& tag = plan_.tags[i];
         auto& filter = filters_[i];
         const auto value = core::wire::decode_value(image, tag.spec.type, tag.spec.address);
-        if (!force && !filter.should_publish(value, *quality, now)) continue;
+        if (!force &&
+            !filter.should_publish(value, *quality, now, tag.spec.deadband, tag.spec.refresh)) {
+            continue;
+        }
         filter.published(value, *quality, now);
         adapters::mqtt::format_tag_payload(payload_, value, *quality, timestamp_ms_,
                                            settings_.format);
-        sink_({tag.topic, payload_, settings_.qos, settings_.retain, true});
+        sink_({plan_.tag_topic(tag), payload_, settings_.qos, settings_.retain, true});
         if (settings_.batch) {
             fmt::format_to(std::back_inserter(batch_values), R"({}"{}":{})",
                            batch_values.empty() ? "" : ",", tag.spec.name,

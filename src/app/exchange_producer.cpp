@@ -40,7 +40,7 @@ ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
       image_(*plan_, restore(store, *plan_)),
       datagram_(core::wire::header_size + plan_->length) {
     limiters_.reserve(plan_->tags.size());
-    for (const auto& tag : plan_->tags) limiters_.emplace_back(tag.spec.max_writes_per_s);
+    for (const auto& tag : plan_->tags) limiters_.emplace_back(tag.spec.max_writes_per_s());
     spdlog::info("exchange {}: producing to {} every {} ms, {} image", plan_->spec.name,
                  adapters::udp::to_string(destination_), plan_->spec.period.count(),
                  image_.restored() ? "restored" : "initial");
@@ -72,9 +72,9 @@ std::optional<core::write::WriteRejection> ExchangeProducer::stage(
     for (const auto& write : writes) {
         const auto& tag = plan_->tags[write.tag_index].spec;
         if (!limiters_[write.tag_index].allow(now)) {
-            return core::write::WriteRejection{
-                core::write::WriteError::rate_limited,
-                fmt::format("{}: more than {} writes per second", tag.name, tag.max_writes_per_s)};
+            return core::write::WriteRejection{core::write::WriteError::rate_limited,
+                                               fmt::format("{}: more than {} writes per second",
+                                                           tag.name, tag.max_writes_per_s())};
         }
     }
     const auto id = next_write_id_++;
@@ -153,7 +153,7 @@ void ExchangeProducer::publish_echo(core::WallTime wall, bool all) {
         }
         adapters::mqtt::format_tag_payload(payload_, value, core::quality::Quality::good,
                                            to_ms(wall), settings_.format);
-        sink_({tag.topic, payload_, settings_.qos, settings_.retain, true});
+        sink_({plan_->tag_topic(tag), payload_, settings_.qos, settings_.retain, true});
     }
     echoed_.assign(data.begin(), data.end());
 }

@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
-#include <string_view>
+#include <string>
 #include <tuple>
 #include <unordered_set>
 
@@ -32,7 +32,7 @@ auto session_settings(const core::config::Config& c) {
 
 void collect_topics(const core::plan::ExchangePlan& plan, std::set<std::string>& topics) {
     topics.insert(plan.status_topic);
-    for (const auto& tag : plan.tags) topics.insert(tag.topic);
+    for (const auto& tag : plan.tags) topics.insert(plan.tag_topic(tag));
 }
 
 }  // namespace
@@ -125,13 +125,13 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
         collect_topics(producer->plan(), cleared);
     }
     for (auto& [name, consumer] : old_consumers) collect_topics(consumer->plan(), cleared);
-    // The new exchanges' topics, looked up only when something was removed or changed: a
-    // set of every tag topic would cost a string per tag at every start.
-    std::unordered_set<std::string_view> new_topics;
+    // The new exchanges' topics, built only when something was removed or changed: a set of
+    // every tag topic costs a string per tag (plans do not keep tag topics).
+    std::unordered_set<std::string> new_topics;
     if (!cleared.empty()) {
         const auto add = [&](const core::plan::ExchangePlan& plan) {
             new_topics.insert(plan.status_topic);
-            for (const auto& tag : plan.tags) new_topics.insert(tag.topic);
+            for (const auto& tag : plan.tags) new_topics.insert(plan.tag_topic(tag));
         };
         for (const auto& consumer : consumers_) add(consumer->plan());
         for (const auto& producer : producers_) add(producer->plan());

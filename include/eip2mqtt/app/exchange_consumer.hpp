@@ -66,7 +66,7 @@ private:
     PublishSettings settings_;
     PublishSink sink_;
     core::exchange::ConsumedExchange exchange_;
-    std::vector<core::quality::ReportFilter> filters_;
+    std::vector<core::quality::ReportFilter> filters_;  ///< one per tag of plan_.tags
     core::exchange::ArrivalStats arrivals_;
     std::uint64_t wrong_source_ = 0;
     std::int64_t timestamp_ms_ = 0;             ///< of the values the tags publish

@@ -653,6 +653,8 @@ void Client::Impl::sender_main() {
         const bool trim = !has_queued() && backlog_peak_ >= kTrimAfterBacklog;
         if (trim) {
             backlog_peak_ = 0;
+            queue_.release_memory();
+            batch_queue_.release_memory();
         }
         lock.unlock();
         nagle_.set_backlogged(backlog);

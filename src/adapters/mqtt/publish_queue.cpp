@@ -62,6 +62,13 @@ void PublishQueue::set_capacity(std::size_t capacity) {
     }
 }
 
+void PublishQueue::release_memory() {
+    if (!slots_.empty()) return;
+    // Swapped with a new map: neither clear() nor erasing gives buckets back.
+    std::unordered_map<std::string_view, std::uint64_t>().swap(by_topic_);
+    slots_.shrink_to_fit();
+}
+
 void PublishQueue::drop_oldest() {
     if (pop()) {
         ++dropped_overflow_;

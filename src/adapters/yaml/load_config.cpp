@@ -620,7 +620,7 @@ private:
                          } else if (key == "name") {
                              spec.name = *s;
                          } else if (key == "unit") {
-                             spec.unit = *s;
+                             spec.mutable_extras().unit = *s;
                          }
                      } else if (key == "address") {
                          // `126.0` unquoted is a YAML float: its scalar text is what was written.
@@ -664,7 +664,7 @@ private:
                          }
                      } else if (key == "max_writes_per_s") {
                          if (const auto d = number(value, key, k); d && *d >= 0) {
-                             spec.max_writes_per_s = *d;
+                             spec.mutable_extras().max_writes_per_s = *d;
                          } else {
                              if (d) error(k, "'max_writes_per_s' must be 0 (no limit) or more");
                              broken = true;
@@ -680,9 +680,9 @@ private:
                          if (!d) {
                              broken = true;
                          } else if (key == "min") {
-                             spec.min = *d;
+                             spec.mutable_extras().min = *d;
                          } else {
-                             spec.max = *d;
+                             spec.mutable_extras().max = *d;
                          }
                      } else if (key == "initial") {
                          initial.emplace(value);
@@ -697,8 +697,11 @@ private:
             }
         }
         if (initial && !broken) {
-            spec.initial = read_initial(*initial, spec.type, initial_mark);
-            if (!spec.initial) broken = true;
+            if (auto value = read_initial(*initial, spec.type, initial_mark)) {
+                spec.mutable_extras().initial = *value;
+            } else {
+                broken = true;
+            }
         }
         if (broken) return std::nullopt;
         return tag;

@@ -87,7 +87,7 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
         const auto address = core::plan::to_string(tag->spec.address);
         out << "  " << address << std::string(address.size() < 7 ? 7 - address.size() : 1, ' ')
             << std::left << std::setw(7) << core::plan::to_string(tag->spec.type) << std::setw(9)
-            << size_text(tag->spec.type) << tag->topic;
+            << size_text(tag->spec.type) << plan.tag_topic(*tag);
         if (tag->spec.writable) out << "  writable";
         out << std::right << "\n";
     }

@@ -369,21 +369,23 @@ private:
             }
             return true;
         };
-        const bool min_ok = !t.min || in_range("min", *t.min);
-        const bool max_ok = !t.max || in_range("max", *t.max);
-        if (t.min && t.max && min_ok && max_ok && *t.min > *t.max) {
-            error(marks.of("max"), what() + " has min " + format_number(*t.min) + " above max " +
-                                       format_number(*t.max));
+        const auto& min = t.min();
+        const auto& max = t.max();
+        const bool min_ok = !min || in_range("min", *min);
+        const bool max_ok = !max || in_range("max", *max);
+        if (min && max && min_ok && max_ok && *min > *max) {
+            error(marks.of("max"),
+                  what() + " has min " + format_number(*min) + " above max " + format_number(*max));
         }
-        if (t.initial) {
-            const double initial = as_double(*t.initial);
+        if (t.initial()) {
+            const double initial = as_double(*t.initial());
             if (in_range("initial", initial)) {
-                if (t.min && initial < *t.min) {
+                if (min && initial < *min) {
                     error(marks.of("initial"), what() + " initial " + format_number(initial) +
-                                                   " is below min " + format_number(*t.min));
-                } else if (t.max && initial > *t.max) {
+                                                   " is below min " + format_number(*min));
+                } else if (max && initial > *max) {
                     error(marks.of("initial"), what() + " initial " + format_number(initial) +
-                                                   " is above max " + format_number(*t.max));
+                                                   " is above max " + format_number(*max));
                 }
             }
         }

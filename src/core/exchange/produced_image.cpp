@@ -21,8 +21,8 @@ ProducedImage::ProducedImage(const plan::ExchangePlan& plan, std::span<const std
     }
     // A missing image, or one saved under another length, starts from zeros plus `initial`.
     for (const auto& tag : plan.tags) {
-        if (tag.spec.initial) {
-            wire::encode_value(data_, tag.spec.type, tag.spec.address, *tag.spec.initial);
+        if (const auto& initial = tag.spec.initial()) {
+            wire::encode_value(data_, tag.spec.type, tag.spec.address, *initial);
         }
     }
 }

@@ -38,8 +38,15 @@ ExchangePlan make_exchange_plan(const ExchangeSpec& spec, const std::string& bas
     plan.values_topic = plan.topic + "/_values";
     plan.set_topic = plan.topic + "/set";
     plan.tags.reserve(spec.tags.size());
-    for (const auto& tag : spec.tags) plan.tags.push_back({tag, plan.topic + "/" + tag.name});
+    for (const auto& tag : spec.tags) plan.tags.push_back({tag});
     return plan;
+}
+
+std::string ExchangePlan::tag_topic(const TagPlan& tag) const {
+    std::string out;
+    out.reserve(topic.size() + 1 + tag.spec.name.size());
+    out.append(topic).append("/").append(tag.spec.name);
+    return out;
 }
 
 }  // namespace eip2mqtt::core::plan

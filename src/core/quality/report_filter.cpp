@@ -21,21 +21,24 @@ bool moved(const plan::Value& now, const plan::Value& before, double deadband) {
 
 }  // namespace
 
-bool ReportFilter::should_publish(const plan::Value& value, Quality quality, MonoTime now) const {
-    if (!last_) return true;
-    if (quality != last_->quality) return true;
-    if (value.index() != last_->value.index()) return true;
-    if (moved(value, last_->value, deadband_)) return true;
-    return refresh_.count() > 0 && now - last_->at >= refresh_;
+bool ReportFilter::should_publish(const plan::Value& value, Quality quality, MonoTime now,
+                                  double deadband, std::chrono::seconds refresh) const {
+    if (!has_last()) return true;
+    if (quality != quality_) return true;
+    if (value.index() != value_.index()) return true;
+    if (moved(value, value_, deadband)) return true;
+    return refresh.count() > 0 && now - at_ >= refresh;
 }
 
 void ReportFilter::published(const plan::Value& value, Quality quality, MonoTime now) {
-    last_ = Last{value, quality, now};
+    value_ = value;
+    quality_ = quality;
+    at_ = now;
 }
 
-std::optional<MonoTime> ReportFilter::refresh_due() const {
-    if (!last_ || refresh_.count() <= 0) return std::nullopt;
-    return last_->at + refresh_;
+std::optional<MonoTime> ReportFilter::refresh_due(std::chrono::seconds refresh) const {
+    if (!has_last() || refresh.count() <= 0) return std::nullopt;
+    return at_ + refresh;
 }
 
 }  // namespace eip2mqtt::core::quality

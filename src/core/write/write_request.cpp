@@ -196,11 +196,11 @@ Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
     if (!converted) return converted;
 
     // Limits come after the type's own checks, so "expected an integer" wins over "above max".
-    if (tag.min && compare(*converted, input, *tag.min) < 0) {
-        return fail(reject(WriteError::below_min, "below min " + shortest(*tag.min)));
+    if (const auto& min = tag.min(); min && compare(*converted, input, *min) < 0) {
+        return fail(reject(WriteError::below_min, "below min " + shortest(*min)));
     }
-    if (tag.max && compare(*converted, input, *tag.max) > 0) {
-        return fail(reject(WriteError::above_max, "above max " + shortest(*tag.max)));
+    if (const auto& max = tag.max(); max && compare(*converted, input, *max) > 0) {
+        return fail(reject(WriteError::above_max, "above max " + shortest(*max)));
     }
     return converted;
 }

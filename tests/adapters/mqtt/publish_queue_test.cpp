@@ -150,5 +150,24 @@ TEST(PublishQueue, LongTopicsKeepTheirKeysAcrossReplacementsAndPops) {
     EXPECT_EQ(drain(q), (std::vector<std::string>{topic(1) + "=again2"}));
 }
 
+TEST(PublishQueue, ReleaseMemoryAfterABacklogDrained) {
+    PublishQueue q(100000);
+    for (int i = 0; i < 20000; ++i) q.push(msg("t/" + std::to_string(i), "1"));
+    const auto peak_buckets = q.index_buckets_for_test();
+    EXPECT_GE(peak_buckets, 20000u);
+    q.release_memory();  // messages wait: nothing is released
+    EXPECT_EQ(q.size(), 20000u);
+    EXPECT_EQ(q.index_buckets_for_test(), peak_buckets);
+    q.push(msg("t/0", "2"));  // the index still coalesces
+    EXPECT_EQ(q.coalesced(), 1u);
+    EXPECT_EQ(drain(q).front(), "t/0=2");
+    EXPECT_EQ(q.index_buckets_for_test(), peak_buckets);  // drained, buckets kept
+    q.release_memory();
+    EXPECT_LT(q.index_buckets_for_test(), 100u);
+    q.push(msg("a", "1"));
+    q.push(msg("a", "2"));
+    EXPECT_EQ(drain(q), (std::vector<std::string>{"a=2"}));
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::mqtt

@@ -53,7 +53,7 @@ core::plan::ExchangePlan make_plan(std::string name = "setpoints") {
     speed.address = {0, 0};
     speed.type = TagType::real;
     speed.writable = true;
-    speed.max = 4000;
+    speed.mutable_extras().max = 4000;
     core::plan::TagSpec start;
     start.name = "START";
     start.address = {4, 0};
@@ -144,7 +144,7 @@ TEST_F(ImageStoreTest, LayoutChangeIgnored) {
     // Renames and limits do not: the image is kept.
     auto renamed = plan;
     renamed.tags[0].spec.name = "SPEED_SETPOINT";
-    renamed.tags[0].spec.max = 3600;
+    renamed.tags[0].spec.mutable_extras().max = 3600;
     renamed.tags[0].spec.writable = false;
     EXPECT_EQ(layout_fingerprint(renamed), layout_fingerprint(plan));
     EXPECT_TRUE(store.load(renamed));

@@ -241,19 +241,19 @@ TEST(LoadConfig, EverySection) {
     const auto& t = config.exchanges[0].tags.at(0).spec;
     EXPECT_EQ(t.address, (core::plan::Address{126, 0}));
     EXPECT_EQ(t.type, TagType::word);
-    EXPECT_EQ(t.unit, "bar");
+    EXPECT_EQ(t.unit(), "bar");
     EXPECT_EQ(t.deadband, 0.5);
     EXPECT_EQ(t.refresh, std::chrono::seconds(10));
-    EXPECT_EQ(t.min, 1.0);
-    EXPECT_EQ(t.max, 2.5);
+    EXPECT_EQ(t.min(), 1.0);
+    EXPECT_EQ(t.max(), 2.5);
     const auto& out = config.exchanges[1];
     EXPECT_EQ(out.spec.destination, "10.0.0.255");
     ASSERT_EQ(out.tags.size(), 3u);
     EXPECT_EQ(out.tags[0].spec.address, (core::plan::Address{0, 3}));
     EXPECT_TRUE(out.tags[0].spec.writable);
-    EXPECT_EQ(out.tags[0].spec.initial, core::plan::Value{true});
-    EXPECT_EQ(out.tags[1].spec.initial, core::plan::Value{-1.5f});
-    EXPECT_EQ(out.tags[2].spec.initial, core::plan::Value{std::uint64_t{7}});
+    EXPECT_EQ(out.tags[0].spec.initial(), core::plan::Value{true});
+    EXPECT_EQ(out.tags[1].spec.initial(), core::plan::Value{-1.5f});
+    EXPECT_EQ(out.tags[2].spec.initial(), core::plan::Value{std::uint64_t{7}});
 }
 
 TEST(LoadConfig, MqttVersionSpellings) {

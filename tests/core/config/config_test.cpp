@@ -219,8 +219,8 @@ TEST(Validate, WritableTagsOnConsumedExchanges) {
 TEST(Validate, MinAboveMax) {
     auto c = valid();
     auto& t = c.exchanges[1].tags[0];
-    t.spec.min = 10;
-    t.spec.max = 5;
+    t.spec.mutable_extras().min = 10;
+    t.spec.mutable_extras().max = 5;
     const auto d = only(validate(c));
     EXPECT_EQ(d.mark.line, t.marks.of("max").line);
 }
@@ -228,29 +228,29 @@ TEST(Validate, MinAboveMax) {
 TEST(Validate, MinMaxInitialOutsideTheTypeRange) {
     auto c = valid();
     auto& t = c.exchanges[0].tags[1];  // int
-    t.spec.min = -40000;
+    t.spec.mutable_extras().min = -40000;
     auto d = only(validate(c));
     EXPECT_EQ(d.mark.line, t.marks.of("min").line);
-    t.spec.min.reset();
-    t.spec.max = 32768;
+    t.spec.mutable_extras().min.reset();
+    t.spec.mutable_extras().max = 32768;
     d = only(validate(c));
     EXPECT_EQ(d.mark.line, t.marks.of("max").line);
-    t.spec.max = 32767;
-    t.spec.initial = plan::Value{std::int64_t{-32769}};
+    t.spec.mutable_extras().max = 32767;
+    t.spec.mutable_extras().initial = plan::Value{std::int64_t{-32769}};
     d = only(validate(c));
     EXPECT_EQ(d.mark.line, t.marks.of("initial").line);
-    t.spec.initial = plan::Value{std::int64_t{-32768}};
+    t.spec.mutable_extras().initial = plan::Value{std::int64_t{-32768}};
     EXPECT_TRUE(validate(c).empty());
 }
 
 TEST(Validate, InitialOutsideMinMax) {
     auto c = valid();
     auto& t = c.exchanges[1].tags[0];
-    t.spec.min = 0;
-    t.spec.max = 4000;
-    t.spec.initial = plan::Value{5000.0f};
+    t.spec.mutable_extras().min = 0;
+    t.spec.mutable_extras().max = 4000;
+    t.spec.mutable_extras().initial = plan::Value{5000.0f};
     EXPECT_TRUE(mentions(only(validate(c)), "above max 4000"));
-    t.spec.initial = plan::Value{3000.0f};
+    t.spec.mutable_extras().initial = plan::Value{3000.0f};
     EXPECT_TRUE(validate(c).empty());
 }
 
@@ -406,8 +406,8 @@ TEST(Validate, NoExchanges) {
 
 TEST(Validate, DiagnosticsComeInFileOrder) {
     auto c = valid();
-    c.exchanges[1].tags[0].spec.min = 5;  // later line
-    c.exchanges[1].tags[0].spec.max = 1;
+    c.exchanges[1].tags[0].spec.mutable_extras().min = 5;  // later line
+    c.exchanges[1].tags[0].spec.mutable_extras().max = 1;
     c.exchanges[0].spec.period = 0ms;  // earlier line
     c.gateway.id.clear();              // earliest line
     auto found = validate(c);
@@ -431,9 +431,9 @@ TEST(MakePlans, OnePlanPerExchangeWithEveryTag) {
     EXPECT_EQ(plans[0].topic, "acme/site/turbine1");
     ASSERT_EQ(plans[0].spec.tags.size(), 2u);
     EXPECT_EQ(plans[0].spec.tags[1].name, "PRESSAO");
-    EXPECT_EQ(plans[0].tags[1].topic, "acme/site/turbine1/PRESSAO");
+    EXPECT_EQ(plans[0].tag_topic(plans[0].tags[1]), "acme/site/turbine1/PRESSAO");
     EXPECT_EQ(plans[0].timeout, 300ms);
-    EXPECT_EQ(plans[1].tags[0].topic, "acme/site/setpoints/SPEED_SP");
+    EXPECT_EQ(plans[1].tag_topic(plans[1].tags[0]), "acme/site/setpoints/SPEED_SP");
     EXPECT_EQ(plans[1].length, 16);
 }
 

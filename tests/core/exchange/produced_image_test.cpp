@@ -24,7 +24,7 @@ plan::TagPlan tag(std::string name, std::string_view address, TagType type,
     tag.spec.address = *plan::parse_address(address);
     tag.spec.type = type;
     tag.spec.writable = true;
-    tag.spec.initial = initial;
+    tag.spec.mutable_extras().initial = initial;
     return tag;
 }
 

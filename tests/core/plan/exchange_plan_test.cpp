@@ -48,8 +48,8 @@ TEST(ExchangePlans, TopicsFollowTheContract) {
     EXPECT_EQ(plan.values_topic, "acme/blumenau/generation/turbine1/_values");
     EXPECT_EQ(plan.set_topic, "acme/blumenau/generation/turbine1/set");
     ASSERT_EQ(plan.tags.size(), 2u);
-    EXPECT_EQ(plan.tags[0].topic, "acme/blumenau/generation/turbine1/PRESSAO_OK");
-    EXPECT_EQ(plan.tags[1].topic, "acme/blumenau/generation/turbine1/PRESSAO");
+    EXPECT_EQ(plan.tag_topic(plan.tags[0]), "acme/blumenau/generation/turbine1/PRESSAO_OK");
+    EXPECT_EQ(plan.tag_topic(plan.tags[1]), "acme/blumenau/generation/turbine1/PRESSAO");
     EXPECT_EQ(plan.tags[1].spec.name, "PRESSAO");
     EXPECT_EQ(plan.spec.tags.size(), 2u);
 }
@@ -59,7 +59,7 @@ TEST(ExchangePlans, NestedExchangeTopic) {
     spec.topic = "turbine1/setpoints";
     const auto plan = make_exchange_plan(spec, "acme");
     EXPECT_EQ(plan.topic, "acme/turbine1/setpoints");
-    EXPECT_EQ(plan.tags[1].topic, "acme/turbine1/setpoints/PRESSAO");
+    EXPECT_EQ(plan.tag_topic(plan.tags[1]), "acme/turbine1/setpoints/PRESSAO");
 }
 
 TEST(ExchangePlans, TimeoutDefaultsToThreePeriods) {

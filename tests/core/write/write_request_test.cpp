@@ -24,8 +24,8 @@ plan::TagSpec tag(TagType type, std::optional<double> min = std::nullopt,
     spec.name = "T";
     spec.type = type;
     spec.writable = true;
-    spec.min = min;
-    spec.max = max;
+    spec.mutable_extras().min = min;
+    spec.mutable_extras().max = max;
     return spec;
 }
 

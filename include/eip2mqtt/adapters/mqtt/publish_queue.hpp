@@ -30,6 +30,11 @@ public:
     bool empty() const { return slots_.empty(); }
     std::size_t capacity() const { return capacity_; }
     void set_capacity(std::size_t capacity);
+    /// When empty, frees what a drained backlog left sized for its peak: the topic index keeps
+    /// its bucket array (8 bytes a bucket, ~100,000 after every tag's first publication) and
+    /// the deque its spare blocks. Call it before malloc_trim; a no-op while messages wait.
+    void release_memory();
+    std::size_t index_buckets_for_test() const { return by_topic_.bucket_count(); }
 
     std::uint64_t dropped_overflow() const { return dropped_overflow_; }  ///< oldest dropped
     std::uint64_t coalesced() const { return coalesced_; }  ///< replaced by a newer value

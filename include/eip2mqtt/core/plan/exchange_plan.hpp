@@ -34,7 +34,7 @@ struct ExchangeSpec {
     friend bool operator==(const ExchangeSpec&, const ExchangeSpec&) = default;
 };
 
-/// An exchange with its tags' topics and derived figures.
+/// An exchange with its topics and derived figures.
 struct ExchangePlan {
     ExchangeSpec spec;
     std::uint16_t length = 0;              ///< resolved data length, 1..1400
@@ -46,6 +46,8 @@ struct ExchangePlan {
     std::vector<TagPlan> tags;             ///< in configuration order
 
     wire::ExchangeKey key() const { return {spec.producer_id, spec.exchange_id}; }
+    /// The topic of `tag`, one of `tags`: {topic}/{tag name}.
+    std::string tag_topic(const TagPlan& tag) const;
     /// Equal plans mean nothing to do on reload: the running exchange is kept as it is.
     friend bool operator==(const ExchangePlan&, const ExchangePlan&) = default;
 };

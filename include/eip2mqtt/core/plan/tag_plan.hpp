@@ -5,36 +5,58 @@
 #include <optional>
 #include <string>
 
+#include "eip2mqtt/core/out_of_line.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
 
 namespace eip2mqtt::core::plan {
 
-/// A tag as configured (YAML `tags:` entry or point-list row). A gateway holds one per tag
-/// (100,000 in a large plant): `writable` sits next to `type` to fill padding (152 bytes, not 160).
-struct TagSpec {
-    std::string name;
-    Address address;
-    TagType type = TagType::byte;
-    bool writable = false;
+/// The settings few tags use, kept out of line by TagSpec.
+struct TagExtras {
     std::string unit;
-    double deadband = 0.0;             ///< absolute; 0 publishes any change
-    std::chrono::seconds refresh{60};  ///< republish at least this often
     std::optional<double> min;
     std::optional<double> max;
     std::optional<Value> initial;  ///< produced exchanges: value when no image is persisted
     double max_writes_per_s = 0;   ///< writes accepted per second (burst of 1 s); 0: no limit
 
-    friend bool operator==(const TagSpec&, const TagSpec&) = default;
+    friend bool operator==(const TagExtras&, const TagExtras&) = default;
 };
 
-/// A tag with its precomputed topic. Its write topic, topic + "/set", is not kept: a gateway
-/// holds one TagPlan per tag (100,000 in a large plant) and resolves writes by exchange topic
-/// and tag name instead.
+/// A tag as configured (YAML `tags:` entry or point-list row). A gateway holds one per tag
+/// (100,000 in a large plant), so it is kept to 64 bytes: what every tag uses inline, the rest in
+/// TagExtras behind one pointer that stays null for a tag that sets none of it.
+struct TagSpec {
+    std::string name;
+    Address address;
+    TagType type = TagType::byte;
+    bool writable = false;
+    double deadband = 0.0;             ///< absolute; 0 publishes any change
+    std::chrono::seconds refresh{60};  ///< republish at least this often
+
+    const std::string& unit() const { return extras_.get().unit; }
+    const std::optional<double>& min() const { return extras_.get().min; }
+    const std::optional<double>& max() const { return extras_.get().max; }
+    const std::optional<Value>& initial() const { return extras_.get().initial; }
+    double max_writes_per_s() const { return extras_.get().max_writes_per_s; }
+
+    /// The rarely set settings to write (loaders and tests), allocated on first use.
+    TagExtras& mutable_extras() { return extras_.mutable_get(); }
+
+    /// Compares contents: a tag whose extras were written with their defaults equals one that
+    /// never had any (reload keeps exchanges whose plans compare equal).
+    friend bool operator==(const TagSpec&, const TagSpec&) = default;
+
+private:
+    OutOfLine<TagExtras> extras_;
+};
+
+/// A tag of an ExchangePlan. Its topics are not kept: a gateway holds one TagPlan per tag
+/// (100,000 in a large plant, where a topic is rarely short enough to need no heap block).
+/// ExchangePlan::tag_topic builds the topic when publishing, which costs what copying a stored
+/// one into the message did; writes are resolved by exchange topic and tag name.
 struct TagPlan {
     TagSpec spec;
-    std::string topic;  ///< {base}/{exchange.topic}/{name}
 
     friend bool operator==(const TagPlan&, const TagPlan&) = default;
 };
