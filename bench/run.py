@@ -215,11 +215,22 @@ class Bench:
         return proc
 
     def wait_online(self, name, timeout=10):
-        out = subprocess.run(["mosquitto_sub", "-h", HOST, "-p", str(self.broker_port), "-C", "1",
-                              "-W", str(timeout), "-t", f"b/_gateway/{name}/state"],
-                             capture_output=True, text=True, timeout=timeout + 5)
-        if out.stdout.strip() != "online":
-            raise RuntimeError(f"gateway {name} did not come online: {out.stdout!r}")
+        """Until the gateway's state topic says `online`. The retained `offline` of an earlier
+        instance of the same gateway may come first: read on (bounded by -W) rather than take
+        the first message."""
+        sub = subprocess.Popen(["mosquitto_sub", "-h", HOST, "-p", str(self.broker_port), "-W",
+                                str(timeout), "-t", f"b/_gateway/{name}/state"],
+                               stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        seen = []
+        try:
+            for line in sub.stdout:
+                seen.append(line.strip())
+                if seen[-1] == "online":
+                    return
+        finally:
+            sub.kill()
+            sub.wait(timeout=5)
+        raise RuntimeError(f"gateway {name} did not come online: {seen!r}")
 
     def metrics(self, name, timeout=4):
         """The next metrics publication of gateway `name` (every second)."""

@@ -143,8 +143,10 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     // --- under mutex_ --------------------------------------------------------------------
     bool has_queued() const { return !retry_.empty() || !queue_.empty() || !batch_queue_.empty(); }
     /// Whether the sender has something to send and room to send it. After it filled the
-    /// window it waits for the window to drain to a quarter, so that it wakes once per burst
-    /// rather than once per completion.
+    /// window it waits until an eighth of the window completed, so that it wakes once per
+    /// burst rather than once per completion, yet keeps the window nearly full: at QoS 1 a
+    /// busy broker's PUBACKs take milliseconds, and throughput is what is in flight over that
+    /// time (refilling at a quarter cost a third of it).
     bool ready_to_send() const;
     /// Takes the next publication: re-queued ones first, then the two lanes in turn.
     bool take_next(Message& message);
@@ -595,7 +597,8 @@ bool Client::Impl::ready_to_send() const {
         return false;
     }
     const std::size_t limit = in_flight_limit_.load(std::memory_order_relaxed);
-    return in_flight_.pending() <= (window_full_ ? limit / 4 : limit - 1);
+    return in_flight_.pending() <=
+           (window_full_ ? limit - std::max<std::size_t>(1, limit / 8) : limit - 1);
 }
 
 bool Client::Impl::take_next(Message& message) {
