@@ -15,6 +15,7 @@ struct Field {
     std::string_view text;  ///< into the line, or into `unquoted` for a quoted field
     std::string unquoted;   ///< a quoted field without its quotes and with "" read as "
     int column = 1;         ///< 1-based column where the field starts
+    bool quoted = false;
 };
 
 std::string_view trim(std::string_view text) {
@@ -39,6 +40,7 @@ bool split(std::string_view line, std::vector<Field>& fields) {
         if (fields.size() <= count) fields.emplace_back();
         Field& field = fields[count++];
         field.column = static_cast<int>(i) + 1;
+        field.quoted = false;
         while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
         if (i < line.size() && line[i] == '"') {
             ++i;
@@ -58,7 +60,7 @@ bool split(std::string_view line, std::vector<Field>& fields) {
                 field.unquoted += line[i++];
             }
             if (!closed) return false;
-            field.text = field.unquoted;
+            field.quoted = true;  // text is set below, once no emplace_back can move `unquoted`
             while (i < line.size() && line[i] != ',') ++i;  // tolerate spaces after the quote
         } else {
             const auto end = std::min(line.find(',', i), line.size());
@@ -69,6 +71,11 @@ bool split(std::string_view line, std::vector<Field>& fields) {
         ++i;  // the comma
     }
     fields.resize(count);
+    // A short string lives inside its Field, so a view of it taken before a later emplace_back
+    // reallocated the vector would dangle: point the quoted fields' views at their strings now.
+    for (auto& field : fields) {
+        if (field.quoted) field.text = field.unquoted;
+    }
     return true;
 }
 
