@@ -14,8 +14,12 @@ tools/build.sh release
 config=etc/eip2mqtt/eip2mqtt.yaml
 pids=()
 cleanup() {
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
+  # Newest first, each waited for: the gateway publishes `offline` and disconnects cleanly
+  # (within its 3 s flush) before the broker it talks to goes away.
+  for ((i = ${#pids[@]} - 1; i >= 0; i--)); do
+    kill "${pids[i]}" 2>/dev/null || true
+    wait "${pids[i]}" 2>/dev/null || true
+  done
 }
 trap cleanup EXIT INT TERM
 
