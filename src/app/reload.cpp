@@ -30,7 +30,9 @@ auto session_settings(const core::config::Config& c) {
                            c.eip.multicast_ttl, c.eip.multicast_interface, c.metrics.listen);
 }
 
-void collect_topics(const core::plan::ExchangePlan& plan, std::set<std::string>& topics) {
+/// The retained topics of an exchange: its `_status` and its tags'.
+template <class Topics>
+void collect_topics(const core::plan::ExchangePlan& plan, Topics& topics) {
     topics.insert(plan.status_topic);
     for (const auto& tag : plan.tags) topics.insert(plan.tag_topic(tag));
 }
@@ -45,8 +47,8 @@ std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
     // Swapped with empty vectors, not assigned `{}`: that keeps the capacity.
     std::vector<core::config::ExchangeConfig>().swap(config_.exchanges);
     for (auto& plan : plans) {
-        // plan.tags holds every tag spec again, with its topic: the running exchange reads only
-        // that copy. Dropped on every plan, old and new alike, so that reload compares equals.
+        // plan.tags holds every tag spec again: the running exchange reads only that copy.
+        // Dropped on every plan, old and new alike, so that reload compares equals.
         std::vector<core::plan::TagSpec>().swap(plan.spec.tags);
     }
     return plans;
@@ -129,12 +131,8 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
     // every tag topic costs a string per tag (plans do not keep tag topics).
     std::unordered_set<std::string> new_topics;
     if (!cleared.empty()) {
-        const auto add = [&](const core::plan::ExchangePlan& plan) {
-            new_topics.insert(plan.status_topic);
-            for (const auto& tag : plan.tags) new_topics.insert(plan.tag_topic(tag));
-        };
-        for (const auto& consumer : consumers_) add(consumer->plan());
-        for (const auto& producer : producers_) add(producer->plan());
+        for (const auto& consumer : consumers_) collect_topics(consumer->plan(), new_topics);
+        for (const auto& producer : producers_) collect_topics(producer->plan(), new_topics);
     }
     std::size_t cleared_count = 0;
     for (const auto& topic : cleared) {

@@ -9,6 +9,7 @@
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 #include <variant>
 
 #include "eip2mqtt/core/plan/address.hpp"
@@ -477,7 +478,7 @@ std::vector<plan::ExchangePlan> make_plans(const Config& config) {
         spec.tags.clear();
         spec.tags.reserve(exchange.tags.size());
         for (const auto& tag : exchange.tags) spec.tags.push_back(tag.spec);
-        plans.push_back(plan::make_exchange_plan(spec, config.mqtt.base_topic));
+        plans.push_back(plan::make_exchange_plan(std::move(spec), config.mqtt.base_topic));
     }
     return plans;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <limits>
+#include <utility>
 
 namespace eip2mqtt::core::plan {
 namespace {
@@ -25,9 +26,8 @@ std::uint16_t resolved_length(const ExchangeSpec& spec) {
         std::min<std::size_t>(end, std::numeric_limits<std::uint16_t>::max()));
 }
 
-ExchangePlan make_exchange_plan(const ExchangeSpec& spec, const std::string& base_topic) {
+ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic) {
     ExchangePlan plan;
-    plan.spec = spec;
     plan.length = resolved_length(spec);
     if (spec.direction == Direction::consume) {
         // eip-protocol.md §4 rule 8: default 3 x the expected period; 0 disables.
@@ -39,6 +39,7 @@ ExchangePlan make_exchange_plan(const ExchangeSpec& spec, const std::string& bas
     plan.set_topic = plan.topic + "/set";
     plan.tags.reserve(spec.tags.size());
     for (const auto& tag : spec.tags) plan.tags.push_back({tag});
+    plan.spec = std::move(spec);
     return plan;
 }
 

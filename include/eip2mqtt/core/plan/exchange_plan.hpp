@@ -56,6 +56,8 @@ struct ExchangePlan {
 std::uint16_t resolved_length(const ExchangeSpec& spec);
 
 /// Builds the plan of a spec that passed validation.
-ExchangePlan make_exchange_plan(const ExchangeSpec& spec, const std::string& base_topic);
+/// Takes the spec by value: a caller done with it moves it in, and its tags are copied once
+/// (into `tags`), not twice.
+ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic);
 
 }  // namespace eip2mqtt::core::plan
