@@ -10,6 +10,9 @@ root="$(dirname "$here")"
 build="${EIP2MQTT_BENCH_BUILD:-$root/build-bench}"
 jobs="${EIP2MQTT_BENCH_JOBS:-1}"
 
+# Self-sufficient on a fresh Debian 12 machine, like tools/test.sh: what is missing is installed.
+"$root/tools/install-deps.sh"
+
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DEIP2MQTT_TESTS=OFF \
     -DEIP2MQTT_BENCH=ON >/dev/null
 cmake --build "$build" -j "$jobs" --target eip2mqtt bench_load_generator bench_udp_sink \
