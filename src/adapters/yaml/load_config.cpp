@@ -30,10 +30,29 @@
 namespace eip2mqtt::adapters::yaml {
 namespace {
 
+/// The whole of an opened file in one read: a file of 5 MB went through an ostringstream's
+/// buffer and was copied out of it again. A stream of unknown size (a pipe) is read piecewise.
+std::string read_all(std::ifstream& in) {
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0, std::ios::beg);
+    if (size <= 0 || !in) {
+        in.clear();
+        std::ostringstream content;
+        content << in.rdbuf();
+        return std::move(content).str();
+    }
+    std::string text(static_cast<std::size_t>(size), '\0');
+    in.read(text.data(), size);
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    return text;
+}
+
 using core::config::Config;
 using core::config::Diagnostic;
 using core::config::Diagnostics;
 using core::config::ExchangeConfig;
+using core::config::FileName;
 using core::config::Mark;
 using core::config::Marks;
 using core::config::TagConfig;
@@ -153,7 +172,7 @@ bool valid_host_port(std::string_view text, bool port_required) {
 class Loader {
 public:
     explicit Loader(std::string file)
-        : file_(std::move(file)), dir_(std::filesystem::path(file_).parent_path()) {}
+        : file_(std::move(file)), dir_(std::filesystem::path(file_.str()).parent_path()) {}
 
     core::Result<Config, Diagnostics> load(const std::string& text) {
         Config config;
@@ -757,10 +776,8 @@ private:
                 point_lists_.emplace(key, nullptr);
                 return;
             }
-            std::ostringstream content;
-            content << in.rdbuf();
             auto loaded = std::make_unique<LoadedPoints>(
-                core::config::parse_point_list(content.str(), path.string()));
+                core::config::parse_point_list(read_all(in), path.string()));
             // Errors of a file shared by several exchanges are reported once.
             diagnostics_.insert(diagnostics_.end(), loaded->list.errors.begin(),
                                 loaded->list.errors.end());
@@ -792,7 +809,7 @@ private:
         core::config::PointIndex index;  ///< views into `list`: both live and die together
     };
 
-    std::string file_;
+    FileName file_;  ///< shared by every mark of the file
     std::filesystem::path dir_;
     Diagnostics diagnostics_;
     std::map<std::string, std::unique_ptr<LoadedPoints>> point_lists_;  ///< null: unreadable
@@ -803,12 +820,12 @@ private:
 core::Result<Config, Diagnostics> load_config(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        return core::fail(Diagnostics{
-            {{path, 0, 0}, std::string("cannot read the configuration: ") + std::strerror(errno)}});
+        Diagnostics unreadable;
+        unreadable.push_back({Mark{path, 0, 0}, std::string("cannot read the configuration: ") +
+                                                    std::strerror(errno)});
+        return core::fail(std::move(unreadable));
     }
-    std::ostringstream content;
-    content << in.rdbuf();
-    return load_config_text(content.str(), path);
+    return load_config_text(read_all(in), path);
 }
 
 core::Result<Config, Diagnostics> load_config_text(const std::string& text,

@@ -131,7 +131,7 @@ void write_exchange(const Node& node, std::size_t exchange_id, std::ostream& out
 }
 
 std::string mark_text(const core::config::Mark& mark) {
-    return mark.file + ":" + std::to_string(mark.line);
+    return mark.file.str() + ":" + std::to_string(mark.line);
 }
 
 }  // namespace

@@ -255,7 +255,7 @@ private:
                 const auto& first =
                     exchange.tags[static_cast<std::size_t>(repeated)].marks.of("name");
                 error(marks.of("name"), "duplicate tag name " + in_quotes(t.name) + of_exchange() +
-                                            " (first at " + first.file + ":" +
+                                            " (first at " + first.file.str() + ":" +
                                             std::to_string(first.line) + ")");
             }
 

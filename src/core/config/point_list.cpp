@@ -85,7 +85,7 @@ enum Column : std::size_t { tag_name, node, address, data_type, access_type };
 
 }  // namespace
 
-PointList parse_point_list(std::string_view text, const std::string& file) {
+PointList parse_point_list(std::string_view text, const FileName& file) {
     PointList list;
     std::array<std::size_t, column_names.size()> index{};
     bool have_header = false;
@@ -186,8 +186,8 @@ PointList parse_point_list(std::string_view text, const std::string& file) {
         if (ok) list.rows.push_back(std::move(row));
     }
     if (!have_header) {
-        list.errors.push_back(
-            {{file, line_number == 0 ? 1 : line_number, 1}, "point list is empty (no header row)"});
+        const Mark at{file, line_number == 0 ? 1 : line_number, 1};
+        list.errors.push_back({at, "point list is empty (no header row)"});
     }
     return list;
 }

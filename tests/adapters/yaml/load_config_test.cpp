@@ -18,7 +18,7 @@ const std::string data = std::string(EIP2MQTT_TEST_DATA) + "/configs/";
 std::string dump(const Diagnostics& diagnostics) {
     std::string out;
     for (const auto& d : diagnostics) {
-        out += d.mark.file + ":" + std::to_string(d.mark.line) + ":" +
+        out += d.mark.file.str() + ":" + std::to_string(d.mark.line) + ":" +
                std::to_string(d.mark.column) + ": " + d.message + "\n";
     }
     return out;

@@ -32,6 +32,8 @@ TEST(PointLists, Section6ExampleParses) {
     EXPECT_FALSE(list.rows[0].write);
     EXPECT_FALSE(list.rows[0].tag.writable);
     EXPECT_EQ(list.rows[0].mark.file, "points.csv");
+    // Every row's mark shares the one file name (a copy per row was 100,000 heap blocks).
+    EXPECT_EQ(&list.rows[0].mark.file.str(), &list.rows[7].mark.file.str());
     EXPECT_EQ(list.rows[0].mark.line, 2);
     EXPECT_EQ(list.rows[0].mark.column, 1);
     // §6: Word is a signed 16-bit value in point lists.

@@ -26,6 +26,6 @@ struct PointList {
 };
 
 /// Parses CSV text; `file` names it in marks.
-PointList parse_point_list(std::string_view text, const std::string& file);
+PointList parse_point_list(std::string_view text, const FileName& file);
 
 }  // namespace eip2mqtt::core::config
