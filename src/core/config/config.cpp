@@ -19,8 +19,20 @@
 namespace eip2mqtt::core::config {
 
 const Mark& Marks::of(std::string_view key) const {
-    const auto it = keys.find(key);
-    return it == keys.end() ? node : it->second;
+    for (const auto& [name, at] : keys) {
+        if (name == key) return at;
+    }
+    return node;
+}
+
+bool Marks::contains(std::string_view key) const {
+    return std::any_of(keys.begin(), keys.end(), [&](const auto& k) { return k.first == key; });
+}
+
+bool Marks::add(std::string_view key, const Mark& at) {
+    if (contains(key)) return false;
+    keys.emplace_back(key, at);
+    return true;
 }
 
 namespace {
@@ -437,9 +449,8 @@ private:
             if (skip.contains(&exchange)) continue;
             if (!topic_problem(exchange.spec.topic).empty()) continue;
             const std::string topic = full_topic(exchange);
-            const auto& topic_mark = exchange.marks.keys.contains("topic")
-                                         ? exchange.marks.of("topic")
-                                         : exchange.marks.of("name");
+            const auto& topic_mark = exchange.marks.contains("topic") ? exchange.marks.of("topic")
+                                                                      : exchange.marks.of("name");
             const Owner owner{&exchange, nullptr};
             (void)(claim(topic + "/_status", owner, topic_mark) &&
                    claim(topic + "/_values", owner, topic_mark) &&

@@ -24,7 +24,7 @@ TagConfig tag(std::string name, std::uint16_t byte, std::uint8_t bit, TagType ty
     t.marks.node = at(next_line, 7);
     for (const char* key : {"name", "address", "type", "writable", "min", "max", "initial",
                             "deadband", "refresh_s"}) {
-        t.marks.keys[key] = at(next_line++, 9);
+        t.marks.add(key, at(next_line++, 9));
     }
     return t;
 }
@@ -42,7 +42,7 @@ ExchangeConfig exchange(std::string name, Direction direction, std::uint32_t id)
     e.marks.node = at(next_line, 5);
     for (const char* key : {"name", "direction", "producer_id", "exchange_id", "length",
                             "period_ms", "timeout_ms", "source", "destination", "topic"}) {
-        e.marks.keys[key] = at(next_line++, 5);
+        e.marks.add(key, at(next_line++, 5));
     }
     return e;
 }
@@ -54,10 +54,10 @@ Config valid() {
     c.gateway.id = "gw";
     c.mqtt.base_topic = "acme/site";
     for (const char* key : {"url", "version", "qos", "base_topic"}) {
-        c.mqtt.marks.keys[key] = at(next_line++, 3);
+        c.mqtt.marks.add(key, at(next_line++, 3));
     }
-    c.gateway.marks.keys["id"] = at(next_line++, 3);
-    c.gateway.marks.keys["log_level"] = at(next_line++, 3);
+    c.gateway.marks.add("id", at(next_line++, 3));
+    c.gateway.marks.add("log_level", at(next_line++, 3));
     auto consumed = exchange("turbine1", Direction::consume, 2);
     consumed.tags.push_back(tag("RUNNING", 0, 0, TagType::bit));
     consumed.tags.push_back(tag("PRESSAO", 2, 0, TagType::int_));
@@ -83,10 +83,21 @@ bool mentions(const Diagnostic& d, std::string_view text) {
     return d.message.find(text) != std::string::npos;
 }
 
+TEST(Marks, AddKeepsTheFirstMarkOfAKey) {
+    Marks marks;
+    EXPECT_TRUE(marks.add("name", at(4, 7)));
+    EXPECT_TRUE(marks.add("type", at(5, 7)));
+    EXPECT_FALSE(marks.add("name", at(6, 7)));  // a duplicate: the loader reports it
+    EXPECT_TRUE(marks.contains("name"));
+    EXPECT_FALSE(marks.contains("address"));
+    EXPECT_EQ(marks.of("name").line, 4);
+    EXPECT_EQ(marks.keys.size(), 2u);
+}
+
 TEST(Marks, OfFallsBackToTheNode) {
     Marks marks;
     marks.node = at(3, 5);
-    marks.keys["name"] = at(4, 7);
+    marks.add("name", at(4, 7));
     EXPECT_EQ(marks.of("name").line, 4);
     EXPECT_EQ(marks.of("name").column, 7);
     EXPECT_EQ(marks.of("length").line, 3);
