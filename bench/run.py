@@ -88,10 +88,18 @@ def stop(proc, timeout=10):
         proc.wait(timeout=5)
 
 
+def median_round(results):
+    """results: (ratio, ...) tuples, one per paired round; the one of median ratio."""
+    return sorted(results, key=lambda r: r[0])[len(results) // 2]
+
+
 class Bench:
     def __init__(self, quick, only):
         self.quick = quick
         self.only = only
+        # Scenarios whose figures the host's other work moves most (2, 3, 5, 7) repeat their
+        # baseline and gateway runs in turn, and report the median round.
+        self.rounds = 1 if quick else 3
         self.tmp = tempfile.mkdtemp(prefix="eip2mqtt-bench-")
         self.rows = []
         self.notes = []
@@ -358,6 +366,19 @@ class Bench:
                  f"{gw_ceiling:,.0f}", f"{udp_ceiling:,.0f} (recvmmsg sink)", f"{ratio:.2f}",
                  ">= 0.70", "yes" if ratio >= 0.70 else "no")
 
+    def rounds_label(self, which="median"):
+        return f", {which} of {self.rounds} paired rounds" if self.rounds > 1 else ""
+
+    def ratios_note(self, results):
+        if len(results) < 2:
+            return ""
+        return " (rounds: " + ", ".join(f"{r[0]:.2f}" for r in results) + ")"
+
+    def values_note(self, values):
+        if len(values) < 2:
+            return ""
+        return "; rounds: " + ", ".join(f"{v:,.0f}" for v in values)
+
     def paho_ceiling(self, qos):
         counter = self.start_counter("p/+/+", qos)
         pub = run_json([tool("paho_publisher"), "--url", f"tcp://{HOST}:{self.broker_port}",
@@ -395,16 +416,24 @@ class Bench:
         print("[2,3] tag publications/s vs bare Paho", flush=True)
         self.ceilings = {}
         for qos in (0, 1):
-            paho = self.paho_ceiling(qos)
-            self.ceilings[qos] = paho
+            # Paired rounds: bare Paho, then the gateway, again and again; the row is the round
+            # with the median ratio, so that a burst of the host's other work (which moved
+            # single figures by 20-50 % on this VM) hits a baseline and its pair alike.
+            results = {1.0: [], 0.1: []}
+            for _ in range(self.rounds):
+                paho = self.paho_ceiling(qos)
+                for change in results:
+                    got = self.gateway_rate(f"g2q{qos}c{int(change * 100)}", qos, change, paho)
+                    results[change].append((got["rate"] / paho if paho else 0, got["rate"], paho))
             for change, label in ((1.0, "100 % changing"), (0.1, "10 % changing")):
-                got = self.gateway_rate(f"g2q{qos}c{int(change * 100)}", qos, change, paho)
-                ratio = got["rate"] / paho if paho else 0
-                self.row(f"tag publications/s, QoS {qos}, {label}", f"{got['rate']:,.0f}",
-                         f"{paho:,.0f} (bare Paho)", f"{ratio:.2f}", ">= 0.90",
+                ratio, rate, paho = median_round(results[change])
+                self.row(f"tag publications/s, QoS {qos}, {label}{self.rounds_label()}",
+                         f"{rate:,.0f}", f"{paho:,.0f} (bare Paho)",
+                         f"{ratio:.2f}{self.ratios_note(results[change])}", ">= 0.90",
                          "yes" if ratio >= 0.9 else "no")
                 if change == 1.0:
-                    self.ceilings[("gw", qos)] = got["rate"]
+                    self.ceilings[qos] = paho
+                    self.ceilings[("gw", qos)] = rate
 
     def s4_batch(self):
         print("[4] batch mode, QoS 1", flush=True)
@@ -421,30 +450,37 @@ class Bench:
         print("[5] latency at 10k datagrams/s, 10 % changing (10 exchanges x 10 tags)", flush=True)
         duration = 3 if self.quick else 10
         for qos in (0, 1):
-            counter = self.start_counter("p/+/+", qos, extra=["--stamp-all"])
-            run_json([tool("paho_publisher"), "--url", f"tcp://{HOST}:{self.broker_port}",
-                      "--window", str(PAHO_WINDOW), "--qos", str(qos), "--rate", "10000",
-                      "--stamp", "--duration",
-                      str(duration), "--topics", "10"], timeout=duration + 60)
-            paho = self.finish(counter)
+            rounds = []
+            for _ in range(self.rounds):
+                counter = self.start_counter("p/+/+", qos, extra=["--stamp-all"])
+                run_json([tool("paho_publisher"), "--url", f"tcp://{HOST}:{self.broker_port}",
+                          "--window", str(PAHO_WINDOW), "--qos", str(qos), "--rate", "10000",
+                          "--stamp", "--duration",
+                          str(duration), "--topics", "10"], timeout=duration + 60)
+                paho = self.finish(counter)
 
-            name = f"g5q{qos}"
-            udp_port = free_port(socket.SOCK_DGRAM)
-            config = self.write_config(name, consumed=[(i, 10) for i in range(1, 11)], qos=qos,
-                                       udp_port=udp_port)
-            gw = self.start_gateway(name, config)
-            self.wait_online(name)
-            counter = self.start_counter("b/+/+", qos)
-            self.generate(udp_port, 10, 10000, duration=duration, change=0.1, tags=10)
-            got = self.finish(counter)
-            stop(gw)
-            print(f"    qos{qos}: gateway n={got['latency_n']} p50 {got['p50_us']} p99 "
-                  f"{got['p99_us']} max {got['max_us']}; paho n={paho['latency_n']} p50 "
-                  f"{paho['p50_us']} p99 {paho['p99_us']} max {paho['max_us']}", flush=True)
+                name = f"g5q{qos}"
+                udp_port = free_port(socket.SOCK_DGRAM)
+                config = self.write_config(name, consumed=[(i, 10) for i in range(1, 11)],
+                                           qos=qos, udp_port=udp_port)
+                gw = self.start_gateway(name, config)
+                self.wait_online(name)
+                counter = self.start_counter("b/+/+", qos)
+                self.generate(udp_port, 10, 10000, duration=duration, change=0.1, tags=10)
+                got = self.finish(counter)
+                stop(gw)
+                print(f"    qos{qos}: gateway n={got['latency_n']} p50 {got['p50_us']} p99 "
+                      f"{got['p99_us']} max {got['max_us']}; paho n={paho['latency_n']} p50 "
+                      f"{paho['p50_us']} p99 {paho['p99_us']} max {paho['max_us']}", flush=True)
+                ratio = got["p99_us"] / paho["p99_us"] if paho["p99_us"] else 0
+                rounds.append((ratio, got, paho))
+            # The round of median gateway p99 (the absolute target is on it), with its pair.
+            _, got, paho = sorted(rounds, key=lambda r: r[1]["p99_us"])[len(rounds) // 2]
             ratio = got["p99_us"] / paho["p99_us"] if paho["p99_us"] else 0
             ok = got["p99_us"] <= 1000 and ratio <= 1.5
-            self.row(f"latency datagram -> subscriber p99, QoS {qos} (us)",
-                     f"{got['p99_us']:,.0f} (p50 {got['p50_us']:,.0f}, max {got['max_us']:,.0f})",
+            self.row(f"latency datagram -> subscriber p99, QoS {qos} (us){self.rounds_label()}",
+                     f"{got['p99_us']:,.0f} (p50 {got['p50_us']:,.0f}, max {got['max_us']:,.0f}"
+                     f"{self.values_note([r[1]['p99_us'] for r in rounds])})",
                      f"{paho['p99_us']:,.0f} (bare Paho p50 {paho['p50_us']:,.0f}, "
                      f"max {paho['max_us']:,.0f})", f"{ratio:.2f}", "<= 1,000 us and <= 1.5",
                      "yes" if ok else "no")
@@ -532,6 +568,8 @@ class Bench:
             def capture(sender):
                 port = free_port(socket.SOCK_DGRAM)
                 ready = os.path.join(self.tmp, f"psink{count}{sender}.ready")
+                if os.path.exists(ready):
+                    os.unlink(ready)
                 sink = subprocess.Popen([tool("udp_sink"), "--port", str(port), "--period-ms",
                                          "10", "--skip-ms", "1000", "--duration",
                                          str(duration + 1), "--ready-file", ready],
@@ -539,29 +577,37 @@ class Bench:
                 wait_file(ready, 5)
                 return sink, port
 
-            sink, port = capture("gen")
-            self.generate(port, count, count * 100, duration=duration + 1.5, change=0,
-                          stamp=False, tags=10, first=5000)
-            base = last_json(sink.communicate(timeout=duration + 30)[0])
+            rounds = []
+            for _ in range(self.rounds):
+                sink, port = capture("gen")
+                self.generate(port, count, count * 100, duration=duration + 1.5, change=0,
+                              stamp=False, tags=10, first=5000)
+                base = last_json(sink.communicate(timeout=duration + 30)[0])
 
-            sink, port = capture("gw")
-            name = f"g7n{count}"
-            config = self.write_config(
-                name, produced=[(5000 + i, 10, 10, f"{HOST}:{port}") for i in range(count)],
-                udp_port=free_port(socket.SOCK_DGRAM))
-            gw = self.start_gateway(name, config)
-            got = last_json(sink.communicate(timeout=duration + 30)[0])
-            stop(gw)
-            print(f"    {count} exchanges: gateway {got}; generator {base}", flush=True)
-            err_ok = got["mean_error_pct"] < 0.1 and got["exchanges"] == count
-            self.row(f"produced period, {count} x 10 ms: mean error (%)",
-                     f"{got['mean_error_pct']:.3f} (worst exchange "
-                     f"{got['worst_exchange_error_pct']:.3f}, {got['exchanges']} seen)",
-                     f"{base['mean_error_pct']:.3f} (load_generator)", "-", "< 0.1 %",
-                     "yes" if err_ok else "no")
+                sink, port = capture("gw")
+                name = f"g7n{count}"
+                config = self.write_config(
+                    name, produced=[(5000 + i, 10, 10, f"{HOST}:{port}") for i in range(count)],
+                    udp_port=free_port(socket.SOCK_DGRAM))
+                gw = self.start_gateway(name, config)
+                got = last_json(sink.communicate(timeout=duration + 30)[0])
+                stop(gw)
+                print(f"    {count} exchanges: gateway {got}; generator {base}", flush=True)
+                rounds.append((got, base))
+            # The round of median gateway jitter (the absolute target is on it), with its pair.
+            got, base = sorted(rounds, key=lambda r: r[0]["p99_jitter_us"])[len(rounds) // 2]
+            worst_error = max(r[0]["mean_error_pct"] for r in rounds)
+            err_ok = worst_error < 0.1 and all(r[0]["exchanges"] == count for r in rounds)
+            self.row(f"produced period, {count} x 10 ms: mean error (%){self.rounds_label('worst')}",
+                     f"{worst_error:.3f} (worst exchange "
+                     f"{max(r[0]['worst_exchange_error_pct'] for r in rounds):.3f}, "
+                     f"{min(r[0]['exchanges'] for r in rounds)} seen)",
+                     f"{max(r[1]['mean_error_pct'] for r in rounds):.3f} (load_generator)", "-",
+                     "< 0.1 %", "yes" if err_ok else "no")
             ratio = got["p99_jitter_us"] / base["p99_jitter_us"] if base["p99_jitter_us"] else 0
-            self.row(f"produced period, {count} x 10 ms: p99 jitter (us)",
-                     f"{got['p99_jitter_us']:,.0f} (max {got['max_jitter_us']:,.0f})",
+            self.row(f"produced period, {count} x 10 ms: p99 jitter (us){self.rounds_label()}",
+                     f"{got['p99_jitter_us']:,.0f} (max {got['max_jitter_us']:,.0f}"
+                     f"{self.values_note([r[0]['p99_jitter_us'] for r in rounds])})",
                      f"{base['p99_jitter_us']:,.0f} (load_generator)", f"{ratio:.2f}",
                      f"<= {jitter_target:,} us",
                      "yes" if got["p99_jitter_us"] <= jitter_target else "no")
