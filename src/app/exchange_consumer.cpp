@@ -93,9 +93,15 @@ void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
             continue;
         }
         filter.published(value, *quality, now);
-        adapters::mqtt::format_tag_payload(payload_, value, *quality, timestamp_ms_,
+        // Filled in place and handed over: the client gives back buffers of an earlier
+        // publication, so a tag's publication allocates nothing here.
+        plan_.tag_topic_into(tag, message_.topic);
+        adapters::mqtt::format_tag_payload(message_.payload, value, *quality, timestamp_ms_,
                                            settings_.format);
-        sink_({plan_.tag_topic(tag), payload_, settings_.qos, settings_.retain, true});
+        message_.qos = settings_.qos;
+        message_.retain = settings_.retain;
+        sink_(std::move(message_));
+        message_.clear();  // blank whatever the sink left (a sink other than the client)
         if (settings_.batch) {
             fmt::format_to(std::back_inserter(batch_values), R"({}"{}":{})",
                            batch_values.empty() ? "" : ",", tag.spec.name,

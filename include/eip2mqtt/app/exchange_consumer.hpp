@@ -30,7 +30,8 @@ struct PublishSettings {
     friend bool operator==(const PublishSettings&, const PublishSettings&) = default;
 };
 
-/// Where publications go (the MQTT client's queue, or a recorder in tests).
+/// Where publications go (the MQTT client's queue, or a recorder in tests). It takes the
+/// message's content and may leave buffers of an earlier one in it, to be filled again.
 using PublishSink = std::function<void(adapters::mqtt::Message&&)>;
 
 class ExchangeConsumer {
@@ -74,7 +75,9 @@ private:
     std::optional<core::MonoTime> last_status_at_;
     std::uint64_t last_status_received_ = 0;
     bool status_dirty_ = true;
-    std::string payload_;  ///< reused formatting buffer
+    /// Every tag publication is filled in here; the sink (the MQTT client) takes its content
+    /// and leaves spare buffers (Client::publish), so the data path does not allocate.
+    adapters::mqtt::Message message_;
 };
 
 }  // namespace eip2mqtt::app

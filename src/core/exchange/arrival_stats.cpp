@@ -35,9 +35,10 @@ void ArrivalStats::on_arrival(MonoTime now) {
     last_ = at;
     ++count_;
 
-    recent_.push_back(at);
+    // Forgotten before the push, so that the ring never needs a slot beyond the cap.
     while (!recent_.empty() && recent_.front() <= last_ - window_) recent_.pop_front();
-    while (recent_.size() > max_window_arrivals) recent_.pop_front();
+    while (recent_.size() >= max_window_arrivals) recent_.pop_front();
+    recent_.push_back(at);
 }
 
 std::optional<ArrivalStats::Seconds> ArrivalStats::mean_period() const {
@@ -45,14 +46,33 @@ std::optional<ArrivalStats::Seconds> ArrivalStats::mean_period() const {
     return Seconds(last_ - first_) / static_cast<double>(count_ - 1);
 }
 
+namespace {
+
+/// Index of the first of `times` (sorted) after `t`, from `first`: std::upper_bound by index.
+std::size_t first_after(const Ring<MonoTime>& times, std::size_t first, MonoTime t) {
+    std::size_t count = times.size() - first;
+    while (count > 0) {
+        const std::size_t half = count / 2;
+        if (times[first + half] <= t) {
+            first += half + 1;
+            count -= half + 1;
+        } else {
+            count = half;
+        }
+    }
+    return first;
+}
+
+}  // namespace
+
 double ArrivalStats::rate(MonoTime now) const {
     const auto from = now - window_;
-    const auto first_in = std::upper_bound(recent_.begin(), recent_.end(), from);
-    const auto last_in = std::upper_bound(first_in, recent_.end(), now);
+    const std::size_t first_in = first_after(recent_, 0, from);
+    const std::size_t last_in = first_after(recent_, first_in, now);
     const auto n = static_cast<double>(last_in - first_in);
-    if (recent_.size() == max_window_arrivals && first_in == recent_.begin() && n > 1) {
+    if (recent_.size() == max_window_arrivals && first_in == 0 && n > 1) {
         // The cap dropped arrivals still inside the window: rate over what is kept.
-        const auto span = Seconds(now - *first_in).count();
+        const auto span = Seconds(now - recent_[first_in]).count();
         if (span > 0) return n / span;
     }
     return n / Seconds(window_).count();

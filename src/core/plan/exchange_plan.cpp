@@ -46,8 +46,12 @@ ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic
 std::string ExchangePlan::tag_topic(const TagPlan& tag) const {
     std::string out;
     out.reserve(topic.size() + 1 + tag.spec.name.size());
-    out.append(topic).append("/").append(tag.spec.name);
+    tag_topic_into(tag, out);
     return out;
+}
+
+void ExchangePlan::tag_topic_into(const TagPlan& tag, std::string& out) const {
+    out.assign(topic).append("/").append(tag.spec.name);
 }
 
 }  // namespace eip2mqtt::core::plan

@@ -169,5 +169,39 @@ TEST(PublishQueue, ReleaseMemoryAfterABacklogDrained) {
     EXPECT_EQ(drain(q), (std::vector<std::string>{"a=2"}));
 }
 
+TEST(PublishQueue, PushLeavesWhatItDidNotKeepForReuse) {
+    PublishQueue q(10);
+    Message m = msg("plant/turbine1/e1/PRESSAO", "{\"value\":1}");
+    q.push(std::move(m));
+    EXPECT_TRUE(m.topic.empty());  // queued whole: nothing came back
+    EXPECT_TRUE(m.payload.empty());
+
+    m = msg("plant/turbine1/e1/PRESSAO", "{\"value\":2} and a payload too long for SSO");
+    m.qos = 1;
+    q.push(std::move(m));
+    // Coalesced: the replaced payload's buffer and the topic's come back, blank.
+    EXPECT_TRUE(m.topic.empty());
+    EXPECT_TRUE(m.payload.empty());
+    EXPECT_GE(m.topic.capacity(), std::string("plant/turbine1/e1/PRESSAO").size());
+    EXPECT_EQ(m.qos, 0);
+    EXPECT_EQ(drain(q),
+              (std::vector<std::string>{
+                  "plant/turbine1/e1/PRESSAO={\"value\":2} and a payload too long for SSO"}));
+}
+
+TEST(PublishQueue, CoalescesShortTopicsAcrossGrowth) {
+    // Topics short enough to live inside their std::string move when the ring grows: the index
+    // must follow them (ASan sees a stale view).
+    PublishQueue q(1000);
+    for (int i = 0; i < 100; ++i) q.push(msg("t" + std::to_string(i), "1"));
+    for (int i = 0; i < 100; ++i) q.push(msg("t" + std::to_string(i), "2"));
+    EXPECT_EQ(q.size(), 100u);
+    EXPECT_EQ(q.coalesced(), 100u);
+    const auto out = drain(q);
+    ASSERT_EQ(out.size(), 100u);
+    EXPECT_EQ(out.front(), "t0=2");
+    EXPECT_EQ(out.back(), "t99=2");
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::mqtt

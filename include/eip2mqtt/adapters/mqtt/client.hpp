@@ -97,8 +97,10 @@ public:
     /// Starts connecting (non-blocking); retries with backoff until stop().
     void start();
 
-    /// Queues a publication; sent when connected, buffered while not.
-    void publish(Message message);
+    /// Queues a publication; sent when connected, buffered while not. Leaves `message` blank
+    /// (Message::clear()), often with the buffers of an earlier publication: a caller that
+    /// publishes in a loop fills the same Message again and allocates nothing.
+    void publish(Message&& message);
 
     /// Publishes `offline`, waits up to `flush_timeout` for queued and in-flight publications,
     /// then disconnects and ends the sender thread. Blocks the calling thread: call it after

@@ -19,6 +19,18 @@ struct Message {
     /// Batch mode's `{exchange}/_values`: queued in a lane of its own, served in turn with the
     /// others, so that a saturated per-tag flow cannot starve it (nor it the per-tag topics).
     bool batch_lane = false;
+
+    /// Blank again, as a default Message, but the strings keep their buffers: a message is
+    /// filled again instead of allocated anew for every publication (#6).
+    void clear() {
+        topic.clear();
+        payload.clear();
+        correlation_data.clear();
+        qos = 0;
+        retain = false;
+        coalesce = true;
+        batch_lane = false;
+    }
 };
 
 /// A message received on a subscription, copied off Paho's thread.

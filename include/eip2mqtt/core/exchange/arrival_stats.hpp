@@ -13,9 +13,9 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <optional>
 
+#include "eip2mqtt/core/ring.hpp"
 #include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::core::exchange {
@@ -58,7 +58,7 @@ private:
     MonoTime first_{};
     MonoTime last_{};
     double jitter_s_ = 0.0;
-    std::deque<MonoTime> recent_;  ///< arrivals within the window, oldest first
+    Ring<MonoTime> recent_;  ///< arrivals within the window, oldest first
 };
 
 }  // namespace eip2mqtt::core::exchange

@@ -48,6 +48,8 @@ struct ExchangePlan {
     wire::ExchangeKey key() const { return {spec.producer_id, spec.exchange_id}; }
     /// The topic of `tag`, one of `tags`: {topic}/{tag name}.
     std::string tag_topic(const TagPlan& tag) const;
+    /// The same into `out` (replacing its content, reusing its buffer).
+    void tag_topic_into(const TagPlan& tag, std::string& out) const;
     /// Equal plans mean nothing to do on reload: the running exchange is kept as it is.
     friend bool operator==(const ExchangePlan&, const ExchangePlan&) = default;
 };

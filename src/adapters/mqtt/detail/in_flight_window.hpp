@@ -1,7 +1,8 @@
 #pragma once
 /// The publications handed to Paho and not yet completed, by id. Ids are given in order, and
-/// Paho completes them nearly in order (QoS 0 as written, QoS 1 as acknowledged), so a deque
-/// indexed by `id - first id` finds one in O(1) and completed ones leave from the front. A
+/// Paho completes them nearly in order (QoS 0 as written, QoS 1 as acknowledged), so a ring
+/// indexed by `id - first id` finds one in O(1) and completed ones leave from the front (a
+/// Ring, not a std::deque, which allocates a block every few publications). A
 /// completion for an id no longer here (abandoned on a connection loss, or never given) is
 /// ignored, so nothing is counted twice.
 ///
@@ -9,9 +10,10 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <optional>
 #include <utility>
+
+#include "eip2mqtt/core/ring.hpp"
 
 namespace eip2mqtt::adapters::mqtt::detail {
 
@@ -56,10 +58,10 @@ public:
 
 private:
     struct Entry {
-        T item;
-        bool done;
+        T item{};
+        bool done = false;
     };
-    std::deque<Entry> entries_;
+    core::Ring<Entry> entries_;
     std::uint64_t first_id_ = 1;  ///< id of entries_.front()
     std::uint64_t next_id_ = 1;
     std::size_t pending_ = 0;

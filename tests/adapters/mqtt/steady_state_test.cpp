@@ -1,0 +1,104 @@
+// Issue #6: once warm, a publication's path through the MQTT adapter's own structures allocates
+// nothing (Paho's copies are Paho's). Counted with a replaced operator new, on this thread.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <boost/asio/io_context.hpp>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "adapters/mqtt/detail/in_flight_window.hpp"
+#include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
+#include "tests/support/count_allocations.hpp"
+
+namespace eip2mqtt::adapters::mqtt {
+namespace {
+
+using test::allocations_during;
+
+constexpr std::size_t kTopics = 50;
+
+std::vector<std::string> long_topics() {
+    std::vector<std::string> topics;
+    for (std::size_t i = 0; i < kTopics; ++i) {
+        topics.push_back("acme/blumenau/turbine1/e1/TAG_" + std::to_string(i));
+    }
+    return topics;
+}
+
+const std::array<std::string, 2> payloads{
+    R"({"value":1234,"timestamp":1732291200000,"quality":"good"})",
+    R"({"value":-98765,"timestamp":1732291200010,"quality":"good"})"};
+
+TEST(SteadyState, QueueWindowAndSparesCycleWithoutAllocating) {
+    // The client's cycle, on one thread: fill a message, queue it (a spare comes back when it
+    // is queued whole), hand it to the window, complete it, keep it as a spare.
+    const auto topics = long_topics();
+    PublishQueue queue(1000);
+    detail::InFlightWindow<Message> window;
+    std::vector<Message> spares;
+    spares.reserve(4 * kTopics);
+    std::array<std::uint64_t, 2 * kTopics> ids{};
+    Message message;
+    auto publish = [&](std::size_t topic, std::size_t value) {
+        message.topic.assign(topics[topic]);
+        message.payload.assign(payloads[value % 2]);
+        message.qos = 1;
+        queue.push(std::move(message));
+        if (message.topic.capacity() <= std::string().capacity() && !spares.empty()) {
+            message = std::move(spares.back());
+            spares.pop_back();
+        }
+    };
+    auto rounds = [&] {
+        for (std::size_t round = 0; round < 20; ++round) {
+            for (std::size_t i = 0; i < kTopics; ++i) publish(i, round);
+            for (std::size_t i = 0; i < kTopics; i += 2) publish(i, round + 1);  // coalesce
+            std::size_t sent = 0;
+            while (auto next = queue.pop()) ids[sent++] = window.add(std::move(*next));
+            for (std::size_t i = 0; i < sent; ++i) {
+                auto done = window.complete(ids[i]);
+                done->clear();
+                spares.push_back(std::move(*done));
+            }
+        }
+    };
+    rounds();  // warm: buffers, ring slots, index nodes and buckets reach their sizes
+    EXPECT_EQ(allocations_during(rounds), 0u);
+    EXPECT_EQ(queue.coalesced(), 2 * 20 * kTopics / 2);
+}
+
+TEST(SteadyState, ClientPublishAllocatesNothingOnceItsTopicsAreQueued) {
+    // Not connected (nothing listens on the port): publications wait in the queue, and a newer
+    // value of a queued topic gives back the buffers of the one it replaces.
+    boost::asio::io_context io;
+    ClientOptions options;
+    options.url = "tcp://127.0.0.1:1";
+    Client client(io.get_executor(), options);
+    const auto topics = long_topics();
+    Message message;
+    auto publish_all = [&](std::size_t value) {
+        for (const auto& topic : topics) {
+            message.topic.assign(topic);
+            message.payload.assign(payloads[value % 2]);
+            message.qos = 1;
+            client.publish(std::move(message));
+        }
+    };
+    // Warm: the buffers that circulate grow until each fits the longer payload.
+    for (std::size_t value = 0; value < 4; ++value) publish_all(value);
+    EXPECT_EQ(allocations_during([&] {
+                  for (std::size_t value = 4; value < 14; ++value) publish_all(value);
+              }),
+              0u);
+    EXPECT_EQ(client.stats().queued, kTopics);
+    EXPECT_EQ(client.stats().coalesced, 13 * kTopics);
+    client.stop(std::chrono::milliseconds(0));
+}
+
+}  // namespace
+}  // namespace eip2mqtt::adapters::mqtt

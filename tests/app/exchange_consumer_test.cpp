@@ -1,0 +1,90 @@
+// ExchangeConsumer's data path (issue #6): a datagram's decode, report-by-exception and tag
+// publications allocate nothing once warm, when the sink gives buffers back as the MQTT client
+// does (Client::publish).
+
+#include "eip2mqtt/app/exchange_consumer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/wire/value_codec.hpp"
+#include "tests/support/count_allocations.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr int kTags = 10;
+
+core::plan::ExchangePlan turbine_plan() {
+    core::plan::ExchangeSpec spec;
+    spec.name = "e1";
+    spec.direction = core::plan::Direction::consume;
+    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+    spec.exchange_id = 1;
+    spec.length = 4 * kTags;
+    spec.topic = "turbine1/e1";
+    for (int i = 0; i < kTags; ++i) {
+        core::plan::TagSpec tag;
+        tag.name = "GENERATOR_TAG_" + std::to_string(i);
+        tag.address = {static_cast<std::uint16_t>(4 * i), 0};
+        tag.type = core::plan::TagType::dint;
+        spec.tags.push_back(tag);
+    }
+    return core::plan::make_exchange_plan(std::move(spec), "acme/blumenau");
+}
+
+TEST(ExchangeConsumerDataPath, PublishesEveryChangedTagWithoutAllocatingOnceWarm) {
+    std::size_t published = 0;
+    adapters::mqtt::Message last;
+    // Like Client::publish: takes the content, leaves the buffers of the one before.
+    auto sink = [&](adapters::mqtt::Message&& message) {
+        ++published;
+        std::swap(last, message);
+        message.clear();
+    };
+    ExchangeConsumer consumer(turbine_plan(), PublishSettings{}, sink);
+
+    std::array<std::byte, 4 * kTags> data{};
+    core::wire::Datagram datagram;
+    datagram.header.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+    datagram.header.exchange_id = 1;
+    datagram.header.time_s = 1732291200;
+    datagram.data = data;
+    auto now = core::MonoTime{} + 1h;
+    auto wall = core::WallTime{} + 1h;
+    std::int64_t value = 1000;
+    auto datagrams = [&](int count) {
+        for (int d = 0; d < count; ++d) {
+            ++datagram.header.request_id;
+            ++value;
+            for (int i = 0; i < kTags; ++i) {
+                core::wire::encode_value(data, core::plan::TagType::dint,
+                                         {static_cast<std::uint16_t>(4 * i), 0},
+                                         core::plan::Value{value * (i + 1)});
+            }
+            now += 10ms;
+            wall += 10ms;
+            consumer.on_datagram(datagram, now, wall);
+        }
+    };
+    // Warm: the exchange is ok, the buffers fit every payload, and a second of arrivals has
+    // filled the arrival-rate window (ArrivalStats keeps that second's arrival times).
+    datagrams(150);
+    const std::size_t before = published;
+    EXPECT_EQ(test::allocations_during([&] { datagrams(100); }), 0u);
+    EXPECT_EQ(published - before, 100u * kTags);  // every tag changed in every datagram
+    EXPECT_EQ(last.topic, "acme/blumenau/turbine1/e1/GENERATOR_TAG_9");
+    EXPECT_NE(last.payload.find("\"value\":" + std::to_string(value * kTags)), std::string::npos);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app
