@@ -58,5 +58,22 @@ TEST(Ring, ReleaseFreesOnlyWhenEmpty) {
     EXPECT_EQ(ring.front(), "again");
 }
 
+TEST(Ring, CopiesAndMovesKeepTheElementsInOrder) {
+    Ring<std::string> ring;
+    for (int i = 0; i < 20; ++i) ring.push_back("element number " + std::to_string(i));
+    for (int i = 0; i < 15; ++i) ring.pop_front();  // the rest wraps inside the buffer
+    for (int i = 20; i < 30; ++i) ring.push_back("element number " + std::to_string(i));
+    Ring<std::string> copy = ring;
+    ASSERT_EQ(copy.size(), 15u);
+    for (std::size_t i = 0; i < copy.size(); ++i) {
+        EXPECT_EQ(copy[i], "element number " + std::to_string(i + 15));
+    }
+    Ring<std::string> moved = std::move(ring);
+    EXPECT_EQ(moved.front(), "element number 15");
+    EXPECT_EQ(moved.back(), "element number 29");
+    copy = moved;
+    EXPECT_EQ(copy.back(), "element number 29");
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core
