@@ -602,21 +602,13 @@ void Client::Impl::enqueue(Message& message) {
         (message.batch_lane ? batch_queue_ : queue_).push(std::move(message));
         backlog_peak_ = std::max(backlog_peak_, queue_.size());
     }
-    // `message` was moved from: it may hold no buffer, or some that a move handed back (a
-    // libstdc++ string move gives the target's old buffer to its source). Unless it holds a
-    // topic and a payload buffer, swap in a spare: its next fill then allocates nothing.
+    // `message` was moved from, or holds what the queue gave back: fill it from a spare when
+    // it has no buffer.
     const std::size_t inline_capacity = std::string().capacity();
-    if ((message.topic.capacity() <= inline_capacity ||
-         message.payload.capacity() <= inline_capacity) &&
-        !spares_.try_pop(message)) {
-        // No spare yet: the sender has not taken the last publications. Take them here, so
-        // that a replaced one leaves its buffers, rather than allocate (a lock only while
-        // the sender is behind, or before any publication has completed).
-        std::lock_guard lock(mutex_);
-        drain_inbox();
-        spares_.try_pop(message);
+    if (message.topic.capacity() <= inline_capacity &&
+        message.payload.capacity() <= inline_capacity && !spares_.try_pop(message)) {
+        message.clear();
     }
-    message.clear();
     // Dekker with the sender, which sets sender_idle_ and then looks at the inbox: one of the
     // two sees the other's write, so a sleeping sender is always woken. The lock is taken only
     // then: while the sender is busy, handing over a publication takes none.

@@ -5,12 +5,11 @@
 /// given at construction), and every handler is invoked there. Publications are handed to Paho
 /// by a sender thread of the client's own, never by the loop: Paho C writes to its socket under
 /// one global mutex, and a loop waiting on it would neither drain UDP nor keep production
-/// deadlines. publish() hands the message to the sender through a lock-free ring, and gets
-/// spare buffers back the same way; it takes a lock only to wake a sleeping sender, or while
-/// the sender is behind (the ring full, no spare back yet) to move the ring into the queue.
-/// The sender moves what it receives into the queues below, under a lock of our own; Paho's
-/// callbacks run on Paho's threads: a completed publication updates the queues' state under
-/// that lock; everything else is copied and posted to the loop.
+/// deadlines. publish() hands the message to the sender through a lock-free ring (taking a
+/// lock only to wake a sleeping sender, or when the ring is full), and gets spare buffers back
+/// the same way. The sender moves what it receives into the queues below, under a lock of our
+/// own; Paho's callbacks run on Paho's threads: a completed publication updates the queues'
+/// state under that lock; everything else is copied and posted to the loop.
 ///
 /// Publications go through a PublishQueue (latest value per topic wins, oldest dropped when
 /// full, both counted); a bounded number are in flight in Paho at a time, so Paho's own queue
