@@ -18,7 +18,6 @@
 #include <utility>
 
 #include "adapters/mqtt/detail/in_flight_window.hpp"
-#include "adapters/mqtt/detail/spsc_ring.hpp"
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
 
@@ -129,12 +128,10 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     std::chrono::milliseconds schedule_reconnect();
     void renew_subscriptions(const std::vector<std::string>& filters);
 
-    // --- the loop (the inbox's producer and the spares' consumer) ---------------------------
-    /// Hands `message` to the sender through the inbox, without a lock, and wakes the sender if
-    /// it sleeps; leaves a spare message (or a blank one) in `message`.
-    void enqueue(Message& message);
-
     // --- any thread ----------------------------------------------------------------------
+    /// Queues `message` in its lane and wakes the sender if it sleeps.
+    void enqueue(Message& message);
+    void recycle(Message&& message);
     /// Lets the sender hand publications to Paho (after a connect) or stops it (loss, stop).
     void set_sending(bool enabled);
     /// A Paho listener: publication `id` completed with Paho return code `rc`.
@@ -148,13 +145,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     void send(std::uint64_t id, const paho::message_ptr& message);
 
     // --- under mutex_ --------------------------------------------------------------------
-    bool has_queued() const {
-        return !retry_.empty() || !queue_.empty() || !batch_queue_.empty() || !inbox_.empty();
-    }
-    /// Moves what the loop handed over into the lanes' queues (coalescing there), oldest first.
-    void drain_inbox();
-    /// Keeps a completed or replaced message's buffers for the loop to fill again.
-    void recycle(Message&& message);
+    bool has_queued() const { return !retry_.empty() || !queue_.empty() || !batch_queue_.empty(); }
     /// Whether the sender has something to send and room to send it. After it filled the
     /// window it waits until an eighth of the window completed, so that it wakes once per
     /// burst rather than once per completion, yet keeps the window nearly full: at QoS 1 a
@@ -238,17 +229,12 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     bool next_from_batch_ = false;               ///< whose turn when both lanes wait
     std::map<std::uint64_t, Message> retry_;     ///< re-queued, by original order
     detail::InFlightWindow<Message> in_flight_;  ///< handed to Paho, not yet completed
-    /// The loop's publications on their way to the queues: the loop pushes without a lock
-    /// (its per-publication lock was the last one on the data path, #6), the sender (or whoever
-    /// holds mutex_) drains. When it is full the loop drains it itself, under the lock.
-    detail::SpscRing<Message, 1024> inbox_;
-    /// Blank messages of completed or replaced publications, for the loop to fill again: it
-    /// allocated two strings per publication that Paho's thread then freed, and malloc's
-    /// cross-thread traffic was 40 % of the loop's time (#6). Pushed under mutex_.
-    detail::SpscRing<Message, kMaxSpares> spares_;
-    bool sending_ = false;  ///< connected and announced: the sender may send
-    /// The sender waits on wake_sender_; read by the loop without the lock (enqueue).
-    std::atomic<bool> sender_idle_{false};
+    /// Blank messages of completed publications, handed back to publish()'s callers to fill
+    /// again: the loop allocated two strings per publication that Paho's thread then freed,
+    /// and malloc's cross-thread traffic was 40 % of the loop's time (#6).
+    std::vector<Message> spares_;
+    bool sending_ = false;          ///< connected and announced: the sender may send
+    bool sender_idle_ = false;      ///< the sender waits on wake_sender_
     bool window_full_ = false;      ///< the sender stopped at the limit: wait for the low mark
     bool quit_ = false;             ///< the sender thread must end
     std::size_t backlog_peak_ = 0;  ///< largest queue since memory was last given back
@@ -594,48 +580,30 @@ void Client::Impl::renew_subscriptions(const std::vector<std::string>& filters) 
 // --- publications ------------------------------------------------------------------------
 
 void Client::Impl::enqueue(Message& message) {
-    if (!inbox_.try_push(message)) {
-        // The sender is behind by a whole inbox: queue here, after what waits in the inbox,
-        // so that a newer value never lands before an older one.
+    bool wake = false;
+    {
         std::lock_guard lock(mutex_);
-        drain_inbox();
         (message.batch_lane ? batch_queue_ : queue_).push(std::move(message));
+        // Queued whole, so no buffer came back: give the caller a spare to fill next time.
+        const std::size_t inline_capacity = std::string().capacity();
+        if (message.topic.capacity() <= inline_capacity &&
+            message.payload.capacity() <= inline_capacity && !spares_.empty()) {
+            message = std::move(spares_.back());
+            spares_.pop_back();
+        }
         backlog_peak_ = std::max(backlog_peak_, queue_.size());
+        wake = sender_idle_ && ready_to_send();
     }
-    // `message` was moved from, or holds what the queue gave back: fill it from a spare when
-    // it has no buffer.
-    const std::size_t inline_capacity = std::string().capacity();
-    if (message.topic.capacity() <= inline_capacity &&
-        message.payload.capacity() <= inline_capacity && !spares_.try_pop(message)) {
-        message.clear();
-    }
-    // Dekker with the sender, which sets sender_idle_ and then looks at the inbox: one of the
-    // two sees the other's write, so a sleeping sender is always woken. The lock is taken only
-    // then: while the sender is busy, handing over a publication takes none.
-    std::atomic_thread_fence(std::memory_order_seq_cst);
-    if (sender_idle_.load(std::memory_order_relaxed)) {
-        { const std::lock_guard lock(mutex_); }
+    if (wake) {
         wake_sender_.notify_one();
     }
 }
 
-void Client::Impl::drain_inbox() {
-    Message message;
-    while (inbox_.try_pop(message)) {
-        (message.batch_lane ? batch_queue_ : queue_).push(std::move(message));
-        // A coalesced publication leaves the buffers of the one it replaced.
-        const std::size_t inline_capacity = std::string().capacity();
-        if (message.topic.capacity() > inline_capacity ||
-            message.payload.capacity() > inline_capacity) {
-            recycle(std::move(message));
-        }
-    }
-    backlog_peak_ = std::max(backlog_peak_, queue_.size());
-}
-
 void Client::Impl::recycle(Message&& message) {
+    // Enough for what cycles through the window; a drained backlog's others are freed.
+    if (spares_.size() >= kMaxSpares) return;
     message.clear();
-    spares_.try_push(message);  // full: the buffers are freed with `message`
+    spares_.push_back(std::move(message));
 }
 
 void Client::Impl::set_sending(bool enabled) {
@@ -683,19 +651,11 @@ void Client::Impl::sender_main() {
     std::vector<Outgoing> burst;
     std::unique_lock lock(mutex_);
     for (;;) {
-        sender_idle_.store(true);
-        wake_sender_.wait(lock, [this] {
-            std::atomic_thread_fence(std::memory_order_seq_cst);  // Dekker with enqueue
-            return quit_ || !inbox_.empty() || ready_to_send();
-        });
-        sender_idle_.store(false);
+        sender_idle_ = true;
+        wake_sender_.wait(lock, [this] { return quit_ || ready_to_send(); });
+        sender_idle_ = false;
         if (quit_) {
             return;
-        }
-        // Also while disconnected: the queue coalesces and bounds what waits.
-        drain_inbox();
-        if (!ready_to_send()) {
-            continue;
         }
         // Take a burst under the lock (Paho copies topic and payload in make_message, so the
         // window keeps our Message only for a re-send), then publish it without the lock.
@@ -832,7 +792,6 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         std::size_t lost = 0;
         {
             std::lock_guard lock(mutex_);
-            drain_inbox();
             lost = queue_.size() + batch_queue_.size() + retry_.size();
         }
         end_sender();
@@ -932,7 +891,7 @@ void Client::stop(std::chrono::milliseconds flush_timeout) { impl_->stop(flush_t
 bool Client::connected() const { return impl_->connected_; }
 
 ClientStats Client::stats() const {
-    Impl& impl = *impl_;
+    const Impl& impl = *impl_;
     ClientStats s;
     s.connected = impl.connected_;
     s.published = impl.published_;
@@ -941,7 +900,6 @@ ClientStats Client::stats() const {
     s.connection_losses = impl.connection_losses_;
     s.received = impl.received_;
     std::lock_guard lock(impl.mutex_);
-    impl.drain_inbox();  // figures as of now, coalescing included
     s.queued = impl.queue_.size() + impl.batch_queue_.size() + impl.retry_.size();
     s.in_flight = impl.in_flight_.pending();
     s.dropped_overflow = impl.queue_.dropped_overflow() + impl.batch_queue_.dropped_overflow();
@@ -951,7 +909,6 @@ ClientStats Client::stats() const {
 
 void Client::set_buffer_capacity(std::size_t max_messages) {
     std::lock_guard lock(impl_->mutex_);
-    impl_->drain_inbox();
     impl_->queue_.set_capacity(max_messages);
 }
 

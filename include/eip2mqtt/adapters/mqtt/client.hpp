@@ -5,10 +5,8 @@
 /// given at construction), and every handler is invoked there. Publications are handed to Paho
 /// by a sender thread of the client's own, never by the loop: Paho C writes to its socket under
 /// one global mutex, and a loop waiting on it would neither drain UDP nor keep production
-/// deadlines. publish() hands the message to the sender through a lock-free ring (taking a
-/// lock only to wake a sleeping sender, or when the ring is full), and gets spare buffers back
-/// the same way. The sender moves what it receives into the queues below, under a lock of our
-/// own; Paho's callbacks run on Paho's threads: a completed publication updates the queues'
+/// deadlines. publish() only queues (a short lock of our own) and wakes the sender when it
+/// sleeps. Paho's callbacks run on Paho's threads: a completed publication updates the queue's
 /// state under that lock; everything else is copied and posted to the loop.
 ///
 /// Publications go through a PublishQueue (latest value per topic wins, oldest dropped when
