@@ -100,8 +100,7 @@ void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
                                            settings_.format);
         message_.qos = settings_.qos;
         message_.retain = settings_.retain;
-        sink_(std::move(message_));
-        message_.clear();  // blank whatever the sink left (a sink other than the client)
+        sink_(std::move(message_));  // leaves message_ blank (PublishSink)
         if (settings_.batch) {
             fmt::format_to(std::back_inserter(batch_values), R"({}"{}":{})",
                            batch_values.empty() ? "" : ",", tag.spec.name,

@@ -31,7 +31,8 @@ struct PublishSettings {
 };
 
 /// Where publications go (the MQTT client's queue, or a recorder in tests). It takes the
-/// message's content and may leave buffers of an earlier one in it, to be filled again.
+/// message's content and leaves it blank (Message::clear()), possibly with the buffers of an
+/// earlier one, to be filled again.
 using PublishSink = std::function<void(adapters::mqtt::Message&&)>;
 
 class ExchangeConsumer {

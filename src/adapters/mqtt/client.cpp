@@ -33,9 +33,6 @@ constexpr auto kConnectTimeout = std::chrono::seconds(10);
 /// Queued publications past which the memory of a drained backlog is given back (malloc_trim
 /// walks every arena: worth it after a burst, not after every message).
 constexpr std::size_t kTrimAfterBacklog = 10000;
-/// Blank messages kept for reuse (Impl::spares_): a window's worth (more only held memory
-/// after an overload: bench scenario 8 peaked 0.3 MB higher with 1,024).
-constexpr std::size_t kMaxSpares = 256;
 
 struct Endpoint {
     std::string host;
@@ -600,8 +597,9 @@ void Client::Impl::enqueue(Message& message) {
 }
 
 void Client::Impl::recycle(Message&& message) {
-    // Enough for what cycles through the window; a drained backlog's others are freed.
-    if (spares_.size() >= kMaxSpares) return;
+    // A window's worth is what cycles (more only held memory after an overload: bench
+    // scenario 8 peaked 0.3 MB higher with 1,024); a drained backlog's others are freed.
+    if (spares_.size() >= in_flight_limit_.load(std::memory_order_relaxed)) return;
     message.clear();
     spares_.push_back(std::move(message));
 }

@@ -271,6 +271,18 @@ private:
 
     // --- scalars ------------------------------------------------------------------------------
 
+    /// A string value read by `parse` (returning an optional); one that does not parse is
+    /// reported as "<key> '<text>' <problem>" (text() reports a value that is no string).
+    template <class Parse>
+    auto parsed(const Node& value, const std::string& key, const Mark& at, Parse parse,
+                std::string_view problem) -> decltype(parse(std::string_view())) {
+        const auto s = text(value, key, at);
+        if (!s) return std::nullopt;
+        auto result = parse(*s);
+        if (!result) error(at, key + " " + in_quotes(*s) + " " + std::string(problem));
+        return result;
+    }
+
     std::optional<std::string> text(const Node& value, const std::string& key, const Mark& at) {
         if (value.is_null()) return std::string();
         if (!value.is_scalar()) {
@@ -536,15 +548,11 @@ private:
                         broken = true;
                     }
                 } else if (key == "producer_id") {
-                    const auto s = text(value, key, k);
-                    const auto id = s ? core::wire::parse_producer_id(*s) : std::nullopt;
-                    if (id) {
+                    if (const auto id =
+                            parsed(value, key, k, core::wire::parse_producer_id,
+                                   "is not a.b.c.d or a plain integer (GE decimal form)")) {
                         spec.producer_id = *id;
                     } else {
-                        if (s) {
-                            error(k, "producer_id " + in_quotes(*s) +
-                                         " is not a.b.c.d or a plain integer (GE decimal form)");
-                        }
                         broken = true;
                     }
                 } else if (key == "exchange_id") {
@@ -563,13 +571,9 @@ private:
                         }
                     }
                 } else if (key == "signature") {
-                    const auto s = text(value, key, k);
-                    const auto sig = s ? core::wire::parse_signature(*s) : std::nullopt;
-                    if (sig) {
+                    if (const auto sig = parsed(value, key, k, core::wire::parse_signature,
+                                                "is not major.minor (each 0..255)")) {
                         spec.signature = *sig;
-                    } else if (s) {
-                        error(k,
-                              "signature " + in_quotes(*s) + " is not major.minor (each 0..255)");
                     }
                 } else if (key == "period_ms") {
                     if (const auto n = integer<long long>(value, key, k)) {
@@ -580,12 +584,9 @@ private:
                         spec.timeout = std::chrono::milliseconds(*n);
                     }
                 } else if (key == "source") {
-                    const auto s = text(value, key, k);
-                    const auto ip = s ? parse_ipv4(*s) : std::nullopt;
-                    if (ip) {
+                    if (const auto ip =
+                            parsed(value, key, k, parse_ipv4, "is not an IPv4 address")) {
                         spec.source = *ip;
-                    } else if (s) {
-                        error(k, "source " + in_quotes(*s) + " is not an IPv4 address");
                     }
                 } else if (key == "destination") {
                     const auto s = text(value, key, k);
@@ -657,15 +658,10 @@ private:
                     }
                 } else if (key == "address") {
                     // `126.0` unquoted is a YAML float: its scalar text is what was written.
-                    const auto s = text(value, key, k);
-                    const auto address = s ? core::plan::parse_address(*s) : std::nullopt;
-                    if (address) {
+                    if (const auto address = parsed(value, key, k, core::plan::parse_address,
+                                                    "is not byte.bit (byte 0..65535, bit 0..7)")) {
                         spec.address = *address;
                     } else {
-                        if (s) {
-                            error(k, "address " + in_quotes(*s) +
-                                         " is not byte.bit (byte 0..65535, bit 0..7)");
-                        }
                         broken = true;
                     }
                 } else if (key == "type") {
