@@ -6,12 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/wire/value_codec.hpp"
@@ -84,6 +86,59 @@ TEST(ExchangeConsumerDataPath, PublishesEveryChangedTagWithoutAllocatingOnceWarm
     EXPECT_EQ(published - before, 100u * kTags);  // every tag changed in every datagram
     EXPECT_EQ(last.topic, "acme/blumenau/turbine1/e1/GENERATOR_TAG_9");
     EXPECT_NE(last.payload.find("\"value\":" + std::to_string(value * kTags)), std::string::npos);
+}
+
+TEST(ExchangeConsumerDataPath, BatchModeAddsOneValuesMessagePerDatagram) {
+    // Issue #6, mqtt.batch: besides the tag topics, {exchange}/_values with every tag that
+    // changed in the datagram, same value encoding, not retained, in the batch lane.
+    std::vector<adapters::mqtt::Message> published;
+    auto sink = [&](adapters::mqtt::Message&& message) {
+        published.push_back(std::move(message));
+        message.clear();
+    };
+    PublishSettings settings;
+    settings.batch = true;
+    ExchangeConsumer consumer(turbine_plan(), settings, sink);
+
+    std::array<std::byte, 4 * kTags> data{};
+    for (int i = 0; i < kTags; ++i) {
+        core::wire::encode_value(data, core::plan::TagType::dint,
+                                 {static_cast<std::uint16_t>(4 * i), 0},
+                                 core::plan::Value{std::int64_t{100 + i}});
+    }
+    core::wire::Datagram datagram;
+    datagram.header.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+    datagram.header.exchange_id = 1;
+    datagram.header.request_id = 1;
+    datagram.header.time_s = 1732291200;
+    datagram.data = data;
+    const auto now = core::MonoTime{} + 1h;
+    consumer.on_datagram(datagram, now, core::WallTime{} + 1h);
+
+    const auto values = std::find_if(published.begin(), published.end(), [](const auto& m) {
+        return m.topic == "acme/blumenau/turbine1/e1/_values";
+    });
+    ASSERT_NE(values, published.end());
+    EXPECT_TRUE(values->batch_lane);
+    EXPECT_FALSE(values->retain);
+    EXPECT_EQ(values->payload,
+              R"({"timestamp":1732291200000,"quality":"good","values":{)"
+              R"("GENERATOR_TAG_0":100,"GENERATOR_TAG_1":101,"GENERATOR_TAG_2":102,)"
+              R"("GENERATOR_TAG_3":103,"GENERATOR_TAG_4":104,"GENERATOR_TAG_5":105,)"
+              R"("GENERATOR_TAG_6":106,"GENERATOR_TAG_7":107,"GENERATOR_TAG_8":108,)"
+              R"("GENERATOR_TAG_9":109}})");
+
+    // Only what changed goes into the next one.
+    published.clear();
+    core::wire::encode_value(data, core::plan::TagType::dint, {12, 0},
+                             core::plan::Value{std::int64_t{-7}});
+    ++datagram.header.request_id;
+    consumer.on_datagram(datagram, now + 10ms, core::WallTime{} + 1h + 10ms);
+    const auto next = std::find_if(published.begin(), published.end(),
+                                   [](const auto& m) { return m.batch_lane; });
+    ASSERT_NE(next, published.end());
+    EXPECT_NE(next->payload.find(R"("values":{"GENERATOR_TAG_3":-7}})"), std::string::npos)
+        << next->payload;
 }
 
 }  // namespace
