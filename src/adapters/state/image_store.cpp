@@ -11,6 +11,7 @@
 #include <string_view>
 #include <utility>
 
+#include "eip2mqtt/adapters/state/atomic_file.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 
@@ -57,20 +58,6 @@ T get_le(const std::byte* in) {
 }
 
 std::string errno_text(int error) { return std::strerror(error); }
-
-/// Writes all of `data`, retrying partial writes and EINTR.
-bool write_all(int fd, const std::byte* data, std::size_t size) {
-    while (size > 0) {
-        const auto n = ::write(fd, data, size);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            return false;
-        }
-        data += n;
-        size -= static_cast<std::size_t>(n);
-    }
-    return true;
-}
 
 /// Reads the whole file, up to `limit` + 1 bytes (so that an oversized file shows as such).
 /// Sets `error` to errno on failure.
@@ -206,36 +193,14 @@ bool ImageStore::save(const core::plan::ExchangePlan& plan, std::span<const std:
     put_le<std::uint64_t>(bytes, fnv1a(data));
     bytes.insert(bytes.end(), data.begin(), data.end());
 
-    // Write a temporary, fsync it, rename it over the old file, fsync the directory: a crash
-    // leaves either the old image or the new one, never a mix.
-    const std::string temporary = path + ".tmp";
-    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) return failed("open " + temporary, errno);
-    if (!write_all(fd, bytes.data(), bytes.size()) || ::fsync(fd) != 0) {
-        const int error = errno;
-        ::close(fd);
-        ::unlink(temporary.c_str());
-        return failed("write " + temporary, error);
-    }
-    if (::close(fd) != 0) {
-        const int error = errno;
-        ::unlink(temporary.c_str());
-        return failed("close " + temporary, error);
-    }
-    if (::rename(temporary.c_str(), path.c_str()) != 0) {
-        const int error = errno;
-        ::unlink(temporary.c_str());
-        return failed("rename", error);
-    }
-    // The new file is in place now; only the rename's durability across a power cut is left.
-    const int dir = ::open(directory_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    const bool synced = dir >= 0 && ::fsync(dir) == 0;
-    const int error = errno;
-    if (dir >= 0) ::close(dir);
-    if (!synced) {
-        spdlog::warn("exchange {}: saved image {}, but syncing directory {} failed ({})",
-                     plan.spec.name, path, directory_, errno_text(error));
-        return false;
+    const std::span<const std::byte> parts[] = {bytes};
+    if (const auto failure = write_file_atomically(path, parts, 0644)) {
+        if (failure->replaced) {
+            spdlog::warn("exchange {}: saved image {}, but {} failed ({})", plan.spec.name, path,
+                         failure->step, errno_text(failure->error));
+            return false;
+        }
+        return failed(failure->step, failure->error);
     }
     return true;
 }
