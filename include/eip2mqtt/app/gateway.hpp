@@ -20,6 +20,7 @@
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
 #include "eip2mqtt/adapters/udp/sender.hpp"
+#include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/drop_log.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
@@ -50,7 +51,8 @@ class Gateway {
 public:
     /// Builds every adapter from a validated configuration; throws std::exception on start-up
     /// failures (a port that cannot be bound, an unreadable password file).
-    explicit Gateway(core::config::Config config);
+    /// `load_options` are those of every reload (SIGHUP).
+    explicit Gateway(core::config::Config config, adapters::yaml::LoadOptions load_options = {});
     ~Gateway();
 
     /// Runs until SIGTERM or SIGINT, then stops cleanly; returns the exit status.
@@ -87,6 +89,7 @@ private:
     void wait_signal();
 
     core::config::Config config_;
+    adapters::yaml::LoadOptions load_options_;
     PublishSettings publish_settings_;
     std::string availability_topic_;
     std::string metrics_topic_;

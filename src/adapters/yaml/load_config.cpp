@@ -20,6 +20,7 @@
 #include <tuple>
 #include <type_traits>
 
+#include "adapters/yaml/detail/syntax_cache.hpp"
 #include "adapters/yaml/detail/tree.hpp"
 #include "eip2mqtt/core/config/point_index.hpp"
 #include "eip2mqtt/core/config/point_list.hpp"
@@ -171,14 +172,17 @@ bool valid_host_port(std::string_view text, bool port_required) {
 
 class Loader {
 public:
-    explicit Loader(std::string file)
-        : file_(std::move(file)), dir_(std::filesystem::path(file_.str()).parent_path()) {}
+    explicit Loader(std::string file, std::filesystem::path syntax_cache_dir = {})
+        : file_(std::move(file)),
+          dir_(std::filesystem::path(file_.str()).parent_path()),
+          syntax_cache_dir_(std::move(syntax_cache_dir)) {}
 
     core::Result<Config, Diagnostics> load(const std::string& text) {
         Config config;
         config.file = file_;
         try {
-            const detail::Tree tree = detail::Tree::parse(text);
+            const detail::Tree tree =
+                detail::parse_with_cache(text, file_.str(), syntax_cache_dir_);
             const Node root = tree.root();
             if (!root.is_defined() || root.is_null()) {
                 error({file_, 1, 1}, "the configuration is empty");
@@ -821,13 +825,14 @@ private:
 
     FileName file_;  ///< shared by every mark of the file
     std::filesystem::path dir_;
+    std::filesystem::path syntax_cache_dir_;
     Diagnostics diagnostics_;
     std::map<std::string, std::unique_ptr<LoadedPoints>> point_lists_;  ///< null: unreadable
 };
 
 }  // namespace
 
-core::Result<Config, Diagnostics> load_config(const std::string& path) {
+core::Result<Config, Diagnostics> load_config(const std::string& path, const LoadOptions& options) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         Diagnostics unreadable;
@@ -835,7 +840,7 @@ core::Result<Config, Diagnostics> load_config(const std::string& path) {
                                                     std::strerror(errno)});
         return core::fail(std::move(unreadable));
     }
-    return load_config_text(read_all(in), path);
+    return Loader(path, options.syntax_cache_dir).load(read_all(in));
 }
 
 core::Result<Config, Diagnostics> load_config_text(const std::string& text,
