@@ -8,11 +8,20 @@
 
 namespace eip2mqtt::adapters::yaml::detail {
 
+/// What a parse builds, owned by the Tree that views it.
+struct Tree::Parsed {
+    std::vector<Entry> nodes;
+    std::vector<std::uint32_t> children;
+    std::string text;
+    std::uint32_t root = 0;
+    bool has_root = false;
+};
+
 /// Turns yaml-cpp's events into a Tree, as YAML::NodeBuilder turns them into YAML::Nodes:
 /// a container's children are collected while it is open, then stored next to each other.
 class Builder : public YAML::EventHandler {
 public:
-    explicit Builder(Tree& tree) : tree_(tree) {}
+    explicit Builder(Tree::Parsed& tree) : tree_(tree) {}
 
     void OnDocumentStart(const YAML::Mark&) override {}
     void OnDocumentEnd() override {}
@@ -30,10 +39,10 @@ public:
     void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
                   const std::string& value) override {
         const auto index = add(Tree::Kind::scalar, mark, anchor);
-        auto& node = tree_.nodes_[index];
-        node.first = static_cast<std::uint32_t>(tree_.text_.size());
+        auto& node = tree_.nodes[index];
+        node.first = static_cast<std::uint32_t>(tree_.text.size());
         node.count = static_cast<std::uint32_t>(value.size());
-        tree_.text_ += value;
+        tree_.text += value;
     }
 
     void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
@@ -55,12 +64,12 @@ private:
     };
 
     std::uint32_t add(Tree::Kind kind, const YAML::Mark& mark, YAML::anchor_t anchor) {
-        const auto index = static_cast<std::uint32_t>(tree_.nodes_.size());
+        const auto index = static_cast<std::uint32_t>(tree_.nodes.size());
         Tree::Entry entry;
         entry.kind = kind;
         entry.line = mark.is_null() ? -1 : mark.line;
         entry.column = mark.is_null() ? -1 : mark.column;
-        tree_.nodes_.push_back(entry);
+        tree_.nodes.push_back(entry);
         if (anchor != YAML::NullAnchor) {
             if (anchors_.size() <= anchor) anchors_.resize(anchor + 1);
             anchors_[anchor] = index;
@@ -71,9 +80,9 @@ private:
 
     void attach(std::uint32_t index) {
         if (open_.empty()) {
-            if (!tree_.has_root_) {
-                tree_.has_root_ = true;
-                tree_.root_ = index;
+            if (!tree_.has_root) {
+                tree_.has_root = true;
+                tree_.root = index;
             }
             return;
         }
@@ -85,34 +94,41 @@ private:
     void close() {
         const Open done = open_.back();
         open_.pop_back();
-        auto& node = tree_.nodes_[done.node];
-        node.first = static_cast<std::uint32_t>(tree_.children_.size());
+        auto& node = tree_.nodes[done.node];
+        node.first = static_cast<std::uint32_t>(tree_.children.size());
         node.count = static_cast<std::uint32_t>(pending_.size() - done.first_pending);
-        tree_.children_.insert(tree_.children_.end(),
-                               pending_.begin() + static_cast<std::ptrdiff_t>(done.first_pending),
-                               pending_.end());
+        tree_.children.insert(tree_.children.end(),
+                              pending_.begin() + static_cast<std::ptrdiff_t>(done.first_pending),
+                              pending_.end());
         pending_.resize(done.first_pending);
     }
 
-    Tree& tree_;
+    Tree::Parsed& tree_;
     std::vector<Open> open_;
     std::vector<std::uint32_t> pending_;  ///< children of the open containers, innermost last
     std::vector<std::uint32_t> anchors_;  ///< node of each anchor_t (1-based)
 };
 
 Tree Tree::parse(const std::string& text) {
-    Tree tree;
+    auto parsed = std::make_shared<Parsed>();
     // Rough sizes for a configuration (a node per ~8 bytes of text) spare most regrowth copies.
-    tree.nodes_.reserve(text.size() / 8);
-    tree.children_.reserve(text.size() / 8);
-    tree.text_.reserve(text.size() / 4);
+    parsed->nodes.reserve(text.size() / 8);
+    parsed->children.reserve(text.size() / 8);
+    parsed->text.reserve(text.size() / 4);
     std::istringstream in(text);
     YAML::Parser parser(in);
-    Builder builder(tree);
+    Builder builder(*parsed);
     parser.HandleNextDocument(builder);
-    tree.nodes_.shrink_to_fit();
-    tree.children_.shrink_to_fit();
-    tree.text_.shrink_to_fit();
+    parsed->nodes.shrink_to_fit();
+    parsed->children.shrink_to_fit();
+    parsed->text.shrink_to_fit();
+    Tree tree;
+    tree.nodes_ = parsed->nodes;
+    tree.children_ = parsed->children;
+    tree.text_ = parsed->text;
+    tree.root_ = parsed->root;
+    tree.has_root_ = parsed->has_root;
+    tree.storage_ = std::move(parsed);
     return tree;
 }
 
@@ -131,7 +147,7 @@ bool Node::is_map() const { return tree_ && tree_->nodes_[index_].kind == Tree::
 std::string_view Node::scalar() const {
     if (!is_scalar()) return {};
     const auto& node = tree_->nodes_[index_];
-    return std::string_view(tree_->text_).substr(node.first, node.count);
+    return tree_->text_.substr(node.first, node.count);
 }
 
 YAML::Mark Node::mark() const {

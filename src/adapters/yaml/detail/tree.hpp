@@ -16,7 +16,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -84,6 +86,7 @@ public:
 private:
     friend class Node;
     friend class Builder;
+    struct Parsed;
 
     enum class Kind : std::uint8_t { null, scalar, sequence, map };
 
@@ -100,9 +103,12 @@ private:
     /// Whether every index and span stays inside the arrays (a loaded file is checked).
     bool consistent() const;
 
-    std::vector<Entry> nodes_;
-    std::vector<std::uint32_t> children_;  ///< items, or key and value of each entry, in order
-    std::string text_;                     ///< every scalar's text, end to end
+    /// Keeps the arrays below alive, at fixed addresses: a parse's vectors, or a loaded file
+    /// mapped read-only (tree_cache.cpp: no copy, no zeroing of 20 MB for 100,000 tags).
+    std::shared_ptr<const void> storage_;
+    std::span<const Entry> nodes_;
+    std::span<const std::uint32_t> children_;  ///< items, or key and value of each entry
+    std::string_view text_;                    ///< every scalar's text, end to end
     std::uint32_t root_ = 0;
     bool has_root_ = false;
 };

@@ -1,15 +1,18 @@
 // A Tree on disk, with the text it was parsed from, so that an unchanged configuration is not
 // parsed again (see tree.hpp). The file is machine-local: integers are native, and the header
 // names the format, the entry size and the eip2mqtt version that wrote it; anything else is
-// ignored rather than trusted.
+// ignored rather than trusted. Layout: header | text, zero-padded to 8 bytes | nodes (Entry) |
+// children (u32) | scalars; a loaded Tree views the mapped file in place.
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
 #include <cerrno>
 #include <cstring>
+#include <memory>
 #include <type_traits>
 
 #include "adapters/yaml/detail/tree.hpp"
@@ -20,7 +23,7 @@ namespace {
 
 /// Bump when Builder (tree.cpp) or Entry change what a text turns into: an old file then no
 /// longer matches, whatever the version string says.
-constexpr std::uint32_t kFormat = 1;
+constexpr std::uint32_t kFormat = 2;
 constexpr std::array<char, 8> kMagic = {'E', 'I', 'P', '2', 'T', 'R', 'E', 'E'};
 
 struct Header {
@@ -36,6 +39,7 @@ struct Header {
     std::uint32_t has_root = 0;
 };
 static_assert(std::has_unique_object_representations_v<Header>, "saved as it is");
+static_assert(sizeof(Header) % 8 == 0, "the arrays after it stay aligned");
 
 std::array<char, 32> this_version() {
     std::array<char, 32> version = {};
@@ -44,55 +48,48 @@ std::array<char, 32> this_version() {
     return version;
 }
 
-class File {
+/// Rounds `size` up to a multiple of 8, so that the arrays after the text are aligned.
+constexpr std::uint64_t padded(std::uint64_t size) { return (size + 7) / 8 * 8; }
+
+/// A file mapped read-only for as long as a loaded Tree views it. The cache file is only ever
+/// replaced by a rename (a new file), never rewritten in place, so the mapping stays valid.
+class Mapping {
 public:
-    explicit File(const std::filesystem::path& path)
-        : fd_(::open(path.c_str(), O_RDONLY | O_CLOEXEC)) {}
-    ~File() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    File(const File&) = delete;
-    File& operator=(const File&) = delete;
+    Mapping(const void* data, std::size_t size) : data_(data), size_(size) {}
+    ~Mapping() { ::munmap(const_cast<void*>(data_), size_); }
+    Mapping(const Mapping&) = delete;
+    Mapping& operator=(const Mapping&) = delete;
 
-    bool is_open() const { return fd_ >= 0; }
-    std::uint64_t size() const {
-        struct stat st {};
-        return ::fstat(fd_, &st) == 0 ? static_cast<std::uint64_t>(st.st_size) : 0;
-    }
-
-    /// Reads exactly `size` bytes; false on an error or a short file.
-    bool read(void* data, std::size_t size) {
-        auto* out = static_cast<char*>(data);
-        while (size > 0) {
-            const auto n = ::read(fd_, out, size);
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) return false;
-            out += n;
-            size -= static_cast<std::size_t>(n);
-        }
-        return true;
-    }
-
-    /// Whether the next bytes are `expected`, read in chunks (an edited file differs early).
-    bool read_equal(std::string_view expected) {
-        std::array<char, 64 * 1024> chunk;
-        while (!expected.empty()) {
-            const auto n = std::min(expected.size(), chunk.size());
-            if (!read(chunk.data(), n) || std::memcmp(chunk.data(), expected.data(), n) != 0) {
-                return false;
-            }
-            expected.remove_prefix(n);
-        }
-        return true;
-    }
+    const char* bytes() const { return static_cast<const char*>(data_); }
+    std::size_t size() const { return size_; }
 
 private:
-    int fd_;
+    const void* data_;
+    std::size_t size_;
 };
 
-template <class T>
-std::span<const std::byte> bytes_of(const std::vector<T>& items) {
-    return std::as_bytes(std::span(items));
+/// `path` mapped whole, or null with `why` set (empty when the file does not exist).
+std::shared_ptr<const Mapping> map_file(const std::filesystem::path& path, std::string& why) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) {
+        if (errno != ENOENT) why = std::string("cannot open it: ") + std::strerror(errno);
+        return nullptr;
+    }
+    struct stat st {};
+    void* data = MAP_FAILED;
+    if (::fstat(fd, &st) != 0) {
+        why = std::string("cannot stat it: ") + std::strerror(errno);
+    } else if (static_cast<std::uint64_t>(st.st_size) < sizeof(Header)) {
+        why = "not a saved tree";
+    } else {
+        // MAP_POPULATE: every page is read anyway (the text compared, each index checked).
+        data = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ,
+                      MAP_PRIVATE | MAP_POPULATE, fd, 0);
+        if (data == MAP_FAILED) why = std::string("cannot map it: ") + std::strerror(errno);
+    }
+    ::close(fd);
+    if (data == MAP_FAILED) return nullptr;
+    return std::make_shared<const Mapping>(data, static_cast<std::size_t>(st.st_size));
 }
 
 }  // namespace
@@ -126,13 +123,11 @@ bool Tree::consistent() const {
 std::optional<Tree> Tree::load(const std::filesystem::path& file, std::string_view text,
                                std::string& why) {
     why.clear();
-    File in(file);
-    if (!in.is_open()) {
-        if (errno != ENOENT) why = std::string("cannot open it: ") + std::strerror(errno);
-        return std::nullopt;
-    }
+    const auto mapping = map_file(file, why);
+    if (!mapping) return std::nullopt;
     Header header;
-    if (!in.read(&header, sizeof header) || header.magic != kMagic) {
+    std::memcpy(&header, mapping->bytes(), sizeof header);
+    if (header.magic != kMagic) {
         why = "not a saved tree";
         return std::nullopt;
     }
@@ -145,29 +140,32 @@ std::optional<Tree> Tree::load(const std::filesystem::path& file, std::string_vi
         why = "the configuration changed";
         return std::nullopt;
     }
-    // Sizes are checked against the file before anything is allocated for them.
-    const std::uint64_t limit = in.size();
+    // Sizes are checked against the file before any array is looked at.
+    const std::uint64_t limit = mapping->size();
     if (header.nodes > limit / sizeof(Entry) || header.children > limit / 4 ||
         header.scalars > limit ||
-        sizeof header + header.text_size + header.nodes * sizeof(Entry) + header.children * 4 +
-                header.scalars !=
+        sizeof header + padded(header.text_size) + header.nodes * sizeof(Entry) +
+                header.children * 4 + header.scalars !=
             limit) {
         why = "damaged (its sizes do not add up)";
         return std::nullopt;
     }
-    if (!in.read_equal(text)) {
+    const char* at = mapping->bytes() + sizeof header;
+    if (std::memcmp(at, text.data(), text.size()) != 0) {
         why = "the configuration changed";
         return std::nullopt;
     }
+    at += padded(header.text_size);
     Tree tree;
-    tree.nodes_.resize(header.nodes);
-    tree.children_.resize(header.children);
-    tree.text_.resize(header.scalars);
+    tree.nodes_ = {reinterpret_cast<const Entry*>(at), header.nodes};
+    at += header.nodes * sizeof(Entry);
+    tree.children_ = {reinterpret_cast<const std::uint32_t*>(at), header.children};
+    at += header.children * 4;
+    tree.text_ = {at, header.scalars};
     tree.root_ = header.root;
     tree.has_root_ = header.has_root != 0;
-    if (!in.read(tree.nodes_.data(), tree.nodes_.size() * sizeof(Entry)) ||
-        !in.read(tree.children_.data(), tree.children_.size() * 4) ||
-        !in.read(tree.text_.data(), tree.text_.size()) || !tree.consistent()) {
+    tree.storage_ = mapping;
+    if (!tree.consistent()) {
         why = "damaged (its nodes are inconsistent)";
         return std::nullopt;
     }
@@ -185,9 +183,14 @@ std::string Tree::save(const std::filesystem::path& file, std::string_view text)
     header.scalars = text_.size();
     header.root = root_;
     header.has_root = has_root_ ? 1 : 0;
+    const std::array<std::byte, 8> zeros{};
     const std::span<const std::byte> parts[] = {
-        std::as_bytes(std::span(&header, 1)), std::as_bytes(std::span(text)), bytes_of(nodes_),
-        bytes_of(children_), std::as_bytes(std::span(text_))};
+        std::as_bytes(std::span(&header, 1)),
+        std::as_bytes(std::span(text)),
+        std::span(zeros).first(padded(text.size()) - text.size()),
+        std::as_bytes(nodes_),
+        std::as_bytes(children_),
+        std::as_bytes(std::span(text_))};
     const auto failure = state::write_file_atomically(file.string(), parts, 0600);
     if (!failure || failure->replaced) return {};  // a cache needs no durability
     return failure->step + ": " + std::strerror(failure->error);
