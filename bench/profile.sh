@@ -5,10 +5,11 @@
 # gateway for the load's duration. Prints the generator's and the counter's JSON and the
 # gateway's CPU time per publication. Everything runs on 127.0.0.1 and stops by itself.
 #   bench/profile.sh QOS CHANGE RATE SECONDS [perf]     e.g. bench/profile.sh 0 0.1 9000 5 perf
-# The perf data is left in $EIP2MQTT_PROFILE_DIR (default: a new temporary directory, printed).
+# The perf data is left in $EIP2MQTT_PROFILE_DIR (default: a new temporary directory, printed);
+# $EIP2MQTT_PROFILE_CALLGRAPH replaces perf's `-g` (e.g. "--call-graph dwarf,8192").
 set -euo pipefail
 if [ $# -lt 4 ]; then
-  sed -n '2,8p' "$0" >&2
+  sed -n '2,9p' "$0" >&2
   exit 2
 fi
 qos=$1 change=$2 rate=$3 seconds=$4 perf=${5:-}
@@ -63,7 +64,7 @@ for _ in $(seq 100); do [ -f "$work/ready" ] && break; sleep 0.05; done
 [ -f "$work/ready" ] || { echo "the subscriber never connected" >&2; exit 1; }
 sleep 0.5  # the gateway's first connection and retained publications settle
 if [ -n "$perf" ]; then
-  perf record -F 999 -g -p "$gateway" -o "$work/perf.data" -- sleep "$seconds" >/dev/null 2>&1 &
+  perf record -F 999 ${EIP2MQTT_PROFILE_CALLGRAPH:--g} -p "$gateway" -o "$work/perf.data" -- sleep "$seconds" >/dev/null 2>&1 &
   recorder=$!
 fi
 "$build/bench/load_generator" --port "$udp_port" --exchanges 10 --tags 100 --rate "$rate" \
