@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "tests/support/child_process.hpp"
 #include "tests/support/free_port.hpp"
@@ -36,60 +37,63 @@ nlohmann::json last_json(const std::string& output) {
     return nlohmann::json::parse(last, nullptr, false);
 }
 
-/// Waits (bounded) for a tool's --ready-file: it is subscribed or bound from then on.
-bool wait_ready(const std::string& file, ChildProcess& process) {
+/// What a sending tool and a receiving tool each printed.
+struct PairResults {
+    nlohmann::json sender;
+    nlohmann::json receiver;
+};
+
+/// Starts `receiver_argv` (plus `--ready-file`), waits (bounded) until it is bound or
+/// subscribed, runs `sender_argv` to completion, then waits for the receiver to end by itself.
+/// Fails the test, returning nulls, when a step fails.
+PairResults run_pair(std::vector<std::string> receiver_argv,
+                     const std::vector<std::string>& sender_argv) {
+    TempDir dir;
+    const auto ready = dir.path() + "/receiver.ready";
+    receiver_argv.insert(receiver_argv.end(), {"--ready-file", ready});
+    ChildProcess receiver(receiver_argv);
     const auto deadline = std::chrono::steady_clock::now() + 10s;
-    while (std::chrono::steady_clock::now() < deadline && process.running()) {
-        if (std::filesystem::exists(file)) return true;
+    while (!std::filesystem::exists(ready) && receiver.running() &&
+           std::chrono::steady_clock::now() < deadline) {
         std::this_thread::sleep_for(10ms);
     }
-    return false;
+    if (!std::filesystem::exists(ready)) {
+        ADD_FAILURE() << "the receiver never got ready: " << receiver.output();
+        return {};
+    }
+    const auto sent = run_command(sender_argv, 60s);
+    const bool receiver_ended = receiver.wait(70s).has_value();
+    EXPECT_EQ(sent.status, 0) << sent.output;
+    EXPECT_TRUE(receiver_ended) << receiver.output();
+    PairResults results{last_json(sent.output), last_json(receiver.output())};
+    EXPECT_TRUE(results.sender.is_object()) << sent.output;
+    EXPECT_TRUE(results.receiver.is_object()) << receiver.output();
+    return results;
 }
 
 TEST(BenchTools, UdpSinkReceivesEveryDatagramTheLoadGeneratorSends) {
-    TempDir dir;
     const auto port = std::to_string(free_udp_port());
-    const auto ready = dir.path() + "/sink.ready";
-    // Ends 3 s after the last datagram: a count, not a rate, is what is checked.
-    ChildProcess sink({tool("udp_sink"), "--port", port, "--idle-ms", "3000", "--max-s", "60",
-                       "--ready-file", ready});
-    ASSERT_TRUE(wait_ready(ready, sink)) << sink.output();
-    const auto sent =
-        run_command({tool("load_generator"), "--port", port, "--exchanges", "3", "--tags", "20",
-                     "--rate", "3000", "--count", "600", "--change", "0.1"},
-                    30s);
-    ASSERT_EQ(sent.status, 0) << sent.output;
-    ASSERT_TRUE(sink.wait(70s).has_value());
-    const auto generator = last_json(sent.output);
-    const auto received = last_json(sink.output());
-    ASSERT_TRUE(generator.is_object() && received.is_object()) << sent.output << sink.output();
-    EXPECT_EQ(generator["sent"], 600);
-    EXPECT_EQ(generator["errors"], 0);
-    EXPECT_EQ(received["received"], 600);
+    // The sink ends 3 s after the last datagram: a count, not a rate, is what is checked.
+    const auto [generator, sink] =
+        run_pair({tool("udp_sink"), "--port", port, "--idle-ms", "3000", "--max-s", "60"},
+                 {tool("load_generator"), "--port", port, "--exchanges", "3", "--tags", "20",
+                  "--rate", "3000", "--count", "600", "--change", "0.1"});
+    EXPECT_EQ(generator.value("sent", -1), 600);
+    EXPECT_EQ(generator.value("errors", -1), 0);
+    EXPECT_EQ(sink.value("received", -1), 600);
 }
 
 TEST(BenchTools, MqttCounterCountsEveryMessageThePahoPublisherPublishes) {
-    TempDir dir;
     Mosquitto broker;
-    const auto ready = dir.path() + "/counter.ready";
-    ChildProcess counter({tool("mqtt_counter"), "--port", std::to_string(broker.port()), "--filter",
-                          "p/+/+", "--qos", "1", "--expect", "2000", "--max-s", "60",
-                          "--ready-file", ready, "--id", "bench-tools-test"});
-    ASSERT_TRUE(wait_ready(ready, counter)) << counter.output();
-    const auto published =
-        run_command({tool("paho_publisher"), "--url", broker.url(), "--qos", "1", "--topics", "10",
-                     "--count", "2000", "--window", "64", "--duration", "30"},
-                    60s);
-    ASSERT_EQ(published.status, 0) << published.output;
-    ASSERT_TRUE(counter.wait(70s).has_value());
-    const auto publisher = last_json(published.output);
-    const auto counted = last_json(counter.output());
-    ASSERT_TRUE(publisher.is_object() && counted.is_object())
-        << published.output << counter.output();
-    EXPECT_EQ(publisher["published"], 2000);
-    EXPECT_EQ(publisher["completed"], 2000);
-    EXPECT_EQ(publisher["failed"], 0);
-    EXPECT_EQ(counted["messages"], 2000);
+    const auto [publisher, counter] = run_pair(
+        {tool("mqtt_counter"), "--port", std::to_string(broker.port()), "--filter", "p/+/+",
+         "--qos", "1", "--expect", "2000", "--max-s", "60", "--id", "bench-tools-test"},
+        {tool("paho_publisher"), "--url", broker.url(), "--qos", "1", "--topics", "10", "--count",
+         "2000", "--window", "64", "--duration", "30"});
+    EXPECT_EQ(publisher.value("published", -1), 2000);
+    EXPECT_EQ(publisher.value("completed", -1), 2000);
+    EXPECT_EQ(publisher.value("failed", -1), 0);
+    EXPECT_EQ(counter.value("messages", -1), 2000);
 }
 
 TEST(BenchTools, YamlParseReadsTheWholeFile) {
@@ -98,8 +102,8 @@ TEST(BenchTools, YamlParseReadsTheWholeFile) {
     ASSERT_EQ(parsed.status, 0) << parsed.output;
     const auto result = last_json(parsed.output);
     ASSERT_TRUE(result.is_object()) << parsed.output;
-    EXPECT_EQ(result["bytes"], std::filesystem::file_size(example));
-    EXPECT_EQ(result["repeat"], 2);
+    EXPECT_EQ(result.value("bytes", std::uintmax_t{0}), std::filesystem::file_size(example));
+    EXPECT_EQ(result.value("repeat", -1), 2);
 }
 
 }  // namespace
