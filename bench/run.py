@@ -23,6 +23,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 BUILD = os.environ.get("EIP2MQTT_BENCH_BUILD", os.path.join(ROOT, "build-bench"))
 GATEWAY = os.path.join(BUILD, "eip2mqtt")
+# Where the table is written (the test of this driver writes into its build tree).
+RESULTS = os.environ.get("EIP2MQTT_BENCH_RESULTS", os.path.join(HERE, "results"))
 TOOLS = os.path.join(BUILD, "bench")
 HOST = "127.0.0.1"
 FINAL_VALUE = 2000000007  # the overload run's last value of every tag
@@ -784,9 +786,9 @@ class Bench:
         if self.notes:
             lines += ["", "Notes:"] + [f"- {n}" for n in self.notes]
         text = "\n".join(lines) + "\n"
-        os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
+        os.makedirs(RESULTS, exist_ok=True)
         name = "quick.md" if self.quick else "partial.md" if self.only else "latest.md"
-        with open(os.path.join(HERE, "results", name), "w") as f:
+        with open(os.path.join(RESULTS, name), "w") as f:
             f.write(text)
         print()
         print(text)

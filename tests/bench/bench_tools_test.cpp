@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -94,6 +95,90 @@ TEST(BenchTools, MqttCounterCountsEveryMessageThePahoPublisherPublishes) {
     EXPECT_EQ(publisher.value("completed", -1), 2000);
     EXPECT_EQ(publisher.value("failed", -1), 0);
     EXPECT_EQ(counter.value("messages", -1), 2000);
+}
+
+/// `mosquitto_pub` of one message at QoS 1: acknowledged by the broker when it returns, so
+/// messages published one after the other arrive in that order.
+void publish(const Mosquitto& broker, const std::string& topic, const std::string& payload) {
+    const auto done =
+        run_command({"/usr/bin/mosquitto_pub", "-h", "127.0.0.1", "-p",
+                     std::to_string(broker.port()), "-q", "1", "-t", topic, "-m", payload},
+                    10s);
+    ASSERT_EQ(done.status, 0) << done.output;
+}
+
+/// CLOCK_REALTIME in ns, `ago` before now: a stamp the counter turns into a latency.
+std::string stamp(std::chrono::seconds ago) {
+    const auto now = std::chrono::system_clock::now() - ago;
+    return std::to_string(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count());
+}
+
+/// Starts mqtt_counter on `broker` with `options`, once subscribed.
+std::unique_ptr<ChildProcess> start_counter(const Mosquitto& broker, const TempDir& dir,
+                                            std::vector<std::string> options) {
+    const auto ready = dir.path() + "/counter.ready";
+    std::vector<std::string> argv = {tool("mqtt_counter"),
+                                     "--port",
+                                     std::to_string(broker.port()),
+                                     "--filter",
+                                     "p/+/+",
+                                     "--qos",
+                                     "1",
+                                     "--max-s",
+                                     "60",
+                                     "--ready-file",
+                                     ready};
+    argv.insert(argv.end(), options.begin(), options.end());
+    auto counter = std::make_unique<ChildProcess>(argv);
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while (!std::filesystem::exists(ready) && counter->running() &&
+           std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(10ms);
+    }
+    EXPECT_TRUE(std::filesystem::exists(ready)) << counter->output();
+    return counter;
+}
+
+TEST(BenchTools, MqttCounterTakesLatencyFromTheStampTagAndChecksWhereEachTopicEnded) {
+    TempDir dir;
+    Mosquitto broker;
+    auto counter = start_counter(broker, dir, {"--expect", "5", "--expect-last", "7"});
+    // Stamped 2 s in the past: each latency is at least 2 s, in microseconds.
+    publish(broker, "p/e1/ts", R"({"value":)" + stamp(2s) + R"(,"quality":"good"})");
+    publish(broker, "p/e1/ts", R"({"value":)" + stamp(2s) + R"(,"quality":"good"})");
+    publish(broker, "p/e1/t1", R"({"value":5})");
+    publish(broker, "p/e1/t1", R"({"value":7})");
+    publish(broker, "p/e1/_status", R"({"state":"ok"})");  // not a tag: not counted
+    publish(broker, "p/e1/t2", R"({"value":7})");
+    ASSERT_TRUE(counter->wait(70s).has_value());
+    const auto counted = last_json(counter->output());
+    ASSERT_TRUE(counted.is_object()) << counter->output();
+    EXPECT_EQ(counted.value("messages", -1), 5);
+    EXPECT_EQ(counted.value("latency_n", -1), 2);
+    EXPECT_GE(counted.value("p50_us", 0.0), 2e6);
+    EXPECT_LT(counted.value("max_us", 1e12), 2e6 + 60e6);  // not ns, not an absolute time
+    EXPECT_EQ(counted.value("last_ok", -1), 2);            // t1 and t2 ended on 7
+    EXPECT_EQ(counted.value("last_bad", -1), 1);           // ts did not
+}
+
+TEST(BenchTools, MqttCounterCountsTheTagUpdatesOfBatchMessages) {
+    TempDir dir;
+    Mosquitto broker;
+    auto counter = start_counter(broker, dir, {"--batch", "--expect", "2"});
+    publish(broker, "p/e1/t1", R"({"value":1})");  // per-tag: not counted in batch mode
+    for (int i = 0; i < 2; ++i) {
+        publish(broker, "p/e1/_values",
+                R"({"timestamp":1,"quality":"good","values":{"ts":)" + stamp(2s) +
+                    R"(,"t1":4,"t2":-5}})");
+    }
+    ASSERT_TRUE(counter->wait(70s).has_value());
+    const auto counted = last_json(counter->output());
+    ASSERT_TRUE(counted.is_object()) << counter->output();
+    EXPECT_EQ(counted.value("messages", -1), 2);
+    EXPECT_EQ(counted.value("updates", -1), 6);
+    EXPECT_EQ(counted.value("latency_n", -1), 2);
+    EXPECT_GE(counted.value("p50_us", 0.0), 2e6);
 }
 
 TEST(BenchTools, YamlParseReadsTheWholeFile) {

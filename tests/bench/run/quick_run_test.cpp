@@ -1,0 +1,96 @@
+// The benchmark driver (bench/run.py, what `bench/run.sh` runs) end to end in its short form:
+// every scenario of issue #6 must run on this machine and put a measured figure in its row of
+// the table. Whether a target is met is the benchmark's to say, never a test's: only that each
+// row is there with a number. Runs alone (RUN_SERIAL): it saturates both cores on purpose.
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <chrono>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "tests/support/child_process.hpp"
+#include "tests/support/gateway_fixture.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// The table's rows: the cells of each line starting with "| ", header and rule excluded.
+std::vector<std::vector<std::string>> table_rows(const std::string& markdown) {
+    std::vector<std::vector<std::string>> rows;
+    std::size_t at = 0;
+    while (at < markdown.size()) {
+        auto end = markdown.find('\n', at);
+        if (end == std::string::npos) end = markdown.size();
+        const std::string line = markdown.substr(at, end - at);
+        at = end + 1;
+        if (line.rfind("| ", 0) != 0 || line.rfind("| figure ", 0) == 0) continue;
+        std::vector<std::string> cells;
+        std::size_t from = 2;
+        for (auto bar = line.find(" | ", from); bar != std::string::npos;
+             bar = line.find(" | ", from)) {
+            cells.push_back(line.substr(from, bar - from));
+            from = bar + 3;
+        }
+        rows.push_back(std::move(cells));
+    }
+    return rows;
+}
+
+TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
+    TempDir results;
+    const auto run = run_command(
+        {"/usr/bin/env", "PYTHONDONTWRITEBYTECODE=1", "EIP2MQTT_BENCH_BUILD=" EIP2MQTT_BUILD_DIR,
+         "EIP2MQTT_BENCH_RESULTS=" + results.path(), "python3",
+         std::string(EIP2MQTT_SOURCE_DIR) + "/bench/run.py", "--quick"},
+        900s);
+    ASSERT_EQ(run.status, 0) << run.output;
+    std::ifstream in(results.path() + "/quick.md");
+    const std::string table{std::istreambuf_iterator<char>(in), {}};
+    const auto rows = table_rows(table);
+
+    // One row per figure of the issue's table (scenario in brackets), in bench/README.md's order.
+    const std::vector<std::string> figures = {
+        "datagrams/s accepted, zero loss",                       // 1
+        "tag publications/s, QoS 0, 100 % changing",             // 2
+        "tag publications/s, QoS 0, 10 % changing",              // 3
+        "tag publications/s, QoS 1, 100 % changing",             // 2
+        "tag publications/s, QoS 1, 10 % changing",              // 3
+        "tag updates/s carried in batch mode",                   // 4
+        "latency datagram -> subscriber p99, QoS 0",             // 5
+        "latency datagram -> subscriber p99, QoS 1",             // 5
+        "resident memory, 1,000 x 100 consumed + 100 produced",  // 6, inline YAML
+        "start-up to READY, same configuration, inline YAML",    // 6
+        "restart to READY, same configuration, inline YAML",     // 6, syntax cache
+        "resident memory, 1,000 x 100 consumed + 100 produced",  // 6, point lists
+        "start-up to READY, same configuration, point lists",    // 6
+        "restart to READY, same configuration, point lists",     // 6, syntax cache
+        "produced period, 100 x 10 ms: mean error",              // 7
+        "produced period, 100 x 10 ms: p99 jitter",              // 7
+        "produced period, 1000 x 10 ms: mean error",             // 7
+        "produced period, 1000 x 10 ms: p99 jitter",             // 7
+        "overload 5 x ceiling: RSS growth",                      // 8
+        "overload: newest value of each tag wins",               // 8
+        "overload: datagrams accepted / sent",                   // 8
+        "overload: largest publish queue seen",                  // 8
+        "write latency /set -> datagram p99 (ms), 1 exchange",   // 9
+        "write latency /set -> datagram p99 (ms), 1 + 100",      // 9
+    };
+    ASSERT_EQ(rows.size(), figures.size()) << table << run.output;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const auto& row = rows[i];
+        ASSERT_EQ(row.size(), 5u) << "row " << i << " of\n" << table;  // the last cell ends in " |"
+        EXPECT_EQ(row[0].rfind(figures[i], 0), 0u) << row[0];
+        // The gateway's figure is a measurement: it starts with a digit.
+        EXPECT_TRUE(!row[1].empty() && std::isdigit(static_cast<unsigned char>(row[1][0])))
+            << row[0] << ": '" << row[1] << "'";
+    }
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test
