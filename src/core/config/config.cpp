@@ -18,16 +18,20 @@
 
 namespace eip2mqtt::core::config {
 
-const Mark& Marks::of(std::string_view key) const {
-    for (const auto& [name, at] : keys) {
-        if (name == key) return at;
-    }
-    return node;
+namespace {
+
+auto find_key(const std::vector<std::pair<std::string, Mark>>& keys, std::string_view key) {
+    return std::find_if(keys.begin(), keys.end(), [&](const auto& k) { return k.first == key; });
 }
 
-bool Marks::contains(std::string_view key) const {
-    return std::any_of(keys.begin(), keys.end(), [&](const auto& k) { return k.first == key; });
+}  // namespace
+
+const Mark& Marks::of(std::string_view key) const {
+    const auto it = find_key(keys, key);
+    return it == keys.end() ? node : it->second;
 }
+
+bool Marks::contains(std::string_view key) const { return find_key(keys, key) != keys.end(); }
 
 bool Marks::add(std::string_view key, const Mark& at) {
     if (contains(key)) return false;

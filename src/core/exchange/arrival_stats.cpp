@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <ranges>
 
 namespace eip2mqtt::core::exchange {
 
@@ -48,19 +49,13 @@ std::optional<ArrivalStats::Seconds> ArrivalStats::mean_period() const {
 
 namespace {
 
-/// Index of the first of `times` (sorted) after `t`, from `first`: std::upper_bound by index.
+/// Index of the first of `times` (sorted) after `t`, from `first`: std::upper_bound over the
+/// indices (a Ring has no iterators).
 std::size_t first_after(const Ring<MonoTime>& times, std::size_t first, MonoTime t) {
-    std::size_t count = times.size() - first;
-    while (count > 0) {
-        const std::size_t half = count / 2;
-        if (times[first + half] <= t) {
-            first += half + 1;
-            count -= half + 1;
-        } else {
-            count = half;
-        }
-    }
-    return first;
+    const auto indices = std::views::iota(first, times.size());
+    const auto it =
+        std::ranges::upper_bound(indices, t, {}, [&](std::size_t i) { return times[i]; });
+    return first + static_cast<std::size_t>(it - indices.begin());
 }
 
 }  // namespace
