@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <ranges>
 
 namespace eip2mqtt::core::exchange {
 
@@ -49,13 +48,21 @@ std::optional<ArrivalStats::Seconds> ArrivalStats::mean_period() const {
 
 namespace {
 
-/// Index of the first of `times` (sorted) after `t`, from `first`: std::upper_bound over the
-/// indices (a Ring has no iterators).
+/// Index of the first of `times` (sorted) after `t`, from `first`: std::upper_bound by index
+/// (a Ring has no iterators, and std::ranges::upper_bound over views::iota does not compile
+/// with the fuzz build's clang 14 and libstdc++ 12).
 std::size_t first_after(const Ring<MonoTime>& times, std::size_t first, MonoTime t) {
-    const auto indices = std::views::iota(first, times.size());
-    const auto it =
-        std::ranges::upper_bound(indices, t, {}, [&](std::size_t i) { return times[i]; });
-    return first + static_cast<std::size_t>(it - indices.begin());
+    std::size_t count = times.size() - first;
+    while (count > 0) {
+        const std::size_t half = count / 2;
+        if (times[first + half] <= t) {
+            first += half + 1;
+            count -= half + 1;
+        } else {
+            count = half;
+        }
+    }
+    return first;
 }
 
 }  // namespace
