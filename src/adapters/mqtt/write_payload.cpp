@@ -3,10 +3,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace eip2mqtt::adapters::mqtt {
@@ -27,48 +29,133 @@ const char* const expected_scalar = "expected a JSON scalar or {\"value\": ...}"
 
 WriteRejection reject(WriteError error, std::string message) { return {error, std::move(message)}; }
 
-/// Parses `payload` without exceptions, and without building what no write may contain: arrays
-/// anywhere, objects below the second level. nullopt (malformed) also on duplicate keys, which
-/// nlohmann would silently resolve to the last one.
-std::optional<Json> parse(std::string_view payload) {
-    if (payload.size() > max_payload_size) return std::nullopt;
+/// The exact integer a JSON number denotes, whatever its spelling (`12.0`, `1e3`,
+/// `-9223372036854775808.0`), or nullopt when it has a fractional part or lies beyond 64 bits.
+/// A double cannot tell: 9007199254740992.5 and -9223372036854775809 both round to integers.
+std::optional<WriteInput> exact_integer(std::string_view text) {
+    std::size_t i = 0;
+    const bool negative = i < text.size() && text[i] == '-';
+    if (negative) ++i;
+    std::string digits;  // integer and fraction digits, without the point
+    long long exponent = 0;
+    for (; i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i) digits += text[i];
+    if (i < text.size() && text[i] == '.') {
+        for (++i; i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i) {
+            digits += text[i];
+            --exponent;
+        }
+    }
+    if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+        ++i;
+        const bool negative_exponent = i < text.size() && text[i] == '-';
+        if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
+        long long written = 0;
+        for (; i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i) {
+            // Saturated: anything past a few hundred digits either way means "not an integer of
+            // 64 bits" unless every digit is 0, which the value check below sees.
+            written = std::min<long long>(written * 10 + (text[i] - '0'), 100000);
+        }
+        exponent += negative_exponent ? -written : written;
+    }
+    const auto first = digits.find_first_not_of('0');
+    if (first == std::string::npos) return WriteInput{std::uint64_t{0}};
+    digits.erase(0, first);
+    while (exponent < 0) {
+        if (digits.back() != '0') return std::nullopt;  // a fractional part
+        digits.pop_back();
+        ++exponent;
+    }
+    if (static_cast<long long>(digits.size()) + exponent > 20) return std::nullopt;
+    unsigned __int128 value = 0;
+    for (const char c : digits) value = value * 10 + static_cast<unsigned>(c - '0');
+    for (long long e = 0; e < exponent; ++e) value *= 10;
+    constexpr auto u64_max = std::numeric_limits<std::uint64_t>::max();
+    constexpr auto i64_min_magnitude = std::uint64_t{1} << 63;
+    if (!negative) {
+        if (value > u64_max) return std::nullopt;
+        return WriteInput{static_cast<std::uint64_t>(value)};
+    }
+    if (value > i64_min_magnitude) return std::nullopt;
+    return WriteInput{static_cast<std::int64_t>(-static_cast<std::int64_t>(value - 1) - 1)};
+}
+
+/// Builds the JSON of a write with nlohmann's SAX interface rather than its DOM parser, for
+/// two reasons: a number's text is still at hand (see exact_integer), and what no write may
+/// contain is refused before it is built: arrays anywhere, objects below the second level,
+/// duplicate keys (which nlohmann would silently resolve to the last one).
+class WriteBuilder final : public nlohmann::json_sax<Json> {
+public:
+    Json root;
+
+    bool null() override { return put(nullptr); }
+    bool boolean(bool value) override { return put(value); }
+    bool number_integer(number_integer_t value) override { return put(value); }
+    bool number_unsigned(number_unsigned_t value) override { return put(value); }
+    bool number_float(number_float_t value, const string_t& text) override {
+        if (auto exact = exact_integer(text)) {
+            return std::visit([&](auto v) { return put(v); }, *exact);
+        }
+        return put(value);
+    }
+    bool string(string_t& value) override { return put(std::move(value)); }
+    bool binary(binary_t&) override { return false; }
+    bool start_object(std::size_t) override {
+        // {"tag": {"value": 1}}: two levels at most.
+        if (open_.size() >= 2) return false;
+        Json* object = open_.empty() ? &root : &slot();
+        *object = Json::object();
+        open_.push_back({object, {}});
+        return true;
+    }
+    bool key(string_t& name) override {
+        if (!open_.back().keys.insert(name).second) return false;
+        key_ = std::move(name);
+        return true;
+    }
+    bool end_object() override {
+        open_.pop_back();
+        return true;
+    }
+    bool start_array(std::size_t) override { return false; }
+    bool end_array() override { return false; }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+
+private:
+    struct Open {
+        Json* object;
+        std::set<std::string> keys;
+    };
+    /// Where the next value goes: the key just read in the innermost open object.
+    Json& slot() { return (*open_.back().object)[key_]; }
+    template <class T>
+    bool put(T&& value) {
+        (open_.empty() ? root : slot()) = std::forward<T>(value);
+        return true;
+    }
+
+    std::vector<Open> open_;
+    std::string key_;
+};
+
+/// Parses `payload` without exceptions; a rejection says why it cannot be a write.
+core::Result<Json, WriteRejection> parse(std::string_view payload) {
+    if (payload.size() > max_payload_size) {
+        return core::fail(reject(WriteError::too_large,
+                                 "payload too large (" + std::to_string(payload.size()) +
+                                     " bytes, limit " + std::to_string(max_payload_size) + ")"));
+    }
     // nlohmann's lexer takes a NUL byte for the end of input, which would accept "42\0junk";
     // a raw NUL is never valid JSON text.
-    if (payload.find('\0') != std::string_view::npos) return std::nullopt;
-    bool rejected = false;
-    std::vector<std::set<std::string>> keys;  // keys seen by each open object, by depth
-    const Json::parser_callback_t callback = [&](int depth, Json::parse_event_t event,
-                                                 Json& parsed) {
-        switch (event) {
-            case Json::parse_event_t::array_start:
-                rejected = true;
-                return false;
-            case Json::parse_event_t::object_start:
-                // {"tag": {"value": 1}}: the second object opens at depth 1.
-                if (depth >= 2) {
-                    rejected = true;
-                    return false;
-                }
-                keys.resize(static_cast<std::size_t>(depth) + 1);
-                keys[static_cast<std::size_t>(depth)].clear();
-                return true;
-            case Json::parse_event_t::key: {
-                // A key's depth counts its object, which opened one level up.
-                const auto owner = static_cast<std::size_t>(depth - 1);
-                if (depth < 1 || owner >= keys.size() ||
-                    !keys[owner].insert(parsed.get_ref<const std::string&>()).second) {
-                    rejected = true;
-                    return false;
-                }
-                return true;
-            }
-            default:
-                return !rejected;
-        }
-    };
-    Json json = Json::parse(payload.begin(), payload.end(), callback, /*allow_exceptions=*/false);
-    if (rejected || json.is_discarded()) return std::nullopt;
-    return json;
+    if (payload.find('\0') != std::string_view::npos) {
+        return core::fail(reject(WriteError::malformed, malformed_json));
+    }
+    WriteBuilder builder;
+    if (!Json::sax_parse(payload.begin(), payload.end(), &builder)) {
+        return core::fail(reject(WriteError::malformed, malformed_json));
+    }
+    return std::move(builder.root);
 }
 
 /// What a client may send where a scalar is expected.
@@ -109,14 +196,15 @@ core::Result<WriteInput, WriteRejection> tag_value(const Json& value) {
 
 core::Result<WriteInput, WriteRejection> parse_tag_write(std::string_view payload) {
     const auto json = parse(payload);
-    if (!json) return core::fail(reject(WriteError::malformed, malformed_json));
-    return tag_value(*json);
+    if (!json) return core::fail(json.error());
+    return tag_value(json.value());
 }
 
 core::Result<std::vector<std::pair<std::string, WriteInput>>, WriteRejection> parse_exchange_write(
     std::string_view payload) {
-    const auto json = parse(payload);
-    if (!json) return core::fail(reject(WriteError::malformed, malformed_json));
+    const auto parsed = parse(payload);
+    if (!parsed) return core::fail(parsed.error());
+    const Json* json = &parsed.value();
     if (!json->is_object()) {
         return core::fail(
             reject(WriteError::malformed,

@@ -14,7 +14,6 @@ using plan::TagType;
 
 // 2^63 and 2^64 are exact doubles; int64 max and uint64 max are not.
 constexpr double two_pow_63 = 9223372036854775808.0;
-constexpr double two_pow_64 = 18446744073709551616.0;
 
 /// Shortest text that reads back to the same double, as the YAML wrote it: 4000, 0.5, 1e+20.
 template <class Float>
@@ -84,12 +83,11 @@ Result<plan::Value, WriteRejection> to_integer_tag(TagType type, const WriteInpu
     if (const auto* v = std::get_if<std::int64_t>(&input)) return integer_value(type, *v);
     if (const auto* v = std::get_if<std::uint64_t>(&input)) return integer_value(type, *v);
     if (const auto* d = std::get_if<double>(&input)) {
-        // 12.0 is the integer 12; 12.5 is no integer at all.
-        if (std::trunc(*d) != *d)
-            return fail(reject(WriteError::not_integer, "expected an integer"));
-        if (*d < -two_pow_63 || *d >= two_pow_64) return fail(out_of_range(type));
-        if (*d < two_pow_63) return integer_value(type, static_cast<std::int64_t>(*d));
-        return integer_value(type, static_cast<std::uint64_t>(*d));
+        // WriteInput: integers of 64 bits never come as doubles, so a double is a fraction,
+        // or an integer beyond every integer tag's range. Only the magnitude tells which: a
+        // fraction's double may be a whole number (9007199254740992.5 rounds to 2^53).
+        if (std::fabs(*d) >= two_pow_63) return fail(out_of_range(type));
+        return fail(reject(WriteError::not_integer, "expected an integer"));
     }
     return fail(reject(WriteError::wrong_type, "expected a number"));
 }
@@ -179,6 +177,10 @@ std::string_view to_string(WriteError error) {
             return "empty";
         case WriteError::rate_limited:
             return "rate_limited";
+        case WriteError::bad_response_topic:
+            return "bad_response_topic";
+        case WriteError::too_large:
+            return "too_large";
     }
     return "unknown";
 }

@@ -52,9 +52,32 @@ TEST(ParseTagWrite, KeepsTheLargestUnsignedExact) {
 TEST(ParseTagWrite, AcceptsReal) {
     EXPECT_EQ(accepted("12.5"), WriteInput{12.5});
     EXPECT_EQ(accepted("-0.25"), WriteInput{-0.25});
-    EXPECT_EQ(accepted("1e3"), WriteInput{1000.0});
     // Beyond u64 an integer can only be a double; validation finds it out of range.
     EXPECT_TRUE(std::holds_alternative<double>(accepted("18446744073709551616")));
+    EXPECT_TRUE(std::holds_alternative<double>(accepted("-9223372036854775809")));
+}
+
+TEST(ParseTagWrite, IntegersAreExactHoweverTheyAreSpelt) {
+    EXPECT_EQ(accepted("1e3"), WriteInput{std::uint64_t{1000}});
+    EXPECT_EQ(accepted("12.0"), WriteInput{std::uint64_t{12}});
+    EXPECT_EQ(accepted("-2.50e1"), WriteInput{std::int64_t{-25}});
+    EXPECT_EQ(accepted("0.0"), WriteInput{std::uint64_t{0}});
+    EXPECT_EQ(accepted("-0.0"), WriteInput{std::uint64_t{0}});
+    EXPECT_EQ(accepted("9007199254740993.0"), WriteInput{std::uint64_t{9007199254740993}});
+    EXPECT_EQ(accepted("-9223372036854775808.0"),
+              WriteInput{std::numeric_limits<std::int64_t>::min()});
+    EXPECT_EQ(accepted("1.8446744073709551615e19"),
+              WriteInput{std::numeric_limits<std::uint64_t>::max()});
+    EXPECT_EQ(accepted("100e-2"), WriteInput{std::uint64_t{1}});
+}
+
+TEST(ParseTagWrite, FractionsStayDoublesEvenWhenTheyRoundToIntegers) {
+    // 2^53 + 0.5 is 2^53 as a double: the text, not the double, says it is no integer.
+    EXPECT_TRUE(std::holds_alternative<double>(accepted("9007199254740992.5")));
+    EXPECT_TRUE(std::holds_alternative<double>(accepted("1.0000000000000000001")));
+    EXPECT_TRUE(std::holds_alternative<double>(accepted("1e-400")));
+    EXPECT_TRUE(std::holds_alternative<double>(accepted("1.8446744073709551616e19")));
+    EXPECT_TRUE(std::holds_alternative<double>(accepted("1e25")));
 }
 
 TEST(ParseTagWrite, AcceptsBooleans) {
@@ -137,13 +160,26 @@ TEST(ParseTagWrite, InvalidUtf8IsMalformed) {
     EXPECT_EQ(rejected(std::string_view("42\0junk", 7)), WriteError::malformed);
 }
 
-TEST(ParseTagWrite, HugePayloadIsMalformed) {
+TEST(ParseTagWrite, PayloadOverTheLimitIsTooLargeAndSaysSo) {
     const std::string spaces = std::string(1024 * 1024, ' ') + "42";
-    EXPECT_EQ(rejected(spaces), WriteError::malformed);
+    EXPECT_EQ(rejected(spaces), WriteError::too_large);
+    EXPECT_EQ(parse_tag_write(spaces).error().message,
+              "payload too large (1048578 bytes, limit 262144)");
     const std::string digits(1024 * 1024, '7');
-    EXPECT_EQ(rejected(digits), WriteError::malformed);
+    EXPECT_EQ(rejected(digits), WriteError::too_large);
     const std::string text = "\"" + std::string(1024 * 1024, 'a') + "\"";
-    EXPECT_EQ(rejected(text), WriteError::malformed);
+    EXPECT_EQ(rejected(text), WriteError::too_large);
+    EXPECT_EQ(exchange_rejected("{" + std::string(300 * 1024, ' ') + "}"), WriteError::too_large);
+    // At the limit it is parsed (and here found to be a number).
+    EXPECT_EQ(accepted(std::string(256 * 1024 - 2, ' ') + "42"), WriteInput{std::uint64_t{42}});
+}
+
+TEST(ParseTagWrite, AHugeDigitStringWithinTheLimitIsADouble) {
+    // Far beyond 64 bits: a double, which validation then finds out of range.
+    EXPECT_TRUE(std::holds_alternative<double>(accepted(std::string(300, '7'))));
+    EXPECT_TRUE(std::holds_alternative<double>(accepted("7." + std::string(100000, '0') + "1")));
+    EXPECT_EQ(accepted("7." + std::string(100000, '0')), WriteInput{std::uint64_t{7}});
+    EXPECT_EQ(accepted("7e-99999999999999999999"), WriteInput{0.0});
 }
 
 TEST(ParseExchangeWrite, AcceptsMixedFormsInPayloadOrder) {
@@ -207,7 +243,30 @@ TEST(ParseExchangeWrite, HostileInputIsMalformed) {
     std::string big = "{";
     for (int i = 0; big.size() < 1024 * 1024; ++i) big += "\"T" + std::to_string(i) + "\":1,";
     big += "\"END\":1}";
-    EXPECT_EQ(exchange_rejected(big), WriteError::malformed);
+    EXPECT_EQ(exchange_rejected(big), WriteError::too_large);
+}
+
+// Parsing and validation together, as the gateway runs them: lint writes are exact.
+core::Result<core::plan::Value, core::write::WriteRejection> write_lint(std::string_view payload) {
+    core::plan::TagSpec spec;
+    spec.name = "L";
+    spec.type = core::plan::TagType::lint;
+    spec.writable = true;
+    const auto input = parse_tag_write(payload);
+    EXPECT_TRUE(input.ok()) << payload;
+    return core::write::validate_write(spec, input.value());
+}
+
+TEST(WriteToLint, IntegersAreExactAndNothingElsePasses) {
+    EXPECT_EQ(write_lint("9007199254740993.0").value(),
+              core::plan::Value{std::int64_t{9007199254740993}});
+    EXPECT_EQ(write_lint("-9223372036854775808").value(),
+              core::plan::Value{std::numeric_limits<std::int64_t>::min()});
+    EXPECT_EQ(write_lint("-9223372036854775809").error().error, WriteError::out_of_range);
+    EXPECT_EQ(write_lint("9223372036854775808").error().error, WriteError::out_of_range);
+    EXPECT_EQ(write_lint("9007199254740992.5").error().error, WriteError::not_integer);
+    EXPECT_EQ(write_lint("0.5").error().error, WriteError::not_integer);
+    EXPECT_EQ(write_lint("1e300").error().error, WriteError::out_of_range);
 }
 
 }  // namespace

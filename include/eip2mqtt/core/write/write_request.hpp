@@ -17,7 +17,11 @@
 namespace eip2mqtt::core::write {
 
 /// A JSON scalar as written by the client, before it meets a tag's type: `true`, `-2`,
-/// `18446744073709551615`, `12.5`. Integers keep their exact value.
+/// `18446744073709551615`, `12.5`. Integers keep their exact value: every number whose exact
+/// value is an integer of 64 bits comes as int64 or uint64, however it was spelt (`12.0`,
+/// `1e3`), so a double is always a number with a fractional part or one beyond 64 bits. A
+/// double cannot carry that itself: 9007199254740992.5 and -9223372036854775809 both round to
+/// integers.
 using WriteInput = std::variant<bool, std::int64_t, std::uint64_t, double>;
 
 /// Why a write was rejected. Each value is also a metric label.
@@ -36,9 +40,11 @@ enum class WriteError : std::uint8_t {
     queue_full,    ///< the exchange's write queue is full; try again
     empty,         ///< a multi-tag write with no tag
     rate_limited,  ///< more writes to the tag than its `max_writes_per_s` allows
+    bad_response_topic,  ///< the MQTT 5 response topic is not one the gateway may publish to
+    too_large,           ///< the payload is over the size limit
 };
 
-inline constexpr std::size_t write_error_count = 14;
+inline constexpr std::size_t write_error_count = 16;
 
 std::string_view to_string(WriteError error);
 
