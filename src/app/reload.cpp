@@ -143,8 +143,6 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
 
     by_key_.clear();
     for (auto& consumer : consumers_) by_key_.emplace(consumer->plan().key(), consumer.get());
-    write_routes_.clear();
-    exchange_routes_.clear();
     build_write_routes();
     if (!running) return;
 

@@ -19,6 +19,7 @@
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/producer_scheduler.hpp"
+#include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/exchange/produced_image.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
@@ -26,13 +27,6 @@
 #include "eip2mqtt/core/write/write_request.hpp"
 
 namespace eip2mqtt::app {
-
-/// Where a write's result goes: the MQTT 5 response topic with its correlation data, or the
-/// `…/set/result` topic.
-struct WriteReply {
-    std::string topic;
-    std::string correlation_data;
-};
 
 struct ProducerCounters {
     std::uint64_t sent = 0;

@@ -25,6 +25,7 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/producer_scheduler.hpp"
+#include "eip2mqtt/app/write_router.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 
 namespace eip2mqtt::app {
@@ -36,15 +37,6 @@ struct GatewayCounters {
     std::array<std::uint64_t, core::wire::drop_reason_count> dropped{};
     std::uint64_t writes_ok = 0;  ///< writes staged for production
     std::array<std::uint64_t, core::write::write_error_count> writes_rejected{};
-};
-
-/// Where a message on a `…/set` topic goes.
-struct WriteRoute {
-    ExchangeProducer* producer = nullptr;            ///< null: the exchange is consumed (read-only)
-    const core::plan::ExchangePlan* plan = nullptr;  ///< of the exchange, owned by its runner
-    std::string exchange;                            ///< name, for messages
-    int tag_index = -1;        ///< -1: an atomic multi-tag write to the exchange
-    std::string result_topic;  ///< `…/set/result`
 };
 
 class Gateway {
@@ -68,7 +60,8 @@ private:
     void on_connected();
     void on_message(adapters::mqtt::Incoming message);
     void reject_write(const WriteReply& reply, const std::string& target,
-                      const core::write::WriteRejection& rejection);
+                      const core::write::WriteRejection& rejection, const std::string& detail = {});
+    /// Routes the `set` topics of the running exchanges (after each apply_exchanges).
     void build_write_routes();
     /// The plans of config_'s exchanges, for apply_exchanges. The exchange configs (every tag
     /// again, with the marks of its keys) served validation only: they are released here.
@@ -109,10 +102,7 @@ private:
     std::unique_ptr<adapters::udp::Sender> sender_;
     std::unique_ptr<ProducerScheduler> production_;  ///< with sender_; drives producers_
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
-    /// Exchanges' own `{exchange topic}/set` (atomic writes). A tag's `…/{tag}/set` is resolved
-    /// through exchange_routes_ and the tag's name: no entry per tag.
-    std::unordered_map<std::string, WriteRoute> write_routes_;
-    std::unordered_map<std::string, WriteRoute> exchange_routes_;  ///< exchange topic -> route
+    WriteRouter write_router_;
     std::unique_ptr<adapters::metrics::PrometheusEndpoint> prometheus_;
 
     GatewayCounters counters_;

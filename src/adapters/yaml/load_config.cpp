@@ -66,7 +66,7 @@ using Keys = std::span<const std::string_view>;
 constexpr std::array<std::string_view, 5> top_keys{"gateway", "mqtt", "eip", "metrics",
                                                    "exchanges"};
 constexpr std::array<std::string_view, 3> gateway_keys{"id", "state_dir", "log_level"};
-constexpr std::array<std::string_view, 15> mqtt_keys{"url",
+constexpr std::array<std::string_view, 16> mqtt_keys{"url",
                                                      "version",
                                                      "client_id",
                                                      "username",
@@ -80,7 +80,8 @@ constexpr std::array<std::string_view, 15> mqtt_keys{"url",
                                                      "batch",
                                                      "keepalive_s",
                                                      "metrics_interval_s",
-                                                     "session_expiry_s"};
+                                                     "session_expiry_s",
+                                                     "allow_response_topics_under_base"};
 constexpr std::array<std::string_view, 4> tls_keys{"ca_file", "cert_file", "key_file", "verify"};
 constexpr std::array<std::string_view, 1> buffer_keys{"max_messages"};
 constexpr std::array<std::string_view, 5> eip_keys{"bind", "port", "multicast", "multicast_ttl",
@@ -386,6 +387,10 @@ private:
                          if (const auto b = boolean(value, key, k)) mqtt.retain = *b;
                      } else if (key == "batch") {
                          if (const auto b = boolean(value, key, k)) mqtt.batch = *b;
+                     } else if (key == "allow_response_topics_under_base") {
+                         if (const auto b = boolean(value, key, k)) {
+                             mqtt.allow_response_topics_under_base = *b;
+                         }
                      } else if (key == "payload") {
                          const auto s = text(value, key, k);
                          if (s && *s == "json") {

@@ -69,6 +69,10 @@ struct MqttSection {
     PayloadFormat payload = PayloadFormat::json;
     std::size_t buffer_max_messages = 100000;
     bool batch = false;
+    /// Whether a write's MQTT 5 response topic may lie under base_topic outside a `set` topic.
+    /// Off: a client that may only write `…/set` cannot make the gateway publish on its own
+    /// topics (a tag, `_gateway/…/state`).
+    bool allow_response_topics_under_base = false;
     std::chrono::seconds keepalive{30};
     /// MQTT 5 session expiry: 0 starts clean every time; more keeps the session (and the QoS 1
     /// writes sent to it) on the broker while the gateway is away, up to this long.

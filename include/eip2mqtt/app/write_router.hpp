@@ -1,0 +1,80 @@
+#pragma once
+/// Where a message on a `…/set` topic goes and what it asks (product.md "MQTT"; issue #3): the
+/// exchange and tag its topic names, where its result goes, and either the validated writes to
+/// stage or the reason it is refused. Pure: no sockets, no clock, no logging, so hostile input
+/// can be driven through it in a unit test or a fuzzer. The gateway stages what it returns.
+///
+/// Threading: the loop only.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <variant>
+#include <vector>
+
+#include "eip2mqtt/adapters/mqtt/message.hpp"
+#include "eip2mqtt/app/write_reply.hpp"
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/write/write_request.hpp"
+
+namespace eip2mqtt::app {
+
+struct WriteRouterOptions {
+    std::string base_topic;
+    /// mqtt.allow_response_topics_under_base: see WriteRouter::route.
+    bool allow_response_topics_under_base = false;
+};
+
+/// Validated writes for the produced exchange `producer` (the index given to add()).
+struct RoutedWrite {
+    std::size_t producer = 0;
+    std::vector<core::write::TagWrite> writes;
+};
+
+/// What a message on one of our `…/set` topics asks.
+struct WriteDecision {
+    WriteReply reply;  ///< where the result goes, in every case
+    std::variant<RoutedWrite, core::write::WriteRejection> outcome;
+    /// Why the response topic was refused (for the log), when it was.
+    std::string response_topic_problem;
+};
+
+class WriteRouter {
+public:
+    explicit WriteRouter(WriteRouterOptions options = {});
+
+    /// Forgets every exchange (before a reload adds them again).
+    void clear();
+    /// Routes writes to `plan`'s `set` topics; `producer` is its index among the produced
+    /// exchanges, or nullopt for a consumed exchange (its writes are refused as read-only).
+    /// `plan` must outlive the router's use of it (until clear()).
+    void add(const core::plan::ExchangePlan& plan, std::optional<std::size_t> producer);
+    void set_options(WriteRouterOptions options) { options_ = std::move(options); }
+
+    /// The topic filters to subscribe to: one per depth of `…/set` topic (`{base}/+/+/set`...)
+    /// rather than one per tag, so a few SUBSCRIBEs hear every tag's `set` topic whatever the
+    /// configuration's size.
+    std::vector<std::string> subscriptions() const;
+
+    /// Decides what `message` asks; nullopt when its topic is not a `set` topic of ours (it is
+    /// ignored). The response topic must be one every broker accepts (no wildcard, valid UTF-8,
+    /// at most 65,535 bytes) and, unless allowed by the options, not a topic under the base
+    /// topic other than below a `set` level: otherwise the write is refused with
+    /// `bad_response_topic`, answered on `{set topic}/result`.
+    std::optional<WriteDecision> route(const adapters::mqtt::Incoming& message) const;
+
+private:
+    struct Route {
+        const core::plan::ExchangePlan* plan = nullptr;
+        std::optional<std::size_t> producer;
+    };
+    std::string response_topic_problem(const std::string& topic) const;
+
+    WriteRouterOptions options_;
+    /// Exchanges by their full topic; a tag's `{exchange topic}/{tag}/set` is resolved through
+    /// the exchange and the tag's name, so there is no entry per tag.
+    std::unordered_map<std::string, Route> exchanges_;
+};
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,178 @@
+// product.md "MQTT": a message on a `…/set` topic is checked whole (response topic, tag,
+// retained, payload, type, range) before anything is staged, and one bad value refuses a
+// multi-tag write.
+
+#include "eip2mqtt/app/write_router.hpp"
+
+#include <algorithm>
+#include <set>
+#include <string_view>
+
+#include "eip2mqtt/adapters/mqtt/write_payload.hpp"
+#include "eip2mqtt/core/plan/topic_rules.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using core::write::WriteError;
+using core::write::WriteRejection;
+
+constexpr std::string_view set_suffix = "/set";
+constexpr std::string_view result_suffix = "/result";
+
+/// Whether `topic` has a level `set` with at least one level after it: the gateway publishes
+/// nothing there but write results, since tag names and exchange topic levels cannot be `set`.
+bool below_a_set_level(std::string_view topic) {
+    std::size_t start = 0;
+    for (;;) {
+        const auto end = topic.find('/', start);
+        if (end == std::string_view::npos) return false;
+        if (topic.substr(start, end - start) == "set") return true;
+        start = end + 1;
+    }
+}
+
+}  // namespace
+
+WriteRouter::WriteRouter(WriteRouterOptions options) : options_(std::move(options)) {}
+
+void WriteRouter::clear() { exchanges_.clear(); }
+
+void WriteRouter::add(const core::plan::ExchangePlan& plan, std::optional<std::size_t> producer) {
+    exchanges_[plan.topic] = Route{&plan, producer};
+}
+
+std::vector<std::string> WriteRouter::subscriptions() const {
+    // None of our own publications match these filters, since tag names cannot be `set`.
+    const auto& base = options_.base_topic;
+    const auto base_levels = std::count(base.begin(), base.end(), '/') + 1;
+    std::set<long> depths;
+    for (const auto& [topic, route] : exchanges_) {
+        const long levels = std::count(topic.begin(), topic.end(), '/') + 1 - base_levels;
+        depths.insert(levels + 1);                                 // {exchange topic}/set
+        if (!route.plan->tags.empty()) depths.insert(levels + 2);  // {exchange topic}/{tag}/set
+    }
+    std::vector<std::string> filters;
+    for (const auto depth : depths) {
+        std::string filter = base;
+        for (long i = 1; i < depth; ++i) filter += "/+";
+        filters.push_back(filter + "/set");
+    }
+    return filters;
+}
+
+std::string WriteRouter::response_topic_problem(const std::string& topic) const {
+    if (auto problem = core::plan::topic_name_problem(topic); !problem.empty()) return problem;
+    // A client allowed to write only `…/set` must not make the gateway publish `{"ok":true}`
+    // on a tag's topic or on `_gateway/…/state`, in the gateway's name.
+    const auto& base = options_.base_topic;
+    const bool under_base =
+        topic == base ||
+        (topic.starts_with(base) && topic.size() > base.size() && topic[base.size()] == '/');
+    if (under_base && !options_.allow_response_topics_under_base &&
+        !below_a_set_level(std::string_view(topic).substr(base.size()))) {
+        return "lies under the base topic " + base +
+               " outside a set topic (mqtt.allow_response_topics_under_base is false)";
+    }
+    return {};
+}
+
+std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& message) const {
+    const std::string_view topic = message.topic;
+    if (!topic.ends_with(set_suffix)) return std::nullopt;
+    const auto stem = topic.substr(0, topic.size() - set_suffix.size());
+
+    const Route* route = nullptr;
+    std::string exchange_name;
+    int tag_index = -1;  ///< -1: an atomic multi-tag write to the exchange
+    std::string unknown_tag;
+    if (const auto it = exchanges_.find(std::string(stem)); it != exchanges_.end()) {
+        route = &it->second;
+    } else {
+        // `{exchange topic}/{name}/set`: tag names hold no '/', so the exchange topic is what
+        // comes before the last level, and the tag is found by its name in that exchange.
+        const auto slash = stem.rfind('/');
+        if (slash == std::string_view::npos) return std::nullopt;
+        const auto exchange = exchanges_.find(std::string(stem.substr(0, slash)));
+        if (exchange == exchanges_.end()) return std::nullopt;
+        route = &exchange->second;
+        const auto name = stem.substr(slash + 1);
+        const auto& tags = route->plan->tags;
+        const auto tag = std::find_if(tags.begin(), tags.end(),
+                                      [&](const auto& t) { return t.spec.name == name; });
+        if (tag == tags.end()) {
+            unknown_tag = std::string(name);
+        } else {
+            tag_index = static_cast<int>(tag - tags.begin());
+        }
+    }
+    const auto& plan = *route->plan;
+
+    WriteDecision decision;
+    decision.reply.correlation_data = message.correlation_data;
+    decision.reply.topic = message.topic;
+    decision.reply.topic += result_suffix;
+    const auto refuse = [&](WriteError error, std::string text) {
+        decision.outcome = WriteRejection{error, std::move(text)};
+        return decision;
+    };
+    if (!message.response_topic.empty()) {
+        decision.response_topic_problem = response_topic_problem(message.response_topic);
+        if (!decision.response_topic_problem.empty()) {
+            return refuse(WriteError::bad_response_topic, "bad response topic");
+        }
+        decision.reply.topic = message.response_topic;
+    }
+    if (!unknown_tag.empty()) {
+        return refuse(WriteError::unknown_tag,
+                      "unknown tag " + unknown_tag + " in exchange " + plan.spec.name);
+    }
+    // A retained command would fire again on every reconnect: never act on one.
+    if (message.retained) {
+        return refuse(WriteError::retained, "retained writes are refused; publish without retain");
+    }
+    if (!route->producer) {
+        return refuse(WriteError::read_only,
+                      "exchange " + plan.spec.name + " is consumed: its tags are read-only");
+    }
+
+    RoutedWrite routed{*route->producer, {}};
+    // One tag's input against its spec; a multi-tag write's messages name the tag.
+    const auto add = [&](std::size_t index,
+                         const core::write::WriteInput& input) -> std::optional<WriteRejection> {
+        const auto& tag = plan.tags[index].spec;
+        auto value = core::write::validate_write(tag, input);
+        if (!value) {
+            auto rejection = value.error();
+            if (tag_index < 0) rejection.message = tag.name + ": " + rejection.message;
+            return rejection;
+        }
+        routed.writes.push_back({index, std::move(value).value()});
+        return std::nullopt;
+    };
+    if (tag_index >= 0) {
+        const auto input = adapters::mqtt::parse_tag_write(message.payload);
+        if (!input) return refuse(input.error().error, input.error().message);
+        if (auto rejection = add(static_cast<std::size_t>(tag_index), input.value())) {
+            return refuse(rejection->error, std::move(rejection->message));
+        }
+    } else {
+        const auto inputs = adapters::mqtt::parse_exchange_write(message.payload);
+        if (!inputs) return refuse(inputs.error().error, inputs.error().message);
+        for (const auto& [name, input] : inputs.value()) {
+            const auto tag = std::find_if(plan.tags.begin(), plan.tags.end(),
+                                          [&](const auto& t) { return t.spec.name == name; });
+            if (tag == plan.tags.end()) {
+                return refuse(WriteError::unknown_tag,
+                              "unknown tag " + name + " in exchange " + plan.spec.name);
+            }
+            if (auto rejection = add(static_cast<std::size_t>(tag - plan.tags.begin()), input)) {
+                return refuse(rejection->error, std::move(rejection->message));
+            }
+        }
+    }
+    decision.outcome = std::move(routed);
+    return decision;
+}
+
+}  // namespace eip2mqtt::app
