@@ -311,6 +311,7 @@ void Gateway::publish_metrics() {
         {"buffered", stats.queued},
         {"publications_dropped", stats.dropped_overflow},
         {"publications_coalesced", stats.coalesced},
+        {"publications_refused", stats.refused},
         {"mqtt_connects", stats.connects},
         {"writes_ok", counters_.writes_ok},
         {"writes_rejected", writes_rejected},
@@ -366,6 +367,7 @@ adapters::metrics::MetricsSnapshot Gateway::metrics_snapshot(core::MonoTime now)
     g.published = stats.published;
     g.buffered = stats.queued;
     g.publications_dropped = stats.dropped_overflow;
+    g.publications_refused = stats.refused;
     g.writes_ok = counters_.writes_ok;
     for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
         g.writes_rejected[std::string(core::write::to_string(

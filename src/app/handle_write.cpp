@@ -8,28 +8,13 @@
 #include <nlohmann/json.hpp>
 
 #include "eip2mqtt/app/gateway.hpp"
+#include "eip2mqtt/core/printable.hpp"
 
 namespace eip2mqtt::app {
 namespace {
 
 // Rejected writes are logged at most this often (each is answered and counted regardless).
 constexpr auto write_log_interval = std::chrono::seconds(10);
-
-/// A client's text as it may appear in one log line: cut short, control bytes escaped.
-std::string loggable(std::string_view text) {
-    constexpr std::size_t max_logged = 200;
-    std::string out;
-    for (const char c : text.substr(0, max_logged)) {
-        const auto byte = static_cast<unsigned char>(c);
-        if (byte < 0x20 || byte == 0x7F) {
-            out += fmt::format("\\x{:02x}", byte);
-        } else {
-            out += c;
-        }
-    }
-    if (text.size() > max_logged) out += "...";
-    return out;
-}
 
 }  // namespace
 
@@ -56,8 +41,8 @@ void Gateway::reject_write(const WriteReply& reply, const std::string& target,
         last_write_log_ = now;
         std::uint64_t total = 0;
         for (const auto n : counters_.writes_rejected) total += n;
-        spdlog::warn("write to {} rejected: {}{} ({} rejected so far)", loggable(target),
-                     loggable(rejection.message), detail, total);
+        spdlog::warn("write to {} rejected: {}{} ({} rejected so far)", core::printable(target),
+                     core::printable(rejection.message), detail, total);
     }
 }
 
@@ -67,7 +52,8 @@ void Gateway::on_message(adapters::mqtt::Incoming message) {
     if (const auto* rejection = std::get_if<core::write::WriteRejection>(&decision->outcome)) {
         const auto detail = decision->response_topic_problem.empty()
                                 ? std::string()
-                                : " (the response topic " + loggable(message.response_topic) + " " +
+                                : " (the response topic " +
+                                      core::printable(message.response_topic) + " " +
                                       decision->response_topic_problem + "; answered on " +
                                       decision->reply.topic + ")";
         return reject_write(decision->reply, message.topic, *rejection, detail);

@@ -167,6 +167,9 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
                static_cast<double>(g.buffered));
     add_single(out, "mqtt_publications_dropped_total", "Publications dropped from a full buffer",
                counter, static_cast<double>(g.publications_dropped));
+    add_single(out, "mqtt_publications_refused_total",
+               "Publications dropped because the broker would refuse them", counter,
+               static_cast<double>(g.publications_refused));
     add_single(out, "writes_ok_total", "Writes accepted", counter,
                static_cast<double>(g.writes_ok));
     add_reason_family(out, "writes_rejected_total", "Writes rejected, by reason",

@@ -18,8 +18,10 @@
 #include <utility>
 
 #include "adapters/mqtt/detail/in_flight_window.hpp"
+#include "adapters/mqtt/detail/publication_check.hpp"
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
+#include "eip2mqtt/core/printable.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
 namespace {
@@ -149,8 +151,21 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     /// busy broker's PUBACKs take milliseconds, and throughput is what is in flight over that
     /// time (refilling at a quarter cost a third of it).
     bool ready_to_send() const;
-    /// Takes the next publication: re-queued ones first, then the two lanes in turn.
+    /// Takes the next publication from the two lanes in turn (re-sent ones are taken by the
+    /// sender itself, see sender_main).
     bool take_next(Message& message);
+    /// A suspect goes alone: nothing else is sent while one is in flight, and one waits until
+    /// nothing is in flight.
+    bool suspect_waits() const {
+        return probe_.has_value() ||
+               (!retry_.empty() && retry_.begin()->second.suspect && !in_flight_.empty());
+    }
+    /// A publication in flight when the connection went: sent again after the reconnect as a
+    /// suspect, alone; the suspect in flight alone when it goes again is dropped, since the
+    /// broker closes the connection on a publication it refuses. Returns the topic of a
+    /// dropped one (empty otherwise).
+    std::string requeue_after_loss(std::uint64_t id, Message&& message);
+    void log_refused(const std::string& topic, const std::string& problem);
 
     template <class F>
     void post(F&& f) {
@@ -223,8 +238,15 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     std::condition_variable completed_;    ///< an in-flight publication finished (for stop())
     PublishQueue queue_;
     PublishQueue batch_queue_;
-    bool next_from_batch_ = false;               ///< whose turn when both lanes wait
-    std::map<std::uint64_t, Message> retry_;     ///< re-queued, by original order
+    bool next_from_batch_ = false;  ///< whose turn when both lanes wait
+    /// Sent again before anything else after a reconnect, by original order. A suspect was in
+    /// flight when the connection went (see requeue_after_loss); the others never left.
+    struct Retry {
+        Message message;
+        bool suspect = false;
+    };
+    std::map<std::uint64_t, Retry> retry_;
+    std::optional<std::uint64_t> probe_;         ///< the suspect in flight, alone
     detail::InFlightWindow<Message> in_flight_;  ///< handed to Paho, not yet completed
     /// Blank messages of completed publications, handed back to publish()'s callers to fill
     /// again: the loop allocated two strings per publication that Paho's thread then freed,
@@ -237,6 +259,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     std::size_t backlog_peak_ = 0;  ///< largest queue since memory was last given back
     std::uint64_t publish_failures_unlogged_ = 0;
     Clock::time_point publish_failure_logged_{};
+    std::uint64_t refused_unlogged_ = 0;
+    Clock::time_point refused_logged_{};
 
     /// max_in_flight, lowered to the broker's receive maximum on each connect.
     std::atomic<std::size_t> in_flight_limit_;
@@ -248,6 +272,11 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     std::atomic<std::uint64_t> connects_{0};
     std::atomic<std::uint64_t> connection_losses_{0};
     std::atomic<std::uint64_t> received_{0};
+    /// Never handed to Paho because the broker would refuse them, or dropped after the broker
+    /// closed the connection on them twice.
+    std::atomic<std::uint64_t> refused_{0};
+    /// The broker's Maximum Packet Size (MQTT 5 CONNACK), read on each connect.
+    std::atomic<std::size_t> max_packet_size_{detail::max_mqtt_packet_size};
     detail::NagleSwitch nagle_;
 
     PublishListener publish_listener_{*this};
@@ -498,6 +527,10 @@ void Client::Impl::update_in_flight_limit() {
             if (props.contains(paho::property::RECEIVE_MAXIMUM)) {
                 receive_maximum = paho::get<std::uint16_t>(props, paho::property::RECEIVE_MAXIMUM);
             }
+            max_packet_size_ =
+                props.contains(paho::property::MAXIMUM_PACKET_SIZE)
+                    ? paho::get<std::uint32_t>(props, paho::property::MAXIMUM_PACKET_SIZE)
+                    : detail::max_mqtt_packet_size;
         }
     } catch (const std::exception&) {
         // No CONNACK properties (MQTT 3.1.1): no limit beyond ours.
@@ -516,6 +549,7 @@ void Client::Impl::on_connection_lost(std::string cause) {
     connection_losses_.fetch_add(1, std::memory_order_relaxed);
     spdlog::warn("MQTT connection to {} lost: {}", options_.url, cause);
     nagle_.detach();
+    std::string dropped;
     {
         // Whatever Paho did not confirm is either sent again (QoS >= 1, clean session) or
         // counted as failed. Completions arriving later find nothing and are ignored, so
@@ -523,9 +557,11 @@ void Client::Impl::on_connection_lost(std::string cause) {
         std::lock_guard lock(mutex_);
         sending_ = false;
         if (requeue_in_flight_) {
-            in_flight_.abandon_all([this](std::uint64_t id, Message&& message) {
+            in_flight_.abandon_all([&](std::uint64_t id, Message&& message) {
                 if (message.qos > 0) {
-                    retry_.emplace(id, std::move(message));
+                    if (auto topic = requeue_after_loss(id, std::move(message)); !topic.empty()) {
+                        dropped = std::move(topic);
+                    }
                 } else {
                     publish_failures_.fetch_add(1, std::memory_order_relaxed);
                 }
@@ -533,6 +569,12 @@ void Client::Impl::on_connection_lost(std::string cause) {
         }
     }
     completed_.notify_all();
+    if (!dropped.empty()) {
+        spdlog::error(
+            "MQTT broker closed the connection twice while a publication to {} was the only "
+            "one in flight: it is dropped, so that it cannot close every connection after",
+            core::printable(dropped));
+    }
     spdlog::info("MQTT reconnecting in {} ms", schedule_reconnect().count());
 }
 
@@ -613,7 +655,8 @@ void Client::Impl::set_sending(bool enabled) {
 }
 
 bool Client::Impl::ready_to_send() const {
-    if (quit_ || !sending_ || !link_up_.load(std::memory_order_relaxed) || !has_queued()) {
+    if (quit_ || !sending_ || !link_up_.load(std::memory_order_relaxed) || !has_queued() ||
+        suspect_waits()) {
         return false;
     }
     const std::size_t limit = in_flight_limit_.load(std::memory_order_relaxed);
@@ -622,10 +665,6 @@ bool Client::Impl::ready_to_send() const {
 }
 
 bool Client::Impl::take_next(Message& message) {
-    if (!retry_.empty()) {
-        message = std::move(retry_.extract(retry_.begin()).mapped());
-        return true;
-    }
     bool from_batch = !batch_queue_.empty();
     if (from_batch && !queue_.empty()) {
         from_batch = next_from_batch_;
@@ -658,15 +697,40 @@ void Client::Impl::sender_main() {
         // Take a burst under the lock (Paho copies topic and payload in make_message, so the
         // window keeps our Message only for a re-send), then publish it without the lock.
         const std::size_t limit = in_flight_limit_;
+        const std::size_t max_packet_size = max_packet_size_;
         Message message;
-        while (in_flight_.pending() < limit && take_next(message)) {
+        std::string refused_topic;
+        std::string refused_problem;
+        while (in_flight_.pending() < limit) {
+            if (suspect_waits()) break;
+            bool probe = false;
+            if (!retry_.empty()) {
+                auto retry = std::move(retry_.extract(retry_.begin()).mapped());
+                message = std::move(retry.message);
+                probe = retry.suspect;
+            } else if (!take_next(message)) {
+                break;
+            }
+            if (auto problem = detail::publication_problem(message, max_packet_size);
+                !problem.empty()) {
+                refused_.fetch_add(1, std::memory_order_relaxed);
+                refused_topic = std::move(message.topic);
+                refused_problem = std::move(problem);
+                recycle(std::move(message));
+                continue;
+            }
             auto out =
                 paho::make_message(message.topic, message.payload, message.qos, message.retain);
             if (!message.correlation_data.empty() && options_.version == 5) {
                 out->set_properties(
                     paho::properties{{paho::property::CORRELATION_DATA, message.correlation_data}});
             }
-            burst.push_back({in_flight_.add(std::move(message)), std::move(out)});
+            const auto id = in_flight_.add(std::move(message));
+            burst.push_back({id, std::move(out)});
+            if (probe) {
+                probe_ = id;
+                break;
+            }
         }
         window_full_ = in_flight_.pending() >= limit;
         const bool backlog = window_full_ && has_queued();
@@ -680,6 +744,7 @@ void Client::Impl::sender_main() {
             batch_queue_.release_memory();
         }
         lock.unlock();
+        if (!refused_topic.empty()) log_refused(refused_topic, refused_problem);
         nagle_.set_backlogged(backlog);
         if (trim) {
             ::malloc_trim(0);
@@ -702,9 +767,12 @@ void Client::Impl::send(std::uint64_t id, const paho::message_ptr& message) {
             return;  // abandoned meanwhile by on_connection_lost
         }
         if (e.get_return_code() == MQTTASYNC_DISCONNECTED) {
-            retry_.emplace(id, std::move(*item));  // never left: no duplicate possible
+            if (probe_ == id) probe_.reset();
+            // Never left: no duplicate possible, and no suspect.
+            retry_.emplace(id, Retry{std::move(*item), false});
             return;
         }
+        if (probe_ == id) probe_.reset();
         publish_failures_.fetch_add(1, std::memory_order_relaxed);
         lock.unlock();
         completed_.notify_all();
@@ -714,6 +782,7 @@ void Client::Impl::send(std::uint64_t id, const paho::message_ptr& message) {
 
 void Client::Impl::on_publish_done(std::uint64_t id, int rc, const std::string& reason) {
     std::string failed_topic;
+    std::string dropped_topic;
     bool wake = false;
     {
         std::lock_guard lock(mutex_);
@@ -722,14 +791,16 @@ void Client::Impl::on_publish_done(std::uint64_t id, int rc, const std::string& 
             return;  // already re-queued or counted by on_connection_lost
         }
         if (rc == 0) {
+            if (probe_ == id) probe_.reset();
             published_.fetch_add(1, std::memory_order_relaxed);
             recycle(std::move(*item));
         } else if (requeue_in_flight_ && item->qos > 0 && !stopping_ &&
                    (rc == MQTTASYNC_DISCONNECTED || rc == MQTTASYNC_OPERATION_INCOMPLETE ||
                     !link_up_)) {
             // Failed because the connection went: send it again after reconnect.
-            retry_.emplace(id, std::move(*item));
+            dropped_topic = requeue_after_loss(id, std::move(*item));
         } else {
+            if (probe_ == id) probe_.reset();
             publish_failures_.fetch_add(1, std::memory_order_relaxed);
             failed_topic = std::move(item->topic);
         }
@@ -743,6 +814,44 @@ void Client::Impl::on_publish_done(std::uint64_t id, int rc, const std::string& 
     }
     if (!failed_topic.empty()) {
         log_publish_failure(failed_topic, reason);
+    }
+    if (!dropped_topic.empty()) {
+        spdlog::error(
+            "MQTT broker closed the connection twice while a publication to {} was the only "
+            "one in flight: it is dropped, so that it cannot close every connection after",
+            core::printable(dropped_topic));
+    }
+}
+
+std::string Client::Impl::requeue_after_loss(std::uint64_t id, Message&& message) {
+    if (probe_ == id) {
+        // It went alone, after every other publication had completed, and the connection went
+        // again: the broker refuses it. One retry is all it gets.
+        probe_.reset();
+        refused_.fetch_add(1, std::memory_order_relaxed);
+        return std::move(message.topic);
+    }
+    retry_.emplace(id, Retry{std::move(message), true});
+    return {};
+}
+
+void Client::Impl::log_refused(const std::string& topic, const std::string& problem) {
+    std::uint64_t count = 0;
+    {
+        std::lock_guard lock(mutex_);
+        const auto now = Clock::now();
+        ++refused_unlogged_;
+        if (refused_unlogged_ == 1 || now - refused_logged_ >= kLogInterval) {
+            count = refused_unlogged_;
+            refused_unlogged_ = 0;
+            refused_logged_ = now;
+        }
+    }
+    if (count > 0) {
+        spdlog::error(
+            "MQTT publication to {} dropped: a broker would refuse it ({}) and close the "
+            "connection ({} dropped since last report)",
+            core::printable(topic), problem, count);
     }
 }
 
@@ -897,6 +1006,7 @@ ClientStats Client::stats() const {
     s.connects = impl.connects_;
     s.connection_losses = impl.connection_losses_;
     s.received = impl.received_;
+    s.refused = impl.refused_;
     std::lock_guard lock(impl.mutex_);
     s.queued = impl.queue_.size() + impl.batch_queue_.size() + impl.retry_.size();
     s.in_flight = impl.in_flight_.pending();

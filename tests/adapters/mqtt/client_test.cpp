@@ -475,5 +475,71 @@ TEST_F(ClientFixture, Mqtt311Works) {
     EXPECT_TRUE(incoming_[0].retained);
 }
 
+// Issue #12: a publication the broker refuses closes the connection; sent again after every
+// reconnect, it kept the gateway from ever staying connected.
+TEST_F(ClientFixture, PublicationsABrokerWouldRefuseAreDroppedAndTheConnectionStays) {
+    Mosquitto broker;
+    MqttRecorder recorder(broker.url(), {"gw/#"});
+    make_client(options_for(broker));
+    on_loop([&] { client_->start(); });
+    ASSERT_TRUE(wait_connected_count(1));
+    on_loop([&] {
+        client_->publish(msg("gw/#", "wildcard"));
+        client_->publish(msg("gw/a\x01b", "control character"));
+        client_->publish(msg("gw/\xff", "invalid UTF-8"));
+        client_->publish(msg("gw/" + std::string(65533, 'l'), "too long"));
+        client_->publish(msg("gw/after", "1"));
+    });
+    ASSERT_TRUE(recorder.wait_for_message("gw/after"));
+    const auto stats = on_loop([&] { return client_->stats(); });
+    EXPECT_EQ(stats.refused, 4u);
+    EXPECT_EQ(stats.connects, 1u);
+    EXPECT_EQ(stats.connection_losses, 0u);
+}
+
+TEST_F(ClientFixture, APublicationOverTheBrokersMaximumPacketSizeIsNeverSent) {
+    Mosquitto broker(test::MosquittoOptions{.extra_config = "max_packet_size 2000\n"});
+    MqttRecorder recorder(broker.url(), {"gw/#"});
+    make_client(options_for(broker));
+    on_loop([&] { client_->start(); });
+    ASSERT_TRUE(wait_connected_count(1));
+    on_loop([&] {
+        client_->publish(msg("gw/big", std::string(5000, 'x')));
+        client_->publish(msg("gw/after", "1"));
+    });
+    ASSERT_TRUE(recorder.wait_for_message("gw/after"));
+    const auto stats = on_loop([&] { return client_->stats(); });
+    EXPECT_EQ(stats.refused, 1u);
+    EXPECT_EQ(stats.connection_losses, 0u);
+}
+
+TEST_F(ClientFixture, APublicationTheBrokerClosesTheConnectionOnIsDroppedAfterOneRetry) {
+    // MQTT 3.1.1 tells the client no maximum packet size, so the publication leaves, and
+    // Mosquitto closes the connection on it.
+    Mosquitto broker(test::MosquittoOptions{.extra_config = "max_packet_size 2000\n"});
+    MqttRecorder recorder(broker.url(), {"gw/#"});
+    auto options = options_for(broker);
+    options.version = 3;
+    make_client(options);
+    on_loop([&] { client_->start(); });
+    ASSERT_TRUE(wait_connected_count(1));
+    on_loop([&] {
+        client_->publish(msg("gw/before", "1"));
+        client_->publish(msg("gw/big", std::string(5000, 'x')));
+        client_->publish(msg("gw/after", "1"));
+    });
+    // Sent once with the others, once alone after the reconnect, then dropped: the
+    // publications after it are delivered and the connection stays up.
+    ASSERT_TRUE(recorder.wait_for_message("gw/after"));
+    ASSERT_TRUE(wait_connected_count(3));
+    on_loop([&] { client_->publish(msg("gw/later", "1")); });
+    ASSERT_TRUE(recorder.wait_for_message("gw/later"));
+    const auto stats = on_loop([&] { return client_->stats(); });
+    EXPECT_EQ(stats.refused, 1u);
+    EXPECT_EQ(stats.connection_losses, 2u);
+    EXPECT_EQ(stats.connects, 3u);
+    EXPECT_TRUE(recorder.messages_on("gw/big").empty());
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::mqtt

@@ -12,7 +12,8 @@
 ///   exchange_last_seen_age_seconds, exchange_jitter_seconds,
 ///   exchange_mean_period_seconds{exchange,direction}    gauges; absent while unknown
 ///   datagrams_total, datagrams_accepted_total, datagrams_dropped_total{reason}
-///   mqtt_connected (0/1), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total
+///   mqtt_connected (0/1), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total,
+///   mqtt_publications_refused_total
 ///   writes_ok_total, writes_rejected_total{reason}
 /// Counters are the gateway's own counts, copied as they are: a reload that restarts them
 /// shows as a counter reset, which Prometheus's rate() handles.
@@ -59,6 +60,7 @@ struct GatewayMetrics {
     std::uint64_t published = 0;
     std::uint64_t buffered = 0;  ///< publications waiting for the broker (a gauge)
     std::uint64_t publications_dropped = 0;
+    std::uint64_t publications_refused = 0;  ///< ClientStats::refused
     std::uint64_t writes_ok = 0;
     std::map<std::string, std::uint64_t> writes_rejected;  ///< by rejection reason
 };

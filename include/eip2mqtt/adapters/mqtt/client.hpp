@@ -75,6 +75,9 @@ struct ClientStats {
     std::uint64_t connects = 0;
     std::uint64_t connection_losses = 0;
     std::uint64_t received = 0;  ///< messages received on subscriptions
+    /// Dropped because a broker would refuse them (a topic or size beyond MQTT's limits), or
+    /// after the broker closed the connection twice with one of them alone in flight.
+    std::uint64_t refused = 0;
 };
 
 class Client {

@@ -1,0 +1,23 @@
+#include "eip2mqtt/core/printable.hpp"
+
+namespace eip2mqtt::core {
+
+std::string printable(std::string_view text, std::size_t max_bytes) {
+    static constexpr char hex[] = "0123456789abcdef";
+    std::string out;
+    out.reserve(std::min(text.size(), max_bytes) + 3);
+    for (const char c : text.substr(0, max_bytes)) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 || byte == 0x7F) {
+            out += "\\x";
+            out += hex[byte >> 4];
+            out += hex[byte & 0xF];
+        } else {
+            out += c;
+        }
+    }
+    if (text.size() > max_bytes) out += "...";
+    return out;
+}
+
+}  // namespace eip2mqtt::core
