@@ -35,7 +35,10 @@ void Gateway::reject_write(const WriteReply& reply, const std::string& target,
                            const std::string& detail) {
     ++counters_.writes_rejected[static_cast<std::size_t>(rejection.error)];
     const nlohmann::json result = {{"ok", false}, {"error", rejection.message}};
-    mqtt_->publish({reply.topic, result.dump(), 1, false, false, reply.correlation_data});
+    // Replace, not throw, should a message ever carry bytes that are not UTF-8.
+    mqtt_->publish({reply.topic,
+                    result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), 1, false,
+                    false, reply.correlation_data});
     const auto now = std::chrono::steady_clock::now();
     if (now - last_write_log_ >= write_log_interval) {
         last_write_log_ = now;
