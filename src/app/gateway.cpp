@@ -333,6 +333,7 @@ adapters::metrics::MetricsSnapshot Gateway::metrics_snapshot(core::MonoTime now)
         m.missed = c.missed;
         m.duplicates = c.duplicates;
         m.out_of_order = c.out_of_order;
+        m.restarts = c.restarts;
         m.signature_mismatches = c.signature_mismatches;
         m.length_mismatches = c.length_mismatches;
         m.wrong_source = consumer->wrong_source();

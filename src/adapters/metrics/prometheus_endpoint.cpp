@@ -127,6 +127,10 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
     add_exchange_family(out, snapshot, "exchange_out_of_order_total",
         "Datagrams behind the last request id", counter, "consume",
         [](const ExchangeMetrics& e) { return static_cast<double>(e.out_of_order); });
+    add_exchange_family(out, snapshot, "exchange_restarts_total",
+        "Producer restarts (request ids started again while the producer's time went on)",
+        counter, "consume",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.restarts); });
     add_exchange_family(out, snapshot, "exchange_signature_mismatches_total",
         "Datagrams with an incompatible signature", counter, "consume",
         [](const ExchangeMetrics& e) { return static_cast<double>(e.signature_mismatches); });

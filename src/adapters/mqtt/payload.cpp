@@ -27,10 +27,10 @@ std::string format_status_payload(const core::exchange::ConsumedExchange& exchan
     return fmt::format(
         R"({{"state":"{}","request_id":{},"received":{},"accepted":{},"missed":{},"duplicates":{},)"
         R"("out_of_order":{},"signature_mismatches":{},"length_mismatches":{},"timeouts":{},)"
-        R"("last_seen":{}}})",
+        R"("restarts":{},"last_seen":{}}})",
         core::exchange::to_string(exchange.state()), request_id, c.received, c.accepted, c.missed,
         c.duplicates, c.out_of_order, c.signature_mismatches, c.length_mismatches, c.timeouts,
-        last_seen);
+        c.restarts, last_seen);
 }
 
 std::int64_t timestamp_ms(std::uint32_t seconds, std::uint32_t nanoseconds) {

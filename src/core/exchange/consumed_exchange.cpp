@@ -1,6 +1,7 @@
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
 
 #include <cstddef>
+#include <utility>
 
 namespace eip2mqtt::core::exchange {
 namespace {
@@ -15,6 +16,13 @@ bool compatible(wire::Signature configured, wire::Signature received) {
 // §4 rule 5: a compatible newer minor may append data after the configured bytes.
 bool may_append(wire::Signature configured, wire::Signature received) {
     return configured.is_set() && received.is_set() && received.minor > configured.minor;
+}
+
+/// Whether the producer's time moved forward from `last` to `next`, both being set: a datagram
+/// whose request id looks old then comes from a producer that restarted, not from the past.
+bool time_moved_forward(const wire::Header& last, const wire::Header& next) {
+    if (!last.has_timestamp() || !next.has_timestamp()) return false;
+    return std::pair(next.time_s, next.time_ns) > std::pair(last.time_s, last.time_ns);
 }
 
 bool times_out(ConsumeState state) {
@@ -91,10 +99,17 @@ ConsumeOutcome ConsumedExchange::on_datagram(const wire::Datagram& datagram, Mon
             return drop(wire::DropReason::duplicate);
         }
         if (d >= 32768) {
-            ++counters_.out_of_order;
-            return drop(wire::DropReason::out_of_order);
+            // §4 rule 6: late or out of order, unless the producer restarted: its request ids
+            // start again while its clock goes on. Resynchronise at once, counting no missed
+            // datagrams across the restart (there were none).
+            if (!time_moved_forward(last_header_, header)) {
+                ++counters_.out_of_order;
+                return drop(wire::DropReason::out_of_order);
+            }
+            ++counters_.restarts;
+        } else {
+            counters_.missed += d - 1U;
         }
-        counters_.missed += d - 1U;
     }
 
     // §4 rule 7.

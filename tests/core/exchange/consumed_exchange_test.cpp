@@ -297,6 +297,49 @@ TEST(ConsumerRules, Rule6LateDatagramIsDropped) {
     EXPECT_EQ(to_hex(exchange.image()), "010101010101010101010101010101");
 }
 
+/// A sample stamped by the producer's clock at `seconds`.
+Sample stamped(std::uint16_t request_id, std::uint32_t seconds, std::uint32_t nanoseconds = 0) {
+    Sample s = sample(request_id);
+    s.header.time_s = seconds;
+    s.header.time_ns = nanoseconds;
+    return s;
+}
+
+TEST(ConsumerRules, Rule6OldRequestIdWithTheProducerTimeMovedForwardIsARestart) {
+    ConsumedExchange exchange(make_plan(15, 0ms));
+    feed(exchange, stamped(20000, 947817150));
+    // The PLC restarted: its ids begin again, its clock (even one in the year 2000) goes on.
+    const auto outcome = feed(exchange, stamped(1, 947817160));
+    EXPECT_TRUE(outcome.accepted());
+    EXPECT_EQ(exchange.counters().restarts, 1u);
+    EXPECT_EQ(exchange.counters().missed, 0u);
+    EXPECT_EQ(exchange.counters().out_of_order, 0u);
+    EXPECT_EQ(exchange.last_header().request_id, 1);
+    // Resynchronised: the ids that follow are in sequence again.
+    EXPECT_TRUE(feed(exchange, stamped(2, 947817160, 100000000)).accepted());
+    EXPECT_EQ(exchange.counters().missed, 0u);
+    EXPECT_EQ(exchange.counters().accepted, 3u);
+}
+
+TEST(ConsumerRules, Rule6OldRequestIdWithTheSameOrAnOlderTimeIsLate) {
+    ConsumedExchange exchange(make_plan(15, 0ms));
+    feed(exchange, stamped(100, 1000, 500));
+    EXPECT_EQ(feed(exchange, stamped(99, 1000, 500)).dropped, DropReason::out_of_order);
+    EXPECT_EQ(feed(exchange, stamped(99, 1000, 400)).dropped, DropReason::out_of_order);
+    EXPECT_EQ(feed(exchange, stamped(99, 999, 900)).dropped, DropReason::out_of_order);
+    EXPECT_EQ(exchange.counters().restarts, 0u);
+    EXPECT_EQ(exchange.counters().out_of_order, 3u);
+}
+
+TEST(ConsumerRules, Rule6WithoutTimestampsAnOldRequestIdIsLate) {
+    ConsumedExchange exchange(make_plan(15, 0ms));
+    feed(exchange, stamped(100, 1000));
+    EXPECT_EQ(feed(exchange, stamped(1, 0)).dropped, DropReason::out_of_order);
+    feed(exchange, sample(101));  // a datagram without a timestamp
+    EXPECT_EQ(feed(exchange, stamped(1, 2000)).dropped, DropReason::out_of_order);
+    EXPECT_EQ(exchange.counters().restarts, 0u);
+}
+
 TEST(ConsumerRules, Rule6HalfTheRangeAheadIsLate) {
     ConsumedExchange exchange(make_plan());
     feed(exchange, sample(10));

@@ -6,7 +6,7 @@
 /// Metrics, all prefixed `eip2mqtt_` (counters end in `_total`):
 ///   exchange_state{exchange,direction,state}            gauge, 1 for the current state, 0 for
 ///                                                       the other states of its direction
-///   exchange_{received,accepted,missed,duplicates,out_of_order,signature_mismatches,
+///   exchange_{received,accepted,missed,duplicates,out_of_order,restarts,signature_mismatches,
 ///             length_mismatches,wrong_source}_total{exchange,direction}   consume counters
 ///   exchange_{sent,send_errors}_total{exchange,direction}                 produce counters
 ///   exchange_last_seen_age_seconds, exchange_jitter_seconds,
@@ -37,6 +37,7 @@ struct ExchangeMetrics {
     std::uint64_t missed = 0;
     std::uint64_t duplicates = 0;
     std::uint64_t out_of_order = 0;
+    std::uint64_t restarts = 0;
     std::uint64_t signature_mismatches = 0;
     std::uint64_t length_mismatches = 0;
     std::uint64_t wrong_source = 0;

@@ -36,6 +36,8 @@ struct ConsumeCounters {
     std::uint64_t length_mismatches = 0;
     std::uint64_t no_data = 0;
     std::uint64_t timeouts = 0;  ///< times the exchange went stale
+    /// Producer restarts: a request id that looks old with a producer time that moved forward.
+    std::uint64_t restarts = 0;
 };
 
 /// What became of one datagram.
