@@ -1,6 +1,7 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <chrono>
 
@@ -25,32 +26,70 @@ std::int64_t to_ms(core::WallTime wall) {
 
 ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, PublishSettings settings,
                                    PublishSink sink)
-    : plan_(std::move(plan)), settings_(settings), sink_(std::move(sink)), exchange_(plan_) {
+    : plan_(std::move(plan)),
+      settings_(settings),
+      sink_(std::move(sink)),
+      exchange_(plan_),
+      clock_(plan_.timestamp, plan_.clock_tolerance) {
     filters_.resize(plan_.tags.size());
 }
 
-std::int64_t ExchangeConsumer::sample_time_ms(core::WallTime wall) const {
+std::int64_t ExchangeConsumer::sample_time(core::WallTime wall) {
     const auto& header = exchange_.last_header();
-    // product.md: the producer's timestamp when the datagram has one, otherwise receive time.
-    return header.has_timestamp() ? adapters::mqtt::timestamp_ms(header.time_s, header.time_ns)
-                                  : to_ms(wall);
+    const auto before = clock_.state();
+    const auto timestamp = clock_.on_datagram(header.time_s, header.time_ns, to_ms(wall));
+    if (clock_.state() != before || !clock_seen_) log_clock(!clock_seen_);
+    clock_seen_ = true;
+    return timestamp;
+}
+
+void ExchangeConsumer::log_clock(bool first) {
+    using core::exchange::ClockState;
+    const auto& name = plan_.spec.name;
+    const bool producer_time = plan_.timestamp == core::plan::TimestampSource::producer;
+    const bool receive_time = plan_.timestamp == core::plan::TimestampSource::receive;
+    switch (clock_.state()) {
+        case ClockState::unsynced:
+            spdlog::warn(
+                "exchange {}: the producer's clock is {} ms off the receive time (tolerance {} "
+                "ms): its tags carry {}",
+                name, clock_.offset_ms().value_or(0), clock_.tolerance().count(),
+                producer_time ? "the producer's time all the same (timestamp: producer)"
+                              : "the receive time");
+            break;
+        case ClockState::synced:
+            if (first) return;  // the normal case: nothing to say
+            spdlog::info(
+                "exchange {}: the producer's clock is within {} ms of the receive time "
+                "again: its tags carry {}",
+                name, clock_.tolerance().count(),
+                receive_time ? "the receive time (timestamp: receive)" : "the producer's time");
+            break;
+        case ClockState::none:
+            spdlog::info(
+                "exchange {}: datagrams carry no timestamp: its tags carry the receive "
+                "time",
+                name);
+            break;
+    }
 }
 
 core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::Datagram& datagram,
                                                              core::MonoTime now,
                                                              core::WallTime wall) {
     const auto outcome = exchange_.on_datagram(datagram, now);
+    const auto clock_before = clock_.state();
     if (outcome.accepted()) {
         arrivals_.on_arrival(now);
         last_seen_ms_ = to_ms(wall);
-        timestamp_ms_ = sample_time_ms(wall);
+        timestamp_ms_ = sample_time(wall);
         publish_tags(now, false);
     } else if (outcome.state_changed) {
         // Entering signature or length mismatch: the last values are republished as bad.
         timestamp_ms_ = to_ms(wall);
         publish_tags(now, false);
     }
-    if (outcome.state_changed) {
+    if (outcome.state_changed || clock_.state() != clock_before) {
         publish_status(now, wall);
     } else {
         status_dirty_ = true;
@@ -119,8 +158,9 @@ void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
 }
 
 void ExchangeConsumer::publish_status(core::MonoTime now, core::WallTime) {
-    sink_({plan_.status_topic, adapters::mqtt::format_status_payload(exchange_, last_seen_ms_),
-           settings_.qos, true, true});
+    sink_({plan_.status_topic,
+           adapters::mqtt::format_status_payload(exchange_, last_seen_ms_, clock_), settings_.qos,
+           true, true});
     last_status_at_ = now;
     last_status_received_ = exchange_.counters().received;
     status_dirty_ = false;

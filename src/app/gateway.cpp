@@ -334,6 +334,10 @@ adapters::metrics::MetricsSnapshot Gateway::metrics_snapshot(core::MonoTime now)
         m.duplicates = c.duplicates;
         m.out_of_order = c.out_of_order;
         m.restarts = c.restarts;
+        m.clock = std::string(core::exchange::to_string(consumer->clock().state()));
+        if (const auto offset = consumer->clock().offset_ms()) {
+            m.clock_offset_seconds = static_cast<double>(*offset) / 1000.0;
+        }
         m.signature_mismatches = c.signature_mismatches;
         m.length_mismatches = c.length_mismatches;
         m.wrong_source = consumer->wrong_source();

@@ -98,7 +98,9 @@ TEST(ExchangeConsumerDataPath, BatchModeAddsOneValuesMessagePerDatagram) {
     };
     PublishSettings settings;
     settings.batch = true;
-    ExchangeConsumer consumer(turbine_plan(), settings, sink);
+    auto plan = turbine_plan();
+    plan.timestamp = core::plan::TimestampSource::producer;  // the datagram's 2024 time
+    ExchangeConsumer consumer(std::move(plan), settings, sink);
 
     std::array<std::byte, 4 * kTags> data{};
     for (int i = 0; i < kTags; ++i) {

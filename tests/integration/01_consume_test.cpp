@@ -19,6 +19,7 @@ const std::string every_type_exchange = R"(  - name: unit1
     length: 40
     period_ms: 100
     timeout_ms: 400
+    timestamp: producer
     topic: unit1
     tags:
       - { name: RUN, address: "0.0", type: bit }

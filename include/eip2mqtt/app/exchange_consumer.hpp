@@ -14,6 +14,7 @@
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/exchange/arrival_stats.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
+#include "eip2mqtt/core/exchange/producer_clock.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/quality/report_filter.hpp"
 #include "eip2mqtt/core/time.hpp"
@@ -53,6 +54,7 @@ public:
     const core::plan::ExchangePlan& plan() const { return plan_; }
     const PublishSettings& settings() const { return settings_; }
     const core::exchange::ConsumedExchange& exchange() const { return exchange_; }
+    const core::exchange::ProducerClock& clock() const { return clock_; }
     /// Inter-arrival period and jitter of accepted datagrams.
     const core::exchange::ArrivalStats& arrivals() const { return arrivals_; }
     /// A datagram of this exchange from an address other than its `source`.
@@ -62,7 +64,9 @@ public:
 private:
     void publish_tags(core::MonoTime now, bool force);
     void publish_status(core::MonoTime now, core::WallTime wall);
-    std::int64_t sample_time_ms(core::WallTime wall) const;
+    /// The timestamp of the accepted datagram's tags (ProducerClock), logging a clock change.
+    std::int64_t sample_time(core::WallTime wall);
+    void log_clock(bool first);
 
     core::plan::ExchangePlan plan_;
     PublishSettings settings_;
@@ -70,6 +74,8 @@ private:
     core::exchange::ConsumedExchange exchange_;
     std::vector<core::quality::ReportFilter> filters_;  ///< one per tag of plan_.tags
     core::exchange::ArrivalStats arrivals_;
+    core::exchange::ProducerClock clock_;
+    bool clock_seen_ = false;  ///< a datagram was accepted since start
     std::uint64_t wrong_source_ = 0;
     std::int64_t timestamp_ms_ = 0;             ///< of the values the tags publish
     std::optional<std::int64_t> last_seen_ms_;  ///< wall time of the last accepted datagram

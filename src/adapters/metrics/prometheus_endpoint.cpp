@@ -23,6 +23,7 @@ using prometheus::MetricType;
 constexpr std::array<std::string_view, 5> consume_states{"waiting", "ok", "stale",
                                                          "signature_mismatch", "length_mismatch"};
 constexpr std::array<std::string_view, 2> produce_states{"producing", "paused"};
+constexpr std::array<std::string_view, 3> clock_states{"none", "synced", "unsynced"};
 
 MetricFamily family(std::string name, std::string help, MetricType type) {
     MetricFamily result;
@@ -156,6 +157,30 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
         "Productions the socket refused", counter, "produce",
         [](const ExchangeMetrics& e) { return static_cast<double>(e.send_errors); });
     // clang-format on
+
+    // The producer's clock of consumed exchanges: its state, and its offset, which may be
+    // negative (so not an add_exchange_family gauge, which omits negative values as unknown).
+    auto clocks = family("exchange_clock_state",
+                         "Producer clock against the receive time (1) among none, synced, "
+                         "unsynced",
+                         gauge);
+    auto offsets = family("exchange_clock_offset_seconds",
+                          "Producer time minus receive time of the last stamped datagram", gauge);
+    for (const auto& exchange : snapshot.exchanges) {
+        if (exchange.direction != "consume") continue;
+        for (const auto state : clock_states) {
+            clocks.metric.push_back(sample(gauge, exchange.clock == state ? 1 : 0,
+                                           {{"direction", exchange.direction},
+                                            {"exchange", exchange.name},
+                                            {"state", std::string(state)}}));
+        }
+        if (!std::isnan(exchange.clock_offset_seconds)) {
+            offsets.metric.push_back(
+                sample(gauge, exchange.clock_offset_seconds, exchange_labels(exchange)));
+        }
+    }
+    if (!clocks.metric.empty()) out.push_back(std::move(clocks));
+    if (!offsets.metric.empty()) out.push_back(std::move(offsets));
 
     const auto& g = snapshot.gateway;
     add_single(out, "datagrams_total", "Datagrams received on the EIP socket", counter,

@@ -19,7 +19,8 @@ void format_tag_payload(std::string& out, const core::plan::Value& value,
 }
 
 std::string format_status_payload(const core::exchange::ConsumedExchange& exchange,
-                                  std::optional<std::int64_t> last_seen_ms) {
+                                  std::optional<std::int64_t> last_seen_ms,
+                                  const core::exchange::ProducerClock& clock) {
     const auto& c = exchange.counters();
     const std::string last_seen = last_seen_ms ? std::to_string(*last_seen_ms) : "null";
     const std::string request_id =
@@ -27,10 +28,11 @@ std::string format_status_payload(const core::exchange::ConsumedExchange& exchan
     return fmt::format(
         R"({{"state":"{}","request_id":{},"received":{},"accepted":{},"missed":{},"duplicates":{},)"
         R"("out_of_order":{},"signature_mismatches":{},"length_mismatches":{},"timeouts":{},)"
-        R"("restarts":{},"last_seen":{}}})",
+        R"("restarts":{},"last_seen":{},"clock":"{}","clock_offset_ms":{}}})",
         core::exchange::to_string(exchange.state()), request_id, c.received, c.accepted, c.missed,
         c.duplicates, c.out_of_order, c.signature_mismatches, c.length_mismatches, c.timeouts,
-        c.restarts, last_seen);
+        c.restarts, last_seen, core::exchange::to_string(clock.state()),
+        clock.offset_ms() ? std::to_string(*clock.offset_ms()) : "null");
 }
 
 std::int64_t timestamp_ms(std::uint32_t seconds, std::uint32_t nanoseconds) {

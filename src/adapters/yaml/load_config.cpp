@@ -65,7 +65,8 @@ using Keys = std::span<const std::string_view>;
 
 constexpr std::array<std::string_view, 5> top_keys{"gateway", "mqtt", "eip", "metrics",
                                                    "exchanges"};
-constexpr std::array<std::string_view, 3> gateway_keys{"id", "state_dir", "log_level"};
+constexpr std::array<std::string_view, 5> gateway_keys{"id", "state_dir", "log_level", "timestamp",
+                                                       "clock_tolerance_ms"};
 constexpr std::array<std::string_view, 16> mqtt_keys{"url",
                                                      "version",
                                                      "client_id",
@@ -88,9 +89,10 @@ constexpr std::array<std::string_view, 5> eip_keys{"bind", "port", "multicast", 
                                                    "multicast_interface"};
 constexpr std::array<std::string_view, 2> multicast_keys{"group", "interface"};
 constexpr std::array<std::string_view, 1> metrics_keys{"listen"};
-constexpr std::array<std::string_view, 13> exchange_keys{
-    "name",       "direction", "producer_id", "exchange_id", "length", "signature", "period_ms",
-    "timeout_ms", "source",    "destination", "topic",       "points", "tags"};
+constexpr std::array<std::string_view, 15> exchange_keys{
+    "name",      "direction",   "producer_id", "exchange_id", "length",
+    "signature", "period_ms",   "timeout_ms",  "timestamp",   "clock_tolerance_ms",
+    "source",    "destination", "topic",       "points",      "tags"};
 constexpr std::array<std::string_view, 12> tag_keys{
     "name",     "address", "type", "unit",    "deadband",    "refresh_s",
     "writable", "min",     "max",  "initial", "description", "max_writes_per_s"};
@@ -317,6 +319,13 @@ private:
         return static_cast<T>(*parsed);
     }
 
+    std::optional<core::plan::TimestampSource> timestamp_source(const Node& value,
+                                                                const std::string& key,
+                                                                const Mark& at) {
+        return parsed(value, key, at, core::plan::parse_timestamp_source,
+                      "is not one of auto, producer, receive");
+    }
+
     std::optional<double> number(const Node& value, const std::string& key, const Mark& at) {
         const auto parsed = value.is_scalar() ? parse_double(value.scalar()) : std::nullopt;
         if (!parsed) error(at, "expected a number for " + in_quotes(key));
@@ -350,6 +359,19 @@ private:
         auto& gateway = config.gateway;
         gateway.marks = walk(node, at, "gateway", "in gateway", gateway_keys,
                              [&](const std::string& key, const Node& value, const Mark& k) {
+                                 auto& defaults = gateway.exchange_defaults;
+                                 if (key == "timestamp") {
+                                     if (const auto source = timestamp_source(value, key, k)) {
+                                         defaults.timestamp = *source;
+                                     }
+                                     return;
+                                 }
+                                 if (key == "clock_tolerance_ms") {
+                                     if (const auto n = integer<long long>(value, key, k, 0)) {
+                                         defaults.clock_tolerance = std::chrono::milliseconds(*n);
+                                     }
+                                     return;
+                                 }
                                  const auto s = text(value, key, k);
                                  if (!s) return;
                                  if (key == "id") gateway.id = *s;
@@ -591,6 +613,12 @@ private:
                 } else if (key == "timeout_ms") {
                     if (const auto n = integer<long long>(value, key, k, 0)) {
                         spec.timeout = std::chrono::milliseconds(*n);
+                    }
+                } else if (key == "timestamp") {
+                    spec.timestamp = timestamp_source(value, key, k);
+                } else if (key == "clock_tolerance_ms") {
+                    if (const auto n = integer<long long>(value, key, k, 0)) {
+                        spec.clock_tolerance = std::chrono::milliseconds(*n);
                     }
                 } else if (key == "source") {
                     if (const auto ip =

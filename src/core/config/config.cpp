@@ -226,6 +226,13 @@ private:
                 error(marks.of("source"),
                       "produced " + what + " has a source (consumed exchanges only)");
             }
+            // A produced datagram carries the gateway's own time.
+            for (const auto* key : {"timestamp", "clock_tolerance_ms"}) {
+                if (marks.contains(key)) {
+                    error(marks.of(key),
+                          "produced " + what + " has a " + key + " (consumed exchanges only)");
+                }
+            }
         }
         if (const auto problem = topic_problem(spec.topic); !problem.empty()) {
             error(marks.of("topic"), what + " topic " + in_quotes(spec.topic) + " " + problem);
@@ -493,7 +500,8 @@ std::vector<plan::ExchangePlan> make_plans(const Config& config) {
         spec.tags.clear();
         spec.tags.reserve(exchange.tags.size());
         for (const auto& tag : exchange.tags) spec.tags.push_back(tag.spec);
-        plans.push_back(plan::make_exchange_plan(std::move(spec), config.mqtt.base_topic));
+        plans.push_back(plan::make_exchange_plan(std::move(spec), config.mqtt.base_topic,
+                                                 config.gateway.exchange_defaults));
     }
     return plans;
 }

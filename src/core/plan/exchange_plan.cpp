@@ -26,12 +26,35 @@ std::uint16_t resolved_length(const ExchangeSpec& spec) {
         std::min<std::size_t>(end, std::numeric_limits<std::uint16_t>::max()));
 }
 
-ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic) {
+std::string_view to_string(TimestampSource source) {
+    switch (source) {
+        case TimestampSource::automatic:
+            return "auto";
+        case TimestampSource::producer:
+            return "producer";
+        case TimestampSource::receive:
+            return "receive";
+    }
+    return "unknown";
+}
+
+std::optional<TimestampSource> parse_timestamp_source(std::string_view text) {
+    for (const auto source :
+         {TimestampSource::automatic, TimestampSource::producer, TimestampSource::receive}) {
+        if (text == to_string(source)) return source;
+    }
+    return std::nullopt;
+}
+
+ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic,
+                                const ExchangeDefaults& defaults) {
     ExchangePlan plan;
     plan.length = resolved_length(spec);
     if (spec.direction == Direction::consume) {
         // eip-protocol.md §4 rule 8: default 3 x the expected period; 0 disables.
         plan.timeout = spec.timeout.value_or(3 * spec.period);
+        plan.timestamp = spec.timestamp.value_or(defaults.timestamp);
+        plan.clock_tolerance = spec.clock_tolerance.value_or(defaults.clock_tolerance);
     }
     plan.topic = join(base_topic, spec.topic);
     plan.status_topic = plan.topic + "/_status";

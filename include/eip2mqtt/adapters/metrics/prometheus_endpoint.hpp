@@ -9,6 +9,9 @@
 ///   exchange_{received,accepted,missed,duplicates,out_of_order,restarts,signature_mismatches,
 ///             length_mismatches,wrong_source}_total{exchange,direction}   consume counters
 ///   exchange_{sent,send_errors}_total{exchange,direction}                 produce counters
+///   exchange_clock_state{exchange,direction,state}      gauge, 1 for none, synced or unsynced
+///   exchange_clock_offset_seconds{exchange,direction}   gauge, may be negative; absent before
+///                                                       the first stamped datagram
 ///   exchange_last_seen_age_seconds, exchange_jitter_seconds,
 ///   exchange_mean_period_seconds{exchange,direction}    gauges; absent while unknown
 ///   datagrams_total, datagrams_accepted_total, datagrams_dropped_total{reason}
@@ -19,6 +22,7 @@
 /// shows as a counter reset, which Prometheus's rate() handles.
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -47,6 +51,9 @@ struct ExchangeMetrics {
     /// unknown (omitted).
     double jitter_seconds = -1;
     double mean_period_seconds = -1;
+    std::string clock = "none";  ///< core::exchange::ClockState names
+    /// Producer time minus receive time of the last stamped datagram; NaN: none yet (omitted).
+    double clock_offset_seconds = std::numeric_limits<double>::quiet_NaN();
     // produce
     std::uint64_t sent = 0;
     std::uint64_t send_errors = 0;

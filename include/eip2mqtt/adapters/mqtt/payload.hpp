@@ -8,6 +8,7 @@
 
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
+#include "eip2mqtt/core/exchange/producer_clock.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
 #include "eip2mqtt/core/quality/quality.hpp"
 
@@ -19,10 +20,13 @@ void format_tag_payload(std::string& out, const core::plan::Value& value,
                         core::config::PayloadFormat format);
 
 /// `{"state":"ok","request_id":…,"received":…,"missed":…,"duplicates":…,"out_of_order":…,
-/// "last_seen":…}` plus the mismatch and timeout counters. last_seen is the wall time of the
-/// last accepted datagram in ms, null before the first.
+/// "last_seen":…,"clock":"synced","clock_offset_ms":…}` plus the mismatch, timeout and restart
+/// counters. last_seen is the wall time of the last accepted datagram in ms, null before the
+/// first; clock_offset_ms the producer's time minus the receive time of the last stamped
+/// datagram, null before one.
 std::string format_status_payload(const core::exchange::ConsumedExchange& exchange,
-                                  std::optional<std::int64_t> last_seen_ms);
+                                  std::optional<std::int64_t> last_seen_ms,
+                                  const core::exchange::ProducerClock& clock);
 
 /// Milliseconds since 1970 UTC of a header timestamp (seconds + nanoseconds).
 std::int64_t timestamp_ms(std::uint32_t seconds, std::uint32_t nanoseconds);

@@ -44,6 +44,8 @@ struct GatewaySection {
     std::string id = "eip2mqtt";
     std::string state_dir = "/var/lib/eip2mqtt";
     std::string log_level = "info";
+    /// `timestamp` and `clock_tolerance_ms`: what a consumed exchange takes unless it says.
+    plan::ExchangeDefaults exchange_defaults;
     Marks marks;
 };
 

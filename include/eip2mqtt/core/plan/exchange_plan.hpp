@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "eip2mqtt/core/plan/tag_plan.hpp"
@@ -13,6 +14,20 @@
 namespace eip2mqtt::core::plan {
 
 enum class Direction : std::uint8_t { consume, produce };
+
+/// Which time a consumed exchange's tags carry (core::exchange::ProducerClock): `automatic`
+/// (YAML `auto`) the producer's while its clock is within the tolerance of the receive time,
+/// `producer` the producer's whenever the datagram has one, `receive` always the receive time.
+enum class TimestampSource : std::uint8_t { automatic, producer, receive };
+
+std::string_view to_string(TimestampSource source);
+std::optional<TimestampSource> parse_timestamp_source(std::string_view text);
+
+/// What an exchange takes from the gateway section unless it says otherwise.
+struct ExchangeDefaults {
+    TimestampSource timestamp = TimestampSource::automatic;
+    std::chrono::milliseconds clock_tolerance{2000};
+};
 
 /// An exchange as configured, independent of topics.
 struct ExchangeSpec {
@@ -24,6 +39,8 @@ struct ExchangeSpec {
     wire::Signature signature;            ///< 0.0 = not used
     std::chrono::milliseconds period{1000};
     std::optional<std::chrono::milliseconds> timeout;  ///< consume; default 3 x period; 0 disables
+    std::optional<TimestampSource> timestamp;          ///< consume; default: the gateway's
+    std::optional<std::chrono::milliseconds> clock_tolerance;  ///< consume; default: the gateway's
     std::optional<std::uint32_t>
         source;               ///< consume: IPv4 (host order) the datagrams must come from
     std::string destination;  ///< produce: host or host:port
@@ -39,11 +56,13 @@ struct ExchangePlan {
     ExchangeSpec spec;
     std::uint16_t length = 0;              ///< resolved data length, 1..1400
     std::chrono::milliseconds timeout{0};  ///< resolved update timeout; 0 disables
-    std::string topic;                     ///< {base}/{exchange.topic}
-    std::string status_topic;              ///< topic + "/_status"
-    std::string values_topic;              ///< topic + "/_values" (batch mode)
-    std::string set_topic;                 ///< topic + "/set" (atomic multi-tag writes)
-    std::vector<TagPlan> tags;             ///< in configuration order
+    TimestampSource timestamp = TimestampSource::automatic;  ///< resolved
+    std::chrono::milliseconds clock_tolerance{2000};         ///< resolved
+    std::string topic;                                       ///< {base}/{exchange.topic}
+    std::string status_topic;                                ///< topic + "/_status"
+    std::string values_topic;                                ///< topic + "/_values" (batch mode)
+    std::string set_topic;      ///< topic + "/set" (atomic multi-tag writes)
+    std::vector<TagPlan> tags;  ///< in configuration order
 
     wire::ExchangeKey key() const { return {spec.producer_id, spec.exchange_id}; }
     /// The topic of `tag`, one of `tags`: {topic}/{tag name}.
@@ -60,6 +79,7 @@ std::uint16_t resolved_length(const ExchangeSpec& spec);
 /// Builds the plan of a spec that passed validation.
 /// Takes the spec by value: a caller done with it moves it in, and its tags are copied once
 /// (into `tags`), not twice.
-ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic);
+ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic,
+                                const ExchangeDefaults& defaults = {});
 
 }  // namespace eip2mqtt::core::plan
