@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "adapters/mqtt/detail/in_flight_window.hpp"
+#include "adapters/mqtt/detail/reconnect_backoff.hpp"
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
 
@@ -210,7 +211,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     // Loop-owned.
     State state_ = State::idle;
     boost::asio::steady_timer reconnect_timer_;
-    std::chrono::milliseconds next_backoff_;
+    detail::ReconnectBackoff backoff_;
     ConnectedHandler on_connected_;
     MessageHandler on_message_;
     std::vector<std::string> subscriptions_;
@@ -270,7 +271,7 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
       requeue_in_flight_(options_.clean_start ||
                          (options_.version == 5 && options_.session_expiry.count() == 0)),
       reconnect_timer_(loop_),
-      next_backoff_(options_.min_backoff),
+      backoff_(options_.min_backoff, options_.max_backoff),
       queue_(options_.buffer_max_messages),
       batch_queue_(options_.batch_lane_max_messages),
       in_flight_limit_(std::max<std::size_t>(1, options_.max_in_flight)) {
@@ -431,7 +432,7 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     link_up_ = true;
     connected_ = true;
     connects_.fetch_add(1, std::memory_order_relaxed);
-    next_backoff_ = options_.min_backoff;
+    backoff_.reset();
     update_in_flight_limit();
     connect_failures_unlogged_ = 0;
     connect_failure_logged_ = {};
@@ -538,8 +539,9 @@ void Client::Impl::on_connection_lost(std::string cause) {
 
 std::chrono::milliseconds Client::Impl::schedule_reconnect() {
     state_ = State::waiting;
-    const auto delay = next_backoff_;
-    next_backoff_ = std::min(next_backoff_ * 2, options_.max_backoff);
+    // Doubling, but never more than a quarter of the outage's age: a short outage is noticed
+    // soon after the broker is back (detail/reconnect_backoff.hpp).
+    const auto delay = backoff_.next(Clock::now());
     reconnect_timer_.expires_after(delay);
     reconnect_timer_.async_wait([w = weak_from_this()](boost::system::error_code ec) {
         auto self = w.lock();
