@@ -265,6 +265,8 @@ void Gateway::on_tick() {
     // Every tick: each producer publishes its `_status` at its own phase of the second, so
     // 1,000 of them never publish in one handler (a 25 ms stall of the loop, issue #6).
     for (auto& producer : producers_) producer->on_tick(now);
+    // The summary of a flood of drops that stopped, which no next drop would log.
+    drop_log_.flush(now);
     for (auto& consumer : consumers_) {
         const auto before = consumer->exchange().state();
         consumer->on_tick(now, wall, refresh_scan);
