@@ -316,6 +316,7 @@ void Gateway::publish_metrics() {
         {"mqtt_connects", stats.connects},
         {"writes_ok", counters_.writes_ok},
         {"writes_rejected", writes_rejected},
+        {"writes_cancelled", counters_.writes_cancelled},
     };
     mqtt_->publish({metrics_topic_, metrics.dump(), 0, false, true});
     notifier_.status(status_line());
@@ -369,6 +370,7 @@ adapters::metrics::MetricsSnapshot Gateway::metrics_snapshot(core::MonoTime now)
     g.buffered = stats.queued;
     g.publications_dropped = stats.dropped_overflow;
     g.writes_ok = counters_.writes_ok;
+    g.writes_cancelled = counters_.writes_cancelled;
     for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
         g.writes_rejected[std::string(core::write::to_string(
             static_cast<core::write::WriteError>(i)))] = counters_.writes_rejected[i];
