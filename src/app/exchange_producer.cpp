@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <nlohmann/json.hpp>
 
 #include "eip2mqtt/adapters/mqtt/payload.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
@@ -65,6 +66,23 @@ void ExchangeProducer::start(core::MonoTime start, std::size_t index, std::size_
 
 void ExchangeProducer::stop() {
     if (id_) scheduler_.remove(*id_);
+}
+
+std::size_t ExchangeProducer::cancel_queued_writes(std::string_view error) {
+    std::vector<std::uint64_t> ids;
+    image_.discard_pending(ids);
+    if (ids.empty()) return 0;
+    // As the gateway's other rejections (Gateway::reject_write).
+    const auto payload = nlohmann::json{{"ok", false}, {"error", error}}.dump();
+    for (const auto id : ids) {
+        const auto it = replies_.find(id);
+        if (it == replies_.end()) continue;
+        sink_({it->second.topic, payload, 1, false, false, std::move(it->second.correlation_data)});
+        replies_.erase(it);
+    }
+    spdlog::warn("exchange {}: {} queued write(s) answered \"{}\": never produced",
+                 plan_->spec.name, ids.size(), error);
+    return ids.size();
 }
 
 std::optional<core::write::WriteRejection> ExchangeProducer::stage(

@@ -265,6 +265,8 @@ void Gateway::on_tick() {
     // Every tick: each producer publishes its `_status` at its own phase of the second, so
     // 1,000 of them never publish in one handler (a 25 ms stall of the loop, issue #6).
     for (auto& producer : producers_) producer->on_tick(now);
+    // The summary of a flood of drops that stopped, which no next drop would log.
+    drop_log_.flush(now);
     for (auto& consumer : consumers_) {
         const auto before = consumer->exchange().state();
         consumer->on_tick(now, wall, refresh_scan);
@@ -315,6 +317,7 @@ void Gateway::publish_metrics() {
         {"mqtt_connects", stats.connects},
         {"writes_ok", counters_.writes_ok},
         {"writes_rejected", writes_rejected},
+        {"writes_cancelled", counters_.writes_cancelled},
     };
     mqtt_->publish({metrics_topic_, metrics.dump(), 0, false, true});
     notifier_.status(status_line());
@@ -374,6 +377,7 @@ adapters::metrics::MetricsSnapshot Gateway::metrics_snapshot(core::MonoTime now)
     g.publications_dropped = stats.dropped_overflow;
     g.publications_refused = stats.refused;
     g.writes_ok = counters_.writes_ok;
+    g.writes_cancelled = counters_.writes_cancelled;
     for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
         g.writes_rejected[std::string(core::write::to_string(
             static_cast<core::write::WriteError>(i)))] = counters_.writes_rejected[i];

@@ -120,10 +120,13 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
 
     // What is left of the old exchanges was removed or changed: stop it, and clear its retained
     // topics that no exchange of the new configuration publishes, so that no subscriber keeps
-    // reading a tag that no longer exists.
+    // reading a tag that no longer exists. Its queued writes, which it will never produce, are
+    // answered now: never silence. (Those its last datagrams carried got their results from
+    // the flush above.)
     std::set<std::string> cleared;
     for (auto& [name, producer] : old_producers) {
         producer->stop();
+        counters_.writes_cancelled += producer->cancel_queued_writes("reloaded");
         collect_topics(producer->plan(), cleared);
     }
     for (auto& [name, consumer] : old_consumers) collect_topics(consumer->plan(), cleared);

@@ -57,7 +57,7 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
         "exchanges:\n" +
         exchanges_yaml;
     config_path_ = dir_.write("gateway.yaml", config);
-    recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"test/#"});
+    recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"#"});
     start_gateway();
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 /// An integration-test harness: a real Mosquitto on a free port, the real eip2mqtt binary
-/// running a configuration written by the test, a recorder subscribed to everything under the
-/// base topic, and a UDP socket to feed the gateway.
+/// running a configuration written by the test, a recorder subscribed to everything (the base
+/// topic, and the clients' own response topics outside it), and a UDP socket to feed the
+/// gateway.
 
 #include <gtest/gtest.h>
 

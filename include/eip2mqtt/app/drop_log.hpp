@@ -2,6 +2,8 @@
 /// Logging on the data path without flooding: each reason's first occurrence is logged with its
 /// details, then at most one summary per reason per interval with the count since the last line
 /// (style.md "Errors": count every error, log the first, then one summary per interval).
+/// The summary comes with the next drop of its reason, or from flush() (called on the gateway's
+/// tick) once the interval has passed, so a flood that stops is summarised all the same.
 
 #include <array>
 #include <chrono>
@@ -31,6 +33,10 @@ public:
             emit(reason, now, detail());
         }
     }
+
+    /// Logs, for each reason with drops not logged yet whose last line is at least an interval
+    /// old, the summary of those drops. Cheap: one comparison per reason.
+    void flush(core::MonoTime now);
 
 private:
     struct Entry {

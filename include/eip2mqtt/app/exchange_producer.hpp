@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -51,6 +52,12 @@ public:
     void start(core::MonoTime start, std::size_t index, std::size_t count);
     /// Stops producing; saves under way still publish their write results.
     void stop();
+    /// For a stopped producer about to be destroyed (a reload changed or removed its
+    /// exchange): answers every write still queued, which no datagram will ever carry, with
+    /// `{"ok":false,"error":error}` and forgets it; returns how many. Writes already carried by
+    /// a sent datagram are not touched: they wait for their save, so flush the scheduler
+    /// before destroying the producer, and they get `{"ok":true}`.
+    std::size_t cancel_queued_writes(std::string_view error);
 
     /// Queues a validated write; its result is published after the datagram carrying it is
     /// sent. Fails with rate_limited when a tag is written more often than its

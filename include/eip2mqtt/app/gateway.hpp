@@ -37,6 +37,9 @@ struct GatewayCounters {
     std::array<std::uint64_t, core::wire::drop_reason_count> dropped{};
     std::uint64_t writes_ok = 0;  ///< writes staged for production
     std::array<std::uint64_t, core::write::write_error_count> writes_rejected{};
+    /// Of writes_ok, those still queued when a reload changed or removed their exchange:
+    /// answered `"reloaded"`, never produced.
+    std::uint64_t writes_cancelled = 0;
 };
 
 class Gateway {

@@ -203,6 +203,10 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
                static_cast<double>(g.writes_ok));
     add_reason_family(out, "writes_rejected_total", "Writes rejected, by reason",
                       g.writes_rejected);
+    add_single(out, "writes_cancelled_total",
+               "Writes accepted, then cancelled unproduced: a reload changed or removed their "
+               "exchange",
+               counter, static_cast<double>(g.writes_cancelled));
     return out;
 }
 

@@ -19,6 +19,7 @@
 
 #include "adapters/mqtt/detail/in_flight_window.hpp"
 #include "adapters/mqtt/detail/publication_check.hpp"
+#include "adapters/mqtt/detail/reconnect_backoff.hpp"
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
 #include "eip2mqtt/core/printable.hpp"
@@ -31,6 +32,8 @@ using Clock = std::chrono::steady_clock;
 
 /// style.md "Errors": log the first, then one summary per interval.
 constexpr auto kLogInterval = std::chrono::seconds(30);
+/// How long the sender holds after a dropped suspect if the connection does not go meanwhile.
+constexpr auto kProbeFailureHold = std::chrono::seconds(1);
 constexpr auto kConnectTimeout = std::chrono::seconds(10);
 /// Queued publications past which the memory of a drained backlog is given back (malloc_trim
 /// walks every arena: worth it after a burst, not after every message).
@@ -133,8 +136,9 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     void recycle(Message&& message);
     /// Lets the sender hand publications to Paho (after a connect) or stops it (loss, stop).
     void set_sending(bool enabled);
-    /// A Paho listener: publication `id` completed with Paho return code `rc`.
-    void on_publish_done(std::uint64_t id, int rc, const std::string& reason);
+    /// A Paho listener: publication `id` completed with Paho return code `rc` and, when the
+    /// broker refused it (MQTT 5), its reason code (>= 0x80).
+    void on_publish_done(std::uint64_t id, int rc, int reason_code, const std::string& reason);
     void log_publish_failure(const std::string& topic, const std::string& reason);
     void stop(std::chrono::milliseconds flush_timeout);
 
@@ -157,7 +161,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     /// A suspect goes alone: nothing else is sent while one is in flight, and one waits until
     /// nothing is in flight.
     bool suspect_waits() const {
-        return probe_.has_value() ||
+        return probe_.has_value() || probe_failed_ ||
                (!retry_.empty() && retry_.begin()->second.suspect && !in_flight_.empty());
     }
     /// A publication in flight when the connection went: sent again after the reconnect as a
@@ -165,7 +169,21 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     /// broker closes the connection on a publication it refuses. Returns the topic of a
     /// dropped one (empty otherwise).
     std::string requeue_after_loss(std::uint64_t id, Message&& message);
+    /// On the loop, after a suspect was dropped: Paho reports the failure before its
+    /// connection-lost handler runs, so the sender holds everything until the next connect,
+    /// lest the next suspect be sent on the dying connection and dropped with it. Should the
+    /// connection survive, the hold ends after kProbeFailureHold.
+    void after_probe_failure();
     void log_refused(const std::string& topic, const std::string& problem);
+    void log_dropped_suspect(const std::string& topic);
+    /// Whether a failed publication was refused by the broker itself: an MQTT 5 PUBACK with a
+    /// failure reason code (0x80..0xA2) on a live connection. MQTT 3.1.1 has no such verdict,
+    /// and Paho's own failures (a discarded or disconnected operation) carry other codes.
+    bool broker_refused(int rc, int reason_code) const {
+        return options_.version == 5 && rc != MQTTASYNC_DISCONNECTED &&
+               rc != MQTTASYNC_OPERATION_INCOMPLETE && link_up_ && reason_code >= 0x80 &&
+               reason_code <= 0xA2;
+    }
 
     template <class F>
     void post(F&& f) {
@@ -179,12 +197,12 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     struct PublishListener final : paho::iaction_listener {
         explicit PublishListener(Impl& impl) : impl_(impl) {}
         void on_success(const paho::token& tok) override {
-            impl_.on_publish_done(from_context(tok.get_user_context()), 0, {});
+            impl_.on_publish_done(from_context(tok.get_user_context()), 0, 0, {});
         }
         void on_failure(const paho::token& tok) override {
             impl_.on_publish_done(from_context(tok.get_user_context()),
                                   tok.get_return_code() == 0 ? -1 : tok.get_return_code(),
-                                  describe_failure(tok));
+                                  tok.get_reason_code(), describe_failure(tok));
         }
         Impl& impl_;
     };
@@ -225,7 +243,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     // Loop-owned.
     State state_ = State::idle;
     boost::asio::steady_timer reconnect_timer_;
-    std::chrono::milliseconds next_backoff_;
+    boost::asio::steady_timer probe_hold_timer_;
+    detail::ReconnectBackoff backoff_;
     ConnectedHandler on_connected_;
     MessageHandler on_message_;
     std::vector<std::string> subscriptions_;
@@ -246,7 +265,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
         bool suspect = false;
     };
     std::map<std::uint64_t, Retry> retry_;
-    std::optional<std::uint64_t> probe_;         ///< the suspect in flight, alone
+    std::optional<std::uint64_t> probe_;  ///< the suspect in flight, alone
+    bool probe_failed_ = false;  ///< a suspect was dropped: hold until reconnect (or timeout)
     detail::InFlightWindow<Message> in_flight_;  ///< handed to Paho, not yet completed
     /// Blank messages of completed publications, handed back to publish()'s callers to fill
     /// again: the loop allocated two strings per publication that Paho's thread then freed,
@@ -299,7 +319,8 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
       requeue_in_flight_(options_.clean_start ||
                          (options_.version == 5 && options_.session_expiry.count() == 0)),
       reconnect_timer_(loop_),
-      next_backoff_(options_.min_backoff),
+      probe_hold_timer_(loop_),
+      backoff_(options_.min_backoff, options_.max_backoff),
       queue_(options_.buffer_max_messages),
       batch_queue_(options_.batch_lane_max_messages),
       in_flight_limit_(std::max<std::size_t>(1, options_.max_in_flight)) {
@@ -460,7 +481,7 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     link_up_ = true;
     connected_ = true;
     connects_.fetch_add(1, std::memory_order_relaxed);
-    next_backoff_ = options_.min_backoff;
+    backoff_.reset();
     update_in_flight_limit();
     connect_failures_unlogged_ = 0;
     connect_failure_logged_ = {};
@@ -570,18 +591,16 @@ void Client::Impl::on_connection_lost(std::string cause) {
     }
     completed_.notify_all();
     if (!dropped.empty()) {
-        spdlog::error(
-            "MQTT broker closed the connection twice while a publication to {} was the only "
-            "one in flight: it is dropped, so that it cannot close every connection after",
-            core::printable(dropped));
+        log_dropped_suspect(dropped);
     }
     spdlog::info("MQTT reconnecting in {} ms", schedule_reconnect().count());
 }
 
 std::chrono::milliseconds Client::Impl::schedule_reconnect() {
     state_ = State::waiting;
-    const auto delay = next_backoff_;
-    next_backoff_ = std::min(next_backoff_ * 2, options_.max_backoff);
+    // Doubling, but never more than a quarter of the outage's age: a short outage is noticed
+    // soon after the broker is back (detail/reconnect_backoff.hpp).
+    const auto delay = backoff_.next(Clock::now());
     reconnect_timer_.expires_after(delay);
     reconnect_timer_.async_wait([w = weak_from_this()](boost::system::error_code ec) {
         auto self = w.lock();
@@ -650,6 +669,7 @@ void Client::Impl::set_sending(bool enabled) {
     {
         std::lock_guard lock(mutex_);
         sending_ = enabled;
+        if (enabled) probe_failed_ = false;
     }
     wake_sender_.notify_all();
 }
@@ -772,6 +792,17 @@ void Client::Impl::send(std::uint64_t id, const paho::message_ptr& message) {
             retry_.emplace(id, Retry{std::move(*item), false});
             return;
         }
+        if (requeue_in_flight_ && item->qos > 0 && !stopping_) {
+            // Refused at once, most often because the connection is going: sent again, alone,
+            // like a publication in flight at a connection loss; refused alone, it is dropped.
+            auto dropped = requeue_after_loss(id, std::move(*item));
+            lock.unlock();
+            if (!dropped.empty()) {
+                completed_.notify_all();
+                log_dropped_suspect(dropped);
+            }
+            return;
+        }
         if (probe_ == id) probe_.reset();
         publish_failures_.fetch_add(1, std::memory_order_relaxed);
         lock.unlock();
@@ -780,7 +811,8 @@ void Client::Impl::send(std::uint64_t id, const paho::message_ptr& message) {
     }
 }
 
-void Client::Impl::on_publish_done(std::uint64_t id, int rc, const std::string& reason) {
+void Client::Impl::on_publish_done(std::uint64_t id, int rc, int reason_code,
+                                   const std::string& reason) {
     std::string failed_topic;
     std::string dropped_topic;
     bool wake = false;
@@ -795,9 +827,10 @@ void Client::Impl::on_publish_done(std::uint64_t id, int rc, const std::string& 
             published_.fetch_add(1, std::memory_order_relaxed);
             recycle(std::move(*item));
         } else if (requeue_in_flight_ && item->qos > 0 && !stopping_ &&
-                   (rc == MQTTASYNC_DISCONNECTED || rc == MQTTASYNC_OPERATION_INCOMPLETE ||
-                    !link_up_)) {
-            // Failed because the connection went: send it again after reconnect.
+                   !broker_refused(rc, reason_code)) {
+            // No verdict of the broker's: failed because the connection went (Paho may report
+            // that before its connection-lost handler runs). Sent again after the reconnect,
+            // alone (requeue_after_loss); a broker's refusal is final.
             dropped_topic = requeue_after_loss(id, std::move(*item));
         } else {
             if (probe_ == id) probe_.reset();
@@ -816,10 +849,7 @@ void Client::Impl::on_publish_done(std::uint64_t id, int rc, const std::string& 
         log_publish_failure(failed_topic, reason);
     }
     if (!dropped_topic.empty()) {
-        spdlog::error(
-            "MQTT broker closed the connection twice while a publication to {} was the only "
-            "one in flight: it is dropped, so that it cannot close every connection after",
-            core::printable(dropped_topic));
+        log_dropped_suspect(dropped_topic);
     }
 }
 
@@ -828,11 +858,34 @@ std::string Client::Impl::requeue_after_loss(std::uint64_t id, Message&& message
         // It went alone, after every other publication had completed, and the connection went
         // again: the broker refuses it. One retry is all it gets.
         probe_.reset();
+        probe_failed_ = true;
+        post([](Impl& self) { self.after_probe_failure(); });
         refused_.fetch_add(1, std::memory_order_relaxed);
         return std::move(message.topic);
     }
     retry_.emplace(id, Retry{std::move(message), true});
     return {};
+}
+
+void Client::Impl::after_probe_failure() {
+    probe_hold_timer_.expires_after(kProbeFailureHold);
+    probe_hold_timer_.async_wait([w = weak_from_this()](const boost::system::error_code& ec) {
+        auto self = w.lock();
+        if (ec || !self) return;
+        {
+            std::lock_guard lock(self->mutex_);
+            self->probe_failed_ = false;
+        }
+        self->wake_sender_.notify_all();
+    });
+}
+
+void Client::Impl::log_dropped_suspect(const std::string& topic) {
+    spdlog::error(
+        "MQTT publication to {} failed again when it was sent alone (the broker closed the "
+        "connection on it, or Paho refused it): it is dropped, so that it cannot block every "
+        "connection after",
+        core::printable(topic));
 }
 
 void Client::Impl::log_refused(const std::string& topic, const std::string& problem) {
@@ -883,6 +936,7 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         self.state_ = State::stopped;
         self.connected_ = false;
         self.reconnect_timer_.cancel();
+        self.probe_hold_timer_.cancel();
     });
     const auto end_sender = [this] {
         {

@@ -33,6 +33,11 @@ bool ProducedImage::stage(write::WriteBatch batch) {
     return true;
 }
 
+void ProducedImage::discard_pending(std::vector<std::uint64_t>& dropped) {
+    for (const auto& batch : pending_) dropped.push_back(batch.id);
+    pending_.clear();
+}
+
 std::size_t ProducedImage::produce(WallTime wall, std::span<std::byte> out,
                                    std::vector<std::uint64_t>& carried) {
     // product.md "MQTT": whole batches between two productions, so one datagram never carries

@@ -52,6 +52,7 @@ MetricsSnapshot snapshot(std::uint64_t received) {
     s.gateway.buffered = 7;
     s.gateway.writes_ok = 2;
     s.gateway.writes_rejected = {{"above_max", 1}};
+    s.gateway.writes_cancelled = 3;
     return s;
 }
 
@@ -90,6 +91,7 @@ TEST(PrometheusEndpoint, ServesTheSnapshotInTextFormat) {
             "eip2mqtt_mqtt_publications_dropped_total 0",
             "eip2mqtt_writes_ok_total 2",
             R"(eip2mqtt_writes_rejected_total{reason="above_max"} 1)",
+            "eip2mqtt_writes_cancelled_total 3",
         }) {
         EXPECT_TRUE(has_line(page, line)) << "missing: " << line << "\nin:\n" << page;
     }

@@ -238,5 +238,23 @@ TEST(ProducedImage, StageFailsWhenTheQueueIsFull) {
     EXPECT_TRUE(image.stage(batch(4, {{start, Value{false}}})));
 }
 
+TEST(ProducedImage, DiscardedBatchesAreNeverApplied) {
+    const auto plan = make_plan();
+    ProducedImage image(plan, {});
+    ASSERT_TRUE(image.stage(batch(1, {{offset, Value{std::int64_t{1}}}})));
+    produce(image);
+    ASSERT_TRUE(image.stage(batch(2, {{offset, Value{std::int64_t{2}}}})));
+    ASSERT_TRUE(image.stage(batch(3, {{start, Value{false}}})));
+    std::vector<std::uint64_t> dropped{99};  // appended to, not cleared
+    image.discard_pending(dropped);
+    EXPECT_EQ(dropped, (std::vector<std::uint64_t>{99, 2, 3}));
+    EXPECT_EQ(image.pending(), 0u);
+    image.clear_dirty();
+    const auto produced = produce(image);
+    EXPECT_TRUE(produced.carried.empty());
+    EXPECT_FALSE(image.dirty());
+    EXPECT_EQ(data_hex(image), "00803b4501010000");  // batch 1 only
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::exchange

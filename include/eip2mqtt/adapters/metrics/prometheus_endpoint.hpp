@@ -17,7 +17,7 @@
 ///   datagrams_total, datagrams_accepted_total, datagrams_dropped_total{reason}
 ///   mqtt_connected (0/1), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total,
 ///   mqtt_publications_refused_total
-///   writes_ok_total, writes_rejected_total{reason}
+///   writes_ok_total, writes_rejected_total{reason}, writes_cancelled_total
 /// Counters are the gateway's own counts, copied as they are: a reload that restarts them
 /// shows as a counter reset, which Prometheus's rate() handles.
 
@@ -71,6 +71,7 @@ struct GatewayMetrics {
     std::uint64_t publications_refused = 0;  ///< ClientStats::refused
     std::uint64_t writes_ok = 0;
     std::map<std::string, std::uint64_t> writes_rejected;  ///< by rejection reason
+    std::uint64_t writes_cancelled = 0;  ///< accepted, then answered "reloaded" unproduced
 };
 
 /// Everything the endpoint serves, as plain values: the gateway loop fills one and hands it

@@ -39,6 +39,10 @@ public:
     std::size_t produce(WallTime wall, std::span<std::byte> out,
                         std::vector<std::uint64_t>& carried);
 
+    /// Drops every staged batch unapplied (its exchange stops for good: a reload changed or
+    /// removed it); their ids are appended to `dropped` (not cleared first), in staging order.
+    void discard_pending(std::vector<std::uint64_t>& dropped);
+
     /// The data bytes as they stand (the last produced values plus nothing staged).
     std::span<const std::byte> data() const { return data_; }
     /// True when produce() changed the data since the last call to clear_dirty().
