@@ -54,6 +54,7 @@ using core::config::Diagnostic;
 using core::config::Diagnostics;
 using core::config::ExchangeConfig;
 using core::config::FileName;
+using core::config::in_quotes;
 using core::config::Mark;
 using core::config::Marks;
 using core::config::TagConfig;
@@ -93,8 +94,6 @@ constexpr std::array<std::string_view, 13> exchange_keys{
 constexpr std::array<std::string_view, 12> tag_keys{
     "name",     "address", "type", "unit",    "deadband",    "refresh_s",
     "writable", "min",     "max",  "initial", "description", "max_writes_per_s"};
-
-std::string in_quotes(std::string_view text) { return "'" + std::string(text) + "'"; }
 
 std::string lower(std::string_view text) {
     std::string out(text);

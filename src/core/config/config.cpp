@@ -47,8 +47,6 @@ using plan::TagType;
 constexpr long long min_period_ms = 2;        // eip-protocol.md §5
 constexpr long long max_period_ms = 3600000;  // eip-protocol.md §5
 
-std::string in_quotes(std::string_view text) { return "'" + std::string(text) + "'"; }
-
 std::string format_number(double value) {
     std::string text = std::to_string(value);
     if (text.find('.') != std::string::npos) {

@@ -160,17 +160,17 @@ PointList parse_point_list(std::string_view text, const FileName& file) {
         if (const auto parsed = plan::parse_address(field(address).text)) {
             row.tag.address = *parsed;
         } else {
-            list.errors.push_back({at(address), "bad address '" + std::string(field(address).text) +
-                                                    "' (expected byte.bit)"});
+            list.errors.push_back({at(address), "bad address " + in_quotes(field(address).text) +
+                                                    " (expected byte.bit)"});
             ok = false;
         }
         if (const auto type =
                 plan::parse_tag_type(field(data_type).text, plan::TypeNaming::point_list)) {
             row.tag.type = *type;
         } else {
-            list.errors.push_back({at(data_type), "unknown DataType '" +
-                                                      std::string(field(data_type).text) +
-                                                      "' (expected Bit, Word, Real, Long or a "
+            list.errors.push_back({at(data_type), "unknown DataType " +
+                                                      in_quotes(field(data_type).text) +
+                                                      " (expected Bit, Word, Real, Long or a "
                                                       "type of eip-protocol.md section 3)"});
             ok = false;
         }
@@ -179,8 +179,8 @@ PointList parse_point_list(std::string_view text, const FileName& file) {
             row.write = true;
             row.tag.writable = true;
         } else if (!equals_lower(access, "read")) {
-            list.errors.push_back({at(access_type), "unknown AccessType '" + std::string(access) +
-                                                        "' (expected Read or Write)"});
+            list.errors.push_back({at(access_type), "unknown AccessType " + in_quotes(access) +
+                                                        " (expected Read or Write)"});
             ok = false;
         }
         if (ok) list.rows.push_back(std::move(row));

@@ -127,5 +127,12 @@ TEST(PointLists, UnterminatedQuote) {
     EXPECT_EQ(list.errors[0].mark.line, 2);
 }
 
+TEST(PointLists, MessagesShowControlCharactersEscaped) {
+    const auto list = parse_point_list(
+        "TagName,Node,Address,DataType,AccessType\nA,N,\x1B[2J,Bit,Read\n", "p.csv");
+    ASSERT_EQ(list.errors.size(), 1u);
+    EXPECT_EQ(list.errors[0].message, "bad address '\\x1B[2J' (expected byte.bit)");
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::config
