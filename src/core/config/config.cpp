@@ -14,6 +14,7 @@
 
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/plan/topic_rules.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::core::config {
@@ -46,6 +47,8 @@ using plan::TagType;
 
 constexpr long long min_period_ms = 2;        // eip-protocol.md §5
 constexpr long long max_period_ms = 3600000;  // eip-protocol.md §5
+/// MQTT encodes the length of a string (a client id) in two bytes, as a topic's.
+constexpr std::size_t max_string_bytes = plan::max_topic_bytes;
 
 std::string format_number(double value) {
     std::string text = std::to_string(value);
@@ -69,8 +72,8 @@ std::string topic_problem(std::string_view topic) {
     if (topic.front() == '/' || topic.back() == '/' || topic.find("//") != std::string_view::npos) {
         return "has an empty level (leading, trailing or double '/')";
     }
-    if (topic.find('\0') != std::string_view::npos) return "contains a NUL character";
-    return {};
+    // Control characters, NUL above all: a topic cut at a NUL would be another tag's topic.
+    return std::string(plan::text_problem(topic));
 }
 
 /// Why a tag name cannot be a topic level of its own, or empty when it can.
@@ -78,6 +81,9 @@ std::string tag_name_problem(std::string_view name) {
     if (name.empty()) return "a tag has an empty name";
     if (name.find_first_of("/+#") != std::string_view::npos) {
         return "tag name " + in_quotes(name) + " contains '/', '+' or '#'";
+    }
+    if (const auto problem = plan::text_problem(name); !problem.empty()) {
+        return "tag name " + in_quotes(name) + " " + std::string(problem);
     }
     // The gateway's own words under an exchange topic: {exchange}/set, {exchange}/_status...
     if (name == "set" || name.front() == '_') {
@@ -117,6 +123,9 @@ private:
         } else if (gateway.id.find_first_of("/+#") != std::string::npos) {
             error(gateway.marks.of("id"), "gateway id " + in_quotes(gateway.id) +
                                               " contains '/', '+' or '#' (it is a topic level)");
+        } else if (const auto problem = plan::text_problem(gateway.id); !problem.empty()) {
+            error(gateway.marks.of("id"), "gateway id " + in_quotes(gateway.id) + " " +
+                                              std::string(problem) + " (it is a topic level)");
         }
         static constexpr std::array<std::string_view, 7> levels{"trace", "debug",    "info", "warn",
                                                                 "error", "critical", "off"};
@@ -143,6 +152,17 @@ private:
             error(mqtt.marks.of("base_topic"), "base_topic " + in_quotes(mqtt.base_topic) +
                                                    " starts with '$' (reserved by brokers)");
         }
+        // Only a written one: the default, eip2mqtt-{gateway.id}, is as good as gateway.id.
+        if (mqtt.marks.contains("client_id")) {
+            if (const auto problem = plan::text_problem(mqtt.client_id); !problem.empty()) {
+                error(mqtt.marks.of("client_id"),
+                      "client_id " + in_quotes(mqtt.client_id) + " " + std::string(problem));
+            } else if (mqtt.client_id.size() > max_string_bytes) {
+                error(mqtt.marks.of("client_id"),
+                      "client_id is " + std::to_string(mqtt.client_id.size()) +
+                          " bytes long (MQTT allows " + std::to_string(max_string_bytes) + ")");
+            }
+        }
         if (mqtt.url.empty()) error(mqtt.marks.of("url"), "mqtt url is empty");
         if (mqtt.buffer_max_messages == 0) {
             error(mqtt.marks.of("buffer"), "buffer max_messages must be at least 1");
@@ -167,6 +187,9 @@ private:
             const auto& spec = exchange.spec;
             if (spec.name.empty()) {
                 error(exchange.marks.of("name"), "an exchange has an empty name");
+            } else if (const auto problem = plan::text_problem(spec.name); !problem.empty()) {
+                error(exchange.marks.of("name"),
+                      "exchange name " + in_quotes(spec.name) + " " + std::string(problem));
             } else if (const auto [it, fresh] = names.emplace(spec.name, &exchange); !fresh) {
                 error(exchange.marks.of("name"),
                       "duplicate exchange name " + in_quotes(spec.name) + " (first at line " +
@@ -225,8 +248,12 @@ private:
                       "produced " + what + " has a source (consumed exchanges only)");
             }
         }
+        const bool topic_is_name = !marks.contains("topic");
         if (const auto problem = topic_problem(spec.topic); !problem.empty()) {
-            error(marks.of("topic"), what + " topic " + in_quotes(spec.topic) + " " + problem);
+            // A topic that defaults to a name refused for its text was reported with the name.
+            if (!topic_is_name || plan::text_problem(spec.name).empty()) {
+                error(marks.of("topic"), what + " topic " + in_quotes(spec.topic) + " " + problem);
+            }
         } else {
             std::size_t start = 0;
             while (start <= spec.topic.size()) {

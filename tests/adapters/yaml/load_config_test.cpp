@@ -421,6 +421,84 @@ TEST(LoadConfig, SemanticChecksUseKeyMarks) {
     EXPECT_EQ(d[4].mark.column, 73);  // max
 }
 
+TEST(LoadConfig, NulAndControlCharactersWrittenAsYamlEscapesAreRefused) {
+    // yaml-cpp turns "\0", "\x00" and "\u0000" into a NUL byte, "\e" into ESC, and "\N" into
+    // the lone byte 0x85 (not even UTF-8): each is refused where it was written.
+    const auto d = bad(R"(gateway:
+  id: "gw\e"
+mqtt:
+  client_id: "c\0"
+  base_topic: "acme\x01"
+exchanges:
+  - name: "ex\N"
+    topic: "t\u0000"
+    producer_id: 10.0.0.1
+    exchange_id: 1
+    length: 8
+    tags:
+      - { name: "A\0x", address: 0, type: int }
+      - { name: "A\x00y", address: 2, type: int }
+      - { name: "B\u0085", address: 4, type: int }
+)");
+    ASSERT_EQ(d.size(), 8u) << dump(d);
+    const std::vector<std::pair<int, std::string>> expected{
+        {2, "gateway id 'gw\\x1B' contains a control character (it is a topic level)"},
+        {4, "client_id 'c\\0' contains a NUL character"},
+        {5, "base_topic 'acme\\x01' contains a control character"},
+        {7, "exchange name 'ex\\x85' is not valid UTF-8"},
+        {8, "exchange 'ex\\x85' topic 't\\0' contains a NUL character"},
+        {13, "tag name 'A\\0x' contains a NUL character of exchange 'ex\\x85'"},
+        {14, "tag name 'A\\0y' contains a NUL character of exchange 'ex\\x85'"},
+        {15, "tag name 'B\\u0085' contains a control character of exchange 'ex\\x85'"}};
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        EXPECT_EQ(d[i].mark.line, expected[i].first) << dump(d);
+        EXPECT_EQ(d[i].message, expected[i].second);
+    }
+}
+
+TEST(LoadConfig, RawControlBytesAndInvalidUtf8AreRefused) {
+    const auto d = bad(std::string("exchanges:\n"
+                                   "  - name: ex\n"
+                                   "    producer_id: 10.0.0.1\n"
+                                   "    exchange_id: 1\n"
+                                   "    tags:\n"
+                                   "      - { name: A\x01, address: 0, type: int }\n"
+                                   "      - { name: B\xFF") +
+                       "C, address: 2, type: int }\n");
+    ASSERT_EQ(d.size(), 2u) << dump(d);
+    EXPECT_EQ(d[0].mark.line, 6);
+    EXPECT_EQ(d[0].message, "tag name 'A\\x01' contains a control character of exchange 'ex'");
+    EXPECT_EQ(d[1].mark.line, 7);
+    EXPECT_EQ(d[1].message, "tag name 'B\\xFFC' is not valid UTF-8 of exchange 'ex'");
+}
+
+TEST(LoadConfig, PointListTagNamesWithControlCharactersAreRefusedAtTheirRows) {
+    const test::TempDir dir;
+    using namespace std::string_literals;  // "..."s keeps the NULs
+    const auto csv = dir.write("p.csv",
+                               "TagName,Node,Address,DataType,AccessType\n"
+                               "A\0B,ex,0.0,Word,Read\n"
+                               "A\0C,ex,2.0,Word,Read\n"
+                               "\"\x1B[31mRED\",ex,4.0,Word,Read\n"
+                               "OK,ex,6.0,Word,Read\n"s);
+    const auto yaml = dir.write("c.yaml",
+                                "exchanges:\n"
+                                "  - { name: ex, producer_id: 10.0.0.1, exchange_id: 1, points: "
+                                "p.csv }\n");
+    const auto result = load_config(yaml);
+    ASSERT_FALSE(result.ok());
+    const auto& d = result.error();
+    ASSERT_EQ(d.size(), 3u) << dump(d);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        EXPECT_EQ(d[i].mark.file, csv);
+        EXPECT_EQ(d[i].mark.line, static_cast<int>(i) + 2);
+    }
+    EXPECT_EQ(d[0].message, "tag name 'A\\0B' contains a NUL character of exchange 'ex'");
+    EXPECT_EQ(d[1].message, "tag name 'A\\0C' contains a NUL character of exchange 'ex'");
+    EXPECT_EQ(d[2].message,
+              "tag name '\\x1B[31mRED' contains a control character of exchange 'ex'");
+}
+
 TEST(LoadConfig, MissingIdentityKeysDropTheExchangeWithoutEchoes) {
     // Without its exchange_id, `b` is left out: no duplicate-pair echo against `a`.
     const auto d =

@@ -358,6 +358,86 @@ TEST(Validate, ReservedTagNames) {
     EXPECT_TRUE(validate(c).empty());
 }
 
+TEST(Validate, ControlCharactersAndInvalidUtf8InTagNames) {
+    for (const std::string& name :
+         {std::string("A\0B", 3), std::string("A\nB"), std::string("\x1B[2J"), std::string("A\x7F"),
+          std::string("\xC2\x85"), std::string("A\xFF"), std::string("\xEF\xBF\xBF")}) {
+        auto c = valid();
+        c.exchanges[0].tags[1].spec.name = name;
+        const auto d = only(validate(c));
+        EXPECT_EQ(d.mark.line, c.exchanges[0].tags[1].marks.of("name").line) << d.message;
+        EXPECT_TRUE(mentions(d, "of exchange 'turbine1'")) << d.message;
+    }
+    auto c = valid();
+    c.exchanges[0].tags[1].spec.name = std::string("A\0B", 3);
+    EXPECT_EQ(only(validate(c)).message,
+              "tag name 'A\\0B' contains a NUL character of exchange 'turbine1'");
+    c.exchanges[0].tags[1].spec.name = "PRESS\xC3\x83O";  // UTF-8 is welcome
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, TwoTagNamesAlikeUpToANulAreBothRefused) {
+    // Cut at the NUL, both would publish to turbine1/A: each is refused for its NUL.
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag(std::string("A\0x", 3), 8, 0, TagType::int_));
+    c.exchanges[0].tags.push_back(tag(std::string("A\0y", 3), 10, 0, TagType::int_));
+    const auto d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_TRUE(mentions(d[0], "'A\\0x' contains a NUL character")) << d[0].message;
+    EXPECT_TRUE(mentions(d[1], "'A\\0y' contains a NUL character")) << d[1].message;
+}
+
+TEST(Validate, ControlCharactersAndInvalidUtf8InExchangeNamesAndTopics) {
+    auto c = valid();
+    c.exchanges[0].spec.name = "turbine\t1";
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("name").line);
+    EXPECT_EQ(d.message, "exchange name 'turbine\\t1' contains a control character");
+    // A topic that defaults to the name: the name's diagnostic alone.
+    c.exchanges[0].spec.topic = c.exchanges[0].spec.name;
+    c.exchanges[0].marks.keys.erase(
+        std::find_if(c.exchanges[0].marks.keys.begin(), c.exchanges[0].marks.keys.end(),
+                     [](const auto& key) { return key.first == "topic"; }));
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("name").line);
+
+    for (const std::string& topic :
+         {std::string("area/t\0", 7), std::string("area/\x01"), std::string("\xC3\x28")}) {
+        c = valid();
+        c.exchanges[0].spec.topic = topic;
+        d = only(validate(c));
+        EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("topic").line) << d.message;
+    }
+    c = valid();
+    c.exchanges[0].spec.topic = std::string("area/t\0", 7);
+    EXPECT_TRUE(mentions(only(validate(c)), "topic 'area/t\\0' contains a NUL character"));
+}
+
+TEST(Validate, ControlCharactersAndInvalidUtf8InBaseTopicGatewayIdAndClientId) {
+    auto c = valid();
+    c.mqtt.base_topic = std::string("acme\0", 5);
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.mqtt.marks.of("base_topic").line);
+    EXPECT_TRUE(mentions(d, "contains a NUL character")) << d.message;
+
+    c = valid();
+    c.gateway.id = "gw\x1B";
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.gateway.marks.of("id").line);
+    EXPECT_EQ(d.message, "gateway id 'gw\\x1B' contains a control character (it is a topic level)");
+
+    c = valid();
+    c.mqtt.client_id = "client\xFF";
+    c.mqtt.marks.add("client_id", at(next_line++, 3));
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.mqtt.marks.of("client_id").line);
+    EXPECT_EQ(d.message, "client_id 'client\\xFF' is not valid UTF-8");
+    c.mqtt.client_id = std::string(65536, 'c');
+    EXPECT_EQ(only(validate(c)).message, "client_id is 65536 bytes long (MQTT allows 65535)");
+    c.mqtt.client_id = std::string(65535, 'c');
+    EXPECT_TRUE(validate(c).empty());
+}
+
 TEST(Validate, PeriodRange) {
     for (auto period : {0ms, 1ms, 3600001ms}) {
         auto c = valid();
