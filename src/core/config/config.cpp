@@ -50,6 +50,20 @@ constexpr long long max_period_ms = 3600000;  // eip-protocol.md §5
 /// MQTT encodes the length of a string (a client id) in two bytes, as a topic's.
 constexpr std::size_t max_string_bytes = plan::max_topic_bytes;
 
+// The fixed parts of the longest topics the gateway builds: {base}/{topic}/set/result for an
+// exchange (longer than its /_status and /_values), {base}/{topic}/{tag}/set/result for a tag,
+// {base}/_gateway/{id}/metrics for the gateway (longer than /state). Their lengths are added
+// up, the topics never built: a configuration may hold 100,000 tags.
+constexpr std::string_view result_suffix = "/set/result";
+constexpr std::string_view gateway_level = "/_gateway/";
+constexpr std::string_view metrics_suffix = "/metrics";
+
+/// "makes topic '{pattern}' N bytes long (MQTT allows 65535)".
+std::string too_long(std::string_view pattern, std::size_t bytes) {
+    return "makes topic '" + std::string(pattern) + "' " + std::to_string(bytes) +
+           " bytes long (MQTT allows " + std::to_string(plan::max_topic_bytes) + ")";
+}
+
 std::string format_number(double value) {
     std::string text = std::to_string(value);
     if (text.find('.') != std::string::npos) {
@@ -100,6 +114,7 @@ public:
     Diagnostics run() {
         check_gateway();
         check_mqtt();
+        check_gateway_topics();
         check_exchanges();
         std::stable_sort(
             out_.begin(), out_.end(), [this](const Diagnostic& a, const Diagnostic& b) {
@@ -118,6 +133,7 @@ private:
 
     void check_gateway() {
         const auto& gateway = config_.gateway;
+        id_ok_ = false;
         if (gateway.id.empty()) {
             error(gateway.marks.of("id"), "gateway id is empty");
         } else if (gateway.id.find_first_of("/+#") != std::string::npos) {
@@ -126,6 +142,8 @@ private:
         } else if (const auto problem = plan::text_problem(gateway.id); !problem.empty()) {
             error(gateway.marks.of("id"), "gateway id " + in_quotes(gateway.id) + " " +
                                               std::string(problem) + " (it is a topic level)");
+        } else {
+            id_ok_ = true;
         }
         static constexpr std::array<std::string_view, 7> levels{"trace", "debug",    "info", "warn",
                                                                 "error", "critical", "off"};
@@ -145,9 +163,11 @@ private:
             error(mqtt.marks.of("qos"),
                   "mqtt qos " + std::to_string(mqtt.qos) + " is not 0, 1 or 2");
         }
-        if (const auto problem = topic_problem(mqtt.base_topic); !problem.empty()) {
+        const auto base_problem = topic_problem(mqtt.base_topic);
+        base_ok_ = base_problem.empty();
+        if (!base_ok_) {
             error(mqtt.marks.of("base_topic"),
-                  "base_topic " + in_quotes(mqtt.base_topic) + " " + problem);
+                  "base_topic " + in_quotes(mqtt.base_topic) + " " + base_problem);
         } else if (mqtt.base_topic.front() == '$') {
             error(mqtt.marks.of("base_topic"), "base_topic " + in_quotes(mqtt.base_topic) +
                                                    " starts with '$' (reserved by brokers)");
@@ -172,6 +192,24 @@ private:
         }
         if (mqtt.metrics_interval.count() <= 0) {
             error(mqtt.marks.of("metrics_interval_s"), "metrics_interval_s must be at least 1");
+        }
+    }
+
+    /// The gateway's own topics fit MQTT's length. A base_topic too long for any of them is
+    /// said once, here, and the lengths of exchange and tag topics are not checked then.
+    void check_gateway_topics() {
+        if (!base_ok_ || !id_ok_) return;
+        const auto& base = config_.mqtt.base_topic;
+        const auto& id = config_.gateway.id;
+        constexpr std::string_view pattern = "{base_topic}/_gateway/{gateway.id}/metrics";
+        const std::size_t fixed = base.size() + gateway_level.size() + metrics_suffix.size();
+        if (fixed + 1 > plan::max_topic_bytes) {
+            error(config_.mqtt.marks.of("base_topic"),
+                  "base_topic " + in_quotes(base) + " " + too_long(pattern, fixed + id.size()));
+            base_ok_ = false;
+        } else if (fixed + id.size() > plan::max_topic_bytes) {
+            error(config_.gateway.marks.of("id"),
+                  "gateway id " + in_quotes(id) + " " + too_long(pattern, fixed + id.size()));
         }
     }
 
@@ -249,6 +287,7 @@ private:
             }
         }
         const bool topic_is_name = !marks.contains("topic");
+        std::size_t topic_bytes = 0;  // of {base}/{topic}; 0: unknown, or too long already
         if (const auto problem = topic_problem(spec.topic); !problem.empty()) {
             // A topic that defaults to a name refused for its text was reported with the name.
             if (!topic_is_name || plan::text_problem(spec.name).empty()) {
@@ -266,11 +305,23 @@ private:
                 }
                 start = end + 1;
             }
+            if (base_ok_) {
+                topic_bytes = config_.mqtt.base_topic.size() + 1 + spec.topic.size();
+                if (topic_bytes + result_suffix.size() > plan::max_topic_bytes) {
+                    error(topic_is_name ? marks.of("name") : marks.of("topic"),
+                          what + " topic " + in_quotes(spec.topic) + " " +
+                              too_long("{base_topic}/{topic}/set/result",
+                                       topic_bytes + result_suffix.size()));
+                    topic_bytes = 0;  // and so are its tags': said once, here
+                }
+            }
         }
-        check_tags(exchange);
+        check_tags(exchange, topic_bytes);
     }
 
-    void check_tags(const ExchangeConfig& exchange) {
+    /// `topic_bytes`: the length of the exchange's topic, whose tags' topics are checked for
+    /// length; 0: they are not.
+    void check_tags(const ExchangeConfig& exchange, std::size_t topic_bytes) {
         const auto& spec = exchange.spec;
         const std::size_t limit = spec.length ? *spec.length : wire::max_data_size;
         // Messages are built only for tags in error: a configuration may hold 100,000 tags.
@@ -292,12 +343,19 @@ private:
 
             if (const auto problem = tag_name_problem(t.name); !problem.empty()) {
                 error(marks.of("name"), problem + of_exchange());
-            } else if (const int repeated = first_with_name_[i]; repeated >= 0) {
-                const auto& first =
-                    exchange.tags[static_cast<std::size_t>(repeated)].marks.of("name");
-                error(marks.of("name"), "duplicate tag name " + in_quotes(t.name) + of_exchange() +
-                                            " (first at " + first.file.str() + ":" +
-                                            std::to_string(first.line) + ")");
+            } else {
+                if (const int repeated = first_with_name_[i]; repeated >= 0) {
+                    const auto& first =
+                        exchange.tags[static_cast<std::size_t>(repeated)].marks.of("name");
+                    error(marks.of("name"), "duplicate tag name " + in_quotes(t.name) +
+                                                of_exchange() + " (first at " + first.file.str() +
+                                                ":" + std::to_string(first.line) + ")");
+                }
+                const std::size_t bytes = topic_bytes + 1 + t.name.size() + result_suffix.size();
+                if (topic_bytes > 0 && bytes > plan::max_topic_bytes) {
+                    error(marks.of("name"),
+                          what() + " " + too_long("{base_topic}/{topic}/{tag}/set/result", bytes));
+                }
             }
 
             const bool is_bit = t.type == TagType::bit;
@@ -502,6 +560,8 @@ private:
 
     const Config& config_;
     Diagnostics out_;
+    bool id_ok_ = false;    ///< gateway.id is a valid topic level
+    bool base_ok_ = false;  ///< base_topic is a valid topic, short enough for some under it
     std::vector<std::pair<std::string_view, std::size_t>> by_name_;  ///< find_repeated_names
     std::vector<int> first_with_name_;
 };

@@ -499,6 +499,44 @@ TEST(LoadConfig, PointListTagNamesWithControlCharactersAreRefusedAtTheirRows) {
               "tag name '\\x1B[31mRED' contains a control character of exchange 'ex'");
 }
 
+TEST(LoadConfig, TopicsLongerThanMqttAllowsAreRefusedInlineAndInPointLists) {
+    const test::TempDir dir;
+    const std::string long_name(65600, 'L');
+    const auto csv = dir.write("p.csv",
+                               "TagName,Node,Address,DataType,AccessType\n"
+                               "OK,ex,0.0,Word,Read\n" +
+                                   std::string(65600, 'M') + ",ex,2.0,Word,Read\n");
+    const auto yaml = dir.write("c.yaml",
+                                "exchanges:\n"
+                                "  - name: ex\n"
+                                "    producer_id: 10.0.0.1\n"
+                                "    exchange_id: 1\n"
+                                "    points: p.csv\n"
+                                "    tags:\n"
+                                "      - { name: " +
+                                    long_name + ", address: 4, type: int }\n");
+    const auto result = load_config(yaml);
+    ASSERT_FALSE(result.ok());
+    const auto& d = result.error();
+    ASSERT_EQ(d.size(), 2u) << dump(d);
+    // eip2mqtt/ex/{tag}/set/result: 65,600 + 23 bytes.
+    const std::string message =
+        " of exchange 'ex' makes topic "
+        "'{base_topic}/{topic}/{tag}/set/result' 65623 bytes long (MQTT "
+        "allows 65535)";
+    EXPECT_EQ(d[0].mark.file, yaml);
+    EXPECT_EQ(d[0].mark.line, 7);
+    EXPECT_EQ(d[0].mark.column, 11);
+    const auto shown = [](char c) {
+        return "tag '" + std::string(core::config::max_in_quotes_bytes, c) + "...' (65600 bytes)";
+    };
+    EXPECT_EQ(d[0].message, shown('L') + message);
+    EXPECT_EQ(d[1].mark.file, csv);
+    EXPECT_EQ(d[1].mark.line, 3);
+    EXPECT_EQ(d[1].mark.column, 1);
+    EXPECT_EQ(d[1].message, shown('M') + message);
+}
+
 TEST(LoadConfig, MissingIdentityKeysDropTheExchangeWithoutEchoes) {
     // Without its exchange_id, `b` is left out: no duplicate-pair echo against `a`.
     const auto d =

@@ -438,6 +438,75 @@ TEST(Validate, ControlCharactersAndInvalidUtf8InBaseTopicGatewayIdAndClientId) {
     EXPECT_TRUE(validate(c).empty());
 }
 
+// acme/site/turbine1/{tag}/set/result: 30 bytes and the tag's name.
+constexpr std::size_t longest_tag_name = 65535 - 30;
+
+TEST(Validate, ATagWhoseResultTopicPassesMqttsLimitIsRefusedAtItsName) {
+    auto c = valid();
+    c.exchanges[0].tags[1].spec.name = std::string(longest_tag_name, 'P');
+    EXPECT_TRUE(validate(c).empty());
+    c.exchanges[0].tags[1].spec.name += 'P';
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].tags[1].marks.of("name").line);
+    EXPECT_EQ(d.message, "tag '" + std::string(max_in_quotes_bytes, 'P') +
+                             "...' (65506 bytes) of exchange 'turbine1' makes topic "
+                             "'{base_topic}/{topic}/{tag}/set/result' 65536 bytes long (MQTT "
+                             "allows 65535)");
+}
+
+TEST(Validate, APointListRowWhoseTopicIsTooLongIsRefusedAtItsRow) {
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag(std::string(longest_tag_name + 1, 'Q'), 8, 0, TagType::int_));
+    c.exchanges[0].tags.back().marks = {};
+    c.exchanges[0].tags.back().marks.node = {"a.csv", 7, 1};
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.file, "a.csv");
+    EXPECT_EQ(d.mark.line, 7);
+    EXPECT_TRUE(mentions(d, "65536 bytes long")) << d.message;
+}
+
+TEST(Validate, AnExchangeTopicTooLongIsRefusedOnceNotForEachTag) {
+    // acme/site/{topic}/set/result: 21 bytes and the topic.
+    auto c = valid();
+    c.exchanges[0].spec.topic = std::string(65535 - 21, 't');
+    c.exchanges[0].tags.clear();
+    EXPECT_TRUE(validate(c).empty());
+    c.exchanges[0].spec.topic += 't';
+    c.exchanges[0].tags = valid().exchanges[0].tags;
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("topic").line);
+    EXPECT_TRUE(mentions(d, "topic '{base_topic}/{topic}/set/result' 65536 bytes long"))
+        << d.message;
+    // A topic that defaults to the name: at the name.
+    c.exchanges[0].spec.name = c.exchanges[0].spec.topic;
+    c.exchanges[0].marks.keys.erase(
+        std::find_if(c.exchanges[0].marks.keys.begin(), c.exchanges[0].marks.keys.end(),
+                     [](const auto& key) { return key.first == "topic"; }));
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("name").line);
+}
+
+TEST(Validate, GatewayTopicsTooLongAreRefusedAtTheIdOrOnceAtTheBaseTopic) {
+    // acme/site/_gateway/{id}/metrics: 27 bytes and the id.
+    auto c = valid();
+    c.gateway.id = std::string(65535 - 27, 'g');
+    EXPECT_TRUE(validate(c).empty());
+    c.gateway.id += 'g';
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.gateway.marks.of("id").line);
+    EXPECT_TRUE(mentions(d, "topic '{base_topic}/_gateway/{gateway.id}/metrics' 65536 bytes long"))
+        << d.message;
+    // A base_topic leaving no room for any id: said once, not for each exchange and tag.
+    c = valid();
+    c.mqtt.base_topic = std::string(65535 - 18, 'b');
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.mqtt.marks.of("base_topic").line);
+    EXPECT_TRUE(mentions(d,
+                         "(65517 bytes) makes topic '{base_topic}/_gateway/{gateway.id}/metrics' "
+                         "65537 bytes long"))  // with the id `gw`
+        << d.message;
+}
+
 TEST(Validate, PeriodRange) {
     for (auto period : {0ms, 1ms, 3600001ms}) {
         auto c = valid();
