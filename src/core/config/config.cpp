@@ -297,10 +297,21 @@ private:
             std::size_t start = 0;
             while (start <= spec.topic.size()) {
                 const auto end = std::min(spec.topic.find('/', start), spec.topic.size());
-                if (spec.topic[start] == '_') {
+                const auto level = std::string_view(spec.topic).substr(start, end - start);
+                if (level.front() == '_') {
                     error(marks.of("topic"),
                           what + " topic " + in_quotes(spec.topic) +
                               " has a level starting with '_' (reserved for the gateway)");
+                    break;
+                }
+                // Like a tag name: under a topic with a `set` level, an exchange's own topics
+                // would be another's write topics, or share their /set/result.
+                if (level == "set") {
+                    error(marks.of("topic"),
+                          what + " topic " + in_quotes(spec.topic) +
+                              " has a level 'set', reserved for writes: the gateway takes "
+                              "{topic}/set and {topic}/{tag}/set as write requests and answers "
+                              "on their /set/result");
                     break;
                 }
                 start = end + 1;
@@ -508,21 +519,33 @@ private:
         const auto full_topic = [&](const ExchangeConfig& exchange) {
             return base.empty() ? exchange.spec.topic : base + "/" + exchange.spec.topic;
         };
-        // Tag names hold no '/' and are never `set` or `_…`, so a tag's topic {t}/{name} and
-        // its {t}/{name}/set can only meet a tag of another exchange with the same topic t, or
-        // the `set` topic of an exchange whose topic is {t}/{name}. An exchange whose topic is
-        // neither shared nor the parent of another's cannot collide through its tags, and its
-        // tags need not be claimed: 100,000 tags would otherwise cost 200,000 map entries.
+        // An exchange on topic t claims t/_status, t/_values, t/set and t/set/result; each of
+        // its tags t/{name}, t/{name}/set and t/{name}/set/result. Every claim is t and more
+        // levels, so claims of two exchanges can meet only when their topics are the same or
+        // one is an ancestor of the other (at any depth: t/set/result is a tag `result`'s
+        // topic under t/set, t/{name}/set/result one under t/{name}/set). An exchange whose
+        // topic is none of these cannot collide through its tags, and its tags are not
+        // claimed: 100,000 tags would otherwise cost 300,000 map entries. Topics refused for
+        // a reserved level (`_…`, `set`) still take part, so their collisions are shown too.
         std::unordered_map<std::string, int> topic_uses;
-        std::unordered_set<std::string> parents;
+        std::unordered_set<std::string> ancestors;  ///< of some exchange's topic
         for (const auto& exchange : config_.exchanges) {
             if (!topic_problem(exchange.spec.topic).empty()) continue;
             const auto topic = full_topic(exchange);
             ++topic_uses[topic];
-            if (const auto slash = topic.rfind('/'); slash != std::string::npos) {
-                parents.insert(topic.substr(0, slash));
+            for (auto slash = topic.find('/'); slash != std::string::npos;
+                 slash = topic.find('/', slash + 1)) {
+                ancestors.insert(topic.substr(0, slash));
             }
         }
+        const auto nested = [&](const std::string& topic) {
+            if (topic_uses[topic] > 1 || ancestors.contains(topic)) return true;
+            for (auto slash = topic.find('/'); slash != std::string::npos;
+                 slash = topic.find('/', slash + 1)) {
+                if (topic_uses.contains(topic.substr(0, slash))) return true;
+            }
+            return false;
+        };
         std::unordered_map<std::string, Owner> owners;
         const auto claim = [&](std::string topic, const Owner& owner, const Mark& mark) {
             const auto [it, fresh] = owners.try_emplace(std::move(topic), owner);
@@ -541,8 +564,9 @@ private:
             const Owner owner{&exchange, nullptr};
             (void)(claim(topic + "/_status", owner, topic_mark) &&
                    claim(topic + "/_values", owner, topic_mark) &&
-                   claim(topic + "/set", owner, topic_mark));
-            if (topic_uses[topic] < 2 && !parents.contains(topic)) continue;
+                   claim(topic + "/set", owner, topic_mark) &&
+                   claim(topic + "/set/result", owner, topic_mark));
+            if (!nested(topic)) continue;
             std::unordered_set<std::string_view> seen;  // views of the tags' own names
             seen.reserve(exchange.tags.size());
             std::string tag_topic;
@@ -551,9 +575,9 @@ private:
                 if (!seen.insert(tag.spec.name).second) continue;  // reported as a duplicate
                 tag_topic.assign(topic).append("/").append(tag.spec.name);
                 const Owner tag_owner{&exchange, &tag};
-                if (claim(tag_topic, tag_owner, tag.marks.of("name"))) {
-                    claim(tag_topic + "/set", tag_owner, tag.marks.of("name"));
-                }
+                (void)(claim(tag_topic, tag_owner, tag.marks.of("name")) &&
+                       claim(tag_topic + "/set", tag_owner, tag.marks.of("name")) &&
+                       claim(tag_topic + "/set/result", tag_owner, tag.marks.of("name")));
             }
         }
     }

@@ -319,6 +319,83 @@ TEST(Validate, TagTopicCollidingWithAnEarlierExchangesSetTopic) {
         << d.message;
 }
 
+TEST(Validate, SetLevelsInExchangeTopicsAreReserved) {
+    for (const char* topic : {"set", "area/set", "set/area", "a/set/b"}) {
+        auto c = valid();
+        c.exchanges[0].spec.topic = topic;
+        const auto d = only(validate(c));
+        EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("topic").line) << topic;
+        EXPECT_EQ(d.message, "exchange 'turbine1' topic '" + std::string(topic) +
+                                 "' has a level 'set', reserved for writes: the gateway takes "
+                                 "{topic}/set and {topic}/{tag}/set as write requests and "
+                                 "answers on their /set/result");
+    }
+    for (const char* topic : {"SET", "settings", "area/reset", "set_points"}) {
+        auto c = valid();
+        c.exchanges[0].spec.topic = topic;
+        EXPECT_TRUE(validate(c).empty()) << topic;
+    }
+}
+
+/// An exchange `result_holder` on topic `topic`, with a tag named `result`.
+ExchangeConfig result_holder(const std::string& topic) {
+    auto e = exchange("result_holder", Direction::consume, 77);
+    e.spec.topic = topic;
+    e.tags.push_back(tag("result", 0, 0, TagType::int_));
+    return e;
+}
+
+TEST(Validate, AnExchangesResultTopicCollidesWithATagNamedResultUnderItsSetLevel) {
+    // acme/site/turbine1/set/result: turbine1's write results, and the topic of tag `result`
+    // of an exchange on turbine1/set. The topic is refused for its `set` level, and the
+    // collision is shown as well.
+    auto c = valid();
+    c.exchanges.push_back(result_holder("turbine1/set"));
+    auto d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_TRUE(mentions(d[0], "has a level 'set'")) << d[0].message;
+    EXPECT_EQ(d[1].mark.line, c.exchanges.back().tags[0].marks.of("name").line);
+    EXPECT_EQ(d[1].message,
+              "tag 'result' of exchange 'result_holder' uses topic "
+              "'acme/site/turbine1/set/result', already used by exchange 'turbine1'");
+
+    // The other way round: the exchange's own claim is the one refused.
+    c = valid();
+    c.exchanges.insert(c.exchanges.begin(), result_holder("turbine1/set"));
+    d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_EQ(d[0].mark.line, c.exchanges[1].marks.of("topic").line);  // turbine1's topic
+    EXPECT_EQ(d[0].message,
+              "exchange 'turbine1' uses topic 'acme/site/turbine1/set/result', already used by "
+              "tag 'result' of exchange 'result_holder'");
+    EXPECT_TRUE(mentions(d[1], "has a level 'set'")) << d[1].message;
+}
+
+TEST(Validate, ATagsResultTopicCollidesWithATagNamedResultTwoLevelsBelow) {
+    // acme/site/turbine1/PRESSAO/set/result: PRESSAO's write results, and the topic of tag
+    // `result` of an exchange on turbine1/PRESSAO/set, which is not a child of turbine1.
+    auto c = valid();
+    c.exchanges.push_back(result_holder("turbine1/PRESSAO/set"));
+    const auto d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_TRUE(mentions(d[0], "has a level 'set'")) << d[0].message;
+    EXPECT_EQ(d[1].message,
+              "tag 'result' of exchange 'result_holder' uses topic "
+              "'acme/site/turbine1/PRESSAO/set/result', already used by tag 'PRESSAO' of exchange "
+              "'turbine1'");
+}
+
+TEST(Validate, NestedExchangeTopicsWithoutACommonTopicAreValid) {
+    // Exchanges on a topic and on its descendants claim their tags, and find no collision.
+    auto c = valid();
+    c.exchanges.push_back(result_holder("turbine1/area/deep"));
+    c.exchanges.back().tags[0].spec.name = "PRESSAO";
+    c.exchanges.push_back(result_holder("turbine1/area/deep/PRESSAO2"));
+    c.exchanges.back().spec.name = "deeper";
+    c.exchanges.back().spec.exchange_id = 78;
+    EXPECT_TRUE(validate(c).empty());
+}
+
 TEST(Validate, SameTagNameOnTwoExchangesOfOneTopic) {
     auto c = valid();
     c.exchanges[1].spec.topic = "turbine1";
