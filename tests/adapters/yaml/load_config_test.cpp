@@ -1,6 +1,7 @@
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <set>
@@ -535,6 +536,87 @@ TEST(LoadConfig, TopicsLongerThanMqttAllowsAreRefusedInlineAndInPointLists) {
     EXPECT_EQ(d[1].mark.line, 3);
     EXPECT_EQ(d[1].mark.column, 1);
     EXPECT_EQ(d[1].message, shown('M') + message);
+}
+
+/// A configuration in `dir` with one exchange per point list named, `ex1`, `ex2`...: the
+/// `points:` key of exchange N (1..9) is on line N + 1, column 68.
+std::string points_config(const test::TempDir& dir, const std::vector<std::string>& lists) {
+    std::string yaml = "exchanges:\n";
+    for (std::size_t i = 0; i < lists.size(); ++i) {
+        const auto n = std::to_string(i + 1);
+        yaml += "  - { name: ex" + n + ", producer_id: 10.0.0.1, exchange_id: " + n +
+                ", length: 8, points: " + lists[i] + " }\n";
+    }
+    return dir.write("c.yaml", yaml);
+}
+
+TEST(LoadConfig, APointListThatIsNotARegularFileIsADiagnosticAtItsKey) {
+    // A directory crashed `check` and a reload (std::bad_alloc), a FIFO blocked them for ever,
+    // /dev/zero grew the memory without end.
+    const test::TempDir dir;
+    std::filesystem::create_directory(dir.path() + "/dir.csv");
+    ASSERT_EQ(::mkfifo((dir.path() + "/fifo.csv").c_str(), 0600), 0);
+    const auto yaml = points_config(dir, {"dir.csv", "fifo.csv", "/dev/zero"});
+    const auto result = load_config(yaml);
+    ASSERT_FALSE(result.ok());
+    const auto& d = result.error();
+    ASSERT_EQ(d.size(), 3u) << dump(d);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        EXPECT_EQ(d[i].mark.file, yaml);
+        EXPECT_EQ(d[i].mark.line, static_cast<int>(i) + 2);
+        EXPECT_EQ(d[i].mark.column, 68);
+    }
+    EXPECT_EQ(d[0].message,
+              "point list '" + dir.path() + "/dir.csv' is not a regular file (a directory)");
+    EXPECT_EQ(d[1].message,
+              "point list '" + dir.path() + "/fifo.csv' is not a regular file (a FIFO)");
+    EXPECT_EQ(d[2].message, "point list '/dev/zero' is not a regular file (a character device)");
+}
+
+TEST(LoadConfig, APointListOverTheSizeLimitIsADiagnosticAtItsKey) {
+    const test::TempDir dir;
+    // A valid list padded to the limit exactly by a comment line (sparse: nothing is written).
+    const std::string list = "TagName,Node,Address,DataType,AccessType\nA,ex1,0.0,Word,Read\n#";
+    dir.write("limit.csv", list);
+    std::filesystem::resize_file(dir.path() + "/limit.csv", max_file_bytes);
+    dir.write("over.csv", list);
+    std::filesystem::resize_file(dir.path() + "/over.csv", max_file_bytes + 1);
+    dir.write("huge.csv", list);
+    std::filesystem::resize_file(dir.path() + "/huge.csv", 70000000);
+
+    auto result = load_config(points_config(dir, {"limit.csv"}));
+    ASSERT_TRUE(result.ok()) << dump(result.error());
+    ASSERT_EQ(result.value().exchanges.at(0).tags.size(), 1u);
+
+    result = load_config(points_config(dir, {"over.csv", "huge.csv"}));
+    ASSERT_FALSE(result.ok());
+    const auto& d = result.error();
+    ASSERT_EQ(d.size(), 2u) << dump(d);
+    EXPECT_EQ(d[0].mark.line, 2);
+    EXPECT_EQ(d[0].mark.column, 68);
+    EXPECT_EQ(d[0].message, "point list '" + dir.path() +
+                                "/over.csv' is 67108865 bytes; the limit is 67108864 (64 MiB)");
+    EXPECT_EQ(d[1].mark.line, 3);
+    EXPECT_EQ(d[1].message, "point list '" + dir.path() +
+                                "/huge.csv' is 70000000 bytes; the limit is 67108864 (64 MiB)");
+}
+
+TEST(LoadConfig, AConfigurationThatIsNotARegularFileOrTooBigIsADiagnosticWithoutLine) {
+    const test::TempDir dir;
+    ASSERT_EQ(::mkfifo((dir.path() + "/fifo.yaml").c_str(), 0600), 0);
+    const auto big = dir.write("big.yaml", minimal_exchange + "#");
+    std::filesystem::resize_file(big, max_file_bytes + 1);
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {dir.path(), "the configuration is not a regular file (a directory)"},
+        {dir.path() + "/fifo.yaml", "the configuration is not a regular file (a FIFO)"},
+        {"/dev/zero", "the configuration is not a regular file (a character device)"},
+        {big, "the configuration is 67108865 bytes; the limit is 67108864 (64 MiB)"}};
+    for (const auto& [path, message] : cases) {
+        const auto result = load_config(path);
+        ASSERT_FALSE(result.ok()) << path;
+        ASSERT_EQ(result.error().size(), 1u) << dump(result.error());
+        EXPECT_EQ(result.error()[0].to_string(), path + ": error: " + message);
+    }
 }
 
 TEST(LoadConfig, MissingIdentityKeysDropTheExchangeWithoutEchoes) {
