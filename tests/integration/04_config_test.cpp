@@ -88,6 +88,54 @@ TEST(CheckCommand, RefusesAConfigurationThatIsADirectory) {
         << result.output;
 }
 
+TEST(CheckCommand, RefusesTopicsTooLongControlCharactersAndSetLevelsWithLineAndColumn) {
+    TempDir dir;
+    const std::string long_name(65600, 'L');
+    const auto path = dir.write("names.yaml",
+                                "exchanges:\n"
+                                "  - name: ex\n"
+                                "    topic: area/set\n"
+                                "    producer_id: 10.0.0.1\n"
+                                "    exchange_id: 1\n"
+                                "    length: 8\n"
+                                "    tags:\n"
+                                "      - { name: \"A\\0x\", address: 0, type: int }\n"
+                                "      - { name: " +
+                                    long_name + ", address: 2, type: int }\n");
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    for (const std::string& expected :
+         {path +
+              ":3:5: error: exchange 'ex' topic 'area/set' has a level 'set', reserved for writes",
+          path + ":8:11: error: tag name 'A\\0x' contains a NUL character of exchange 'ex'",
+          path + ":9:11: error: tag 'LLLL",
+          std::string("(65600 bytes) of exchange 'ex' makes topic "
+                      "'{base_topic}/{topic}/{tag}/set/result' "
+                      "65629 bytes long (MQTT allows 65535)")}) {
+        EXPECT_NE(result.output.find(expected), std::string::npos) << expected << "\n"
+                                                                   << result.output.substr(0, 2000);
+    }
+}
+
+TEST(CheckCommand, ReportsAPointListFieldRunningOntoTheNextLineAtItsQuote) {
+    TempDir dir;
+    const auto csv = dir.write("p.csv",
+                               "TagName,Node,Address,DataType,AccessType\n"
+                               "OK,ex,0.0,Word,Read\n"
+                               "\"TAG\nX\",ex,2.0,Word,Read\n");
+    const auto path =
+        dir.write("p.yaml",
+                  "exchanges:\n"
+                  "  - { name: ex, producer_id: 10.0.0.1, exchange_id: 1, points: p.csv }\n");
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    EXPECT_NE(result.output.find(csv + ":3:1: error: a quoted field runs past the end of the line, "
+                                       "to line 4 (newlines inside fields are not supported)\n1 "
+                                       "error(s)"),
+              std::string::npos)
+        << result.output;
+}
+
 TEST(RunCommand, RefusesToStartOnAnInvalidConfiguration) {
     TempDir dir;
     const auto path = dir.write("bad.yaml", bad_config);
