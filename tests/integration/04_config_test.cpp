@@ -2,6 +2,7 @@
 // the example configuration in etc/ is valid.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 
@@ -43,6 +44,96 @@ TEST(CheckCommand, ReportsOverlapPastEndAndUnknownKeyWithLineAndColumn) {
     EXPECT_NE(result.output.find("overlap"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find(path + ":17:"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find("past"), std::string::npos) << result.output;
+}
+
+TEST(CheckCommand, RefusesPointListsThatAreNoRegularFilesOrTooBigAtTheirKeyWithoutHanging) {
+    // A directory crashed `check` (std::bad_alloc, no file:line), a FIFO blocked it for ever.
+    TempDir dir;
+    std::filesystem::create_directory(dir.path() + "/dir.csv");
+    ASSERT_EQ(::mkfifo((dir.path() + "/fifo.csv").c_str(), 0600), 0);
+    const auto huge = dir.write("huge.csv", "TagName,Node,Address,DataType,AccessType\n#");
+    std::filesystem::resize_file(huge, 70000000);  // sparse
+    std::string yaml = "exchanges:\n";
+    int id = 0;
+    for (const char* points : {"dir.csv", "fifo.csv", "/dev/zero", "huge.csv"}) {
+        ++id;
+        yaml += "  - name: ex" + std::to_string(id) + "\n    producer_id: 10.0.0.1\n" +
+                "    exchange_id: " + std::to_string(id) +
+                "\n    length: 8\n    points: " + points + "\n";
+    }
+    const auto path = dir.write("points.yaml", yaml);
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    for (const std::string& expected :
+         {path + ":6:5: error: point list '" + dir.path() +
+              "/dir.csv' is not a regular file (a directory)",
+          path + ":11:5: error: point list '" + dir.path() +
+              "/fifo.csv' is not a regular file (a FIFO)",
+          path + ":16:5: error: point list '/dev/zero' is not a regular file (a character device)",
+          path + ":21:5: error: point list '" + dir.path() +
+              "/huge.csv' is 70000000 bytes; the limit is 67108864 (64 MiB)",
+          std::string("4 error(s)")}) {
+        EXPECT_NE(result.output.find(expected), std::string::npos) << expected << "\n"
+                                                                   << result.output;
+    }
+}
+
+TEST(CheckCommand, RefusesAConfigurationThatIsADirectory) {
+    TempDir dir;
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", dir.path()}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    EXPECT_NE(result.output.find(dir.path() +
+                                 ": error: the configuration is not a regular file (a directory)"),
+              std::string::npos)
+        << result.output;
+}
+
+TEST(CheckCommand, RefusesTopicsTooLongControlCharactersAndSetLevelsWithLineAndColumn) {
+    TempDir dir;
+    const std::string long_name(65600, 'L');
+    const auto path = dir.write("names.yaml",
+                                "exchanges:\n"
+                                "  - name: ex\n"
+                                "    topic: area/set\n"
+                                "    producer_id: 10.0.0.1\n"
+                                "    exchange_id: 1\n"
+                                "    length: 8\n"
+                                "    tags:\n"
+                                "      - { name: \"A\\0x\", address: 0, type: int }\n"
+                                "      - { name: " +
+                                    long_name + ", address: 2, type: int }\n");
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    for (const std::string& expected :
+         {path +
+              ":3:5: error: exchange 'ex' topic 'area/set' has a level 'set', reserved for writes",
+          path + ":8:11: error: tag name 'A\\0x' contains a NUL character of exchange 'ex'",
+          path + ":9:11: error: tag 'LLLL",
+          std::string("(65600 bytes) of exchange 'ex' makes topic "
+                      "'{base_topic}/{topic}/{tag}/set/result' "
+                      "65629 bytes long (MQTT allows 65535)")}) {
+        EXPECT_NE(result.output.find(expected), std::string::npos) << expected << "\n"
+                                                                   << result.output.substr(0, 2000);
+    }
+}
+
+TEST(CheckCommand, ReportsAPointListFieldRunningOntoTheNextLineAtItsQuote) {
+    TempDir dir;
+    const auto csv = dir.write("p.csv",
+                               "TagName,Node,Address,DataType,AccessType\n"
+                               "OK,ex,0.0,Word,Read\n"
+                               "\"TAG\nX\",ex,2.0,Word,Read\n");
+    const auto path =
+        dir.write("p.yaml",
+                  "exchanges:\n"
+                  "  - { name: ex, producer_id: 10.0.0.1, exchange_id: 1, points: p.csv }\n");
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    EXPECT_NE(result.output.find(csv + ":3:1: error: a quoted field runs past the end of the line, "
+                                       "to line 4 (newlines inside fields are not supported)\n1 "
+                                       "error(s)"),
+              std::string::npos)
+        << result.output;
 }
 
 TEST(RunCommand, RefusesToStartOnAnInvalidConfiguration) {

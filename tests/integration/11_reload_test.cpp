@@ -5,6 +5,7 @@
 // ok when a datagram carried it, else "reloaded".
 
 #include <signal.h>
+#include <sys/stat.h>
 
 #include <fstream>
 #include <map>
@@ -162,6 +163,42 @@ TEST_F(ReloadTest, InvalidFileIsRefusedAndTheOldConfigurationKeepsRunning) {
     send(datagram(1, 2, 12));
     expect_field(topic("kept/A"), "value", "12");
     EXPECT_TRUE(gateway_->running());
+}
+
+TEST_F(ReloadTest, APointListThatIsADirectoryOrAFifoIsRefusedAndTheOldConfigurationKeepsRunning) {
+    // A directory made the reload die of std::bad_alloc (exit 1); a FIFO blocked the loop.
+    start(exchange("kept", 1, tag_a));
+    send(datagram(1, 1, 11));
+    expect_field(topic("kept/A"), "value", "11");
+
+    const auto directory = dir_.path() + "/dir.csv";
+    std::filesystem::create_directory(directory);
+    rewrite_exchanges(exchange("kept", 1, tag_a) + "    points: " + directory + "\n");
+    gateway_->signal(SIGHUP);
+    ASSERT_TRUE(gateway_->wait_for_output(
+        "point list '" + directory + "' is not a regular file (a directory)", 10s))
+        << gateway_->output();
+    send(datagram(1, 2, 12));
+    expect_field(topic("kept/A"), "value", "12");
+
+    const auto fifo = dir_.path() + "/fifo.csv";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    rewrite_exchanges(exchange("kept", 1, tag_a) + "    points: " + fifo + "\n");
+    gateway_->signal(SIGHUP);
+    ASSERT_TRUE(
+        gateway_->wait_for_output("point list '" + fifo + "' is not a regular file (a FIFO)", 10s))
+        << gateway_->output();
+    send(datagram(1, 3, 13));
+    expect_field(topic("kept/A"), "value", "13");
+
+    EXPECT_TRUE(gateway_->running());
+    const auto output = gateway_->output();
+    std::size_t refusals = 0;
+    for (auto at = output.find("reload refused"); at != std::string::npos;
+         at = output.find("reload refused", at + 1)) {
+        ++refusals;
+    }
+    EXPECT_EQ(refusals, 2u) << output;
 }
 
 TEST_F(ReloadTest, TheSyntaxCacheServesAnUnchangedFileAndNeverAnEditedOne) {

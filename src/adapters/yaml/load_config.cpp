@@ -1,5 +1,8 @@
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <yaml-cpp/exceptions.h>
 
 #include <algorithm>
@@ -9,13 +12,11 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 #include <span>
-#include <sstream>
 #include <string_view>
 #include <tuple>
 #include <type_traits>
@@ -31,21 +32,66 @@
 namespace eip2mqtt::adapters::yaml {
 namespace {
 
-/// The whole of an opened file in one read: a file of 5 MB went through an ostringstream's
-/// buffer and was copied out of it again. A stream of unknown size (a pipe) is read piecewise.
-std::string read_all(std::ifstream& in) {
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    in.seekg(0, std::ios::beg);
-    if (size <= 0 || !in) {
-        in.clear();
-        std::ostringstream content;
-        content << in.rdbuf();
-        return std::move(content).str();
+/// What a file that is not a regular one is, for a message: "a directory".
+std::string_view kind_of(mode_t mode) {
+    if (S_ISDIR(mode)) return "a directory";
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISSOCK(mode)) return "a socket";
+    return "of an unknown kind";
+}
+
+/// The whole of a regular file of at most max_file_bytes, or why not, with `what` naming it
+/// ("point list 'x.csv'"). Opened without blocking (a FIFO without a writer would block the
+/// open for ever), checked on the opened descriptor (what is read is what was checked), and
+/// never read past the limit, whatever its size said (a file may grow meanwhile; /proc files
+/// say 0). Read as a stream, a directory ended in std::bad_alloc, a FIFO blocked and
+/// /dev/zero grew the memory without end.
+core::Result<std::string, std::string> read_file(const std::string& path, const std::string& what) {
+    const auto cannot = [&](int error) {
+        return core::fail("cannot read " + what + ": " + std::strerror(error));
+    };
+    const auto too_big = [&](const std::string& size) {
+        return core::fail(what + " is " + size + " bytes; the limit is " +
+                          std::to_string(max_file_bytes) + " (" +
+                          std::to_string(max_file_bytes >> 20) + " MiB)");
+    };
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return cannot(errno);
+    const struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    struct stat status = {};
+    if (::fstat(fd, &status) != 0) return cannot(errno);
+    if (!S_ISREG(status.st_mode)) {
+        return core::fail(what + " is not a regular file (" + std::string(kind_of(status.st_mode)) +
+                          ")");
     }
-    std::string text(static_cast<std::size_t>(size), '\0');
-    in.read(text.data(), size);
-    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (static_cast<std::uintmax_t>(status.st_size) > max_file_bytes) {
+        return too_big(std::to_string(status.st_size));
+    }
+    // Sized for one read (a 5 MB file once went through an ostringstream and was copied out
+    // of it again), and one byte more, to see the end without growing.
+    std::string text(static_cast<std::size_t>(status.st_size) + 1, '\0');
+    std::size_t filled = 0;
+    while (true) {
+        if (filled == text.size()) {
+            if (filled > max_file_bytes) {
+                return too_big("more than " + std::to_string(max_file_bytes));
+            }
+            text.resize(std::min(std::max<std::size_t>(2 * filled, 4096), max_file_bytes + 1));
+        }
+        const auto n = ::read(fd, text.data() + filled, text.size() - filled);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            return cannot(errno);
+        }
+        if (n == 0) break;
+        filled += static_cast<std::size_t>(n);
+    }
+    text.resize(filled);
     return text;
 }
 
@@ -54,6 +100,7 @@ using core::config::Diagnostic;
 using core::config::Diagnostics;
 using core::config::ExchangeConfig;
 using core::config::FileName;
+using core::config::in_quotes;
 using core::config::Mark;
 using core::config::Marks;
 using core::config::TagConfig;
@@ -96,8 +143,6 @@ constexpr std::array<std::string_view, 15> exchange_keys{
 constexpr std::array<std::string_view, 12> tag_keys{
     "name",     "address", "type", "unit",    "deadband",    "refresh_s",
     "writable", "min",     "max",  "initial", "description", "max_writes_per_s"};
-
-std::string in_quotes(std::string_view text) { return "'" + std::string(text) + "'"; }
 
 std::string lower(std::string_view text) {
     std::string out(text);
@@ -816,15 +861,14 @@ private:
         const std::string key = path.lexically_normal().string();
         auto it = point_lists_.find(key);
         if (it == point_lists_.end()) {
-            std::ifstream in(path, std::ios::binary);
-            if (!in) {
-                error(at, "cannot read point list " + in_quotes(path.string()) + ": " +
-                              std::strerror(errno));
+            auto text = read_file(path.string(), "point list " + in_quotes(path.string()));
+            if (!text) {
+                error(at, text.error());
                 point_lists_.emplace(key, nullptr);
                 return;
             }
             auto loaded = std::make_unique<LoadedPoints>(
-                core::config::parse_point_list(read_all(in), path.string()));
+                core::config::parse_point_list(text.value(), path.string()));
             // Errors of a file shared by several exchanges are reported once.
             diagnostics_.insert(diagnostics_.end(), loaded->list.errors.begin(),
                                 loaded->list.errors.end());
@@ -866,14 +910,13 @@ private:
 }  // namespace
 
 core::Result<Config, Diagnostics> load_config(const std::string& path, const LoadOptions& options) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    auto text = read_file(path, "the configuration");
+    if (!text) {
         Diagnostics unreadable;
-        unreadable.push_back({Mark{path, 0, 0}, std::string("cannot read the configuration: ") +
-                                                    std::strerror(errno)});
+        unreadable.push_back({Mark{path, 0, 0}, text.error()});
         return core::fail(std::move(unreadable));
     }
-    return Loader(path, options.syntax_cache_dir).load(read_all(in));
+    return Loader(path, options.syntax_cache_dir).load(text.value());
 }
 
 core::Result<Config, Diagnostics> load_config_text(const std::string& text,

@@ -14,6 +14,7 @@
 
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/plan/topic_rules.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::core::config {
@@ -46,8 +47,22 @@ using plan::TagType;
 
 constexpr long long min_period_ms = 2;        // eip-protocol.md §5
 constexpr long long max_period_ms = 3600000;  // eip-protocol.md §5
+/// MQTT encodes the length of a string (a client id) in two bytes, as a topic's.
+constexpr std::size_t max_string_bytes = plan::max_topic_bytes;
 
-std::string in_quotes(std::string_view text) { return "'" + std::string(text) + "'"; }
+// The fixed parts of the longest topics the gateway builds: {base}/{topic}/set/result for an
+// exchange (longer than its /_status and /_values), {base}/{topic}/{tag}/set/result for a tag,
+// {base}/_gateway/{id}/metrics for the gateway (longer than /state). Their lengths are added
+// up, the topics never built: a configuration may hold 100,000 tags.
+constexpr std::string_view result_suffix = "/set/result";
+constexpr std::string_view gateway_level = "/_gateway/";
+constexpr std::string_view metrics_suffix = "/metrics";
+
+/// "makes topic '{pattern}' N bytes long (MQTT allows 65535)".
+std::string too_long(std::string_view pattern, std::size_t bytes) {
+    return "makes topic '" + std::string(pattern) + "' " + std::to_string(bytes) +
+           " bytes long (MQTT allows " + std::to_string(plan::max_topic_bytes) + ")";
+}
 
 std::string format_number(double value) {
     std::string text = std::to_string(value);
@@ -71,8 +86,8 @@ std::string topic_problem(std::string_view topic) {
     if (topic.front() == '/' || topic.back() == '/' || topic.find("//") != std::string_view::npos) {
         return "has an empty level (leading, trailing or double '/')";
     }
-    if (topic.find('\0') != std::string_view::npos) return "contains a NUL character";
-    return {};
+    // Control characters, NUL above all: a topic cut at a NUL would be another tag's topic.
+    return std::string(plan::text_problem(topic));
 }
 
 /// Why a tag name cannot be a topic level of its own, or empty when it can.
@@ -80,6 +95,9 @@ std::string tag_name_problem(std::string_view name) {
     if (name.empty()) return "a tag has an empty name";
     if (name.find_first_of("/+#") != std::string_view::npos) {
         return "tag name " + in_quotes(name) + " contains '/', '+' or '#'";
+    }
+    if (const auto problem = plan::text_problem(name); !problem.empty()) {
+        return "tag name " + in_quotes(name) + " " + std::string(problem);
     }
     // The gateway's own words under an exchange topic: {exchange}/set, {exchange}/_status...
     if (name == "set" || name.front() == '_') {
@@ -96,6 +114,7 @@ public:
     Diagnostics run() {
         check_gateway();
         check_mqtt();
+        check_gateway_topics();
         check_exchanges();
         std::stable_sort(
             out_.begin(), out_.end(), [this](const Diagnostic& a, const Diagnostic& b) {
@@ -114,11 +133,17 @@ private:
 
     void check_gateway() {
         const auto& gateway = config_.gateway;
+        id_ok_ = false;
         if (gateway.id.empty()) {
             error(gateway.marks.of("id"), "gateway id is empty");
         } else if (gateway.id.find_first_of("/+#") != std::string::npos) {
             error(gateway.marks.of("id"), "gateway id " + in_quotes(gateway.id) +
                                               " contains '/', '+' or '#' (it is a topic level)");
+        } else if (const auto problem = plan::text_problem(gateway.id); !problem.empty()) {
+            error(gateway.marks.of("id"), "gateway id " + in_quotes(gateway.id) + " " +
+                                              std::string(problem) + " (it is a topic level)");
+        } else {
+            id_ok_ = true;
         }
         static constexpr std::array<std::string_view, 7> levels{"trace", "debug",    "info", "warn",
                                                                 "error", "critical", "off"};
@@ -138,12 +163,25 @@ private:
             error(mqtt.marks.of("qos"),
                   "mqtt qos " + std::to_string(mqtt.qos) + " is not 0, 1 or 2");
         }
-        if (const auto problem = topic_problem(mqtt.base_topic); !problem.empty()) {
+        const auto base_problem = topic_problem(mqtt.base_topic);
+        base_ok_ = base_problem.empty();
+        if (!base_ok_) {
             error(mqtt.marks.of("base_topic"),
-                  "base_topic " + in_quotes(mqtt.base_topic) + " " + problem);
+                  "base_topic " + in_quotes(mqtt.base_topic) + " " + base_problem);
         } else if (mqtt.base_topic.front() == '$') {
             error(mqtt.marks.of("base_topic"), "base_topic " + in_quotes(mqtt.base_topic) +
                                                    " starts with '$' (reserved by brokers)");
+        }
+        // Only a written one: the default, eip2mqtt-{gateway.id}, is as good as gateway.id.
+        if (mqtt.marks.contains("client_id")) {
+            if (const auto problem = plan::text_problem(mqtt.client_id); !problem.empty()) {
+                error(mqtt.marks.of("client_id"),
+                      "client_id " + in_quotes(mqtt.client_id) + " " + std::string(problem));
+            } else if (mqtt.client_id.size() > max_string_bytes) {
+                error(mqtt.marks.of("client_id"),
+                      "client_id is " + std::to_string(mqtt.client_id.size()) +
+                          " bytes long (MQTT allows " + std::to_string(max_string_bytes) + ")");
+            }
         }
         if (mqtt.url.empty()) error(mqtt.marks.of("url"), "mqtt url is empty");
         if (mqtt.buffer_max_messages == 0) {
@@ -154,6 +192,24 @@ private:
         }
         if (mqtt.metrics_interval.count() <= 0) {
             error(mqtt.marks.of("metrics_interval_s"), "metrics_interval_s must be at least 1");
+        }
+    }
+
+    /// The gateway's own topics fit MQTT's length. A base_topic too long for any of them is
+    /// said once, here, and the lengths of exchange and tag topics are not checked then.
+    void check_gateway_topics() {
+        if (!base_ok_ || !id_ok_) return;
+        const auto& base = config_.mqtt.base_topic;
+        const auto& id = config_.gateway.id;
+        constexpr std::string_view pattern = "{base_topic}/_gateway/{gateway.id}/metrics";
+        const std::size_t fixed = base.size() + gateway_level.size() + metrics_suffix.size();
+        if (fixed + 1 > plan::max_topic_bytes) {
+            error(config_.mqtt.marks.of("base_topic"),
+                  "base_topic " + in_quotes(base) + " " + too_long(pattern, fixed + id.size()));
+            base_ok_ = false;
+        } else if (fixed + id.size() > plan::max_topic_bytes) {
+            error(config_.gateway.marks.of("id"),
+                  "gateway id " + in_quotes(id) + " " + too_long(pattern, fixed + id.size()));
         }
     }
 
@@ -169,6 +225,9 @@ private:
             const auto& spec = exchange.spec;
             if (spec.name.empty()) {
                 error(exchange.marks.of("name"), "an exchange has an empty name");
+            } else if (const auto problem = plan::text_problem(spec.name); !problem.empty()) {
+                error(exchange.marks.of("name"),
+                      "exchange name " + in_quotes(spec.name) + " " + std::string(problem));
             } else if (const auto [it, fresh] = names.emplace(spec.name, &exchange); !fresh) {
                 error(exchange.marks.of("name"),
                       "duplicate exchange name " + in_quotes(spec.name) + " (first at line " +
@@ -234,25 +293,53 @@ private:
                 }
             }
         }
+        const bool topic_is_name = !marks.contains("topic");
+        std::size_t topic_bytes = 0;  // of {base}/{topic}; 0: unknown, or too long already
         if (const auto problem = topic_problem(spec.topic); !problem.empty()) {
-            error(marks.of("topic"), what + " topic " + in_quotes(spec.topic) + " " + problem);
+            // A topic that defaults to a name refused for its text was reported with the name.
+            if (!topic_is_name || plan::text_problem(spec.name).empty()) {
+                error(marks.of("topic"), what + " topic " + in_quotes(spec.topic) + " " + problem);
+            }
         } else {
             std::size_t start = 0;
             while (start <= spec.topic.size()) {
                 const auto end = std::min(spec.topic.find('/', start), spec.topic.size());
-                if (spec.topic[start] == '_') {
+                const auto level = std::string_view(spec.topic).substr(start, end - start);
+                if (level.front() == '_') {
                     error(marks.of("topic"),
                           what + " topic " + in_quotes(spec.topic) +
                               " has a level starting with '_' (reserved for the gateway)");
                     break;
                 }
+                // Like a tag name: under a topic with a `set` level, an exchange's own topics
+                // would be another's write topics, or share their /set/result.
+                if (level == "set") {
+                    error(marks.of("topic"),
+                          what + " topic " + in_quotes(spec.topic) +
+                              " has a level 'set', reserved for writes: the gateway takes "
+                              "{topic}/set and {topic}/{tag}/set as write requests and answers "
+                              "on their /set/result");
+                    break;
+                }
                 start = end + 1;
             }
+            if (base_ok_) {
+                topic_bytes = config_.mqtt.base_topic.size() + 1 + spec.topic.size();
+                if (topic_bytes + result_suffix.size() > plan::max_topic_bytes) {
+                    error(topic_is_name ? marks.of("name") : marks.of("topic"),
+                          what + " topic " + in_quotes(spec.topic) + " " +
+                              too_long("{base_topic}/{topic}/set/result",
+                                       topic_bytes + result_suffix.size()));
+                    topic_bytes = 0;  // and so are its tags': said once, here
+                }
+            }
         }
-        check_tags(exchange);
+        check_tags(exchange, topic_bytes);
     }
 
-    void check_tags(const ExchangeConfig& exchange) {
+    /// `topic_bytes`: the length of the exchange's topic, whose tags' topics are checked for
+    /// length; 0: they are not.
+    void check_tags(const ExchangeConfig& exchange, std::size_t topic_bytes) {
         const auto& spec = exchange.spec;
         const std::size_t limit = spec.length ? *spec.length : wire::max_data_size;
         // Messages are built only for tags in error: a configuration may hold 100,000 tags.
@@ -274,12 +361,19 @@ private:
 
             if (const auto problem = tag_name_problem(t.name); !problem.empty()) {
                 error(marks.of("name"), problem + of_exchange());
-            } else if (const int repeated = first_with_name_[i]; repeated >= 0) {
-                const auto& first =
-                    exchange.tags[static_cast<std::size_t>(repeated)].marks.of("name");
-                error(marks.of("name"), "duplicate tag name " + in_quotes(t.name) + of_exchange() +
-                                            " (first at " + first.file.str() + ":" +
-                                            std::to_string(first.line) + ")");
+            } else {
+                if (const int repeated = first_with_name_[i]; repeated >= 0) {
+                    const auto& first =
+                        exchange.tags[static_cast<std::size_t>(repeated)].marks.of("name");
+                    error(marks.of("name"), "duplicate tag name " + in_quotes(t.name) +
+                                                of_exchange() + " (first at " + first.file.str() +
+                                                ":" + std::to_string(first.line) + ")");
+                }
+                const std::size_t bytes = topic_bytes + 1 + t.name.size() + result_suffix.size();
+                if (topic_bytes > 0 && bytes > plan::max_topic_bytes) {
+                    error(marks.of("name"),
+                          what() + " " + too_long("{base_topic}/{topic}/{tag}/set/result", bytes));
+                }
             }
 
             const bool is_bit = t.type == TagType::bit;
@@ -432,21 +526,33 @@ private:
         const auto full_topic = [&](const ExchangeConfig& exchange) {
             return base.empty() ? exchange.spec.topic : base + "/" + exchange.spec.topic;
         };
-        // Tag names hold no '/' and are never `set` or `_…`, so a tag's topic {t}/{name} and
-        // its {t}/{name}/set can only meet a tag of another exchange with the same topic t, or
-        // the `set` topic of an exchange whose topic is {t}/{name}. An exchange whose topic is
-        // neither shared nor the parent of another's cannot collide through its tags, and its
-        // tags need not be claimed: 100,000 tags would otherwise cost 200,000 map entries.
+        // An exchange on topic t claims t/_status, t/_values, t/set and t/set/result; each of
+        // its tags t/{name}, t/{name}/set and t/{name}/set/result. Every claim is t and more
+        // levels, so claims of two exchanges can meet only when their topics are the same or
+        // one is an ancestor of the other (at any depth: t/set/result is a tag `result`'s
+        // topic under t/set, t/{name}/set/result one under t/{name}/set). An exchange whose
+        // topic is none of these cannot collide through its tags, and its tags are not
+        // claimed: 100,000 tags would otherwise cost 300,000 map entries. Topics refused for
+        // a reserved level (`_…`, `set`) still take part, so their collisions are shown too.
         std::unordered_map<std::string, int> topic_uses;
-        std::unordered_set<std::string> parents;
+        std::unordered_set<std::string> ancestors;  ///< of some exchange's topic
         for (const auto& exchange : config_.exchanges) {
             if (!topic_problem(exchange.spec.topic).empty()) continue;
             const auto topic = full_topic(exchange);
             ++topic_uses[topic];
-            if (const auto slash = topic.rfind('/'); slash != std::string::npos) {
-                parents.insert(topic.substr(0, slash));
+            for (auto slash = topic.find('/'); slash != std::string::npos;
+                 slash = topic.find('/', slash + 1)) {
+                ancestors.insert(topic.substr(0, slash));
             }
         }
+        const auto nested = [&](const std::string& topic) {
+            if (topic_uses[topic] > 1 || ancestors.contains(topic)) return true;
+            for (auto slash = topic.find('/'); slash != std::string::npos;
+                 slash = topic.find('/', slash + 1)) {
+                if (topic_uses.contains(topic.substr(0, slash))) return true;
+            }
+            return false;
+        };
         std::unordered_map<std::string, Owner> owners;
         const auto claim = [&](std::string topic, const Owner& owner, const Mark& mark) {
             const auto [it, fresh] = owners.try_emplace(std::move(topic), owner);
@@ -465,8 +571,9 @@ private:
             const Owner owner{&exchange, nullptr};
             (void)(claim(topic + "/_status", owner, topic_mark) &&
                    claim(topic + "/_values", owner, topic_mark) &&
-                   claim(topic + "/set", owner, topic_mark));
-            if (topic_uses[topic] < 2 && !parents.contains(topic)) continue;
+                   claim(topic + "/set", owner, topic_mark) &&
+                   claim(topic + "/set/result", owner, topic_mark));
+            if (!nested(topic)) continue;
             std::unordered_set<std::string_view> seen;  // views of the tags' own names
             seen.reserve(exchange.tags.size());
             std::string tag_topic;
@@ -475,15 +582,17 @@ private:
                 if (!seen.insert(tag.spec.name).second) continue;  // reported as a duplicate
                 tag_topic.assign(topic).append("/").append(tag.spec.name);
                 const Owner tag_owner{&exchange, &tag};
-                if (claim(tag_topic, tag_owner, tag.marks.of("name"))) {
-                    claim(tag_topic + "/set", tag_owner, tag.marks.of("name"));
-                }
+                (void)(claim(tag_topic, tag_owner, tag.marks.of("name")) &&
+                       claim(tag_topic + "/set", tag_owner, tag.marks.of("name")) &&
+                       claim(tag_topic + "/set/result", tag_owner, tag.marks.of("name")));
             }
         }
     }
 
     const Config& config_;
     Diagnostics out_;
+    bool id_ok_ = false;    ///< gateway.id is a valid topic level
+    bool base_ok_ = false;  ///< base_topic is a valid topic, short enough for some under it
     std::vector<std::pair<std::string_view, std::size_t>> by_name_;  ///< find_repeated_names
     std::vector<int> first_with_name_;
 };

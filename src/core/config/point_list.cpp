@@ -32,8 +32,9 @@ bool equals_lower(std::string_view text, std::string_view lower_case) {
 
 /// Splits one CSV line into `fields` (reused from line to line: a list of 100,000 rows would
 /// otherwise allocate a string per field); fields may be double-quoted, with "" for a quote
-/// inside. Returns false on an unterminated quote (a field spanning lines is not supported).
-bool split(std::string_view line, std::vector<Field>& fields) {
+/// inside. Returns false on a quote still open at the end of the line (a field spanning lines
+/// is not supported), with `open_quote` its 1-based column.
+bool split(std::string_view line, std::vector<Field>& fields, int& open_quote) {
     std::size_t count = 0;
     std::size_t i = 0;
     while (true) {
@@ -43,6 +44,7 @@ bool split(std::string_view line, std::vector<Field>& fields) {
         field.quoted = false;
         while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
         if (i < line.size() && line[i] == '"') {
+            open_quote = static_cast<int>(i) + 1;
             ++i;
             field.unquoted.clear();
             bool closed = false;
@@ -79,6 +81,49 @@ bool split(std::string_view line, std::vector<Field>& fields) {
     return true;
 }
 
+/// How a record goes on past a line that ended inside a quoted field, read by split()'s rules
+/// (a quote opens a field only at its start; "" inside quotes is a quote).
+struct Continuation {
+    std::size_t next = 0;  ///< where the next record starts
+    int lines = 0;         ///< lines the record takes after its first
+    int closed_at = 0;     ///< lines after the first where the quote closes; 0: never
+};
+
+/// Follows the record whose quoted field is open at the end of the line before `pos`.
+Continuation follow_quote(std::string_view text, std::size_t pos) {
+    Continuation out;
+    out.next = text.size();
+    if (pos >= text.size()) return out;
+    out.lines = 1;
+    bool inside = true;
+    bool field_start = false;
+    for (std::size_t i = pos; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inside) {
+            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+                ++i;
+            } else if (c == '"') {
+                inside = false;
+                out.closed_at = out.lines;
+            } else if (c == '\n' && i + 1 < text.size()) {
+                ++out.lines;
+            }
+        } else if (c == '\n') {
+            out.next = i + 1;
+            return out;
+        } else if (c == ',') {
+            field_start = true;
+        } else if (field_start && c == '"') {
+            inside = true;
+            field_start = false;
+        } else if (c != ' ' && c != '\t') {
+            field_start = false;
+        }
+    }
+    if (inside) out.closed_at = 0;  // a later field opened a quote that never closes
+    return out;
+}
+
 constexpr std::array<std::string_view, 5> column_names{"tagname", "node", "address", "datatype",
                                                        "accesstype"};
 enum Column : std::size_t { tag_name, node, address, data_type, access_type };
@@ -105,8 +150,23 @@ PointList parse_point_list(std::string_view text, const FileName& file) {
         if (trimmed.empty() || trimmed.front() == '#') continue;
 
         const auto row_mark = [&] { return Mark{file, line_number, 1}; };
-        if (!split(line, fields)) {
-            list.errors.push_back({row_mark(), "unterminated quoted field"});
+        if (int open_quote = 1; !split(line, fields, open_quote)) {
+            // The record goes on until its quote closes (CSV's rule): its other lines are not
+            // rows of their own, which they would be reported as.
+            const auto rest = follow_quote(text, pos);
+            const Mark at{file, line_number, open_quote};
+            if (rest.closed_at > 0) {
+                list.errors.push_back(
+                    {at, "a quoted field runs past the end of the line, to line " +
+                             std::to_string(line_number + rest.closed_at) +
+                             " (newlines inside fields are not supported)"});
+            } else {
+                list.errors.push_back(
+                    {at,
+                     "unterminated quoted field (no closing quote before the end of the file)"});
+            }
+            pos = rest.next;
+            line_number += rest.lines;
             continue;
         }
 
@@ -160,17 +220,17 @@ PointList parse_point_list(std::string_view text, const FileName& file) {
         if (const auto parsed = plan::parse_address(field(address).text)) {
             row.tag.address = *parsed;
         } else {
-            list.errors.push_back({at(address), "bad address '" + std::string(field(address).text) +
-                                                    "' (expected byte.bit)"});
+            list.errors.push_back({at(address), "bad address " + in_quotes(field(address).text) +
+                                                    " (expected byte.bit)"});
             ok = false;
         }
         if (const auto type =
                 plan::parse_tag_type(field(data_type).text, plan::TypeNaming::point_list)) {
             row.tag.type = *type;
         } else {
-            list.errors.push_back({at(data_type), "unknown DataType '" +
-                                                      std::string(field(data_type).text) +
-                                                      "' (expected Bit, Word, Real, Long or a "
+            list.errors.push_back({at(data_type), "unknown DataType " +
+                                                      in_quotes(field(data_type).text) +
+                                                      " (expected Bit, Word, Real, Long or a "
                                                       "type of eip-protocol.md section 3)"});
             ok = false;
         }
@@ -179,8 +239,8 @@ PointList parse_point_list(std::string_view text, const FileName& file) {
             row.write = true;
             row.tag.writable = true;
         } else if (!equals_lower(access, "read")) {
-            list.errors.push_back({at(access_type), "unknown AccessType '" + std::string(access) +
-                                                        "' (expected Read or Write)"});
+            list.errors.push_back({at(access_type), "unknown AccessType " + in_quotes(access) +
+                                                        " (expected Read or Write)"});
             ok = false;
         }
         if (ok) list.rows.push_back(std::move(row));

@@ -1,6 +1,7 @@
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <set>
@@ -419,6 +420,203 @@ TEST(LoadConfig, SemanticChecksUseKeyMarks) {
     EXPECT_EQ(d[2].mark.column, 11);  // name
     EXPECT_EQ(d[3].mark.column, 49);  // writable
     EXPECT_EQ(d[4].mark.column, 73);  // max
+}
+
+TEST(LoadConfig, NulAndControlCharactersWrittenAsYamlEscapesAreRefused) {
+    // yaml-cpp turns "\0", "\x00" and "\u0000" into a NUL byte, "\e" into ESC, and "\N" into
+    // the lone byte 0x85 (not even UTF-8): each is refused where it was written.
+    const auto d = bad(R"(gateway:
+  id: "gw\e"
+mqtt:
+  client_id: "c\0"
+  base_topic: "acme\x01"
+exchanges:
+  - name: "ex\N"
+    topic: "t\u0000"
+    producer_id: 10.0.0.1
+    exchange_id: 1
+    length: 8
+    tags:
+      - { name: "A\0x", address: 0, type: int }
+      - { name: "A\x00y", address: 2, type: int }
+      - { name: "B\u0085", address: 4, type: int }
+)");
+    ASSERT_EQ(d.size(), 8u) << dump(d);
+    const std::vector<std::pair<int, std::string>> expected{
+        {2, "gateway id 'gw\\x1B' contains a control character (it is a topic level)"},
+        {4, "client_id 'c\\0' contains a NUL character"},
+        {5, "base_topic 'acme\\x01' contains a control character"},
+        {7, "exchange name 'ex\\x85' is not valid UTF-8"},
+        {8, "exchange 'ex\\x85' topic 't\\0' contains a NUL character"},
+        {13, "tag name 'A\\0x' contains a NUL character of exchange 'ex\\x85'"},
+        {14, "tag name 'A\\0y' contains a NUL character of exchange 'ex\\x85'"},
+        {15, "tag name 'B\\u0085' contains a control character of exchange 'ex\\x85'"}};
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        EXPECT_EQ(d[i].mark.line, expected[i].first) << dump(d);
+        EXPECT_EQ(d[i].message, expected[i].second);
+    }
+}
+
+TEST(LoadConfig, RawControlBytesAndInvalidUtf8AreRefused) {
+    const auto d = bad(std::string("exchanges:\n"
+                                   "  - name: ex\n"
+                                   "    producer_id: 10.0.0.1\n"
+                                   "    exchange_id: 1\n"
+                                   "    tags:\n"
+                                   "      - { name: A\x01, address: 0, type: int }\n"
+                                   "      - { name: B\xFF") +
+                       "C, address: 2, type: int }\n");
+    ASSERT_EQ(d.size(), 2u) << dump(d);
+    EXPECT_EQ(d[0].mark.line, 6);
+    EXPECT_EQ(d[0].message, "tag name 'A\\x01' contains a control character of exchange 'ex'");
+    EXPECT_EQ(d[1].mark.line, 7);
+    EXPECT_EQ(d[1].message, "tag name 'B\\xFFC' is not valid UTF-8 of exchange 'ex'");
+}
+
+TEST(LoadConfig, PointListTagNamesWithControlCharactersAreRefusedAtTheirRows) {
+    const test::TempDir dir;
+    using namespace std::string_literals;  // "..."s keeps the NULs
+    const auto csv = dir.write("p.csv",
+                               "TagName,Node,Address,DataType,AccessType\n"
+                               "A\0B,ex,0.0,Word,Read\n"
+                               "A\0C,ex,2.0,Word,Read\n"
+                               "\"\x1B[31mRED\",ex,4.0,Word,Read\n"
+                               "OK,ex,6.0,Word,Read\n"s);
+    const auto yaml = dir.write("c.yaml",
+                                "exchanges:\n"
+                                "  - { name: ex, producer_id: 10.0.0.1, exchange_id: 1, points: "
+                                "p.csv }\n");
+    const auto result = load_config(yaml);
+    ASSERT_FALSE(result.ok());
+    const auto& d = result.error();
+    ASSERT_EQ(d.size(), 3u) << dump(d);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        EXPECT_EQ(d[i].mark.file, csv);
+        EXPECT_EQ(d[i].mark.line, static_cast<int>(i) + 2);
+    }
+    EXPECT_EQ(d[0].message, "tag name 'A\\0B' contains a NUL character of exchange 'ex'");
+    EXPECT_EQ(d[1].message, "tag name 'A\\0C' contains a NUL character of exchange 'ex'");
+    EXPECT_EQ(d[2].message,
+              "tag name '\\x1B[31mRED' contains a control character of exchange 'ex'");
+}
+
+TEST(LoadConfig, TopicsLongerThanMqttAllowsAreRefusedInlineAndInPointLists) {
+    const test::TempDir dir;
+    const std::string long_name(65600, 'L');
+    const auto csv = dir.write("p.csv",
+                               "TagName,Node,Address,DataType,AccessType\n"
+                               "OK,ex,0.0,Word,Read\n" +
+                                   std::string(65600, 'M') + ",ex,2.0,Word,Read\n");
+    const auto yaml = dir.write("c.yaml",
+                                "exchanges:\n"
+                                "  - name: ex\n"
+                                "    producer_id: 10.0.0.1\n"
+                                "    exchange_id: 1\n"
+                                "    points: p.csv\n"
+                                "    tags:\n"
+                                "      - { name: " +
+                                    long_name + ", address: 4, type: int }\n");
+    const auto result = load_config(yaml);
+    ASSERT_FALSE(result.ok());
+    const auto& d = result.error();
+    ASSERT_EQ(d.size(), 2u) << dump(d);
+    // eip2mqtt/ex/{tag}/set/result: 65,600 + 23 bytes.
+    const std::string message =
+        " of exchange 'ex' makes topic "
+        "'{base_topic}/{topic}/{tag}/set/result' 65623 bytes long (MQTT "
+        "allows 65535)";
+    EXPECT_EQ(d[0].mark.file, yaml);
+    EXPECT_EQ(d[0].mark.line, 7);
+    EXPECT_EQ(d[0].mark.column, 11);
+    const auto shown = [](char c) {
+        return "tag '" + std::string(core::config::max_in_quotes_bytes, c) + "...' (65600 bytes)";
+    };
+    EXPECT_EQ(d[0].message, shown('L') + message);
+    EXPECT_EQ(d[1].mark.file, csv);
+    EXPECT_EQ(d[1].mark.line, 3);
+    EXPECT_EQ(d[1].mark.column, 1);
+    EXPECT_EQ(d[1].message, shown('M') + message);
+}
+
+/// A configuration in `dir` with one exchange per point list named, `ex1`, `ex2`...: the
+/// `points:` key of exchange N (1..9) is on line N + 1, column 68.
+std::string points_config(const test::TempDir& dir, const std::vector<std::string>& lists) {
+    std::string yaml = "exchanges:\n";
+    for (std::size_t i = 0; i < lists.size(); ++i) {
+        const auto n = std::to_string(i + 1);
+        yaml += "  - { name: ex" + n + ", producer_id: 10.0.0.1, exchange_id: " + n +
+                ", length: 8, points: " + lists[i] + " }\n";
+    }
+    return dir.write("c.yaml", yaml);
+}
+
+TEST(LoadConfig, APointListThatIsNotARegularFileIsADiagnosticAtItsKey) {
+    // A directory crashed `check` and a reload (std::bad_alloc), a FIFO blocked them for ever,
+    // /dev/zero grew the memory without end.
+    const test::TempDir dir;
+    std::filesystem::create_directory(dir.path() + "/dir.csv");
+    ASSERT_EQ(::mkfifo((dir.path() + "/fifo.csv").c_str(), 0600), 0);
+    const auto yaml = points_config(dir, {"dir.csv", "fifo.csv", "/dev/zero"});
+    const auto result = load_config(yaml);
+    ASSERT_FALSE(result.ok());
+    const auto& d = result.error();
+    ASSERT_EQ(d.size(), 3u) << dump(d);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        EXPECT_EQ(d[i].mark.file, yaml);
+        EXPECT_EQ(d[i].mark.line, static_cast<int>(i) + 2);
+        EXPECT_EQ(d[i].mark.column, 68);
+    }
+    EXPECT_EQ(d[0].message,
+              "point list '" + dir.path() + "/dir.csv' is not a regular file (a directory)");
+    EXPECT_EQ(d[1].message,
+              "point list '" + dir.path() + "/fifo.csv' is not a regular file (a FIFO)");
+    EXPECT_EQ(d[2].message, "point list '/dev/zero' is not a regular file (a character device)");
+}
+
+TEST(LoadConfig, APointListOverTheSizeLimitIsADiagnosticAtItsKey) {
+    const test::TempDir dir;
+    // A valid list padded to the limit exactly by a comment line (sparse: nothing is written).
+    const std::string list = "TagName,Node,Address,DataType,AccessType\nA,ex1,0.0,Word,Read\n#";
+    dir.write("limit.csv", list);
+    std::filesystem::resize_file(dir.path() + "/limit.csv", max_file_bytes);
+    dir.write("over.csv", list);
+    std::filesystem::resize_file(dir.path() + "/over.csv", max_file_bytes + 1);
+    dir.write("huge.csv", list);
+    std::filesystem::resize_file(dir.path() + "/huge.csv", 70000000);
+
+    auto result = load_config(points_config(dir, {"limit.csv"}));
+    ASSERT_TRUE(result.ok()) << dump(result.error());
+    ASSERT_EQ(result.value().exchanges.at(0).tags.size(), 1u);
+
+    result = load_config(points_config(dir, {"over.csv", "huge.csv"}));
+    ASSERT_FALSE(result.ok());
+    const auto& d = result.error();
+    ASSERT_EQ(d.size(), 2u) << dump(d);
+    EXPECT_EQ(d[0].mark.line, 2);
+    EXPECT_EQ(d[0].mark.column, 68);
+    EXPECT_EQ(d[0].message, "point list '" + dir.path() +
+                                "/over.csv' is 67108865 bytes; the limit is 67108864 (64 MiB)");
+    EXPECT_EQ(d[1].mark.line, 3);
+    EXPECT_EQ(d[1].message, "point list '" + dir.path() +
+                                "/huge.csv' is 70000000 bytes; the limit is 67108864 (64 MiB)");
+}
+
+TEST(LoadConfig, AConfigurationThatIsNotARegularFileOrTooBigIsADiagnosticWithoutLine) {
+    const test::TempDir dir;
+    ASSERT_EQ(::mkfifo((dir.path() + "/fifo.yaml").c_str(), 0600), 0);
+    const auto big = dir.write("big.yaml", minimal_exchange + "#");
+    std::filesystem::resize_file(big, max_file_bytes + 1);
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {dir.path(), "the configuration is not a regular file (a directory)"},
+        {dir.path() + "/fifo.yaml", "the configuration is not a regular file (a FIFO)"},
+        {"/dev/zero", "the configuration is not a regular file (a character device)"},
+        {big, "the configuration is 67108865 bytes; the limit is 67108864 (64 MiB)"}};
+    for (const auto& [path, message] : cases) {
+        const auto result = load_config(path);
+        ASSERT_FALSE(result.ok()) << path;
+        ASSERT_EQ(result.error().size(), 1u) << dump(result.error());
+        EXPECT_EQ(result.error()[0].to_string(), path + ": error: " + message);
+    }
 }
 
 TEST(LoadConfig, MissingIdentityKeysDropTheExchangeWithoutEchoes) {

@@ -319,6 +319,83 @@ TEST(Validate, TagTopicCollidingWithAnEarlierExchangesSetTopic) {
         << d.message;
 }
 
+TEST(Validate, SetLevelsInExchangeTopicsAreReserved) {
+    for (const char* topic : {"set", "area/set", "set/area", "a/set/b"}) {
+        auto c = valid();
+        c.exchanges[0].spec.topic = topic;
+        const auto d = only(validate(c));
+        EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("topic").line) << topic;
+        EXPECT_EQ(d.message, "exchange 'turbine1' topic '" + std::string(topic) +
+                                 "' has a level 'set', reserved for writes: the gateway takes "
+                                 "{topic}/set and {topic}/{tag}/set as write requests and "
+                                 "answers on their /set/result");
+    }
+    for (const char* topic : {"SET", "settings", "area/reset", "set_points"}) {
+        auto c = valid();
+        c.exchanges[0].spec.topic = topic;
+        EXPECT_TRUE(validate(c).empty()) << topic;
+    }
+}
+
+/// An exchange `result_holder` on topic `topic`, with a tag named `result`.
+ExchangeConfig result_holder(const std::string& topic) {
+    auto e = exchange("result_holder", Direction::consume, 77);
+    e.spec.topic = topic;
+    e.tags.push_back(tag("result", 0, 0, TagType::int_));
+    return e;
+}
+
+TEST(Validate, AnExchangesResultTopicCollidesWithATagNamedResultUnderItsSetLevel) {
+    // acme/site/turbine1/set/result: turbine1's write results, and the topic of tag `result`
+    // of an exchange on turbine1/set. The topic is refused for its `set` level, and the
+    // collision is shown as well.
+    auto c = valid();
+    c.exchanges.push_back(result_holder("turbine1/set"));
+    auto d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_TRUE(mentions(d[0], "has a level 'set'")) << d[0].message;
+    EXPECT_EQ(d[1].mark.line, c.exchanges.back().tags[0].marks.of("name").line);
+    EXPECT_EQ(d[1].message,
+              "tag 'result' of exchange 'result_holder' uses topic "
+              "'acme/site/turbine1/set/result', already used by exchange 'turbine1'");
+
+    // The other way round: the exchange's own claim is the one refused.
+    c = valid();
+    c.exchanges.insert(c.exchanges.begin(), result_holder("turbine1/set"));
+    d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_EQ(d[0].mark.line, c.exchanges[1].marks.of("topic").line);  // turbine1's topic
+    EXPECT_EQ(d[0].message,
+              "exchange 'turbine1' uses topic 'acme/site/turbine1/set/result', already used by "
+              "tag 'result' of exchange 'result_holder'");
+    EXPECT_TRUE(mentions(d[1], "has a level 'set'")) << d[1].message;
+}
+
+TEST(Validate, ATagsResultTopicCollidesWithATagNamedResultTwoLevelsBelow) {
+    // acme/site/turbine1/PRESSAO/set/result: PRESSAO's write results, and the topic of tag
+    // `result` of an exchange on turbine1/PRESSAO/set, which is not a child of turbine1.
+    auto c = valid();
+    c.exchanges.push_back(result_holder("turbine1/PRESSAO/set"));
+    const auto d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_TRUE(mentions(d[0], "has a level 'set'")) << d[0].message;
+    EXPECT_EQ(d[1].message,
+              "tag 'result' of exchange 'result_holder' uses topic "
+              "'acme/site/turbine1/PRESSAO/set/result', already used by tag 'PRESSAO' of exchange "
+              "'turbine1'");
+}
+
+TEST(Validate, NestedExchangeTopicsWithoutACommonTopicAreValid) {
+    // Exchanges on a topic and on its descendants claim their tags, and find no collision.
+    auto c = valid();
+    c.exchanges.push_back(result_holder("turbine1/area/deep"));
+    c.exchanges.back().tags[0].spec.name = "PRESSAO";
+    c.exchanges.push_back(result_holder("turbine1/area/deep/PRESSAO2"));
+    c.exchanges.back().spec.name = "deeper";
+    c.exchanges.back().spec.exchange_id = 78;
+    EXPECT_TRUE(validate(c).empty());
+}
+
 TEST(Validate, SameTagNameOnTwoExchangesOfOneTopic) {
     auto c = valid();
     c.exchanges[1].spec.topic = "turbine1";
@@ -356,6 +433,155 @@ TEST(Validate, ReservedTagNames) {
     auto c = valid();
     c.exchanges[0].tags[1].spec.name = "SET";  // topics are case-sensitive
     EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, ControlCharactersAndInvalidUtf8InTagNames) {
+    for (const std::string& name :
+         {std::string("A\0B", 3), std::string("A\nB"), std::string("\x1B[2J"), std::string("A\x7F"),
+          std::string("\xC2\x85"), std::string("A\xFF"), std::string("\xEF\xBF\xBF")}) {
+        auto c = valid();
+        c.exchanges[0].tags[1].spec.name = name;
+        const auto d = only(validate(c));
+        EXPECT_EQ(d.mark.line, c.exchanges[0].tags[1].marks.of("name").line) << d.message;
+        EXPECT_TRUE(mentions(d, "of exchange 'turbine1'")) << d.message;
+    }
+    auto c = valid();
+    c.exchanges[0].tags[1].spec.name = std::string("A\0B", 3);
+    EXPECT_EQ(only(validate(c)).message,
+              "tag name 'A\\0B' contains a NUL character of exchange 'turbine1'");
+    c.exchanges[0].tags[1].spec.name = "PRESS\xC3\x83O";  // UTF-8 is welcome
+    EXPECT_TRUE(validate(c).empty());
+}
+
+TEST(Validate, TwoTagNamesAlikeUpToANulAreBothRefused) {
+    // Cut at the NUL, both would publish to turbine1/A: each is refused for its NUL.
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag(std::string("A\0x", 3), 8, 0, TagType::int_));
+    c.exchanges[0].tags.push_back(tag(std::string("A\0y", 3), 10, 0, TagType::int_));
+    const auto d = validate(c);
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_TRUE(mentions(d[0], "'A\\0x' contains a NUL character")) << d[0].message;
+    EXPECT_TRUE(mentions(d[1], "'A\\0y' contains a NUL character")) << d[1].message;
+}
+
+TEST(Validate, ControlCharactersAndInvalidUtf8InExchangeNamesAndTopics) {
+    auto c = valid();
+    c.exchanges[0].spec.name = "turbine\t1";
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("name").line);
+    EXPECT_EQ(d.message, "exchange name 'turbine\\t1' contains a control character");
+    // A topic that defaults to the name: the name's diagnostic alone.
+    c.exchanges[0].spec.topic = c.exchanges[0].spec.name;
+    c.exchanges[0].marks.keys.erase(
+        std::find_if(c.exchanges[0].marks.keys.begin(), c.exchanges[0].marks.keys.end(),
+                     [](const auto& key) { return key.first == "topic"; }));
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("name").line);
+
+    for (const std::string& topic :
+         {std::string("area/t\0", 7), std::string("area/\x01"), std::string("\xC3\x28")}) {
+        c = valid();
+        c.exchanges[0].spec.topic = topic;
+        d = only(validate(c));
+        EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("topic").line) << d.message;
+    }
+    c = valid();
+    c.exchanges[0].spec.topic = std::string("area/t\0", 7);
+    EXPECT_TRUE(mentions(only(validate(c)), "topic 'area/t\\0' contains a NUL character"));
+}
+
+TEST(Validate, ControlCharactersAndInvalidUtf8InBaseTopicGatewayIdAndClientId) {
+    auto c = valid();
+    c.mqtt.base_topic = std::string("acme\0", 5);
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.mqtt.marks.of("base_topic").line);
+    EXPECT_TRUE(mentions(d, "contains a NUL character")) << d.message;
+
+    c = valid();
+    c.gateway.id = "gw\x1B";
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.gateway.marks.of("id").line);
+    EXPECT_EQ(d.message, "gateway id 'gw\\x1B' contains a control character (it is a topic level)");
+
+    c = valid();
+    c.mqtt.client_id = "client\xFF";
+    c.mqtt.marks.add("client_id", at(next_line++, 3));
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.mqtt.marks.of("client_id").line);
+    EXPECT_EQ(d.message, "client_id 'client\\xFF' is not valid UTF-8");
+    c.mqtt.client_id = std::string(65536, 'c');
+    EXPECT_EQ(only(validate(c)).message, "client_id is 65536 bytes long (MQTT allows 65535)");
+    c.mqtt.client_id = std::string(65535, 'c');
+    EXPECT_TRUE(validate(c).empty());
+}
+
+// acme/site/turbine1/{tag}/set/result: 30 bytes and the tag's name.
+constexpr std::size_t longest_tag_name = 65535 - 30;
+
+TEST(Validate, ATagWhoseResultTopicPassesMqttsLimitIsRefusedAtItsName) {
+    auto c = valid();
+    c.exchanges[0].tags[1].spec.name = std::string(longest_tag_name, 'P');
+    EXPECT_TRUE(validate(c).empty());
+    c.exchanges[0].tags[1].spec.name += 'P';
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].tags[1].marks.of("name").line);
+    EXPECT_EQ(d.message, "tag '" + std::string(max_in_quotes_bytes, 'P') +
+                             "...' (65506 bytes) of exchange 'turbine1' makes topic "
+                             "'{base_topic}/{topic}/{tag}/set/result' 65536 bytes long (MQTT "
+                             "allows 65535)");
+}
+
+TEST(Validate, APointListRowWhoseTopicIsTooLongIsRefusedAtItsRow) {
+    auto c = valid();
+    c.exchanges[0].tags.push_back(tag(std::string(longest_tag_name + 1, 'Q'), 8, 0, TagType::int_));
+    c.exchanges[0].tags.back().marks = {};
+    c.exchanges[0].tags.back().marks.node = {"a.csv", 7, 1};
+    const auto d = only(validate(c));
+    EXPECT_EQ(d.mark.file, "a.csv");
+    EXPECT_EQ(d.mark.line, 7);
+    EXPECT_TRUE(mentions(d, "65536 bytes long")) << d.message;
+}
+
+TEST(Validate, AnExchangeTopicTooLongIsRefusedOnceNotForEachTag) {
+    // acme/site/{topic}/set/result: 21 bytes and the topic.
+    auto c = valid();
+    c.exchanges[0].spec.topic = std::string(65535 - 21, 't');
+    c.exchanges[0].tags.clear();
+    EXPECT_TRUE(validate(c).empty());
+    c.exchanges[0].spec.topic += 't';
+    c.exchanges[0].tags = valid().exchanges[0].tags;
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("topic").line);
+    EXPECT_TRUE(mentions(d, "topic '{base_topic}/{topic}/set/result' 65536 bytes long"))
+        << d.message;
+    // A topic that defaults to the name: at the name.
+    c.exchanges[0].spec.name = c.exchanges[0].spec.topic;
+    c.exchanges[0].marks.keys.erase(
+        std::find_if(c.exchanges[0].marks.keys.begin(), c.exchanges[0].marks.keys.end(),
+                     [](const auto& key) { return key.first == "topic"; }));
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.exchanges[0].marks.of("name").line);
+}
+
+TEST(Validate, GatewayTopicsTooLongAreRefusedAtTheIdOrOnceAtTheBaseTopic) {
+    // acme/site/_gateway/{id}/metrics: 27 bytes and the id.
+    auto c = valid();
+    c.gateway.id = std::string(65535 - 27, 'g');
+    EXPECT_TRUE(validate(c).empty());
+    c.gateway.id += 'g';
+    auto d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.gateway.marks.of("id").line);
+    EXPECT_TRUE(mentions(d, "topic '{base_topic}/_gateway/{gateway.id}/metrics' 65536 bytes long"))
+        << d.message;
+    // A base_topic leaving no room for any id: said once, not for each exchange and tag.
+    c = valid();
+    c.mqtt.base_topic = std::string(65535 - 18, 'b');
+    d = only(validate(c));
+    EXPECT_EQ(d.mark.line, c.mqtt.marks.of("base_topic").line);
+    EXPECT_TRUE(mentions(d,
+                         "(65517 bytes) makes topic '{base_topic}/_gateway/{gateway.id}/metrics' "
+                         "65537 bytes long"))  // with the id `gw`
+        << d.message;
 }
 
 TEST(Validate, PeriodRange) {

@@ -25,6 +25,38 @@ TEST(Diagnostic, NoFile) {
     EXPECT_EQ((Diagnostic{{"", 4, 2}, "oops"}).to_string(), "4:2: error: oops");
 }
 
+TEST(InQuotes, PlainTextIsQuotedAsItIs) {
+    EXPECT_EQ(in_quotes("PRESSAO"), "'PRESSAO'");
+    EXPECT_EQ(in_quotes("PRESS\xC3\x83O \\n"), "'PRESS\xC3\x83O \\n'");  // UTF-8 and a backslash
+    EXPECT_EQ(in_quotes(""), "''");
+}
+
+TEST(InQuotes, ControlCharactersAndInvalidUtf8AreEscaped) {
+    EXPECT_EQ(in_quotes(std::string("A\0B", 3)), "'A\\0B'");
+    EXPECT_EQ(in_quotes("a\tb\nc\rd"), "'a\\tb\\nc\\rd'");
+    EXPECT_EQ(in_quotes("\x1B[2J"), "'\\x1B[2J'");  // a terminal escape sequence stays inert
+    EXPECT_EQ(in_quotes("\x7F"), "'\\x7F'");
+    EXPECT_EQ(in_quotes("\xC2\x85"), "'\\u0085'");                  // a C1 control
+    EXPECT_EQ(in_quotes("\xEF\xBF\xBF"), "'\\uFFFF'");              // a non-character
+    EXPECT_EQ(in_quotes("\xF0\x9F\xBF\xBF"), "'\\U0001FFFF'");      // one above the BMP
+    EXPECT_EQ(in_quotes(std::string("a\xFF") + "b"), "'a\\xFFb'");  // a stray byte
+    EXPECT_EQ(in_quotes("\xC0\xAF"), "'\\xC0\\xAF'");               // overlong '/'
+    EXPECT_EQ(in_quotes("\xE2\x82"), "'\\xE2\\x82'");               // cut short
+    EXPECT_EQ(in_quotes("\xE2\x82\xAC\n"), "'\xE2\x82\xAC\\n'");    // the euro sign stays
+}
+
+TEST(InQuotes, LongTextIsCutWithItsLength) {
+    const std::string long_name(70000, 'A');
+    EXPECT_EQ(in_quotes(long_name),
+              "'" + std::string(max_in_quotes_bytes, 'A') + "...' (70000 bytes)");
+    EXPECT_EQ(in_quotes(std::string(max_in_quotes_bytes, 'A')),
+              "'" + std::string(max_in_quotes_bytes, 'A') + "'");
+    // Never inside a UTF-8 character: a two-byte character across the cut goes whole.
+    const std::string accents = std::string(max_in_quotes_bytes - 1, 'A') + "\xC3\x83" + "B";
+    EXPECT_EQ(in_quotes(accents), "'" + std::string(max_in_quotes_bytes - 1, 'A') + "...' (" +
+                                      std::to_string(accents.size()) + " bytes)");
+}
+
 TEST(FileName, CopiesShareOneString) {
     const FileName name("plant/eip2mqtt-turbine-hall.yaml");
     const Mark a{name, 1, 1};

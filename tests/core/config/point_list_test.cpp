@@ -127,5 +127,64 @@ TEST(PointLists, UnterminatedQuote) {
     EXPECT_EQ(list.errors[0].mark.line, 2);
 }
 
+TEST(PointLists, AQuotedFieldAcrossLinesIsOneErrorAndItsOtherLinesAreNoRows) {
+    // Without CSV's rule the second line would be a row of its own, a tag named `X"`.
+    const auto list = parse_point_list(
+        "TagName,Node,Address,DataType,AccessType\n"
+        "\"TAG\nX\",N,0.0,Bit,Read\n"
+        "B,N,1.0,Bit,Read\n",
+        "p.csv");
+    ASSERT_EQ(list.errors.size(), 1u);
+    EXPECT_EQ(list.errors[0].mark.line, 2);
+    EXPECT_EQ(list.errors[0].mark.column, 1);
+    EXPECT_EQ(list.errors[0].message,
+              "a quoted field runs past the end of the line, to line 3 (newlines inside fields "
+              "are not supported)");
+    ASSERT_EQ(list.rows.size(), 1u);
+    EXPECT_EQ(list.rows[0].tag.name, "B");
+    EXPECT_EQ(list.rows[0].mark.line, 4);
+}
+
+TEST(PointLists, AQuotedFieldAcrossSeveralLinesWithQuotesAndCrlf) {
+    const auto list = parse_point_list(
+        "TagName,Node,Address,DataType,AccessType\r\n"
+        "A, \"No\"\"de\r\n"
+        "\r\n"
+        "two\",0.0,Bit,\"Re\r\n"
+        "ad\"\r\n"
+        "B,N,1.0,Bit,Read\r\n",
+        "p.csv");
+    ASSERT_EQ(list.errors.size(), 1u);
+    EXPECT_EQ(list.errors[0].mark.line, 2);
+    EXPECT_EQ(list.errors[0].mark.column, 4);  // the opening quote
+    EXPECT_NE(list.errors[0].message.find("to line 5"), std::string::npos)
+        << list.errors[0].message;
+    ASSERT_EQ(list.rows.size(), 1u);
+    EXPECT_EQ(list.rows[0].tag.name, "B");
+    EXPECT_EQ(list.rows[0].mark.line, 6);
+}
+
+TEST(PointLists, AQuoteThatNeverClosesEndsTheList) {
+    const auto list = parse_point_list(
+        "TagName,Node,Address,DataType,AccessType\n"
+        "A,N,0.0,Bit,Read\n"
+        "\"B,N,1.0,Bit,Read\n"
+        "C,N,2.0,Bit,Read\n",
+        "p.csv");
+    ASSERT_EQ(list.errors.size(), 1u);
+    EXPECT_EQ(list.errors[0].mark.line, 3);
+    EXPECT_EQ(list.errors[0].message,
+              "unterminated quoted field (no closing quote before the end of the file)");
+    ASSERT_EQ(list.rows.size(), 1u);
+    EXPECT_EQ(list.rows[0].tag.name, "A");
+}
+
+TEST(PointLists, MessagesShowControlCharactersEscaped) {
+    const auto list = parse_point_list(
+        "TagName,Node,Address,DataType,AccessType\nA,N,\x1B[2J,Bit,Read\n", "p.csv");
+    ASSERT_EQ(list.errors.size(), 1u);
+    EXPECT_EQ(list.errors[0].message, "bad address '\\x1B[2J' (expected byte.bit)");
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::config

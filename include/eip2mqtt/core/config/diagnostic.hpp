@@ -2,6 +2,7 @@
 /// Configuration errors, with where they are: checks collect them all rather than stop.
 
 #include <compare>
+#include <cstddef>
 #include <iosfwd>
 #include <string>
 #include <string_view>
@@ -53,5 +54,14 @@ struct Diagnostic {
 };
 
 using Diagnostics = std::vector<Diagnostic>;
+
+/// `text` in single quotes, fit for a one-line message: what a broker would refuse in text
+/// (control characters, NUL included, invalid UTF-8, non-characters; plan::text_problem) is
+/// escaped as `\0`, `\t`, `\n`, `\r`, `\xHH` (a byte) or `\uHHHH` (a character), so a name
+/// that holds an escape sequence cannot drive the terminal that shows the message; text longer
+/// than max_in_quotes_bytes is cut there and followed by its length: `'AAAA...' (70000 bytes)`.
+std::string in_quotes(std::string_view text);
+
+inline constexpr std::size_t max_in_quotes_bytes = 120;
 
 }  // namespace eip2mqtt::core::config
