@@ -191,9 +191,10 @@ void ExchangeProducer::publish_status() {
     last_status_sent_ = counters_.sent;
     sink_({plan_->status_topic,
            fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
-                       R"("writes_applied":{},"writes_pending":{}}})",
+                       R"("skipped_deadlines":{},"writes_applied":{},"writes_pending":{}}})",
                        failing_ ? "paused" : "producing", image_.next_request_id(), counters_.sent,
-                       counters_.send_errors, counters_.writes_applied, image_.pending()),
+                       counters_.send_errors, counters_.skipped_deadlines, counters_.writes_applied,
+                       image_.pending()),
            settings_.qos, true, true});
 }
 

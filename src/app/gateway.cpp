@@ -361,6 +361,7 @@ adapters::metrics::MetricsSnapshot Gateway::metrics_snapshot(core::MonoTime now)
         m.state = producer->paused() ? "paused" : "producing";
         m.sent = producer->counters().sent;
         m.send_errors = producer->counters().send_errors;
+        m.skipped_deadlines = producer->counters().skipped_deadlines;
         snapshot.exchanges.push_back(std::move(m));
     }
     const auto stats = mqtt_->stats();

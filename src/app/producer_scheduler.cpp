@@ -57,22 +57,23 @@ void ProducerScheduler::on_wake() {
     const auto now = std::chrono::steady_clock::now();
     due_.clear();
     queue_.take_due(now, due_);
-    // eip-protocol.md §5: the time the image was sampled; one reading for the whole batch,
-    // which leaves within microseconds.
-    const auto wall = std::chrono::system_clock::now();
+    // Each datagram carries the UTC time of the deadline it serves (SamplingClock), so that
+    // its consumers see whole periods however late the loop woke.
+    sampling_clock_.observe(now, std::chrono::system_clock::now());
     batch_producers_.clear();
     batch_.clear();
     for (const auto& due : due_) {
         auto* producer = producers_.at(due.id);
         producer->count_skipped(due.skipped);
         batch_producers_.push_back(producer);
-        batch_.push_back({producer->produce(wall), producer->destination()});
+        batch_.push_back(
+            {producer->produce(sampling_clock_.to_wall(due.deadline)), producer->destination()});
     }
     if (!batch_.empty()) sender_.send_batch(batch_, sent_);
     // Bookkeeping only once every datagram has left, so that MQTT publications, echo and
     // persistence never delay a datagram of the same batch.
     for (std::size_t i = 0; i < batch_producers_.size(); ++i) {
-        batch_producers_[i]->on_sent(sent_[i], wall);
+        batch_producers_[i]->on_sent(sent_[i], sampling_clock_.to_wall(due_[i].deadline));
     }
     arm();
 }

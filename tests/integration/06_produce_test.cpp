@@ -94,8 +94,13 @@ TEST_F(ProduceTest, HeaderAndDataOfEveryTypeAreExact) {
     EXPECT_EQ(tag(*bytes, "34.0", TagType::word), Value{std::uint64_t{100}});
 }
 
-TEST_F(ProduceTest, RequestIdsIncrementAndThePeriodHoldsOnAverage) {
+// What load cannot change: every datagram takes the next request id, and carries the time of
+// the deadline it serves, so each step is a whole number of periods; a step of more than one
+// is a deadline the gateway skipped because it fell behind, and is counted in `_status`. How
+// close to its deadline each datagram left is measured by the benchmark (scenario 7).
+TEST_F(ProduceTest, RequestIdsFollowEachOtherAndTimestampsStepByWholePeriods) {
     UdpClient capture;
+    constexpr std::int64_t period_ns = 10'000'000;
     start(produced_exchange(capture.port(), 10));
     constexpr int count = 300;
     std::vector<core::wire::Header> headers;
@@ -104,16 +109,26 @@ TEST_F(ProduceTest, RequestIdsIncrementAndThePeriodHoldsOnAverage) {
         ASSERT_TRUE(bytes.has_value()) << "after " << headers.size() << " datagrams";
         headers.push_back(decode(*bytes).header);
     }
+    auto ns = [](const core::wire::Header& h) {
+        return static_cast<std::int64_t>(h.time_s) * 1'000'000'000 +
+               static_cast<std::int64_t>(h.time_ns);
+    };
+    std::int64_t skipped = 0;
     for (std::size_t i = 1; i < headers.size(); ++i) {
         ASSERT_EQ(static_cast<std::uint16_t>(headers[i - 1].request_id + 1), headers[i].request_id)
             << "at " << i;
+        const auto step = ns(headers[i]) - ns(headers[i - 1]);
+        ASSERT_GT(step, 0) << "at " << i;
+        ASSERT_EQ(step % period_ns, 0) << "a step of " << step << " ns at " << i;
+        skipped += step / period_ns - 1;
     }
-    // The producer's own sampling times: absolute deadlines keep their mean on the period.
-    auto ns = [](const core::wire::Header& h) {
-        return static_cast<double>(h.time_s) * 1e9 + static_cast<double>(h.time_ns);
-    };
-    const double mean_ms = (ns(headers.back()) - ns(headers.front())) / (count - 1) / 1e6;
-    EXPECT_NEAR(mean_ms, 10.0, 0.1);
+    // The counter covers at least the skips seen here (it goes on counting meanwhile).
+    const auto status = recorder_->wait_for_message(topic("sp/_status"), [&](const std::string& p) {
+        const auto json = nlohmann::json::parse(p, nullptr, false);
+        return json.contains("skipped_deadlines") && json.contains("request_id") &&
+               json["skipped_deadlines"].get<std::int64_t>() >= skipped;
+    });
+    EXPECT_TRUE(status.has_value()) << skipped << " skipped deadlines seen on the wire";
 }
 
 TEST_F(ProduceTest, EchoTopicsCarryTheProducedValues) {

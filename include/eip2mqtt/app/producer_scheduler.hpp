@@ -23,6 +23,7 @@
 #include "eip2mqtt/app/image_persister.hpp"
 #include "eip2mqtt/core/exchange/production_queue.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
+#include "eip2mqtt/core/exchange/sampling_clock.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 
 namespace eip2mqtt::app {
@@ -69,6 +70,7 @@ private:
     core::exchange::ProductionQueue queue_{batch_slot};
     std::unordered_map<Id, ExchangeProducer*> producers_;
     std::optional<core::MonoTime> armed_for_;
+    core::exchange::SamplingClock sampling_clock_;
     // Reused at every wake-up, so a steady batch allocates nothing.
     std::vector<core::exchange::ProductionQueue::Due> due_;
     std::vector<ExchangeProducer*> batch_producers_;

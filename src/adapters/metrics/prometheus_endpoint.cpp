@@ -156,6 +156,9 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
     add_exchange_family(out, snapshot, "exchange_send_errors_total",
         "Productions the socket refused", counter, "produce",
         [](const ExchangeMetrics& e) { return static_cast<double>(e.send_errors); });
+    add_exchange_family(out, snapshot, "exchange_skipped_deadlines_total",
+        "Periods not produced because the loop fell more than a period behind", counter, "produce",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.skipped_deadlines); });
     // clang-format on
 
     // The producer's clock of consumed exchanges: its state, and its offset, which may be

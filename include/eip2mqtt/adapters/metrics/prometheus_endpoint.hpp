@@ -8,7 +8,7 @@
 ///                                                       the other states of its direction
 ///   exchange_{received,accepted,missed,duplicates,out_of_order,restarts,signature_mismatches,
 ///             length_mismatches,wrong_source}_total{exchange,direction}   consume counters
-///   exchange_{sent,send_errors}_total{exchange,direction}                 produce counters
+///   exchange_{sent,send_errors,skipped_deadlines}_total{exchange,direction}  produce counters
 ///   exchange_clock_state{exchange,direction,state}      gauge, 1 for none, synced or unsynced
 ///   exchange_clock_offset_seconds{exchange,direction}   gauge, may be negative; absent before
 ///                                                       the first stamped datagram
@@ -57,6 +57,7 @@ struct ExchangeMetrics {
     // produce
     std::uint64_t sent = 0;
     std::uint64_t send_errors = 0;
+    std::uint64_t skipped_deadlines = 0;
 };
 
 /// What the gateway as a whole reports.
