@@ -136,6 +136,44 @@ TEST(CheckCommand, ReportsAPointListFieldRunningOntoTheNextLineAtItsQuote) {
         << result.output;
 }
 
+// A consumed exchange without update timeout is valid, with a warning: without producer
+// timestamps nothing would resynchronise it after its producer restarts.
+TEST(CheckCommand, WarnsAboutAConsumedExchangeWithoutTimeout) {
+    TempDir dir;
+    const auto path = dir.write("plc.yaml", R"(gateway:
+  id: gw
+mqtt:
+  url: tcp://127.0.0.1:1
+  base_topic: test
+exchanges:
+  - name: plc
+    direction: consume
+    producer_id: 10.0.0.7
+    exchange_id: 2
+    length: 4
+    period_ms: 100
+    timeout_ms: 0
+    tags:
+      - { name: COUNTER, address: "0.0", type: dint }
+  - name: kept
+    direction: consume
+    producer_id: 10.0.0.7
+    exchange_id: 3
+    length: 4
+    period_ms: 100
+    tags:
+      - { name: COUNTER, address: "0.0", type: dint }
+)");
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 0) << result.output;
+    const auto warning = result.output.find("  warning: timeout_ms is 0");
+    ASSERT_NE(warning, std::string::npos) << result.output;
+    EXPECT_LT(result.output.find("exchange plc:"), warning) << result.output;
+    EXPECT_GT(result.output.find("exchange kept:"), warning) << result.output;
+    EXPECT_EQ(warning, result.output.rfind("warning:") - 2) << "one warning only\n"
+                                                            << result.output;
+}
+
 TEST(RunCommand, RefusesToStartOnAnInvalidConfiguration) {
     TempDir dir;
     const auto path = dir.write("bad.yaml", bad_config);

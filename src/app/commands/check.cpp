@@ -12,6 +12,7 @@
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/plan_warnings.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
@@ -111,6 +112,9 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     for (const auto& plan : plans) {
         out << "\n";
         print_exchange(plan, out);
+        for (const auto& warning : core::plan::plan_warnings(plan)) {
+            out << "  warning: " << warning << "\n";
+        }
     }
     return 0;
 }
