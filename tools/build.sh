@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Configures and builds one flavour of eip2mqtt.
-#   tools/build.sh [release|asan|fuzz]   (default: release; build dirs build/, build-asan/, build-fuzz/)
+#   tools/build.sh [release|asan|fuzz] [TARGET...]
+# (default: release; build dirs build/, build-asan/, build-fuzz/; every target unless some are named)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 flavour=${1:-release}
+shift $(($# > 0 ? 1 : 0))
+targets=("$@")
 jobs=$(nproc)
 case "$flavour" in
   release) dir=build; args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DEIP2MQTT_WERROR=ON) ;;
@@ -12,4 +15,8 @@ case "$flavour" in
   *) echo "usage: $0 [release|asan|fuzz]" >&2; exit 2 ;;
 esac
 cmake -S . -B "$dir" -G Ninja "${args[@]}" >/dev/null
-cmake --build "$dir" -j "$jobs"
+if [ ${#targets[@]} -gt 0 ]; then
+  cmake --build "$dir" -j "$jobs" --target "${targets[@]}"
+else
+  cmake --build "$dir" -j "$jobs"
+fi

@@ -9,7 +9,8 @@ seconds=0
 if [ "${1:-}" = "--seconds" ]; then seconds=${2:?}; fi
 
 tools/install-deps.sh
-tools/build.sh release
+# Only what the demo runs (the whole suite is tools/test.sh's job).
+tools/build.sh release eip2mqtt
 
 config=etc/eip2mqtt/eip2mqtt.yaml
 pids=()
