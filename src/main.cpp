@@ -58,6 +58,10 @@ int main(int argc, char** argv) {
     sniff_cmd->add_option("--interval", sniff.interval_s, "Seconds between statistics tables")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
+    sniff_cmd->add_option("--count", sniff.count, "Stop after this many datagrams")
+        ->check(CLI::PositiveNumber);
+    sniff_cmd->add_flag("--yaml", sniff.yaml,
+                        "End with YAML for the exchanges seen that the configuration lacks");
 
     try {
         cli.parse(argc, argv);

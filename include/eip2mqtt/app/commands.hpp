@@ -2,6 +2,7 @@
 /// The commands of the `eip2mqtt` binary (product.md "Command line"). Each returns the process
 /// exit status.
 
+#include <cstdint>
 #include <iosfwd>
 #include <string>
 
@@ -45,13 +46,18 @@ struct SniffOptions {
     std::string config_path;  ///< optional: decode the tags of the configured exchanges
     double duration_s = 0;    ///< 0: until SIGINT/SIGTERM
     double interval_s = 1;    ///< seconds between statistics tables; > 0
+    std::uint64_t count = 0;  ///< stop after this many datagrams; 0: no limit
+    bool yaml = false;        ///< end with the skeleton of unconfigured exchanges
 };
 /// `sniff`: a live decoder. Prints to `out` one line per datagram (receive time, source, header
 /// fields, data length; or why it is malformed), with `config_path` the decoded tags of the
 /// exchange matching its key (consumed or produced), and every `interval_s` a table per exchange
 /// (rate, mean period, jitter, missed, duplicates, out of order; eip-protocol.md §4 rule 6). With
-/// a configuration it also joins eip.multicast. Returns when stopped or after `duration_s`, with
-/// a last table; throws std::system_error when it cannot bind (a start-up error).
+/// a configuration it also joins eip.multicast. Returns when stopped, after `duration_s` or after
+/// `count` datagrams, with a last table; with `yaml`, then the YAML skeleton
+/// (core::config::yaml_skeleton) of every exchange seen that the configuration lacks, its
+/// destinations read with IP_PKTINFO. Throws std::system_error when it cannot bind (a start-up
+/// error).
 int run_sniff(const SniffOptions& options, std::ostream& out);
 
 }  // namespace eip2mqtt::app

@@ -7,6 +7,7 @@
 #include <boost/asio/error.hpp>
 #include <boost/asio/ip/address_v4.hpp>
 #include <cerrno>
+#include <cstring>
 #include <system_error>
 
 namespace eip2mqtt::adapters::udp {
@@ -47,6 +48,19 @@ void join_group(int fd, const MulticastMembership& membership) {
                  membership.interface.empty() ? "the default interface" : membership.interface);
 }
 
+/// The destination address IP_PKTINFO gave for a received message, host byte order; 0 if none.
+std::uint32_t destination_of(msghdr& header) {
+    if (header.msg_control == nullptr) return 0;
+    for (cmsghdr* c = CMSG_FIRSTHDR(&header); c != nullptr; c = CMSG_NXTHDR(&header, c)) {
+        if (c->cmsg_level == IPPROTO_IP && c->cmsg_type == IP_PKTINFO) {
+            in_pktinfo info{};
+            std::memcpy(&info, CMSG_DATA(c), sizeof info);
+            return ntohl(info.ipi_addr.s_addr);
+        }
+    }
+    return 0;
+}
+
 }  // namespace
 
 Receiver::Receiver(boost::asio::any_io_executor executor, const ReceiverOptions& options)
@@ -70,6 +84,13 @@ Receiver::Receiver(boost::asio::any_io_executor executor, const ReceiverOptions&
             ec, "cannot bind UDP " + options.bind + ":" + std::to_string(options.port));
     }
     for (const auto& membership : options.multicast) join_group(fd, membership);
+    if (options.destinations) {
+        const int on = 1;
+        if (setsockopt(fd, IPPROTO_IP, IP_PKTINFO, &on, sizeof on) != 0) {
+            throw std::system_error(errno, std::generic_category(), "cannot set IP_PKTINFO");
+        }
+        controls_.resize(batch_);
+    }
 
     storage_.resize(batch_ * slot_size);
     messages_.resize(batch_);
@@ -85,6 +106,11 @@ Receiver::~Receiver() { stop(); }
 
 void Receiver::start(Handler handler) {
     handler_ = std::move(handler);
+    do_wait();
+}
+
+void Receiver::start_with_destinations(DestinationHandler handler) {
+    destination_handler_ = std::move(handler);
     do_wait();
 }
 
@@ -125,6 +151,10 @@ std::size_t Receiver::drain() {
         header.msg_namelen = sizeof(sockaddr_in);
         header.msg_iov = &iovecs_[i];
         header.msg_iovlen = 1;
+        if (!controls_.empty()) {
+            header.msg_control = controls_[i].bytes;
+            header.msg_controllen = sizeof controls_[i].bytes;
+        }
         messages_[i].msg_len = 0;
     }
     const int fd = socket_.native_handle();
@@ -139,7 +169,7 @@ std::size_t Receiver::drain() {
     }
     ++stats_.batches;
     for (int i = 0; i < count; ++i) {
-        const auto& message = messages_[static_cast<std::size_t>(i)];
+        auto& message = messages_[static_cast<std::size_t>(i)];
         std::size_t length = message.msg_len;
         const bool truncated = (message.msg_hdr.msg_flags & MSG_TRUNC) != 0 || length > slot_size;
         if (truncated) {
@@ -149,9 +179,13 @@ std::size_t Receiver::drain() {
         const auto& source = sources_[static_cast<std::size_t>(i)];
         const Endpoint from{ntohl(source.sin_addr.s_addr), ntohs(source.sin_port)};
         ++stats_.datagrams;
-        handler_(std::span<const std::byte>(
-                     storage_.data() + static_cast<std::size_t>(i) * slot_size, length),
-                 from, truncated);
+        const std::span<const std::byte> bytes(
+            storage_.data() + static_cast<std::size_t>(i) * slot_size, length);
+        if (destination_handler_) {
+            destination_handler_(bytes, from, destination_of(message.msg_hdr), truncated);
+        } else {
+            handler_(bytes, from, truncated);
+        }
         if (stopped_) break;
     }
     return static_cast<std::size_t>(count);

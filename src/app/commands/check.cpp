@@ -92,6 +92,8 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
         if (tag->spec.writable) out << "  writable";
         out << std::right << "\n";
     }
+    // Valid: traffic can be watched before the byte map is known.
+    if (plan.tags.empty()) out << "  no tags yet: only " << plan.status_topic << " is published\n";
     out << "  " << unused_ranges(plan) << "\n";
 }
 

@@ -1,6 +1,7 @@
 // `eip2mqtt sniff`: a live decoder for the field. Prints every datagram's header (and, given a
 // configuration, its tags), then per-exchange arrival statistics at each interval, so that an
-// engineer can see what a producer really sends before configuring the gateway for it.
+// engineer can see what a producer really sends before configuring the gateway for it. With
+// --yaml it ends with the configuration of every exchange seen that the configuration lacks.
 
 #include <fmt/format.h>
 #include <time.h>
@@ -20,10 +21,13 @@
 #include <vector>
 
 #include "app/commands/detail/run_until_stopped.hpp"
+#include "eip2mqtt/adapters/udp/interfaces.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/commands.hpp"
+#include "eip2mqtt/core/config/skeleton.hpp"
 #include "eip2mqtt/core/exchange/arrival_stats.hpp"
+#include "eip2mqtt/core/exchange/wire_survey.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 #include "eip2mqtt/core/wire/drop_reason.hpp"
@@ -46,6 +50,15 @@ struct SniffedExchange {
     std::uint64_t missed = 0;
     std::uint64_t duplicates = 0;
     std::uint64_t out_of_order = 0;
+    /// With --yaml, for an exchange the configuration lacks: what its skeleton says.
+    std::optional<core::exchange::WireSurvey> survey;
+};
+
+/// What --yaml needs besides the datagrams: the local broadcast addresses (to tell a
+/// subnet-directed broadcast) and the tolerance of a synced producer clock.
+struct YamlSettings {
+    std::vector<std::uint32_t> broadcast_addresses;
+    std::chrono::milliseconds clock_tolerance{2000};
 };
 
 /// What became of a datagram under eip-protocol.md §4 rule 6.
@@ -109,14 +122,17 @@ std::string milliseconds(std::optional<double> seconds) {
 
 class Sniffer {
 public:
+    /// `yaml`: gather the skeletons of unconfigured exchanges (print_skeleton).
     Sniffer(std::ostream& out, std::vector<core::plan::ExchangePlan> plans,
-            std::chrono::nanoseconds interval)
-        : out_(out), plans_(std::move(plans)), interval_(interval) {}
+            std::chrono::nanoseconds interval, std::optional<YamlSettings> yaml)
+        : out_(out), plans_(std::move(plans)), interval_(interval), yaml_(std::move(yaml)) {}
 
-    void on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from) {
+    /// `destination`: the address the datagram was sent to (0: unknown).
+    void on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
+                     std::uint32_t destination) {
         const auto now = Clock::now();
-        std::string line = fmt::format("{} {}", local_time(std::chrono::system_clock::now()),
-                                       adapters::udp::to_string(from));
+        const auto wall = std::chrono::system_clock::now();
+        std::string line = fmt::format("{} {}", local_time(wall), adapters::udp::to_string(from));
         auto decoded = core::wire::decode_datagram(bytes);
         if (!decoded) {
             ++dropped_[decoded.error()];
@@ -131,6 +147,15 @@ public:
         ++exchange.received;
         const auto sequence = apply_sequence(exchange, header.request_id, now);
         if (sequence == Sequence::sample) exchange.arrivals.on_arrival(now);
+        if (exchange.survey) {
+            const auto receive_ms =
+                std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch())
+                    .count();
+            exchange.survey->on_datagram(
+                header, datagram.data.size(),
+                core::exchange::classify_destination(destination, yaml_->broadcast_addresses), now,
+                receive_ms);
+        }
 
         const auto signature = core::wire::Signature::from_wire(header.signature);
         line +=
@@ -190,6 +215,16 @@ public:
         out_ << std::flush;
     }
 
+    /// With --yaml: the skeleton of every exchange seen that the configuration lacks.
+    void print_skeleton() {
+        if (!yaml_) return;
+        std::vector<core::exchange::WireSummary> summaries;
+        for (const auto& exchange : exchanges_) {
+            if (exchange.survey) summaries.push_back(exchange.survey->summary());
+        }
+        out_ << '\n' << core::config::yaml_skeleton(summaries) << std::flush;
+    }
+
 private:
     SniffedExchange& find_or_add(const ExchangeKey& key) {
         const auto found = index_.find(key);
@@ -210,6 +245,7 @@ private:
             .plan = plan,
             .arrivals = core::exchange::ArrivalStats(expected, interval_),
         });
+        if (yaml_ && plan == nullptr) exchanges_.back().survey.emplace(key, yaml_->clock_tolerance);
         index_.emplace(key, exchanges_.size() - 1);
         return exchanges_.back();
     }
@@ -217,6 +253,7 @@ private:
     std::ostream& out_;
     std::vector<core::plan::ExchangePlan> plans_;  ///< never resized: exchanges_ points into it
     std::chrono::nanoseconds interval_;
+    std::optional<YamlSettings> yaml_;
     std::vector<SniffedExchange> exchanges_;  ///< in order of first sight
     std::map<ExchangeKey, std::size_t> index_;
     std::map<core::wire::DropReason, std::uint64_t> dropped_;
@@ -231,6 +268,12 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
     }
     adapters::udp::ReceiverOptions receiver_options;
     std::vector<core::plan::ExchangePlan> plans;
+    std::optional<YamlSettings> yaml;
+    if (options.yaml) {
+        yaml.emplace();
+        yaml->broadcast_addresses = adapters::udp::local_broadcast_addresses();
+        receiver_options.destinations = true;
+    }
     if (!options.config_path.empty()) {
         auto loaded = adapters::yaml::load_config(options.config_path);
         if (!loaded) {
@@ -241,6 +284,7 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
         }
         const auto& config = loaded.value();
         plans = core::config::make_plans(config);
+        if (yaml) yaml->clock_tolerance = config.gateway.exchange_defaults.clock_tolerance;
         receiver_options.bind = config.eip.bind;
         receiver_options.port = config.eip.port;
         for (const auto& group : config.eip.multicast) {
@@ -252,12 +296,19 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
 
     const auto interval = std::chrono::duration_cast<std::chrono::nanoseconds>(
         std::chrono::duration<double>(options.interval_s));
-    Sniffer sniffer(out, std::move(plans), interval);
+    Sniffer sniffer(out, std::move(plans), interval, std::move(yaml));
 
     boost::asio::io_context loop;
     adapters::udp::Receiver receiver(loop.get_executor(), receiver_options);
-    receiver.start([&](std::span<const std::byte> datagram, const adapters::udp::Endpoint& from,
-                       bool) { sniffer.on_datagram(datagram, from); });
+    std::uint64_t seen = 0;
+    receiver.start_with_destinations([&](std::span<const std::byte> datagram,
+                                         const adapters::udp::Endpoint& from,
+                                         std::uint32_t destination, bool) {
+        // --count: the rest of a batch read with the last counted one is not shown.
+        if (options.count != 0 && seen >= options.count) return;
+        sniffer.on_datagram(datagram, from, destination);
+        if (++seen == options.count) loop.stop();
+    });
     out << fmt::format("sniffing {}:{}", receiver_options.bind, receiver.local_port()) << std::endl;
 
     boost::asio::steady_timer tick(loop);
@@ -276,6 +327,7 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
     detail::run_until_stopped(loop, options.duration_s);
     receiver.stop();
     sniffer.print_statistics();
+    sniffer.print_skeleton();
     return 0;
 }
 

@@ -32,6 +32,9 @@ struct ReceiverOptions {
     std::vector<MulticastMembership> multicast;
     std::size_t batch = 64;                      ///< datagrams per recvmmsg
     int receive_buffer_bytes = 8 * 1024 * 1024;  ///< SO_RCVBUF request (the kernel may cap it)
+    /// Ask the kernel for each datagram's destination address (IP_PKTINFO), handed to a
+    /// DestinationHandler. Off for the gateway, which identifies exchanges by their key alone.
+    bool destinations = false;
 };
 
 struct ReceiverStats {
@@ -46,6 +49,11 @@ public:
     /// `datagram` views the receive buffer and is valid only during the call.
     using Handler = std::function<void(std::span<const std::byte> datagram, const Endpoint& from,
                                        bool truncated)>;
+    /// The same with the address the datagram was sent to (IPv4, host byte order: the group of
+    /// a multicast, the broadcast address of a broadcast), 0 when the kernel did not say.
+    using DestinationHandler =
+        std::function<void(std::span<const std::byte> datagram, const Endpoint& from,
+                           std::uint32_t destination, bool truncated)>;
 
     /// Opens and binds the socket and joins the multicast groups; throws std::system_error with
     /// a message naming the address on failure (a start-up error).
@@ -53,6 +61,8 @@ public:
     ~Receiver();
 
     void start(Handler handler);
+    /// start() for ReceiverOptions::destinations (without it, every destination is 0).
+    void start_with_destinations(DestinationHandler handler);
     /// Closes the socket; a pending wait completes with operation_aborted and stops quietly.
     void stop();
 
@@ -65,12 +75,19 @@ private:
     std::size_t drain();
 
     boost::asio::ip::udp::socket socket_;
+    /// Room for one IP_PKTINFO control message.
+    struct Control {
+        alignas(struct ::cmsghdr) unsigned char bytes[CMSG_SPACE(sizeof(struct ::in_pktinfo))];
+    };
+
     Handler handler_;
+    DestinationHandler destination_handler_;
     std::size_t batch_;
     std::vector<std::byte> storage_;
     std::vector<struct ::mmsghdr> messages_;
     std::vector<struct ::iovec> iovecs_;
     std::vector<struct ::sockaddr_in> sources_;
+    std::vector<Control> controls_;  ///< one per slot with ReceiverOptions::destinations
     ReceiverStats stats_;
     bool stopped_ = false;
 };

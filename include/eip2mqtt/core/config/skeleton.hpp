@@ -1,0 +1,22 @@
+#pragma once
+/// From the wire to a configuration (issue #13, `sniff --yaml`): the YAML of consumed exchanges
+/// that were seen on the wire but are not configured, one per summary, as an `exchanges:` list
+/// the loader accepts and `check` passes as it is (no tags yet: the gateway then publishes only
+/// the exchange's `_status`). Keys carry what the configuration has a key for (producer_id,
+/// exchange_id, length, signature, period_ms, a name and topic made from the key); what it has
+/// none for (destination, producer clock, how the period was measured, disagreements between
+/// datagrams) is written as comments.
+
+#include <span>
+#include <string>
+
+#include "eip2mqtt/core/exchange/wire_survey.hpp"
+
+namespace eip2mqtt::core::config {
+
+/// The skeleton of `exchanges`, in their order: a comment saying what it is, then
+/// `exchanges:` with one item each (indented by two spaces). With no exchange, only a comment
+/// saying so.
+std::string yaml_skeleton(std::span<const exchange::WireSummary> exchanges);
+
+}  // namespace eip2mqtt::core::config

@@ -1,0 +1,150 @@
+#include "eip2mqtt/core/config/skeleton.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string_view>
+
+#include "eip2mqtt/core/wire/header.hpp"
+
+namespace eip2mqtt::core::config {
+namespace {
+
+using exchange::ClockState;
+using exchange::DestinationKind;
+using exchange::WireSummary;
+
+// The period_ms the validation accepts (config.cpp).
+constexpr long min_period_ms = 2;
+constexpr long max_period_ms = 3600000;
+constexpr long default_period_ms = 1000;
+
+std::string ipv4(std::uint32_t address) { return wire::to_string(wire::ProducerId{address}); }
+
+std::string three_decimals(double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3f", value);
+    return text;
+}
+
+std::string plural(std::uint64_t count, std::string_view one, std::string_view many) {
+    return std::to_string(count) + " " + std::string(count == 1 ? one : many);
+}
+
+void length_line(const WireSummary& s, std::string& out) {
+    if (s.length == 0) {
+        out += "    length: 1  # TODO: the datagrams carry no data; a length is 1 to 1400 bytes\n";
+        return;
+    }
+    out += "    length: " + std::to_string(s.length) + "  # data bytes";
+    if (s.min_length != s.max_length) {
+        out += " of the last datagram; lengths " + std::to_string(s.min_length) + " to " +
+               std::to_string(s.max_length) + " seen: check which is right";
+    }
+    out += "\n";
+}
+
+void signature_line(const WireSummary& s, std::string& out) {
+    const std::string_view varied = s.signature_varied ? "; it varied: the last datagram's" : "";
+    if (s.signature.is_set()) {
+        out += "    signature: \"" + wire::to_string(s.signature) + "\"";
+        if (s.signature_varied) out += "  # it varied: the last datagram's";
+        out += "\n";
+    } else {
+        out += "    # signature: none (the producer sends 0.0" + std::string(varied) + ")\n";
+    }
+}
+
+void period_line(const WireSummary& s, std::string& out) {
+    if (!s.period_ms) {
+        out += "    period_ms: " + std::to_string(default_period_ms) +
+               "  # TODO: not measured (no two datagrams in sequence); the default\n";
+        return;
+    }
+    const long rounded = std::lround(*s.period_ms);
+    const long period = rounded < min_period_ms   ? min_period_ms
+                        : rounded > max_period_ms ? max_period_ms
+                                                  : rounded;
+    out += "    period_ms: " + std::to_string(period) + "  # measured " +
+           three_decimals(*s.period_ms) +
+           " ms: time between receive times per request-id step, over " +
+           plural(s.period_steps, "step", "steps");
+    if (period != rounded) {
+        out += "; period_ms is " + std::to_string(min_period_ms) + " to " +
+               std::to_string(max_period_ms);
+    }
+    out += "\n";
+}
+
+void destination_line(const WireSummary& s, std::string& out) {
+    const auto& d = s.destination;
+    out += "    # destination: ";
+    switch (d.kind) {
+        case DestinationKind::unknown:
+            out += "unknown (the receiving socket did not say)";
+            break;
+        case DestinationKind::unicast:
+            out += "unicast to " + ipv4(d.address);
+            break;
+        case DestinationKind::broadcast:
+            out += "broadcast to " + ipv4(d.address);
+            break;
+        case DestinationKind::multicast:
+            out += "multicast group " + ipv4(d.address) +
+                   " (the gateway joins it with eip.multicast: [ { group: " + ipv4(d.address) +
+                   " } ])";
+            break;
+    }
+    if (s.destination_varied) out += "; it varied: the last datagram's";
+    out += "\n";
+}
+
+void clock_line(const WireSummary& s, std::string& out) {
+    out += "    # clock: " + std::string(exchange::to_string(s.clock)) + " (";
+    const auto tolerance = std::to_string(s.clock_tolerance.count());
+    if (s.clock == ClockState::none || !s.clock_offset_ms) {
+        out += "no timestamp in the datagrams: tags carry the receive time";
+    } else {
+        const auto offset = *s.clock_offset_ms;
+        out += "the producer's time is " + std::to_string(offset < 0 ? -offset : offset) + " ms " +
+               (offset < 0 ? "behind" : "ahead of") + " the receive time, ";
+        out +=
+            s.clock == ClockState::synced
+                ? "within " + tolerance + " ms"
+                : "beyond " + tolerance + " ms: with timestamp auto, tags carry the receive time";
+    }
+    out += ")";
+    if (s.clock_varied) out += "; it varied: the last datagram's";
+    out += "\n";
+}
+
+}  // namespace
+
+std::string yaml_skeleton(std::span<const WireSummary> exchanges) {
+    if (exchanges.empty()) {
+        return "# sniff --yaml: no exchange seen on the wire that the configuration lacks\n";
+    }
+    std::string out = "# sniff --yaml: " + plural(exchanges.size(), "exchange", "exchanges") +
+                      " seen on the wire that the configuration lacks. Rename at will; add tags "
+                      "where the byte map is known.\n"
+                      "exchanges:\n";
+    for (const auto& s : exchanges) {
+        const auto producer = wire::to_string(s.key.producer_id);
+        const auto id = std::to_string(s.key.exchange_id);
+        out += "  - name: \"" + producer + "-" + id + "\"\n";
+        out += "    direction: consume\n";
+        out += "    producer_id: " + producer + "\n";
+        out += "    exchange_id: " + id + "\n";
+        length_line(s, out);
+        signature_line(s, out);
+        period_line(s, out);
+        out += "    topic: \"" + producer + "/" + id + "\"  # under base_topic\n";
+        destination_line(s, out);
+        clock_line(s, out);
+        out += "    # seen: " + plural(s.datagrams, "datagram", "datagrams") + "\n";
+        out += "    tags: []  # TODO: the byte map; until then only {topic}/_status is published\n";
+    }
+    return out;
+}
+
+}  // namespace eip2mqtt::core::config
