@@ -11,12 +11,6 @@
 #include "eip2mqtt/core/printable.hpp"
 
 namespace eip2mqtt::app {
-namespace {
-
-// Rejected writes are logged at most this often (each is answered and counted regardless).
-constexpr auto write_log_interval = std::chrono::seconds(10);
-
-}  // namespace
 
 void Gateway::build_write_routes() {
     write_router_.clear();
@@ -39,13 +33,16 @@ void Gateway::reject_write(const WriteReply& reply, const std::string& target,
     mqtt_->publish({reply.topic,
                     result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), 1, false,
                     false, reply.correlation_data});
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_write_log_ >= write_log_interval) {
-        last_write_log_ = now;
+    // Each is answered and counted; the log is throttled (a client may flood).
+    if (const auto count = rejected_write_log_.record(std::chrono::steady_clock::now())) {
         std::uint64_t total = 0;
         for (const auto n : counters_.writes_rejected) total += n;
-        spdlog::warn("write to {} rejected: {}{} ({} rejected so far)", core::printable(target),
-                     core::printable(rejection.message), detail, total);
+        const auto summary = count == 1
+                                 ? fmt::format("{} rejected so far", total)
+                                 : fmt::format("{} rejected in the last {} s, {} so far", count,
+                                               rejected_write_log_.interval().count(), total);
+        spdlog::warn("write to {} rejected: {}{} ({})", core::printable(target),
+                     core::printable(rejection.message), detail, summary);
     }
 }
 

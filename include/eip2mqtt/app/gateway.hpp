@@ -27,6 +27,7 @@
 #include "eip2mqtt/app/producer_scheduler.hpp"
 #include "eip2mqtt/app/write_router.hpp"
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::app {
 
@@ -112,7 +113,7 @@ private:
     DropLog drop_log_;
     core::MonoTime started_at_;
     core::MonoTime last_refresh_scan_;
-    core::MonoTime last_write_log_;
+    core::ThrottledLog rejected_write_log_;
     bool stopping_ = false;
 };
 

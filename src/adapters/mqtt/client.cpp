@@ -23,6 +23,7 @@
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
 #include "eip2mqtt/core/printable.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
 namespace {
@@ -30,8 +31,6 @@ namespace {
 namespace paho = ::mqtt;
 using Clock = std::chrono::steady_clock;
 
-/// style.md "Errors": log the first, then one summary per interval.
-constexpr auto kLogInterval = std::chrono::seconds(30);
 /// How long the sender holds after a dropped suspect if the connection does not go meanwhile.
 constexpr auto kProbeFailureHold = std::chrono::seconds(1);
 constexpr auto kConnectTimeout = std::chrono::seconds(10);
@@ -248,8 +247,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     ConnectedHandler on_connected_;
     MessageHandler on_message_;
     std::vector<std::string> subscriptions_;
-    std::uint64_t connect_failures_unlogged_ = 0;
-    Clock::time_point connect_failure_logged_{};
+    core::ThrottledLog connect_failure_log_;
 
     // Guarded by mutex_ (touched by the loop, the sender, Paho's threads and stop()).
     mutable std::mutex mutex_;
@@ -277,10 +275,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     bool window_full_ = false;      ///< the sender stopped at the limit: wait for the low mark
     bool quit_ = false;             ///< the sender thread must end
     std::size_t backlog_peak_ = 0;  ///< largest queue since memory was last given back
-    std::uint64_t publish_failures_unlogged_ = 0;
-    Clock::time_point publish_failure_logged_{};
-    std::uint64_t refused_unlogged_ = 0;
-    Clock::time_point refused_logged_{};
+    core::ThrottledLog publish_failure_log_;
+    core::ThrottledLog refused_log_;
 
     /// max_in_flight, lowered to the broker's receive maximum on each connect.
     std::atomic<std::size_t> in_flight_limit_;
@@ -459,17 +455,13 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     }
     if (!ok) {
         reason = explain_connect_failure(std::move(reason));
-        const auto now = Clock::now();
-        ++connect_failures_unlogged_;
-        if (connect_failures_unlogged_ == 1 || now - connect_failure_logged_ >= kLogInterval) {
-            if (connect_failures_unlogged_ == 1) {
+        if (const auto count = connect_failure_log_.record(Clock::now())) {
+            if (count == 1) {
                 spdlog::warn("MQTT cannot connect to {}: {}", options_.url, reason);
             } else {
                 spdlog::warn("MQTT cannot connect to {}: {} ({} failed attempts)", options_.url,
-                             reason, connect_failures_unlogged_);
+                             reason, count);
             }
-            connect_failure_logged_ = now;
-            connect_failures_unlogged_ = 0;
             spdlog::info("MQTT reconnecting in {} ms", schedule_reconnect().count());
         } else {
             schedule_reconnect();
@@ -483,8 +475,7 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     connects_.fetch_add(1, std::memory_order_relaxed);
     backoff_.reset();
     update_in_flight_limit();
-    connect_failures_unlogged_ = 0;
-    connect_failure_logged_ = {};
+    connect_failure_log_.reset();
     spdlog::info("MQTT connected to {}", options_.url);
 
     if (endpoint_) {
@@ -892,13 +883,7 @@ void Client::Impl::log_refused(const std::string& topic, const std::string& prob
     std::uint64_t count = 0;
     {
         std::lock_guard lock(mutex_);
-        const auto now = Clock::now();
-        ++refused_unlogged_;
-        if (refused_unlogged_ == 1 || now - refused_logged_ >= kLogInterval) {
-            count = refused_unlogged_;
-            refused_unlogged_ = 0;
-            refused_logged_ = now;
-        }
+        count = refused_log_.record(Clock::now());
     }
     if (count > 0) {
         spdlog::error(
@@ -912,13 +897,7 @@ void Client::Impl::log_publish_failure(const std::string& topic, const std::stri
     std::uint64_t count = 0;
     {
         std::lock_guard lock(mutex_);
-        const auto now = Clock::now();
-        ++publish_failures_unlogged_;
-        if (publish_failures_unlogged_ == 1 || now - publish_failure_logged_ >= kLogInterval) {
-            count = publish_failures_unlogged_;
-            publish_failures_unlogged_ = 0;
-            publish_failure_logged_ = now;
-        }
+        count = publish_failure_log_.record(Clock::now());
     }
     if (count > 0) {
         spdlog::warn("MQTT publish to {} failed: {} ({} failures since last report)", topic, reason,

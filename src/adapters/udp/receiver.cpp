@@ -134,7 +134,10 @@ void Receiver::on_readable(const boost::system::error_code& error) {
     if (error == boost::asio::error::operation_aborted || stopped_) return;
     if (error) {
         ++stats_.errors;
-        spdlog::error("UDP receive wait failed: {}", error.message());
+        if (const auto count = error_log_.record(std::chrono::steady_clock::now())) {
+            spdlog::error("UDP receive wait failed: {} ({} since the last line)", error.message(),
+                          count);
+        }
     } else {
         for (std::size_t i = 0; i < max_batches_per_wakeup; ++i) {
             if (drain() < batch_) break;
@@ -163,7 +166,11 @@ std::size_t Receiver::drain() {
     if (count < 0) {
         if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
             ++stats_.errors;
-            spdlog::error("recvmmsg failed: {}", std::strerror(errno));
+            const int failure = errno;
+            if (const auto count = error_log_.record(std::chrono::steady_clock::now())) {
+                spdlog::error("recvmmsg failed: {} ({} since the last line)",
+                              std::strerror(failure), count);
+            }
         }
         return 0;
     }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::adapters::udp {
 
@@ -89,6 +90,7 @@ private:
     std::vector<struct ::sockaddr_in> sources_;
     std::vector<Control> controls_;  ///< one per slot with ReceiverOptions::destinations
     ReceiverStats stats_;
+    core::ThrottledLog error_log_;  ///< a failing socket fails on every wake-up
     bool stopped_ = false;
 };
 
