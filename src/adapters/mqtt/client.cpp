@@ -17,6 +17,8 @@
 #include <thread>
 #include <utility>
 
+#include "adapters/mqtt/detail/broker_url.hpp"
+#include "adapters/mqtt/detail/connect_options.hpp"
 #include "adapters/mqtt/detail/in_flight_window.hpp"
 #include "adapters/mqtt/detail/publication_check.hpp"
 #include "adapters/mqtt/detail/reconnect_backoff.hpp"
@@ -37,55 +39,6 @@ constexpr auto kConnectTimeout = std::chrono::seconds(10);
 /// Queued publications past which the memory of a drained backlog is given back (malloc_trim
 /// walks every arena: worth it after a burst, not after every message).
 constexpr std::size_t kTrimAfterBacklog = 10000;
-
-struct Endpoint {
-    std::string host;
-    std::uint16_t port = 0;
-    bool tls = false;
-};
-
-/// scheme://host[:port][/path]; host may be a bracketed IPv6 address.
-std::optional<Endpoint> parse_url(const std::string& url) {
-    const auto sep = url.find("://");
-    if (sep == std::string::npos) {
-        return std::nullopt;
-    }
-    const std::string scheme = url.substr(0, sep);
-    Endpoint ep;
-    ep.tls = scheme == "ssl" || scheme == "mqtts" || scheme == "wss";
-    ep.port = scheme == "ws" ? 80 : scheme == "wss" ? 443 : ep.tls ? 8883 : 1883;
-    std::string rest = url.substr(sep + 3);
-    rest = rest.substr(0, rest.find('/'));
-    std::string port;
-    if (!rest.empty() && rest.front() == '[') {
-        const auto close = rest.find(']');
-        if (close == std::string::npos) {
-            return std::nullopt;
-        }
-        ep.host = rest.substr(1, close - 1);
-        if (close + 1 < rest.size() && rest[close + 1] == ':') {
-            port = rest.substr(close + 2);
-        }
-    } else {
-        const auto colon = rest.rfind(':');
-        ep.host = rest.substr(0, colon);
-        if (colon != std::string::npos) {
-            port = rest.substr(colon + 1);
-        }
-    }
-    if (!port.empty()) {
-        try {
-            const int p = std::stoi(port);
-            if (p <= 0 || p > 65535) {
-                return std::nullopt;
-            }
-            ep.port = static_cast<std::uint16_t>(p);
-        } catch (const std::exception&) {
-            return std::nullopt;
-        }
-    }
-    return ep;
-}
 
 std::string describe_failure(const paho::token& tok) {
     const int rc = tok.get_return_code();
@@ -234,7 +187,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
 
     const boost::asio::any_io_executor loop_;
     const ClientOptions options_;
-    const std::optional<Endpoint> endpoint_;
+    const std::optional<detail::BrokerEndpoint> endpoint_;
     /// QoS >= 1 publications in flight when the connection drops are sent again (see
     /// on_publish_done).
     const bool requeue_in_flight_;
@@ -309,7 +262,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
 Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
     : loop_(std::move(loop)),
       options_(std::move(options)),
-      endpoint_(parse_url(options_.url)),
+      endpoint_(detail::parse_broker_url(options_.url)),
       // With a clean session Paho discards unacknowledged publications on reconnect, so we
       // resend them; with a kept session Paho resends them itself and we must not duplicate.
       requeue_in_flight_(options_.clean_start ||
@@ -329,51 +282,7 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
     client_ =
         std::make_unique<paho::async_client>(options_.url, options_.client_id, create, nullptr);
 
-    paho::connect_options& co = connect_options_;
-    co.set_mqtt_version(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
-    if (v5) {
-        co.set_clean_start(options_.clean_start);
-        if (options_.session_expiry.count() > 0) {
-            co.set_properties(
-                paho::properties{{paho::property::SESSION_EXPIRY_INTERVAL,
-                                  static_cast<int>(options_.session_expiry.count())}});
-        }
-    } else {
-        co.set_clean_session(options_.clean_start);
-    }
-    co.set_keep_alive_interval(options_.keepalive);
-    co.set_connect_timeout(kConnectTimeout);
-    co.set_automatic_reconnect(false);  // we reconnect ourselves, initial connect included
-    if (!options_.username.empty() || !options_.password.empty()) {
-        co.set_user_name(options_.username);
-        co.set_password(options_.password);
-    }
-    if (!options_.availability_topic.empty()) {
-        co.set_will(paho::will_options(options_.availability_topic, std::string("offline"),
-                                       options_.availability_qos, true));
-    }
-    // TLS when the URL asks for it or a tls block is given. A tls block with a tcp:// URL is
-    // passed to Paho as is, and Paho ignores it: the URL's scheme decides.
-    if ((endpoint_ && endpoint_->tls) || options_.tls) {
-        paho::ssl_options ssl;
-        if (options_.tls) {
-            if (!options_.tls->ca_file.empty()) {
-                ssl.set_trust_store(options_.tls->ca_file);
-            }
-            if (!options_.tls->cert_file.empty()) {
-                ssl.set_key_store(options_.tls->cert_file);
-            }
-            if (!options_.tls->key_file.empty()) {
-                ssl.set_private_key(options_.tls->key_file);
-            }
-            ssl.set_enable_server_cert_auth(options_.tls->verify);
-            ssl.set_verify(options_.tls->verify);
-        }
-        // No set_error_handler: Paho C++ 1.2 keeps, through the copies connect() makes, a
-        // pointer to a temporary ssl_options as the callback's context, and OpenSSL's first
-        // error then crashes the process. on_connect explains a TLS failure instead.
-        co.set_ssl(std::move(ssl));
-    }
+    detail::configure_connect_options(connect_options_, options_, endpoint_, kConnectTimeout);
     if (options_.tls && endpoint_ && !endpoint_->tls) {
         spdlog::warn("MQTT url {} is not ssl:// or wss://: mqtt.tls is ignored", options_.url);
     }
