@@ -159,7 +159,10 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
     } else {
         const auto inputs = adapters::mqtt::parse_exchange_write(message.payload);
         if (!inputs) return refuse(inputs.error().error, inputs.error().message);
-        for (const auto& [name, input] : inputs.value()) {
+        for (const auto& entry : inputs.value()) {
+            // Not a structured binding: clang 14 (the fuzz build) cannot capture one.
+            const auto& name = entry.first;
+            const auto& input = entry.second;
             const auto tag = std::find_if(plan.tags.begin(), plan.tags.end(),
                                           [&](const auto& t) { return t.spec.name == name; });
             if (tag == plan.tags.end()) {
