@@ -14,8 +14,8 @@ namespace {
 using std::chrono::duration_cast;
 using std::chrono::milliseconds;
 
-// product.md: `_status` is published on every state change, then at most once a second while
-// its counters move.
+// docs/mqtt-api.md "Exchange status": `_status` is published on every state change, then at most
+// once a second while its counters move.
 constexpr auto status_interval = std::chrono::seconds(1);
 
 std::int64_t to_ms(core::WallTime wall) {
@@ -99,7 +99,7 @@ core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::D
 
 void ExchangeConsumer::on_tick(core::MonoTime now, core::WallTime wall, bool refresh_scan) {
     if (exchange_.on_tick(now)) {
-        // eip-protocol.md §4 rule 8: every tag of a stale exchange is republished as stale,
+        // docs/protocol.md §4 rule 8: every tag of a stale exchange is republished as stale,
         // keeping its last value; the timestamp says when it was found stale.
         timestamp_ms_ = to_ms(wall);
         publish_tags(now, false);

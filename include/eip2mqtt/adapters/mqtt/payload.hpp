@@ -1,5 +1,5 @@
 #pragma once
-/// Payloads of the gateway's topics (product.md "MQTT"), written without a JSON library on the
+/// Payloads of the gateway's topics (docs/mqtt-api.md), written without a JSON library on the
 /// hot path: they are small, fixed-shape objects.
 
 #include <cstdint>
