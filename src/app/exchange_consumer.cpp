@@ -32,6 +32,14 @@ ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, PublishSetting
       exchange_(plan_),
       clock_(plan_.timestamp, plan_.clock_tolerance) {
     filters_.resize(plan_.tags.size());
+    if (settings_.batch) {
+        batch_keys_.reserve(plan_.tags.size());
+        for (const auto& tag : plan_.tags) {
+            std::string key;
+            adapters::mqtt::append_json_string(key, tag.spec.name);
+            batch_keys_.push_back(key + ':');
+        }
+    }
 }
 
 std::int64_t ExchangeConsumer::sample_time(core::WallTime wall) {
@@ -141,9 +149,9 @@ void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
         message_.retain = settings_.retain;
         sink_(std::move(message_));  // leaves message_ blank (PublishSink)
         if (settings_.batch) {
-            fmt::format_to(std::back_inserter(batch_values), R"({}"{}":{})",
-                           batch_values.empty() ? "" : ",", tag.spec.name,
-                           core::plan::to_json(value));
+            if (!batch_values.empty()) batch_values += ',';
+            batch_values += batch_keys_[i];
+            batch_values += core::plan::to_json(value);
         }
     }
     if (settings_.batch && !batch_values.empty()) {
