@@ -1,4 +1,4 @@
-// load_generator: sends EIP data datagrams (eip-protocol.md §2) to one UDP destination with
+// load_generator: sends EIP data datagrams (docs/protocol.md §2) to one UDP destination with
 // sendmmsg, paced in batches against absolute deadlines.
 //
 // E exchanges (ids first..first+E-1, producer id --producer) of T tags each: tag 0 "ts" is a lint

@@ -1,7 +1,7 @@
 // write_latency: how long an MQTT write takes to reach the wire (issue #6). Publishes writes to
 // a produced exchange's tag `/set` topic at --rate writes/s (QoS 1, not retained, each a new
 // dint value) and listens on the exchange's UDP destination, decoding the produced datagrams
-// (32-byte header, then data; eip-protocol.md §2) for the tag at data byte --offset. The
+// (32-byte header, then data; docs/protocol.md §2) for the tag at data byte --offset. The
 // latency of a write = kernel receive time (SO_TIMESTAMPNS, CLOCK_REALTIME) of the first
 // datagram of --exchange-id whose value is the written one or a later one (writes are applied
 // in order, so a later value proves the earlier write was applied too) - CLOCK_REALTIME just
@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
                 received = timespec_ns(ts);
             }
         }
-        std::uint32_t id = 0;  // eip-protocol.md §2: exchange id, u32 little-endian at byte 8
+        std::uint32_t id = 0;  // docs/protocol.md §2: exchange id, u32 little-endian at byte 8
         for (int i = 3; i >= 0; --i) id = id << 8 | buffer[8 + i];
         if (id != exchange_id) continue;
         std::uint32_t raw = 0;  // the dint at data byte `offset`, little-endian

@@ -10,7 +10,7 @@ packages=(
   libgtest-dev libgmock-dev
   mosquitto mosquitto-clients
   clang libclang-rt-14-dev tshark systemd openssl iproute2
-  python3
+  python3 python3-jsonschema
 )
 
 missing=()

@@ -14,8 +14,8 @@ namespace {
 using std::chrono::duration_cast;
 using std::chrono::milliseconds;
 
-// product.md: `_status` is published on every state change, then at most once a second while
-// its counters move.
+// docs/mqtt-api.md "Exchange status": `_status` is published on every state change, then at most
+// once a second while its counters move.
 constexpr auto status_interval = std::chrono::seconds(1);
 
 std::int64_t to_ms(core::WallTime wall) {
@@ -32,6 +32,14 @@ ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, PublishSetting
       exchange_(plan_),
       clock_(plan_.timestamp, plan_.clock_tolerance) {
     filters_.resize(plan_.tags.size());
+    if (settings_.batch) {
+        batch_keys_.reserve(plan_.tags.size());
+        for (const auto& tag : plan_.tags) {
+            std::string key;
+            adapters::mqtt::append_json_string(key, tag.spec.name);
+            batch_keys_.push_back(key + ':');
+        }
+    }
 }
 
 std::int64_t ExchangeConsumer::sample_time(core::WallTime wall) {
@@ -99,7 +107,7 @@ core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::D
 
 void ExchangeConsumer::on_tick(core::MonoTime now, core::WallTime wall, bool refresh_scan) {
     if (exchange_.on_tick(now)) {
-        // eip-protocol.md §4 rule 8: every tag of a stale exchange is republished as stale,
+        // docs/protocol.md §4 rule 8: every tag of a stale exchange is republished as stale,
         // keeping its last value; the timestamp says when it was found stale.
         timestamp_ms_ = to_ms(wall);
         publish_tags(now, false);
@@ -141,9 +149,9 @@ void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
         message_.retain = settings_.retain;
         sink_(std::move(message_));  // leaves message_ blank (PublishSink)
         if (settings_.batch) {
-            fmt::format_to(std::back_inserter(batch_values), R"({}"{}":{})",
-                           batch_values.empty() ? "" : ",", tag.spec.name,
-                           core::plan::to_json(value));
+            if (!batch_values.empty()) batch_values += ',';
+            batch_values += batch_keys_[i];
+            batch_values += core::plan::to_json(value);
         }
     }
     if (settings_.batch && !batch_values.empty()) {

@@ -19,7 +19,7 @@ std::vector<std::byte> restore(const adapters::state::ImageStore& store,
     return saved ? std::move(*saved) : std::vector<std::byte>{};
 }
 
-/// product.md: `_status` at most once a second while its counters move.
+/// docs/mqtt-api.md "Exchange status": at most once a second while its counters move.
 constexpr std::chrono::nanoseconds status_interval = std::chrono::seconds(1);
 
 std::int64_t to_ms(core::WallTime wall) {
@@ -134,8 +134,8 @@ void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
         publish_echo(wall, false);
     }
     counters_.writes_applied += carried_.size();
-    // product.md: a write's result is published once the datagram carrying it was sent and
-    // the image carrying it is saved. The save runs off the loop; a write that changed
+    // docs/mqtt-api.md "Results": a write's result is published once the datagram carrying it was
+    // sent and the image carrying it is saved. The save runs off the loop; a write that changed
     // nothing still waits for a save under way, which may hold the value it wrote.
     if (changed || (saves_in_flight_ > 0 && !carried_.empty())) {
         ++saves_in_flight_;

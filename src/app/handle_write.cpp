@@ -1,4 +1,4 @@
-// MQTT writes (product.md "MQTT"; issue #3): the WriteRouter checks a message on a `…/set`
+// MQTT writes (docs/mqtt-api.md "Writes"; issue #3): the WriteRouter checks a message on a `…/set`
 // topic whole; what it accepts is staged on its produced exchange, whose result is published
 // once the datagram carrying it has left, and what it refuses is answered at once with a
 // reason. Nothing is changed by a rejected write, and one bad value rejects a multi-tag write.

@@ -1,7 +1,8 @@
-// Building the exchanges, at start and on SIGHUP (product.md "SIGHUP"; issue #4): a valid new
-// configuration is applied without dropping the MQTT session or unchanged exchanges; added
-// exchanges start, removed ones stop and their retained topics are cleared, changed ones
-// restart. An invalid file is refused with its errors logged, and the old one keeps running.
+// Building the exchanges, at start and on SIGHUP (README "Running it as a service", Reload; issue
+// #4): a valid new configuration is applied without dropping the MQTT session or unchanged
+// exchanges; added exchanges start, removed ones stop and their retained topics are cleared,
+// changed ones restart. An invalid file is refused with its errors logged, and the old one keeps
+// running.
 
 #include <spdlog/spdlog.h>
 

@@ -1,4 +1,4 @@
-// product.md "MQTT": a message on a `…/set` topic is checked whole (response topic, tag,
+// docs/mqtt-api.md "Writes": a message on a `…/set` topic is checked whole (response topic, tag,
 // retained, payload, type, range) before anything is staged, and one bad value refuses a
 // multi-tag write.
 

@@ -1,5 +1,5 @@
 #pragma once
-/// The test vectors of eip-protocol.md §8 as hex, and hex <-> bytes helpers for core tests.
+/// The test vectors of docs/protocol.md §8 as hex, and hex <-> bytes helpers for core tests.
 
 #include <chrono>
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Fuzzes the SCADA point-list CSV parser (eip-protocol.md §6).
+// Fuzzes the SCADA point-list CSV parser (docs/protocol.md §6).
 
 #include <cstddef>
 #include <cstdint>

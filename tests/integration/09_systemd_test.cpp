@@ -90,6 +90,9 @@ TEST(Install, CmakeInstallPutsBinaryUnitAndExampleConfig) {
     EXPECT_TRUE(has("/eip2mqtt/eip2mqtt.yaml"));
     EXPECT_TRUE(has("/systemd/system/eip2mqtt.service"));
     EXPECT_TRUE(has("/doc/eip2mqtt/README.md"));
+    EXPECT_TRUE(has("/doc/eip2mqtt/docs/protocol.md"));
+    EXPECT_TRUE(has("/doc/eip2mqtt/docs/mqtt-api.md"));
+    EXPECT_TRUE(has("/doc/eip2mqtt/docs/schema/tag-value.json"));
 }
 
 }  // namespace

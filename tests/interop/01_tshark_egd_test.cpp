@@ -80,7 +80,7 @@ std::string utc_text(std::uint32_t seconds, std::uint32_t nanoseconds) {
 }
 
 TEST(TsharkVectors, V3DecodesAsTheProtocolPageSays) {
-    // eip-protocol.md §8 V3, written by hand into a pcap: tshark and we read the same header.
+    // docs/protocol.md §8 V3, written by hand into a pcap: tshark and we read the same header.
     TempDir dir;
     const std::string pcap = dir.path() + "/v3.pcap";
     std::vector<std::byte> v3;

@@ -20,7 +20,7 @@ struct FieldSpan {
     std::size_t size;
 };
 
-// eip-protocol.md §2: where each header field lies.
+// docs/protocol.md §2: where each header field lies.
 FieldSpan span_of(HeaderField field) {
     switch (field) {
         case HeaderField::type:

@@ -18,7 +18,7 @@
 
 namespace eip2mqtt::fault_injector {
 
-/// Header fields --corrupt-field can change (eip-protocol.md §2).
+/// Header fields --corrupt-field can change (docs/protocol.md §2).
 enum class HeaderField : std::uint8_t {
     type,       ///< byte 0
     version,    ///< byte 1

@@ -329,7 +329,7 @@ private:
 int main(int argc, char** argv) {
     const Options options = parse_args(argc, argv);
 
-    // style.md: signals set a flag; the loop acts on it.
+    // Signals set a flag; the loop acts on it.
     struct sigaction action {};
     action.sa_handler = on_signal;
     ::sigemptyset(&action.sa_mask);

@@ -1,5 +1,5 @@
 #pragma once
-/// The commands of the `eip2mqtt` binary (product.md "Command line"). Each returns the process
+/// The commands of the `eip2mqtt` binary (README "Commands"). Each returns the process
 /// exit status.
 
 #include <cstdint>
@@ -52,7 +52,7 @@ struct SniffOptions {
 /// `sniff`: a live decoder. Prints to `out` one line per datagram (receive time, source, header
 /// fields, data length; or why it is malformed), with `config_path` the decoded tags of the
 /// exchange matching its key (consumed or produced), and every `interval_s` a table per exchange
-/// (rate, mean period, jitter, missed, duplicates, out of order; eip-protocol.md §4 rule 6). With
+/// (rate, mean period, jitter, missed, duplicates, out of order; docs/protocol.md §4 rule 6). With
 /// a configuration it also joins eip.multicast. Returns when stopped, after `duration_s` or after
 /// `count` datagrams, with a last table; with `yaml`, then the YAML skeleton
 /// (core::config::yaml_skeleton) of every exchange seen that the configuration lacks, its

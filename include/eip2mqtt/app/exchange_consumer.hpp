@@ -73,6 +73,8 @@ private:
     PublishSink sink_;
     core::exchange::ConsumedExchange exchange_;
     std::vector<core::quality::ReportFilter> filters_;  ///< one per tag of plan_.tags
+    /// With mqtt.batch: `"name":` of each tag of plan_.tags, escaped once for `_values`.
+    std::vector<std::string> batch_keys_;
     core::exchange::ArrivalStats arrivals_;
     core::exchange::ProducerClock clock_;
     bool clock_seen_ = false;  ///< a datagram was accepted since start

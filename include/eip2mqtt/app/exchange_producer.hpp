@@ -65,7 +65,7 @@ public:
     std::optional<core::write::WriteRejection> stage(std::vector<core::write::TagWrite> writes,
                                                      WriteReply reply, core::MonoTime now);
 
-    /// `_status` at most once a second while its counters move (product.md).
+    /// `_status` at most once a second while its counters move (docs/mqtt-api.md).
     void on_tick(core::MonoTime now);
 
     /// Publishes the echo topics and `_status` again (after a reconnect).

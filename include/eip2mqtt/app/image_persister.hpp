@@ -3,7 +3,7 @@
 /// directory, which takes milliseconds on a disk: done on the loop, it would delay the
 /// datagrams of every other exchange by as much. One worker thread saves instead, and each
 /// completion comes back to the loop, where the write results waiting for it are published
-/// (product.md: a result only once the image is durably saved).
+/// (docs/mqtt-api.md "Results": a result only once the image is durably saved).
 ///
 /// Saves of one exchange run in order; a save queued while an older one of the same exchange
 /// still waits replaces its data and adds its write ids (one fsync for both).

@@ -1,6 +1,6 @@
 #pragma once
 /// A small expected-like type for the core: GCC 12 in C++20 has no std::expected, and the core
-/// returns errors as values because bad input is routine there (style.md, "Errors").
+/// returns errors as values because bad input is routine there.
 
 #include <cassert>
 #include <utility>

@@ -35,6 +35,22 @@ std::string format_status_payload(const core::exchange::ConsumedExchange& exchan
         clock.offset_ms() ? std::to_string(*clock.offset_ms()) : "null");
 }
 
+void append_json_string(std::string& out, std::string_view text) {
+    out += '"';
+    for (const char c : text) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (static_cast<unsigned char>(c) < 0x20) {
+            // Names refuse control characters; escaped all the same, never written raw.
+            fmt::format_to(std::back_inserter(out), "\\u{:04x}", static_cast<unsigned>(c));
+        } else {
+            out += c;
+        }
+    }
+    out += '"';
+}
+
 std::int64_t timestamp_ms(std::uint32_t seconds, std::uint32_t nanoseconds) {
     return static_cast<std::int64_t>(seconds) * 1000 + nanoseconds / 1000000;
 }

@@ -854,7 +854,7 @@ private:
         }
     }
 
-    /// eip-protocol.md §6: the rows of the point list whose Node is this exchange.
+    /// docs/protocol.md §6: the rows of the point list whose Node is this exchange.
     void read_points(const std::string& points, ExchangeConfig& exchange) {
         const Mark& at = exchange.marks.of("points");
         const std::filesystem::path path = dir_ / points;

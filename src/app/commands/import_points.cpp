@@ -1,4 +1,4 @@
-// `eip2mqtt import-points FILE.csv`: a SCADA point list (eip-protocol.md §6) as a complete
+// `eip2mqtt import-points FILE.csv`: a SCADA point list (docs/protocol.md §6) as a complete
 // configuration, one exchange per Node, that `check` accepts once its placeholders are reviewed.
 
 #include <algorithm>

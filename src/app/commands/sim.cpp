@@ -115,7 +115,7 @@ int run_sim(const SimOptions& options) {
         sender.send_to(std::span(sim.datagram.data(), size), *target);
         ++sim.header.request_id;  // wraps 65535 -> 0
         ++sim.cycle;
-        // eip-protocol.md §5: absolute deadlines, so the period never drifts.
+        // docs/protocol.md §5: absolute deadlines, so the period never drifts.
         sim.deadline += sim.plan.spec.period;
         sim.timer->expires_at(sim.deadline);
         sim.timer->async_wait([&, p = &sim](const boost::system::error_code& error) {

@@ -61,7 +61,7 @@ struct YamlSettings {
     std::chrono::milliseconds clock_tolerance{2000};
 };
 
-/// What became of a datagram under eip-protocol.md §4 rule 6.
+/// What became of a datagram under docs/protocol.md §4 rule 6.
 enum class Sequence { sample, duplicate, out_of_order };
 
 /// §4 rule 6: d = (rid - last) mod 65536; 0 duplicate, 1..32767 new sample (d - 1 missed),

@@ -45,8 +45,8 @@ namespace {
 using plan::Direction;
 using plan::TagType;
 
-constexpr long long min_period_ms = 2;        // eip-protocol.md §5
-constexpr long long max_period_ms = 3600000;  // eip-protocol.md §5
+constexpr long long min_period_ms = 2;        // docs/protocol.md §5
+constexpr long long max_period_ms = 3600000;  // docs/protocol.md §5
 /// MQTT encodes the length of a string (a client id) in two bytes, as a topic's.
 constexpr std::size_t max_string_bytes = plan::max_topic_bytes;
 
@@ -509,7 +509,7 @@ private:
         }
     }
 
-    /// product.md "MQTT": each tag and exchange topic, and the topics subscribed for writes,
+    /// docs/mqtt-api.md: each tag and exchange topic, and the topics subscribed for writes,
     /// must belong to one owner.
     void check_topic_collisions(const std::set<const ExchangeConfig*>& skip) {
         const std::string& base = config_.mqtt.base_topic;

@@ -228,10 +228,10 @@ PointList parse_point_list(std::string_view text, const FileName& file) {
                 plan::parse_tag_type(field(data_type).text, plan::TypeNaming::point_list)) {
             row.tag.type = *type;
         } else {
-            list.errors.push_back({at(data_type), "unknown DataType " +
-                                                      in_quotes(field(data_type).text) +
-                                                      " (expected Bit, Word, Real, Long or a "
-                                                      "type of eip-protocol.md section 3)"});
+            list.errors.push_back(
+                {at(data_type), "unknown DataType " + in_quotes(field(data_type).text) +
+                                    " (expected Bit, Word, Real, Long or a "
+                                    "type of docs/protocol.md section 3, \"Data types\")"});
             ok = false;
         }
         const auto access = field(access_type).text;

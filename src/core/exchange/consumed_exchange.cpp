@@ -6,7 +6,7 @@
 namespace eip2mqtt::core::exchange {
 namespace {
 
-// eip-protocol.md §4 rule 4: consume only when both are set, the majors are equal and the
+// docs/protocol.md §4 rule 4: consume only when both are set, the majors are equal and the
 // received minor is not older than the configured one; an unset side disables the check.
 bool compatible(wire::Signature configured, wire::Signature received) {
     if (!configured.is_set() || !received.is_set()) return true;

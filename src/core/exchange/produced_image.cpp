@@ -40,8 +40,8 @@ void ProducedImage::discard_pending(std::vector<std::uint64_t>& dropped) {
 
 std::size_t ProducedImage::produce(WallTime wall, std::span<std::byte> out,
                                    std::vector<std::uint64_t>& carried) {
-    // product.md "MQTT": whole batches between two productions, so one datagram never carries
-    // half a multi-tag write.
+    // docs/mqtt-api.md "Several tags at once": whole batches between two productions, so one
+    // datagram never carries half a multi-tag write.
     for (const auto& batch : pending_) {
         for (const auto& write : batch.writes) {
             assert(write.tag_index < plan_->tags.size());
@@ -56,7 +56,7 @@ std::size_t ProducedImage::produce(WallTime wall, std::span<std::byte> out,
     }
     pending_.clear();
 
-    // eip-protocol.md §5: the time at which the image was sampled, as seconds + nanoseconds.
+    // docs/protocol.md §5: the time at which the image was sampled, as seconds + nanoseconds.
     const auto since_epoch = wall.time_since_epoch();
     const auto seconds = std::chrono::floor<std::chrono::seconds>(since_epoch);
     const auto nanoseconds =

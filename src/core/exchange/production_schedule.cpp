@@ -10,7 +10,7 @@ ProductionSchedule::ProductionSchedule(MonoTime start, std::chrono::nanoseconds 
     : period_(period), deadline_(start) {
     assert(period > std::chrono::nanoseconds::zero());
     assert(count == 0 || index < count);
-    // eip-protocol.md §5: spread the first sends of equal periods over the period. Signed
+    // docs/protocol.md §5: spread the first sends of equal periods over the period. Signed
     // arithmetic: nanoseconds * size_t would turn the count unsigned.
     if (count > 0) {
         deadline_ += std::chrono::nanoseconds{period.count() * static_cast<std::int64_t>(index) /

@@ -51,7 +51,7 @@ ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic
     ExchangePlan plan;
     plan.length = resolved_length(spec);
     if (spec.direction == Direction::consume) {
-        // eip-protocol.md §4 rule 8: default 3 x the expected period; 0 disables.
+        // docs/protocol.md §4 rule 8: default 3 x the expected period; 0 disables.
         plan.timeout = spec.timeout.value_or(3 * spec.period);
         plan.timestamp = spec.timestamp.value_or(defaults.timestamp);
         plan.clock_tolerance = spec.clock_tolerance.value_or(defaults.clock_tolerance);

@@ -38,7 +38,7 @@ constexpr std::array<std::pair<std::string_view, TagType>, 14> yaml_names{{
 
 std::optional<TagType> parse_tag_type(std::string_view name, TypeNaming naming) {
     const std::string key = lower(name);
-    // eip-protocol.md §6: point lists say Word for a signed 16-bit value.
+    // docs/protocol.md §6: point lists say Word for a signed 16-bit value.
     if (naming == TypeNaming::point_list && key == "word") return TagType::int_;
     for (const auto& [text, type] : yaml_names) {
         if (text == key) return type;

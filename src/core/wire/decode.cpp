@@ -20,7 +20,7 @@ std::uint32_t u32le_at(std::span<const std::byte> bytes, std::size_t offset) {
            std::uint32_t{u8_at(bytes, offset + 3)} << 24;
 }
 
-// eip-protocol.md §2: the Producer ID is the one field sent in dotted (network) order.
+// docs/protocol.md §2: the Producer ID is the one field sent in dotted (network) order.
 std::uint32_t u32be_at(std::span<const std::byte> bytes, std::size_t offset) {
     return std::uint32_t{u8_at(bytes, offset)} << 24 |
            std::uint32_t{u8_at(bytes, offset + 1)} << 16 |
@@ -46,13 +46,13 @@ Header decode_header(std::span<const std::byte> bytes) {
 }
 
 Result<Datagram, DropReason> decode_datagram(std::span<const std::byte> bytes) {
-    // eip-protocol.md §4 rule 1.
+    // docs/protocol.md §4 rule 1.
     if (bytes.size() < header_size) return fail(DropReason::too_short);
     // §4 rule 2: only `0D 01`; the byte-swapped `01 0D` of some simulators is dropped too.
     if (u8_at(bytes, 0) != pdu_type_data || u8_at(bytes, 1) != pdu_version) {
         return fail(DropReason::not_data_pdu);
     }
-    // §4 rule 5, N = 0; §2: at most 1400 data bytes.
+    // §4 rule 2: no data, or more than 1400 data bytes (§2).
     if (bytes.size() == header_size) return fail(DropReason::no_data);
     if (bytes.size() > max_datagram_size) return fail(DropReason::too_long);
     return Datagram{decode_header(bytes), bytes.subspan(header_size)};

@@ -20,7 +20,7 @@ void put_u32le(std::span<std::byte> out, std::size_t offset, std::uint32_t value
     for (std::size_t i = 0; i < 4; ++i) put_u8(out, offset + i, value >> (8 * i));
 }
 
-// eip-protocol.md §2: the Producer ID goes out in dotted (network) order.
+// docs/protocol.md §2: the Producer ID goes out in dotted (network) order.
 void put_u32be(std::span<std::byte> out, std::size_t offset, std::uint32_t value) {
     for (std::size_t i = 0; i < 4; ++i) put_u8(out, offset + i, value >> (8 * (3 - i)));
 }

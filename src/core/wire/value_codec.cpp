@@ -10,7 +10,7 @@
 namespace eip2mqtt::core::wire {
 namespace {
 
-// eip-protocol.md §3: little-endian at any byte offset, so shifts, never pointer casts.
+// docs/protocol.md §3: little-endian at any byte offset, so shifts, never pointer casts.
 std::uint64_t load_le(std::span<const std::byte> data, std::size_t offset, std::size_t size) {
     std::uint64_t raw = 0;
     for (std::size_t i = 0; i < size; ++i) {

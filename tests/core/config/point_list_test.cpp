@@ -8,7 +8,7 @@ namespace {
 using plan::Address;
 using plan::TagType;
 
-// eip-protocol.md §6, verbatim.
+// docs/protocol.md §6, verbatim.
 constexpr std::string_view section6 =
     "TagName,Node,Address,DataType,AccessType\n"
     "TAG1,Exchange2,119.5,Bit,Read\n"
@@ -107,6 +107,10 @@ TEST(PointLists, BadRowsAreReportedWithFileAndLineAndGoodRowsKept) {
     EXPECT_EQ(list.errors[0].mark.column, 5);  // the Address field
     EXPECT_EQ(list.errors[1].mark.line, 3);
     EXPECT_NE(list.errors[1].message.find("Float"), std::string::npos);
+    // The types are documented in the repository, where a user can read them.
+    EXPECT_NE(list.errors[1].message.find("docs/protocol.md section 3, \"Data types\""),
+              std::string::npos)
+        << list.errors[1].message;
     EXPECT_EQ(list.errors[2].mark.line, 4);
     EXPECT_NE(list.errors[2].message.find("Maybe"), std::string::npos);
     EXPECT_EQ(list.errors[3].mark.line, 5);

@@ -37,7 +37,7 @@ TEST(DataTypes, NamesAreCaseInsensitive) {
 }
 
 TEST(PointLists, OlderNamesReadAsBitIntRealLint) {
-    // eip-protocol.md §3 and §6: Bit, Word, Real, Long are bit, int, real, lint.
+    // docs/protocol.md §3 and §6: Bit, Word, Real, Long are bit, int, real, lint.
     const auto csv = [](std::string_view name) {
         return parse_tag_type(name, TypeNaming::point_list);
     };

@@ -15,7 +15,7 @@ TEST(ProducerId, DottedFormIsHeldMostSignificantFirst) {
 }
 
 TEST(ProducerId, GeDecimalFormIsTheWireBytesReadLittleEndian) {
-    // eip-protocol.md §2: 172.23.21.176 = 2954172332.
+    // docs/protocol.md §2: 172.23.21.176 = 2954172332.
     EXPECT_EQ(parse_producer_id("2954172332"), ProducerId{0xAC1715B0});
     EXPECT_EQ(parse_producer_id("16885952"), ProducerId{0xC0A80101});
 }

@@ -78,7 +78,7 @@ struct Scalar {
     std::string_view hex;
 };
 
-// eip-protocol.md §8 V6.
+// docs/protocol.md §8 V6.
 const Scalar v6[] = {
     {TagType::int_, std::int64_t{-2}, "feff"},
     {TagType::word, std::uint64_t{65535}, "ffff"},

@@ -13,10 +13,10 @@
 /// full, both counted); a bounded number are in flight in Paho at a time, so Paho's own queue
 /// never grows without bound (and stays short: Paho C walks its whole command list on every
 /// publish). Batch mode's `_values` have a lane of their own (Message::batch_lane), served in
-/// turn with the main queue. While disconnected, the queue is the buffer of product.md.
-/// Reconnects use exponential backoff; after each connect subscriptions are renewed, the
-/// availability topic gets `online`, and the on_connected handler runs so that the gateway
-/// republishes its retained state.
+/// turn with the main queue. While disconnected, the queue is the buffer of
+/// `mqtt.buffer.max_messages`. Reconnects use exponential backoff; after each connect subscriptions
+/// are renewed, the availability topic gets `online`, and the on_connected handler runs so that the
+/// gateway republishes its retained state.
 
 #include <boost/asio/any_io_executor.hpp>
 #include <chrono>

@@ -1,10 +1,11 @@
 #pragma once
-/// Payloads of the gateway's topics (product.md "MQTT"), written without a JSON library on the
+/// Payloads of the gateway's topics (docs/mqtt-api.md), written without a JSON library on the
 /// hot path: they are small, fixed-shape objects.
 
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
@@ -27,6 +28,9 @@ void format_tag_payload(std::string& out, const core::plan::Value& value,
 std::string format_status_payload(const core::exchange::ConsumedExchange& exchange,
                                   std::optional<std::int64_t> last_seen_ms,
                                   const core::exchange::ProducerClock& clock);
+
+/// Appends `text` as a JSON string, quoted and escaped: tag names may hold `"` and a backslash.
+void append_json_string(std::string& out, std::string_view text);
 
 /// Milliseconds since 1970 UTC of a header timestamp (seconds + nanoseconds).
 std::int64_t timestamp_ms(std::uint32_t seconds, std::uint32_t nanoseconds);

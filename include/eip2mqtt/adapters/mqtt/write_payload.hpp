@@ -1,5 +1,5 @@
 #pragma once
-/// Parsing of MQTT write payloads with a real JSON library (nlohmann-json), as product.md
+/// Parsing of MQTT write payloads with a real JSON library (nlohmann-json), as docs/mqtt-api.md
 /// specifies: a tag write is `42`, `true`, `12.5` or `{"value":42}`; an exchange write is
 /// `{"SPEED_SP":3100,"START":true}` (each value a scalar or {"value": scalar}). Hostile input
 /// (deep nesting, huge numbers, invalid UTF-8, trailing garbage) yields `malformed`, never an

@@ -1,5 +1,5 @@
 #pragma once
-/// SCADA point lists (eip-protocol.md §6): CSV with the columns TagName, Node, Address, DataType,
+/// SCADA point lists (docs/protocol.md §6): CSV with the columns TagName, Node, Address, DataType,
 /// AccessType. The header row is required; columns may come in any order and their names are
 /// case-insensitive; fields may be double-quoted, within their line (a quoted field that runs
 /// onto the next line is an error); blank lines and lines starting with `#` are skipped. Pure:

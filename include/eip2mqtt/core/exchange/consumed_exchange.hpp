@@ -1,6 +1,6 @@
 #pragma once
 /// The consumer state of one exchange: signature, length and sequence rules, the update timeout
-/// and the counters of `_status` (eip-protocol.md §4 rules 4-8). Pure: time is passed in.
+/// and the counters of `_status` (docs/protocol.md §4 rules 4-8). Pure: time is passed in.
 
 #include <cstddef>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 /// The image of one produced exchange: its data bytes, the request id counter, and the queue of
-/// accepted writes waiting for the next production (eip-protocol.md §5; issue #3). Writes are
+/// accepted writes waiting for the next production (docs/protocol.md §5; issue #3). Writes are
 /// applied only between two productions, whole batches at a time, so one datagram never
 /// carries half a multi-tag write. Pure: time is passed in.
 
@@ -20,7 +20,7 @@ namespace eip2mqtt::core::exchange {
 class ProducedImage {
 public:
     /// The request id of the first datagram after start-up. Consumers must not assume a start
-    /// value (eip-protocol.md §2); 1 rather than 0 because some tools read 0 as "never sent".
+    /// value (docs/protocol.md §2); 1 rather than 0 because some tools read 0 as "never sent".
     static constexpr std::uint16_t first_request_id = 1;
 
     /// Starts from `restored` when it has the plan's length, else from zeros with each tag's

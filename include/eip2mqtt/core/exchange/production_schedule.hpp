@@ -1,5 +1,5 @@
 #pragma once
-/// When each produced exchange is due (eip-protocol.md §5): absolute deadlines, so a period never
+/// When each produced exchange is due (docs/protocol.md §5): absolute deadlines, so a period never
 /// drifts however late a send was, and first sends spread over the period so that many
 /// exchanges with equal periods never leave in one burst. Pure: time is passed in.
 

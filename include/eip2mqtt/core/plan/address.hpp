@@ -1,5 +1,5 @@
 #pragma once
-/// Tag addresses `byte.bit` (eip-protocol.md §3): offsets count from the first data byte.
+/// Tag addresses `byte.bit` (docs/protocol.md §3): offsets count from the first data byte.
 
 #include <cstdint>
 #include <optional>

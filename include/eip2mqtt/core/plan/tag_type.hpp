@@ -1,5 +1,5 @@
 #pragma once
-/// Tag data types of eip-protocol.md §3 and their names in YAML and in SCADA point lists.
+/// Tag data types of docs/protocol.md §3 and their names in YAML and in SCADA point lists.
 
 #include <cstddef>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
-/// Tag quality (product.md "MQTT"): good; stale once the exchange timed out; bad while the
-/// exchange is in signature or length mismatch.
+/// Tag quality (docs/mqtt-api.md "Tag values"): good; stale once the exchange timed out; bad while
+/// the exchange is in signature or length mismatch.
 
 #include <cstdint>
 #include <optional>

@@ -1,6 +1,6 @@
 #pragma once
 /// Report by exception for one tag: publish when the value moves beyond the deadband, when the
-/// quality changes, and at least every `refresh` (product.md "MQTT").
+/// quality changes, and at least every `refresh` (docs/mqtt-api.md "Tag values").
 
 #include <chrono>
 #include <optional>

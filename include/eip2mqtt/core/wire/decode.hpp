@@ -1,6 +1,6 @@
 #pragma once
 /// Header parsing of received datagrams: the per-datagram rules that need no configuration
-/// (eip-protocol.md §4 rules 1, 2 and the N = 0 part of rule 5).
+/// (docs/protocol.md §4 rules 1 and 2).
 
 #include <cstddef>
 #include <span>

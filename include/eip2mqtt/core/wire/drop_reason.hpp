@@ -12,13 +12,13 @@ enum class DropReason : std::uint8_t {
     too_short,
     /// Bytes 0-1 are not `0D 01` (§4 rule 2).
     not_data_pdu,
-    /// More than 32 + 1400 bytes.
+    /// More than 32 + 1400 bytes (§4 rule 2).
     too_long,
     /// No configured consumed exchange has this (producer id, exchange id) (§4 rule 3).
     unknown_exchange,
     /// The source address is not the exchange's configured `source` (anti-spoofing).
     wrong_source,
-    /// Header only, no data (§4 rule 5, N = 0).
+    /// Header only, no data (§4 rule 2).
     no_data,
     /// Signatures incompatible (§4 rule 4).
     signature_mismatch,

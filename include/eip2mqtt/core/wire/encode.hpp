@@ -1,5 +1,5 @@
 #pragma once
-/// Encoding of produced datagrams (eip-protocol.md §2, §5).
+/// Encoding of produced datagrams (docs/protocol.md §2, §5).
 
 #include <cstddef>
 #include <span>

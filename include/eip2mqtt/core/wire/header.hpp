@@ -1,5 +1,5 @@
 #pragma once
-/// The 32-byte header of an EIP data production PDU (eip-protocol.md §2).
+/// The 32-byte header of an EIP data production PDU (docs/protocol.md §2).
 
 #include <array>
 #include <cstddef>

@@ -1,5 +1,5 @@
 #pragma once
-/// Reading and writing tag values in an exchange's data bytes (eip-protocol.md §3):
+/// Reading and writing tag values in an exchange's data bytes (docs/protocol.md §3):
 /// little-endian, any byte offset, bits by read-modify-write of their byte.
 
 #include <cstddef>

@@ -1,7 +1,7 @@
 #pragma once
-/// MQTT writes to produced tags (product.md "MQTT"; issue #3): what a write asks for, why one is
-/// rejected, and the validation of a value against its tag. Pure: the JSON parsing that yields a
-/// WriteInput lives in the MQTT adapter.
+/// MQTT writes to produced tags (docs/mqtt-api.md "Writes"; issue #3): what a write asks for, why
+/// one is rejected, and the validation of a value against its tag. Pure: the JSON parsing that
+/// yields a WriteInput lives in the MQTT adapter.
 
 #include <cstdint>
 #include <optional>
