@@ -34,7 +34,7 @@ namespace paho = ::mqtt;
 using Clock = std::chrono::steady_clock;
 
 /// How long the sender holds after a dropped suspect if the connection does not go meanwhile.
-constexpr auto kProbeFailureHold = std::chrono::seconds(1);
+constexpr auto kLossHold = std::chrono::seconds(1);
 constexpr auto kConnectTimeout = std::chrono::seconds(10);
 /// Queued publications past which the memory of a drained backlog is given back (malloc_trim
 /// walks every arena: worth it after a burst, not after every message).
@@ -113,7 +113,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     /// A suspect goes alone: nothing else is sent while one is in flight, and one waits until
     /// nothing is in flight.
     bool suspect_waits() const {
-        return probe_.has_value() || probe_failed_ ||
+        return probe_.has_value() || held_for_reconnect_ ||
                (!retry_.empty() && retry_.begin()->second.suspect && !in_flight_.empty());
     }
     /// A publication in flight when the connection went: sent again after the reconnect as a
@@ -121,11 +121,12 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     /// broker closes the connection on a publication it refuses. Returns the topic of a
     /// dropped one (empty otherwise).
     std::string requeue_after_loss(std::uint64_t id, Message&& message);
-    /// On the loop, after a suspect was dropped: Paho reports the failure before its
-    /// connection-lost handler runs, so the sender holds everything until the next connect,
-    /// lest the next suspect be sent on the dying connection and dropped with it. Should the
-    /// connection survive, the hold ends after kProbeFailureHold.
-    void after_probe_failure();
+    /// Called when a publication fails the way a connection loss makes it fail: Paho reports
+    /// that before its connection-lost handler runs, so the sender holds everything until the
+    /// next connect, lest a suspect be sent "alone" on the dying connection and be blamed
+    /// (dropped) for a loss it did not cause. Should the connection survive, the hold ends
+    /// after kLossHold. Under mutex_.
+    void hold_for_reconnect();
     void log_refused(const std::string& topic, const std::string& problem);
     void log_dropped_suspect(const std::string& topic);
     /// Whether a failed publication was refused by the broker itself: an MQTT 5 PUBACK with a
@@ -195,7 +196,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     // Loop-owned.
     State state_ = State::idle;
     boost::asio::steady_timer reconnect_timer_;
-    boost::asio::steady_timer probe_hold_timer_;
+    boost::asio::steady_timer loss_hold_timer_;
     detail::ReconnectBackoff backoff_;
     ConnectedHandler on_connected_;
     MessageHandler on_message_;
@@ -216,8 +217,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
         bool suspect = false;
     };
     std::map<std::uint64_t, Retry> retry_;
-    std::optional<std::uint64_t> probe_;  ///< the suspect in flight, alone
-    bool probe_failed_ = false;  ///< a suspect was dropped: hold until reconnect (or timeout)
+    std::optional<std::uint64_t> probe_;         ///< the suspect in flight, alone
+    bool held_for_reconnect_ = false;            ///< see hold_for_reconnect()
     detail::InFlightWindow<Message> in_flight_;  ///< handed to Paho, not yet completed
     /// Blank messages of completed publications, handed back to publish()'s callers to fill
     /// again: the loop allocated two strings per publication that Paho's thread then freed,
@@ -268,7 +269,7 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
       requeue_in_flight_(options_.clean_start ||
                          (options_.version == 5 && options_.session_expiry.count() == 0)),
       reconnect_timer_(loop_),
-      probe_hold_timer_(loop_),
+      loss_hold_timer_(loop_),
       backoff_(options_.min_backoff, options_.max_backoff),
       queue_(options_.buffer_max_messages),
       batch_queue_(options_.batch_lane_max_messages),
@@ -569,7 +570,7 @@ void Client::Impl::set_sending(bool enabled) {
     {
         std::lock_guard lock(mutex_);
         sending_ = enabled;
-        if (enabled) probe_failed_ = false;
+        if (enabled) held_for_reconnect_ = false;
     }
     wake_sender_.notify_all();
 }
@@ -687,9 +688,13 @@ void Client::Impl::send(std::uint64_t id, const paho::message_ptr& message) {
             return;  // abandoned meanwhile by on_connection_lost
         }
         if (e.get_return_code() == MQTTASYNC_DISCONNECTED) {
-            if (probe_ == id) probe_.reset();
-            // Never left: no duplicate possible, and no suspect.
-            retry_.emplace(id, Retry{std::move(*item), false});
+            // Never left: no duplicate possible, and it proved nothing. A suspect stays one, to
+            // be sent alone on the next connection; demoted, it would go out with others and
+            // cost one more connection.
+            const bool suspect = probe_ == id;
+            if (suspect) probe_.reset();
+            retry_.emplace(id, Retry{std::move(*item), suspect});
+            hold_for_reconnect();
             return;
         }
         if (requeue_in_flight_ && item->qos > 0 && !stopping_) {
@@ -754,12 +759,11 @@ void Client::Impl::on_publish_done(std::uint64_t id, int rc, int reason_code,
 }
 
 std::string Client::Impl::requeue_after_loss(std::uint64_t id, Message&& message) {
+    hold_for_reconnect();
     if (probe_ == id) {
-        // It went alone, after every other publication had completed, and the connection went
-        // again: the broker refuses it. One retry is all it gets.
+        // It went alone, on a connection made after it became a suspect, and the connection
+        // went again: the broker refuses it. One retry is all it gets.
         probe_.reset();
-        probe_failed_ = true;
-        post([](Impl& self) { self.after_probe_failure(); });
         refused_.fetch_add(1, std::memory_order_relaxed);
         return std::move(message.topic);
     }
@@ -767,16 +771,21 @@ std::string Client::Impl::requeue_after_loss(std::uint64_t id, Message&& message
     return {};
 }
 
-void Client::Impl::after_probe_failure() {
-    probe_hold_timer_.expires_after(kProbeFailureHold);
-    probe_hold_timer_.async_wait([w = weak_from_this()](const boost::system::error_code& ec) {
-        auto self = w.lock();
-        if (ec || !self) return;
-        {
-            std::lock_guard lock(self->mutex_);
-            self->probe_failed_ = false;
-        }
-        self->wake_sender_.notify_all();
+void Client::Impl::hold_for_reconnect() {
+    if (held_for_reconnect_) return;  // once per loss, not once per abandoned publication
+    held_for_reconnect_ = true;
+    post([](Impl& self) {
+        self.loss_hold_timer_.expires_after(kLossHold);
+        self.loss_hold_timer_.async_wait(
+            [w = self.weak_from_this()](const boost::system::error_code& ec) {
+                auto held = w.lock();
+                if (ec || !held) return;
+                {
+                    std::lock_guard lock(held->mutex_);
+                    held->held_for_reconnect_ = false;
+                }
+                held->wake_sender_.notify_all();
+            });
     });
 }
 
@@ -824,7 +833,7 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         self.state_ = State::stopped;
         self.connected_ = false;
         self.reconnect_timer_.cancel();
-        self.probe_hold_timer_.cancel();
+        self.loss_hold_timer_.cancel();
     });
     const auto end_sender = [this] {
         {
