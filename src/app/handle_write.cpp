@@ -29,10 +29,12 @@ void Gateway::reject_write(const WriteReply& reply, const std::string& target,
                            const std::string& detail) {
     ++counters_.writes_rejected[static_cast<std::size_t>(rejection.error)];
     const nlohmann::json result = {{"ok", false}, {"error", rejection.message}};
-    // Replace, not throw, should a message ever carry bytes that are not UTF-8.
-    mqtt_->publish({reply.topic,
-                    result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), 1, false,
-                    false, reply.correlation_data});
+    if (!reply.topic.empty()) {
+        // Replace, not throw, should a message ever carry bytes that are not UTF-8.
+        mqtt_->publish({reply.topic,
+                        result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), 1,
+                        false, false, reply.correlation_data});
+    }
     // Each is answered and counted; the log is throttled (a client may flood).
     if (const auto count = rejected_write_log_.record(std::chrono::steady_clock::now())) {
         std::uint64_t total = 0;
@@ -41,8 +43,9 @@ void Gateway::reject_write(const WriteReply& reply, const std::string& target,
                                  ? fmt::format("{} rejected so far", total)
                                  : fmt::format("{} rejected in the last {} s, {} so far", count,
                                                rejected_write_log_.interval().count(), total);
-        spdlog::warn("write to {} rejected: {}{} ({})", core::printable(target),
-                     core::printable(rejection.message), detail, summary);
+        spdlog::warn("write to {} rejected: {}{}{} ({})", core::printable(target),
+                     core::printable(rejection.message), detail,
+                     reply.topic.empty() ? " (no valid topic to answer on)" : "", summary);
     }
 }
 

@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <set>
 #include <string_view>
+#include <vector>
 
 #include "eip2mqtt/adapters/mqtt/write_payload.hpp"
+#include "eip2mqtt/core/plan/overlap.hpp"
 #include "eip2mqtt/core/plan/topic_rules.hpp"
 
 namespace eip2mqtt::app {
@@ -112,6 +114,10 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
     decision.reply.correlation_data = message.correlation_data;
     decision.reply.topic = message.topic;
     decision.reply.topic += result_suffix;
+    // A conforming broker delivers only valid topics, but `{topic}/result` can still pass the
+    // limit for an unknown tag with a name near 65,535 bytes: such a write has nowhere to be
+    // answered (an empty reply topic) unless it names a good response topic.
+    if (!core::plan::topic_name_problem(decision.reply.topic).empty()) decision.reply.topic.clear();
     const auto refuse = [&](WriteError error, std::string text) {
         decision.outcome = WriteRejection{error, std::move(text)};
         return decision;
@@ -172,6 +178,21 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
             if (auto rejection = add(static_cast<std::size_t>(tag - plan.tags.begin()), input)) {
                 return refuse(rejection->error, std::move(rejection->message));
             }
+        }
+    }
+    // A word and one of its bits in one message: which would win? Neither is written.
+    if (routed.writes.size() > 1) {
+        std::vector<core::plan::BitSpan> spans;
+        spans.reserve(routed.writes.size());
+        for (const auto& write : routed.writes) {
+            spans.push_back(core::plan::bit_span(plan.tags[write.tag_index].spec));
+        }
+        if (const auto overlaps = core::plan::find_overlaps(spans, 1); !overlaps.pairs.empty()) {
+            const auto& pair = overlaps.pairs.front();
+            return refuse(WriteError::overlapping_tags,
+                          "tags " + plan.tags[routed.writes[pair.first].tag_index].spec.name +
+                              " and " + plan.tags[routed.writes[pair.second].tag_index].spec.name +
+                              " share bytes; write them in separate messages");
         }
     }
     decision.outcome = std::move(routed);

@@ -160,15 +160,15 @@ TEST(ImportPoints, BadRowsAreReportedWithTheirLine) {
     EXPECT_NE(result.err.find(csv.path() + ":3:"), std::string::npos) << result.err;
 }
 
-TEST(ImportPoints, OverlappingTagsFailCheckButArePrinted) {
+TEST(ImportPoints, RowsThatMakeNoValidExchangeFailCheckButArePrinted) {
     const CsvFile csv(
         "TagName,Node,Address,DataType,AccessType\n"
         "A,Plc,0.0,Real,Read\n"
-        "B,Plc,2.0,Word,Read\n");
+        "B,Plc,1399.0,Word,Read\n");
     const auto result = import(csv.path());
     EXPECT_EQ(result.status, 1);
     EXPECT_NE(result.out.find("name: Plc"), std::string::npos);
-    EXPECT_NE(result.err.find("overlaps"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("length 1401 is outside 1..1400"), std::string::npos) << result.err;
 }
 
 TEST(ImportPoints, AwkwardNamesAreQuoted) {

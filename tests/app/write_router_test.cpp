@@ -38,6 +38,7 @@ core::plan::ExchangePlan plan(std::string name, core::plan::Direction direction,
     spec.tags.push_back(tag("SPEED", 0, TagType::real, true));
     spec.tags.push_back(tag("COUNT", 4, TagType::lint, true));
     spec.tags.push_back(tag("FIXED", 12, TagType::int_, false));
+    spec.tags.push_back(tag("COUNT_LO", 4, TagType::dint, true));  // the low half of COUNT
     return core::plan::make_exchange_plan(std::move(spec), "acme");
 }
 
@@ -98,6 +99,16 @@ TEST_F(WriteRouterTest, AnExchangeWriteCarriesEveryTagOrNone) {
     EXPECT_EQ(rejection.message, "COUNT: expected an integer");
 }
 
+TEST_F(WriteRouterTest, OverlappingTagsAreWrittenOneAtATimeNeverTogether) {
+    EXPECT_EQ(accepted(route("acme/t1/sp/COUNT_LO/set", "5")).writes.size(), 1u);
+    EXPECT_EQ(accepted(route("acme/t1/sp/set", R"({"SPEED":1,"COUNT_LO":5})")).writes.size(), 2u);
+    const auto rejection =
+        refused(route("acme/t1/sp/set", R"({"SPEED":1,"COUNT_LO":5,"COUNT":3})"));
+    EXPECT_EQ(rejection.error, WriteError::overlapping_tags);
+    EXPECT_EQ(rejection.message,
+              "tags COUNT_LO and COUNT share bytes; write them in separate messages");
+}
+
 TEST_F(WriteRouterTest, TopicsThatAreNotOursAreIgnored) {
     adapters::mqtt::Incoming message;
     for (const auto* topic : {"acme/t1/sp/SPEED", "acme/t2/sp/set", "other/set", "set",
@@ -113,6 +124,19 @@ TEST_F(WriteRouterTest, UnknownReadOnlyConsumedAndRetainedWritesAreRefused) {
     EXPECT_EQ(refused(route("acme/t1/sp/FIXED/set", "1")).error, WriteError::read_only);
     EXPECT_EQ(refused(route("acme/t1/in/SPEED/set", "1")).error, WriteError::read_only);
     EXPECT_EQ(refused(route("acme/t1/sp/SPEED/set", "1", {}, true)).error, WriteError::retained);
+}
+
+TEST_F(WriteRouterTest, AnUnknownTagWhoseResultTopicNoBrokerAcceptsIsRefusedUnanswered) {
+    // `acme/t1/sp/{name}/set` fits in 65,535 bytes; with `/result` it would not. The fuzzer also
+    // found a name that is not UTF-8 (which no conforming broker delivers).
+    const std::string long_name(65535 - std::string("acme/t1/sp//set").size(), 'n');
+    for (const auto& name : {long_name, std::string("L\xEB")}) {
+        const auto decision = route("acme/t1/sp/" + name + "/set", "1");
+        EXPECT_EQ(refused(decision).error, WriteError::unknown_tag);
+        EXPECT_EQ(decision.reply.topic, "");
+        // A good response topic is still answered.
+        EXPECT_EQ(route("acme/t1/sp/" + name + "/set", "1", "clients/r").reply.topic, "clients/r");
+    }
 }
 
 TEST_F(WriteRouterTest, AValidResponseTopicGetsTheResult) {

@@ -29,11 +29,11 @@ exchanges:
     colour: blue
     tags:
       - { name: A, address: "0.0", type: dint }
-      - { name: B, address: "2.0", type: int }
+      - { name: B, address: "2.3", type: int }
       - { name: C, address: "7.0", type: int }
 )";
 
-TEST(CheckCommand, ReportsOverlapPastEndAndUnknownKeyWithLineAndColumn) {
+TEST(CheckCommand, ReportsBitOnIntPastEndAndUnknownKeyWithLineAndColumn) {
     TempDir dir;
     const auto path = dir.write("bad.yaml", bad_config);
     const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
@@ -41,7 +41,7 @@ TEST(CheckCommand, ReportsOverlapPastEndAndUnknownKeyWithLineAndColumn) {
     EXPECT_NE(result.output.find(path + ":13:5:"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find("colour"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find(path + ":16:"), std::string::npos) << result.output;
-    EXPECT_NE(result.output.find("overlap"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("has a bit number"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find(path + ":17:"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find("past"), std::string::npos) << result.output;
 }

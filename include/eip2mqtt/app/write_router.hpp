@@ -34,7 +34,7 @@ struct RoutedWrite {
 
 /// What a message on one of our `…/set` topics asks.
 struct WriteDecision {
-    WriteReply reply;  ///< where the result goes, in every case
+    WriteReply reply;  ///< where the result goes; an empty topic: nowhere a broker accepts
     std::variant<RoutedWrite, core::write::WriteRejection> outcome;
     /// Why the response topic was refused (for the log), when it was.
     std::string response_topic_problem;

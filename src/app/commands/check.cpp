@@ -12,6 +12,7 @@
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/overlap.hpp"
 #include "eip2mqtt/core/plan/plan_warnings.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
@@ -57,6 +58,29 @@ std::string unused_ranges(const ExchangePlan& plan) {
     return (count == 1 ? "byte " : "bytes ") + ranges + " unused";
 }
 
+std::string described(const TagPlan& tag) {
+    return tag.spec.name + " (" + core::plan::to_string(tag.spec.address) + ", " +
+           std::string(core::plan::to_string(tag.spec.type)) + ")";
+}
+
+/// Overlaps are valid (a word and its bits, a dint and its halves): noted, so that one made by
+/// mistake is seen. A point list can alias one word thousands of times: the list is bounded.
+void print_overlaps(const ExchangePlan& plan, std::ostream& out) {
+    constexpr std::size_t max_listed = 1000;
+    std::vector<core::plan::BitSpan> spans;
+    spans.reserve(plan.tags.size());
+    for (const auto& tag : plan.tags) spans.push_back(core::plan::bit_span(tag.spec));
+    const auto overlaps = core::plan::find_overlaps(spans, max_listed);
+    for (const auto& pair : overlaps.pairs) {
+        out << "  note: " << described(plan.tags[pair.second]) << " overlaps "
+            << described(plan.tags[pair.first]) << "\n";
+    }
+    if (overlaps.total > overlaps.pairs.size()) {
+        out << "  note: and " << overlaps.total - overlaps.pairs.size()
+            << " more overlapping pairs\n";
+    }
+}
+
 void print_exchange(const ExchangePlan& plan, std::ostream& out) {
     const auto& spec = plan.spec;
     const bool produce = spec.direction == Direction::produce;
@@ -92,6 +116,7 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
         if (tag->spec.writable) out << "  writable";
         out << std::right << "\n";
     }
+    print_overlaps(plan, out);
     // Valid: traffic can be watched before the byte map is known.
     if (plan.tags.empty()) out << "  no tags yet: only " << plan.status_topic << " is published\n";
     out << "  " << unused_ranges(plan) << "\n";

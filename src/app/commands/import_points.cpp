@@ -185,7 +185,7 @@ int run_import_points(const std::string& csv_path, std::ostream& out, std::ostre
         write_exchange(nodes[i], i + 1, yaml);
     }
 
-    // The rows may still not make a valid exchange (overlapping tags, tags past 1400 bytes...):
+    // The rows may still not make a valid exchange (tags past 1400 bytes, topics too long...):
     // say so now rather than at `check`, and still print the YAML to fix by hand.
     out << yaml.str();
     const auto config = adapters::yaml::load_config_text(yaml.str(), "<generated>");

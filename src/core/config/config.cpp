@@ -7,11 +7,11 @@
 #include <set>
 #include <string_view>
 #include <tuple>
-#include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <variant>
 
+#include "core/config/detail/config_names.hpp"
+#include "core/config/detail/topic_collisions.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/plan/topic_rules.hpp"
@@ -42,6 +42,8 @@ bool Marks::add(std::string_view key, const Mark& at) {
 
 namespace {
 
+using detail::tag_name_problem;
+using detail::topic_problem;
 using plan::Direction;
 using plan::TagType;
 
@@ -75,36 +77,6 @@ std::string format_number(double value) {
 
 double as_double(const plan::Value& value) {
     return std::visit([](auto v) { return static_cast<double>(v); }, value);
-}
-
-/// Why `topic` is not a valid MQTT publication topic (or a part of one), or empty when it is.
-std::string topic_problem(std::string_view topic) {
-    if (topic.empty()) return "is empty";
-    if (topic.find_first_of("+#") != std::string_view::npos) {
-        return "contains a wildcard ('+' or '#')";
-    }
-    if (topic.front() == '/' || topic.back() == '/' || topic.find("//") != std::string_view::npos) {
-        return "has an empty level (leading, trailing or double '/')";
-    }
-    // Control characters, NUL above all: a topic cut at a NUL would be another tag's topic.
-    return std::string(plan::text_problem(topic));
-}
-
-/// Why a tag name cannot be a topic level of its own, or empty when it can.
-std::string tag_name_problem(std::string_view name) {
-    if (name.empty()) return "a tag has an empty name";
-    if (name.find_first_of("/+#") != std::string_view::npos) {
-        return "tag name " + in_quotes(name) + " contains '/', '+' or '#'";
-    }
-    if (const auto problem = plan::text_problem(name); !problem.empty()) {
-        return "tag name " + in_quotes(name) + " " + std::string(problem);
-    }
-    // The gateway's own words under an exchange topic: {exchange}/set, {exchange}/_status...
-    if (name == "set" || name.front() == '_') {
-        return "tag name " + in_quotes(name) +
-               " is reserved for the gateway's own topics ('set' and names starting with '_')";
-    }
-    return {};
 }
 
 class Validator {
@@ -246,7 +218,7 @@ private:
             }
             check_exchange(exchange);
         }
-        check_topic_collisions(duplicate_names);
+        detail::check_topic_collisions(config_, duplicate_names, out_);
     }
 
     void check_exchange(const ExchangeConfig& exchange) {
@@ -345,12 +317,6 @@ private:
         // Messages are built only for tags in error: a configuration may hold 100,000 tags.
         const auto of_exchange = [&] { return " of exchange " + in_quotes(spec.name); };
 
-        // Who occupies each byte: a whole-byte owner, or owners of single bits.
-        struct Occupant {
-            int whole = -1;
-            std::array<int, 8> bits{-1, -1, -1, -1, -1, -1, -1, -1};
-        };
-        std::vector<Occupant> bytes;
         find_repeated_names(exchange);
 
         for (std::size_t i = 0; i < exchange.tags.size(); ++i) {
@@ -391,8 +357,6 @@ private:
                           std::string(plan::to_string(t.type)) + ") ends at byte " +
                           std::to_string(end) + ", past the exchange " +
                           (spec.length ? "length " : "maximum length ") + std::to_string(limit));
-            } else {
-                check_overlap(exchange, i, bytes);
             }
 
             check_values(exchange, tag);
@@ -416,47 +380,6 @@ private:
             first_with_name_[by_name_[k].second] = first_with_name_[previous] >= 0
                                                        ? first_with_name_[previous]
                                                        : static_cast<int>(previous);
-        }
-    }
-
-    template <class Occupants>
-    void check_overlap(const ExchangeConfig& exchange, std::size_t index, Occupants& bytes) {
-        const auto& t = exchange.tags[index].spec;
-        const std::size_t first = t.address.byte;
-        const std::size_t size = plan::size_of(t.type);
-        if (bytes.size() < first + size) bytes.resize(first + size);
-        const int me = static_cast<int>(index);
-        int other = -1;
-        if (t.type == TagType::bit) {
-            auto& byte = bytes[first];
-            const unsigned bit = t.address.bit & 7u;
-            other = byte.whole >= 0 ? byte.whole : byte.bits[bit];
-            if (other < 0) byte.bits[bit] = me;
-        } else {
-            for (std::size_t b = first; b < first + size && other < 0; ++b) {
-                if (bytes[b].whole >= 0) {
-                    other = bytes[b].whole;
-                } else {
-                    for (int owner : bytes[b].bits) {
-                        if (owner >= 0) {
-                            other = owner;
-                            break;
-                        }
-                    }
-                }
-            }
-            if (other < 0) {
-                for (std::size_t b = first; b < first + size; ++b) bytes[b].whole = me;
-            }
-        }
-        if (other >= 0) {
-            const auto& o = exchange.tags[static_cast<std::size_t>(other)].spec;
-            error(exchange.tags[index].marks.of("address"),
-                  "tag " + in_quotes(t.name) + " (" + plan::to_string(t.address) + ", " +
-                      std::string(plan::to_string(t.type)) + ") overlaps tag " + in_quotes(o.name) +
-                      " (" + plan::to_string(o.address) + ", " +
-                      std::string(plan::to_string(o.type)) + ") of exchange " +
-                      in_quotes(exchange.spec.name));
         }
     }
 
@@ -505,86 +428,6 @@ private:
                     error(marks.of("initial"), what() + " initial " + format_number(initial) +
                                                    " is above max " + format_number(*max));
                 }
-            }
-        }
-    }
-
-    /// docs/mqtt-api.md: each tag and exchange topic, and the topics subscribed for writes,
-    /// must belong to one owner.
-    void check_topic_collisions(const std::set<const ExchangeConfig*>& skip) {
-        const std::string& base = config_.mqtt.base_topic;
-        // Who claimed a topic: an exchange, or one of its tags. Described only on a collision.
-        struct Owner {
-            const ExchangeConfig* exchange = nullptr;
-            const TagConfig* tag = nullptr;  ///< null: the exchange itself
-
-            std::string describe() const {
-                const std::string of = "exchange " + in_quotes(exchange->spec.name);
-                return tag ? "tag " + in_quotes(tag->spec.name) + " of " + of : of;
-            }
-        };
-        const auto full_topic = [&](const ExchangeConfig& exchange) {
-            return base.empty() ? exchange.spec.topic : base + "/" + exchange.spec.topic;
-        };
-        // An exchange on topic t claims t/_status, t/_values, t/set and t/set/result; each of
-        // its tags t/{name}, t/{name}/set and t/{name}/set/result. Every claim is t and more
-        // levels, so claims of two exchanges can meet only when their topics are the same or
-        // one is an ancestor of the other (at any depth: t/set/result is a tag `result`'s
-        // topic under t/set, t/{name}/set/result one under t/{name}/set). An exchange whose
-        // topic is none of these cannot collide through its tags, and its tags are not
-        // claimed: 100,000 tags would otherwise cost 300,000 map entries. Topics refused for
-        // a reserved level (`_…`, `set`) still take part, so their collisions are shown too.
-        std::unordered_map<std::string, int> topic_uses;
-        std::unordered_set<std::string> ancestors;  ///< of some exchange's topic
-        for (const auto& exchange : config_.exchanges) {
-            if (!topic_problem(exchange.spec.topic).empty()) continue;
-            const auto topic = full_topic(exchange);
-            ++topic_uses[topic];
-            for (auto slash = topic.find('/'); slash != std::string::npos;
-                 slash = topic.find('/', slash + 1)) {
-                ancestors.insert(topic.substr(0, slash));
-            }
-        }
-        const auto nested = [&](const std::string& topic) {
-            if (topic_uses[topic] > 1 || ancestors.contains(topic)) return true;
-            for (auto slash = topic.find('/'); slash != std::string::npos;
-                 slash = topic.find('/', slash + 1)) {
-                if (topic_uses.contains(topic.substr(0, slash))) return true;
-            }
-            return false;
-        };
-        std::unordered_map<std::string, Owner> owners;
-        const auto claim = [&](std::string topic, const Owner& owner, const Mark& mark) {
-            const auto [it, fresh] = owners.try_emplace(std::move(topic), owner);
-            if (!fresh) {
-                error(mark, owner.describe() + " uses topic " + in_quotes(it->first) +
-                                ", already used by " + it->second.describe());
-            }
-            return fresh;
-        };
-        for (const auto& exchange : config_.exchanges) {
-            if (skip.contains(&exchange)) continue;
-            if (!topic_problem(exchange.spec.topic).empty()) continue;
-            const std::string topic = full_topic(exchange);
-            const auto& topic_mark = exchange.marks.contains("topic") ? exchange.marks.of("topic")
-                                                                      : exchange.marks.of("name");
-            const Owner owner{&exchange, nullptr};
-            (void)(claim(topic + "/_status", owner, topic_mark) &&
-                   claim(topic + "/_values", owner, topic_mark) &&
-                   claim(topic + "/set", owner, topic_mark) &&
-                   claim(topic + "/set/result", owner, topic_mark));
-            if (!nested(topic)) continue;
-            std::unordered_set<std::string_view> seen;  // views of the tags' own names
-            seen.reserve(exchange.tags.size());
-            std::string tag_topic;
-            for (const auto& tag : exchange.tags) {
-                if (!tag_name_problem(tag.spec.name).empty()) continue;
-                if (!seen.insert(tag.spec.name).second) continue;  // reported as a duplicate
-                tag_topic.assign(topic).append("/").append(tag.spec.name);
-                const Owner tag_owner{&exchange, &tag};
-                (void)(claim(tag_topic, tag_owner, tag.marks.of("name")) &&
-                       claim(tag_topic + "/set", tag_owner, tag.marks.of("name")) &&
-                       claim(tag_topic + "/set/result", tag_owner, tag.marks.of("name")));
             }
         }
     }

@@ -181,6 +181,8 @@ std::string_view to_string(WriteError error) {
             return "bad_response_topic";
         case WriteError::too_large:
             return "too_large";
+        case WriteError::overlapping_tags:
+            return "overlapping_tags";
     }
     return "unknown";
 }

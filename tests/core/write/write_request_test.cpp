@@ -62,6 +62,7 @@ TEST(WriteError, NamesAreSnakeCaseAndDistinct) {
     EXPECT_EQ(to_string(WriteError::empty), "empty");
     EXPECT_EQ(to_string(WriteError::rate_limited), "rate_limited");
     EXPECT_EQ(to_string(WriteError::bad_response_topic), "bad_response_topic");
+    EXPECT_EQ(to_string(WriteError::overlapping_tags), "overlapping_tags");
     EXPECT_EQ(to_string(WriteError::too_large), "too_large");
     std::set<std::string_view> names;
     for (std::size_t i = 0; i < write_error_count; ++i) {

@@ -112,12 +112,13 @@ struct Config {
     std::vector<ExchangeConfig> exchanges;
 };
 
-/// Semantic checks across the whole model: overlapping tags, tags past the end, lengths over
-/// 1400, bit addresses on non-bit types, duplicate names and (producer, exchange) pairs,
-/// writable tags on consumed exchanges, min > max, topic rules, topic collisions (write and
-/// result topics included), reserved words (`set`, `_…`) in tag names and exchange topics, names,
-/// topics and ids that are not text a broker accepts (plan::text_problem), and topics the gateway
-/// would build longer than plan::max_topic_bytes. Returns every problem found, in file order.
+/// Semantic checks across the whole model (tags may overlap: plan::find_overlaps): tags past
+/// the end, lengths over 1400, bit addresses on non-bit types, duplicate names and (producer,
+/// exchange) pairs, writable tags on consumed exchanges, min > max, topic rules, topic collisions
+/// (write and result topics included), reserved words (`set`, `_…`) in tag names and exchange
+/// topics, names, topics and ids that are not text a broker accepts (plan::text_problem), and
+/// topics the gateway would build longer than plan::max_topic_bytes. Returns every problem found,
+/// in file order.
 Diagnostics validate(const Config& config);
 
 /// Plans of every exchange of a valid configuration, in configuration order.

@@ -42,9 +42,10 @@ enum class WriteError : std::uint8_t {
     rate_limited,  ///< more writes to the tag than its `max_writes_per_s` allows
     bad_response_topic,  ///< the MQTT 5 response topic is not one the gateway may publish to
     too_large,           ///< the payload is over the size limit
+    overlapping_tags,    ///< a multi-tag write sets two tags that share bits
 };
 
-inline constexpr std::size_t write_error_count = 16;
+inline constexpr std::size_t write_error_count = 17;
 
 std::string_view to_string(WriteError error);
 
