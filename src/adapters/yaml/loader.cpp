@@ -1,0 +1,82 @@
+// The loader's run (parse, read, validate, sort the diagnostics) and its scalar readers.
+
+#include "adapters/yaml/detail/loader.hpp"
+
+#include <tuple>
+
+#include "adapters/yaml/detail/syntax_cache.hpp"
+
+namespace eip2mqtt::adapters::yaml::detail {
+
+core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
+    Config config;
+    config.file = file_;
+    try {
+        const detail::Tree tree = detail::parse_with_cache(text, file_.str(), syntax_cache_dir_);
+        const Node root = tree.root();
+        if (!root.is_defined() || root.is_null()) {
+            error({file_, 1, 1}, "the configuration is empty");
+            return core::fail(std::move(diagnostics_));
+        }
+        if (!root.is_map()) {
+            error(mark(root), "expected a mapping at the top level");
+        } else {
+            read_root(root, config);
+        }
+    } catch (const YAML::Exception& e) {
+        error(mark(e.mark), "YAML syntax error: " + e.msg);
+        return core::fail(std::move(diagnostics_));
+    }
+    if (config.mqtt.client_id.empty()) config.mqtt.client_id = "eip2mqtt-" + config.gateway.id;
+    // Semantic checks also run after local errors so that one run shows every problem;
+    // entities whose own keys failed to parse were left out of the model to avoid echoes.
+    auto semantic = core::config::validate(config);
+    diagnostics_.insert(diagnostics_.end(), std::make_move_iterator(semantic.begin()),
+                        std::make_move_iterator(semantic.end()));
+    if (diagnostics_.empty()) return config;
+    std::stable_sort(
+        diagnostics_.begin(), diagnostics_.end(), [this](const Diagnostic& a, const Diagnostic& b) {
+            return std::make_tuple(a.mark.file != file_, a.mark.file, a.mark.line, a.mark.column) <
+                   std::make_tuple(b.mark.file != file_, b.mark.file, b.mark.line, b.mark.column);
+        });
+    return core::fail(std::move(diagnostics_));
+}
+
+std::optional<std::string> Loader::text(const Node& value, const std::string& key, const Mark& at) {
+    if (value.is_null()) return std::string();
+    if (!value.is_scalar()) {
+        error(at, "expected a string for " + in_quotes(key));
+        return std::nullopt;
+    }
+    return std::string(value.scalar());
+}
+
+std::optional<core::plan::TimestampSource> Loader::timestamp_source(const Node& value,
+                                                                    const std::string& key,
+                                                                    const Mark& at) {
+    return parsed(value, key, at, core::plan::parse_timestamp_source,
+                  "is not one of auto, producer, receive");
+}
+
+std::optional<bool> Loader::boolean(const Node& value, const std::string& key, const Mark& at) {
+    if (value.is_scalar()) {
+        const auto word = lower(value.scalar());
+        if (word == "true" || word == "yes" || word == "on") return true;
+        if (word == "false" || word == "no" || word == "off") return false;
+    }
+    error(at, "expected true or false for " + in_quotes(key));
+    return std::nullopt;
+}
+
+void Loader::read_root(const Node& root, Config& config) {
+    walk(root, mark(root), "configuration", "at the top level", top_keys,
+         [&](const std::string& key, const Node& value, const Mark& at) {
+             if (key == "gateway") read_gateway(value, at, config);
+             if (key == "mqtt") read_mqtt(value, at, config);
+             if (key == "eip") read_eip(value, at, config);
+             if (key == "metrics") read_metrics(value, at, config);
+             if (key == "exchanges") read_exchanges(value, at, config);
+         });
+}
+
+}  // namespace eip2mqtt::adapters::yaml::detail
