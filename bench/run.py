@@ -222,7 +222,6 @@ class Bench:
         log = open(os.path.join(self.tmp, name + ".log"), "w")
         env = dict(os.environ)
         env.pop("NOTIFY_SOCKET", None)
-        env.pop("CACHE_DIRECTORY", None)  # a syntax cache only where a scenario asks for one
         if notify_socket:
             env["NOTIFY_SOCKET"] = notify_socket
         proc = subprocess.Popen([GATEWAY, "run", "-c", config, *args], stdout=log, stderr=log,
@@ -507,21 +506,10 @@ class Bench:
                 udp_port=udp_port, point_list=point_list)
             times, rss_idle, rss_data, hwm = self.startup_and_memory(name, config, udp_port, runs)
             startup = median(times)
-            # Restarts with the YAML syntax cache (`--cache-dir`, systemd's CacheDirectory=):
-            # the first start parses and saves, the next ones load the saved tree.
-            cache_args = ("--cache-dir", os.path.join(self.tmp, name + "-cache"))
-            saving, _, _, _ = self.startup_and_memory(name, config, udp_port, 1, args=cache_args,
-                                                      memory=False, label="save")
-            cached_times, _, _, _ = self.startup_and_memory(name, config, udp_port, runs,
-                                                            args=cache_args, memory=False,
-                                                            label="cached")
-            cached = median(cached_times)
             # Same-run floor: yaml-cpp alone parsing the same YAML file with a no-op handler.
             floor = run_json([tool("yaml_parse"), "--file", config, "--repeat", "3"], timeout=300)
             print(f"    {form}: READY after {', '.join(f'{t:.0f}' for t in times)} ms "
                   f"(yaml-cpp alone {floor['median_ms']:.0f} ms on {floor['bytes']:,} bytes); "
-                  f"with the syntax cache: first {saving[0]:.0f} ms (parses, saves), then "
-                  f"{', '.join(f'{t:.0f}' for t in cached_times)} ms; "
                   f"RSS idle {rss_idle / 1024:.1f} MB, with data {rss_data / 1024:.1f} MB, peak "
                   f"{hwm / 1024:.1f} MB", flush=True)
             self.row(f"resident memory, 1,000 x 100 consumed + 100 produced, all tags published, "
@@ -534,26 +522,20 @@ class Bench:
                      f"{floor['bytes'] / 1e6:.2g} MB YAML, no-op handler)",
                      f"{startup / floor['median_ms']:.2f}" if floor["median_ms"] > 0 else "-",
                      "<= 200 ms", "yes" if startup <= 200 else "no")
-            self.row(f"restart to READY, same configuration, {form}, YAML syntax cached (ms, "
-                     f"median of {runs})", f"{cached:,.0f}",
-                     f"{startup:,.0f} (the start above, parsing; {saving[0]:,.0f} the first "
-                     f"start with the cache, parsing and saving it)",
-                     f"{cached / startup:.2f}" if startup > 0 else "-", "<= 200 ms",
-                     "yes" if cached <= 200 else "no")
 
-    def startup_and_memory(self, name, config, udp_port, runs, args=(), memory=True, label=""):
-        """Start-up times (ms) to READY=1 over `runs` starts of `run -c config args`; with
-        `memory`, after the last one, VmRSS 1 s after coming online, VmRSS once one datagram per
-        consumed exchange was published, and VmHWM (all kB)."""
+    def startup_and_memory(self, name, config, udp_port, runs):
+        """Start-up times (ms) to READY=1 over `runs` starts of `run -c config`; after the last
+        one, VmRSS 1 s after coming online, VmRSS once one datagram per consumed exchange was
+        published, and VmHWM (all kB)."""
         times = []
         rss_idle = rss_data = hwm = 0
         for run in range(runs):
-            path = os.path.join(self.tmp, f"notify-{name}{label}-{run}.sock")
+            path = os.path.join(self.tmp, f"notify-{name}-{run}.sock")
             listener = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
             listener.bind(path)
             listener.settimeout(0.5)
             start = time.monotonic()
-            gw = self.start_gateway(name, config, notify_socket=path, args=args)
+            gw = self.start_gateway(name, config, notify_socket=path)
             ready = None
             deadline = start + 30
             while ready is None and time.monotonic() < deadline and gw.poll() is None:
@@ -567,7 +549,7 @@ class Bench:
                 stop(gw)
                 raise RuntimeError(f"gateway {name} did not send READY=1")
             times.append(ready * 1000)
-            if memory and run == runs - 1:
+            if run == runs - 1:
                 self.wait_online(name)
                 time.sleep(1)
                 rss_idle = rss_kb(gw.pid)

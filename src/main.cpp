@@ -22,17 +22,10 @@ int main(int argc, char** argv) {
     cli.add_option("--log-level", run.log_level, "Override gateway.log_level");
     run_cmd->add_option("-c,--config", run.config_path, "Configuration file")->required();
     run_cmd->add_option("--log-level", run.log_level, "Override gateway.log_level");
-    // systemd's CacheDirectory= sets $CACHE_DIRECTORY: the installed unit caches by default.
-    const auto cache_help = "Keep yaml-cpp's parse of the configuration here for the next start";
-    cli.add_option("--cache-dir", run.syntax_cache_dir, cache_help)->envname("CACHE_DIRECTORY");
-    run_cmd->add_option("--cache-dir", run.syntax_cache_dir, cache_help)
-        ->envname("CACHE_DIRECTORY");
 
     std::string check_path;
     auto* check_cmd = cli.add_subcommand("check", "Validate a configuration and show its layout");
     check_cmd->add_option("-c,--config", check_path, "Configuration file")->required();
-    std::string check_cache_dir;
-    check_cmd->add_option("--cache-dir", check_cache_dir, cache_help)->envname("CACHE_DIRECTORY");
 
     SimOptions sim;
     auto* sim_cmd = cli.add_subcommand("sim", "Send the consumed exchanges of a configuration");
@@ -71,10 +64,9 @@ int main(int argc, char** argv) {
 
     try {
         if (*check_cmd) {
-            // Standard output is the layout report: the loader's warnings (a cache it cannot
-            // write) go to standard error.
+            // Standard output is the layout report: any log line goes to standard error.
             setup_logging("warn");
-            return run_check(check_path, std::cout, std::cerr, check_cache_dir);
+            return run_check(check_path, std::cout, std::cerr);
         }
         if (*sim_cmd) return run_sim(sim);
         if (*import_cmd) return run_import_points(points_path, std::cout, std::cerr);

@@ -69,9 +69,8 @@ adapters::mqtt::ClientOptions client_options(const core::config::Config& config,
 
 }  // namespace
 
-Gateway::Gateway(core::config::Config config, adapters::yaml::LoadOptions load_options)
+Gateway::Gateway(core::config::Config config)
     : config_(std::move(config)),
-      load_options_(std::move(load_options)),
       publish_settings_{config_.mqtt.qos, config_.mqtt.retain, config_.mqtt.payload,
                         config_.mqtt.batch},
       availability_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/state"),

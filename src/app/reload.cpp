@@ -168,7 +168,7 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
 void Gateway::reload() {
     notifier_.reloading();
     spdlog::info("SIGHUP: reloading {}", config_.file);
-    auto loaded = adapters::yaml::load_config(config_.file, load_options_);
+    auto loaded = adapters::yaml::load_config(config_.file);
     if (!loaded) {
         for (const auto& diagnostic : loaded.error()) spdlog::error("{}", diagnostic.to_string());
         spdlog::error("reload refused: {} has {} error(s); the running configuration is kept",

@@ -191,29 +191,5 @@ TEST(CheckCommand, ExampleConfigurationIsValidAndShowsItsLayout) {
     EXPECT_NE(result.output.find("acme/demo/turbine1/PRESSAO"), std::string::npos) << result.output;
 }
 
-TEST(CheckCommand, ReportsTheSameThroughTheSyntaxCache) {
-    // `check` runs before `run` in the installed unit, with the same $CACHE_DIRECTORY: the
-    // first saves, the second loads; both print exactly what a check without cache prints.
-    TempDir dir;
-    const auto cache = dir.path() + "/cache";
-    const std::string example = std::string(EIP2MQTT_SOURCE_DIR) + "/etc/eip2mqtt/eip2mqtt.yaml";
-    for (const auto& path : {dir.write("bad.yaml", bad_config), example}) {
-        const auto plain = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
-        const auto saving =
-            run_command({EIP2MQTT_BINARY, "check", "-c", path, "--cache-dir", cache}, 10s);
-        const auto cached =
-            run_command({EIP2MQTT_BINARY, "check", "-c", path, "--cache-dir", cache}, 10s);
-        EXPECT_EQ(saving.status, plain.status) << saving.output;
-        EXPECT_EQ(cached.status, plain.status) << cached.output;
-        EXPECT_EQ(saving.output, plain.output);
-        EXPECT_EQ(cached.output, plain.output);
-    }
-    std::size_t trees = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(cache)) {
-        trees += entry.path().extension() == ".tree";
-    }
-    EXPECT_EQ(trees, 2u);
-}
-
 }  // namespace
 }  // namespace eip2mqtt::test

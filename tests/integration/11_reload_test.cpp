@@ -1,6 +1,5 @@
 // SIGHUP reloads: a valid change is applied without dropping the MQTT session or unchanged
-// exchanges; an invalid file is refused and the old configuration keeps running. With a YAML
-// syntax cache, an unchanged file is loaded from it and an edited one parsed. Every write
+// exchanges; an invalid file is refused and the old configuration keeps running. Every write
 // accepted by a produced exchange that the reload changes or removes gets exactly one result:
 // ok when a datagram carried it, else "reloaded".
 
@@ -199,36 +198,6 @@ TEST_F(ReloadTest, APointListThatIsADirectoryOrAFifoIsRefusedAndTheOldConfigurat
         ++refusals;
     }
     EXPECT_EQ(refusals, 2u) << output;
-}
-
-TEST_F(ReloadTest, TheSyntaxCacheServesAnUnchangedFileAndNeverAnEditedOne) {
-    TempDir cache;
-    GatewayOptions options;
-    options.env["CACHE_DIRECTORY"] = cache.path();  // as systemd's CacheDirectory= sets it
-    start(exchange("kept", 1, tag_a), "", options);
-    const std::string hit = "unchanged since its YAML syntax was cached";
-    EXPECT_EQ(gateway_->output().find(hit), std::string::npos) << gateway_->output();
-    send(datagram(1, 1, 11));
-    expect_field(topic("kept/A"), "value", "11");
-
-    // A restart loads the tree the first start saved, and runs the same.
-    gateway_->signal(SIGTERM);
-    ASSERT_TRUE(gateway_->wait(10s).has_value());
-    start_gateway();
-    EXPECT_NE(gateway_->output().find(hit), std::string::npos) << gateway_->output();
-    send(datagram(1, 2, 12));
-    expect_field(topic("kept/A"), "value", "12");
-
-    // An edited file is parsed again on reload, and its change applied.
-    rewrite_exchanges(exchange("kept", 1, tag_b) + exchange("added", 4, tag_a));
-    gateway_->signal(SIGHUP);
-    ASSERT_TRUE(gateway_->wait_for_output("configuration applied", 10s)) << gateway_->output();
-    EXPECT_NE(gateway_->output().find("is not used (the configuration changed)"), std::string::npos)
-        << gateway_->output();
-    send(datagram(4, 1, 44));
-    expect_field(topic("added/A"), "value", "44");
-    send(datagram(1, 5, 55));
-    expect_field(topic("kept/B"), "value", "55");
 }
 
 TEST_F(ReloadTest, WritesQueuedOnAChangedOrRemovedExchangeAreAnsweredReloaded) {

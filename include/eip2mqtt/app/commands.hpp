@@ -9,16 +9,12 @@
 namespace eip2mqtt::app {
 
 /// `check -c FILE`: prints every error with file:line:column to `err` (exit 1), or, when valid,
-/// each exchange's byte map and topics to `out` (exit 0). `syntax_cache_dir` as in RunOptions.
-int run_check(const std::string& config_path, std::ostream& out, std::ostream& err,
-              const std::string& syntax_cache_dir = {});
+/// each exchange's byte map and topics to `out` (exit 0).
+int run_check(const std::string& config_path, std::ostream& out, std::ostream& err);
 
 struct RunOptions {
     std::string config_path;
     std::string log_level;  ///< overrides gateway.log_level when not empty
-    /// `--cache-dir`, or systemd's $CACHE_DIRECTORY: where yaml-cpp's parse of the
-    /// configuration is kept for the next start and reload (adapters::yaml::LoadOptions).
-    std::string syntax_cache_dir;
 };
 /// `run -c FILE`: the daemon; returns when stopped by SIGTERM/SIGINT.
 int run_gateway(const RunOptions& options);

@@ -47,8 +47,7 @@ class Gateway {
 public:
     /// Builds every adapter from a validated configuration; throws std::exception on start-up
     /// failures (a port that cannot be bound, an unreadable password file).
-    /// `load_options` are those of every reload (SIGHUP).
-    explicit Gateway(core::config::Config config, adapters::yaml::LoadOptions load_options = {});
+    explicit Gateway(core::config::Config config);
     ~Gateway();
 
     /// Runs until SIGTERM or SIGINT, then stops cleanly; returns the exit status.
@@ -86,7 +85,6 @@ private:
     void wait_signal();
 
     core::config::Config config_;
-    adapters::yaml::LoadOptions load_options_;
     PublishSettings publish_settings_;
     std::string availability_topic_;
     std::string metrics_topic_;

@@ -9,14 +9,14 @@ using core::config::Config;
 using core::config::Diagnostics;
 using core::config::Mark;
 
-core::Result<Config, Diagnostics> load_config(const std::string& path, const LoadOptions& options) {
+core::Result<Config, Diagnostics> load_config(const std::string& path) {
     auto text = detail::read_file(path, "the configuration");
     if (!text) {
         Diagnostics unreadable;
         unreadable.push_back({Mark{path, 0, 0}, text.error()});
         return core::fail(std::move(unreadable));
     }
-    return detail::Loader(path, options.syntax_cache_dir).load(text.value());
+    return detail::Loader(path).load(text.value());
 }
 
 core::Result<Config, Diagnostics> load_config_text(const std::string& text,

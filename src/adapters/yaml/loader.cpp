@@ -4,15 +4,13 @@
 
 #include <tuple>
 
-#include "adapters/yaml/detail/syntax_cache.hpp"
-
 namespace eip2mqtt::adapters::yaml::detail {
 
 core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
     Config config;
     config.file = file_;
     try {
-        const detail::Tree tree = detail::parse_with_cache(text, file_.str(), syntax_cache_dir_);
+        const Tree tree = Tree::parse(text);
         const Node root = tree.root();
         if (!root.is_defined() || root.is_null()) {
             error({file_, 1, 1}, "the configuration is empty");

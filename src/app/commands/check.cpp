@@ -124,9 +124,8 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
 
 }  // namespace
 
-int run_check(const std::string& config_path, std::ostream& out, std::ostream& err,
-              const std::string& syntax_cache_dir) {
-    const auto config = adapters::yaml::load_config(config_path, {syntax_cache_dir});
+int run_check(const std::string& config_path, std::ostream& out, std::ostream& err) {
+    const auto config = adapters::yaml::load_config(config_path);
     if (!config) {
         for (const auto& diagnostic : config.error()) err << diagnostic.to_string() << "\n";
         err << config.error().size() << " error(s)\n";

@@ -11,8 +11,7 @@ namespace eip2mqtt::app {
 
 int run_gateway(const RunOptions& options) {
     setup_logging(options.log_level.empty() ? "info" : options.log_level);
-    const adapters::yaml::LoadOptions load_options{options.syntax_cache_dir};
-    auto loaded = adapters::yaml::load_config(options.config_path, load_options);
+    auto loaded = adapters::yaml::load_config(options.config_path);
     if (!loaded) {
         for (const auto& diagnostic : loaded.error()) spdlog::error("{}", diagnostic.to_string());
         spdlog::critical("configuration {} has {} error(s); not starting", options.config_path,
@@ -21,7 +20,7 @@ int run_gateway(const RunOptions& options) {
     }
     auto config = std::move(loaded).value();
     if (options.log_level.empty()) set_log_level(config.gateway.log_level);
-    Gateway gateway(std::move(config), load_options);
+    Gateway gateway(std::move(config));
     return gateway.run();
 }
 

@@ -92,43 +92,6 @@ TEST(LoadConfig, BadThreeErrorsReportsAllThreeWithLineAndColumn) {
     EXPECT_NE(d[2].message.find("past the exchange length 16"), std::string::npos) << d[2].message;
 }
 
-TEST(LoadConfig, ACachedLoadReportsAndLoadsExactlyAsAParsedOne) {
-    // A tree loaded from the syntax cache keeps yaml-cpp's marks: the same errors at the same
-    // lines and columns, and the same configuration, point lists included.
-    test::TempDir cache;
-    const LoadOptions cached{cache.path()};
-    for (const auto* name : {"bad_three_errors.yaml", "bad_points.yaml"}) {
-        const auto parsed = load_config(data + name);
-        const auto first = load_config(data + name, cached);   // parses, then saves
-        const auto second = load_config(data + name, cached);  // loads what was saved
-        ASSERT_FALSE(parsed.ok() || first.ok() || second.ok()) << name;
-        EXPECT_EQ(dump(first.error()), dump(parsed.error())) << name;
-        EXPECT_EQ(dump(second.error()), dump(parsed.error())) << name;
-    }
-    const auto example = std::string(EIP2MQTT_SOURCE_DIR) + "/etc/eip2mqtt/eip2mqtt.yaml";
-    ASSERT_TRUE(load_config(example, cached).ok());
-    const auto second = load_config(example, cached);
-    ASSERT_TRUE(second.ok()) << dump(second.error());
-    const auto plans = core::config::make_plans(second.value());
-    const auto expected = core::config::make_plans(load_config(example).value());
-    ASSERT_EQ(plans.size(), expected.size());
-    for (std::size_t i = 0; i < plans.size(); ++i) {
-        EXPECT_EQ(plans[i].spec.name, expected[i].spec.name);
-        ASSERT_EQ(plans[i].tags.size(), expected[i].tags.size());
-        for (std::size_t t = 0; t < plans[i].tags.size(); ++t) {
-            EXPECT_EQ(plans[i].tags[t].spec.name, expected[i].tags[t].spec.name);
-            EXPECT_EQ(plans[i].tag_topic(plans[i].tags[t]),
-                      expected[i].tag_topic(expected[i].tags[t]));
-        }
-    }
-    // Every configuration above has its own file in the cache.
-    std::size_t files = 0;
-    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(cache.path())) {
-        ++files;
-    }
-    EXPECT_EQ(files, 3u);
-}
-
 TEST(LoadConfig, SyntaxErrorIsADiagnostic) {
     const auto result = load_config(data + "bad_syntax.yaml");
     ASSERT_FALSE(result.ok());

@@ -66,10 +66,8 @@ TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
         "latency datagram -> subscriber p99, QoS 1",             // 5
         "resident memory, 1,000 x 100 consumed + 100 produced",  // 6, inline YAML
         "start-up to READY, same configuration, inline YAML",    // 6
-        "restart to READY, same configuration, inline YAML",     // 6, syntax cache
         "resident memory, 1,000 x 100 consumed + 100 produced",  // 6, point lists
         "start-up to READY, same configuration, point lists",    // 6
-        "restart to READY, same configuration, point lists",     // 6, syntax cache
         "produced period, 100 x 10 ms: mean error",              // 7
         "produced period, 100 x 10 ms: p99 jitter",              // 7
         "produced period, 1000 x 10 ms: mean error",             // 7

@@ -1,7 +1,7 @@
 #pragma once
 /// Replaces a file so that a crash or a power cut leaves either the old file or the new one,
 /// never a mix: the new content goes to a temporary beside it, is fsynced, renamed over the old
-/// file, and the directory is fsynced. Used for produced images and the YAML syntax cache.
+/// file, and the directory is fsynced. Used for produced images.
 
 #include <sys/types.h>
 

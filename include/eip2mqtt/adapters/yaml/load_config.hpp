@@ -4,7 +4,6 @@
 /// with file:line:column; yaml-cpp's exceptions stop here.
 
 #include <cstddef>
-#include <filesystem>
 #include <string>
 
 #include "eip2mqtt/core/config/config.hpp"
@@ -17,17 +16,9 @@ namespace eip2mqtt::adapters::yaml {
 /// named by mistake is a diagnostic, not a crash, a hang or unbounded memory).
 inline constexpr std::size_t max_file_bytes = std::size_t{64} << 20;
 
-struct LoadOptions {
-    /// Where yaml-cpp's parse of the file is cached, to be used instead of parsing it again
-    /// while its bytes are unchanged (100,000 inline tags: ~0.9 s of yaml-cpp). Created when
-    /// missing; empty: no cache.
-    std::filesystem::path syntax_cache_dir;
-};
-
 /// Loads and validates `path`. Fails with every diagnostic (syntax, unknown keys, bad values,
 /// semantic checks) when anything is wrong.
-core::Result<core::config::Config, core::config::Diagnostics> load_config(
-    const std::string& path, const LoadOptions& options = {});
+core::Result<core::config::Config, core::config::Diagnostics> load_config(const std::string& path);
 
 /// Same, from text already in memory; `file` names it in diagnostics and resolves relative
 /// `points:` paths (used by tests and the fuzzer).

@@ -76,10 +76,8 @@ inline constexpr std::array<std::string_view, 12> tag_keys{
 
 class Loader {
 public:
-    explicit Loader(std::string file, std::filesystem::path syntax_cache_dir = {})
-        : file_(std::move(file)),
-          dir_(std::filesystem::path(file_.str()).parent_path()),
-          syntax_cache_dir_(std::move(syntax_cache_dir)) {}
+    explicit Loader(std::string file)
+        : file_(std::move(file)), dir_(std::filesystem::path(file_.str()).parent_path()) {}
 
     core::Result<Config, Diagnostics> load(const std::string& text);
 
@@ -225,7 +223,6 @@ private:
 
     FileName file_;  ///< shared by every mark of the file
     std::filesystem::path dir_;
-    std::filesystem::path syntax_cache_dir_;
     Diagnostics diagnostics_;
     std::map<std::string, std::unique_ptr<LoadedPoints>> point_lists_;  ///< null: unreadable
 };

@@ -5,10 +5,6 @@
 /// nodes, one of children and one of scalar text, with each node's `YAML::Mark` so that
 /// diagnostics keep yaml-cpp's line and column. yaml-cpp still does all the parsing.
 ///
-/// A tree can be saved beside the text it was parsed from and loaded instead of parsing that
-/// same text again (tree_cache.cpp): yaml-cpp's scanner takes ~0.9 s for the 5.4 MB of 100,000
-/// inline tags (bench scenario 6), the rest of a start-up ~0.1 s.
-///
 /// Module-private to src/adapters/yaml.
 
 #include <yaml-cpp/mark.h>
@@ -71,15 +67,6 @@ public:
     /// Parses `text`; throws YAML::Exception (with its mark) on a syntax error, as YAML::Load.
     static Tree parse(const std::string& text);
 
-    /// The tree that save() wrote to `file` for this very `text` (compared byte for byte).
-    /// nullopt when `file` is missing (`why` empty), or holds another text, or was written by
-    /// another format, or is damaged (`why` says which): the caller parses then.
-    static std::optional<Tree> load(const std::filesystem::path& file, std::string_view text,
-                                    std::string& why);
-    /// Writes this tree, parsed from `text`, to `file` (mode 0600: the text may hold secrets),
-    /// replacing it atomically. Returns what failed, empty on success.
-    std::string save(const std::filesystem::path& file, std::string_view text) const;
-
     /// The document's root; undefined when the text holds no document (empty or comments only).
     Node root() const;
 
@@ -90,21 +77,15 @@ private:
 
     enum class Kind : std::uint8_t { null, scalar, sequence, map };
 
-    /// Saved as it is in memory (tree_cache.cpp): no padding, every byte initialised.
     struct Entry {
         std::uint32_t first = 0;  ///< scalar: offset in text_; sequence, map: offset in children_
         std::uint32_t count = 0;  ///< scalar: length; sequence: items; map: 2 x entries
         std::int32_t line = 0;    ///< yaml-cpp's 0-based line, -1 for a null mark
         std::int32_t column = 0;  ///< yaml-cpp's 0-based column
         Kind kind = Kind::null;
-        std::uint8_t reserved[3] = {};
     };
 
-    /// Whether every index and span stays inside the arrays (a loaded file is checked).
-    bool consistent() const;
-
-    /// Keeps the arrays below alive, at fixed addresses: a parse's vectors, or a loaded file
-    /// mapped read-only (tree_cache.cpp: no copy, no zeroing of 20 MB for 100,000 tags).
+    /// Keeps the arrays below alive, at fixed addresses: a parse's vectors.
     std::shared_ptr<const void> storage_;
     std::span<const Entry> nodes_;
     std::span<const std::uint32_t> children_;  ///< items, or key and value of each entry
