@@ -6,17 +6,15 @@
 
 #include <spdlog/spdlog.h>
 
-#include <map>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <tuple>
-#include <unordered_set>
 
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/gateway.hpp"
 #include "eip2mqtt/app/logging.hpp"
+#include "eip2mqtt/core/plan/plan_diff.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -29,13 +27,6 @@ auto session_settings(const core::config::Config& c) {
                            c.mqtt.tls.has_value(), c.mqtt.base_topic, c.mqtt.keepalive,
                            c.mqtt.session_expiry, c.eip.bind, c.eip.port, c.eip.multicast.size(),
                            c.eip.multicast_ttl, c.eip.multicast_interface, c.metrics.listen);
-}
-
-/// The retained topics of an exchange: its `_status` and its tags'.
-template <class Topics>
-void collect_topics(const core::plan::ExchangePlan& plan, Topics& topics) {
-    topics.insert(plan.status_topic);
-    for (const auto& tag : plan.tags) topics.insert(plan.tag_topic(tag));
 }
 
 }  // namespace
@@ -59,43 +50,45 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
     // Saves still under way must reach the disk before a restarted exchange reads its image.
     if (production_) production_->flush();
     auto sink = [this](adapters::mqtt::Message&& message) { mqtt_->publish(std::move(message)); };
-    std::map<std::string, std::unique_ptr<ExchangeConsumer>> old_consumers;
-    for (auto& consumer : consumers_) {
-        auto name = consumer->plan().spec.name;
-        old_consumers.emplace(std::move(name), std::move(consumer));
+
+    // The running exchanges, consumers first: diff_plans' indices count in that order.
+    std::vector<const core::plan::ExchangePlan*> running_plans;
+    bool settings_changed = false;
+    for (const auto& consumer : consumers_) {
+        running_plans.push_back(&consumer->plan());
+        settings_changed |= !(consumer->settings() == publish_settings_);
     }
-    std::map<std::string, std::unique_ptr<ExchangeProducer>> old_producers;
-    for (auto& producer : producers_) {
-        auto name = producer->plan().spec.name;
-        old_producers.emplace(std::move(name), std::move(producer));
+    for (const auto& producer : producers_) {
+        running_plans.push_back(&producer->plan());
+        settings_changed |= !(producer->settings() == publish_settings_);
     }
+    const auto diff = core::plan::diff_plans(running_plans, plans, settings_changed);
+    running_plans.clear();
+
+    auto old_consumers = std::move(consumers_);
+    auto old_producers = std::move(producers_);
     consumers_.clear();
     producers_.clear();
+    const auto old_consumer_count = old_consumers.size();
 
     std::vector<ExchangeConsumer*> started_consumers;
     std::vector<ExchangeProducer*> started_producers;
     std::size_t kept = 0;
-    for (auto& plan : plans) {
-        if (plan.spec.direction == core::plan::Direction::consume) {
-            const auto old = old_consumers.find(plan.spec.name);
-            if (old != old_consumers.end() && old->second->plan() == plan &&
-                old->second->settings() == publish_settings_) {
-                consumers_.push_back(std::move(old->second));
-                old_consumers.erase(old);
-                ++kept;
-                continue;
+    for (std::size_t i = 0; i < plans.size(); ++i) {
+        auto& plan = plans[i];
+        if (const auto from = diff.kept_from[i]) {
+            if (*from < old_consumer_count) {
+                consumers_.push_back(std::move(old_consumers[*from]));
+            } else {
+                producers_.push_back(std::move(old_producers[*from - old_consumer_count]));
             }
+            ++kept;
+            continue;
+        }
+        if (plan.spec.direction == core::plan::Direction::consume) {
             consumers_.push_back(
                 std::make_unique<ExchangeConsumer>(std::move(plan), publish_settings_, sink));
             started_consumers.push_back(consumers_.back().get());
-            continue;
-        }
-        const auto old = old_producers.find(plan.spec.name);
-        if (old != old_producers.end() && old->second->plan() == plan &&
-            old->second->settings() == publish_settings_) {
-            producers_.push_back(std::move(old->second));
-            old_producers.erase(old);
-            ++kept;
             continue;
         }
         const auto destination =
@@ -119,30 +112,18 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
         started_producers.push_back(producers_.back().get());
     }
 
-    // What is left of the old exchanges was removed or changed: stop it, and clear its retained
-    // topics that no exchange of the new configuration publishes, so that no subscriber keeps
-    // reading a tag that no longer exists. Its queued writes, which it will never produce, are
-    // answered now: never silence. (Those its last datagrams carried got their results from
-    // the flush above.)
-    std::set<std::string> cleared;
-    for (auto& [name, producer] : old_producers) {
+    // A stopped producer's queued writes, which it will never produce, are answered now: never
+    // silence. (Those its last datagrams carried got their results from the flush above.)
+    // Stopped consumers need nothing: they go with old_consumers.
+    for (const auto index : diff.stopped) {
+        if (index < old_consumer_count) continue;
+        auto& producer = old_producers[index - old_consumer_count];
         producer->stop();
         counters_.writes_cancelled += producer->cancel_queued_writes("reloaded");
-        collect_topics(producer->plan(), cleared);
     }
-    for (auto& [name, consumer] : old_consumers) collect_topics(consumer->plan(), cleared);
-    // The new exchanges' topics, built only when something was removed or changed: a set of
-    // every tag topic costs a string per tag (plans do not keep tag topics).
-    std::unordered_set<std::string> new_topics;
-    if (!cleared.empty()) {
-        for (const auto& consumer : consumers_) collect_topics(consumer->plan(), new_topics);
-        for (const auto& producer : producers_) collect_topics(producer->plan(), new_topics);
-    }
-    std::size_t cleared_count = 0;
-    for (const auto& topic : cleared) {
-        if (new_topics.contains(topic)) continue;
+    // No subscriber may keep reading a tag that no longer exists.
+    for (const auto& topic : diff.cleared) {
         mqtt_->publish({topic, "", publish_settings_.qos, true, true});
-        ++cleared_count;
     }
 
     by_key_.clear();
@@ -161,8 +142,8 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
     spdlog::info(
         "configuration applied: {} exchange(s) kept, {} started, {} stopped; {} retained "
         "topic(s) cleared",
-        kept, started_consumers.size() + started_producers.size(),
-        old_consumers.size() + old_producers.size(), cleared_count);
+        kept, started_consumers.size() + started_producers.size(), diff.stopped.size(),
+        diff.cleared.size());
 }
 
 void Gateway::reload() {

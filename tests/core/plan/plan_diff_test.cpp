@@ -1,0 +1,98 @@
+// What a reload keeps, starts, stops and clears (README "Running it as a service", Reload),
+// decided from the plans alone.
+
+#include "eip2mqtt/core/plan/plan_diff.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace eip2mqtt::core::plan {
+namespace {
+
+using namespace std::chrono_literals;
+
+ExchangePlan plan(std::string name, std::vector<std::string> tag_names) {
+    ExchangeSpec spec;
+    spec.name = name;
+    spec.topic = std::move(name);
+    spec.period = 100ms;
+    std::uint16_t byte = 0;
+    for (auto& tag_name : tag_names) {
+        TagSpec tag;
+        tag.name = std::move(tag_name);
+        tag.address = {byte, 0};
+        tag.type = TagType::int_;
+        spec.tags.push_back(std::move(tag));
+        byte += 2;
+    }
+    return make_exchange_plan(std::move(spec), "plant");
+}
+
+std::vector<const ExchangePlan*> pointers(const std::vector<ExchangePlan>& plans) {
+    std::vector<const ExchangePlan*> out;
+    for (const auto& p : plans) out.push_back(&p);
+    return out;
+}
+
+using Kept = std::vector<std::optional<std::size_t>>;
+
+TEST(PlanDiff, UnchangedExchangesAreKeptWhereverTheyNowStand) {
+    const std::vector running{plan("a", {"X"}), plan("b", {"Y"})};
+    const std::vector next{plan("b", {"Y"}), plan("a", {"X"})};
+    const auto diff = diff_plans(pointers(running), next, false);
+    EXPECT_EQ(diff.kept_from, (Kept{1, 0}));
+    EXPECT_TRUE(diff.stopped.empty());
+    EXPECT_TRUE(diff.cleared.empty());
+}
+
+TEST(PlanDiff, AChangedExchangeRestartsAndOnlyItsVanishedTopicsAreCleared) {
+    const std::vector running{plan("a", {"X", "GONE"}), plan("b", {"Y"})};
+    const std::vector next{plan("a", {"X"}), plan("b", {"Y"})};
+    const auto diff = diff_plans(pointers(running), next, false);
+    EXPECT_EQ(diff.kept_from, (Kept{std::nullopt, 1}));
+    EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{0}));
+    EXPECT_EQ(diff.cleared, (std::vector<std::string>{"plant/a/GONE"}));
+}
+
+TEST(PlanDiff, ARemovedExchangeStopsAndLosesItsStatusAndTags) {
+    const std::vector running{plan("a", {"X"}), plan("b", {"Y", "Z"})};
+    const std::vector next{plan("a", {"X"})};
+    const auto diff = diff_plans(pointers(running), next, false);
+    EXPECT_EQ(diff.kept_from, (Kept{0}));
+    EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{1}));
+    EXPECT_EQ(diff.cleared,
+              (std::vector<std::string>{"plant/b/Y", "plant/b/Z", "plant/b/_status"}));
+}
+
+TEST(PlanDiff, ATopicAnotherExchangeNowPublishesIsNotCleared) {
+    // Exchange "b" is renamed "c" but keeps b's topic: its subscribers must keep their values.
+    const std::vector running{plan("b", {"Y"})};
+    auto renamed = plan("b", {"Y"});
+    renamed.spec.name = "c";
+    const std::vector next{renamed};
+    const auto diff = diff_plans(pointers(running), next, false);
+    EXPECT_EQ(diff.kept_from, (Kept{std::nullopt}));
+    EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{0}));
+    EXPECT_TRUE(diff.cleared.empty());
+}
+
+TEST(PlanDiff, RestartAllKeepsNothingAndClearsNothingStillPublished) {
+    const std::vector running{plan("a", {"X"}), plan("b", {"Y"})};
+    const std::vector next{plan("a", {"X"}), plan("b", {"Y"})};
+    const auto diff = diff_plans(pointers(running), next, true);
+    EXPECT_EQ(diff.kept_from, (Kept{std::nullopt, std::nullopt}));
+    EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{0, 1}));
+    EXPECT_TRUE(diff.cleared.empty());
+}
+
+TEST(PlanDiff, AFirstStartStartsEverything) {
+    const std::vector next{plan("a", {"X"})};
+    const auto diff = diff_plans({}, next, false);
+    EXPECT_EQ(diff.kept_from, (Kept{std::nullopt}));
+    EXPECT_TRUE(diff.stopped.empty());
+    EXPECT_TRUE(diff.cleared.empty());
+}
+
+}  // namespace
+}  // namespace eip2mqtt::core::plan
