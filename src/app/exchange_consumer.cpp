@@ -6,7 +6,7 @@
 #include <chrono>
 
 #include "eip2mqtt/adapters/mqtt/payload.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -134,7 +134,7 @@ void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
     for (std::size_t i = 0; i < plan_.tags.size(); ++i) {
         const auto& tag = plan_.tags[i];
         auto& filter = filters_[i];
-        const auto value = core::wire::decode_value(image, tag.spec.type, tag.spec.address);
+        const auto value = core::plan::decode_value(image, tag.spec.type, tag.spec.address);
         if (!force &&
             !filter.should_publish(value, *quality, now, tag.spec.deadband, tag.spec.refresh)) {
             continue;

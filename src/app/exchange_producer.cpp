@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "eip2mqtt/adapters/mqtt/payload.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -164,9 +164,9 @@ void ExchangeProducer::publish_results(const std::vector<std::uint64_t>& write_i
 void ExchangeProducer::publish_echo(core::WallTime wall, bool all) {
     const auto data = image_.data();
     for (const auto& tag : plan_->tags) {
-        const auto value = core::wire::decode_value(data, tag.spec.type, tag.spec.address);
+        const auto value = core::plan::decode_value(data, tag.spec.type, tag.spec.address);
         if (!all && echoed_.size() == data.size()) {
-            const auto old = core::wire::decode_value(echoed_, tag.spec.type, tag.spec.address);
+            const auto old = core::plan::decode_value(echoed_, tag.spec.type, tag.spec.address);
             if (core::plan::same_value(old, value)) continue;
         }
         adapters::mqtt::format_tag_payload(payload_, value, core::quality::Quality::good,

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "tests/support/count_allocations.hpp"
 
 namespace eip2mqtt::app {
@@ -69,7 +69,7 @@ TEST(ExchangeConsumerDataPath, PublishesEveryChangedTagWithoutAllocatingOnceWarm
             ++datagram.header.request_id;
             ++value;
             for (int i = 0; i < kTags; ++i) {
-                core::wire::encode_value(data, core::plan::TagType::dint,
+                core::plan::encode_value(data, core::plan::TagType::dint,
                                          {static_cast<std::uint16_t>(4 * i), 0},
                                          core::plan::Value{value * (i + 1)});
             }
@@ -104,7 +104,7 @@ TEST(ExchangeConsumerDataPath, BatchModeAddsOneValuesMessagePerDatagram) {
 
     std::array<std::byte, 4 * kTags> data{};
     for (int i = 0; i < kTags; ++i) {
-        core::wire::encode_value(data, core::plan::TagType::dint,
+        core::plan::encode_value(data, core::plan::TagType::dint,
                                  {static_cast<std::uint16_t>(4 * i), 0},
                                  core::plan::Value{std::int64_t{100 + i}});
     }
@@ -132,7 +132,7 @@ TEST(ExchangeConsumerDataPath, BatchModeAddsOneValuesMessagePerDatagram) {
 
     // Only what changed goes into the next one.
     published.clear();
-    core::wire::encode_value(data, core::plan::TagType::dint, {12, 0},
+    core::plan::encode_value(data, core::plan::TagType::dint, {12, 0},
                              core::plan::Value{std::int64_t{-7}});
     ++datagram.header.request_id;
     consumer.on_datagram(datagram, now + 10ms, core::WallTime{} + 1h + 10ms);

@@ -20,7 +20,7 @@
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -123,7 +123,7 @@ TEST_F(ExchangeProducerTest, QueuedWritesAreAnsweredReloadedOnceAndNeverApplied)
               (std::map<std::string, std::vector<json>>{{"a", {reloaded}}, {"b", {reloaded}}}));
     EXPECT_EQ(producer_->image().pending(), 0u);
     EXPECT_EQ(
-        core::wire::decode_value(producer_->image().data(), core::plan::TagType::dint, {0, 0}),
+        core::plan::decode_value(producer_->image().data(), core::plan::TagType::dint, {0, 0}),
         core::plan::Value{std::int64_t{0}});
     // Answered once: nothing is left to cancel, and no later save answers them again.
     EXPECT_EQ(producer_->cancel_queued_writes("reloaded"), 0u);
@@ -147,7 +147,7 @@ TEST_F(ExchangeProducerTest, ACarriedWriteWhoseSaveIsUnderWayStillGetsItsOkAfter
     // The saved image holds the carried write, not the cancelled one.
     const auto saved = store_->load(producer_->plan());
     ASSERT_TRUE(saved.has_value());
-    EXPECT_EQ(core::wire::decode_value(*saved, core::plan::TagType::dint, {0, 0}),
+    EXPECT_EQ(core::plan::decode_value(*saved, core::plan::TagType::dint, {0, 0}),
               core::plan::Value{std::int64_t{7}});
 }
 

@@ -12,8 +12,8 @@
 
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
 
 namespace {
 
@@ -59,7 +59,7 @@ void consume(const wire::Datagram& datagram, std::size_t length) {
         const auto image = consumer.image();
         if (image.size() != plan.length) __builtin_trap();
         for (const auto& tag : plan.tags) {
-            (void)wire::decode_value(image, tag.spec.type, tag.spec.address);
+            (void)plan::decode_value(image, tag.spec.type, tag.spec.address);
         }
     };
     consumer.on_datagram(datagram, t0);

@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -44,7 +44,7 @@ std::string exchanges(std::uint16_t capture_port) {
 }
 
 Value tag(const std::vector<std::byte>& bytes, const char* address, TagType type) {
-    return core::wire::decode_value(std::span(bytes).subspan(32), type,
+    return core::plan::decode_value(std::span(bytes).subspan(32), type,
                                     core::plan::parse_address(address).value());
 }
 

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <vector>
 
-#include "eip2mqtt/core/wire/value_codec.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
@@ -237,7 +237,7 @@ TEST_F(ReloadTest, WritesQueuedOnAChangedOrRemovedExchangeAreAnsweredReloaded) {
     // None of them reached the restarted exchange's image.
     const auto next = capture.receive(5s);
     ASSERT_TRUE(next.has_value());
-    EXPECT_EQ(core::wire::decode_value(std::span(*next).subspan(32), TagType::dint, {0, 0}),
+    EXPECT_EQ(core::plan::decode_value(std::span(*next).subspan(32), TagType::dint, {0, 0}),
               core::plan::Value{std::int64_t{0}});
     // The restarted exchange takes writes again. Its result comes after any the reload
     // published (one connection, one topic: in order), so the counts below are final.

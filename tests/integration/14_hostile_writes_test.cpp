@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "eip2mqtt/core/wire/value_codec.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -73,7 +73,7 @@ protected:
         const auto bytes = capture_->receive(5s);
         EXPECT_TRUE(bytes.has_value());
         if (!bytes) return Value{false};
-        return core::wire::decode_value(std::span(*bytes).subspan(32), TagType::lint, {4, 0});
+        return core::plan::decode_value(std::span(*bytes).subspan(32), TagType::lint, {4, 0});
     }
 
     std::unique_ptr<UdpClient> capture_;

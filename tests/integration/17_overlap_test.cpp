@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "eip2mqtt/core/wire/value_codec.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "tests/support/child_process.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/gateway_fixture.hpp"
@@ -73,7 +73,7 @@ protected:
         const auto bytes = capture_->receive(5s);
         EXPECT_TRUE(bytes.has_value());
         if (!bytes) return Value{false};
-        return core::wire::decode_value(std::span(*bytes).subspan(32), type,
+        return core::plan::decode_value(std::span(*bytes).subspan(32), type,
                                         core::plan::parse_address(address).value());
     }
 

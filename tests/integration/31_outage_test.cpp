@@ -10,8 +10,8 @@
 #include <optional>
 #include <thread>
 
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
@@ -60,7 +60,7 @@ std::vector<std::byte> marker_datagram(std::uint32_t marker) {
 }
 
 Value tag(const std::vector<std::byte>& bytes, const char* address, TagType type) {
-    return core::wire::decode_value(std::span(bytes).subspan(32), type,
+    return core::plan::decode_value(std::span(bytes).subspan(32), type,
                                     core::plan::parse_address(address).value());
 }
 

@@ -3,8 +3,8 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/encode.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
 
 namespace eip2mqtt::test {
 
@@ -62,7 +62,7 @@ DatagramBuilder& DatagramBuilder::signature(std::uint8_t major, std::uint8_t min
 
 DatagramBuilder& DatagramBuilder::set(std::string_view address, core::plan::TagType type,
                                       const core::plan::Value& value) {
-    core::wire::encode_value(data_, type, core::plan::parse_address(address).value(), value);
+    core::plan::encode_value(data_, type, core::plan::parse_address(address).value(), value);
     return *this;
 }
 

@@ -17,8 +17,8 @@
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/commands.hpp"
 #include "eip2mqtt/app/logging.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/encode.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -104,7 +104,7 @@ int run_sim(const SimOptions& options) {
     std::function<void(SimulatedExchange&)> send_and_schedule = [&](SimulatedExchange& sim) {
         for (std::size_t i = 0; i < sim.plan.tags.size(); ++i) {
             const auto& tag = sim.plan.tags[i].spec;
-            core::wire::encode_value(sim.data, tag.type, tag.address,
+            core::plan::encode_value(sim.data, tag.type, tag.address,
                                      simulated_value(tag, sim.cycle, i));
         }
         const auto wall = std::chrono::system_clock::now().time_since_epoch();

@@ -29,9 +29,9 @@
 #include "eip2mqtt/core/exchange/arrival_stats.hpp"
 #include "eip2mqtt/core/exchange/wire_survey.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 #include "eip2mqtt/core/wire/drop_reason.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -174,7 +174,7 @@ public:
                     line += fmt::format(" {}=?", spec.name);
                     continue;
                 }
-                const auto value = core::wire::decode_value(datagram.data, spec.type, spec.address);
+                const auto value = core::plan::decode_value(datagram.data, spec.type, spec.address);
                 line += fmt::format(" {}={}", spec.name, core::plan::to_json(value));
             }
         }

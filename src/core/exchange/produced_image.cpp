@@ -6,8 +6,8 @@
 #include <chrono>
 #include <utility>
 
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/encode.hpp"
-#include "eip2mqtt/core/wire/value_codec.hpp"
 
 namespace eip2mqtt::core::exchange {
 
@@ -22,7 +22,7 @@ ProducedImage::ProducedImage(const plan::ExchangePlan& plan, std::span<const std
     // A missing image, or one saved under another length, starts from zeros plus `initial`.
     for (const auto& tag : plan.tags) {
         if (const auto& initial = tag.spec.initial()) {
-            wire::encode_value(data_, tag.spec.type, tag.spec.address, *initial);
+            plan::encode_value(data_, tag.spec.type, tag.spec.address, *initial);
         }
     }
 }
@@ -49,7 +49,7 @@ std::size_t ProducedImage::produce(WallTime wall, std::span<std::byte> out,
             const auto bytes = std::span(data_).subspan(tag.address.byte, plan::size_of(tag.type));
             std::array<std::byte, 8> before{};
             std::copy(bytes.begin(), bytes.end(), before.begin());
-            wire::encode_value(data_, tag.type, tag.address, write.value);
+            plan::encode_value(data_, tag.type, tag.address, write.value);
             if (!std::equal(bytes.begin(), bytes.end(), before.begin())) dirty_ = true;
         }
         carried.push_back(batch.id);

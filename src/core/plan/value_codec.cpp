@@ -1,4 +1,4 @@
-#include "eip2mqtt/core/wire/value_codec.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 
 #include <bit>
 #include <cassert>
@@ -7,7 +7,7 @@
 #include <limits>
 #include <variant>
 
-namespace eip2mqtt::core::wire {
+namespace eip2mqtt::core::plan {
 namespace {
 
 // docs/protocol.md §3: little-endian at any byte offset, so shifts, never pointer casts.
@@ -40,7 +40,7 @@ Int float_to_int(double value) {
 }
 
 template <class Int>
-Int to_int(const plan::Value& value) {
+Int to_int(const Value& value) {
     return std::visit(
         [](auto v) -> Int {
             using V = decltype(v);
@@ -54,17 +54,15 @@ Int to_int(const plan::Value& value) {
 }
 
 template <class Float>
-Float to_float(const plan::Value& value) {
+Float to_float(const Value& value) {
     return std::visit([](auto v) { return static_cast<Float>(v); }, value);
 }
 
 }  // namespace
 
-plan::Value decode_value(std::span<const std::byte> data, plan::TagType type,
-                         plan::Address address) {
-    using plan::TagType;
+Value decode_value(std::span<const std::byte> data, TagType type, Address address) {
     const std::size_t at = address.byte;
-    assert(at + plan::size_of(type) <= data.size());
+    assert(at + size_of(type) <= data.size());
     switch (type) {
         case TagType::bit:
             // §3: bit 0 is the least significant bit (0x01).
@@ -91,11 +89,9 @@ plan::Value decode_value(std::span<const std::byte> data, plan::TagType type,
     return false;
 }
 
-void encode_value(std::span<std::byte> data, plan::TagType type, plan::Address address,
-                  const plan::Value& value) {
-    using plan::TagType;
+void encode_value(std::span<std::byte> data, TagType type, Address address, const Value& value) {
     const std::size_t at = address.byte;
-    assert(at + plan::size_of(type) <= data.size());
+    assert(at + size_of(type) <= data.size());
     switch (type) {
         case TagType::bit: {
             // §3: producers write a bit by read-modify-write of its byte.
@@ -131,4 +127,4 @@ void encode_value(std::span<std::byte> data, plan::TagType type, plan::Address a
     }
 }
 
-}  // namespace eip2mqtt::core::wire
+}  // namespace eip2mqtt::core::plan

@@ -1,4 +1,4 @@
-#include "eip2mqtt/core/wire/value_codec.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,19 +10,16 @@
 #include "eip2mqtt/core/wire/decode.hpp"
 #include "tests/core/vectors.hpp"
 
-namespace eip2mqtt::core::wire {
+namespace eip2mqtt::core::plan {
 namespace {
 
-using plan::Address;
-using plan::TagType;
-using plan::Value;
 using test::from_hex;
 using test::to_hex;
 namespace vectors = test::vectors;
 
 std::vector<std::byte> data_of(std::string_view hex) {
     const auto bytes = from_hex(hex);
-    return {bytes.begin() + header_size, bytes.end()};
+    return {bytes.begin() + wire::header_size, bytes.end()};
 }
 
 Address at(std::uint16_t byte, std::uint8_t bit = 0) { return {byte, bit}; }
@@ -240,4 +237,4 @@ TEST(Conversion, FloatingValuesOutOfRangeSaturateAndNanIsZero) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::core::wire
+}  // namespace eip2mqtt::core::plan
