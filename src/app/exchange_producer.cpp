@@ -13,9 +13,9 @@
 namespace eip2mqtt::app {
 namespace {
 
-std::vector<std::byte> restore(const adapters::state::ImageStore& store,
+std::vector<std::byte> restore(const adapters::state::ImagePersister& persister,
                                const core::plan::ExchangePlan& plan) {
-    auto saved = store.load(plan);
+    auto saved = persister.load(plan);
     return saved ? std::move(*saved) : std::vector<std::byte>{};
 }
 
@@ -31,14 +31,17 @@ std::int64_t to_ms(core::WallTime wall) {
 ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
                                    adapters::udp::Endpoint destination,
                                    ProducerScheduler& scheduler,
-                                   const adapters::state::ImageStore& store,
+                                   adapters::state::ImagePersister& persister,
                                    PublishSettings settings, PublishSink sink)
     : plan_(std::make_shared<const core::plan::ExchangePlan>(std::move(plan))),
       destination_(destination),
       scheduler_(scheduler),
+      persister_(persister),
+      persist_key_(persister.attach(
+          [this](bool ok, const std::vector<std::uint64_t>& ids) { on_saved(ok, ids); })),
       settings_(settings),
       sink_(std::move(sink)),
-      image_(*plan_, restore(store, *plan_)),
+      image_(*plan_, restore(persister, *plan_)),
       datagram_(core::wire::header_size + plan_->length) {
     limiters_.reserve(plan_->tags.size());
     for (const auto& tag : plan_->tags) limiters_.emplace_back(tag.spec.max_writes_per_s());
@@ -48,7 +51,8 @@ ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
 }
 
 ExchangeProducer::~ExchangeProducer() {
-    if (id_) scheduler_.forget(*id_);
+    stop();
+    persister_.detach(persist_key_);
 }
 
 void ExchangeProducer::start(core::MonoTime start, std::size_t index, std::size_t count) {
@@ -66,6 +70,7 @@ void ExchangeProducer::start(core::MonoTime start, std::size_t index, std::size_
 
 void ExchangeProducer::stop() {
     if (id_) scheduler_.remove(*id_);
+    id_.reset();
 }
 
 std::size_t ExchangeProducer::cancel_queued_writes(std::string_view error) {
@@ -139,7 +144,7 @@ void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
     // nothing still waits for a save under way, which may hold the value it wrote.
     if (changed || (saves_in_flight_ > 0 && !carried_.empty())) {
         ++saves_in_flight_;
-        scheduler_.persist(id_.value(), plan_, image_.data(), carried_);
+        persister_.save(persist_key_, plan_, image_.data(), carried_);
         return;
     }
     publish_results(carried_);

@@ -8,7 +8,6 @@
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "app/detail/release_heap.hpp"
@@ -117,11 +116,11 @@ int Gateway::run() {
     receiver_->stop();
     for (auto& producer : producers_) producer->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
-    if (production_) production_->flush();
+    if (persister_) persister_->flush();
     mqtt_->stop(stop_flush_timeout);
     const auto stats = mqtt_->stats();
     spdlog::info("stopped: {} datagrams received, {} publications made, {} still queued",
-                 counters_.datagrams, stats.published, stats.queued);
+                 datagram_router_.counters().datagrams, stats.published, stats.queued);
     return 0;
 }
 
@@ -136,7 +135,10 @@ void Gateway::start() {
         producers_[i]->start(started_at_, i, producers_.size());
     }
     receiver_->start([this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
-                            bool truncated) { on_datagram(bytes, from, truncated); });
+                            bool truncated) {
+        datagram_router_.route(bytes, from, truncated, std::chrono::steady_clock::now(),
+                               std::chrono::system_clock::now());
+    });
     mqtt_->start();
     wait_signal();
     schedule_tick();
@@ -178,63 +180,6 @@ void Gateway::schedule_watchdog() {
     });
 }
 
-void Gateway::on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
-                          bool truncated) {
-    const auto now = std::chrono::steady_clock::now();
-    ++counters_.datagrams;
-    if (truncated) {
-        ++counters_.dropped[static_cast<std::size_t>(core::wire::DropReason::too_long)];
-        drop_log_.record_lazy(core::wire::DropReason::too_long, now, [&] {
-            return "datagram from " + adapters::udp::to_string(from) + " is larger than 1432 bytes";
-        });
-        return;
-    }
-    const auto decoded = core::wire::decode_datagram(bytes);
-    if (!decoded) {
-        const auto reason = decoded.error();
-        ++counters_.dropped[static_cast<std::size_t>(reason)];
-        drop_log_.record_lazy(reason, now, [&] {
-            return std::to_string(bytes.size()) + " bytes from " + adapters::udp::to_string(from);
-        });
-        return;
-    }
-    const auto& datagram = decoded.value();
-    const auto it = by_key_.find(datagram.header.key());
-    if (it == by_key_.end()) {
-        ++counters_.dropped[static_cast<std::size_t>(core::wire::DropReason::unknown_exchange)];
-        drop_log_.record_lazy(core::wire::DropReason::unknown_exchange, now, [&] {
-            return "producer " + core::wire::to_string(datagram.header.producer_id) + " exchange " +
-                   std::to_string(datagram.header.exchange_id) + " from " +
-                   adapters::udp::to_string(from) + " is not configured";
-        });
-        return;
-    }
-    ExchangeConsumer& consumer = *it->second;
-    const auto& spec = consumer.plan().spec;
-    if (spec.source && *spec.source != from.address) {
-        ++counters_.dropped[static_cast<std::size_t>(core::wire::DropReason::wrong_source)];
-        consumer.count_wrong_source();
-        drop_log_.record_lazy(core::wire::DropReason::wrong_source, now, [&] {
-            return "exchange " + spec.name + " came from " + adapters::udp::to_string(from) +
-                   ", expected " + adapters::udp::ipv4_to_string(*spec.source);
-        });
-        return;
-    }
-    const auto outcome = consumer.on_datagram(datagram, now, std::chrono::system_clock::now());
-    if (outcome.accepted()) {
-        ++counters_.accepted;
-        return;
-    }
-    ++counters_.dropped[static_cast<std::size_t>(*outcome.dropped)];
-    if (outcome.state_changed) {
-        spdlog::warn(
-            "exchange {}: {} (received {} data bytes, configured {}, signature {})", spec.name,
-            core::exchange::to_string(consumer.exchange().state()), datagram.data.size(),
-            consumer.plan().length,
-            core::wire::to_string(core::wire::Signature::from_wire(datagram.header.signature)));
-    }
-}
-
 void Gateway::on_connected() {
     spdlog::info("republishing retained state of {} exchange(s)",
                  consumers_.size() + producers_.size());
@@ -259,13 +204,17 @@ void Gateway::on_tick() {
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
     if (refresh_scan) {
         last_refresh_scan_ = now;
-        if (prometheus_) prometheus_->update(metrics_snapshot(now));
+        if (prometheus_) {
+            const auto stats = mqtt_->stats();
+            prometheus_->update(metrics_snapshot({datagram_router_.counters(), counters_, stats},
+                                                 consumers_, producers_, now));
+        }
     }
     // Every tick: each producer publishes its `_status` at its own phase of the second, so
     // 1,000 of them never publish in one handler (a 25 ms stall of the loop, issue #6).
     for (auto& producer : producers_) producer->on_tick(now);
     // The summary of a flood of drops that stopped, which no next drop would log.
-    drop_log_.flush(now);
+    datagram_router_.flush_log(now);
     for (auto& consumer : consumers_) {
         const auto before = consumer->exchange().state();
         consumer->on_tick(now, wall, refresh_scan);
@@ -291,105 +240,20 @@ void Gateway::schedule_metrics() {
 
 void Gateway::publish_metrics() {
     const auto stats = mqtt_->stats();
-    nlohmann::json dropped = nlohmann::json::object();
-    for (const auto reason : core::wire::all_drop_reasons) {
-        dropped[std::string(core::wire::to_string(reason))] =
-            counters_.dropped[static_cast<std::size_t>(reason)];
-    }
-    nlohmann::json writes_rejected = nlohmann::json::object();
-    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
-        writes_rejected[std::string(core::write::to_string(
-            static_cast<core::write::WriteError>(i)))] = counters_.writes_rejected[i];
-    }
-    const nlohmann::json metrics = {
-        {"uptime_s", std::chrono::duration_cast<std::chrono::seconds>(
-                         std::chrono::steady_clock::now() - started_at_)
-                         .count()},
-        {"datagrams", counters_.datagrams},
-        {"accepted", counters_.accepted},
-        {"dropped", dropped},
-        {"published", stats.published},
-        {"buffered", stats.queued},
-        {"publications_dropped", stats.dropped_overflow},
-        {"publications_coalesced", stats.coalesced},
-        {"publications_refused", stats.refused},
-        {"mqtt_connects", stats.connects},
-        {"writes_ok", counters_.writes_ok},
-        {"writes_rejected", writes_rejected},
-        {"writes_cancelled", counters_.writes_cancelled},
-    };
-    mqtt_->publish({metrics_topic_, metrics.dump(), 0, false, true});
+    const auto uptime = std::chrono::duration_cast<std::chrono::seconds>(
+        std::chrono::steady_clock::now() - started_at_);
+    mqtt_->publish({metrics_topic_,
+                    metrics_json({datagram_router_.counters(), counters_, stats}, uptime), 0, false,
+                    true});
     notifier_.status(status_line());
-}
-
-adapters::metrics::MetricsSnapshot Gateway::metrics_snapshot(core::MonoTime now) const {
-    adapters::metrics::MetricsSnapshot snapshot;
-    for (const auto& consumer : consumers_) {
-        const auto& c = consumer->exchange().counters();
-        adapters::metrics::ExchangeMetrics m;
-        m.name = consumer->plan().spec.name;
-        m.direction = "consume";
-        m.state = std::string(core::exchange::to_string(consumer->exchange().state()));
-        m.received = c.received;
-        m.accepted = c.accepted;
-        m.missed = c.missed;
-        m.duplicates = c.duplicates;
-        m.out_of_order = c.out_of_order;
-        m.restarts = c.restarts;
-        m.clock = std::string(core::exchange::to_string(consumer->clock().state()));
-        if (const auto offset = consumer->clock().offset_ms()) {
-            m.clock_offset_seconds = static_cast<double>(*offset) / 1000.0;
-        }
-        m.signature_mismatches = c.signature_mismatches;
-        m.length_mismatches = c.length_mismatches;
-        m.wrong_source = consumer->wrong_source();
-        if (const auto last = consumer->exchange().last_accepted()) {
-            m.last_seen_age_seconds = std::chrono::duration<double>(now - *last).count();
-        }
-        const auto& arrivals = consumer->arrivals();
-        if (arrivals.count() >= 2) {
-            m.jitter_seconds = arrivals.jitter().count();
-            if (const auto mean = arrivals.mean_period()) m.mean_period_seconds = mean->count();
-        }
-        snapshot.exchanges.push_back(std::move(m));
-    }
-    for (const auto& producer : producers_) {
-        adapters::metrics::ExchangeMetrics m;
-        m.name = producer->plan().spec.name;
-        m.direction = "produce";
-        m.state = producer->paused() ? "paused" : "producing";
-        m.sent = producer->counters().sent;
-        m.send_errors = producer->counters().send_errors;
-        m.skipped_deadlines = producer->counters().skipped_deadlines;
-        snapshot.exchanges.push_back(std::move(m));
-    }
-    const auto stats = mqtt_->stats();
-    auto& g = snapshot.gateway;
-    g.datagrams = counters_.datagrams;
-    g.accepted = counters_.accepted;
-    for (const auto reason : core::wire::all_drop_reasons) {
-        g.dropped[std::string(core::wire::to_string(reason))] =
-            counters_.dropped[static_cast<std::size_t>(reason)];
-    }
-    g.mqtt_connected = stats.connected;
-    g.published = stats.published;
-    g.buffered = stats.queued;
-    g.publications_dropped = stats.dropped_overflow;
-    g.publications_refused = stats.refused;
-    g.writes_ok = counters_.writes_ok;
-    g.writes_cancelled = counters_.writes_cancelled;
-    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
-        g.writes_rejected[std::string(core::write::to_string(
-            static_cast<core::write::WriteError>(i)))] = counters_.writes_rejected[i];
-    }
-    return snapshot;
 }
 
 std::string Gateway::status_line() const {
     const auto stats = mqtt_->stats();
-    return std::to_string(counters_.datagrams) + " datagrams, " +
-           std::to_string(counters_.accepted) + " accepted, " + std::to_string(stats.published) +
-           " published, MQTT " + (stats.connected ? "connected" : "disconnected");
+    return std::to_string(datagram_router_.counters().datagrams) + " datagrams, " +
+           std::to_string(datagram_router_.counters().accepted) + " accepted, " +
+           std::to_string(stats.published) + " published, MQTT " +
+           (stats.connected ? "connected" : "disconnected");
 }
 
 }  // namespace eip2mqtt::app

@@ -1,20 +1,16 @@
 #include "eip2mqtt/app/producer_scheduler.hpp"
 
-#include "eip2mqtt/app/exchange_producer.hpp"
+#include <utility>
 
 namespace eip2mqtt::app {
 
 ProducerScheduler::ProducerScheduler(boost::asio::any_io_executor loop,
-                                     adapters::udp::Sender& sender,
-                                     const adapters::state::ImageStore& store)
-    : timer_(loop), sender_(sender), persister_(store, loop, [this](ImagePersister::Saved&& saved) {
-          const auto it = producers_.find(saved.key);
-          if (it != producers_.end()) it->second->on_saved(saved.ok, saved.write_ids);
-      }) {}
+                                     adapters::udp::Sender& sender)
+    : timer_(std::move(loop)), sender_(sender) {}
 
 ProducerScheduler::~ProducerScheduler() = default;
 
-ProducerScheduler::Id ProducerScheduler::add(ExchangeProducer& producer,
+ProducerScheduler::Id ProducerScheduler::add(Producible& producer,
                                              const core::exchange::ProductionSchedule& schedule) {
     const auto id = queue_.add(schedule);
     producers_.emplace(id, &producer);
@@ -26,17 +22,7 @@ void ProducerScheduler::remove(Id id) {
     // The timer may stay armed for the removed exchange's deadline: that wake-up finds
     // nothing due, or other exchanges, and arms for the next.
     queue_.remove(id);
-}
-
-void ProducerScheduler::forget(Id id) {
-    queue_.remove(id);
     producers_.erase(id);
-}
-
-void ProducerScheduler::persist(Id id, std::shared_ptr<const core::plan::ExchangePlan> plan,
-                                std::span<const std::byte> data,
-                                std::vector<std::uint64_t> write_ids) {
-    persister_.save(id, std::move(plan), data, std::move(write_ids));
 }
 
 void ProducerScheduler::arm() {

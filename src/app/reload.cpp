@@ -48,7 +48,7 @@ std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
 
 void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running) {
     // Saves still under way must reach the disk before a restarted exchange reads its image.
-    if (production_) production_->flush();
+    if (persister_) persister_->flush();
     auto sink = [this](adapters::mqtt::Message&& message) { mqtt_->publish(std::move(message)); };
 
     // The running exchanges, consumers first: diff_plans' indices count in that order.
@@ -104,11 +104,12 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
             sender_options.multicast_ttl = config_.eip.multicast_ttl;
             sender_options.multicast_interface = config_.eip.multicast_interface;
             sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
-            production_ =
-                std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_, image_store_);
+            production_ = std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_);
+            persister_ = std::make_unique<adapters::state::ImagePersister>(image_store_,
+                                                                           loop_.get_executor());
         }
         producers_.push_back(std::make_unique<ExchangeProducer>(
-            std::move(plan), *destination, *production_, image_store_, publish_settings_, sink));
+            std::move(plan), *destination, *production_, *persister_, publish_settings_, sink));
         started_producers.push_back(producers_.back().get());
     }
 
@@ -126,8 +127,7 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
         mqtt_->publish({topic, "", publish_settings_.qos, true, true});
     }
 
-    by_key_.clear();
-    for (auto& consumer : consumers_) by_key_.emplace(consumer->plan().key(), consumer.get());
+    datagram_router_.set_consumers(consumers_);
     build_write_routes();
     if (!running) return;
 

@@ -2,7 +2,7 @@
 // answered ok once its save is delivered; a write still queued when the exchange is stopped for
 // good is answered "reloaded"; none is left without a result, none gets two.
 //
-// The producer is driven by hand (produce, on_sent, the scheduler's flush): the loop never runs,
+// The producer is driven by hand (produce, on_sent, the persister's flush): the loop never runs,
 // so the scheduler's timer never fires and nothing depends on time.
 
 #include "eip2mqtt/app/exchange_producer.hpp"
@@ -57,15 +57,18 @@ protected:
         adapters::udp::SenderOptions sender_options;
         sender_options.bind = "127.0.0.1";
         sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
-        scheduler_ = std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_, *store_);
+        scheduler_ = std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_);
+        persister_ =
+            std::make_unique<adapters::state::ImagePersister>(*store_, loop_.get_executor());
         producer_ = std::make_unique<ExchangeProducer>(
-            make_plan(), adapters::udp::Endpoint{0x7F000001, 9}, *scheduler_, *store_,
+            make_plan(), adapters::udp::Endpoint{0x7F000001, 9}, *scheduler_, *persister_,
             PublishSettings{},
             [this](adapters::mqtt::Message&& m) { published_.push_back(std::move(m)); });
         producer_->start(std::chrono::steady_clock::now(), 0, 1);
     }
     void TearDown() override {
         producer_.reset();
+        persister_.reset();
         scheduler_.reset();
         std::error_code ignored;
         fs::remove_all(dir_, ignored);
@@ -105,6 +108,7 @@ protected:
     std::unique_ptr<adapters::state::ImageStore> store_;
     std::unique_ptr<adapters::udp::Sender> sender_;
     std::unique_ptr<ProducerScheduler> scheduler_;
+    std::unique_ptr<adapters::state::ImagePersister> persister_;
     std::unique_ptr<ExchangeProducer> producer_;
     std::vector<adapters::mqtt::Message> published_;
 };
@@ -127,7 +131,7 @@ TEST_F(ExchangeProducerTest, QueuedWritesAreAnsweredReloadedOnceAndNeverApplied)
         core::plan::Value{std::int64_t{0}});
     // Answered once: nothing is left to cancel, and no later save answers them again.
     EXPECT_EQ(producer_->cancel_queued_writes("reloaded"), 0u);
-    scheduler_->flush();
+    persister_->flush();
     EXPECT_EQ(results().size(), 2u);
     EXPECT_EQ(results().at("a").size(), 1u);
 }
@@ -139,7 +143,7 @@ TEST_F(ExchangeProducerTest, ACarriedWriteWhoseSaveIsUnderWayStillGetsItsOkAfter
     write("queued", 8);
 
     // Gateway::apply_exchanges: flush the saves, then stop and cancel what is still queued.
-    scheduler_->flush();
+    persister_->flush();
     producer_->stop();
     EXPECT_EQ(producer_->cancel_queued_writes("reloaded"), 1u);
     EXPECT_EQ(results(), (std::map<std::string, std::vector<json>>{{"carried", {ok}},
@@ -154,7 +158,7 @@ TEST_F(ExchangeProducerTest, ACarriedWriteWhoseSaveIsUnderWayStillGetsItsOkAfter
 TEST_F(ExchangeProducerTest, WithNothingQueuedNothingIsCancelled) {
     write("a", 1);
     produce_once();
-    scheduler_->flush();
+    persister_->flush();
     producer_->stop();
     EXPECT_EQ(producer_->cancel_queued_writes("reloaded"), 0u);
     EXPECT_EQ(results(), (std::map<std::string, std::vector<json>>{{"a", {ok}}}));

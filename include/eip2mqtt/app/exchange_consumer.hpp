@@ -58,8 +58,9 @@ public:
     /// Inter-arrival period and jitter of accepted datagrams.
     const core::exchange::ArrivalStats& arrivals() const { return arrivals_; }
     /// A datagram of this exchange from an address other than its `source`.
-    void count_wrong_source() { ++wrong_source_; }
-    std::uint64_t wrong_source() const { return wrong_source_; }
+    /// ConsumedExchange::accepts_source: false (and counted) for a datagram to drop.
+    bool accepts_source(std::uint32_t address) { return exchange_.accepts_source(address); }
+    std::uint64_t wrong_source() const { return exchange_.counters().wrong_source; }
 
 private:
     void publish_tags(core::MonoTime now, bool force);
@@ -77,8 +78,7 @@ private:
     std::vector<std::string> batch_keys_;
     core::exchange::ArrivalStats arrivals_;
     core::exchange::ProducerClock clock_;
-    bool clock_seen_ = false;  ///< a datagram was accepted since start
-    std::uint64_t wrong_source_ = 0;
+    bool clock_seen_ = false;                   ///< a datagram was accepted since start
     std::int64_t timestamp_ms_ = 0;             ///< of the values the tags publish
     std::optional<std::int64_t> last_seen_ms_;  ///< wall time of the last accepted datagram
     std::optional<core::MonoTime> last_status_at_;

@@ -1,9 +1,9 @@
 #pragma once
 /// One produced exchange at run time (issue #3): produces its datagram when the
 /// ProducerScheduler says it is due (every period, against absolute deadlines), applies queued
-/// writes between two productions, echoes the produced values on the tag topics, persists the
-/// image when it changes, and answers each write once the datagram carrying it has left and
-/// the image carrying it is saved.
+/// writes between two productions, echoes the produced values on the tag topics, has the
+/// ImagePersister save the image when it changes, and answers each write once the datagram
+/// carrying it has left and the image carrying it is saved.
 ///
 /// Threading: the loop only.
 
@@ -16,7 +16,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "eip2mqtt/adapters/state/image_store.hpp"
+#include "eip2mqtt/adapters/state/image_persister.hpp"
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/producer_scheduler.hpp"
@@ -37,12 +37,12 @@ struct ProducerCounters {
     std::uint64_t persist_failures = 0;
 };
 
-class ExchangeProducer {
+class ExchangeProducer : public Producible {
 public:
-    /// The image is restored from `store` when a file of the same layout exists. `index` of
-    /// `count` spreads the first send over the period.
+    /// The image is restored through `persister` when a file of the same layout exists.
+    /// `scheduler` and `persister` must outlive the producer.
     ExchangeProducer(core::plan::ExchangePlan plan, adapters::udp::Endpoint destination,
-                     ProducerScheduler& scheduler, const adapters::state::ImageStore& store,
+                     ProducerScheduler& scheduler, adapters::state::ImagePersister& persister,
                      PublishSettings settings, PublishSink sink);
     ~ExchangeProducer();
     ExchangeProducer(const ExchangeProducer&) = delete;
@@ -55,7 +55,7 @@ public:
     /// For a stopped producer about to be destroyed (a reload changed or removed its
     /// exchange): answers every write still queued, which no datagram will ever carry, with
     /// `{"ok":false,"error":error}` and forgets it; returns how many. Writes already carried by
-    /// a sent datagram are not touched: they wait for their save, so flush the scheduler
+    /// a sent datagram are not touched: they wait for their save, so flush the persister
     /// before destroying the producer, and they get `{"ok":true}`.
     std::size_t cancel_queued_writes(std::string_view error);
 
@@ -71,18 +71,15 @@ public:
     /// Publishes the echo topics and `_status` again (after a reconnect).
     void republish(core::WallTime wall);
 
-    // --- called by the ProducerScheduler ------------------------------------------------
+    // --- Producible: called by the ProducerScheduler -------------------------------------
     /// Builds the next datagram (staged writes applied, header stamped with `wall`); the bytes
     /// stay valid until the next call.
-    std::span<const std::byte> produce(core::WallTime wall);
-    const adapters::udp::Endpoint& destination() const { return destination_; }
-    /// Deadlines skipped because the loop fell behind by more than a period.
-    void count_skipped(std::size_t skipped) { counters_.skipped_deadlines += skipped; }
-    /// After the datagram of produce() was sent (or refused): counters, `paused`, echo, and
-    /// the save whose completion publishes the results of the writes it carried.
-    void on_sent(bool sent, core::WallTime wall);
-    /// The image save asked by on_sent() is done: publishes the results of `write_ids`.
-    void on_saved(bool ok, const std::vector<std::uint64_t>& write_ids);
+    std::span<const std::byte> produce(core::WallTime wall) override;
+    const adapters::udp::Endpoint& destination() const override { return destination_; }
+    void count_skipped(std::size_t skipped) override { counters_.skipped_deadlines += skipped; }
+    /// Counters, `paused`, echo, and the save whose completion publishes the results of the
+    /// writes the datagram carried.
+    void on_sent(bool sent, core::WallTime wall) override;
 
     const core::plan::ExchangePlan& plan() const { return *plan_; }
     const PublishSettings& settings() const { return settings_; }
@@ -92,6 +89,8 @@ public:
     const core::exchange::ProducedImage& image() const { return image_; }
 
 private:
+    /// The image save asked by on_sent() is done: publishes the results of `write_ids`.
+    void on_saved(bool ok, const std::vector<std::uint64_t>& write_ids);
     void publish_echo(core::WallTime wall, bool all);
     void publish_status();
     void publish_results(const std::vector<std::uint64_t>& write_ids);
@@ -100,7 +99,9 @@ private:
     std::shared_ptr<const core::plan::ExchangePlan> plan_;
     adapters::udp::Endpoint destination_;
     ProducerScheduler& scheduler_;
-    std::optional<ProducerScheduler::Id> id_;  ///< set by start()
+    std::optional<ProducerScheduler::Id> id_;  ///< set by start(), reset by stop()
+    adapters::state::ImagePersister& persister_;
+    adapters::state::ImagePersister::Key persist_key_;
     std::size_t saves_in_flight_ = 0;
     PublishSettings settings_;
     PublishSink sink_;

@@ -16,32 +16,22 @@
 
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/adapters/state/image_persister.hpp"
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
 #include "eip2mqtt/adapters/udp/sender.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
-#include "eip2mqtt/app/drop_log.hpp"
+#include "eip2mqtt/app/datagram_router.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
+#include "eip2mqtt/app/gateway_metrics.hpp"
 #include "eip2mqtt/app/producer_scheduler.hpp"
 #include "eip2mqtt/app/write_router.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::app {
-
-/// Gateway-wide counters, published on the metrics topic.
-struct GatewayCounters {
-    std::uint64_t datagrams = 0;
-    std::uint64_t accepted = 0;
-    std::array<std::uint64_t, core::wire::drop_reason_count> dropped{};
-    std::uint64_t writes_ok = 0;  ///< writes staged for production
-    std::array<std::uint64_t, core::write::write_error_count> writes_rejected{};
-    /// Of writes_ok, those still queued when a reload changed or removed their exchange:
-    /// answered `"reloaded"`, never produced.
-    std::uint64_t writes_cancelled = 0;
-};
 
 class Gateway {
 public:
@@ -58,8 +48,6 @@ public:
 
 private:
     void start();
-    void on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
-                     bool truncated);
     void on_connected();
     void on_message(adapters::mqtt::Incoming message);
     void reject_write(const WriteReply& reply, const std::string& target,
@@ -81,7 +69,6 @@ private:
     void schedule_metrics();
     void publish_metrics();
     std::string status_line() const;
-    adapters::metrics::MetricsSnapshot metrics_snapshot(core::MonoTime now) const;
     void wait_signal();
 
     core::config::Config config_;
@@ -97,18 +84,17 @@ private:
     adapters::systemd::Notifier notifier_;
     std::unique_ptr<adapters::mqtt::Client> mqtt_;
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
-    std::unordered_map<core::wire::ExchangeKey, ExchangeConsumer*, core::wire::ExchangeKeyHash>
-        by_key_;
+    DatagramRouter datagram_router_;
     std::unique_ptr<adapters::udp::Receiver> receiver_;
     adapters::state::ImageStore image_store_;
     std::unique_ptr<adapters::udp::Sender> sender_;
     std::unique_ptr<ProducerScheduler> production_;  ///< with sender_; drives producers_
+    std::unique_ptr<adapters::state::ImagePersister> persister_;  ///< with sender_
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
     WriteRouter write_router_;
     std::unique_ptr<adapters::metrics::PrometheusEndpoint> prometheus_;
 
     GatewayCounters counters_;
-    DropLog drop_log_;
     core::MonoTime started_at_;
     core::MonoTime last_refresh_scan_;
     core::ThrottledLog rejected_write_log_;

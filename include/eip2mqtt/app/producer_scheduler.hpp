@@ -4,7 +4,7 @@
 /// could not keep up with. At each wake-up the exchanges due (in the current slot, see
 /// ProductionQueue) produce their datagrams, and all of them leave with one sendmmsg. Then
 /// each exchange does its bookkeeping (counters, `_status`, echo, persistence, write results).
-/// Image files are written by an ImagePersister thread, so an fsync never delays a datagram.
+/// The scheduler knows an exchange only as a Producible: what it needs to send it.
 ///
 /// Threading: the loop only.
 
@@ -18,17 +18,27 @@
 #include <unordered_map>
 #include <vector>
 
-#include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/adapters/udp/sender.hpp"
-#include "eip2mqtt/app/image_persister.hpp"
 #include "eip2mqtt/core/exchange/production_queue.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
 #include "eip2mqtt/core/exchange/sampling_clock.hpp"
-#include "eip2mqtt/core/plan/exchange_plan.hpp"
 
 namespace eip2mqtt::app {
 
-class ExchangeProducer;
+/// An exchange as the scheduler drives it.
+class Producible {
+public:
+    /// Builds the next datagram, stamped with `wall`; the bytes stay valid until the next call.
+    virtual std::span<const std::byte> produce(core::WallTime wall) = 0;
+    virtual const adapters::udp::Endpoint& destination() const = 0;
+    /// Deadlines skipped because the loop fell behind by more than a period.
+    virtual void count_skipped(std::size_t skipped) = 0;
+    /// After the datagram of produce() was sent (or refused), once the whole batch has left.
+    virtual void on_sent(bool sent, core::WallTime wall) = 0;
+
+protected:
+    ~Producible() = default;
+};
 
 class ProducerScheduler {
 public:
@@ -40,26 +50,17 @@ public:
     /// (timerfd and epoll per wake-up), which is what keeps the loop on time on a busy machine.
     static constexpr std::chrono::microseconds batch_slot{250};
 
-    /// `sender` and `store` must outlive the scheduler.
-    ProducerScheduler(boost::asio::any_io_executor loop, adapters::udp::Sender& sender,
-                      const adapters::state::ImageStore& store);
+    /// `sender` must outlive the scheduler.
+    ProducerScheduler(boost::asio::any_io_executor loop, adapters::udp::Sender& sender);
     ~ProducerScheduler();
     ProducerScheduler(const ProducerScheduler&) = delete;
     ProducerScheduler& operator=(const ProducerScheduler&) = delete;
 
     /// Starts producing `producer` on `schedule`; returns its id. The producer must call
-    /// forget() before it dies.
-    Id add(ExchangeProducer& producer, const core::exchange::ProductionSchedule& schedule);
-    /// Stops producing; saves under way still report to the producer.
-    void remove(Id id);
+    /// remove() before it dies.
+    Id add(Producible& producer, const core::exchange::ProductionSchedule& schedule);
     /// Stops producing and forgets the producer: nothing reaches it any more.
-    void forget(Id id);
-
-    /// Queues a save of the producer's image; ExchangeProducer::on_saved follows on the loop.
-    void persist(Id id, std::shared_ptr<const core::plan::ExchangePlan> plan,
-                 std::span<const std::byte> data, std::vector<std::uint64_t> write_ids);
-    /// Waits for every queued save and delivers its completion (stop, reload).
-    void flush() { persister_.flush(); }
+    void remove(Id id);
 
 private:
     void arm();
@@ -68,15 +69,14 @@ private:
     boost::asio::steady_timer timer_;
     adapters::udp::Sender& sender_;
     core::exchange::ProductionQueue queue_{batch_slot};
-    std::unordered_map<Id, ExchangeProducer*> producers_;
+    std::unordered_map<Id, Producible*> producers_;
     std::optional<core::MonoTime> armed_for_;
     core::exchange::SamplingClock sampling_clock_;
     // Reused at every wake-up, so a steady batch allocates nothing.
     std::vector<core::exchange::ProductionQueue::Due> due_;
-    std::vector<ExchangeProducer*> batch_producers_;
+    std::vector<Producible*> batch_producers_;
     std::vector<adapters::udp::OutgoingDatagram> batch_;
     std::vector<bool> sent_;
-    ImagePersister persister_;  ///< last: its completions find everything above alive
 };
 
 }  // namespace eip2mqtt::app

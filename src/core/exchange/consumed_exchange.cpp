@@ -49,8 +49,17 @@ std::string_view to_string(ConsumeState state) {
 }
 
 ConsumedExchange::ConsumedExchange(const plan::ExchangePlan& plan)
-    : length_(plan.length), timeout_(plan.timeout), signature_(plan.spec.signature) {
+    : length_(plan.length),
+      timeout_(plan.timeout),
+      signature_(plan.spec.signature),
+      source_(plan.spec.source) {
     image_.reserve(length_);
+}
+
+bool ConsumedExchange::accepts_source(std::uint32_t address) {
+    if (!source_ || *source_ == address) return true;
+    ++counters_.wrong_source;
+    return false;
 }
 
 ConsumeOutcome ConsumedExchange::on_datagram(const wire::Datagram& datagram, MonoTime now) {

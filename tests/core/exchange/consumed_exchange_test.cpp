@@ -487,5 +487,24 @@ TEST(ConsumedExchange, ReceivedCountsEveryDatagram) {
     EXPECT_EQ(c.timeouts, 0u);
 }
 
+TEST(SourceCheck, AnExchangeWithoutSourceAcceptsAnyAddress) {
+    ConsumedExchange exchange(make_plan());
+    EXPECT_TRUE(exchange.accepts_source(0x0A000001));
+    EXPECT_TRUE(exchange.accepts_source(0x7F000001));
+    EXPECT_EQ(exchange.counters().wrong_source, 0u);
+}
+
+TEST(SourceCheck, AnotherAddressIsRefusedCountedAndLeavesTheExchangeUntouched) {
+    auto plan = make_plan();
+    plan.spec.source = 0xC0A80101;
+    ConsumedExchange exchange(plan);
+    EXPECT_FALSE(exchange.accepts_source(0xC0A80102));
+    EXPECT_FALSE(exchange.accepts_source(0x7F000001));
+    EXPECT_TRUE(exchange.accepts_source(0xC0A80101));
+    EXPECT_EQ(exchange.counters().wrong_source, 2u);
+    EXPECT_EQ(exchange.counters().received, 0u);
+    EXPECT_EQ(exchange.state(), ConsumeState::waiting);
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::exchange

@@ -38,6 +38,9 @@ struct ConsumeCounters {
     std::uint64_t timeouts = 0;  ///< times the exchange went stale
     /// Producer restarts: a request id that looks old with a producer time that moved forward.
     std::uint64_t restarts = 0;
+    /// Datagrams refused because they came from another address than `source` (not counted
+    /// in `received`: the exchange never saw them).
+    std::uint64_t wrong_source = 0;
 };
 
 /// What became of one datagram.
@@ -52,6 +55,11 @@ class ConsumedExchange {
 public:
     /// `length` and `timeout` come from the plan; `signature` is the configured one.
     explicit ConsumedExchange(const plan::ExchangePlan& plan);
+
+    /// Whether a datagram of this exchange that came from `address` (IPv4, host order) may be
+    /// applied: any address when the exchange has no `source`. A refusal is counted; the
+    /// caller drops the datagram (DropReason::wrong_source).
+    bool accepts_source(std::uint32_t address);
 
     /// Applies rules 4-7 to a datagram of this exchange (the caller matched the key).
     /// On acceptance, image() holds the first `length` data bytes.
@@ -80,6 +88,7 @@ private:
     std::size_t length_;
     std::chrono::milliseconds timeout_;
     wire::Signature signature_;
+    std::optional<std::uint32_t> source_;
     ConsumeState state_ = ConsumeState::waiting;
     bool resync_ = true;  ///< the next datagram resynchronises the sequence without counting
     bool has_image_ = false;

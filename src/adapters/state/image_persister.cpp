@@ -1,16 +1,12 @@
-#include "eip2mqtt/app/image_persister.hpp"
+#include "eip2mqtt/adapters/state/image_persister.hpp"
 
 #include <boost/asio/post.hpp>
 #include <utility>
 
-namespace eip2mqtt::app {
+namespace eip2mqtt::adapters::state {
 
-ImagePersister::ImagePersister(const adapters::state::ImageStore& store,
-                               boost::asio::any_io_executor loop, OnSaved on_saved)
-    : store_(store),
-      loop_(std::move(loop)),
-      on_saved_(std::move(on_saved)),
-      worker_([this] { run(); }) {}
+ImagePersister::ImagePersister(const ImageStore& store, boost::asio::any_io_executor loop)
+    : store_(store), loop_(std::move(loop)), worker_([this] { run(); }) {}
 
 ImagePersister::~ImagePersister() {
     {
@@ -21,7 +17,15 @@ ImagePersister::~ImagePersister() {
     worker_.join();
 }
 
-void ImagePersister::save(std::uint64_t key, std::shared_ptr<const core::plan::ExchangePlan> plan,
+ImagePersister::Key ImagePersister::attach(OnSaved on_saved) {
+    const auto key = next_key_++;
+    handlers_.emplace(key, std::move(on_saved));
+    return key;
+}
+
+void ImagePersister::detach(Key key) { handlers_.erase(key); }
+
+void ImagePersister::save(Key key, std::shared_ptr<const core::plan::ExchangePlan> plan,
                           std::span<const std::byte> data, std::vector<std::uint64_t> write_ids) {
     {
         std::lock_guard lock(mutex_);
@@ -74,7 +78,10 @@ void ImagePersister::deliver() {
         done.swap(done_);
         delivery_posted_ = false;
     }
-    for (auto& saved : done) on_saved_(std::move(saved));
+    for (const auto& saved : done) {
+        const auto it = handlers_.find(saved.key);
+        if (it != handlers_.end()) it->second(saved.ok, saved.write_ids);
+    }
 }
 
-}  // namespace eip2mqtt::app
+}  // namespace eip2mqtt::adapters::state

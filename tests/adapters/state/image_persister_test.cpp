@@ -1,4 +1,4 @@
-#include "eip2mqtt/app/image_persister.hpp"
+#include "eip2mqtt/adapters/state/image_persister.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -16,7 +16,7 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 
-namespace eip2mqtt::app {
+namespace eip2mqtt::adapters::state {
 namespace {
 
 namespace fs = std::filesystem;
@@ -55,20 +55,33 @@ protected:
         fs::remove_all(dir_, ignored);
     }
 
+    /// Attaches a handler that records each completion under `name`.
+    ImagePersister::Key attach(ImagePersister& persister, std::string name) {
+        return persister.attach([this, name](bool ok, const std::vector<std::uint64_t>& ids) {
+            saved_.push_back({name, ok, ids});
+        });
+    }
+
+    struct Saved {
+        std::string name;
+        bool ok;
+        std::vector<std::uint64_t> write_ids;
+    };
     fs::path dir_;
     boost::asio::io_context loop_;
-    std::vector<ImagePersister::Saved> saved_;
+    std::vector<Saved> saved_;
 };
 
 TEST_F(ImagePersisterTest, FlushSavesEveryImageAndDeliversTheWriteIdsInOrder) {
-    adapters::state::ImageStore store(dir_.string());
+    ImageStore store(dir_.string());
     const auto a = make_plan("a");
     const auto b = make_plan("b");
-    ImagePersister persister(store, loop_.get_executor(),
-                             [this](ImagePersister::Saved&& s) { saved_.push_back(std::move(s)); });
-    persister.save(1, a, bytes(1, 2, 3, 4), {10});
-    persister.save(2, b, bytes(5, 6, 7, 8), {20, 21});
-    persister.save(1, a, bytes(9, 9, 9, 9), {11});
+    ImagePersister persister(store, loop_.get_executor());
+    const auto key_a = attach(persister, "a");
+    const auto key_b = attach(persister, "b");
+    persister.save(key_a, a, bytes(1, 2, 3, 4), {10});
+    persister.save(key_b, b, bytes(5, 6, 7, 8), {20, 21});
+    persister.save(key_a, a, bytes(9, 9, 9, 9), {11});
     persister.flush();
 
     EXPECT_EQ(store.load(*a), bytes(9, 9, 9, 9));  // the newest image of each exchange
@@ -77,7 +90,7 @@ TEST_F(ImagePersisterTest, FlushSavesEveryImageAndDeliversTheWriteIdsInOrder) {
     std::vector<std::uint64_t> ids_b;
     for (const auto& s : saved_) {
         EXPECT_TRUE(s.ok);
-        auto& ids = s.key == 1 ? ids_a : ids_b;
+        auto& ids = s.name == "a" ? ids_a : ids_b;
         ids.insert(ids.end(), s.write_ids.begin(), s.write_ids.end());
     }
     EXPECT_EQ(ids_a, (std::vector<std::uint64_t>{10, 11}));
@@ -89,13 +102,14 @@ TEST_F(ImagePersisterTest, FlushSavesEveryImageAndDeliversTheWriteIdsInOrder) {
 }
 
 TEST_F(ImagePersisterTest, CompletionsReachTheLoopWithoutFlush) {
-    adapters::state::ImageStore store(dir_.string());
+    ImageStore store(dir_.string());
     const auto a = make_plan("a");
-    ImagePersister persister(store, loop_.get_executor(), [this](ImagePersister::Saved&& s) {
-        saved_.push_back(std::move(s));
+    ImagePersister persister(store, loop_.get_executor());
+    const auto key = persister.attach([this](bool ok, const std::vector<std::uint64_t>& ids) {
+        saved_.push_back({"a", ok, ids});
         loop_.stop();
     });
-    persister.save(1, a, bytes(1, 2, 3, 4), {7});
+    persister.save(key, a, bytes(1, 2, 3, 4), {7});
     // The loop has no work of its own until the worker posts: keep it running until then.
     auto guard = boost::asio::make_work_guard(loop_);
     loop_.run_for(std::chrono::seconds(10));  // returns at the first completion
@@ -109,15 +123,31 @@ TEST_F(ImagePersisterTest, FailedSaveIsReportedWithItsWriteIds) {
     fs::create_directories(dir_);
     const auto file = dir_ / "not-a-directory";
     { std::ofstream(file) << "x"; }
-    adapters::state::ImageStore store((file / "state").string());
-    ImagePersister persister(store, loop_.get_executor(),
-                             [this](ImagePersister::Saved&& s) { saved_.push_back(std::move(s)); });
-    persister.save(3, make_plan("a"), bytes(1, 2, 3, 4), {5});
+    ImageStore store((file / "state").string());
+    ImagePersister persister(store, loop_.get_executor());
+    persister.save(attach(persister, "a"), make_plan("a"), bytes(1, 2, 3, 4), {5});
     persister.flush();
     ASSERT_EQ(saved_.size(), 1u);
     EXPECT_FALSE(saved_[0].ok);
     EXPECT_EQ(saved_[0].write_ids, std::vector<std::uint64_t>{5});
 }
 
+TEST_F(ImagePersisterTest, ADetachedHandlerHearsNothingButItsSaveStillReachesTheDisk) {
+    ImageStore store(dir_.string());
+    const auto a = make_plan("a");
+    const auto b = make_plan("b");
+    ImagePersister persister(store, loop_.get_executor());
+    const auto key_a = attach(persister, "a");
+    const auto key_b = attach(persister, "b");
+    EXPECT_NE(key_a, key_b);
+    persister.save(key_a, a, bytes(1, 2, 3, 4), {1});
+    persister.save(key_b, b, bytes(5, 6, 7, 8), {2});
+    persister.detach(key_a);  // exchange a was removed by a reload
+    persister.flush();
+    ASSERT_EQ(saved_.size(), 1u);
+    EXPECT_EQ(saved_[0].name, "b");
+    EXPECT_EQ(store.load(*a), bytes(1, 2, 3, 4));
+}
+
 }  // namespace
-}  // namespace eip2mqtt::app
+}  // namespace eip2mqtt::adapters::state

@@ -1,0 +1,62 @@
+#pragma once
+/// Every datagram the receiver reads goes through here (docs/architecture.md "One datagram
+/// north"): decoded, matched by its key to the consumed exchange it belongs to, checked against
+/// that exchange's source, and handed to it; each one dropped on the way is counted by reason
+/// and logged without flooding (DropLog).
+///
+/// Threading: the loop only. Time is passed in.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "eip2mqtt/adapters/udp/endpoint.hpp"
+#include "eip2mqtt/app/drop_log.hpp"
+#include "eip2mqtt/app/exchange_consumer.hpp"
+#include "eip2mqtt/core/time.hpp"
+#include "eip2mqtt/core/wire/drop_reason.hpp"
+#include "eip2mqtt/core/wire/header.hpp"
+
+namespace eip2mqtt::app {
+
+struct DatagramCounters {
+    std::uint64_t datagrams = 0;  ///< every datagram read
+    std::uint64_t accepted = 0;   ///< applied by their exchange
+    std::array<std::uint64_t, core::wire::drop_reason_count> dropped{};
+
+    std::uint64_t dropped_for(core::wire::DropReason reason) const {
+        return dropped[static_cast<std::size_t>(reason)];
+    }
+};
+
+class DatagramRouter {
+public:
+    /// The consumers datagrams are routed to, replacing the ones before (start, reload). They
+    /// must outlive their use here: call again before destroying any.
+    void set_consumers(std::span<const std::unique_ptr<ExchangeConsumer>> consumers);
+
+    /// One datagram as read from `from`; `truncated`: it did not fit the receive buffer.
+    void route(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
+               bool truncated, core::MonoTime now, core::WallTime wall);
+
+    /// Summarises the drops not logged yet (the gateway's tick).
+    void flush_log(core::MonoTime now) { drop_log_.flush(now); }
+
+    const DatagramCounters& counters() const { return counters_; }
+
+private:
+    void count_drop(core::wire::DropReason reason) {
+        ++counters_.dropped[static_cast<std::size_t>(reason)];
+    }
+
+    std::unordered_map<core::wire::ExchangeKey, ExchangeConsumer*, core::wire::ExchangeKeyHash>
+        by_key_;
+    DatagramCounters counters_;
+    DropLog drop_log_;
+};
+
+}  // namespace eip2mqtt::app

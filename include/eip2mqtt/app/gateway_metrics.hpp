@@ -1,0 +1,47 @@
+#pragma once
+/// The gateway's metrics, built from its counters alone: the JSON of `{base}/bridge/metrics`
+/// (docs/mqtt-api.md, docs/schema/metrics.json) and the snapshot Prometheus serves. Pure: no
+/// socket, no clock of its own, so each figure can be checked without running a gateway.
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
+#include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/app/datagram_router.hpp"
+#include "eip2mqtt/app/exchange_consumer.hpp"
+#include "eip2mqtt/app/exchange_producer.hpp"
+#include "eip2mqtt/core/time.hpp"
+#include "eip2mqtt/core/write/write_request.hpp"
+
+namespace eip2mqtt::app {
+
+/// What the gateway counts of the writes it handles.
+struct GatewayCounters {
+    std::uint64_t writes_ok = 0;  ///< writes staged for production
+    std::array<std::uint64_t, core::write::write_error_count> writes_rejected{};
+    /// Of writes_ok, those still queued when a reload changed or removed their exchange:
+    /// answered `"reloaded"`, never produced.
+    std::uint64_t writes_cancelled = 0;
+};
+
+/// Everything the metrics are made of, borrowed for one call.
+struct MetricsSources {
+    const DatagramCounters& datagrams;
+    const GatewayCounters& gateway;
+    const adapters::mqtt::ClientStats& mqtt;
+};
+
+/// The payload of the metrics topic.
+std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime);
+
+/// Gateway and per-exchange figures for Prometheus, ages taken at `now`.
+adapters::metrics::MetricsSnapshot metrics_snapshot(
+    const MetricsSources& sources, std::span<const std::unique_ptr<ExchangeConsumer>> consumers,
+    std::span<const std::unique_ptr<ExchangeProducer>> producers, core::MonoTime now);
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,72 @@
+#include "eip2mqtt/app/datagram_router.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <string>
+
+#include "eip2mqtt/core/wire/decode.hpp"
+
+namespace eip2mqtt::app {
+
+void DatagramRouter::set_consumers(std::span<const std::unique_ptr<ExchangeConsumer>> consumers) {
+    by_key_.clear();
+    for (const auto& consumer : consumers) by_key_.emplace(consumer->plan().key(), consumer.get());
+}
+
+void DatagramRouter::route(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
+                           bool truncated, core::MonoTime now, core::WallTime wall) {
+    using core::wire::DropReason;
+    ++counters_.datagrams;
+    if (truncated) {
+        count_drop(DropReason::too_long);
+        drop_log_.record_lazy(DropReason::too_long, now, [&] {
+            return "datagram from " + adapters::udp::to_string(from) + " is larger than 1432 bytes";
+        });
+        return;
+    }
+    const auto decoded = core::wire::decode_datagram(bytes);
+    if (!decoded) {
+        const auto reason = decoded.error();
+        count_drop(reason);
+        drop_log_.record_lazy(reason, now, [&] {
+            return std::to_string(bytes.size()) + " bytes from " + adapters::udp::to_string(from);
+        });
+        return;
+    }
+    const auto& datagram = decoded.value();
+    const auto it = by_key_.find(datagram.header.key());
+    if (it == by_key_.end()) {
+        count_drop(DropReason::unknown_exchange);
+        drop_log_.record_lazy(DropReason::unknown_exchange, now, [&] {
+            return "producer " + core::wire::to_string(datagram.header.producer_id) + " exchange " +
+                   std::to_string(datagram.header.exchange_id) + " from " +
+                   adapters::udp::to_string(from) + " is not configured";
+        });
+        return;
+    }
+    ExchangeConsumer& consumer = *it->second;
+    const auto& spec = consumer.plan().spec;
+    if (!consumer.accepts_source(from.address)) {
+        count_drop(DropReason::wrong_source);
+        drop_log_.record_lazy(DropReason::wrong_source, now, [&] {
+            return "exchange " + spec.name + " came from " + adapters::udp::to_string(from) +
+                   ", expected " + adapters::udp::ipv4_to_string(spec.source.value_or(0));
+        });
+        return;
+    }
+    const auto outcome = consumer.on_datagram(datagram, now, wall);
+    if (outcome.accepted()) {
+        ++counters_.accepted;
+        return;
+    }
+    count_drop(*outcome.dropped);
+    if (outcome.state_changed) {
+        spdlog::warn(
+            "exchange {}: {} (received {} data bytes, configured {}, signature {})", spec.name,
+            core::exchange::to_string(consumer.exchange().state()), datagram.data.size(),
+            consumer.plan().length,
+            core::wire::to_string(core::wire::Signature::from_wire(datagram.header.signature)));
+    }
+}
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,114 @@
+#include "eip2mqtt/app/gateway_metrics.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace eip2mqtt::app {
+namespace {
+
+adapters::metrics::ExchangeMetrics consumer_metrics(const ExchangeConsumer& consumer,
+                                                    core::MonoTime now) {
+    const auto& c = consumer.exchange().counters();
+    adapters::metrics::ExchangeMetrics m;
+    m.name = consumer.plan().spec.name;
+    m.direction = "consume";
+    m.state = std::string(core::exchange::to_string(consumer.exchange().state()));
+    m.received = c.received;
+    m.accepted = c.accepted;
+    m.missed = c.missed;
+    m.duplicates = c.duplicates;
+    m.out_of_order = c.out_of_order;
+    m.restarts = c.restarts;
+    m.clock = std::string(core::exchange::to_string(consumer.clock().state()));
+    if (const auto offset = consumer.clock().offset_ms()) {
+        m.clock_offset_seconds = static_cast<double>(*offset) / 1000.0;
+    }
+    m.signature_mismatches = c.signature_mismatches;
+    m.length_mismatches = c.length_mismatches;
+    m.wrong_source = consumer.wrong_source();
+    if (const auto last = consumer.exchange().last_accepted()) {
+        m.last_seen_age_seconds = std::chrono::duration<double>(now - *last).count();
+    }
+    const auto& arrivals = consumer.arrivals();
+    if (arrivals.count() >= 2) {
+        m.jitter_seconds = arrivals.jitter().count();
+        if (const auto mean = arrivals.mean_period()) m.mean_period_seconds = mean->count();
+    }
+    return m;
+}
+
+adapters::metrics::ExchangeMetrics producer_metrics(const ExchangeProducer& producer) {
+    adapters::metrics::ExchangeMetrics m;
+    m.name = producer.plan().spec.name;
+    m.direction = "produce";
+    m.state = producer.paused() ? "paused" : "producing";
+    m.sent = producer.counters().sent;
+    m.send_errors = producer.counters().send_errors;
+    m.skipped_deadlines = producer.counters().skipped_deadlines;
+    return m;
+}
+
+std::string write_error_name(std::size_t index) {
+    return std::string(core::write::to_string(static_cast<core::write::WriteError>(index)));
+}
+
+}  // namespace
+
+std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime) {
+    nlohmann::json dropped = nlohmann::json::object();
+    for (const auto reason : core::wire::all_drop_reasons) {
+        dropped[std::string(core::wire::to_string(reason))] = sources.datagrams.dropped_for(reason);
+    }
+    nlohmann::json writes_rejected = nlohmann::json::object();
+    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
+        writes_rejected[write_error_name(i)] = sources.gateway.writes_rejected[i];
+    }
+    const auto& mqtt = sources.mqtt;
+    const nlohmann::json metrics = {
+        {"uptime_s", uptime.count()},
+        {"datagrams", sources.datagrams.datagrams},
+        {"accepted", sources.datagrams.accepted},
+        {"dropped", dropped},
+        {"published", mqtt.published},
+        {"buffered", mqtt.queued},
+        {"publications_dropped", mqtt.dropped_overflow},
+        {"publications_coalesced", mqtt.coalesced},
+        {"publications_refused", mqtt.refused},
+        {"mqtt_connects", mqtt.connects},
+        {"writes_ok", sources.gateway.writes_ok},
+        {"writes_rejected", writes_rejected},
+        {"writes_cancelled", sources.gateway.writes_cancelled},
+    };
+    return metrics.dump();
+}
+
+adapters::metrics::MetricsSnapshot metrics_snapshot(
+    const MetricsSources& sources, std::span<const std::unique_ptr<ExchangeConsumer>> consumers,
+    std::span<const std::unique_ptr<ExchangeProducer>> producers, core::MonoTime now) {
+    adapters::metrics::MetricsSnapshot snapshot;
+    snapshot.exchanges.reserve(consumers.size() + producers.size());
+    for (const auto& consumer : consumers) {
+        snapshot.exchanges.push_back(consumer_metrics(*consumer, now));
+    }
+    for (const auto& producer : producers)
+        snapshot.exchanges.push_back(producer_metrics(*producer));
+    auto& g = snapshot.gateway;
+    g.datagrams = sources.datagrams.datagrams;
+    g.accepted = sources.datagrams.accepted;
+    for (const auto reason : core::wire::all_drop_reasons) {
+        g.dropped[std::string(core::wire::to_string(reason))] =
+            sources.datagrams.dropped_for(reason);
+    }
+    g.mqtt_connected = sources.mqtt.connected;
+    g.published = sources.mqtt.published;
+    g.buffered = sources.mqtt.queued;
+    g.publications_dropped = sources.mqtt.dropped_overflow;
+    g.publications_refused = sources.mqtt.refused;
+    g.writes_ok = sources.gateway.writes_ok;
+    g.writes_cancelled = sources.gateway.writes_cancelled;
+    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
+        g.writes_rejected[write_error_name(i)] = sources.gateway.writes_rejected[i];
+    }
+    return snapshot;
+}
+
+}  // namespace eip2mqtt::app

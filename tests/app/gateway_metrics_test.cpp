@@ -1,0 +1,107 @@
+// The gateway's metrics from its counters alone (docs/mqtt-api.md "Metrics"): each counter lands
+// in its own field, every drop reason and write error is listed even at zero, and the payload
+// is one the documented schema accepts.
+
+#include "eip2mqtt/app/gateway_metrics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/schema_check.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using namespace std::chrono_literals;
+using core::wire::DropReason;
+using core::write::WriteError;
+using nlohmann::json;
+
+struct Counters {
+    DatagramCounters datagrams;
+    GatewayCounters gateway;
+    adapters::mqtt::ClientStats mqtt;
+
+    Counters() {
+        datagrams.datagrams = 10;
+        datagrams.accepted = 6;
+        datagrams.dropped[static_cast<std::size_t>(DropReason::too_short)] = 3;
+        datagrams.dropped[static_cast<std::size_t>(DropReason::wrong_source)] = 1;
+        gateway.writes_ok = 5;
+        gateway.writes_cancelled = 2;
+        gateway.writes_rejected[static_cast<std::size_t>(WriteError::out_of_range)] = 4;
+        mqtt.connected = true;
+        mqtt.published = 100;
+        mqtt.queued = 7;
+        mqtt.dropped_overflow = 8;
+        mqtt.coalesced = 9;
+        mqtt.refused = 11;
+        mqtt.connects = 12;
+    }
+    MetricsSources sources() const { return {datagrams, gateway, mqtt}; }
+};
+
+TEST(MetricsJson, EachCounterLandsInItsField) {
+    const Counters c;
+    const auto metrics = json::parse(metrics_json(c.sources(), 42s));
+    EXPECT_EQ(metrics["uptime_s"], 42);
+    EXPECT_EQ(metrics["datagrams"], 10);
+    EXPECT_EQ(metrics["accepted"], 6);
+    EXPECT_EQ(metrics["dropped"]["too_short"], 3);
+    EXPECT_EQ(metrics["dropped"]["wrong_source"], 1);
+    EXPECT_EQ(metrics["published"], 100);
+    EXPECT_EQ(metrics["buffered"], 7);
+    EXPECT_EQ(metrics["publications_dropped"], 8);
+    EXPECT_EQ(metrics["publications_coalesced"], 9);
+    EXPECT_EQ(metrics["publications_refused"], 11);
+    EXPECT_EQ(metrics["mqtt_connects"], 12);
+    EXPECT_EQ(metrics["writes_ok"], 5);
+    EXPECT_EQ(metrics["writes_cancelled"], 2);
+    EXPECT_EQ(metrics["writes_rejected"]["out_of_range"], 4);
+}
+
+TEST(MetricsJson, EveryDropReasonAndWriteErrorIsListedEvenAtZero) {
+    const auto metrics = json::parse(metrics_json(Counters{}.sources(), 0s));
+    ASSERT_EQ(metrics["dropped"].size(), core::wire::drop_reason_count);
+    for (const auto reason : core::wire::all_drop_reasons) {
+        EXPECT_TRUE(metrics["dropped"].contains(std::string(core::wire::to_string(reason))));
+    }
+    ASSERT_EQ(metrics["writes_rejected"].size(), core::write::write_error_count);
+    EXPECT_EQ(metrics["writes_rejected"]["overlapping_tags"], 0);
+}
+
+TEST(MetricsJson, MatchesTheDocumentedSchema) {
+    const auto payload = metrics_json(Counters{}.sources(), 42s);
+    EXPECT_EQ(test::schema_problem(test::schema_file("metrics.json"), payload), "") << payload;
+}
+
+TEST(MetricsSnapshot, CarriesTheGatewayFiguresAndEachExchange) {
+    const Counters c;
+    core::plan::ExchangeSpec spec;
+    spec.name = "e1";
+    spec.direction = core::plan::Direction::consume;
+    spec.exchange_id = 1;
+    spec.length = 4;
+    spec.topic = "e1";
+    std::vector<std::unique_ptr<ExchangeConsumer>> consumers;
+    consumers.push_back(
+        std::make_unique<ExchangeConsumer>(core::plan::make_exchange_plan(spec, "plant"),
+                                           PublishSettings{}, [](adapters::mqtt::Message&&) {}));
+
+    const auto snapshot = metrics_snapshot(c.sources(), consumers, {}, core::MonoTime{} + 1h);
+    EXPECT_EQ(snapshot.gateway.datagrams, 10u);
+    EXPECT_EQ(snapshot.gateway.accepted, 6u);
+    EXPECT_EQ(snapshot.gateway.dropped.at("too_short"), 3u);
+    EXPECT_TRUE(snapshot.gateway.mqtt_connected);
+    EXPECT_EQ(snapshot.gateway.published, 100u);
+    EXPECT_EQ(snapshot.gateway.publications_refused, 11u);
+    EXPECT_EQ(snapshot.gateway.writes_rejected.at("out_of_range"), 4u);
+    ASSERT_EQ(snapshot.exchanges.size(), 1u);
+    EXPECT_EQ(snapshot.exchanges[0].name, "e1");
+    EXPECT_EQ(snapshot.exchanges[0].direction, "consume");
+    EXPECT_EQ(snapshot.exchanges[0].state, "waiting");
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app
