@@ -4,7 +4,6 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <nlohmann/json.hpp>
 
 #include "eip2mqtt/adapters/mqtt/payload.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
@@ -77,8 +76,7 @@ std::size_t ExchangeProducer::cancel_queued_writes(std::string_view error) {
     std::vector<std::uint64_t> ids;
     image_.discard_pending(ids);
     if (ids.empty()) return 0;
-    // As the gateway's other rejections (Gateway::reject_write).
-    const auto payload = nlohmann::json{{"ok", false}, {"error", error}}.dump();
+    const auto payload = adapters::mqtt::format_write_result(error);
     for (const auto id : ids) {
         const auto it = replies_.find(id);
         if (it == replies_.end()) continue;
@@ -160,7 +158,7 @@ void ExchangeProducer::publish_results(const std::vector<std::uint64_t>& write_i
     for (const auto id : write_ids) {
         const auto it = replies_.find(id);
         if (it == replies_.end()) continue;
-        sink_({it->second.topic, R"({"ok":true})", 1, false, false,
+        sink_({it->second.topic, adapters::mqtt::format_write_result(), 1, false, false,
                std::move(it->second.correlation_data)});
         replies_.erase(it);
     }
@@ -194,12 +192,15 @@ void ExchangeProducer::on_tick(core::MonoTime now) {
 
 void ExchangeProducer::publish_status() {
     last_status_sent_ = counters_.sent;
-    sink_({plan_->status_topic,
-           fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
-                       R"("skipped_deadlines":{},"writes_applied":{},"writes_pending":{}}})",
-                       failing_ ? "paused" : "producing", image_.next_request_id(), counters_.sent,
-                       counters_.send_errors, counters_.skipped_deadlines, counters_.writes_applied,
-                       image_.pending()),
+    adapters::mqtt::ProducedStatus status;
+    status.paused = failing_;
+    status.request_id = image_.next_request_id();
+    status.sent = counters_.sent;
+    status.send_errors = counters_.send_errors;
+    status.skipped_deadlines = counters_.skipped_deadlines;
+    status.writes_applied = counters_.writes_applied;
+    status.writes_pending = image_.pending();
+    sink_({plan_->status_topic, adapters::mqtt::format_produced_status_payload(status),
            settings_.qos, true, true});
 }
 

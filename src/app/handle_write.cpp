@@ -5,8 +5,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include <nlohmann/json.hpp>
-
+#include "eip2mqtt/adapters/mqtt/payload.hpp"
 #include "eip2mqtt/app/gateway.hpp"
 #include "eip2mqtt/core/printable.hpp"
 
@@ -28,11 +27,8 @@ void Gateway::reject_write(const WriteReply& reply, const std::string& target,
                            const core::write::WriteRejection& rejection,
                            const std::string& detail) {
     ++counters_.writes_rejected[static_cast<std::size_t>(rejection.error)];
-    const nlohmann::json result = {{"ok", false}, {"error", rejection.message}};
     if (!reply.topic.empty()) {
-        // Replace, not throw, should a message ever carry bytes that are not UTF-8.
-        mqtt_->publish({reply.topic,
-                        result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), 1,
+        mqtt_->publish({reply.topic, adapters::mqtt::format_write_result(rejection.message), 1,
                         false, false, reply.correlation_data});
     }
     // Each is answered and counted; the log is throttled (a client may flood).

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iterator>
+#include <nlohmann/json.hpp>
 
 namespace eip2mqtt::adapters::mqtt {
 
@@ -53,6 +54,20 @@ void append_json_string(std::string& out, std::string_view text) {
 
 std::int64_t timestamp_ms(std::uint32_t seconds, std::uint32_t nanoseconds) {
     return static_cast<std::int64_t>(seconds) * 1000 + nanoseconds / 1000000;
+}
+
+std::string format_produced_status_payload(const ProducedStatus& status) {
+    return fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
+                       R"("skipped_deadlines":{},"writes_applied":{},"writes_pending":{}}})",
+                       status.paused ? "paused" : "producing", status.request_id, status.sent,
+                       status.send_errors, status.skipped_deadlines, status.writes_applied,
+                       status.writes_pending);
+}
+
+std::string format_write_result(std::optional<std::string_view> error) {
+    if (!error) return R"({"ok":true})";
+    const nlohmann::json result = {{"ok", false}, {"error", *error}};
+    return result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 }  // namespace eip2mqtt::adapters::mqtt

@@ -25,5 +25,33 @@ TEST(JsonString, QuotesAndEscapesWhatJsonRequires) {
     EXPECT_EQ(json_string(""), R"(x"")");
 }
 
+TEST(WriteResult, OkOrTheErrorAsAJsonString) {
+    EXPECT_EQ(format_write_result(), R"({"ok":true})");
+    EXPECT_EQ(format_write_result("reloaded"), R"({"error":"reloaded","ok":false})");
+    EXPECT_EQ(format_write_result(R"(tag "A\B" is read-only)"),
+              R"({"error":"tag \"A\\B\" is read-only","ok":false})");
+}
+
+TEST(WriteResult, BytesThatAreNotUtf8AreReplacedSoTheResultStaysJson) {
+    // A client may name a tag with any bytes; the refusal quotes the name.
+    EXPECT_EQ(format_write_result("unknown tag \xff\xfe"),
+              "{\"error\":\"unknown tag \xef\xbf\xbd\xef\xbf\xbd\",\"ok\":false}");
+}
+
+TEST(ProducedStatus, CarriesEveryCounterAndTheState) {
+    ProducedStatus status;
+    status.request_id = 7;
+    status.sent = 100;
+    status.send_errors = 2;
+    status.skipped_deadlines = 3;
+    status.writes_applied = 4;
+    status.writes_pending = 5;
+    EXPECT_EQ(format_produced_status_payload(status),
+              R"({"state":"producing","request_id":7,"sent":100,"send_errors":2,)"
+              R"("skipped_deadlines":3,"writes_applied":4,"writes_pending":5})");
+    status.paused = true;
+    EXPECT_EQ(format_produced_status_payload(status).substr(0, 18), R"({"state":"paused",)");
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::mqtt

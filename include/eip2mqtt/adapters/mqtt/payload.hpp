@@ -29,6 +29,26 @@ std::string format_status_payload(const core::exchange::ConsumedExchange& exchan
                                   std::optional<std::int64_t> last_seen_ms,
                                   const core::exchange::ProducerClock& clock);
 
+/// A produced exchange's `_status` (docs/mqtt-api.md "Exchange status").
+struct ProducedStatus {
+    bool paused = false;           ///< sends fail
+    std::uint16_t request_id = 0;  ///< of the next datagram
+    std::uint64_t sent = 0;
+    std::uint64_t send_errors = 0;
+    std::uint64_t skipped_deadlines = 0;
+    std::uint64_t writes_applied = 0;
+    std::uint64_t writes_pending = 0;
+};
+
+/// `{"state":"producing","request_id":…,"sent":…,"send_errors":…,"skipped_deadlines":…,
+/// "writes_applied":…,"writes_pending":…}`; state "paused" while sends fail.
+std::string format_produced_status_payload(const ProducedStatus& status);
+
+/// A write's result (docs/mqtt-api.md "Results"): `{"ok":true}` without `error`, else
+/// `{"error":…,"ok":false}` (keys in order). Bytes of `error` that are not UTF-8 become U+FFFD, so
+/// that the result stays JSON whatever a client put in the names the message quotes.
+std::string format_write_result(std::optional<std::string_view> error = std::nullopt);
+
 /// Appends `text` as a JSON string, quoted and escaped: tag names may hold `"` and a backslash.
 void append_json_string(std::string& out, std::string_view text);
 
