@@ -46,11 +46,8 @@ std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
     return plans;
 }
 
-void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running) {
-    // Saves still under way must reach the disk before a restarted exchange reads its image.
-    if (persister_) persister_->flush();
-    auto sink = [this](adapters::mqtt::Message&& message) { mqtt_->publish(std::move(message)); };
-
+core::plan::PlanDiff Gateway::diff_running(
+    const std::vector<core::plan::ExchangePlan>& plans) const {
     // The running exchanges, consumers first: diff_plans' indices count in that order.
     std::vector<const core::plan::ExchangePlan*> running_plans;
     bool settings_changed = false;
@@ -62,8 +59,40 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
         running_plans.push_back(&producer->plan());
         settings_changed |= !(producer->settings() == publish_settings_);
     }
-    const auto diff = core::plan::diff_plans(running_plans, plans, settings_changed);
-    running_plans.clear();
+    return core::plan::diff_plans(running_plans, plans, settings_changed);
+}
+
+std::unique_ptr<ExchangeProducer> Gateway::make_producer(core::plan::ExchangePlan plan,
+                                                         const PublishSink& sink) {
+    const auto destination =
+        adapters::udp::resolve_endpoint(plan.spec.destination, config_.eip.port);
+    if (!destination) {
+        throw std::runtime_error("exchange " + plan.spec.name + ": cannot resolve destination " +
+                                 plan.spec.destination);
+    }
+    if (!sender_) {
+        // Opened with the first produced exchange: a consume-only gateway has one socket.
+        adapters::udp::SenderOptions sender_options;
+        sender_options.bind = config_.eip.bind;
+        sender_options.multicast_ttl = config_.eip.multicast_ttl;
+        sender_options.multicast_interface = config_.eip.multicast_interface;
+        sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
+        production_ = std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_);
+        persister_ =
+            std::make_unique<adapters::state::ImagePersister>(image_store_, loop_.get_executor());
+    }
+    return std::make_unique<ExchangeProducer>(std::move(plan), *destination, *production_,
+                                              *persister_, publish_settings_, sink);
+}
+
+void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running) {
+    // Saves still under way must reach the disk before a restarted exchange reads its image.
+    if (persister_) persister_->flush();
+    const PublishSink sink = [this](adapters::mqtt::Message&& message) {
+        mqtt_->publish(std::move(message));
+    };
+
+    const auto diff = diff_running(plans);
 
     auto old_consumers = std::move(consumers_);
     auto old_producers = std::move(producers_);
@@ -91,25 +120,7 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
             started_consumers.push_back(consumers_.back().get());
             continue;
         }
-        const auto destination =
-            adapters::udp::resolve_endpoint(plan.spec.destination, config_.eip.port);
-        if (!destination) {
-            throw std::runtime_error("exchange " + plan.spec.name +
-                                     ": cannot resolve destination " + plan.spec.destination);
-        }
-        if (!sender_) {
-            // Opened with the first produced exchange: a consume-only gateway has one socket.
-            adapters::udp::SenderOptions sender_options;
-            sender_options.bind = config_.eip.bind;
-            sender_options.multicast_ttl = config_.eip.multicast_ttl;
-            sender_options.multicast_interface = config_.eip.multicast_interface;
-            sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
-            production_ = std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_);
-            persister_ = std::make_unique<adapters::state::ImagePersister>(image_store_,
-                                                                           loop_.get_executor());
-        }
-        producers_.push_back(std::make_unique<ExchangeProducer>(
-            std::move(plan), *destination, *production_, *persister_, publish_settings_, sink));
+        producers_.push_back(make_producer(std::move(plan), sink));
         started_producers.push_back(producers_.back().get());
     }
 

@@ -34,6 +34,71 @@ bool below_a_set_level(std::string_view topic) {
     }
 }
 
+std::optional<std::size_t> find_tag(const core::plan::ExchangePlan& plan, std::string_view name) {
+    const auto& tags = plan.tags;
+    const auto tag =
+        std::find_if(tags.begin(), tags.end(), [&](const auto& t) { return t.spec.name == name; });
+    if (tag == tags.end()) return std::nullopt;
+    return static_cast<std::size_t>(tag - tags.begin());
+}
+
+/// The validated writes of `payload`: one tag's (`tag_index`) or, without one, the exchange's
+/// multi-tag object. The first bad value refuses the whole message.
+std::optional<WriteRejection> collect_writes(const core::plan::ExchangePlan& plan,
+                                             std::optional<std::size_t> tag_index,
+                                             const std::string& payload,
+                                             std::vector<core::write::TagWrite>& writes) {
+    // One tag's input against its spec; a multi-tag write's messages name the tag.
+    const auto add = [&](std::size_t index,
+                         const core::write::WriteInput& input) -> std::optional<WriteRejection> {
+        const auto& tag = plan.tags[index].spec;
+        auto value = core::write::validate_write(tag, input);
+        if (!value) {
+            auto rejection = value.error();
+            if (!tag_index) rejection.message = tag.name + ": " + rejection.message;
+            return rejection;
+        }
+        writes.push_back({index, std::move(value).value()});
+        return std::nullopt;
+    };
+    if (tag_index) {
+        const auto input = adapters::mqtt::parse_tag_write(payload);
+        if (!input) return WriteRejection{input.error().error, input.error().message};
+        return add(*tag_index, input.value());
+    }
+    const auto inputs = adapters::mqtt::parse_exchange_write(payload);
+    if (!inputs) return WriteRejection{inputs.error().error, inputs.error().message};
+    for (const auto& entry : inputs.value()) {
+        // Not a structured binding: clang 14 (the fuzz build) cannot capture one.
+        const auto& name = entry.first;
+        const auto index = find_tag(plan, name);
+        if (!index) {
+            return WriteRejection{WriteError::unknown_tag,
+                                  "unknown tag " + name + " in exchange " + plan.spec.name};
+        }
+        if (auto rejection = add(*index, entry.second)) return rejection;
+    }
+    return std::nullopt;
+}
+
+/// A word and one of its bits in one message: which would win? Neither is written.
+std::optional<WriteRejection> overlap_rejection(const core::plan::ExchangePlan& plan,
+                                                const std::vector<core::write::TagWrite>& writes) {
+    if (writes.size() < 2) return std::nullopt;
+    std::vector<core::plan::BitSpan> spans;
+    spans.reserve(writes.size());
+    for (const auto& write : writes) {
+        spans.push_back(core::plan::bit_span(plan.tags[write.tag_index].spec));
+    }
+    const auto overlaps = core::plan::find_overlaps(spans, 1);
+    if (overlaps.pairs.empty()) return std::nullopt;
+    const auto& pair = overlaps.pairs.front();
+    return WriteRejection{WriteError::overlapping_tags,
+                          "tags " + plan.tags[writes[pair.first].tag_index].spec.name + " and " +
+                              plan.tags[writes[pair.second].tag_index].spec.name +
+                              " share bytes; write them in separate messages"};
+}
+
 }  // namespace
 
 WriteRouter::WriteRouter(WriteRouterOptions options) : options_(std::move(options)) {}
@@ -79,36 +144,29 @@ std::string WriteRouter::response_topic_problem(const std::string& topic) const 
     return {};
 }
 
+std::optional<WriteRouter::Target> WriteRouter::find_target(std::string_view stem) const {
+    if (const auto it = exchanges_.find(std::string(stem)); it != exchanges_.end()) {
+        return Target{&it->second, std::nullopt, {}};
+    }
+    // `{exchange topic}/{name}/set`: tag names hold no '/', so the exchange topic is what comes
+    // before the last level, and the tag is found by its name in that exchange.
+    const auto slash = stem.rfind('/');
+    if (slash == std::string_view::npos) return std::nullopt;
+    const auto exchange = exchanges_.find(std::string(stem.substr(0, slash)));
+    if (exchange == exchanges_.end()) return std::nullopt;
+    const auto name = stem.substr(slash + 1);
+    Target target{&exchange->second, find_tag(*exchange->second.plan, name), {}};
+    if (!target.tag_index) target.unknown_tag = std::string(name);
+    return target;
+}
+
 std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& message) const {
     const std::string_view topic = message.topic;
     if (!topic.ends_with(set_suffix)) return std::nullopt;
-    const auto stem = topic.substr(0, topic.size() - set_suffix.size());
-
-    const Route* route = nullptr;
-    std::string exchange_name;
-    int tag_index = -1;  ///< -1: an atomic multi-tag write to the exchange
-    std::string unknown_tag;
-    if (const auto it = exchanges_.find(std::string(stem)); it != exchanges_.end()) {
-        route = &it->second;
-    } else {
-        // `{exchange topic}/{name}/set`: tag names hold no '/', so the exchange topic is what
-        // comes before the last level, and the tag is found by its name in that exchange.
-        const auto slash = stem.rfind('/');
-        if (slash == std::string_view::npos) return std::nullopt;
-        const auto exchange = exchanges_.find(std::string(stem.substr(0, slash)));
-        if (exchange == exchanges_.end()) return std::nullopt;
-        route = &exchange->second;
-        const auto name = stem.substr(slash + 1);
-        const auto& tags = route->plan->tags;
-        const auto tag = std::find_if(tags.begin(), tags.end(),
-                                      [&](const auto& t) { return t.spec.name == name; });
-        if (tag == tags.end()) {
-            unknown_tag = std::string(name);
-        } else {
-            tag_index = static_cast<int>(tag - tags.begin());
-        }
-    }
-    const auto& plan = *route->plan;
+    const auto target = find_target(topic.substr(0, topic.size() - set_suffix.size()));
+    if (!target) return std::nullopt;
+    const auto& route = *target->route;
+    const auto& plan = *route.plan;
 
     WriteDecision decision;
     decision.reply.correlation_data = message.correlation_data;
@@ -129,72 +187,22 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
         }
         decision.reply.topic = message.response_topic;
     }
-    if (!unknown_tag.empty()) {
+    if (!target->unknown_tag.empty()) {
         return refuse(WriteError::unknown_tag,
-                      "unknown tag " + unknown_tag + " in exchange " + plan.spec.name);
+                      "unknown tag " + target->unknown_tag + " in exchange " + plan.spec.name);
     }
     // A retained command would fire again on every reconnect: never act on one.
     if (message.retained) {
         return refuse(WriteError::retained, "retained writes are refused; publish without retain");
     }
-    if (!route->producer) {
+    if (!route.producer) {
         return refuse(WriteError::read_only,
                       "exchange " + plan.spec.name + " is consumed: its tags are read-only");
     }
-
-    RoutedWrite routed{*route->producer, {}};
-    // One tag's input against its spec; a multi-tag write's messages name the tag.
-    const auto add = [&](std::size_t index,
-                         const core::write::WriteInput& input) -> std::optional<WriteRejection> {
-        const auto& tag = plan.tags[index].spec;
-        auto value = core::write::validate_write(tag, input);
-        if (!value) {
-            auto rejection = value.error();
-            if (tag_index < 0) rejection.message = tag.name + ": " + rejection.message;
-            return rejection;
-        }
-        routed.writes.push_back({index, std::move(value).value()});
-        return std::nullopt;
-    };
-    if (tag_index >= 0) {
-        const auto input = adapters::mqtt::parse_tag_write(message.payload);
-        if (!input) return refuse(input.error().error, input.error().message);
-        if (auto rejection = add(static_cast<std::size_t>(tag_index), input.value())) {
-            return refuse(rejection->error, std::move(rejection->message));
-        }
-    } else {
-        const auto inputs = adapters::mqtt::parse_exchange_write(message.payload);
-        if (!inputs) return refuse(inputs.error().error, inputs.error().message);
-        for (const auto& entry : inputs.value()) {
-            // Not a structured binding: clang 14 (the fuzz build) cannot capture one.
-            const auto& name = entry.first;
-            const auto& input = entry.second;
-            const auto tag = std::find_if(plan.tags.begin(), plan.tags.end(),
-                                          [&](const auto& t) { return t.spec.name == name; });
-            if (tag == plan.tags.end()) {
-                return refuse(WriteError::unknown_tag,
-                              "unknown tag " + name + " in exchange " + plan.spec.name);
-            }
-            if (auto rejection = add(static_cast<std::size_t>(tag - plan.tags.begin()), input)) {
-                return refuse(rejection->error, std::move(rejection->message));
-            }
-        }
-    }
-    // A word and one of its bits in one message: which would win? Neither is written.
-    if (routed.writes.size() > 1) {
-        std::vector<core::plan::BitSpan> spans;
-        spans.reserve(routed.writes.size());
-        for (const auto& write : routed.writes) {
-            spans.push_back(core::plan::bit_span(plan.tags[write.tag_index].spec));
-        }
-        if (const auto overlaps = core::plan::find_overlaps(spans, 1); !overlaps.pairs.empty()) {
-            const auto& pair = overlaps.pairs.front();
-            return refuse(WriteError::overlapping_tags,
-                          "tags " + plan.tags[routed.writes[pair.first].tag_index].spec.name +
-                              " and " + plan.tags[routed.writes[pair.second].tag_index].spec.name +
-                              " share bytes; write them in separate messages");
-        }
-    }
+    RoutedWrite routed{*route.producer, {}};
+    auto rejection = collect_writes(plan, target->tag_index, message.payload, routed.writes);
+    if (!rejection) rejection = overlap_rejection(plan, routed.writes);
+    if (rejection) return refuse(rejection->error, std::move(rejection->message));
     decision.outcome = std::move(routed);
     return decision;
 }

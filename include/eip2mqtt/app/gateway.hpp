@@ -29,6 +29,7 @@
 #include "eip2mqtt/app/producer_scheduler.hpp"
 #include "eip2mqtt/app/write_router.hpp"
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/plan/plan_diff.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::app {
@@ -60,6 +61,11 @@ private:
     /// Builds the exchanges of `plans`, keeping running ones whose plan is unchanged, stopping
     /// removed and changed ones and clearing their retained topics that no new exchange uses.
     void apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running);
+    /// What applying `plans` does to the running exchanges (core::plan::diff_plans).
+    core::plan::PlanDiff diff_running(const std::vector<core::plan::ExchangePlan>& plans) const;
+    /// A new producer, opening the sending socket with the first one.
+    std::unique_ptr<ExchangeProducer> make_producer(core::plan::ExchangePlan plan,
+                                                    const PublishSink& sink);
     /// SIGHUP: a valid new file is applied, an invalid one refused with its errors logged.
     void reload();
     void schedule_watchdog();

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <variant>
 #include <vector>
@@ -69,6 +70,13 @@ private:
         const core::plan::ExchangePlan* plan = nullptr;
         std::optional<std::size_t> producer;
     };
+    /// The exchange a `set` topic's stem names and, for `{exchange topic}/{tag}`, the tag.
+    struct Target {
+        const Route* route = nullptr;
+        std::optional<std::size_t> tag_index;  ///< nullopt: a multi-tag write (or unknown tag)
+        std::string unknown_tag;               ///< a tag level naming no tag of the exchange
+    };
+    std::optional<Target> find_target(std::string_view stem) const;
     std::string response_topic_problem(const std::string& topic) const;
 
     WriteRouterOptions options_;

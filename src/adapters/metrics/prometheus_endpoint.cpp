@@ -83,11 +83,9 @@ void add_single(std::vector<MetricFamily>& out, std::string name, std::string he
     out.push_back(std::move(result));
 }
 
-std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
-    std::vector<MetricFamily> out;
-    constexpr auto counter = MetricType::Counter;
+/// exchange_state: one sample per state an exchange may be in, 1 for the current one.
+void add_state_families(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
     constexpr auto gauge = MetricType::Gauge;
-
     auto states =
         family("exchange_state", "Current state of the exchange (1) among its states", gauge);
     for (const auto& exchange : snapshot.exchanges) {
@@ -111,7 +109,12 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
         }
     }
     if (!states.metric.empty()) out.push_back(std::move(states));
+}
 
+/// The per-exchange counters and gauges, each for the direction it applies to.
+void add_exchange_counters(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
+    constexpr auto counter = MetricType::Counter;
+    constexpr auto gauge = MetricType::Gauge;
     // clang-format off
     add_exchange_family(out, snapshot, "exchange_received_total",
         "Datagrams received for the exchange", counter, "consume",
@@ -160,7 +163,11 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
         "Periods not produced because the loop fell more than a period behind", counter, "produce",
         [](const ExchangeMetrics& e) { return static_cast<double>(e.skipped_deadlines); });
     // clang-format on
+}
 
+/// The producer clock of consumed exchanges: its state and its offset.
+void add_clock_families(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
+    constexpr auto gauge = MetricType::Gauge;
     // The producer's clock of consumed exchanges: its state, and its offset, which may be
     // negative (so not an add_exchange_family gauge, which omits negative values as unknown).
     auto clocks = family("exchange_clock_state",
@@ -184,7 +191,12 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
     }
     if (!clocks.metric.empty()) out.push_back(std::move(clocks));
     if (!offsets.metric.empty()) out.push_back(std::move(offsets));
+}
 
+/// The gateway-wide figures.
+void add_gateway_families(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
+    constexpr auto counter = MetricType::Counter;
+    constexpr auto gauge = MetricType::Gauge;
     const auto& g = snapshot.gateway;
     add_single(out, "datagrams_total", "Datagrams received on the EIP socket", counter,
                static_cast<double>(g.datagrams));
@@ -210,6 +222,14 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
                "Writes accepted, then cancelled unproduced: a reload changed or removed their "
                "exchange",
                counter, static_cast<double>(g.writes_cancelled));
+}
+
+std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
+    std::vector<MetricFamily> out;
+    add_state_families(out, snapshot);
+    add_exchange_counters(out, snapshot);
+    add_clock_families(out, snapshot);
+    add_gateway_families(out, snapshot);
     return out;
 }
 

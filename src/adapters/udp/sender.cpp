@@ -71,9 +71,8 @@ bool Sender::send_to(std::span<const std::byte> datagram, const Endpoint& to) {
     return true;
 }
 
-std::size_t Sender::send_batch(std::span<const OutgoingDatagram> batch, std::vector<bool>& sent) {
+void Sender::group_batch(std::span<const OutgoingDatagram> batch) {
     const std::size_t n = batch.size();
-    sent.assign(n, false);
     // Equal size to the same destination, next to each other: each run becomes one message.
     order_.resize(n);
     for (std::size_t i = 0; i < n; ++i) order_[i] = i;
@@ -96,7 +95,10 @@ std::size_t Sender::send_batch(std::span<const OutgoingDatagram> batch, std::vec
         }
         groups_.push_back({k, 1, size});
     }
+}
 
+void Sender::build_messages(std::span<const OutgoingDatagram> batch) {
+    const std::size_t n = batch.size();
     const std::size_t m = groups_.size();
     addresses_.resize(m);
     iovecs_.resize(n);
@@ -128,6 +130,13 @@ std::size_t Sender::send_batch(std::span<const OutgoingDatagram> batch, std::vec
             std::memcpy(CMSG_DATA(cmsg), &size, sizeof size);
         }
     }
+}
+
+std::size_t Sender::send_batch(std::span<const OutgoingDatagram> batch, std::vector<bool>& sent) {
+    sent.assign(batch.size(), false);
+    group_batch(batch);
+    build_messages(batch);
+    const std::size_t m = groups_.size();
 
     std::size_t count = 0;
     const auto mark_sent = [&](const Group& group) {

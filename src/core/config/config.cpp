@@ -237,6 +237,14 @@ private:
             error(marks.of("period_ms"),
                   what + " period_ms " + std::to_string(period) + " is outside 2..3600000");
         }
+        check_direction(exchange, what);
+        check_tags(exchange, check_exchange_topic(exchange, what));
+    }
+
+    /// The keys that only one direction may have.
+    void check_direction(const ExchangeConfig& exchange, const std::string& what) {
+        const auto& spec = exchange.spec;
+        const auto& marks = exchange.marks;
         if (spec.direction == Direction::consume) {
             if (!spec.destination.empty()) {
                 error(marks.of("destination"),
@@ -265,6 +273,13 @@ private:
                 }
             }
         }
+    }
+
+    /// The exchange's topic; returns the length of {base}/{topic}, or 0 when it is unknown or
+    /// already too long (its tags' topics are then not checked for length).
+    std::size_t check_exchange_topic(const ExchangeConfig& exchange, const std::string& what) {
+        const auto& spec = exchange.spec;
+        const auto& marks = exchange.marks;
         const bool topic_is_name = !marks.contains("topic");
         std::size_t topic_bytes = 0;  // of {base}/{topic}; 0: unknown, or too long already
         if (const auto problem = topic_problem(spec.topic); !problem.empty()) {
@@ -306,7 +321,7 @@ private:
                 }
             }
         }
-        check_tags(exchange, topic_bytes);
+        return topic_bytes;
     }
 
     /// `topic_bytes`: the length of the exchange's topic, whose tags' topics are checked for

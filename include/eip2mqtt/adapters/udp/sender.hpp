@@ -70,6 +70,10 @@ private:
         std::size_t count;
         std::size_t bytes;
     };
+    /// Fills order_ and groups_ for `batch`.
+    void group_batch(std::span<const OutgoingDatagram> batch);
+    /// Fills the sendmmsg messages of groups_ (addresses, iovecs, GSO control).
+    void build_messages(std::span<const OutgoingDatagram> batch);
     std::size_t send_group_one_by_one(std::span<const OutgoingDatagram> batch, const Group& group,
                                       std::vector<bool>& sent);
 
