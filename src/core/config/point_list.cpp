@@ -128,11 +128,78 @@ constexpr std::array<std::string_view, 5> column_names{"tagname", "node", "addre
                                                        "accesstype"};
 enum Column : std::size_t { tag_name, node, address, data_type, access_type };
 
+using ColumnIndex = std::array<std::size_t, column_names.size()>;
+
+/// Finds each column in the header row; returns the names of those it lacks, comma-separated.
+std::string read_header(const std::vector<Field>& fields, ColumnIndex& index) {
+    std::string missing;
+    for (std::size_t c = 0; c < column_names.size(); ++c) {
+        const auto it = std::find_if(fields.begin(), fields.end(), [&](const Field& f) {
+            return equals_lower(f.text, column_names[c]);
+        });
+        if (it == fields.end()) {
+            missing += (missing.empty() ? "" : ", ") + std::string(column_names[c]);
+        } else {
+            index[c] = static_cast<std::size_t>(it - fields.begin());
+        }
+    }
+    return missing;
+}
+
+/// One data row; nullopt, with its errors added, when a field is bad.
+std::optional<PointRow> read_row(const std::vector<Field>& fields, const ColumnIndex& index,
+                                 const FileName& file, int line_number, Diagnostics& errors) {
+    const auto field = [&](Column c) -> const Field& { return fields[index[c]]; };
+    const auto at = [&](Column c) { return Mark{file, line_number, field(c).column}; };
+
+    PointRow row;
+    row.mark = Mark{file, line_number, 1};
+    bool ok = true;
+    row.tag.name = field(tag_name).text;
+    if (row.tag.name.empty()) {
+        errors.push_back({at(tag_name), "empty TagName"});
+        ok = false;
+    }
+    row.node = field(node).text;
+    if (row.node.empty()) {
+        errors.push_back({at(node), "empty Node"});
+        ok = false;
+    }
+    if (const auto parsed = plan::parse_address(field(address).text)) {
+        row.tag.address = *parsed;
+    } else {
+        errors.push_back({at(address), "bad address " + in_quotes(field(address).text) +
+                                           " (expected byte.bit)"});
+        ok = false;
+    }
+    if (const auto type =
+            plan::parse_tag_type(field(data_type).text, plan::TypeNaming::point_list)) {
+        row.tag.type = *type;
+    } else {
+        errors.push_back(
+            {at(data_type), "unknown DataType " + in_quotes(field(data_type).text) +
+                                " (expected Bit, Word, Real, Long or a "
+                                "type of docs/protocol.md section 3, \"Data types\")"});
+        ok = false;
+    }
+    const auto access = field(access_type).text;
+    if (equals_lower(access, "write")) {
+        row.write = true;
+        row.tag.writable = true;
+    } else if (!equals_lower(access, "read")) {
+        errors.push_back({at(access_type),
+                          "unknown AccessType " + in_quotes(access) + " (expected Read or Write)"});
+        ok = false;
+    }
+    if (!ok) return std::nullopt;
+    return row;
+}
+
 }  // namespace
 
 PointList parse_point_list(std::string_view text, const FileName& file) {
     PointList list;
-    std::array<std::size_t, column_names.size()> index{};
+    ColumnIndex index{};
     bool have_header = false;
     int line_number = 0;
     std::size_t pos = 0;
@@ -172,22 +239,9 @@ PointList parse_point_list(std::string_view text, const FileName& file) {
 
         if (!have_header) {
             have_header = true;
-            std::vector<std::string> missing;
-            for (std::size_t c = 0; c < column_names.size(); ++c) {
-                const auto it = std::find_if(fields.begin(), fields.end(), [&](const Field& f) {
-                    return equals_lower(f.text, column_names[c]);
-                });
-                if (it == fields.end()) {
-                    missing.emplace_back(column_names[c]);
-                } else {
-                    index[c] = static_cast<std::size_t>(it - fields.begin());
-                }
-            }
-            if (!missing.empty()) {
-                std::string names;
-                for (const auto& name : missing) names += (names.empty() ? "" : ", ") + name;
+            if (const auto missing = read_header(fields, index); !missing.empty()) {
                 list.errors.push_back(
-                    {row_mark(), "point list header lacks column(s) " + names +
+                    {row_mark(), "point list header lacks column(s) " + missing +
                                      " (expected TagName, Node, Address, DataType, AccessType)"});
                 return list;
             }
@@ -201,49 +255,9 @@ PointList parse_point_list(std::string_view text, const FileName& file) {
                                                    std::to_string(needed)});
             continue;
         }
-        const auto field = [&](Column c) -> const Field& { return fields[index[c]]; };
-        const auto at = [&](Column c) { return Mark{file, line_number, field(c).column}; };
-
-        PointRow row;
-        row.mark = row_mark();
-        bool ok = true;
-        row.tag.name = field(tag_name).text;
-        if (row.tag.name.empty()) {
-            list.errors.push_back({at(tag_name), "empty TagName"});
-            ok = false;
+        if (auto row = read_row(fields, index, file, line_number, list.errors)) {
+            list.rows.push_back(std::move(*row));
         }
-        row.node = field(node).text;
-        if (row.node.empty()) {
-            list.errors.push_back({at(node), "empty Node"});
-            ok = false;
-        }
-        if (const auto parsed = plan::parse_address(field(address).text)) {
-            row.tag.address = *parsed;
-        } else {
-            list.errors.push_back({at(address), "bad address " + in_quotes(field(address).text) +
-                                                    " (expected byte.bit)"});
-            ok = false;
-        }
-        if (const auto type =
-                plan::parse_tag_type(field(data_type).text, plan::TypeNaming::point_list)) {
-            row.tag.type = *type;
-        } else {
-            list.errors.push_back(
-                {at(data_type), "unknown DataType " + in_quotes(field(data_type).text) +
-                                    " (expected Bit, Word, Real, Long or a "
-                                    "type of docs/protocol.md section 3, \"Data types\")"});
-            ok = false;
-        }
-        const auto access = field(access_type).text;
-        if (equals_lower(access, "write")) {
-            row.write = true;
-            row.tag.writable = true;
-        } else if (!equals_lower(access, "read")) {
-            list.errors.push_back({at(access_type), "unknown AccessType " + in_quotes(access) +
-                                                        " (expected Read or Write)"});
-            ok = false;
-        }
-        if (ok) list.rows.push_back(std::move(row));
     }
     if (!have_header) {
         const Mark at{file, line_number == 0 ? 1 : line_number, 1};

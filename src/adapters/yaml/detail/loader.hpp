@@ -202,9 +202,28 @@ private:
 
     void read_exchanges(const Node& node, const Mark& at, Config& config);
 
+    /// An exchange while its keys are read.
+    struct ExchangeDraft {
+        core::plan::ExchangeSpec& spec;
+        std::string label;    ///< how messages name it
+        bool broken = false;  ///< an identity key is missing or bad: leave it out of the model
+        std::optional<Node> tags_node;
+        std::string points;
+        bool topic_written = false;
+    };
     void read_exchange(const Node& node, int index, Config& config);
+    void read_exchange_key(ExchangeDraft& draft, const std::string& key, const Node& value,
+                           const Mark& k);
 
+    /// A tag while its keys are read.
+    struct TagDraft {
+        core::plan::TagSpec& spec;
+        bool broken = false;  ///< a value failed to parse: leave the tag out of the model
+        std::optional<Node> initial;
+        Mark initial_mark;
+    };
     std::optional<TagConfig> read_tag(const Node& node, const std::string& exchange_label);
+    void read_tag_key(TagDraft& draft, const std::string& key, const Node& value, const Mark& k);
 
     /// `initial` as the tag's type holds it. Out-of-range values are kept (as int64 or double)
     /// for validate() to report against the type's range.
