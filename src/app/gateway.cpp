@@ -1,16 +1,13 @@
 #include "eip2mqtt/app/gateway.hpp"
 
 #include <spdlog/spdlog.h>
-#include <sys/stat.h>
 
 #include <boost/asio/post.hpp>
 #include <chrono>
 #include <csignal>
-#include <cstdlib>
-#include <fstream>
-#include <stdexcept>
 
 #include "app/detail/release_heap.hpp"
+#include "eip2mqtt/app/mqtt_settings.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 
 namespace eip2mqtt::app {
@@ -26,46 +23,6 @@ constexpr auto refresh_scan_interval = 1s;
 // How long a clean stop waits for queued publications before giving up.
 constexpr auto stop_flush_timeout = 3s;
 
-std::string read_password(const core::config::MqttSection& mqtt) {
-    if (!mqtt.password_file.empty()) {
-        struct stat info {};
-        if (::stat(mqtt.password_file.c_str(), &info) == 0 && (info.st_mode & S_IROTH) != 0) {
-            spdlog::warn("password file {} is readable by others; chmod o-r it",
-                         mqtt.password_file);
-        }
-        std::ifstream file(mqtt.password_file);
-        if (!file) {
-            throw std::runtime_error("cannot read mqtt.password_file " + mqtt.password_file);
-        }
-        std::string password;
-        std::getline(file, password);
-        return password;
-    }
-    if (const char* env = std::getenv("EIP2MQTT_MQTT_PASSWORD")) return env;
-    return {};
-}
-
-adapters::mqtt::ClientOptions client_options(const core::config::Config& config,
-                                             const std::string& availability_topic) {
-    const auto& mqtt = config.mqtt;
-    adapters::mqtt::ClientOptions options;
-    options.url = mqtt.url;
-    options.client_id = mqtt.client_id.empty() ? "eip2mqtt-" + config.gateway.id : mqtt.client_id;
-    options.version = mqtt.version;
-    options.username = mqtt.username;
-    options.password = read_password(mqtt);
-    if (mqtt.tls) {
-        options.tls = adapters::mqtt::TlsOptions{mqtt.tls->ca_file, mqtt.tls->cert_file,
-                                                 mqtt.tls->key_file, mqtt.tls->verify};
-    }
-    options.keepalive = mqtt.keepalive;
-    options.session_expiry = mqtt.session_expiry;
-    options.clean_start = mqtt.session_expiry.count() == 0;
-    options.availability_topic = availability_topic;
-    options.buffer_max_messages = mqtt.buffer_max_messages;
-    return options;
-}
-
 }  // namespace
 
 Gateway::Gateway(core::config::Config config)
@@ -79,8 +36,8 @@ Gateway::Gateway(core::config::Config config)
       metrics_timer_(loop_),
       watchdog_timer_(loop_),
       image_store_(config_.gateway.state_dir) {
-    mqtt_ = std::make_unique<adapters::mqtt::Client>(loop_.get_executor(),
-                                                     client_options(config_, availability_topic_));
+    mqtt_ = std::make_unique<adapters::mqtt::Client>(
+        loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
     apply_exchanges(take_plans(), false);
 
     adapters::udp::ReceiverOptions receiver_options;

@@ -1,0 +1,22 @@
+#pragma once
+/// The MQTT client's options from the configuration: the client id's default, the session, TLS,
+/// and the password, which never comes from the YAML (README "Configuration"). Apart from
+/// reading the password file, a pure function of the configuration.
+
+#include <string>
+
+#include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/core/config/config.hpp"
+
+namespace eip2mqtt::app {
+
+/// The first line of mqtt.password_file (warned about when others may read it), else the
+/// environment variable EIP2MQTT_MQTT_PASSWORD, else empty. Throws std::runtime_error when the
+/// file cannot be read.
+std::string read_mqtt_password(const core::config::MqttSection& mqtt);
+
+/// Options of the gateway's MQTT client; `availability_topic` carries its will.
+adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& config,
+                                                  const std::string& availability_topic);
+
+}  // namespace eip2mqtt::app
