@@ -14,7 +14,7 @@ void DatagramRouter::set_consumers(std::span<const std::unique_ptr<ExchangeConsu
 }
 
 void DatagramRouter::route(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
-                           bool truncated, core::MonoTime now, core::WallTime wall) {
+                           bool truncated, core::MonoTime now) {
     using core::wire::DropReason;
     ++counters_.datagrams;
     if (truncated) {
@@ -54,7 +54,7 @@ void DatagramRouter::route(std::span<const std::byte> bytes, const adapters::udp
         });
         return;
     }
-    const auto outcome = consumer.on_datagram(datagram, now, wall);
+    const auto outcome = consumer.on_datagram(datagram, now, wall_clock_());
     if (outcome.accepted()) {
         ++counters_.accepted;
         return;

@@ -93,8 +93,7 @@ void Gateway::start() {
     }
     receiver_->start([this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
                             bool truncated) {
-        datagram_router_.route(bytes, from, truncated, std::chrono::steady_clock::now(),
-                               std::chrono::system_clock::now());
+        datagram_router_.route(bytes, from, truncated, std::chrono::steady_clock::now());
     });
     mqtt_->start();
     wait_signal();

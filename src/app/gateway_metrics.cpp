@@ -1,5 +1,6 @@
 #include "eip2mqtt/app/gateway_metrics.hpp"
 
+#include <map>
 #include <nlohmann/json.hpp>
 
 namespace eip2mqtt::app {
@@ -47,27 +48,34 @@ adapters::metrics::ExchangeMetrics producer_metrics(const ExchangeProducer& prod
     return m;
 }
 
-std::string write_error_name(std::size_t index) {
-    return std::string(core::write::to_string(static_cast<core::write::WriteError>(index)));
+/// Drops by reason name, every reason listed, for the JSON and for Prometheus alike.
+std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& counters) {
+    std::map<std::string, std::uint64_t> out;
+    for (const auto reason : core::wire::all_drop_reasons) {
+        out[std::string(core::wire::to_string(reason))] = counters.dropped_for(reason);
+    }
+    return out;
+}
+
+/// Write rejections by error name, every error listed.
+std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& counters) {
+    std::map<std::string, std::uint64_t> out;
+    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
+        out[std::string(core::write::to_string(static_cast<core::write::WriteError>(i)))] =
+            counters.writes_rejected[i];
+    }
+    return out;
 }
 
 }  // namespace
 
 std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime) {
-    nlohmann::json dropped = nlohmann::json::object();
-    for (const auto reason : core::wire::all_drop_reasons) {
-        dropped[std::string(core::wire::to_string(reason))] = sources.datagrams.dropped_for(reason);
-    }
-    nlohmann::json writes_rejected = nlohmann::json::object();
-    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
-        writes_rejected[write_error_name(i)] = sources.gateway.writes_rejected[i];
-    }
     const auto& mqtt = sources.mqtt;
     const nlohmann::json metrics = {
         {"uptime_s", uptime.count()},
         {"datagrams", sources.datagrams.datagrams},
         {"accepted", sources.datagrams.accepted},
-        {"dropped", dropped},
+        {"dropped", drops_by_name(sources.datagrams)},
         {"published", mqtt.published},
         {"buffered", mqtt.queued},
         {"publications_dropped", mqtt.dropped_overflow},
@@ -75,7 +83,7 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"publications_refused", mqtt.refused},
         {"mqtt_connects", mqtt.connects},
         {"writes_ok", sources.gateway.writes_ok},
-        {"writes_rejected", writes_rejected},
+        {"writes_rejected", rejections_by_name(sources.gateway)},
         {"writes_cancelled", sources.gateway.writes_cancelled},
     };
     return metrics.dump();
@@ -94,10 +102,7 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     auto& g = snapshot.gateway;
     g.datagrams = sources.datagrams.datagrams;
     g.accepted = sources.datagrams.accepted;
-    for (const auto reason : core::wire::all_drop_reasons) {
-        g.dropped[std::string(core::wire::to_string(reason))] =
-            sources.datagrams.dropped_for(reason);
-    }
+    g.dropped = drops_by_name(sources.datagrams);
     g.mqtt_connected = sources.mqtt.connected;
     g.published = sources.mqtt.published;
     g.buffered = sources.mqtt.queued;
@@ -105,9 +110,7 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     g.publications_refused = sources.mqtt.refused;
     g.writes_ok = sources.gateway.writes_ok;
     g.writes_cancelled = sources.gateway.writes_cancelled;
-    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
-        g.writes_rejected[write_error_name(i)] = sources.gateway.writes_rejected[i];
-    }
+    g.writes_rejected = rejections_by_name(sources.gateway);
     return snapshot;
 }
 

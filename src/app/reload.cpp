@@ -53,11 +53,11 @@ core::plan::PlanDiff Gateway::diff_running(
     bool settings_changed = false;
     for (const auto& consumer : consumers_) {
         running_plans.push_back(&consumer->plan());
-        settings_changed |= !(consumer->settings() == publish_settings_);
+        settings_changed |= consumer->settings() != publish_settings_;
     }
     for (const auto& producer : producers_) {
         running_plans.push_back(&producer->plan());
-        settings_changed |= !(producer->settings() == publish_settings_);
+        settings_changed |= producer->settings() != publish_settings_;
     }
     return core::plan::diff_plans(running_plans, plans, settings_changed);
 }

@@ -61,7 +61,7 @@ protected:
     void route(const std::vector<std::byte>& bytes, std::uint32_t from = plc,
                bool truncated = false) {
         now_ += 10ms;
-        router_.route(bytes, {from, 18246}, truncated, now_, core::WallTime{} + 1h);
+        router_.route(bytes, {from, 18246}, truncated, now_);
     }
     /// The payloads published on `topic`, in order.
     std::vector<std::string> on(const std::string& topic) const {
@@ -83,7 +83,7 @@ protected:
     core::MonoTime now_ = core::MonoTime{} + 1h;
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
     std::vector<adapters::mqtt::Message> published_;
-    DatagramRouter router_;
+    DatagramRouter router_{[] { return core::WallTime{} + 1h; }};
 };
 
 TEST_F(DatagramRouterTest, EachDatagramReachesTheExchangeItsKeyNames) {

@@ -4,9 +4,12 @@
 /// that exchange's source, and handed to it; each one dropped on the way is counted by reason
 /// and logged without flooding (DropLog).
 ///
-/// Threading: the loop only. Time is passed in.
+/// Threading: the loop only. Monotonic time is passed in; the wall clock is read only for a
+/// datagram handed to its exchange, never for one dropped on the way (a flood of spoofed or
+/// malformed datagrams costs no clock reading), and tests replace it.
 
 #include <array>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -35,13 +38,17 @@ struct DatagramCounters {
 
 class DatagramRouter {
 public:
+    using WallClock = core::WallTime (*)();
+
+    explicit DatagramRouter(WallClock wall_clock = &system_wall_clock) : wall_clock_(wall_clock) {}
+
     /// The consumers datagrams are routed to, replacing the ones before (start, reload). They
     /// must outlive their use here: call again before destroying any.
     void set_consumers(std::span<const std::unique_ptr<ExchangeConsumer>> consumers);
 
     /// One datagram as read from `from`; `truncated`: it did not fit the receive buffer.
     void route(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
-               bool truncated, core::MonoTime now, core::WallTime wall);
+               bool truncated, core::MonoTime now);
 
     /// Summarises the drops not logged yet (the gateway's tick).
     void flush_log(core::MonoTime now) { drop_log_.flush(now); }
@@ -49,12 +56,14 @@ public:
     const DatagramCounters& counters() const { return counters_; }
 
 private:
+    static core::WallTime system_wall_clock() { return std::chrono::system_clock::now(); }
     void count_drop(core::wire::DropReason reason) {
         ++counters_.dropped[static_cast<std::size_t>(reason)];
     }
 
     std::unordered_map<core::wire::ExchangeKey, ExchangeConsumer*, core::wire::ExchangeKeyHash>
         by_key_;
+    WallClock wall_clock_;
     DatagramCounters counters_;
     DropLog drop_log_;
 };

@@ -83,9 +83,11 @@ void add_single(std::vector<MetricFamily>& out, std::string name, std::string he
     out.push_back(std::move(result));
 }
 
+constexpr auto counter = MetricType::Counter;
+constexpr auto gauge = MetricType::Gauge;
+
 /// exchange_state: one sample per state an exchange may be in, 1 for the current one.
 void add_state_families(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
-    constexpr auto gauge = MetricType::Gauge;
     auto states =
         family("exchange_state", "Current state of the exchange (1) among its states", gauge);
     for (const auto& exchange : snapshot.exchanges) {
@@ -113,8 +115,6 @@ void add_state_families(std::vector<MetricFamily>& out, const MetricsSnapshot& s
 
 /// The per-exchange counters and gauges, each for the direction it applies to.
 void add_exchange_counters(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
-    constexpr auto counter = MetricType::Counter;
-    constexpr auto gauge = MetricType::Gauge;
     // clang-format off
     add_exchange_family(out, snapshot, "exchange_received_total",
         "Datagrams received for the exchange", counter, "consume",
@@ -167,7 +167,6 @@ void add_exchange_counters(std::vector<MetricFamily>& out, const MetricsSnapshot
 
 /// The producer clock of consumed exchanges: its state and its offset.
 void add_clock_families(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
-    constexpr auto gauge = MetricType::Gauge;
     // The producer's clock of consumed exchanges: its state, and its offset, which may be
     // negative (so not an add_exchange_family gauge, which omits negative values as unknown).
     auto clocks = family("exchange_clock_state",
@@ -195,8 +194,6 @@ void add_clock_families(std::vector<MetricFamily>& out, const MetricsSnapshot& s
 
 /// The gateway-wide figures.
 void add_gateway_families(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
-    constexpr auto counter = MetricType::Counter;
-    constexpr auto gauge = MetricType::Gauge;
     const auto& g = snapshot.gateway;
     add_single(out, "datagrams_total", "Datagrams received on the EIP socket", counter,
                static_cast<double>(g.datagrams));
