@@ -1,11 +1,9 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 
-#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
 
-#include "eip2mqtt/adapters/mqtt/payload.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
 
 namespace eip2mqtt::app {
@@ -14,7 +12,7 @@ namespace {
 using std::chrono::duration_cast;
 using std::chrono::milliseconds;
 
-// docs/mqtt-api.md "Exchange status": `_status` is published on every state change, then at most
+// docs/mqtt-api.md "Exchange status": the status is reported on every state change, then at most
 // once a second while its counters move.
 constexpr auto status_interval = std::chrono::seconds(1);
 
@@ -24,22 +22,13 @@ std::int64_t to_ms(core::WallTime wall) {
 
 }  // namespace
 
-ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, PublishSettings settings,
-                                   PublishSink sink)
+ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, Northbound& northbound)
     : plan_(std::move(plan)),
-      settings_(settings),
-      sink_(std::move(sink)),
+      northbound_(northbound),
       exchange_(plan_),
       clock_(plan_.timestamp, plan_.clock_tolerance) {
     filters_.resize(plan_.tags.size());
-    if (settings_.batch) {
-        batch_keys_.reserve(plan_.tags.size());
-        for (const auto& tag : plan_.tags) {
-            std::string key;
-            adapters::mqtt::append_json_string(key, tag.spec.name);
-            batch_keys_.push_back(key + ':');
-        }
-    }
+    samples_.reserve(plan_.tags.size());
 }
 
 std::int64_t ExchangeConsumer::sample_time(core::WallTime wall) {
@@ -91,14 +80,17 @@ core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::D
         arrivals_.on_arrival(now);
         last_seen_ms_ = to_ms(wall);
         timestamp_ms_ = sample_time(wall);
-        publish_tags(now, false);
+        report_tags(now, false);
     } else if (outcome.state_changed) {
-        // Entering signature or length mismatch: the last values are republished as bad.
+        // Entering signature or length mismatch: the last values are reported again as bad.
         timestamp_ms_ = to_ms(wall);
-        publish_tags(now, false);
+        report_tags(now, false);
     }
+    // After the samples: a protocol that reports an exchange coming up (a Sparkplug DBIRTH)
+    // then has its new values.
+    if (outcome.state_changed) northbound_.exchange_state(plan_, exchange_.state());
     if (outcome.state_changed || clock_.state() != clock_before) {
-        publish_status(now, wall);
+        report_status(now);
     } else {
         status_dirty_ = true;
     }
@@ -107,68 +99,48 @@ core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::D
 
 void ExchangeConsumer::on_tick(core::MonoTime now, core::WallTime wall, bool refresh_scan) {
     if (exchange_.on_tick(now)) {
-        // docs/protocol.md §4 rule 8: every tag of a stale exchange is republished as stale,
-        // keeping its last value; the timestamp says when it was found stale.
+        // docs/protocol.md §4 rule 8: every tag of a stale exchange is reported again as
+        // stale, keeping its last value; the timestamp says when it was found stale.
         timestamp_ms_ = to_ms(wall);
-        publish_tags(now, false);
-        publish_status(now, wall);
+        report_tags(now, false);
+        northbound_.exchange_state(plan_, exchange_.state());
+        report_status(now);
         return;
     }
-    if (refresh_scan) publish_tags(now, false);
+    if (refresh_scan) report_tags(now, false);
     if (status_dirty_ && exchange_.counters().received != last_status_received_ &&
         (!last_status_at_ || now - *last_status_at_ >= status_interval)) {
-        publish_status(now, wall);
+        report_status(now);
     }
 }
 
-void ExchangeConsumer::republish(core::MonoTime now, core::WallTime wall) {
-    publish_tags(now, true);
-    publish_status(now, wall);
+void ExchangeConsumer::republish(core::MonoTime now) {
+    report_tags(now, true);
+    report_status(now);
 }
 
-void ExchangeConsumer::publish_tags(core::MonoTime now, bool force) {
+void ExchangeConsumer::report_tags(core::MonoTime now, bool all) {
     const auto quality = core::quality::quality_of(exchange_.state());
     if (!quality || !exchange_.has_image()) return;
     const auto image = exchange_.image();
-    std::string batch_values;
+    samples_.clear();
     for (std::size_t i = 0; i < plan_.tags.size(); ++i) {
         const auto& tag = plan_.tags[i];
         auto& filter = filters_[i];
         const auto value = core::plan::decode_value(image, tag.spec.type, tag.spec.address);
-        if (!force &&
+        if (!all &&
             !filter.should_publish(value, *quality, now, tag.spec.deadband, tag.spec.refresh)) {
             continue;
         }
         filter.published(value, *quality, now);
-        // Filled in place and handed over: the client gives back buffers of an earlier
-        // publication, so a tag's publication allocates nothing here.
-        plan_.tag_topic_into(tag, message_.topic);
-        adapters::mqtt::format_tag_payload(message_.payload, value, *quality, timestamp_ms_,
-                                           settings_.format);
-        message_.qos = settings_.qos;
-        message_.retain = settings_.retain;
-        sink_(std::move(message_));  // leaves message_ blank (PublishSink)
-        if (settings_.batch) {
-            if (!batch_values.empty()) batch_values += ',';
-            batch_values += batch_keys_[i];
-            batch_values += core::plan::to_json(value);
-        }
+        samples_.push_back({i, value});
     }
-    if (settings_.batch && !batch_values.empty()) {
-        adapters::mqtt::Message values{
-            plan_.values_topic,
-            fmt::format(R"({{"timestamp":{},"quality":"{}","values":{{{}}}}})", timestamp_ms_,
-                        core::quality::to_string(*quality), batch_values),
-            settings_.qos, false, false};
-        values.batch_lane = true;
-        sink_(std::move(values));
-    }
+    if (samples_.empty()) return;
+    northbound_.tag_samples({plan_, *quality, timestamp_ms_, all, samples_});
 }
 
-void ExchangeConsumer::publish_status(core::MonoTime now, core::WallTime) {
-    sink_({plan_.status_topic,
-           adapters::mqtt::format_status_payload(exchange_, last_seen_ms_, clock_), settings_.qos,
-           true, true});
+void ExchangeConsumer::report_status(core::MonoTime now) {
+    northbound_.consumed_status({plan_, exchange_, last_seen_ms_, clock_});
     last_status_at_ = now;
     last_status_received_ = exchange_.counters().received;
     status_dirty_ = false;

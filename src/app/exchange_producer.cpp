@@ -5,7 +5,6 @@
 
 #include <chrono>
 
-#include "eip2mqtt/adapters/mqtt/payload.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
@@ -31,19 +30,19 @@ ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
                                    adapters::udp::Endpoint destination,
                                    ProducerScheduler& scheduler,
                                    adapters::state::ImagePersister& persister,
-                                   PublishSettings settings, PublishSink sink)
+                                   Northbound& northbound)
     : plan_(std::make_shared<const core::plan::ExchangePlan>(std::move(plan))),
       destination_(destination),
       scheduler_(scheduler),
       persister_(persister),
       persist_key_(persister.attach(
           [this](bool ok, const std::vector<std::uint64_t>& ids) { on_saved(ok, ids); })),
-      settings_(settings),
-      sink_(std::move(sink)),
+      northbound_(northbound),
       image_(*plan_, restore(persister, *plan_)),
       datagram_(core::wire::header_size + plan_->length) {
     limiters_.reserve(plan_->tags.size());
     for (const auto& tag : plan_->tags) limiters_.emplace_back(tag.spec.max_writes_per_s());
+    samples_.reserve(plan_->tags.size());
     spdlog::info("exchange {}: producing to {} every {} ms, {} image", plan_->spec.name,
                  adapters::udp::to_string(destination_), plan_->spec.period.count(),
                  image_.restored() ? "restored" : "initial");
@@ -58,7 +57,7 @@ void ExchangeProducer::start(core::MonoTime start, std::size_t index, std::size_
     id_ = scheduler_.add(
         *this, core::exchange::ProductionSchedule(start, plan_->spec.period, index, count));
     // `_status` once a second, each producer at its own phase of the second, as its sends
-    // are spread over the period: 1,000 producers publishing in one handler held the loop
+    // are spread over the period: 1,000 producers reporting in one handler held the loop
     // ~25 ms (MQTT client), so every exchange skipped deadlines (bench scenario 7).
     if (count > 0) {
         next_status_at_ = start + std::chrono::nanoseconds{status_interval.count() *
@@ -76,11 +75,10 @@ std::size_t ExchangeProducer::cancel_queued_writes(std::string_view error) {
     std::vector<std::uint64_t> ids;
     image_.discard_pending(ids);
     if (ids.empty()) return 0;
-    const auto payload = adapters::mqtt::format_write_result(error);
     for (const auto id : ids) {
         const auto it = replies_.find(id);
         if (it == replies_.end()) continue;
-        sink_({it->second.topic, payload, 1, false, false, std::move(it->second.correlation_data)});
+        northbound_.write_result(it->second, error);
         replies_.erase(it);
     }
     spdlog::warn("exchange {}: {} queued write(s) answered \"{}\": never produced",
@@ -128,16 +126,16 @@ void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
         } else {
             spdlog::info("exchange {}: sending again", plan_->spec.name);
         }
-        publish_status();
+        report_status();
     }
 
     const bool changed = image_.dirty();
     if (changed) {
         image_.clear_dirty();
-        publish_echo(wall, false);
+        report_echo(wall, false);
     }
     counters_.writes_applied += carried_.size();
-    // docs/mqtt-api.md "Results": a write's result is published once the datagram carrying it was
+    // docs/mqtt-api.md "Results": a write's result is reported once the datagram carrying it was
     // sent and the image carrying it is saved. The save runs off the loop; a write that changed
     // nothing still waits for a save under way, which may hold the value it wrote.
     if (changed || (saves_in_flight_ > 0 && !carried_.empty())) {
@@ -145,38 +143,39 @@ void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
         persister_.save(persist_key_, plan_, image_.data(), carried_);
         return;
     }
-    publish_results(carried_);
+    report_results(carried_);
 }
 
 void ExchangeProducer::on_saved(bool ok, const std::vector<std::uint64_t>& write_ids) {
     if (saves_in_flight_ > 0) --saves_in_flight_;
     if (!ok) ++counters_.persist_failures;
-    publish_results(write_ids);
+    report_results(write_ids);
 }
 
-void ExchangeProducer::publish_results(const std::vector<std::uint64_t>& write_ids) {
+void ExchangeProducer::report_results(const std::vector<std::uint64_t>& write_ids) {
     for (const auto id : write_ids) {
         const auto it = replies_.find(id);
         if (it == replies_.end()) continue;
-        sink_({it->second.topic, adapters::mqtt::format_write_result(), 1, false, false,
-               std::move(it->second.correlation_data)});
+        northbound_.write_result(it->second, std::nullopt);
         replies_.erase(it);
     }
 }
 
-void ExchangeProducer::publish_echo(core::WallTime wall, bool all) {
+void ExchangeProducer::report_echo(core::WallTime wall, bool all) {
     const auto data = image_.data();
-    for (const auto& tag : plan_->tags) {
-        const auto value = core::plan::decode_value(data, tag.spec.type, tag.spec.address);
+    samples_.clear();
+    for (std::size_t i = 0; i < plan_->tags.size(); ++i) {
+        const auto& tag = plan_->tags[i].spec;
+        const auto value = core::plan::decode_value(data, tag.type, tag.address);
         if (!all && echoed_.size() == data.size()) {
-            const auto old = core::plan::decode_value(echoed_, tag.spec.type, tag.spec.address);
+            const auto old = core::plan::decode_value(echoed_, tag.type, tag.address);
             if (core::plan::same_value(old, value)) continue;
         }
-        adapters::mqtt::format_tag_payload(payload_, value, core::quality::Quality::good,
-                                           to_ms(wall), settings_.format);
-        sink_({plan_->tag_topic(tag), payload_, settings_.qos, settings_.retain, true});
+        samples_.push_back({i, value});
     }
     echoed_.assign(data.begin(), data.end());
+    if (samples_.empty()) return;
+    northbound_.tag_samples({*plan_, core::quality::Quality::good, to_ms(wall), all, samples_});
 }
 
 void ExchangeProducer::on_tick(core::MonoTime now) {
@@ -187,12 +186,12 @@ void ExchangeProducer::on_tick(core::MonoTime now) {
     // one tick for good. Two publications are a second apart, less up to one tick.
     next_status_at_ +=
         (now - next_status_at_) / status_interval * status_interval + status_interval;
-    publish_status();
+    report_status();
 }
 
-void ExchangeProducer::publish_status() {
+void ExchangeProducer::report_status() {
     last_status_sent_ = counters_.sent;
-    adapters::mqtt::ProducedStatus status;
+    ProducedStatus status;
     status.paused = failing_;
     status.request_id = image_.next_request_id();
     status.sent = counters_.sent;
@@ -200,13 +199,12 @@ void ExchangeProducer::publish_status() {
     status.skipped_deadlines = counters_.skipped_deadlines;
     status.writes_applied = counters_.writes_applied;
     status.writes_pending = image_.pending();
-    sink_({plan_->status_topic, adapters::mqtt::format_produced_status_payload(status),
-           settings_.qos, true, true});
+    northbound_.produced_status(*plan_, status);
 }
 
 void ExchangeProducer::republish(core::WallTime wall) {
-    publish_echo(wall, true);
-    publish_status();
+    report_echo(wall, true);
+    report_status();
 }
 
 }  // namespace eip2mqtt::app

@@ -27,18 +27,23 @@ constexpr auto stop_flush_timeout = 3s;
 
 Gateway::Gateway(core::config::Config config)
     : config_(std::move(config)),
-      publish_settings_{config_.mqtt.qos, config_.mqtt.retain, config_.mqtt.payload,
-                        config_.mqtt.batch},
       availability_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/state"),
-      metrics_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/metrics"),
       signals_(loop_, SIGINT, SIGTERM, SIGHUP),
       tick_timer_(loop_),
       metrics_timer_(loop_),
       watchdog_timer_(loop_),
+      writes_(
+          [this](ExchangeWrite&& write, const WriteReply& reply, core::MonoTime now) {
+              return producers_.at(write.producer)->stage(std::move(write.writes), reply, now);
+          },
+          [] { return std::chrono::steady_clock::now(); }),
       image_store_(config_.gateway.state_dir) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(
         loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
-    apply_exchanges(take_plans(), false);
+    uns_json_ = std::make_unique<northbound::UnsJson>(northbound::uns_json_options(config_), *mqtt_,
+                                                      writes_);
+    northbound_.add(*uns_json_);
+    apply_exchanges(take_plans(), false, false);
 
     adapters::udp::ReceiverOptions receiver_options;
     receiver_options.bind = config_.eip.bind;
@@ -84,10 +89,9 @@ int Gateway::run() {
 void Gateway::start() {
     started_at_ = std::chrono::steady_clock::now();
     last_refresh_scan_ = started_at_;
-    mqtt_->set_subscriptions(write_subscriptions());
     mqtt_->set_on_connected([this] { on_connected(); });
     mqtt_->set_on_message(
-        [this](adapters::mqtt::Incoming message) { on_message(std::move(message)); });
+        [this](const adapters::mqtt::Incoming& message) { uns_json_->on_message(message); });
     for (std::size_t i = 0; i < producers_.size(); ++i) {
         producers_[i]->start(started_at_, i, producers_.size());
     }
@@ -141,7 +145,7 @@ void Gateway::on_connected() {
                  consumers_.size() + producers_.size());
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
-    for (auto& consumer : consumers_) consumer->republish(now, wall);
+    for (auto& consumer : consumers_) consumer->republish(now);
     for (auto& producer : producers_) producer->republish(wall);
 }
 
@@ -162,8 +166,9 @@ void Gateway::on_tick() {
         last_refresh_scan_ = now;
         if (prometheus_) {
             const auto stats = mqtt_->stats();
-            prometheus_->update(metrics_snapshot({datagram_router_.counters(), counters_, stats},
-                                                 consumers_, producers_, now));
+            prometheus_->update(
+                metrics_snapshot({datagram_router_.counters(), writes_.counters(), stats},
+                                 consumers_, producers_, now));
         }
     }
     // Every tick: each producer publishes its `_status` at its own phase of the second, so
@@ -198,9 +203,7 @@ void Gateway::publish_metrics() {
     const auto stats = mqtt_->stats();
     const auto uptime = std::chrono::duration_cast<std::chrono::seconds>(
         std::chrono::steady_clock::now() - started_at_);
-    mqtt_->publish({metrics_topic_,
-                    metrics_json({datagram_router_.counters(), counters_, stats}, uptime), 0, false,
-                    true});
+    northbound_.gateway_metrics({datagram_router_.counters(), writes_.counters(), stats}, uptime);
     notifier_.status(status_line());
 }
 

@@ -1,8 +1,5 @@
 #include "eip2mqtt/app/gateway_metrics.hpp"
 
-#include <map>
-#include <nlohmann/json.hpp>
-
 namespace eip2mqtt::app {
 namespace {
 
@@ -48,7 +45,8 @@ adapters::metrics::ExchangeMetrics producer_metrics(const ExchangeProducer& prod
     return m;
 }
 
-/// Drops by reason name, every reason listed, for the JSON and for Prometheus alike.
+}  // namespace
+
 std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& counters) {
     std::map<std::string, std::uint64_t> out;
     for (const auto reason : core::wire::all_drop_reasons) {
@@ -57,7 +55,6 @@ std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& count
     return out;
 }
 
-/// Write rejections by error name, every error listed.
 std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& counters) {
     std::map<std::string, std::uint64_t> out;
     for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
@@ -65,28 +62,6 @@ std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& c
             counters.writes_rejected[i];
     }
     return out;
-}
-
-}  // namespace
-
-std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime) {
-    const auto& mqtt = sources.mqtt;
-    const nlohmann::json metrics = {
-        {"uptime_s", uptime.count()},
-        {"datagrams", sources.datagrams.datagrams},
-        {"accepted", sources.datagrams.accepted},
-        {"dropped", drops_by_name(sources.datagrams)},
-        {"published", mqtt.published},
-        {"buffered", mqtt.queued},
-        {"publications_dropped", mqtt.dropped_overflow},
-        {"publications_coalesced", mqtt.coalesced},
-        {"publications_refused", mqtt.refused},
-        {"mqtt_connects", mqtt.connects},
-        {"writes_ok", sources.gateway.writes_ok},
-        {"writes_rejected", rejections_by_name(sources.gateway)},
-        {"writes_cancelled", sources.gateway.writes_cancelled},
-    };
-    return metrics.dump();
 }
 
 adapters::metrics::MetricsSnapshot metrics_snapshot(

@@ -46,24 +46,25 @@ std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
     return plans;
 }
 
-core::plan::PlanDiff Gateway::diff_running(
-    const std::vector<core::plan::ExchangePlan>& plans) const {
+core::plan::PlanDiff Gateway::diff_running(const std::vector<core::plan::ExchangePlan>& plans,
+                                           bool settings_changed) const {
     // The running exchanges, consumers first: diff_plans' indices count in that order.
-    std::vector<const core::plan::ExchangePlan*> running_plans;
-    bool settings_changed = false;
-    for (const auto& consumer : consumers_) {
-        running_plans.push_back(&consumer->plan());
-        settings_changed |= consumer->settings() != publish_settings_;
-    }
-    for (const auto& producer : producers_) {
-        running_plans.push_back(&producer->plan());
-        settings_changed |= producer->settings() != publish_settings_;
-    }
+    auto running = running_exchanges();
+    auto& running_plans = running.consumed;
+    running_plans.insert(running_plans.end(), running.produced.begin(), running.produced.end());
     return core::plan::diff_plans(running_plans, plans, settings_changed);
 }
 
-std::unique_ptr<ExchangeProducer> Gateway::make_producer(core::plan::ExchangePlan plan,
-                                                         const PublishSink& sink) {
+ExchangeSet Gateway::running_exchanges() const {
+    ExchangeSet running;
+    running.consumed.reserve(consumers_.size());
+    for (const auto& consumer : consumers_) running.consumed.push_back(&consumer->plan());
+    running.produced.reserve(producers_.size());
+    for (const auto& producer : producers_) running.produced.push_back(&producer->plan());
+    return running;
+}
+
+std::unique_ptr<ExchangeProducer> Gateway::make_producer(core::plan::ExchangePlan plan) {
     const auto destination =
         adapters::udp::resolve_endpoint(plan.spec.destination, config_.eip.port);
     if (!destination) {
@@ -82,17 +83,15 @@ std::unique_ptr<ExchangeProducer> Gateway::make_producer(core::plan::ExchangePla
             std::make_unique<adapters::state::ImagePersister>(image_store_, loop_.get_executor());
     }
     return std::make_unique<ExchangeProducer>(std::move(plan), *destination, *production_,
-                                              *persister_, publish_settings_, sink);
+                                              *persister_, northbound_);
 }
 
-void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running) {
+void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running,
+                              bool settings_changed) {
     // Saves still under way must reach the disk before a restarted exchange reads its image.
     if (persister_) persister_->flush();
-    const PublishSink sink = [this](adapters::mqtt::Message&& message) {
-        mqtt_->publish(std::move(message));
-    };
 
-    const auto diff = diff_running(plans);
+    const auto diff = diff_running(plans, settings_changed);
 
     auto old_consumers = std::move(consumers_);
     auto old_producers = std::move(producers_);
@@ -115,12 +114,11 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
             continue;
         }
         if (plan.spec.direction == core::plan::Direction::consume) {
-            consumers_.push_back(
-                std::make_unique<ExchangeConsumer>(std::move(plan), publish_settings_, sink));
+            consumers_.push_back(std::make_unique<ExchangeConsumer>(std::move(plan), northbound_));
             started_consumers.push_back(consumers_.back().get());
             continue;
         }
-        producers_.push_back(make_producer(std::move(plan), sink));
+        producers_.push_back(make_producer(std::move(plan)));
         started_producers.push_back(producers_.back().get());
     }
 
@@ -131,25 +129,21 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
         if (index < old_consumer_count) continue;
         auto& producer = old_producers[index - old_consumer_count];
         producer->stop();
-        counters_.writes_cancelled += producer->cancel_queued_writes("reloaded");
+        writes_.count_cancelled(producer->cancel_queued_writes("reloaded"));
     }
-    // No subscriber may keep reading a tag that no longer exists.
-    for (const auto& topic : diff.cleared) {
-        mqtt_->publish({topic, "", publish_settings_.qos, true, true});
-    }
-
+    // The northbounds forget retired exchanges (retained topics cleared) and learn the new ones
+    // (the JSON tree's `set` subscriptions).
+    northbound_.exchanges_changed(running_exchanges(), diff.cleared);
     datagram_router_.set_consumers(consumers_);
-    build_write_routes();
     if (!running) return;
 
-    mqtt_->set_subscriptions(write_subscriptions());
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
     for (std::size_t i = 0; i < started_producers.size(); ++i) {
         started_producers[i]->start(now, i, started_producers.size());
         started_producers[i]->republish(wall);
     }
-    for (auto* consumer : started_consumers) consumer->republish(now, wall);
+    for (auto* consumer : started_consumers) consumer->republish(now);
     spdlog::info(
         "configuration applied: {} exchange(s) kept, {} started, {} stopped; {} retained "
         "topic(s) cleared",
@@ -178,11 +172,12 @@ void Gateway::reload() {
     }
     set_log_level(config.gateway.log_level);
     config_ = std::move(config);
-    publish_settings_ = {config_.mqtt.qos, config_.mqtt.retain, config_.mqtt.payload,
-                         config_.mqtt.batch};
+    auto uns_options = northbound::uns_json_options(config_);
+    const bool settings_changed = uns_options.publish != uns_json_->options().publish;
+    uns_json_->set_options(std::move(uns_options));
     mqtt_->set_buffer_capacity(config_.mqtt.buffer_max_messages);
     try {
-        apply_exchanges(take_plans(), true);
+        apply_exchanges(take_plans(), true, settings_changed);
     } catch (const std::exception& e) {
         spdlog::critical("reload failed half-way: {}; exiting for a clean restart", e.what());
         stopping_ = true;

@@ -199,7 +199,7 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
         return refuse(WriteError::read_only,
                       "exchange " + plan.spec.name + " is consumed: its tags are read-only");
     }
-    RoutedWrite routed{*route.producer, {}};
+    ExchangeWrite routed{*route.producer, {}};
     auto rejection = collect_writes(plan, target->tag_index, message.payload, routed.writes);
     if (!rejection) rejection = overlap_rejection(plan, routed.writes);
     if (rejection) return refuse(rejection->error, std::move(rejection->message));

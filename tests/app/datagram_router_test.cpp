@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "tests/app/support/uns_json_recorder.hpp"
 #include "tests/support/datagram_builder.hpp"
 
 namespace eip2mqtt::app {
@@ -53,9 +54,7 @@ std::vector<std::byte> datagram(std::uint32_t exchange_id, std::uint16_t rid, st
 class DatagramRouterTest : public ::testing::Test {
 protected:
     void add(core::plan::ExchangePlan p) {
-        consumers_.push_back(std::make_unique<ExchangeConsumer>(
-            std::move(p), PublishSettings{},
-            [this](adapters::mqtt::Message&& m) { published_.push_back(std::move(m)); }));
+        consumers_.push_back(std::make_unique<ExchangeConsumer>(std::move(p), uns_.northbound()));
         router_.set_consumers(consumers_);
     }
     void route(const std::vector<std::byte>& bytes, std::uint32_t from = plc,
@@ -64,13 +63,7 @@ protected:
         router_.route(bytes, {from, 18246}, truncated, now_);
     }
     /// The payloads published on `topic`, in order.
-    std::vector<std::string> on(const std::string& topic) const {
-        std::vector<std::string> payloads;
-        for (const auto& m : published_) {
-            if (m.topic == topic) payloads.push_back(m.payload);
-        }
-        return payloads;
-    }
+    std::vector<std::string> on(const std::string& topic) const { return uns_.publisher.on(topic); }
     std::uint64_t dropped(DropReason reason) const {
         return router_.counters().dropped_for(reason);
     }
@@ -81,8 +74,8 @@ protected:
     }
 
     core::MonoTime now_ = core::MonoTime{} + 1h;
+    test::UnsJsonRecorder uns_;
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
-    std::vector<adapters::mqtt::Message> published_;
     DatagramRouter router_{[] { return core::WallTime{} + 1h; }};
 };
 

@@ -1,6 +1,6 @@
-// ExchangeConsumer's data path (issue #6): a datagram's decode, report-by-exception and tag
-// publications allocate nothing once warm, when the sink gives buffers back as the MQTT client
-// does (Client::publish).
+// ExchangeConsumer's data path (issue #6) through the JSON tree: a datagram's decode,
+// report-by-exception and tag publications allocate nothing once warm, when the publisher gives
+// buffers back as the MQTT client does (Client::publish).
 
 #include "eip2mqtt/app/exchange_consumer.hpp"
 
@@ -17,6 +17,7 @@
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
+#include "tests/app/support/uns_json_recorder.hpp"
 #include "tests/support/count_allocations.hpp"
 
 namespace eip2mqtt::app {
@@ -45,15 +46,11 @@ core::plan::ExchangePlan turbine_plan() {
 }
 
 TEST(ExchangeConsumerDataPath, PublishesEveryChangedTagWithoutAllocatingOnceWarm) {
-    std::size_t published = 0;
-    adapters::mqtt::Message last;
     // Like Client::publish: takes the content, leaves the buffers of the one before.
-    auto sink = [&](adapters::mqtt::Message&& message) {
-        ++published;
-        std::swap(last, message);
-        message.clear();
-    };
-    ExchangeConsumer consumer(turbine_plan(), PublishSettings{}, sink);
+    test::UnsJsonRecorder uns({}, test::RecordingPublisher::Mode::keep_last);
+    const auto& published = uns.publisher.count;
+    const auto& last = uns.publisher.last;
+    ExchangeConsumer consumer(turbine_plan(), uns.northbound());
 
     std::array<std::byte, 4 * kTags> data{};
     core::wire::Datagram datagram;
@@ -91,16 +88,13 @@ TEST(ExchangeConsumerDataPath, PublishesEveryChangedTagWithoutAllocatingOnceWarm
 TEST(ExchangeConsumerDataPath, BatchModeAddsOneValuesMessagePerDatagram) {
     // Issue #6, mqtt.batch: besides the tag topics, {exchange}/_values with every tag that
     // changed in the datagram, same value encoding, not retained, in the batch lane.
-    std::vector<adapters::mqtt::Message> published;
-    auto sink = [&](adapters::mqtt::Message&& message) {
-        published.push_back(std::move(message));
-        message.clear();
-    };
-    PublishSettings settings;
+    app::northbound::PublishSettings settings;
     settings.batch = true;
+    test::UnsJsonRecorder uns(settings);
+    auto& published = uns.publisher.published;
     auto plan = turbine_plan();
     plan.timestamp = core::plan::TimestampSource::producer;  // the datagram's 2024 time
-    ExchangeConsumer consumer(std::move(plan), settings, sink);
+    ExchangeConsumer consumer(std::move(plan), uns.northbound());
 
     std::array<std::byte, 4 * kTags> data{};
     for (int i = 0; i < kTags; ++i) {

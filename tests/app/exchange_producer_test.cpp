@@ -21,6 +21,7 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
+#include "tests/app/support/uns_json_recorder.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -60,10 +61,9 @@ protected:
         scheduler_ = std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_);
         persister_ =
             std::make_unique<adapters::state::ImagePersister>(*store_, loop_.get_executor());
-        producer_ = std::make_unique<ExchangeProducer>(
-            make_plan(), adapters::udp::Endpoint{0x7F000001, 9}, *scheduler_, *persister_,
-            PublishSettings{},
-            [this](adapters::mqtt::Message&& m) { published_.push_back(std::move(m)); });
+        producer_ =
+            std::make_unique<ExchangeProducer>(make_plan(), adapters::udp::Endpoint{0x7F000001, 9},
+                                               *scheduler_, *persister_, uns_.northbound());
         producer_->start(std::chrono::steady_clock::now(), 0, 1);
     }
     void TearDown() override {
@@ -92,7 +92,7 @@ protected:
     /// The results published so far, by correlation data (every one of them, in order).
     std::map<std::string, std::vector<json>> results() const {
         std::map<std::string, std::vector<json>> by_name;
-        for (const auto& m : published_) {
+        for (const auto& m : uns_.publisher.published) {
             if (!m.topic.starts_with("reply/")) continue;
             EXPECT_EQ(m.topic, "reply/" + m.correlation_data);
             EXPECT_EQ(m.qos, 1);
@@ -109,8 +109,8 @@ protected:
     std::unique_ptr<adapters::udp::Sender> sender_;
     std::unique_ptr<ProducerScheduler> scheduler_;
     std::unique_ptr<adapters::state::ImagePersister> persister_;
+    test::UnsJsonRecorder uns_;
     std::unique_ptr<ExchangeProducer> producer_;
-    std::vector<adapters::mqtt::Message> published_;
 };
 
 const json ok = {{"ok", true}};

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
+#include "tests/app/support/recording_northbound.hpp"
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app {
@@ -44,7 +46,7 @@ struct Counters {
 
 TEST(MetricsJson, EachCounterLandsInItsField) {
     const Counters c;
-    const auto metrics = json::parse(metrics_json(c.sources(), 42s));
+    const auto metrics = json::parse(northbound::metrics_json(c.sources(), 42s));
     EXPECT_EQ(metrics["uptime_s"], 42);
     EXPECT_EQ(metrics["datagrams"], 10);
     EXPECT_EQ(metrics["accepted"], 6);
@@ -62,7 +64,7 @@ TEST(MetricsJson, EachCounterLandsInItsField) {
 }
 
 TEST(MetricsJson, EveryDropReasonAndWriteErrorIsListedEvenAtZero) {
-    const auto metrics = json::parse(metrics_json(Counters{}.sources(), 0s));
+    const auto metrics = json::parse(northbound::metrics_json(Counters{}.sources(), 0s));
     ASSERT_EQ(metrics["dropped"].size(), core::wire::drop_reason_count);
     for (const auto reason : core::wire::all_drop_reasons) {
         EXPECT_TRUE(metrics["dropped"].contains(std::string(core::wire::to_string(reason))));
@@ -72,7 +74,7 @@ TEST(MetricsJson, EveryDropReasonAndWriteErrorIsListedEvenAtZero) {
 }
 
 TEST(MetricsJson, MatchesTheDocumentedSchema) {
-    const auto payload = metrics_json(Counters{}.sources(), 42s);
+    const auto payload = northbound::metrics_json(Counters{}.sources(), 42s);
     EXPECT_EQ(test::schema_problem(test::schema_file("metrics.json"), payload), "") << payload;
 }
 
@@ -84,10 +86,10 @@ TEST(MetricsSnapshot, CarriesTheGatewayFiguresAndEachExchange) {
     spec.exchange_id = 1;
     spec.length = 4;
     spec.topic = "e1";
+    test::RecordingNorthbound northbound;
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers;
-    consumers.push_back(
-        std::make_unique<ExchangeConsumer>(core::plan::make_exchange_plan(spec, "plant"),
-                                           PublishSettings{}, [](adapters::mqtt::Message&&) {}));
+    consumers.push_back(std::make_unique<ExchangeConsumer>(
+        core::plan::make_exchange_plan(spec, "plant"), northbound));
 
     const auto snapshot = metrics_snapshot(c.sources(), consumers, {}, core::MonoTime{} + 1h);
     EXPECT_EQ(snapshot.gateway.datagrams, 10u);

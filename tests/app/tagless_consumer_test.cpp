@@ -10,6 +10,7 @@
 
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "tests/app/support/uns_json_recorder.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -33,9 +34,9 @@ bool has(const std::string& payload, const std::string& text) {
 }
 
 TEST(TaglessConsumer, PublishesOnlyItsStatusWithCountersThatMove) {
-    std::vector<adapters::mqtt::Message> published;
-    ExchangeConsumer consumer(tagless_plan(), PublishSettings{},
-                              [&](adapters::mqtt::Message&& m) { published.push_back(m); });
+    test::UnsJsonRecorder uns;
+    const auto& published = uns.publisher.published;
+    ExchangeConsumer consumer(tagless_plan(), uns.northbound());
     std::vector<std::byte> data(8);
     core::wire::Datagram datagram;
     datagram.header.producer_id = *core::wire::parse_producer_id("10.0.0.9");

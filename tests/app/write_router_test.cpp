@@ -66,11 +66,11 @@ protected:
         EXPECT_NE(rejection, nullptr);
         return rejection ? *rejection : WriteRejection{WriteError::empty, "accepted"};
     }
-    static RoutedWrite accepted(const WriteDecision& decision) {
-        const auto* routed = std::get_if<RoutedWrite>(&decision.outcome);
+    static ExchangeWrite accepted(const WriteDecision& decision) {
+        const auto* routed = std::get_if<ExchangeWrite>(&decision.outcome);
         EXPECT_NE(routed, nullptr)
             << (routed ? "" : std::get<WriteRejection>(decision.outcome).message);
-        return routed ? *routed : RoutedWrite{};
+        return routed ? *routed : ExchangeWrite{};
     }
 
     core::plan::ExchangePlan produced_ = plan("sp", core::plan::Direction::produce, 10);

@@ -125,7 +125,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         (void)result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
         return 0;
     }
-    const auto& routed = std::get<app::RoutedWrite>(decision->outcome);
+    const auto& routed = std::get<app::ExchangeWrite>(decision->outcome);
     if (message.retained || routed.writes.empty() || routed.producer != 0) __builtin_trap();
     for (const auto& write : routed.writes) {
         if (write.tag_index >= produced.tags.size()) __builtin_trap();

@@ -1,9 +1,9 @@
 #pragma once
 /// One produced exchange at run time (issue #3): produces its datagram when the
 /// ProducerScheduler says it is due (every period, against absolute deadlines), applies queued
-/// writes between two productions, echoes the produced values on the tag topics, has the
-/// ImagePersister save the image when it changes, and answers each write once the datagram
-/// carrying it has left and the image carrying it is saved.
+/// writes between two productions, reports the produced values that changed (the echo) to the
+/// Northbound, has the ImagePersister save the image when it changes, and answers each write
+/// once the datagram carrying it has left and the image carrying it is saved.
 ///
 /// Threading: the loop only.
 
@@ -18,7 +18,7 @@
 
 #include "eip2mqtt/adapters/state/image_persister.hpp"
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
-#include "eip2mqtt/app/exchange_consumer.hpp"
+#include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/producer_scheduler.hpp"
 #include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/exchange/produced_image.hpp"
@@ -40,35 +40,35 @@ struct ProducerCounters {
 class ExchangeProducer : public Producible {
 public:
     /// The image is restored through `persister` when a file of the same layout exists.
-    /// `scheduler` and `persister` must outlive the producer.
+    /// `scheduler`, `persister` and `northbound` must outlive the producer.
     ExchangeProducer(core::plan::ExchangePlan plan, adapters::udp::Endpoint destination,
                      ProducerScheduler& scheduler, adapters::state::ImagePersister& persister,
-                     PublishSettings settings, PublishSink sink);
+                     Northbound& northbound);
     ~ExchangeProducer();
     ExchangeProducer(const ExchangeProducer&) = delete;
     ExchangeProducer& operator=(const ExchangeProducer&) = delete;
 
     /// Starts producing; the first send is at start + period * index / count.
     void start(core::MonoTime start, std::size_t index, std::size_t count);
-    /// Stops producing; saves under way still publish their write results.
+    /// Stops producing; saves under way still report their write results.
     void stop();
     /// For a stopped producer about to be destroyed (a reload changed or removed its
     /// exchange): answers every write still queued, which no datagram will ever carry, with
-    /// `{"ok":false,"error":error}` and forgets it; returns how many. Writes already carried by
+    /// `error` and forgets it; returns how many. Writes already carried by
     /// a sent datagram are not touched: they wait for their save, so flush the persister
     /// before destroying the producer, and they get `{"ok":true}`.
     std::size_t cancel_queued_writes(std::string_view error);
 
-    /// Queues a validated write; its result is published after the datagram carrying it is
+    /// Queues a validated write; its result is reported after the datagram carrying it is
     /// sent. Fails with rate_limited when a tag is written more often than its
     /// `max_writes_per_s`, and with queue_full when the queue is full.
     std::optional<core::write::WriteRejection> stage(std::vector<core::write::TagWrite> writes,
                                                      WriteReply reply, core::MonoTime now);
 
-    /// `_status` at most once a second while its counters move (docs/mqtt-api.md).
+    /// The status at most once a second while its counters move (docs/mqtt-api.md).
     void on_tick(core::MonoTime now);
 
-    /// Publishes the echo topics and `_status` again (after a reconnect).
+    /// Reports every tag's value and the status again (after a reconnect).
     void republish(core::WallTime wall);
 
     // --- Producible: called by the ProducerScheduler -------------------------------------
@@ -77,23 +77,22 @@ public:
     std::span<const std::byte> produce(core::WallTime wall) override;
     const adapters::udp::Endpoint& destination() const override { return destination_; }
     void count_skipped(std::size_t skipped) override { counters_.skipped_deadlines += skipped; }
-    /// Counters, `paused`, echo, and the save whose completion publishes the results of the
+    /// Counters, `paused`, echo, and the save whose completion reports the results of the
     /// writes the datagram carried.
     void on_sent(bool sent, core::WallTime wall) override;
 
     const core::plan::ExchangePlan& plan() const { return *plan_; }
-    const PublishSettings& settings() const { return settings_; }
     const ProducerCounters& counters() const { return counters_; }
-    /// True while sends fail (`_status` says paused).
+    /// True while sends fail (the status says paused).
     bool paused() const { return failing_; }
     const core::exchange::ProducedImage& image() const { return image_; }
 
 private:
-    /// The image save asked by on_sent() is done: publishes the results of `write_ids`.
+    /// The image save asked by on_sent() is done: reports the results of `write_ids`.
     void on_saved(bool ok, const std::vector<std::uint64_t>& write_ids);
-    void publish_echo(core::WallTime wall, bool all);
-    void publish_status();
-    void publish_results(const std::vector<std::uint64_t>& write_ids);
+    void report_echo(core::WallTime wall, bool all);
+    void report_status();
+    void report_results(const std::vector<std::uint64_t>& write_ids);
 
     /// Shared with the saves under way, which may outlive this producer (reload).
     std::shared_ptr<const core::plan::ExchangePlan> plan_;
@@ -103,11 +102,11 @@ private:
     adapters::state::ImagePersister& persister_;
     adapters::state::ImagePersister::Key persist_key_;
     std::size_t saves_in_flight_ = 0;
-    PublishSettings settings_;
-    PublishSink sink_;
+    Northbound& northbound_;
     core::exchange::ProducedImage image_;
     std::vector<std::byte> datagram_;
-    std::vector<std::byte> echoed_;  ///< data bytes as last echoed on the tag topics
+    std::vector<std::byte> echoed_;  ///< data bytes as last reported
+    std::vector<TagSample> samples_;
     std::vector<std::uint64_t> carried_;
     std::unordered_map<std::uint64_t, WriteReply> replies_;
     std::vector<core::write::RateLimiter> limiters_;  ///< one per tag
@@ -115,8 +114,7 @@ private:
     std::uint64_t last_status_sent_ = 0;
     std::uint64_t next_write_id_ = 1;
     ProducerCounters counters_;
-    bool failing_ = false;  ///< the last send failed: `_status` says paused
-    std::string payload_;
+    bool failing_ = false;  ///< the last send failed: the status says paused
 };
 
 }  // namespace eip2mqtt::app

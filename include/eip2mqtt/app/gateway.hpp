@@ -1,6 +1,7 @@
 #pragma once
-/// The daemon: wires the UDP receiver, the consumed exchanges and the MQTT client around one
-/// loop (one io_context on one thread), plus signals, timers and systemd notifications.
+/// The daemon: wires the UDP receiver, the exchanges, the northbounds (the JSON topic tree) and
+/// the MQTT client around one loop (one io_context on one thread), plus signals, timers and
+/// systemd notifications. The writes the northbounds decode go to its WriteDispatcher.
 /// Members are declared in dependency order so that handlers may capture `this`.
 
 #include <array>
@@ -26,8 +27,11 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/gateway_metrics.hpp"
+#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/fan_out.hpp"
+#include "eip2mqtt/app/northbound/uns_json.hpp"
 #include "eip2mqtt/app/producer_scheduler.hpp"
-#include "eip2mqtt/app/write_router.hpp"
+#include "eip2mqtt/app/write_dispatcher.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/plan/plan_diff.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -50,26 +54,24 @@ public:
 private:
     void start();
     void on_connected();
-    void on_message(adapters::mqtt::Incoming message);
-    void reject_write(const WriteReply& reply, const std::string& target,
-                      const core::write::WriteRejection& rejection, const std::string& detail = {});
-    /// Routes the `set` topics of the running exchanges (after each apply_exchanges).
-    void build_write_routes();
     /// The plans of config_'s exchanges, for apply_exchanges. The exchange configs (every tag
     /// again, with the marks of its keys) served validation only: they are released here.
     std::vector<core::plan::ExchangePlan> take_plans();
     /// Builds the exchanges of `plans`, keeping running ones whose plan is unchanged, stopping
     /// removed and changed ones and clearing their retained topics that no new exchange uses.
-    void apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running);
+    /// `settings_changed`: how tags are published changed, so every exchange restarts.
+    void apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running,
+                         bool settings_changed);
     /// What applying `plans` does to the running exchanges (core::plan::diff_plans).
-    core::plan::PlanDiff diff_running(const std::vector<core::plan::ExchangePlan>& plans) const;
+    core::plan::PlanDiff diff_running(const std::vector<core::plan::ExchangePlan>& plans,
+                                      bool settings_changed) const;
+    /// The running exchanges, as northbounds see them.
+    ExchangeSet running_exchanges() const;
     /// A new producer, opening the sending socket with the first one.
-    std::unique_ptr<ExchangeProducer> make_producer(core::plan::ExchangePlan plan,
-                                                    const PublishSink& sink);
+    std::unique_ptr<ExchangeProducer> make_producer(core::plan::ExchangePlan plan);
     /// SIGHUP: a valid new file is applied, an invalid one refused with its errors logged.
     void reload();
     void schedule_watchdog();
-    std::vector<std::string> write_subscriptions() const;
     void schedule_tick();
     void on_tick();
     void schedule_metrics();
@@ -78,9 +80,7 @@ private:
     void wait_signal();
 
     core::config::Config config_;
-    PublishSettings publish_settings_;
     std::string availability_topic_;
-    std::string metrics_topic_;
 
     boost::asio::io_context loop_;
     boost::asio::signal_set signals_;
@@ -89,6 +89,9 @@ private:
     boost::asio::steady_timer watchdog_timer_;
     adapters::systemd::Notifier notifier_;
     std::unique_ptr<adapters::mqtt::Client> mqtt_;
+    WriteDispatcher writes_;
+    std::unique_ptr<northbound::UnsJson> uns_json_;
+    northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
     DatagramRouter datagram_router_;
     std::unique_ptr<adapters::udp::Receiver> receiver_;
@@ -97,13 +100,10 @@ private:
     std::unique_ptr<ProducerScheduler> production_;  ///< with sender_; drives producers_
     std::unique_ptr<adapters::state::ImagePersister> persister_;  ///< with sender_
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
-    WriteRouter write_router_;
     std::unique_ptr<adapters::metrics::PrometheusEndpoint> prometheus_;
 
-    GatewayCounters counters_;
     core::MonoTime started_at_;
     core::MonoTime last_refresh_scan_;
-    core::ThrottledLog rejected_write_log_;
     bool stopping_ = false;
 };
 

@@ -1,11 +1,13 @@
 #pragma once
-/// The gateway's metrics, built from its counters alone: the JSON of `{base}/bridge/metrics`
-/// (docs/mqtt-api.md, docs/schema/metrics.json) and the snapshot Prometheus serves. Pure: no
-/// socket, no clock of its own, so each figure can be checked without running a gateway.
+/// The gateway's metrics, built from its counters alone: the figures by name that the metrics
+/// topic (app/northbound/uns_json_payload) and Prometheus report, and the snapshot Prometheus
+/// serves. Pure: no socket, no clock of its own, so each figure can be checked without running a
+/// gateway.
 
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <span>
 #include <string>
@@ -36,8 +38,11 @@ struct MetricsSources {
     const adapters::mqtt::ClientStats& mqtt;
 };
 
-/// The payload of the metrics topic.
-std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime);
+/// Drops by reason name, every reason listed, for the metrics topic and Prometheus alike.
+std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& counters);
+
+/// Write rejections by error name, every error listed.
+std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& counters);
 
 /// Gateway and per-exchange figures for Prometheus, ages taken at `now`.
 adapters::metrics::MetricsSnapshot metrics_snapshot(

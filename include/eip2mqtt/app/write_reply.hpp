@@ -5,10 +5,14 @@
 
 namespace eip2mqtt::app {
 
-/// The MQTT 5 response topic with its correlation data, or the `…/set/result` topic.
+class Northbound;
+
+/// The northbound a write came from, and its protocol's address for the answer: for the JSON
+/// tree, the MQTT 5 response topic with its correlation data, or the `…/set/result` topic.
 struct WriteReply {
     std::string topic;
     std::string correlation_data;
+    Northbound* origin = nullptr;  ///< nullptr: nobody to answer
 };
 
 }  // namespace eip2mqtt::app

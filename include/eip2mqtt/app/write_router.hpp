@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
-#include "eip2mqtt/app/write_reply.hpp"
+#include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
 
@@ -27,16 +27,11 @@ struct WriteRouterOptions {
     bool allow_response_topics_under_base = false;
 };
 
-/// Validated writes for the produced exchange `producer` (the index given to add()).
-struct RoutedWrite {
-    std::size_t producer = 0;
-    std::vector<core::write::TagWrite> writes;
-};
-
-/// What a message on one of our `…/set` topics asks.
+/// What a message on one of our `…/set` topics asks: the validated writes (ExchangeWrite, whose
+/// `producer` is the index given to add()) or why it is refused.
 struct WriteDecision {
     WriteReply reply;  ///< where the result goes; an empty topic: nowhere a broker accepts
-    std::variant<RoutedWrite, core::write::WriteRejection> outcome;
+    std::variant<ExchangeWrite, core::write::WriteRejection> outcome;
     /// Why the response topic was refused (for the log), when it was.
     std::string response_topic_problem;
 };

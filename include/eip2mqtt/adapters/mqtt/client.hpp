@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
+#include "eip2mqtt/adapters/mqtt/publisher.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
 
@@ -80,13 +81,13 @@ struct ClientStats {
     std::uint64_t refused = 0;
 };
 
-class Client {
+class Client final : public Publisher {
 public:
     using ConnectedHandler = std::function<void()>;
     using MessageHandler = std::function<void(Incoming)>;
 
     Client(boost::asio::any_io_executor loop, ClientOptions options);
-    ~Client();
+    ~Client() override;
     Client(const Client&) = delete;
     Client& operator=(const Client&) = delete;
 
@@ -95,7 +96,7 @@ public:
     /// Runs on the loop for every message received on a subscription.
     void set_on_message(MessageHandler handler);
     /// Topic filters (QoS 1) subscribed on every connect; may be changed at any time.
-    void set_subscriptions(std::vector<std::string> filters);
+    void set_subscriptions(std::vector<std::string> filters) override;
 
     /// Starts connecting (non-blocking); retries with backoff until stop().
     void start();
@@ -103,7 +104,7 @@ public:
     /// Queues a publication; sent when connected, buffered while not. Leaves `message` blank
     /// (Message::clear()), often with the buffers of an earlier publication: a caller that
     /// publishes in a loop fills the same Message again and allocates nothing.
-    void publish(Message&& message);
+    void publish(Message&& message) override;
 
     /// Publishes `offline`, waits up to `flush_timeout` for queued and in-flight publications,
     /// then disconnects and ends the sender thread. Blocks the calling thread: call it after

@@ -1,11 +1,13 @@
-#include "eip2mqtt/adapters/mqtt/payload.hpp"
+#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
 
 #include <fmt/format.h>
 
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-namespace eip2mqtt::adapters::mqtt {
+#include "eip2mqtt/app/gateway_metrics.hpp"
+
+namespace eip2mqtt::app::northbound {
 
 void format_tag_payload(std::string& out, const core::plan::Value& value,
                         core::quality::Quality quality, std::int64_t timestamp_ms,
@@ -19,9 +21,25 @@ void format_tag_payload(std::string& out, const core::plan::Value& value,
                    core::plan::to_json(value), timestamp_ms, core::quality::to_string(quality));
 }
 
-std::string format_status_payload(const core::exchange::ConsumedExchange& exchange,
-                                  std::optional<std::int64_t> last_seen_ms,
-                                  const core::exchange::ProducerClock& clock) {
+void format_values_payload(std::string& out, const SampleBatch& batch) {
+    out.clear();
+    fmt::format_to(std::back_inserter(out), R"({{"timestamp":{},"quality":"{}","values":{{)",
+                   batch.timestamp_ms, core::quality::to_string(batch.quality));
+    bool first = true;
+    for (const auto& sample : batch.samples) {
+        if (!first) out += ',';
+        first = false;
+        append_json_string(out, batch.exchange.tags[sample.tag].spec.name);
+        out += ':';
+        out += core::plan::to_json(sample.value);
+    }
+    out += "}}";
+}
+
+std::string format_status_payload(const ConsumedStatus& status) {
+    const auto& exchange = status.state;
+    const auto& clock = status.clock;
+    const auto& last_seen_ms = status.last_seen_ms;
     const auto& c = exchange.counters();
     const std::string last_seen = last_seen_ms ? std::to_string(*last_seen_ms) : "null";
     const std::string request_id =
@@ -52,10 +70,6 @@ void append_json_string(std::string& out, std::string_view text) {
     out += '"';
 }
 
-std::int64_t timestamp_ms(std::uint32_t seconds, std::uint32_t nanoseconds) {
-    return static_cast<std::int64_t>(seconds) * 1000 + nanoseconds / 1000000;
-}
-
 std::string format_produced_status_payload(const ProducedStatus& status) {
     return fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
                        R"("skipped_deadlines":{},"writes_applied":{},"writes_pending":{}}})",
@@ -70,4 +84,24 @@ std::string format_write_result(std::optional<std::string_view> error) {
     return result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-}  // namespace eip2mqtt::adapters::mqtt
+std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime) {
+    const auto& mqtt = sources.mqtt;
+    const nlohmann::json metrics = {
+        {"uptime_s", uptime.count()},
+        {"datagrams", sources.datagrams.datagrams},
+        {"accepted", sources.datagrams.accepted},
+        {"dropped", drops_by_name(sources.datagrams)},
+        {"published", mqtt.published},
+        {"buffered", mqtt.queued},
+        {"publications_dropped", mqtt.dropped_overflow},
+        {"publications_coalesced", mqtt.coalesced},
+        {"publications_refused", mqtt.refused},
+        {"mqtt_connects", mqtt.connects},
+        {"writes_ok", sources.gateway.writes_ok},
+        {"writes_rejected", rejections_by_name(sources.gateway)},
+        {"writes_cancelled", sources.gateway.writes_cancelled},
+    };
+    return metrics.dump();
+}
+
+}  // namespace eip2mqtt::app::northbound

@@ -1,10 +1,10 @@
-// JSON text the gateway writes by hand (adapters/mqtt/payload.hpp).
+// The payloads of the JSON topic tree (app/northbound/uns_json_payload.hpp).
 
-#include "eip2mqtt/adapters/mqtt/payload.hpp"
+#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
 
 #include <gtest/gtest.h>
 
-namespace eip2mqtt::adapters::mqtt {
+namespace eip2mqtt::app::northbound {
 namespace {
 
 std::string json_string(std::string_view text) {
@@ -54,4 +54,4 @@ TEST(ProducedStatus, CarriesEveryCounterAndTheState) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::adapters::mqtt
+}  // namespace eip2mqtt::app::northbound

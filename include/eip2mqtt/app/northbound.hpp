@@ -1,0 +1,121 @@
+#pragma once
+/// The seam between the exchanges and the protocols that carry their data north (issue #14).
+/// Consumers and producers report domain events here (tag samples, exchange status, an exchange
+/// going up or down, write results) and know neither MQTT nor JSON; each protocol implements
+/// Northbound: today's JSON topic tree is app/northbound/uns_json. NorthboundFanOut hands every
+/// event to several at once. Writes come back the other way: a northbound decodes what its
+/// clients send into one WriteRequest and hands it to a WriteHandler (the Gateway), whatever the
+/// protocol.
+///
+/// Threading: the loop only. An event borrows its data for the call.
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "eip2mqtt/app/write_reply.hpp"
+#include "eip2mqtt/core/exchange/consumed_exchange.hpp"
+#include "eip2mqtt/core/exchange/producer_clock.hpp"
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/value.hpp"
+#include "eip2mqtt/core/quality/quality.hpp"
+#include "eip2mqtt/core/write/write_request.hpp"
+
+namespace eip2mqtt::app {
+
+struct MetricsSources;
+
+/// The running exchanges. A produced exchange's index here is the one a WriteRequest names.
+struct ExchangeSet {
+    std::vector<const core::plan::ExchangePlan*> consumed;
+    std::vector<const core::plan::ExchangePlan*> produced;
+};
+
+/// One tag's value in a SampleBatch.
+struct TagSample {
+    std::size_t tag = 0;  ///< index in the exchange plan's tags
+    core::plan::Value value;
+};
+
+/// The tags of one exchange to report at one time: those a datagram changed (after deadband
+/// and refresh), all of them marked stale or bad, the values a produced datagram carried, or
+/// every tag again after a (re)connect. They share one quality and one timestamp.
+struct SampleBatch {
+    const core::plan::ExchangePlan& exchange;
+    core::quality::Quality quality;
+    std::int64_t timestamp_ms;  ///< chosen by the exchange's clock rules (ProducerClock)
+    bool all_tags;              ///< every tag of the exchange, not only the changed ones
+    std::span<const TagSample> samples;
+};
+
+/// A consumed exchange's counters and clock, reported on every state change and at most once a
+/// second while its counters move.
+struct ConsumedStatus {
+    const core::plan::ExchangePlan& exchange;
+    const core::exchange::ConsumedExchange& state;
+    std::optional<std::int64_t> last_seen_ms;  ///< wall time of the last accepted datagram
+    const core::exchange::ProducerClock& clock;
+};
+
+/// A produced exchange's counters.
+struct ProducedStatus {
+    bool paused = false;           ///< sends fail
+    std::uint16_t request_id = 0;  ///< of the next datagram
+    std::uint64_t sent = 0;
+    std::uint64_t send_errors = 0;
+    std::uint64_t skipped_deadlines = 0;
+    std::uint64_t writes_applied = 0;
+    std::uint64_t writes_pending = 0;
+};
+
+/// Validated writes for one produced exchange, applied together in one datagram.
+struct ExchangeWrite {
+    std::size_t producer = 0;  ///< index in ExchangeSet::produced
+    std::vector<core::write::TagWrite> writes;
+};
+
+/// A write as a northbound decoded it: what to apply, or why it is refused before it reaches
+/// an exchange. Either way its result goes back to `reply.origin`.
+struct WriteRequest {
+    WriteReply reply;
+    std::string target;  ///< what it addresses, for the log (a topic, a device)
+    std::variant<ExchangeWrite, core::write::WriteRejection> outcome;
+    std::string log_detail;  ///< appended to the log line of a refusal
+};
+
+class Northbound {
+public:
+    virtual ~Northbound() = default;
+
+    /// The running exchanges, at start and after each reload. `retired_topics` are the retained
+    /// topics of the JSON tree that no running exchange uses any more (core::plan::diff_plans).
+    virtual void exchanges_changed(const ExchangeSet& running,
+                                   std::span<const std::string> retired_topics) = 0;
+    virtual void tag_samples(const SampleBatch& batch) = 0;
+    virtual void consumed_status(const ConsumedStatus& status) = 0;
+    virtual void produced_status(const core::plan::ExchangePlan& exchange,
+                                 const ProducedStatus& status) = 0;
+    /// A consumed exchange changed state: up is `ok`, every other state is down.
+    virtual void exchange_state(const core::plan::ExchangePlan& exchange,
+                                core::exchange::ConsumeState state) = 0;
+    /// The result of a write that came from this northbound (`reply.origin`): nullopt when it
+    /// was applied and carried by a sent datagram, else why not.
+    virtual void write_result(const WriteReply& reply, std::optional<std::string_view> error) = 0;
+    /// The gateway's counters, every mqtt.metrics_interval.
+    virtual void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) = 0;
+};
+
+/// Where northbounds hand the writes they decode.
+class WriteHandler {
+public:
+    virtual ~WriteHandler() = default;
+    virtual void on_write(WriteRequest&& request) = 0;
+};
+
+}  // namespace eip2mqtt::app

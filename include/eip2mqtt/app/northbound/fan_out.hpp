@@ -1,0 +1,34 @@
+#pragma once
+/// Several northbounds at once (the JSON tree beside Sparkplug B, say): every event goes to each,
+/// in the order they were added, but a write result goes only to the northbound the write came
+/// from.
+///
+/// Threading: the loop only.
+
+#include <vector>
+
+#include "eip2mqtt/app/northbound.hpp"
+
+namespace eip2mqtt::app::northbound {
+
+class FanOut final : public Northbound {
+public:
+    /// `northbound` must outlive the fan-out's use of it.
+    void add(Northbound& northbound) { northbounds_.push_back(&northbound); }
+
+    void exchanges_changed(const ExchangeSet& running,
+                           std::span<const std::string> retired_topics) override;
+    void tag_samples(const SampleBatch& batch) override;
+    void consumed_status(const ConsumedStatus& status) override;
+    void produced_status(const core::plan::ExchangePlan& exchange,
+                         const ProducedStatus& status) override;
+    void exchange_state(const core::plan::ExchangePlan& exchange,
+                        core::exchange::ConsumeState state) override;
+    void write_result(const WriteReply& reply, std::optional<std::string_view> error) override;
+    void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
+
+private:
+    std::vector<Northbound*> northbounds_;
+};
+
+}  // namespace eip2mqtt::app::northbound

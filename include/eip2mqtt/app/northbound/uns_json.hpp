@@ -1,0 +1,71 @@
+#pragma once
+/// The JSON topic tree (docs/mqtt-api.md): a retained topic per tag, `_status` and `_values` per
+/// exchange, write results, the gateway's metrics; and writes on the `…/set` topics, decoded by
+/// the WriteRouter and handed to the WriteHandler.
+///
+/// Threading: the loop only.
+
+#include <string>
+
+#include "eip2mqtt/adapters/mqtt/message.hpp"
+#include "eip2mqtt/adapters/mqtt/publisher.hpp"
+#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/write_router.hpp"
+#include "eip2mqtt/core/config/config.hpp"
+
+namespace eip2mqtt::app::northbound {
+
+/// How tag publications are made (from the `mqtt:` section).
+struct PublishSettings {
+    int qos = 1;
+    bool retain = true;
+    core::config::PayloadFormat format = core::config::PayloadFormat::json;
+    bool batch = false;
+
+    friend bool operator==(const PublishSettings&, const PublishSettings&) = default;
+};
+
+struct UnsJsonOptions {
+    PublishSettings publish;
+    WriteRouterOptions writes;
+    std::string metrics_topic;  ///< `{base}/_gateway/{id}/metrics`
+};
+
+/// The options of `config`'s `mqtt:` and `gateway:` sections.
+UnsJsonOptions uns_json_options(const core::config::Config& config);
+
+class UnsJson final : public Northbound {
+public:
+    /// `mqtt` and `writes` must outlive the northbound.
+    UnsJson(UnsJsonOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes);
+
+    /// New settings (a reload); the exchanges it changes are restarted and republish.
+    void set_options(UnsJsonOptions options);
+    const UnsJsonOptions& options() const { return options_; }
+
+    /// A message on one of our subscriptions: a write on a `…/set` topic is decoded and handed
+    /// to the WriteHandler, refused or not; anything else is ignored.
+    void on_message(const adapters::mqtt::Incoming& message);
+
+    void exchanges_changed(const ExchangeSet& running,
+                           std::span<const std::string> retired_topics) override;
+    void tag_samples(const SampleBatch& batch) override;
+    void consumed_status(const ConsumedStatus& status) override;
+    void produced_status(const core::plan::ExchangePlan& exchange,
+                         const ProducedStatus& status) override;
+    /// Nothing of its own: `_status` says it.
+    void exchange_state(const core::plan::ExchangePlan&, core::exchange::ConsumeState) override {}
+    void write_result(const WriteReply& reply, std::optional<std::string_view> error) override;
+    void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
+
+private:
+    UnsJsonOptions options_;
+    adapters::mqtt::Publisher& mqtt_;
+    WriteHandler& writes_;
+    WriteRouter router_;
+    /// Every tag publication is filled in here; the publisher takes its content and leaves
+    /// spare buffers (Client::publish), so the data path does not allocate.
+    adapters::mqtt::Message message_;
+};
+
+}  // namespace eip2mqtt::app::northbound

@@ -1,0 +1,42 @@
+#pragma once
+/// Where every northbound's writes go (the Gateway's WriteHandler): a decoded write is staged on
+/// its produced exchange, or refused; every refusal is counted, answered through the northbound
+/// the write came from, and logged (throttled: a client may flood). Time is injected.
+///
+/// Threading: the loop only.
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+
+#include "eip2mqtt/app/gateway_metrics.hpp"
+#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
+#include "eip2mqtt/core/time.hpp"
+
+namespace eip2mqtt::app {
+
+/// Stages `write` on its produced exchange; the exchange's refusal (rate limit, full queue) if
+/// it refuses it.
+using StageWrite = std::function<std::optional<core::write::WriteRejection>(
+    ExchangeWrite&& write, const WriteReply& reply, core::MonoTime now)>;
+
+class WriteDispatcher final : public WriteHandler {
+public:
+    WriteDispatcher(StageWrite stage, core::MonoTime (*clock)());
+
+    void on_write(WriteRequest&& request) override;
+    /// Writes a reload answered `reloaded` (ExchangeProducer::cancel_queued_writes).
+    void count_cancelled(std::size_t writes) { counters_.writes_cancelled += writes; }
+    const GatewayCounters& counters() const { return counters_; }
+
+private:
+    void reject(const WriteRequest& request, const core::write::WriteRejection& rejection);
+
+    StageWrite stage_;
+    core::MonoTime (*clock_)();
+    GatewayCounters counters_;
+    core::ThrottledLog log_;
+};
+
+}  // namespace eip2mqtt::app

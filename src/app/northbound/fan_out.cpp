@@ -1,0 +1,37 @@
+#include "eip2mqtt/app/northbound/fan_out.hpp"
+
+namespace eip2mqtt::app::northbound {
+
+void FanOut::exchanges_changed(const ExchangeSet& running,
+                               std::span<const std::string> retired_topics) {
+    for (auto* northbound : northbounds_) northbound->exchanges_changed(running, retired_topics);
+}
+
+void FanOut::tag_samples(const SampleBatch& batch) {
+    for (auto* northbound : northbounds_) northbound->tag_samples(batch);
+}
+
+void FanOut::consumed_status(const ConsumedStatus& status) {
+    for (auto* northbound : northbounds_) northbound->consumed_status(status);
+}
+
+void FanOut::produced_status(const core::plan::ExchangePlan& exchange,
+                             const ProducedStatus& status) {
+    for (auto* northbound : northbounds_) northbound->produced_status(exchange, status);
+}
+
+void FanOut::exchange_state(const core::plan::ExchangePlan& exchange,
+                            core::exchange::ConsumeState state) {
+    for (auto* northbound : northbounds_) northbound->exchange_state(exchange, state);
+}
+
+void FanOut::write_result(const WriteReply& reply, std::optional<std::string_view> error) {
+    // Answered in the protocol it was asked in: a DCMD's result is not a JSON topic's business.
+    if (reply.origin != nullptr && reply.origin != this) reply.origin->write_result(reply, error);
+}
+
+void FanOut::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
+    for (auto* northbound : northbounds_) northbound->gateway_metrics(sources, uptime);
+}
+
+}  // namespace eip2mqtt::app::northbound

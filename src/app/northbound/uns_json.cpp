@@ -1,0 +1,99 @@
+#include "eip2mqtt/app/northbound/uns_json.hpp"
+
+#include "eip2mqtt/app/gateway_metrics.hpp"
+#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
+#include "eip2mqtt/core/printable.hpp"
+
+namespace eip2mqtt::app::northbound {
+
+UnsJsonOptions uns_json_options(const core::config::Config& config) {
+    const auto& mqtt = config.mqtt;
+    return {{mqtt.qos, mqtt.retain, mqtt.payload, mqtt.batch},
+            {mqtt.base_topic, mqtt.allow_response_topics_under_base},
+            mqtt.base_topic + "/_gateway/" + config.gateway.id + "/metrics"};
+}
+
+UnsJson::UnsJson(UnsJsonOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes)
+    : options_(std::move(options)), mqtt_(mqtt), writes_(writes), router_(options_.writes) {}
+
+void UnsJson::set_options(UnsJsonOptions options) {
+    options_ = std::move(options);
+    router_.set_options(options_.writes);
+}
+
+void UnsJson::exchanges_changed(const ExchangeSet& running,
+                                std::span<const std::string> retired_topics) {
+    // No subscriber may keep reading a tag that no longer exists.
+    for (const auto& topic : retired_topics) {
+        mqtt_.publish({topic, "", options_.publish.qos, true, true});
+    }
+    router_.clear();
+    for (const auto* plan : running.consumed) router_.add(*plan, std::nullopt);
+    for (std::size_t i = 0; i < running.produced.size(); ++i) {
+        router_.add(*running.produced[i], i);
+    }
+    mqtt_.set_subscriptions(router_.subscriptions());
+}
+
+void UnsJson::tag_samples(const SampleBatch& batch) {
+    const auto& settings = options_.publish;
+    const auto& plan = batch.exchange;
+    for (const auto& sample : batch.samples) {
+        // Filled in place and handed over: the publisher gives back buffers of an earlier
+        // publication, so a tag's publication allocates nothing here.
+        plan.tag_topic_into(plan.tags[sample.tag], message_.topic);
+        format_tag_payload(message_.payload, sample.value, batch.quality, batch.timestamp_ms,
+                           settings.format);
+        message_.qos = settings.qos;
+        message_.retain = settings.retain;
+        mqtt_.publish(std::move(message_));  // leaves message_ blank (Publisher)
+    }
+    // `_values` carries what consumed datagrams bring, not the echo of produced ones.
+    if (settings.batch && !batch.samples.empty() &&
+        plan.spec.direction == core::plan::Direction::consume) {
+        message_.topic = plan.values_topic;
+        format_values_payload(message_.payload, batch);
+        message_.qos = settings.qos;
+        message_.coalesce = false;
+        message_.batch_lane = true;
+        mqtt_.publish(std::move(message_));
+    }
+}
+
+void UnsJson::consumed_status(const ConsumedStatus& status) {
+    mqtt_.publish({status.exchange.status_topic, format_status_payload(status),
+                   options_.publish.qos, true, true});
+}
+
+void UnsJson::produced_status(const core::plan::ExchangePlan& exchange,
+                              const ProducedStatus& status) {
+    mqtt_.publish({exchange.status_topic, format_produced_status_payload(status),
+                   options_.publish.qos, true, true});
+}
+
+void UnsJson::write_result(const WriteReply& reply, std::optional<std::string_view> error) {
+    // Each result must be delivered: never coalesced with another on the same topic.
+    if (reply.topic.empty()) return;  // nowhere a broker accepts (WriteRouter::route)
+    mqtt_.publish(
+        {reply.topic, format_write_result(error), 1, false, false, reply.correlation_data});
+}
+
+void UnsJson::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
+    mqtt_.publish({options_.metrics_topic, metrics_json(sources, uptime), 0, false, true});
+}
+
+void UnsJson::on_message(const adapters::mqtt::Incoming& message) {
+    auto decision = router_.route(message);
+    if (!decision) return;
+    WriteRequest request{
+        std::move(decision->reply), message.topic, std::move(decision->outcome), {}};
+    request.reply.origin = this;
+    if (!decision->response_topic_problem.empty()) {
+        request.log_detail = " (the response topic " + core::printable(message.response_topic) +
+                             " " + decision->response_topic_problem + "; answered on " +
+                             request.reply.topic + ")";
+    }
+    writes_.on_write(std::move(request));
+}
+
+}  // namespace eip2mqtt::app::northbound

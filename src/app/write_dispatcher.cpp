@@ -1,0 +1,46 @@
+// Writes (docs/mqtt-api.md "Writes"; issue #3): a northbound decodes a write whole (the JSON tree's
+// WriteRouter checks a message on a `…/set` topic); what it accepts is staged on its produced
+// exchange, whose result is reported once the datagram carrying it has left, and what it or the
+// exchange refuses is answered at once with a reason. Nothing is changed by a rejected write,
+// and one bad value rejects a multi-tag write.
+
+#include "eip2mqtt/app/write_dispatcher.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "eip2mqtt/core/printable.hpp"
+
+namespace eip2mqtt::app {
+
+WriteDispatcher::WriteDispatcher(StageWrite stage, core::MonoTime (*clock)())
+    : stage_(std::move(stage)), clock_(clock) {}
+
+void WriteDispatcher::on_write(WriteRequest&& request) {
+    if (const auto* rejection = std::get_if<core::write::WriteRejection>(&request.outcome)) {
+        return reject(request, *rejection);
+    }
+    if (auto rejection =
+            stage_(std::get<ExchangeWrite>(std::move(request.outcome)), request.reply, clock_())) {
+        return reject(request, *rejection);
+    }
+    ++counters_.writes_ok;
+}
+
+void WriteDispatcher::reject(const WriteRequest& request,
+                             const core::write::WriteRejection& rejection) {
+    ++counters_.writes_rejected[static_cast<std::size_t>(rejection.error)];
+    if (request.reply.origin) request.reply.origin->write_result(request.reply, rejection.message);
+    const auto count = log_.record(clock_());
+    if (count == 0) return;
+    std::uint64_t total = 0;
+    for (const auto n : counters_.writes_rejected) total += n;
+    const auto summary = count == 1 ? fmt::format("{} rejected so far", total)
+                                    : fmt::format("{} rejected in the last {} s, {} so far", count,
+                                                  log_.interval().count(), total);
+    spdlog::warn("write to {} rejected: {}{}{} ({})", core::printable(request.target),
+                 core::printable(rejection.message), request.log_detail,
+                 request.reply.topic.empty() ? " (no valid topic to answer on)" : "", summary);
+}
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,135 @@
+// What a consumed exchange reports north (issue #14), read through a fake northbound: the tags a
+// datagram changed, in one batch with their quality and time; the exchange going up and down;
+// its status. No protocol in between, and time is passed in.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "eip2mqtt/app/exchange_consumer.hpp"
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
+#include "tests/app/support/recording_northbound.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using namespace std::chrono_literals;
+using core::exchange::ConsumeState;
+using core::quality::Quality;
+
+core::plan::ExchangePlan two_tag_plan() {
+    core::plan::ExchangeSpec spec;
+    spec.name = "e1";
+    spec.direction = core::plan::Direction::consume;
+    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+    spec.exchange_id = 1;
+    spec.length = 8;
+    spec.period = 100ms;  // stale after 300 ms without data
+    spec.topic = "e1";
+    for (const auto* name : {"A", "B"}) {
+        core::plan::TagSpec tag;
+        tag.name = name;
+        tag.address = {static_cast<std::uint16_t>(name[0] == 'A' ? 0 : 4), 0};
+        tag.type = core::plan::TagType::dint;
+        spec.tags.push_back(tag);
+    }
+    auto plan = core::plan::make_exchange_plan(std::move(spec), "acme");
+    plan.timestamp = core::plan::TimestampSource::receive;
+    return plan;
+}
+
+class ConsumerEvents : public ::testing::Test {
+protected:
+    /// A datagram with A = a, B = b, the next request id, 10 ms after the last.
+    void datagram(std::int64_t a, std::int64_t b) {
+        core::plan::encode_value(data_, core::plan::TagType::dint, {0, 0}, core::plan::Value{a});
+        core::plan::encode_value(data_, core::plan::TagType::dint, {4, 0}, core::plan::Value{b});
+        core::wire::Datagram d;
+        d.header.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+        d.header.exchange_id = 1;
+        d.header.request_id = ++rid_;
+        d.data = data_;
+        advance(10ms);
+        consumer_.on_datagram(d, now_, wall_);
+    }
+    void advance(std::chrono::milliseconds step) {
+        now_ += step;
+        wall_ += step;
+    }
+    std::int64_t wall_ms() const {
+        return std::chrono::duration_cast<std::chrono::milliseconds>(wall_.time_since_epoch())
+            .count();
+    }
+
+    std::array<std::byte, 8> data_{};
+    std::uint16_t rid_ = 0;
+    core::MonoTime now_ = core::MonoTime{} + 1h;
+    core::WallTime wall_ = core::WallTime{} + 1h;
+    test::RecordingNorthbound north_;
+    ExchangeConsumer consumer_{two_tag_plan(), north_};
+};
+
+TEST_F(ConsumerEvents, TheFirstDatagramReportsEveryTagThenTheExchangeUpThenItsStatus) {
+    datagram(1, 2);
+    EXPECT_EQ(north_.events, (std::vector<std::string>{"samples", "state", "status"}));
+    ASSERT_EQ(north_.batches.size(), 1u);
+    const auto& batch = north_.batches[0];
+    EXPECT_EQ(batch.exchange, "e1");
+    EXPECT_EQ(batch.quality, Quality::good);
+    EXPECT_EQ(batch.timestamp_ms, wall_ms());  // timestamp: receive
+    EXPECT_FALSE(batch.all_tags);
+    ASSERT_EQ(batch.samples.size(), 2u);
+    EXPECT_EQ(batch.samples[1].tag, 1u);
+    EXPECT_TRUE(core::plan::same_value(batch.samples[1].value, core::plan::Value{std::int64_t{2}}));
+    ASSERT_EQ(north_.states.size(), 1u);
+    EXPECT_EQ(north_.states[0].state, ConsumeState::ok);
+}
+
+TEST_F(ConsumerEvents, ADatagramReportsOnlyTheTagsItChangedAndNothingWhenNoneChanged) {
+    datagram(1, 2);
+    datagram(1, 3);
+    datagram(1, 3);
+    ASSERT_EQ(north_.batches.size(), 2u);
+    ASSERT_EQ(north_.batches[1].samples.size(), 1u);
+    EXPECT_EQ(north_.batches[1].samples[0].tag, 1u);
+    EXPECT_EQ(north_.states.size(), 1u);  // still up: no new state
+}
+
+TEST_F(ConsumerEvents, TimeoutReportsEveryTagStaleAndTheExchangeDownThenTheNextDatagramUp) {
+    datagram(1, 2);
+    north_.events.clear();
+    advance(400ms);
+    consumer_.on_tick(now_, wall_, false);
+    EXPECT_EQ(north_.events, (std::vector<std::string>{"samples", "state", "status"}));
+    EXPECT_EQ(north_.batches.back().quality, Quality::stale);
+    EXPECT_EQ(north_.batches.back().samples.size(), 2u);       // last values, now stale
+    EXPECT_EQ(north_.batches.back().timestamp_ms, wall_ms());  // when it was found stale
+    EXPECT_EQ(north_.states.back().state, ConsumeState::stale);
+
+    datagram(1, 2);  // same values, good again: reported, quality changed
+    EXPECT_EQ(north_.batches.back().quality, Quality::good);
+    EXPECT_EQ(north_.batches.back().samples.size(), 2u);
+    EXPECT_EQ(north_.states.back().state, ConsumeState::ok);
+}
+
+TEST_F(ConsumerEvents, RepublishReportsEveryTagAsAWholeAndTheStatus) {
+    datagram(1, 2);
+    north_.events.clear();
+    consumer_.republish(now_);
+    EXPECT_EQ(north_.events, (std::vector<std::string>{"samples", "status"}));
+    EXPECT_TRUE(north_.batches.back().all_tags);
+    EXPECT_EQ(north_.batches.back().samples.size(), 2u);
+}
+
+TEST_F(ConsumerEvents, BeforeAnyDatagramThereIsNoValueToReportOnlyTheStatus) {
+    consumer_.republish(now_);
+    EXPECT_EQ(north_.events, std::vector<std::string>{"status"});
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app

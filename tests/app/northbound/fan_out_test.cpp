@@ -1,0 +1,44 @@
+// Several northbounds at once (issue #14): every event reaches each, in order; a write result
+// only the northbound the write came from.
+
+#include "eip2mqtt/app/northbound/fan_out.hpp"
+
+#include <gtest/gtest.h>
+
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "tests/app/support/recording_northbound.hpp"
+
+namespace eip2mqtt::app::northbound {
+namespace {
+
+TEST(FanOut, EveryEventReachesEachNorthboundButAResultOnlyItsOrigin) {
+    test::RecordingNorthbound first;
+    test::RecordingNorthbound second;
+    FanOut fan_out;
+    fan_out.add(first);
+    fan_out.add(second);
+
+    core::plan::ExchangeSpec spec;
+    spec.name = "e1";
+    spec.length = 4;
+    spec.topic = "e1";
+    const auto plan = core::plan::make_exchange_plan(spec, "acme");
+    const std::vector<TagSample> samples{{0, core::plan::Value{true}}};
+    fan_out.exchanges_changed({{&plan}, {}}, {});
+    fan_out.tag_samples({plan, core::quality::Quality::good, 1, false, samples});
+    fan_out.exchange_state(plan, core::exchange::ConsumeState::stale);
+    fan_out.produced_status(plan, ProducedStatus{});
+    fan_out.write_result({"r", "", &second}, "refused");
+    fan_out.write_result({"r", "", nullptr}, std::nullopt);  // nobody to answer
+
+    const std::vector<std::string> all{"exchanges", "samples", "state", "status"};
+    EXPECT_EQ(first.events, all);
+    auto with_result = all;
+    with_result.push_back("result");
+    EXPECT_EQ(second.events, with_result);
+    ASSERT_EQ(second.results.size(), 1u);
+    EXPECT_EQ(second.results[0].error, "refused");
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app::northbound

@@ -1,0 +1,154 @@
+// The JSON topic tree as a northbound (issue #14): the domain events the exchanges report become
+// today's topics and payloads (docs/mqtt-api.md), and a message on a `set` topic comes back as one
+// decoded write whose answer goes to this northbound.
+
+#include "eip2mqtt/app/northbound/uns_json.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "tests/app/support/uns_json_recorder.hpp"
+
+namespace eip2mqtt::app::northbound {
+namespace {
+
+using core::quality::Quality;
+
+core::plan::ExchangePlan plan(std::string name, core::plan::Direction direction) {
+    core::plan::ExchangeSpec spec;
+    spec.name = name;
+    spec.direction = direction;
+    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+    spec.exchange_id = 1;
+    spec.length = 8;
+    spec.destination = "127.0.0.1";
+    spec.topic = "t1/" + name;
+    for (const auto* tag_name : {"A", "B"}) {
+        core::plan::TagSpec tag;
+        tag.name = tag_name;
+        tag.address = {static_cast<std::uint16_t>(tag_name[0] == 'A' ? 0 : 4), 0};
+        tag.type = core::plan::TagType::dint;
+        tag.writable = true;
+        spec.tags.push_back(tag);
+    }
+    return core::plan::make_exchange_plan(std::move(spec), "acme");
+}
+
+class UnsJsonTest : public ::testing::Test {
+protected:
+    explicit UnsJsonTest(PublishSettings settings = {}) : uns_(settings, {}, "acme") {
+        uns_.northbound().exchanges_changed({{&consumed_}, {&produced_}}, {});
+    }
+    const std::vector<adapters::mqtt::Message>& published() const {
+        return uns_.publisher.published;
+    }
+
+    core::plan::ExchangePlan consumed_ = plan("in", core::plan::Direction::consume);
+    core::plan::ExchangePlan produced_ = plan("out", core::plan::Direction::produce);
+    test::UnsJsonRecorder uns_;
+};
+
+TEST_F(UnsJsonTest, EachSampleIsOneRetainedTagTopicWithValueTimestampAndQuality) {
+    const std::vector<TagSample> samples{{1, core::plan::Value{std::int64_t{-5}}}};
+    uns_.northbound().tag_samples({consumed_, Quality::stale, 1700000000123, false, samples});
+    ASSERT_EQ(published().size(), 1u);
+    const auto& m = published()[0];
+    EXPECT_EQ(m.topic, "acme/t1/in/B");
+    EXPECT_EQ(m.payload, R"({"value":-5,"timestamp":1700000000123,"quality":"stale"})");
+    EXPECT_EQ(m.qos, 1);
+    EXPECT_TRUE(m.retain);
+    EXPECT_TRUE(m.coalesce);  // the latest value wins while queued
+}
+
+class UnsJsonBatchTest : public UnsJsonTest {
+protected:
+    UnsJsonBatchTest()
+        : UnsJsonTest(PublishSettings{0, false, core::config::PayloadFormat::raw, true}) {}
+};
+
+TEST_F(UnsJsonBatchTest, AConsumedBatchAddsOneValuesMessageTheEchoOfAProducedOneDoesNot) {
+    const std::vector<TagSample> samples{{0, core::plan::Value{std::int64_t{1}}},
+                                         {1, core::plan::Value{std::int64_t{2}}}};
+    uns_.northbound().tag_samples({consumed_, Quality::good, 1000, false, samples});
+    ASSERT_EQ(published().size(), 3u);
+    EXPECT_EQ(published()[0].payload, "1");  // payload: raw
+    EXPECT_EQ(published()[0].qos, 0);
+    EXPECT_FALSE(published()[0].retain);
+    const auto& values = published()[2];
+    EXPECT_EQ(values.topic, "acme/t1/in/_values");
+    EXPECT_EQ(values.payload, R"({"timestamp":1000,"quality":"good","values":{"A":1,"B":2}})");
+    EXPECT_TRUE(values.batch_lane);
+    EXPECT_FALSE(values.coalesce);  // history: every one is delivered
+
+    uns_.northbound().tag_samples({produced_, Quality::good, 1000, false, samples});
+    EXPECT_EQ(published().size(), 5u);
+    EXPECT_EQ(uns_.publisher.on("acme/t1/out/_values").size(), 0u);
+}
+
+TEST_F(UnsJsonTest, WriteResultsGoToTheReplyTopicOnceEachAndNowhereWithoutOne) {
+    uns_.northbound().write_result({"r/1", "c1", nullptr}, std::nullopt);
+    uns_.northbound().write_result({"r/2", "", nullptr}, "queue full");
+    uns_.northbound().write_result({"", "c3", nullptr}, "unknown tag");
+    ASSERT_EQ(published().size(), 2u);
+    EXPECT_EQ(published()[0].topic, "r/1");
+    EXPECT_EQ(published()[0].payload, R"({"ok":true})");
+    EXPECT_EQ(published()[0].correlation_data, "c1");
+    EXPECT_EQ(published()[0].qos, 1);
+    EXPECT_FALSE(published()[0].retain);
+    EXPECT_FALSE(published()[0].coalesce);
+    EXPECT_EQ(published()[1].payload, R"({"error":"queue full","ok":false})");
+}
+
+TEST_F(UnsJsonTest, ChangedExchangesClearRetiredTopicsAndSubscribeToTheSetTopics) {
+    EXPECT_EQ(uns_.publisher.subscriptions,
+              (std::vector<std::string>{"acme/+/+/set", "acme/+/+/+/set"}));
+    const std::vector<std::string> retired{"acme/t1/gone/A", "acme/t1/gone/_status"};
+    uns_.northbound().exchanges_changed({{}, {&produced_}}, retired);
+    ASSERT_EQ(published().size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(published()[i].topic, retired[i]);
+        EXPECT_EQ(published()[i].payload, "");  // an empty retained message clears the topic
+        EXPECT_TRUE(published()[i].retain);
+    }
+    // The consumed exchange is gone: its `set` topic is no longer ours.
+    uns_.northbound().on_message({"acme/t1/in/A/set", "1", false, "", "", -1});
+    EXPECT_TRUE(uns_.writes.empty());
+}
+
+TEST_F(UnsJsonTest, ASetMessageBecomesOneWriteRequestAnsweredByThisNorthbound) {
+    uns_.northbound().on_message({"acme/t1/out/set", R"({"A":5,"B":6})", false, "", "id", -1});
+    ASSERT_EQ(uns_.writes.size(), 1u);
+    const auto& request = uns_.writes[0];
+    EXPECT_EQ(request.reply.origin, &uns_.northbound());
+    EXPECT_EQ(request.reply.topic, "acme/t1/out/set/result");
+    EXPECT_EQ(request.reply.correlation_data, "id");
+    EXPECT_EQ(request.target, "acme/t1/out/set");
+    const auto* write = std::get_if<ExchangeWrite>(&request.outcome);
+    ASSERT_NE(write, nullptr);
+    EXPECT_EQ(write->producer, 0u);  // its index among the produced exchanges
+    ASSERT_EQ(write->writes.size(), 2u);
+    EXPECT_EQ(write->writes[1].tag_index, 1u);
+}
+
+TEST_F(UnsJsonTest, ARefusedSetMessageIsHandedOnAsARejectionWithTheReasonForTheLog) {
+    uns_.northbound().on_message({"acme/t1/out/A/set", "1", false, "acme/t1/out/A", "", -1});
+    uns_.northbound().on_message({"acme/t1/in/A/set", "1", false, "", "", -1});
+    uns_.northbound().on_message({"acme/t1/out/A", "1", false, "", "", -1});  // not a set topic
+    ASSERT_EQ(uns_.writes.size(), 2u);
+    const auto* bad_topic = std::get_if<core::write::WriteRejection>(&uns_.writes[0].outcome);
+    ASSERT_NE(bad_topic, nullptr);
+    EXPECT_EQ(bad_topic->error, core::write::WriteError::bad_response_topic);
+    EXPECT_NE(uns_.writes[0].log_detail.find("answered on acme/t1/out/A/set/result"),
+              std::string::npos)
+        << uns_.writes[0].log_detail;
+    const auto* read_only = std::get_if<core::write::WriteRejection>(&uns_.writes[1].outcome);
+    ASSERT_NE(read_only, nullptr);
+    EXPECT_EQ(read_only->error, core::write::WriteError::read_only);
+    EXPECT_TRUE(published().empty());  // answering is the WriteHandler's call
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app::northbound

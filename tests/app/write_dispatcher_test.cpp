@@ -1,0 +1,84 @@
+// Every northbound's writes in one place (issue #14): a decoded write is staged or refused; each
+// refusal is counted under its error and answered through the northbound it came from. Time is
+// injected.
+
+#include "eip2mqtt/app/write_dispatcher.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <vector>
+
+#include "tests/app/support/recording_northbound.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using core::write::WriteError;
+using core::write::WriteRejection;
+
+core::MonoTime fixed_clock() { return core::MonoTime{} + std::chrono::hours(1); }
+
+class WriteDispatcherTest : public ::testing::Test {
+protected:
+    WriteRequest request(std::variant<ExchangeWrite, WriteRejection> outcome) {
+        return {{"reply/topic", "id", &origin_}, "acme/t1/out/set", std::move(outcome), {}};
+    }
+    std::uint64_t rejected(WriteError error) const {
+        return dispatcher_.counters().writes_rejected[static_cast<std::size_t>(error)];
+    }
+
+    test::RecordingNorthbound origin_;
+    std::vector<std::size_t> staged_;  ///< the producer of each staged write
+    std::optional<WriteRejection> exchange_refuses_;
+    WriteDispatcher dispatcher_{[this](ExchangeWrite&& write, const WriteReply& reply,
+                                       core::MonoTime now) -> std::optional<WriteRejection> {
+                                    EXPECT_EQ(reply.topic, "reply/topic");
+                                    EXPECT_EQ(now, fixed_clock());
+                                    if (exchange_refuses_) return exchange_refuses_;
+                                    staged_.push_back(write.producer);
+                                    return std::nullopt;
+                                },
+                                fixed_clock};
+};
+
+TEST_F(WriteDispatcherTest, AnAcceptedWriteIsStagedOnItsExchangeAndCountedNotAnswered) {
+    dispatcher_.on_write(request(ExchangeWrite{3, {{0, core::plan::Value{true}}}}));
+    EXPECT_EQ(staged_, std::vector<std::size_t>{3});
+    EXPECT_EQ(dispatcher_.counters().writes_ok, 1u);
+    EXPECT_TRUE(origin_.results.empty());  // answered once its datagram is sent
+}
+
+TEST_F(WriteDispatcherTest, ARefusalIsCountedUnderItsErrorAndAnsweredByItsOrigin) {
+    dispatcher_.on_write(request(WriteRejection{WriteError::read_only, "read-only"}));
+    EXPECT_TRUE(staged_.empty());
+    EXPECT_EQ(rejected(WriteError::read_only), 1u);
+    ASSERT_EQ(origin_.results.size(), 1u);
+    EXPECT_EQ(origin_.results[0].topic, "reply/topic");
+    EXPECT_EQ(origin_.results[0].error, "read-only");
+}
+
+TEST_F(WriteDispatcherTest, WhatTheExchangeRefusesIsCountedAndAnsweredTheSameWay) {
+    exchange_refuses_ = WriteRejection{WriteError::queue_full, "full"};
+    dispatcher_.on_write(request(ExchangeWrite{0, {}}));
+    EXPECT_EQ(dispatcher_.counters().writes_ok, 0u);
+    EXPECT_EQ(rejected(WriteError::queue_full), 1u);
+    ASSERT_EQ(origin_.results.size(), 1u);
+    EXPECT_EQ(origin_.results[0].error, "full");
+}
+
+TEST_F(WriteDispatcherTest, AWriteWithNobodyToAnswerIsStillCounted) {
+    auto orphan = request(WriteRejection{WriteError::unknown_tag, "unknown tag"});
+    orphan.reply.origin = nullptr;
+    dispatcher_.on_write(std::move(orphan));
+    EXPECT_EQ(rejected(WriteError::unknown_tag), 1u);
+    EXPECT_TRUE(origin_.results.empty());
+}
+
+TEST_F(WriteDispatcherTest, ReloadCancellationsAreCounted) {
+    dispatcher_.count_cancelled(4);
+    EXPECT_EQ(dispatcher_.counters().writes_cancelled, 4u);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app
