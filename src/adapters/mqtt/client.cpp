@@ -64,16 +64,17 @@ ClientStats Client::stats() const {
     s.received = impl.received_;
     s.refused = impl.refused_;
     std::lock_guard lock(impl.mutex_);
-    s.queued = impl.queue_.size() + impl.batch_queue_.size() + impl.retry_.size();
+    s.queued = impl.outbox_.size() + impl.retry_.size();
     s.in_flight = impl.in_flight_.pending();
-    s.dropped_overflow = impl.queue_.dropped_overflow() + impl.batch_queue_.dropped_overflow();
-    s.coalesced = impl.queue_.coalesced();
+    s.dropped_overflow =
+        impl.outbox_.tags().dropped_overflow() + impl.outbox_.batch().dropped_overflow();
+    s.coalesced = impl.outbox_.tags().coalesced();
     return s;
 }
 
 void Client::set_buffer_capacity(std::size_t max_messages) {
     std::lock_guard lock(impl_->mutex_);
-    impl_->queue_.set_capacity(max_messages);
+    impl_->outbox_.set_capacity(max_messages);
 }
 
 }  // namespace eip2mqtt::adapters::mqtt

@@ -20,8 +20,7 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
       reconnect_timer_(loop_),
       loss_hold_timer_(loop_),
       backoff_(options_.min_backoff, options_.max_backoff),
-      queue_(options_.buffer_max_messages),
-      batch_queue_(options_.batch_lane_max_messages),
+      outbox_(options_.buffer_max_messages, options_.batch_lane_max_messages),
       in_flight_limit_(std::max<std::size_t>(1, options_.max_in_flight)) {
     const bool v5 = options_.version == 5;
     paho::create_options create(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);

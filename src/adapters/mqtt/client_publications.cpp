@@ -17,15 +17,7 @@ void Client::Impl::enqueue(Message& message) {
     bool wake = false;
     {
         std::lock_guard lock(mutex_);
-        (message.batch_lane ? batch_queue_ : queue_).push(std::move(message));
-        // Queued whole, so no buffer came back: give the caller a spare to fill next time.
-        const std::size_t inline_capacity = std::string().capacity();
-        if (message.topic.capacity() <= inline_capacity &&
-            message.payload.capacity() <= inline_capacity && !spares_.empty()) {
-            message = std::move(spares_.back());
-            spares_.pop_back();
-        }
-        backlog_peak_ = std::max(backlog_peak_, queue_.size());
+        outbox_.push(message);
         wake = sender_idle_ && ready_to_send();
     }
     if (wake) {
@@ -34,11 +26,7 @@ void Client::Impl::enqueue(Message& message) {
 }
 
 void Client::Impl::recycle(Message&& message) {
-    // A window's worth is what cycles (more only held memory after an overload: bench
-    // scenario 8 peaked 0.3 MB higher with 1,024); a drained backlog's others are freed.
-    if (spares_.size() >= in_flight_limit_.load(std::memory_order_relaxed)) return;
-    message.clear();
-    spares_.push_back(std::move(message));
+    outbox_.recycle(std::move(message), in_flight_limit_.load(std::memory_order_relaxed));
 }
 
 void Client::Impl::set_sending(bool enabled) {
@@ -58,20 +46,6 @@ bool Client::Impl::ready_to_send() const {
     const std::size_t limit = in_flight_limit_.load(std::memory_order_relaxed);
     return in_flight_.pending() <=
            (window_full_ ? limit - std::max<std::size_t>(1, limit / 8) : limit - 1);
-}
-
-bool Client::Impl::take_next(Message& message) {
-    bool from_batch = !batch_queue_.empty();
-    if (from_batch && !queue_.empty()) {
-        from_batch = next_from_batch_;
-        next_from_batch_ = !next_from_batch_;
-    }
-    auto next = (from_batch ? batch_queue_ : queue_).pop();
-    if (!next) {
-        return false;
-    }
-    message = std::move(*next);
-    return true;
 }
 
 void Client::Impl::sender_main() {
@@ -104,7 +78,7 @@ void Client::Impl::sender_main() {
                 auto retry = std::move(retry_.extract(retry_.begin()).mapped());
                 message = std::move(retry.message);
                 probe = retry.suspect;
-            } else if (!take_next(message)) {
+            } else if (!outbox_.take_next(message)) {
                 break;
             }
             if (auto problem = detail::publication_problem(message, max_packet_size);
@@ -133,12 +107,7 @@ void Client::Impl::sender_main() {
         // A large backlog (the first publication of every tag, a reconnect's republish, an
         // outage's buffer) leaves its freed messages in malloc's arenas: once it has drained,
         // give them back, so that resident memory follows the live data.
-        const bool trim = !has_queued() && backlog_peak_ >= kTrimAfterBacklog;
-        if (trim) {
-            backlog_peak_ = 0;
-            queue_.release_memory();
-            batch_queue_.release_memory();
-        }
+        const bool trim = retry_.empty() && outbox_.release_after_backlog(kTrimAfterBacklog);
         lock.unlock();
         if (!refused_topic.empty()) log_refused(refused_topic, refused_problem);
         nagle_.set_backlogged(backlog);
@@ -325,7 +294,7 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         std::size_t lost = 0;
         {
             std::lock_guard lock(mutex_);
-            lost = queue_.size() + batch_queue_.size() + retry_.size();
+            lost = outbox_.size() + retry_.size();
         }
         end_sender();
         if (lost > 0) {
@@ -350,7 +319,7 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         std::unique_lock lock(mutex_);
         completed_.wait_until(lock, deadline,
                               [this] { return !has_queued() && in_flight_.empty(); });
-        unsent = queue_.size() + batch_queue_.size() + retry_.size() + in_flight_.pending();
+        unsent = outbox_.size() + retry_.size() + in_flight_.pending();
     }
     end_sender();
     if (offline) {

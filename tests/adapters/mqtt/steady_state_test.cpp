@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "adapters/mqtt/detail/in_flight_window.hpp"
+#include "adapters/mqtt/detail/outbox.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
-#include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
 #include "tests/support/count_allocations.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
@@ -34,42 +34,36 @@ const std::array<std::string, 2> payloads{
     R"({"value":1234,"timestamp":1732291200000,"quality":"good"})",
     R"({"value":-98765,"timestamp":1732291200010,"quality":"good"})"};
 
-TEST(SteadyState, QueueWindowAndSparesCycleWithoutAllocating) {
-    // The client's cycle, on one thread: fill a message, queue it (a spare comes back when it
-    // is queued whole), hand it to the window, complete it, keep it as a spare.
+TEST(SteadyState, OutboxWindowAndSparesCycleWithoutAllocating) {
+    // The client's cycle, on one thread, with its own parts: fill a message, push it to the
+    // Outbox (a spare comes back when it is queued whole), take it into the in-flight window,
+    // complete it, recycle it as a spare.
     const auto topics = long_topics();
-    PublishQueue queue(1000);
+    detail::Outbox outbox(1000, 1000);
     detail::InFlightWindow<Message> window;
-    std::vector<Message> spares;
-    spares.reserve(4 * kTopics);
     std::array<std::uint64_t, 2 * kTopics> ids{};
     Message message;
     auto publish = [&](std::size_t topic, std::size_t value) {
         message.topic.assign(topics[topic]);
         message.payload.assign(payloads[value % 2]);
         message.qos = 1;
-        queue.push(std::move(message));
-        if (message.topic.capacity() <= std::string().capacity() && !spares.empty()) {
-            message = std::move(spares.back());
-            spares.pop_back();
-        }
+        outbox.push(message);
     };
     auto rounds = [&] {
         for (std::size_t round = 0; round < 20; ++round) {
             for (std::size_t i = 0; i < kTopics; ++i) publish(i, round);
             for (std::size_t i = 0; i < kTopics; i += 2) publish(i, round + 1);  // coalesce
             std::size_t sent = 0;
-            while (auto next = queue.pop()) ids[sent++] = window.add(std::move(*next));
+            Message next;
+            while (outbox.take_next(next)) ids[sent++] = window.add(std::move(next));
             for (std::size_t i = 0; i < sent; ++i) {
-                auto done = window.complete(ids[i]);
-                done->clear();
-                spares.push_back(std::move(*done));
+                outbox.recycle(std::move(*window.complete(ids[i])), 4 * kTopics);
             }
         }
     };
     rounds();  // warm: buffers, ring slots, index nodes and buckets reach their sizes
     EXPECT_EQ(allocations_during(rounds), 0u);
-    EXPECT_EQ(queue.coalesced(), 2 * 20 * kTopics / 2);
+    EXPECT_EQ(outbox.tags().coalesced(), 2 * 20 * kTopics / 2);
 }
 
 TEST(SteadyState, ClientPublishAllocatesNothingOnceItsTopicsAreQueued) {

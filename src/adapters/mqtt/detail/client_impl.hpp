@@ -21,11 +21,11 @@
 #include "adapters/mqtt/detail/broker_url.hpp"
 #include "adapters/mqtt/detail/connect_options.hpp"
 #include "adapters/mqtt/detail/in_flight_window.hpp"
+#include "adapters/mqtt/detail/outbox.hpp"
 #include "adapters/mqtt/detail/publication_check.hpp"
 #include "adapters/mqtt/detail/reconnect_backoff.hpp"
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
-#include "eip2mqtt/adapters/mqtt/publish_queue.hpp"
 #include "eip2mqtt/core/printable.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 
@@ -89,6 +89,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     // --- any thread ----------------------------------------------------------------------
     /// Queues `message` in its lane and wakes the sender if it sleeps.
     void enqueue(Message& message);
+    /// Keeps a completed publication's buffers (Outbox::recycle), a window's worth at most.
     void recycle(Message&& message);
     /// Lets the sender hand publications to Paho (after a connect) or stops it (loss, stop).
     void set_sending(bool enabled);
@@ -104,16 +105,13 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     void send(std::uint64_t id, const paho::message_ptr& message);
 
     // --- under mutex_ --------------------------------------------------------------------
-    bool has_queued() const { return !retry_.empty() || !queue_.empty() || !batch_queue_.empty(); }
+    bool has_queued() const { return !retry_.empty() || !outbox_.empty(); }
     /// Whether the sender has something to send and room to send it. After it filled the
     /// window it waits until an eighth of the window completed, so that it wakes once per
     /// burst rather than once per completion, yet keeps the window nearly full: at QoS 1 a
     /// busy broker's PUBACKs take milliseconds, and throughput is what is in flight over that
     /// time (refilling at a quarter cost a third of it).
     bool ready_to_send() const;
-    /// Takes the next publication from the two lanes in turn (re-sent ones are taken by the
-    /// sender itself, see sender_main).
-    bool take_next(Message& message);
     /// A suspect goes alone: nothing else is sent while one is in flight, and one waits until
     /// nothing is in flight.
     bool suspect_waits() const {
@@ -211,9 +209,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     mutable std::mutex mutex_;
     std::condition_variable wake_sender_;  ///< work and room, or quit
     std::condition_variable completed_;    ///< an in-flight publication finished (for stop())
-    PublishQueue queue_;
-    PublishQueue batch_queue_;
-    bool next_from_batch_ = false;  ///< whose turn when both lanes wait
+    detail::Outbox outbox_;  ///< re-sent publications are taken by the sender itself (retry_)
     /// Sent again before anything else after a reconnect, by original order. A suspect was in
     /// flight when the connection went (see requeue_after_loss); the others never left.
     struct Retry {
@@ -224,15 +220,10 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     std::optional<std::uint64_t> probe_;         ///< the suspect in flight, alone
     bool held_for_reconnect_ = false;            ///< see hold_for_reconnect()
     detail::InFlightWindow<Message> in_flight_;  ///< handed to Paho, not yet completed
-    /// Blank messages of completed publications, handed back to publish()'s callers to fill
-    /// again: the loop allocated two strings per publication that Paho's thread then freed,
-    /// and malloc's cross-thread traffic was 40 % of the loop's time (#6).
-    std::vector<Message> spares_;
-    bool sending_ = false;          ///< connected and announced: the sender may send
-    bool sender_idle_ = false;      ///< the sender waits on wake_sender_
-    bool window_full_ = false;      ///< the sender stopped at the limit: wait for the low mark
-    bool quit_ = false;             ///< the sender thread must end
-    std::size_t backlog_peak_ = 0;  ///< largest queue since memory was last given back
+    bool sending_ = false;                       ///< connected and announced: the sender may send
+    bool sender_idle_ = false;                   ///< the sender waits on wake_sender_
+    bool window_full_ = false;  ///< the sender stopped at the limit: wait for the low mark
+    bool quit_ = false;         ///< the sender thread must end
     core::ThrottledLog publish_failure_log_;
     core::ThrottledLog refused_log_;
 
