@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -12,28 +13,23 @@ namespace {
 using core::plan::TagType;
 using nlohmann::json;
 
-const std::string every_type_exchange = R"(  - name: unit1
-    direction: consume
-    producer_id: 10.0.0.1
-    exchange_id: 1
-    length: 40
-    period_ms: 100
-    timeout_ms: 400
-    timestamp: producer
-    topic: unit1
-    tags:
-      - { name: RUN, address: "0.0", type: bit }
-      - { name: TRIP, address: "0.7", type: bit }
-      - { name: MODE, address: "1.0", type: byte }
-      - { name: PRESSURE, address: "2.0", type: int, deadband: 5 }
-      - { name: COUNT, address: "5.0", type: word }
-      - { name: FLOW, address: "7.0", type: dint }
-      - { name: ENERGY, address: "11.0", type: udint }
-      - { name: TEMP, address: "15.0", type: real }
-      - { name: TOTAL, address: "19.0", type: lint }
-      - { name: PRECISE, address: "27.0", type: lreal }
-      - { name: MARKER, address: "35.0", type: word }
-)";
+const std::string every_type_exchange = ExchangeYaml::consume("unit1", "10.0.0.1", 1)
+                                            .length(40)
+                                            .period_ms(100)
+                                            .timeout_ms(400)
+                                            .key("timestamp", "producer")
+                                            .tag("RUN", "0.0", "bit")
+                                            .tag("TRIP", "0.7", "bit")
+                                            .tag("MODE", "1.0", "byte")
+                                            .tag("PRESSURE", "2.0", "int", "deadband: 5")
+                                            .tag("COUNT", "5.0", "word")
+                                            .tag("FLOW", "7.0", "dint")
+                                            .tag("ENERGY", "11.0", "udint")
+                                            .tag("TEMP", "15.0", "real")
+                                            .tag("TOTAL", "19.0", "lint")
+                                            .tag("PRECISE", "27.0", "lreal")
+                                            .tag("MARKER", "35.0", "word")
+                                            .str();
 
 DatagramBuilder every_type_datagram(std::uint16_t rid) {
     DatagramBuilder b("10.0.0.1", 1, 40);

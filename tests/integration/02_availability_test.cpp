@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -12,17 +13,13 @@ namespace {
 
 using core::plan::TagType;
 
-const std::string one_exchange = R"(  - name: pump
-    direction: consume
-    producer_id: 10.0.0.2
-    exchange_id: 7
-    length: 4
-    period_ms: 1000
-    timeout_ms: 0
-    topic: area/pump
-    tags:
-      - { name: SPEED, address: "0.0", type: real }
-)";
+const std::string one_exchange = ExchangeYaml::consume("pump", "10.0.0.2", 7)
+                                     .length(4)
+                                     .period_ms(1000)
+                                     .timeout_ms(0)
+                                     .topic("area/pump")
+                                     .tag("SPEED", "0.0", "real")
+                                     .str();
 
 std::vector<std::byte> speed_datagram(std::uint16_t rid, float speed) {
     return DatagramBuilder("10.0.0.2", 7, 4)

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -11,17 +12,12 @@ namespace {
 using core::plan::TagType;
 using nlohmann::json;
 
-const std::string one_exchange = R"(  - name: pump
-    direction: consume
-    producer_id: 10.0.0.2
-    exchange_id: 7
-    length: 4
-    period_ms: 1000
-    timeout_ms: 0
-    topic: pump
-    tags:
-      - { name: SPEED, address: "0.0", type: dint }
-)";
+const std::string one_exchange = ExchangeYaml::consume("pump", "10.0.0.2", 7)
+                                     .length(4)
+                                     .period_ms(1000)
+                                     .timeout_ms(0)
+                                     .tag("SPEED", "0.0", "dint")
+                                     .str();
 
 std::vector<std::byte> valid(std::uint16_t rid, std::int64_t value) {
     return DatagramBuilder("10.0.0.2", 7, 4)

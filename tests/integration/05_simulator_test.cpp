@@ -4,28 +4,24 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
 namespace {
 
-const std::string sim_exchange = R"(  - name: sim
-    direction: consume
-    producer_id: 10.0.0.9
-    exchange_id: 3
-    period_ms: 20
-    topic: sim
-    tags:
-      - { name: B, address: "0.0", type: bit }
-      - { name: U8, address: "1.0", type: byte }
-      - { name: I16, address: "2.0", type: int }
-      - { name: U16, address: "4.0", type: word }
-      - { name: I32, address: "6.0", type: dint }
-      - { name: U32, address: "10.0", type: udint }
-      - { name: F32, address: "14.0", type: real }
-      - { name: I64, address: "18.0", type: lint }
-      - { name: F64, address: "26.0", type: lreal }
-)";
+const std::string sim_exchange = ExchangeYaml::consume("sim", "10.0.0.9", 3)
+                                     .period_ms(20)
+                                     .tag("B", "0.0", "bit")
+                                     .tag("U8", "1.0", "byte")
+                                     .tag("I16", "2.0", "int")
+                                     .tag("U16", "4.0", "word")
+                                     .tag("I32", "6.0", "dint")
+                                     .tag("U32", "10.0", "udint")
+                                     .tag("F32", "14.0", "real")
+                                     .tag("I64", "18.0", "lint")
+                                     .tag("F64", "26.0", "lreal")
+                                     .str();
 
 class SimulatorTest : public GatewayTest {};
 

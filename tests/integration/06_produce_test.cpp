@@ -8,6 +8,7 @@
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -18,30 +19,21 @@ using core::plan::Value;
 using namespace std::chrono_literals;
 
 std::string produced_exchange(std::uint16_t port, int period_ms) {
-    return R"(  - name: sp
-    direction: produce
-    producer_id: 10.1.2.3
-    exchange_id: 10
-    signature: "3.7"
-    destination: 127.0.0.1:)" +
-           std::to_string(port) + R"(
-    period_ms: )" +
-           std::to_string(period_ms) +
-           R"(
-    topic: sp
-    tags:
-      - { name: SPEED_SP, address: "0.0", type: real, writable: true, min: 0, max: 4000, initial: 3000 }
-      - { name: START, address: "4.0", type: bit, writable: true }
-      - { name: STOP, address: "4.3", type: bit, writable: true, initial: true }
-      - { name: MODE, address: "5.0", type: byte, writable: true, initial: 7 }
-      - { name: OFFSET, address: "6.0", type: int, writable: true, initial: -5 }
-      - { name: COUNT, address: "8.0", type: word, writable: true, initial: 65535 }
-      - { name: FLOW, address: "10.0", type: dint, writable: true, initial: -100000 }
-      - { name: ENERGY, address: "14.0", type: udint, writable: true, initial: 3000000000 }
-      - { name: TOTAL, address: "18.0", type: lint, writable: true, initial: -2 }
-      - { name: GAIN, address: "26.0", type: lreal, writable: true, initial: 1.25 }
-      - { name: LIMIT, address: "34.0", type: word, initial: 100 }
-)";
+    return ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(port))
+        .key("signature", "\"3.7\"")
+        .period_ms(period_ms)
+        .tag("SPEED_SP", "0.0", "real", "writable: true, min: 0, max: 4000, initial: 3000")
+        .tag("START", "4.0", "bit", "writable: true")
+        .tag("STOP", "4.3", "bit", "writable: true, initial: true")
+        .tag("MODE", "5.0", "byte", "writable: true, initial: 7")
+        .tag("OFFSET", "6.0", "int", "writable: true, initial: -5")
+        .tag("COUNT", "8.0", "word", "writable: true, initial: 65535")
+        .tag("FLOW", "10.0", "dint", "writable: true, initial: -100000")
+        .tag("ENERGY", "14.0", "udint", "writable: true, initial: 3000000000")
+        .tag("TOTAL", "18.0", "lint", "writable: true, initial: -2")
+        .tag("GAIN", "26.0", "lreal", "writable: true, initial: 1.25")
+        .tag("LIMIT", "34.0", "word", "initial: 100")
+        .str();
 }
 
 core::wire::Datagram decode(const std::vector<std::byte>& bytes) {

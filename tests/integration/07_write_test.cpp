@@ -7,6 +7,7 @@
 
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -18,29 +19,18 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 
 std::string exchanges(std::uint16_t capture_port) {
-    return R"(  - name: sp
-    direction: produce
-    producer_id: 10.1.2.3
-    exchange_id: 10
-    destination: 127.0.0.1:)" +
-           std::to_string(capture_port) + R"(
-    period_ms: 20
-    topic: sp
-    tags:
-      - { name: SPEED_SP, address: "0.0", type: real, writable: true, min: 0, max: 4000, initial: 3000 }
-      - { name: START, address: "4.0", type: bit, writable: true }
-      - { name: LEVEL, address: "5.0", type: int, writable: true }
-      - { name: LIMIT, address: "7.0", type: word, initial: 100 }
-  - name: plant
-    direction: consume
-    producer_id: 10.9.9.9
-    exchange_id: 1
-    length: 2
-    period_ms: 100
-    topic: plant
-    tags:
-      - { name: PV, address: "0.0", type: int }
-)";
+    return ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture_port))
+               .period_ms(20)
+               .tag("SPEED_SP", "0.0", "real", "writable: true, min: 0, max: 4000, initial: 3000")
+               .tag("START", "4.0", "bit", "writable: true")
+               .tag("LEVEL", "5.0", "int", "writable: true")
+               .tag("LIMIT", "7.0", "word", "initial: 100")
+               .str() +
+           ExchangeYaml::consume("plant", "10.9.9.9", 1)
+               .length(2)
+               .period_ms(100)
+               .tag("PV", "0.0", "int")
+               .str();
 }
 
 Value tag(const std::vector<std::byte>& bytes, const char* address, TagType type) {

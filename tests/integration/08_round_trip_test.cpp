@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
@@ -14,27 +15,16 @@ class RoundTripTest : public GatewayTest {};
 TEST_F(RoundTripTest, WriteComesBackAsTheConsumedValue) {
     udp_port_ = free_udp_port();
     const std::string port = std::to_string(udp_port_);
-    start(R"(  - name: out
-    direction: produce
-    producer_id: 10.5.5.5
-    exchange_id: 42
-    destination: 127.0.0.1:)" +
-          port + R"(
-    period_ms: 20
-    topic: out
-    tags:
-      - { name: SETPOINT, address: "0.0", type: dint, writable: true, initial: 1 }
-      - { name: ENABLE, address: "4.2", type: bit, writable: true }
-  - name: back
-    direction: consume
-    producer_id: 10.5.5.5
-    exchange_id: 42
-    period_ms: 20
-    topic: back
-    tags:
-      - { name: SETPOINT, address: "0.0", type: dint }
-      - { name: ENABLE, address: "4.2", type: bit }
-)");
+    start(ExchangeYaml::produce("out", "10.5.5.5", 42, "127.0.0.1:" + port)
+              .period_ms(20)
+              .tag("SETPOINT", "0.0", "dint", "writable: true, initial: 1")
+              .tag("ENABLE", "4.2", "bit", "writable: true")
+              .str() +
+          ExchangeYaml::consume("back", "10.5.5.5", 42)
+              .period_ms(20)
+              .tag("SETPOINT", "0.0", "dint")
+              .tag("ENABLE", "4.2", "bit")
+              .str());
     expect_field(topic("back/SETPOINT"), "value", "1");
     recorder_->publish(topic("out/set"), R"({"SETPOINT":-123456,"ENABLE":true})");
     expect_field(topic("out/set/result"), "ok", "true");

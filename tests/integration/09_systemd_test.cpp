@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/notify_socket.hpp"
 
@@ -15,16 +16,11 @@ namespace {
 
 using namespace std::chrono_literals;
 
-const std::string one_exchange = R"(  - name: pump
-    direction: consume
-    producer_id: 10.0.0.2
-    exchange_id: 7
-    length: 4
-    period_ms: 1000
-    topic: pump
-    tags:
-      - { name: SPEED, address: "0.0", type: real }
-)";
+const std::string one_exchange = ExchangeYaml::consume("pump", "10.0.0.2", 7)
+                                     .length(4)
+                                     .period_ms(1000)
+                                     .tag("SPEED", "0.0", "real")
+                                     .str();
 
 class SystemdTest : public GatewayTest {};
 

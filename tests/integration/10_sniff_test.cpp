@@ -10,6 +10,7 @@
 
 #include "tests/support/child_process.hpp"
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/udp_client.hpp"
@@ -31,27 +32,18 @@ std::string config(std::uint16_t port) {
            "  port: " +
            std::to_string(port) +
            "\n"
-           "exchanges:\n"
-           "  - name: turbine1\n"
-           "    direction: consume\n"
-           "    producer_id: 10.0.0.9\n"
-           "    exchange_id: 3\n"
-           "    length: 8\n"
-           "    period_ms: 100\n"
-           "    topic: turbine1\n"
-           "    tags:\n"
-           "      - { name: PRESSAO, address: \"0.0\", type: int }\n"
-           "      - { name: TEMP, address: \"2.0\", type: real }\n"
-           "      - { name: RUN, address: \"6.3\", type: bit }\n"
-           "  - name: setpoints\n"
-           "    direction: produce\n"
-           "    producer_id: 10.0.0.50\n"
-           "    exchange_id: 10\n"
-           "    destination: 127.0.0.1:9\n"
-           "    period_ms: 100\n"
-           "    topic: setpoints\n"
-           "    tags:\n"
-           "      - { name: SPEED_SP, address: \"0.0\", type: real, writable: true }\n";
+           "exchanges:\n" +
+           ExchangeYaml::consume("turbine1", "10.0.0.9", 3)
+               .length(8)
+               .period_ms(100)
+               .tag("PRESSAO", "0.0", "int")
+               .tag("TEMP", "2.0", "real")
+               .tag("RUN", "6.3", "bit")
+               .str() +
+           ExchangeYaml::produce("setpoints", "10.0.0.50", 10, "127.0.0.1:9")
+               .period_ms(100)
+               .tag("SPEED_SP", "0.0", "real", "writable: true")
+               .str();
 }
 
 std::vector<std::byte> turbine(std::uint16_t rid, std::int64_t pressure) {

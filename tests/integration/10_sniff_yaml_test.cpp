@@ -9,6 +9,7 @@
 #include <string>
 
 #include "tests/support/child_process.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
@@ -17,29 +18,19 @@ namespace {
 
 using namespace std::chrono_literals;
 
-const std::string turbine_exchange = R"(  - name: turbine
-    direction: consume
-    producer_id: 10.0.0.9
-    exchange_id: 3
-    signature: "1.0"
-    period_ms: 20
-    topic: turbine
-    tags:
-      - { name: SPEED, address: "0.0", type: real }
-      - { name: RUN, address: "4.0", type: bit }
-      - { name: COUNT, address: "6.0", type: word }
-)";
+const std::string turbine_exchange = ExchangeYaml::consume("turbine", "10.0.0.9", 3)
+                                         .key("signature", "\"1.0\"")
+                                         .period_ms(20)
+                                         .tag("SPEED", "0.0", "real")
+                                         .tag("RUN", "4.0", "bit")
+                                         .tag("COUNT", "6.0", "word")
+                                         .str();
 
-const std::string aux_exchange = R"(  - name: aux
-    direction: consume
-    producer_id: 10.0.0.9
-    exchange_id: 4
-    length: 12
-    period_ms: 30
-    topic: aux
-    tags:
-      - { name: LEVEL, address: "0.0", type: int }
-)";
+const std::string aux_exchange = ExchangeYaml::consume("aux", "10.0.0.9", 4)
+                                     .length(12)
+                                     .period_ms(30)
+                                     .tag("LEVEL", "0.0", "int")
+                                     .str();
 
 /// A configuration of `exchanges` on UDP `port` whose broker is never reached: for sim, sniff
 /// and check, which do not connect.

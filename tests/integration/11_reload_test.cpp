@@ -16,6 +16,7 @@
 
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -25,14 +26,15 @@ using core::plan::TagType;
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-std::string exchange(const std::string& name, std::uint32_t id, const std::string& tags) {
-    return "  - name: " + name + "\n    direction: consume\n    producer_id: 10.0.0.1\n" +
-           "    exchange_id: " + std::to_string(id) + "\n    length: 4\n    period_ms: 1000\n" +
-           "    timeout_ms: 0\n    topic: " + name + "\n    tags:\n" + tags;
+/// A consumed exchange of 10.0.0.1 with one tag at 0.0: A (dint) unless told otherwise.
+ExchangeYaml exchange(const std::string& name, std::uint32_t id, const std::string& tag = "A",
+                      const std::string& type = "dint") {
+    return ExchangeYaml::consume(name, "10.0.0.1", id)
+        .length(4)
+        .period_ms(1000)
+        .timeout_ms(0)
+        .tag(tag, "0.0", type);
 }
-
-const std::string tag_a = "      - { name: A, address: \"0.0\", type: dint }\n";
-const std::string tag_b = "      - { name: B, address: \"0.0\", type: int }\n";
 
 std::vector<std::byte> datagram(std::uint32_t exchange_id, std::uint16_t rid, std::int64_t v) {
     return DatagramBuilder("10.0.0.1", exchange_id, 4)
@@ -44,13 +46,10 @@ std::vector<std::byte> datagram(std::uint32_t exchange_id, std::uint16_t rid, st
 /// A produced exchange with one writable dint VALUE at 0.0, sent to 127.0.0.1:`port`.
 std::string produced(const std::string& name, std::uint32_t id, std::uint16_t port,
                      std::uint32_t period_ms, std::int64_t max = 1000000) {
-    return "  - name: " + name + "\n    direction: produce\n    producer_id: 10.1.2.3\n" +
-           "    exchange_id: " + std::to_string(id) +
-           "\n    destination: 127.0.0.1:" + std::to_string(port) +
-           "\n    period_ms: " + std::to_string(period_ms) + "\n    topic: " + name +
-           "\n    tags:\n" +
-           "      - { name: VALUE, address: \"0.0\", type: dint, writable: true, max: " +
-           std::to_string(max) + " }\n";
+    return ExchangeYaml::produce(name, "10.1.2.3", id, "127.0.0.1:" + std::to_string(port))
+        .period_ms(period_ms)
+        .tag("VALUE", "0.0", "dint", "writable: true, max: " + std::to_string(max))
+        .str();
 }
 
 const json reloaded = {{"ok", false}, {"error", "reloaded"}};
@@ -107,8 +106,7 @@ protected:
 };
 
 TEST_F(ReloadTest, ValidChangeIsAppliedWithoutDroppingTheSessionOrUnchangedExchanges) {
-    start(exchange("kept", 1, tag_a) + exchange("removed", 2, tag_a) +
-          exchange("changed", 3, tag_a));
+    start(exchange("kept", 1).str() + exchange("removed", 2).str() + exchange("changed", 3).str());
     send(datagram(1, 1, 11));
     send(datagram(2, 1, 22));
     send(datagram(3, 1, 33));
@@ -117,8 +115,8 @@ TEST_F(ReloadTest, ValidChangeIsAppliedWithoutDroppingTheSessionOrUnchangedExcha
     expect_field(topic("changed/A"), "value", "33");
     const auto onlines_before = onlines();
 
-    rewrite_exchanges(exchange("kept", 1, tag_a) + exchange("changed", 3, tag_b) +
-                      exchange("added", 4, tag_a));
+    rewrite_exchanges(exchange("kept", 1).str() + exchange("changed", 3, "B", "int").str() +
+                      exchange("added", 4).str());
     gateway_->signal(SIGHUP);
     ASSERT_TRUE(gateway_->wait_for_output("configuration applied", 10s)) << gateway_->output();
     EXPECT_NE(gateway_->output().find("1 exchange(s) kept, 2 started, 2 stopped"),
@@ -151,11 +149,11 @@ TEST_F(ReloadTest, ValidChangeIsAppliedWithoutDroppingTheSessionOrUnchangedExcha
 }
 
 TEST_F(ReloadTest, InvalidFileIsRefusedAndTheOldConfigurationKeepsRunning) {
-    start(exchange("kept", 1, tag_a));
+    start(exchange("kept", 1).str());
     send(datagram(1, 1, 11));
     expect_field(topic("kept/A"), "value", "11");
 
-    rewrite_exchanges(exchange("kept", 1, tag_a) + "    colour: blue\n");
+    rewrite_exchanges(exchange("kept", 1).key("colour", "blue").str());
     gateway_->signal(SIGHUP);
     ASSERT_TRUE(gateway_->wait_for_output("reload refused", 10s)) << gateway_->output();
     EXPECT_NE(gateway_->output().find("colour"), std::string::npos) << gateway_->output();
@@ -166,13 +164,13 @@ TEST_F(ReloadTest, InvalidFileIsRefusedAndTheOldConfigurationKeepsRunning) {
 
 TEST_F(ReloadTest, APointListThatIsADirectoryOrAFifoIsRefusedAndTheOldConfigurationKeepsRunning) {
     // A directory made the reload die of std::bad_alloc (exit 1); a FIFO blocked the loop.
-    start(exchange("kept", 1, tag_a));
+    start(exchange("kept", 1).str());
     send(datagram(1, 1, 11));
     expect_field(topic("kept/A"), "value", "11");
 
     const auto directory = dir_.path() + "/dir.csv";
     std::filesystem::create_directory(directory);
-    rewrite_exchanges(exchange("kept", 1, tag_a) + "    points: " + directory + "\n");
+    rewrite_exchanges(exchange("kept", 1).key("points", directory).str());
     gateway_->signal(SIGHUP);
     ASSERT_TRUE(gateway_->wait_for_output(
         "point list '" + directory + "' is not a regular file (a directory)", 10s))
@@ -182,7 +180,7 @@ TEST_F(ReloadTest, APointListThatIsADirectoryOrAFifoIsRefusedAndTheOldConfigurat
 
     const auto fifo = dir_.path() + "/fifo.csv";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    rewrite_exchanges(exchange("kept", 1, tag_a) + "    points: " + fifo + "\n");
+    rewrite_exchanges(exchange("kept", 1).key("points", fifo).str());
     gateway_->signal(SIGHUP);
     ASSERT_TRUE(
         gateway_->wait_for_output("point list '" + fifo + "' is not a regular file (a FIFO)", 10s))

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/http_get.hpp"
@@ -20,16 +21,11 @@ class PrometheusTest : public GatewayTest {};
 
 TEST_F(PrometheusTest, EndpointServesPerExchangeCountersAndMqttState) {
     const auto port = free_tcp_port();
-    start(R"(  - name: pump
-    direction: consume
-    producer_id: 10.0.0.2
-    exchange_id: 7
-    length: 4
-    period_ms: 1000
-    topic: pump
-    tags:
-      - { name: SPEED, address: "0.0", type: dint }
-)");
+    start(ExchangeYaml::consume("pump", "10.0.0.2", 7)
+              .length(4)
+              .period_ms(1000)
+              .tag("SPEED", "0.0", "dint")
+              .str());
     // The metrics section is added by rewriting the file and restarting the gateway.
     gateway_->signal(SIGTERM);
     ASSERT_EQ(gateway_->wait(10s), 0);

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -15,27 +16,18 @@ using namespace std::chrono_literals;
 class SourceAndRateLimitTest : public GatewayTest {};
 
 TEST_F(SourceAndRateLimitTest, DatagramsFromAnotherSourceAreDroppedAndCounted) {
-    start(R"(  - name: trusted
-    direction: consume
-    producer_id: 10.0.0.1
-    exchange_id: 1
-    length: 4
-    period_ms: 1000
-    source: 127.0.0.1
-    topic: trusted
-    tags:
-      - { name: A, address: "0.0", type: dint }
-  - name: spoofed
-    direction: consume
-    producer_id: 10.0.0.1
-    exchange_id: 2
-    length: 4
-    period_ms: 1000
-    source: 10.0.0.1
-    topic: spoofed
-    tags:
-      - { name: A, address: "0.0", type: dint }
-)");
+    start(ExchangeYaml::consume("trusted", "10.0.0.1", 1)
+              .length(4)
+              .period_ms(1000)
+              .key("source", "127.0.0.1")
+              .tag("A", "0.0", "dint")
+              .str() +
+          ExchangeYaml::consume("spoofed", "10.0.0.1", 2)
+              .length(4)
+              .period_ms(1000)
+              .key("source", "10.0.0.1")
+              .tag("A", "0.0", "dint")
+              .str());
     // The test sends from 127.0.0.1: right for `trusted`, wrong for `spoofed`.
     send(DatagramBuilder("10.0.0.1", 2, 4)
              .request_id(1)
@@ -55,17 +47,10 @@ TEST_F(SourceAndRateLimitTest, DatagramsFromAnotherSourceAreDroppedAndCounted) {
 
 TEST_F(SourceAndRateLimitTest, WritesBeyondTheTagRateAreRejected) {
     UdpClient capture;
-    start(R"(  - name: sp
-    direction: produce
-    producer_id: 10.1.2.3
-    exchange_id: 10
-    destination: 127.0.0.1:)" +
-          std::to_string(capture.port()) + R"(
-    period_ms: 20
-    topic: sp
-    tags:
-      - { name: SP, address: "0.0", type: dint, writable: true, max_writes_per_s: 0.001 }
-)");
+    start(ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture.port()))
+              .period_ms(20)
+              .tag("SP", "0.0", "dint", "writable: true, max_writes_per_s: 0.001")
+              .str());
     // A burst of one write is allowed; the next within 1,000 s is refused with its reason.
     std::vector<json> results;
     for (int i = 1; i <= 2; ++i) {

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "eip2mqtt/core/plan/value_codec.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -15,18 +16,11 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 
 std::string exchanges(std::uint16_t capture_port) {
-    return R"(  - name: sp
-    direction: produce
-    producer_id: 10.1.2.3
-    exchange_id: 10
-    destination: 127.0.0.1:)" +
-           std::to_string(capture_port) + R"(
-    period_ms: 20
-    topic: sp
-    tags:
-      - { name: SPEED_SP, address: "0.0", type: real, writable: true, initial: 3000 }
-      - { name: TOTAL, address: "4.0", type: lint, writable: true }
-)";
+    return ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture_port))
+        .period_ms(20)
+        .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 3000")
+        .tag("TOTAL", "4.0", "lint", "writable: true")
+        .str();
 }
 
 class HostileWriteTest : public GatewayTest {

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -13,23 +14,14 @@ using core::plan::TagType;
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-/// A PACSystems-like producer: 100 ms period, its own clock, no timeout configured;
-/// `extra` adds keys to the exchange.
-std::string plc_exchange_with(const std::string& extra) {
-    return R"(  - name: plc
-    direction: consume
-    producer_id: 10.0.0.7
-    exchange_id: 2
-    length: 4
-    period_ms: 100
-    timeout_ms: 0
-    topic: plc
-)" + extra +
-           R"(    tags:
-      - { name: COUNTER, address: "0.0", type: dint }
-)";
+/// A PACSystems-like producer: 100 ms period, its own clock, no timeout configured.
+ExchangeYaml plc_exchange() {
+    return ExchangeYaml::consume("plc", "10.0.0.7", 2)
+        .length(4)
+        .period_ms(100)
+        .timeout_ms(0)
+        .tag("COUNTER", "0.0", "dint");
 }
-const std::string plc_exchange = plc_exchange_with("");
 
 /// The PLC's clock without SNTP: January 2000, as a real capture shows.
 constexpr std::uint32_t clock_2000 = 947817150;
@@ -62,7 +54,7 @@ protected:
 };
 
 TEST_F(PlantTest, AProducerRestartIsResynchronisedAtOnceAndCounted) {
-    start(plc_exchange);
+    start(plc_exchange().str());
     // Running for a while: request ids around 20,000.
     constexpr std::uint32_t clock = clock_2000;
     for (std::uint16_t i = 0; i < 5; ++i) {
@@ -82,7 +74,7 @@ TEST_F(PlantTest, AProducerRestartIsResynchronisedAtOnceAndCounted) {
 }
 
 TEST_F(PlantTest, ALateDatagramIsStillDroppedWhenItsTimeDidNotMoveForward) {
-    start(plc_exchange);
+    start(plc_exchange().str());
     constexpr std::uint32_t clock = clock_2000;
     send(plc_datagram(500, clock, 500, 7));
     send(plc_datagram(499, clock, 400, 6));  // reordered on the network: older id, older time
@@ -97,7 +89,7 @@ TEST_F(PlantTest, ALateDatagramIsStillDroppedWhenItsTimeDidNotMoveForward) {
 // The default `timestamp: auto`: a clock 26 years off gives its tags the receive time, and
 // `_status` says why, with the offset; the change is logged once, not per datagram.
 TEST_F(PlantTest, AnUnsynchronisedProducerClockGivesItsTagsTheReceiveTime) {
-    start(plc_exchange);
+    start(plc_exchange().str());
     const auto before = now_ms();
     for (std::uint16_t i = 1; i <= 20; ++i) send(plc_datagram(i, clock_2000, i, 100 + i));
     const auto value = expect_field(topic("plc/COUNTER"), "value", "120");
@@ -120,17 +112,13 @@ TEST_F(PlantTest, AnUnsynchronisedProducerClockGivesItsTagsTheReceiveTime) {
 // clock taken as it is with `timestamp: producer` even when it is 26 years off.
 TEST_F(PlantTest, AProducersTimeIsKeptWhenItIsInToleranceOrAskedFor) {
     // A minute of tolerance, so that a loaded machine receiving late does not make it unsynced.
-    start(plc_exchange_with("    clock_tolerance_ms: 60000\n") + R"(  - name: old
-    direction: consume
-    producer_id: 10.0.0.8
-    exchange_id: 3
-    length: 4
-    timeout_ms: 0
-    topic: old
-    timestamp: producer
-    tags:
-      - { name: COUNTER, address: "0.0", type: dint }
-)");
+    start(plc_exchange().key("clock_tolerance_ms", "60000").str() +
+          ExchangeYaml::consume("old", "10.0.0.8", 3)
+              .length(4)
+              .timeout_ms(0)
+              .key("timestamp", "producer")
+              .tag("COUNTER", "0.0", "dint")
+              .str());
     const auto now = now_ms();
     send(DatagramBuilder("10.0.0.7", 2, 4)
              .request_id(1)
@@ -158,7 +146,7 @@ TEST_F(PlantTest, AProducersTimeIsKeptWhenItIsInToleranceOrAskedFor) {
 // No timestamp (0/0) is the receive time and clock `none`; and whatever a timestamp says, the
 // datagram is never dropped for it: a clock jumping from 2000 to 2106 and back is all accepted.
 TEST_F(PlantTest, NoTimestampIsTheReceiveTimeAndNoTimestampEverDropsADatagram) {
-    start(plc_exchange);
+    start(plc_exchange().str());
     const auto before = now_ms();
     send(plc_datagram(1, 0, 0, 1));
     const auto value = expect_field(topic("plc/COUNTER"), "value", "1");

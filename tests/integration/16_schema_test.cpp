@@ -12,6 +12,7 @@
 #include <set>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/schema_check.hpp"
 
@@ -22,48 +23,37 @@ using core::plan::TagType;
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-const std::string consumed_exchanges = R"(  - name: unit1
-    direction: consume
-    producer_id: 10.0.0.1
-    exchange_id: 1
-    length: 48
-    period_ms: 100
-    timeout_ms: 400
-    topic: unit1
-    tags:
-      - { name: RUN, address: "0.0", type: bit }
-      - { name: 'SAY"HI\', address: "0.1", type: bit }
-      - { name: MODE, address: "1.0", type: byte }
-      - { name: PRESSURE, address: "2.0", type: int }
-      - { name: COUNT, address: "5.0", type: word }
-      - { name: FLOW, address: "7.0", type: dint }
-      - { name: ENERGY, address: "11.0", type: udint }
-      - { name: TEMP, address: "15.0", type: real }
-      - { name: TOTAL, address: "19.0", type: lint }
-      - { name: PRECISE, address: "27.0", type: lreal }
-      - { name: NOT_A_NUMBER, address: "35.0", type: real }
-      - { name: HUGE, address: "39.0", type: lreal }
-  - name: plc
-    direction: consume
-    producer_id: 10.0.0.2
-    exchange_id: 2
-    length: 2
-    period_ms: 100
-    timeout_ms: 0
-    signature: "2.5"
-    topic: area/plc
-    tags:
-      - { name: LEVEL, address: "0.0", type: int }
-  - name: idle
-    direction: consume
-    producer_id: 10.0.0.3
-    exchange_id: 3
-    length: 1
-    period_ms: 100
-    topic: idle
-    tags:
-      - { name: FLAG, address: "0.0", type: bit }
-)";
+const std::string consumed_exchanges =
+    ExchangeYaml::consume("unit1", "10.0.0.1", 1)
+        .length(48)
+        .period_ms(100)
+        .timeout_ms(400)
+        .tag("RUN", "0.0", "bit")
+        .tag(R"('SAY"HI\')", "0.1", "bit")  // SAY"HI\ (a quote, a backslash)
+        .tag("MODE", "1.0", "byte")
+        .tag("PRESSURE", "2.0", "int")
+        .tag("COUNT", "5.0", "word")
+        .tag("FLOW", "7.0", "dint")
+        .tag("ENERGY", "11.0", "udint")
+        .tag("TEMP", "15.0", "real")
+        .tag("TOTAL", "19.0", "lint")
+        .tag("PRECISE", "27.0", "lreal")
+        .tag("NOT_A_NUMBER", "35.0", "real")
+        .tag("HUGE", "39.0", "lreal")
+        .str() +
+    ExchangeYaml::consume("plc", "10.0.0.2", 2)
+        .length(2)
+        .period_ms(100)
+        .timeout_ms(0)
+        .key("signature", "\"2.5\"")
+        .topic("area/plc")
+        .tag("LEVEL", "0.0", "int")
+        .str() +
+    ExchangeYaml::consume("idle", "10.0.0.3", 3)
+        .length(1)
+        .period_ms(100)
+        .tag("FLAG", "0.0", "bit")
+        .str();
 
 std::uint32_t now_seconds() {
     return static_cast<std::uint32_t>(std::chrono::duration_cast<std::chrono::seconds>(
@@ -116,7 +106,7 @@ protected:
         if (ends_with("/set/result") || topic.starts_with("replies/")) return "write-result.json";
         if (ends_with("/set") || topic == availability_topic()) return "";
         return raw ? "tag-value-raw.json" : "tag-value.json";
-    }
+    }  // namespace
 
     /// Validates every message recorded so far against its schema (each failure is a test
     /// failure naming topic, payload and problem); returns the payloads checked, by schema.
@@ -159,7 +149,7 @@ protected:
     void wait_metrics(std::size_t from) {
         ASSERT_TRUE(recorder_->wait_for_message(metrics_topic(), nullptr, 10s, from).has_value());
     }
-};
+};  // namespace eip2mqtt::test
 
 TEST_F(SchemaTest, ConsumedTagsStatusBatchAndMetricsMatchTheirSchemas) {
     start(consumed_exchanges, "  batch: true\n");
@@ -214,20 +204,13 @@ TEST_F(SchemaTest, RawPayloadsMatchTheRawSchema) {
 }
 
 std::string produced_exchange(std::uint16_t capture_port) {
-    return R"(  - name: sp
-    direction: produce
-    producer_id: 10.1.2.3
-    exchange_id: 10
-    destination: 127.0.0.1:)" +
-           std::to_string(capture_port) + R"(
-    period_ms: 20
-    topic: sp
-    tags:
-      - { name: SPEED_SP, address: "0.0", type: real, writable: true, min: 0, max: 4000, initial: 3000 }
-      - { name: START, address: "4.0", type: bit, writable: true }
-      - { name: LEVEL, address: "5.0", type: int, writable: true }
-      - { name: LIMIT, address: "7.0", type: word, initial: 100 }
-)";
+    return ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture_port))
+        .period_ms(20)
+        .tag("SPEED_SP", "0.0", "real", "writable: true, min: 0, max: 4000, initial: 3000")
+        .tag("START", "4.0", "bit", "writable: true")
+        .tag("LEVEL", "5.0", "int", "writable: true")
+        .tag("LIMIT", "7.0", "word", "initial: 100")
+        .str();
 }
 
 TEST_F(SchemaTest, WriteRequestsResultsEchoAndProducedStatusMatchTheirSchemas) {

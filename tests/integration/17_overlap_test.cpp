@@ -7,6 +7,7 @@
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "tests/support/child_process.hpp"
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -18,35 +19,24 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 
 std::string exchanges(std::uint16_t capture_port) {
-    return R"(  - name: plc
-    direction: consume
-    producer_id: 10.0.0.7
-    exchange_id: 2
-    length: 8
-    period_ms: 100
-    topic: plc
-    tags:
-      - { name: STATUS, address: "0.0", type: word }
-      - { name: RUN, address: "0.0", type: bit }
-      - { name: TRIP, address: "1.7", type: bit }
-      - { name: TOTAL, address: "2.0", type: dint }
-      - { name: TOTAL_LO, address: "2.0", type: int }
-      - { name: TOTAL_HI, address: "4.0", type: int }
-  - name: sp
-    direction: produce
-    producer_id: 10.1.2.3
-    exchange_id: 10
-    destination: 127.0.0.1:)" +
-           std::to_string(capture_port) + R"(
-    period_ms: 20
-    topic: sp
-    tags:
-      - { name: TOTAL, address: "0.0", type: dint, writable: true }
-      - { name: TOTAL_LO, address: "0.0", type: int, writable: true }
-      - { name: TOTAL_HI, address: "2.0", type: int, writable: true }
-      - { name: MODE, address: "4.0", type: word, writable: true }
-      - { name: AUTO, address: "4.0", type: bit, writable: true }
-)";
+    return ExchangeYaml::consume("plc", "10.0.0.7", 2)
+               .length(8)
+               .period_ms(100)
+               .tag("STATUS", "0.0", "word")
+               .tag("RUN", "0.0", "bit")
+               .tag("TRIP", "1.7", "bit")
+               .tag("TOTAL", "2.0", "dint")
+               .tag("TOTAL_LO", "2.0", "int")
+               .tag("TOTAL_HI", "4.0", "int")
+               .str() +
+           ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture_port))
+               .period_ms(20)
+               .tag("TOTAL", "0.0", "dint", "writable: true")
+               .tag("TOTAL_LO", "0.0", "int", "writable: true")
+               .tag("TOTAL_HI", "2.0", "int", "writable: true")
+               .tag("MODE", "4.0", "word", "writable: true")
+               .tag("AUTO", "4.0", "bit", "writable: true")
+               .str();
 }
 
 class OverlapTest : public GatewayTest {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
@@ -20,19 +21,13 @@ using nlohmann::json;
 constexpr auto injector_timeout = std::chrono::seconds(30);
 
 std::string exchange_yaml(int timeout_ms) {
-    return R"(  - name: unit1
-    direction: consume
-    producer_id: 10.0.0.1
-    exchange_id: 1
-    length: 8
-    period_ms: 100
-    timeout_ms: )" +
-           std::to_string(timeout_ms) + R"(
-    topic: unit1
-    tags:
-      - { name: MARKER, address: "0.0", type: word }
-      - { name: VALUE, address: "4.0", type: dint }
-)";
+    return ExchangeYaml::consume("unit1", "10.0.0.1", 1)
+        .length(8)
+        .period_ms(100)
+        .timeout_ms(timeout_ms)
+        .tag("MARKER", "0.0", "word")
+        .tag("VALUE", "4.0", "dint")
+        .str();
 }
 
 std::vector<std::byte> datagram(std::uint16_t rid, std::int64_t value = 1000) {

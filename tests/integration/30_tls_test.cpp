@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/tls_certs.hpp"
 
@@ -15,17 +16,13 @@ namespace {
 using core::plan::TagType;
 using namespace std::chrono_literals;
 
-const std::string one_exchange = R"(  - name: pump
-    direction: consume
-    producer_id: 10.0.0.2
-    exchange_id: 7
-    length: 4
-    period_ms: 1000
-    timeout_ms: 0
-    topic: area/pump
-    tags:
-      - { name: SPEED, address: "0.0", type: real }
-)";
+const std::string one_exchange = ExchangeYaml::consume("pump", "10.0.0.2", 7)
+                                     .length(4)
+                                     .period_ms(1000)
+                                     .timeout_ms(0)
+                                     .topic("area/pump")
+                                     .tag("SPEED", "0.0", "real")
+                                     .str();
 
 constexpr const char* user = "gateway";
 constexpr const char* password = "s3cret-Pa55";

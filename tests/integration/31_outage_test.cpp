@@ -13,6 +13,7 @@
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -26,29 +27,18 @@ using namespace std::chrono_literals;
 constexpr std::int64_t constant = -4242;
 
 std::string exchanges(std::uint16_t capture_port) {
-    return R"(  - name: line
-    direction: consume
-    producer_id: 10.0.0.2
-    exchange_id: 7
-    length: 8
-    period_ms: 20
-    timeout_ms: 0
-    topic: line
-    tags:
-      - { name: MARKER, address: "0.0", type: udint }
-      - { name: CONSTANT, address: "4.0", type: dint }
-  - name: sp
-    direction: produce
-    producer_id: 10.1.2.3
-    exchange_id: 10
-    destination: 127.0.0.1:)" +
-           std::to_string(capture_port) + R"(
-    period_ms: 20
-    topic: sp
-    tags:
-      - { name: SPEED_SP, address: "0.0", type: real, writable: true, min: 0, max: 4000, initial: 3000 }
-      - { name: LEVEL, address: "4.0", type: int, writable: true }
-)";
+    return ExchangeYaml::consume("line", "10.0.0.2", 7)
+               .length(8)
+               .period_ms(20)
+               .timeout_ms(0)
+               .tag("MARKER", "0.0", "udint")
+               .tag("CONSTANT", "4.0", "dint")
+               .str() +
+           ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture_port))
+               .period_ms(20)
+               .tag("SPEED_SP", "0.0", "real", "writable: true, min: 0, max: 4000, initial: 3000")
+               .tag("LEVEL", "4.0", "int", "writable: true")
+               .str();
 }
 
 std::vector<std::byte> marker_datagram(std::uint32_t marker) {

@@ -10,6 +10,7 @@
 
 #include "eip2mqtt/core/wire/decode.hpp"
 #include "tests/support/child_process.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -104,18 +105,12 @@ class TsharkInterop : public GatewayTest {};
 
 TEST_F(TsharkInterop, EgdDissectorDecodesTheProducedHeader) {
     UdpClient capture;
-    start(R"(  - name: sp
-    direction: produce
-    producer_id: 172.23.21.176
-    exchange_id: 4242
-    signature: "2.5"
-    destination: 127.0.0.1:)" +
-          std::to_string(capture.port()) + R"(
-    period_ms: 50
-    topic: sp
-    tags:
-      - { name: SPEED_SP, address: "0.0", type: real, writable: true, initial: 1.5 }
-)");
+    start(ExchangeYaml::produce("sp", "172.23.21.176", 4242,
+                                "127.0.0.1:" + std::to_string(capture.port()))
+              .key("signature", "\"2.5\"")
+              .period_ms(50)
+              .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 1.5")
+              .str());
     const auto bytes = capture.receive(5s);
     ASSERT_TRUE(bytes.has_value());
     const auto header = core::wire::decode_datagram(*bytes).value().header;

@@ -28,6 +28,7 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tools/fault_injector/fault_model.hpp"
 
@@ -53,29 +54,20 @@ constexpr std::uint64_t total_datagrams = 1'000'000;
 constexpr std::size_t batch_size = 2000;      // well inside the gateway's socket buffer
 constexpr long max_rss_growth_kb = 4 * 1024;  // from 10 % to 100 % of the run
 
-const std::string exchanges = R"(  - name: soak
-    direction: consume
-    producer_id: 10.0.0.9
-    exchange_id: 9
-    length: 16
-    period_ms: 10
-    timeout_ms: 0
-    topic: soak
-    tags:
-      - { name: A, address: "0.0", type: word }
-      - { name: B, address: "4.0", type: real }
-      - { name: C, address: "8.0", type: dint }
-  - name: sentinel
-    direction: consume
-    producer_id: 10.0.0.9
-    exchange_id: 10
-    length: 2
-    period_ms: 1000
-    timeout_ms: 0
-    topic: sentinel
-    tags:
-      - { name: MARKER, address: "0.0", type: word }
-)";
+const std::string exchanges = ExchangeYaml::consume("soak", "10.0.0.9", 9)
+                                  .length(16)
+                                  .period_ms(10)
+                                  .timeout_ms(0)
+                                  .tag("A", "0.0", "word")
+                                  .tag("B", "4.0", "real")
+                                  .tag("C", "8.0", "dint")
+                                  .str() +
+                              ExchangeYaml::consume("sentinel", "10.0.0.9", 10)
+                                  .length(2)
+                                  .period_ms(1000)
+                                  .timeout_ms(0)
+                                  .tag("MARKER", "0.0", "word")
+                                  .str();
 
 core::plan::ExchangePlan plan_of(std::uint32_t exchange_id, std::uint16_t length) {
     core::plan::ExchangeSpec spec;
