@@ -1,0 +1,78 @@
+#pragma once
+/// Sparkplug B payloads (issue #15), in our terms: what the gateway puts in a birth or a data
+/// message, and what a host's command asks, encoded and decoded with protobuf. Decoding never
+/// throws: hostile bytes give an error text.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/plan/value.hpp"
+#include "eip2mqtt/core/result.hpp"
+
+namespace eip2mqtt::adapters::sparkplug {
+
+/// The specification's datatype numbers (those a metric of ours can have, and String).
+enum class DataType : std::uint32_t {
+    int8 = 1,
+    int16 = 2,
+    int32 = 3,
+    int64 = 4,
+    uint8 = 5,
+    uint16 = 6,
+    uint32 = 7,
+    uint64 = 8,
+    float32 = 9,
+    float64 = 10,
+    boolean = 11,
+    string = 12,
+};
+
+/// bit -> Boolean, byte -> UInt8, int -> Int16, word -> UInt16, dint -> Int32, udint -> UInt32,
+/// lint -> Int64, real -> Float, lreal -> Double.
+DataType datatype_of(core::plan::TagType type);
+
+/// A metric property (engineering unit, description, writable, limits, quality).
+struct Property {
+    std::string key;
+    DataType type = DataType::string;
+    std::variant<core::plan::Value, std::string> value;
+};
+
+struct Metric {
+    std::string name;  ///< empty: referred to by alias only (DDATA)
+    std::optional<std::uint64_t> alias;
+    std::uint64_t timestamp_ms = 0;
+    DataType datatype = DataType::boolean;
+    /// nullopt: is_null (a value the gateway does not have).
+    std::optional<core::plan::Value> value;
+    bool historical = false;
+    std::vector<Property> properties;
+};
+
+struct Payload {
+    std::uint64_t timestamp_ms = 0;
+    std::optional<std::uint64_t> seq;  ///< absent in NCMD, DCMD and STATE-like payloads
+    std::vector<Metric> metrics;
+};
+
+/// The protobuf bytes of `payload`.
+std::string encode(const Payload& payload);
+
+/// A metric of a host's command (NCMD, DCMD): what it names and the value it carries, read as
+/// its datatype says. Values of other kinds than ours (strings, datasets) are refused.
+struct CommandMetric {
+    std::string name;
+    std::optional<std::uint64_t> alias;
+    std::optional<DataType> datatype;
+    std::optional<core::plan::Value> value;  ///< nullopt: is_null or no value
+};
+
+/// The metrics of a command; an error text for bytes that are not a Sparkplug payload.
+core::Result<std::vector<CommandMetric>, std::string> decode_command(std::string_view bytes);
+
+}  // namespace eip2mqtt::adapters::sparkplug
