@@ -9,6 +9,8 @@
 // strtoll after `"value":`, no JSON parser.
 // Batch mode (--batch): counts `_values` messages and the tag updates they carry (the members of
 // "values"); "ts" inside them is the send time.
+// Sparkplug mode (--sparkplug): counts DDATA messages and the metrics they carry (the tag
+// updates), decoded with the protobuf classes of the gateway's own .proto; no latency.
 // --expect-last V: after the run, how many counted topics ended on value V (newest value wins);
 // with --expect-topics N, stops as soon as N topics are on V.
 //
@@ -26,6 +28,7 @@
 
 #include "bench_common.hpp"
 #include "mosquitto_session.hpp"
+#include "sparkplug_b.pb.h"
 
 namespace {
 
@@ -33,6 +36,7 @@ struct State {
     std::vector<std::string> filters;
     int qos = 0;
     bool batch = false;
+    bool sparkplug = false;
     bool stamp_all = false;
     std::string stamp_tag = "ts";
     bool track_last = false;
@@ -107,7 +111,13 @@ void on_message(mosquitto*, void* user, const mosquitto_message* msg) {
     const int length = msg->payloadlen;
     const std::int64_t now_wall = bench::wall_ns();
     long long value = 0;
-    if (s.batch) {
+    if (s.sparkplug) {
+        // Sparkplug B DDATA: the tag updates are the payload's metrics (decoded with protobuf).
+        if (std::strstr(msg->topic, "/DDATA/") == nullptr) return;
+        org::eclipse::tahu::protobuf::Payload ddata;
+        if (!ddata.ParseFromArray(payload, length)) return;
+        s.updates += static_cast<std::uint64_t>(ddata.metrics_size());
+    } else if (s.batch) {
         if (std::strcmp(level, "_values") != 0) return;
         const char* values = static_cast<const char*>(
             memmem(payload, static_cast<std::size_t>(length), "\"values\":{", 10));
@@ -143,8 +153,8 @@ void on_message(mosquitto*, void* user, const mosquitto_message* msg) {
 int main(int argc, char** argv) {
     const bench::Options opt(
         argc, argv,
-        {"host", "port", "filter", "qos", "batch", "stamp-tag", "stamp-all", "expect-last",
-         "expect-topics", "expect", "idle-ms", "max-s", "ready-file", "id"});
+        {"host", "port", "filter", "qos", "batch", "sparkplug", "stamp-tag", "stamp-all",
+         "expect-last", "expect-topics", "expect", "idle-ms", "max-s", "ready-file", "id"});
     State s;
     {
         // --filter a,b,c
@@ -158,6 +168,7 @@ int main(int argc, char** argv) {
     }
     s.qos = static_cast<int>(opt.num("qos", 0));
     s.batch = opt.has("batch");
+    s.sparkplug = opt.has("sparkplug");
     s.stamp_all = opt.has("stamp-all");
     s.stamp_tag = opt.str("stamp-tag", "ts");
     s.track_last = opt.has("expect-last");

@@ -151,7 +151,7 @@ class Bench:
             shutil.rmtree(self.tmp, ignore_errors=True)
 
     def write_config(self, name, consumed=(), produced=(), qos=1, batch=False, udp_port=0,
-                     point_list=False):
+                     point_list=False, sparkplug=False):
         """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
         destination). Tag 0 is the lint "ts", tags 1.. dints (load_generator's layout). With
         point_list, the consumed tags are rows of one CSV ({name}.csv, a SCADA point list whose
@@ -172,8 +172,11 @@ class Bench:
             "  metrics_interval_s: 1",
             "  buffer: { max_messages: 250000 }",  # above any scenario's topic count
             f"eip: {{ bind: {HOST}, port: {udp_port} }}",
-            "exchanges:",
         ]
+        if sparkplug:
+            # Sparkplug alone (uns: false), at the scenario's QoS.
+            lines.append(f"sparkplug: {{ group_id: bench, uns: false, qos: {qos} }}")
+        lines.append("exchanges:")
 
         def tag_lines(tags, writable):
             w = ", writable: true" if writable else ""
@@ -397,13 +400,15 @@ class Bench:
               f"at {got['rate']:.0f}/s", flush=True)
         return got["rate"]
 
-    def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1):
+    def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1, sparkplug=False):
         udp_port = free_port(socket.SOCK_DGRAM)
         config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, exchanges + 1)],
-                                   qos=qos, batch=batch, udp_port=udp_port)
+                                   qos=qos, batch=batch, udp_port=udp_port, sparkplug=sparkplug)
         gw = self.start_gateway(name, config)
         self.wait_online(name)
-        if batch:
+        if sparkplug:
+            counter = self.start_counter("spBv1.0/bench/DDATA/#", qos, extra=["--sparkplug"])
+        elif batch:
             counter = self.start_counter("b/+/_values", qos, extra=["--batch"])
         else:
             counter = self.start_counter("b/+/+", qos)
@@ -411,7 +416,7 @@ class Bench:
         rate = max(100, round(1.5 * ceiling / per_datagram))  # offer 1.5 x the ceiling
         gen = self.generate(udp_port, exchanges, rate, duration=self.d, change=change)
         got = self.finish(counter)
-        m = self.metrics(name)
+        m = None if sparkplug else self.metrics(name)  # uns: false has no metrics topic
         stop(gw)
         print(f"    gateway {name}: offered {gen['rate']:.0f} datagrams/s x {per_datagram} tags; "
               f"received {got['messages']} msgs, {got['updates']} updates at "
@@ -452,6 +457,20 @@ class Bench:
                  f"{got['update_rate']:,.0f} ({got['rate']:,.0f} msgs/s)",
                  f"{per_tag:,.0f} (gateway per-tag QoS 1)", f"{ratio:.1f}", ">= 10",
                  "yes" if ratio >= 10 else "no")
+
+    def s4_sparkplug(self):
+        print("[4] Sparkplug B DDATA, QoS 0 and 1", flush=True)
+        for qos in (0, 1):
+            per_tag = self.ceilings.get(("gw", qos))
+            baseline = "gateway per-tag JSON"
+            if per_tag is None:  # --only without scenarios 2 and 3
+                per_tag, baseline = self.paho_ceiling(qos), "bare Paho per-tag"
+            got = self.gateway_rate(f"g4s{qos}", qos, 1.0, 20 * per_tag / 1.5, sparkplug=True)
+            ratio = got["update_rate"] / per_tag if per_tag else 0
+            self.row(f"tag updates/s carried by Sparkplug B DDATA, QoS {qos}",
+                     f"{got['update_rate']:,.0f} ({got['rate']:,.0f} msgs/s)",
+                     f"{per_tag:,.0f} ({baseline} QoS {qos})", f"{ratio:.1f}", ">= 10",
+                     "yes" if ratio >= 10 else "no")
 
     def s5_latency(self):
         print("[5] latency at 10k datagrams/s, 10 % changing (10 exchanges x 10 tags)", flush=True)
@@ -807,6 +826,7 @@ def main():
             bench.s2_s3_publications()
         if bench.wanted(4):
             bench.s4_batch()
+            bench.s4_sparkplug()
         if bench.wanted(5):
             bench.s5_latency()
         if bench.wanted(6):

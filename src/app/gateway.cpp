@@ -42,7 +42,19 @@ Gateway::Gateway(core::config::Config config)
         loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
     uns_json_ = std::make_unique<northbound::UnsJson>(northbound::uns_json_options(config_), *mqtt_,
                                                       writes_);
-    northbound_.add(*uns_json_);
+    if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*uns_json_);
+    if (config_.sparkplug.enabled()) {
+        sparkplug_mqtt_ = std::make_unique<adapters::mqtt::Client>(
+            loop_.get_executor(),
+            sparkplug_client_options(config_, [this] { return sparkplug_->next_will(); }));
+        sparkplug_ = std::make_unique<northbound::SparkplugNode>(
+            northbound::sparkplug_options(config_), *sparkplug_mqtt_, writes_, [] {
+                return std::chrono::duration_cast<std::chrono::milliseconds>(
+                           std::chrono::system_clock::now().time_since_epoch())
+                    .count();
+            });
+        northbound_.add(*sparkplug_);
+    }
     apply_exchanges(take_plans(), false, false);
 
     adapters::udp::ReceiverOptions receiver_options;
@@ -79,6 +91,8 @@ int Gateway::run() {
     for (auto& producer : producers_) producer->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
     if (persister_) persister_->flush();
+    // The edge node's NDEATH after its last data, then the JSON tree's `offline`.
+    if (sparkplug_mqtt_) sparkplug_mqtt_->stop(stop_flush_timeout);
     mqtt_->stop(stop_flush_timeout);
     const auto stats = mqtt_->stats();
     spdlog::info("stopped: {} datagrams received, {} publications made, {} still queued",
@@ -100,6 +114,12 @@ void Gateway::start() {
         datagram_router_.route(bytes, from, truncated, std::chrono::steady_clock::now());
     });
     mqtt_->start();
+    if (sparkplug_mqtt_) {
+        sparkplug_mqtt_->set_on_connected([this] { sparkplug_->on_connected(); });
+        sparkplug_mqtt_->set_on_message(
+            [this](const adapters::mqtt::Incoming& message) { sparkplug_->on_message(message); });
+        sparkplug_mqtt_->start();
+    }
     wait_signal();
     schedule_tick();
     schedule_metrics();

@@ -49,4 +49,16 @@ adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& co
     return options;
 }
 
+adapters::mqtt::ClientOptions sparkplug_client_options(
+    const core::config::Config& config, std::function<adapters::mqtt::Message()> will) {
+    auto options = mqtt_client_options(config, {});
+    options.client_id += "-sparkplug";
+    options.log_name = "MQTT (Sparkplug)";
+    options.session_expiry = std::chrono::seconds(0);
+    options.clean_start = true;
+    options.will = std::move(will);
+    options.session_bound = true;
+    return options;
+}
+
 }  // namespace eip2mqtt::app

@@ -22,11 +22,12 @@ namespace {
 /// The settings a reload cannot apply: they shape the MQTT session, the sockets or the
 /// identity of the gateway. A change to any of them needs a restart.
 auto session_settings(const core::config::Config& c) {
-    return std::make_tuple(c.gateway.id, c.gateway.state_dir, c.mqtt.url, c.mqtt.version,
-                           c.mqtt.client_id, c.mqtt.username, c.mqtt.password_file,
-                           c.mqtt.tls.has_value(), c.mqtt.base_topic, c.mqtt.keepalive,
-                           c.mqtt.session_expiry, c.eip.bind, c.eip.port, c.eip.multicast.size(),
-                           c.eip.multicast_ttl, c.eip.multicast_interface, c.metrics.listen);
+    return std::make_tuple(
+        c.gateway.id, c.gateway.state_dir, c.mqtt.url, c.mqtt.version, c.mqtt.client_id,
+        c.mqtt.username, c.mqtt.password_file, c.mqtt.tls.has_value(), c.mqtt.base_topic,
+        c.mqtt.keepalive, c.mqtt.session_expiry, c.eip.bind, c.eip.port, c.eip.multicast.size(),
+        c.eip.multicast_ttl, c.eip.multicast_interface, c.metrics.listen, c.sparkplug.group_id,
+        c.sparkplug.edge_node_id, c.sparkplug.primary_host_id, c.sparkplug.uns, c.sparkplug.qos);
 }
 
 }  // namespace
@@ -165,7 +166,9 @@ void Gateway::reload() {
     auto config = std::move(loaded).value();
     if (session_settings(config) != session_settings(config_)) {
         spdlog::error(
-            "reload refused: changes to the gateway, mqtt, eip or metrics sections need a restart "
+            "reload refused: changes to the gateway, mqtt, eip, metrics or sparkplug sections need "
+            "a "
+            "restart "
             "(systemctl restart eip2mqtt); the running configuration is kept");
         notifier_.ready(status_line());
         return;

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/mqtt/write_payload.hpp"
-#include "eip2mqtt/core/plan/overlap.hpp"
 #include "eip2mqtt/core/plan/topic_rules.hpp"
 
 namespace eip2mqtt::app {
@@ -79,24 +78,6 @@ std::optional<WriteRejection> collect_writes(const core::plan::ExchangePlan& pla
         if (auto rejection = add(*index, entry.second)) return rejection;
     }
     return std::nullopt;
-}
-
-/// A word and one of its bits in one message: which would win? Neither is written.
-std::optional<WriteRejection> overlap_rejection(const core::plan::ExchangePlan& plan,
-                                                const std::vector<core::write::TagWrite>& writes) {
-    if (writes.size() < 2) return std::nullopt;
-    std::vector<core::plan::BitSpan> spans;
-    spans.reserve(writes.size());
-    for (const auto& write : writes) {
-        spans.push_back(core::plan::bit_span(plan.tags[write.tag_index].spec));
-    }
-    const auto overlaps = core::plan::find_overlaps(spans, 1);
-    if (overlaps.pairs.empty()) return std::nullopt;
-    const auto& pair = overlaps.pairs.front();
-    return WriteRejection{WriteError::overlapping_tags,
-                          "tags " + plan.tags[writes[pair.first].tag_index].spec.name + " and " +
-                              plan.tags[writes[pair.second].tag_index].spec.name +
-                              " share bytes; write them in separate messages"};
 }
 
 }  // namespace
@@ -201,7 +182,7 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
     }
     ExchangeWrite routed{*route.producer, {}};
     auto rejection = collect_writes(plan, target->tag_index, message.payload, routed.writes);
-    if (!rejection) rejection = overlap_rejection(plan, routed.writes);
+    if (!rejection) rejection = core::write::overlap_rejection(plan, routed.writes);
     if (rejection) return refuse(rejection->error, std::move(rejection->message));
     decision.outcome = std::move(routed);
     return decision;

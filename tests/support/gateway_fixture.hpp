@@ -37,6 +37,8 @@ struct GatewayOptions {
     /// of the plain one; the recorder always uses the plain one.
     bool secure = false;
     std::map<std::string, std::string> env;  ///< added to the gateway's environment
+    /// Top-level sections added to the configuration (`sparkplug:` ...), as YAML text.
+    std::string sections;
     /// false: start() and start_gateway() return once the process is started, for tests
     /// where the gateway must not come online.
     bool wait_online = true;

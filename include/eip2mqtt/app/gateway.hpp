@@ -29,6 +29,7 @@
 #include "eip2mqtt/app/gateway_metrics.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/northbound/fan_out.hpp"
+#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
 #include "eip2mqtt/app/northbound/uns_json.hpp"
 #include "eip2mqtt/app/producer_scheduler.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
@@ -91,6 +92,9 @@ private:
     std::unique_ptr<adapters::mqtt::Client> mqtt_;
     WriteDispatcher writes_;
     std::unique_ptr<northbound::UnsJson> uns_json_;
+    /// With `sparkplug:`, the edge node and its own connection (its will is the NDEATH).
+    std::unique_ptr<adapters::mqtt::Client> sparkplug_mqtt_;
+    std::unique_ptr<northbound::SparkplugNode> sparkplug_;
     northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
     DatagramRouter datagram_router_;

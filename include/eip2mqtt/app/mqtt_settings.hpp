@@ -3,6 +3,7 @@
 /// and the password, which never comes from the YAML (README "Configuration"). Apart from
 /// reading the password file, a pure function of the configuration.
 
+#include <functional>
 #include <string>
 
 #include "eip2mqtt/adapters/mqtt/client.hpp"
@@ -18,5 +19,11 @@ std::string read_mqtt_password(const core::config::MqttSection& mqtt);
 /// Options of the gateway's MQTT client; `availability_topic` carries its will.
 adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& config,
                                                   const std::string& availability_topic);
+
+/// Options of the Sparkplug edge node's own connection: the same broker, credentials and TLS,
+/// client id `{client id}-sparkplug`, a clean session every time (Sparkplug B 3.0), session-bound,
+/// `will` making each CONNECT's NDEATH.
+adapters::mqtt::ClientOptions sparkplug_client_options(
+    const core::config::Config& config, std::function<adapters::mqtt::Message()> will);
 
 }  // namespace eip2mqtt::app

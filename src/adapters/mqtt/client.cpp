@@ -36,7 +36,8 @@ void Client::set_subscriptions(std::vector<std::string> filters) {
         try {
             impl.client_->unsubscribe(paho::string_collection::create(removed));
         } catch (const paho::exception& e) {
-            spdlog::warn("MQTT unsubscribe failed on {}: {}", impl.options_.url, e.what());
+            spdlog::warn("{} unsubscribe failed on {}: {}", impl.options_.log_name,
+                         impl.options_.url, e.what());
         }
     }
 }
@@ -47,7 +48,14 @@ void Client::start() {
     }
 }
 
-void Client::publish(Message&& message) { impl_->enqueue(message); }
+void Client::publish(Message&& message) {
+    if (impl_->options_.session_bound && impl_->state_ != Impl::State::connected) {
+        impl_->discarded_.fetch_add(1, std::memory_order_relaxed);
+        message.clear();
+        return;
+    }
+    impl_->enqueue(message);
+}
 
 void Client::stop(std::chrono::milliseconds flush_timeout) { impl_->stop(flush_timeout); }
 
@@ -63,6 +71,7 @@ ClientStats Client::stats() const {
     s.connection_losses = impl.connection_losses_;
     s.received = impl.received_;
     s.refused = impl.refused_;
+    s.discarded = impl.discarded_;
     std::lock_guard lock(impl.mutex_);
     s.queued = impl.outbox_.size() + impl.retry_.size();
     s.in_flight = impl.in_flight_.pending();

@@ -15,8 +15,9 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
       endpoint_(detail::parse_broker_url(options_.url)),
       // With a clean session Paho discards unacknowledged publications on reconnect, so we
       // resend them; with a kept session Paho resends them itself and we must not duplicate.
-      requeue_in_flight_(options_.clean_start ||
-                         (options_.version == 5 && options_.session_expiry.count() == 0)),
+      requeue_in_flight_(!options_.session_bound &&
+                         (options_.clean_start ||
+                          (options_.version == 5 && options_.session_expiry.count() == 0))),
       reconnect_timer_(loop_),
       loss_hold_timer_(loop_),
       backoff_(options_.min_backoff, options_.max_backoff),
@@ -33,7 +34,8 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
 
     detail::configure_connect_options(connect_options_, options_, endpoint_, kConnectTimeout);
     if (options_.tls && endpoint_ && !endpoint_->tls) {
-        spdlog::warn("MQTT url {} is not ssl:// or wss://: mqtt.tls is ignored", options_.url);
+        spdlog::warn("{} url {} is not ssl:// or wss://: mqtt.tls is ignored", options_.log_name,
+                     options_.url);
     }
 
     // Paho's threads: copy, count, post; nothing else.
@@ -97,6 +99,13 @@ void Client::Impl::do_connect() {
     }
     state_ = State::connecting;
     try {
+        if (options_.will) {
+            Message will = options_.will();
+            connect_options_.set_will(
+                paho::will_options(will.topic, will.payload, will.qos, will.retain));
+            std::lock_guard lock(mutex_);
+            last_will_ = std::move(will);
+        }
         connect_token_ = client_->connect(connect_options_, nullptr, connect_listener_);
     } catch (const paho::exception& e) {
         on_connect(false, e.what());
@@ -115,12 +124,14 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
         reason = explain_connect_failure(std::move(reason));
         if (const auto count = connect_failure_log_.record(Clock::now())) {
             if (count == 1) {
-                spdlog::warn("MQTT cannot connect to {}: {}", options_.url, reason);
+                spdlog::warn("{} cannot connect to {}: {}", options_.log_name, options_.url,
+                             reason);
             } else {
-                spdlog::warn("MQTT cannot connect to {}: {} ({} failed attempts)", options_.url,
-                             reason, count);
+                spdlog::warn("{} cannot connect to {}: {} ({} failed attempts)", options_.log_name,
+                             options_.url, reason, count);
             }
-            spdlog::info("MQTT reconnecting in {} ms", schedule_reconnect().count());
+            spdlog::info("{} reconnecting in {} ms", options_.log_name,
+                         schedule_reconnect().count());
         } else {
             schedule_reconnect();
         }
@@ -134,7 +145,7 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     backoff_.reset();
     update_in_flight_limit();
     connect_failure_log_.reset();
-    spdlog::info("MQTT connected to {}", options_.url);
+    spdlog::info("{} connected to {}", options_.log_name, options_.url);
 
     if (endpoint_) {
         nagle_.attach(detail::sockets_connected_to(endpoint_->host, endpoint_->port));
@@ -148,7 +159,7 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
                                                 options_.availability_qos, true));
         }
     } catch (const paho::exception& e) {
-        spdlog::warn("MQTT cannot publish availability: {}", e.what());
+        spdlog::warn("{} cannot publish availability: {}", options_.log_name, e.what());
     }
     if (on_connected_) {
         on_connected_();
@@ -205,8 +216,8 @@ void Client::Impl::update_in_flight_limit() {
     } catch (const std::exception&) {
         // No CONNACK properties (MQTT 3.1.1): no limit beyond ours.
     }
-    if (!options_.availability_topic.empty() && receive_maximum > 1) {
-        --receive_maximum;  // room for `online` and `offline`
+    if ((!options_.availability_topic.empty() || options_.will) && receive_maximum > 1) {
+        --receive_maximum;  // room for `online` and `offline`, or the farewell
     }
     in_flight_limit_ = std::max<std::size_t>(1, std::min(options_.max_in_flight, receive_maximum));
 }
@@ -217,7 +228,7 @@ void Client::Impl::on_connection_lost(std::string cause) {
     }
     connected_ = false;
     connection_losses_.fetch_add(1, std::memory_order_relaxed);
-    spdlog::warn("MQTT connection to {} lost: {}", options_.url, cause);
+    spdlog::warn("{} connection to {} lost: {}", options_.log_name, options_.url, cause);
     nagle_.detach();
     std::string dropped;
     {
@@ -226,6 +237,11 @@ void Client::Impl::on_connection_lost(std::string cause) {
         // nothing is counted twice.
         std::lock_guard lock(mutex_);
         sending_ = false;
+        if (options_.session_bound) {
+            const auto stale = outbox_.discard_all() + retry_.size();
+            retry_.clear();
+            discarded_.fetch_add(stale, std::memory_order_relaxed);
+        }
         if (requeue_in_flight_) {
             in_flight_.abandon_all([&](std::uint64_t id, Message&& message) {
                 if (message.qos > 0) {
@@ -242,7 +258,7 @@ void Client::Impl::on_connection_lost(std::string cause) {
     if (!dropped.empty()) {
         log_dropped_suspect(dropped);
     }
-    spdlog::info("MQTT reconnecting in {} ms", schedule_reconnect().count());
+    spdlog::info("{} reconnecting in {} ms", options_.log_name, schedule_reconnect().count());
 }
 
 std::chrono::milliseconds Client::Impl::schedule_reconnect() {
@@ -280,7 +296,7 @@ void Client::Impl::renew_subscriptions(const std::vector<std::string>& filters) 
             client_->subscribe(filter, 1, nullptr, subscribe_listener_, opt);
         }
     } catch (const paho::exception& e) {
-        spdlog::warn("MQTT subscribe failed on {}: {}", options_.url, e.what());
+        spdlog::warn("{} subscribe failed on {}: {}", options_.log_name, options_.url, e.what());
     }
 }
 

@@ -235,10 +235,10 @@ void Client::Impl::hold_for_reconnect() {
 
 void Client::Impl::log_dropped_suspect(const std::string& topic) {
     spdlog::error(
-        "MQTT publication to {} failed again when it was sent alone (the broker closed the "
+        "{} publication to {} failed again when it was sent alone (the broker closed the "
         "connection on it, or Paho refused it): it is dropped, so that it cannot block every "
         "connection after",
-        core::printable(topic));
+        options_.log_name, core::printable(topic));
 }
 
 void Client::Impl::log_refused(const std::string& topic, const std::string& problem) {
@@ -249,9 +249,9 @@ void Client::Impl::log_refused(const std::string& topic, const std::string& prob
     }
     if (count > 0) {
         spdlog::error(
-            "MQTT publication to {} dropped: a broker would refuse it ({}) and close the "
+            "{} publication to {} dropped: a broker would refuse it ({}) and close the "
             "connection ({} dropped since last report)",
-            core::printable(topic), problem, count);
+            options_.log_name, core::printable(topic), problem, count);
     }
 }
 
@@ -262,8 +262,8 @@ void Client::Impl::log_publish_failure(const std::string& topic, const std::stri
         count = publish_failure_log_.record(Clock::now());
     }
     if (count > 0) {
-        spdlog::warn("MQTT publish to {} failed: {} ({} failures since last report)", topic, reason,
-                     count);
+        spdlog::warn("{} publish to {} failed: {} ({} failures since last report)",
+                     options_.log_name, topic, reason, count);
     }
 }
 
@@ -298,7 +298,8 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         }
         end_sender();
         if (lost > 0) {
-            spdlog::warn("MQTT stopping while disconnected: {} queued publications dropped", lost);
+            spdlog::warn("{} stopping while disconnected: {} queued publications dropped",
+                         options_.log_name, lost);
         }
         connected_ = false;
         return;
@@ -311,17 +312,29 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
                                                           options_.availability_qos, true));
         }
     } catch (const paho::exception& e) {
-        spdlog::warn("MQTT cannot publish availability: {}", e.what());
+        spdlog::warn("{} cannot publish availability: {}", options_.log_name, e.what());
     }
 
     std::size_t unsent = 0;
+    std::optional<Message> farewell;
     {
         std::unique_lock lock(mutex_);
         completed_.wait_until(lock, deadline,
                               [this] { return !has_queued() && in_flight_.empty(); });
         unsent = outbox_.size() + retry_.size() + in_flight_.pending();
+        farewell = std::move(last_will_);
     }
     end_sender();
+    // The will, said by ourselves after everything else (Sparkplug's NDEATH must be last).
+    if (farewell) {
+        try {
+            offline = client_->publish(paho::make_message(farewell->topic, farewell->payload,
+                                                          farewell->qos, farewell->retain));
+        } catch (const paho::exception& e) {
+            spdlog::warn("{} cannot publish the will on {}: {}", options_.log_name, farewell->topic,
+                         e.what());
+        }
+    }
     if (offline) {
         const auto left = std::max(Clock::duration::zero(), deadline - Clock::now());
         try {
@@ -330,18 +343,18 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         }
     }
     if (unsent > 0) {
-        spdlog::warn("MQTT stop: {} publications not confirmed within {} ms", unsent,
-                     flush_timeout.count());
+        spdlog::warn("{} stop: {} publications not confirmed within {} ms", options_.log_name,
+                     unsent, flush_timeout.count());
     }
     try {
         client_->disconnect(paho::disconnect_options(std::chrono::seconds(1)))
             ->wait_for(std::chrono::seconds(2));
     } catch (const paho::exception& e) {
-        spdlog::warn("MQTT disconnect failed: {}", e.what());
+        spdlog::warn("{} disconnect failed: {}", options_.log_name, e.what());
     }
     link_up_ = false;
     connected_ = false;
-    spdlog::info("MQTT disconnected from {}", options_.url);
+    spdlog::info("{} disconnected from {}", options_.log_name, options_.url);
 }
 
 }  // namespace eip2mqtt::adapters::mqtt

@@ -55,15 +55,20 @@ void set_value(Proto& proto, DataType type, const Value& value) {
     }
 }
 
+template <class Proto>
+void set_value(Proto& proto, DataType type, const MetricValue& value) {
+    if (const auto* text = std::get_if<std::string>(&value)) {
+        proto.set_string_value(*text);
+    } else {
+        set_value(proto, type, std::get<Value>(value));
+    }
+}
+
 void set_property(ProtoPayload::PropertySet& set, const Property& property) {
     set.add_keys(property.key);
     auto& value = *set.add_values();
     value.set_type(static_cast<std::uint32_t>(property.type));
-    if (const auto* text = std::get_if<std::string>(&property.value)) {
-        value.set_string_value(*text);
-    } else {
-        set_value(value, property.type, std::get<Value>(property.value));
-    }
+    set_value(value, property.type, property.value);
 }
 
 /// A command metric's value, read as its datatype says; nullopt for a kind we do not take.

@@ -189,6 +189,8 @@ void Loader::read_tag_key(TagDraft& draft, const std::string& key, const Node& v
             spec.name = *s;
         } else if (key == "unit") {
             spec.mutable_extras().unit = *s;
+        } else if (!s->empty()) {
+            spec.mutable_extras().description = *s;
         }
     } else if (key == "address") {
         // `126.0` unquoted is a YAML float: its scalar text is what was written.

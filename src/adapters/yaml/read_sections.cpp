@@ -1,4 +1,4 @@
-// The gateway, mqtt, eip and metrics sections of the configuration.
+// The gateway, mqtt, eip, metrics and sparkplug sections of the configuration.
 
 #include "adapters/yaml/detail/loader.hpp"
 
@@ -176,6 +176,27 @@ void Loader::read_metrics(const Node& node, const Mark& at, Config& config) {
                                     }
                                     config.metrics.listen = *s;
                                 });
+}
+
+void Loader::read_sparkplug(const Node& node, const Mark& at, Config& config) {
+    auto& sparkplug = config.sparkplug;
+    sparkplug.marks = walk(node, at, "sparkplug", "in sparkplug", sparkplug_keys,
+                           [&](const std::string& key, const Node& value, const Mark& k) {
+                               if (key == "uns") {
+                                   if (const auto b = boolean(value, key, k)) sparkplug.uns = *b;
+                               } else if (key == "qos") {
+                                   if (const auto n = integer<int>(value, key, k, 0, 1))
+                                       sparkplug.qos = *n;
+                               } else if (const auto s = text(value, key, k)) {
+                                   if (key == "group_id") sparkplug.group_id = *s;
+                                   if (key == "edge_node_id") sparkplug.edge_node_id = *s;
+                                   if (key == "primary_host_id") sparkplug.primary_host_id = *s;
+                               }
+                           });
+    if (!node.is_null() && node.is_defined() && sparkplug.group_id.empty() &&
+        !sparkplug.marks.contains("group_id")) {
+        error(sparkplug.marks.node, "sparkplug lacks 'group_id' (required to enable Sparkplug B)");
+    }
 }
 
 }  // namespace eip2mqtt::adapters::yaml::detail

@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "core/config/detail/config_names.hpp"
+#include "core/config/detail/sparkplug_check.hpp"
 #include "core/config/detail/topic_collisions.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
@@ -88,6 +89,7 @@ public:
         check_mqtt();
         check_gateway_topics();
         check_exchanges();
+        detail::check_sparkplug(config_, out_);
         std::stable_sort(
             out_.begin(), out_.end(), [this](const Diagnostic& a, const Diagnostic& b) {
                 return std::make_tuple(a.mark.file != config_.file, a.mark.file, a.mark.line,

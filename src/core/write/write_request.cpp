@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "eip2mqtt/core/plan/overlap.hpp"
+
 namespace eip2mqtt::core::write {
 namespace {
 
@@ -207,6 +209,22 @@ Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
         return fail(reject(WriteError::above_max, "above max " + shortest(*max)));
     }
     return converted;
+}
+
+std::optional<WriteRejection> overlap_rejection(const plan::ExchangePlan& plan,
+                                                const std::vector<TagWrite>& writes) {
+    if (writes.size() < 2) return std::nullopt;
+    std::vector<plan::BitSpan> spans;
+    spans.reserve(writes.size());
+    for (const auto& write : writes)
+        spans.push_back(plan::bit_span(plan.tags[write.tag_index].spec));
+    const auto overlaps = plan::find_overlaps(spans, 1);
+    if (overlaps.pairs.empty()) return std::nullopt;
+    const auto& pair = overlaps.pairs.front();
+    return WriteRejection{WriteError::overlapping_tags,
+                          "tags " + plan.tags[writes[pair.first].tag_index].spec.name + " and " +
+                              plan.tags[writes[pair.second].tag_index].spec.name +
+                              " share bytes; write them in separate messages"};
 }
 
 }  // namespace eip2mqtt::core::write

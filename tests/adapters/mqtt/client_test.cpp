@@ -355,6 +355,46 @@ TEST_F(ClientFixture, BuffersWhileBrokerIsDownAndDeliversInOrder) {
     EXPECT_EQ(stats.dropped_overflow, 0u);
 }
 
+TEST_F(ClientFixture, ASessionBoundClientMakesAWillPerConnectAndDropsWhatAConnectionLeft) {
+    test::MosquittoOptions bo;
+    bo.persistence = true;  // the recorder's session (and its queue) survives the restart
+    Mosquitto broker(bo);
+    MqttRecorder recorder(broker.url(), {"gw/#"}, "session-recorder");
+    auto options = options_for(broker);
+    options.availability_topic.clear();
+    options.session_bound = true;
+    std::atomic<int> wills{0};
+    options.will = [&wills] { return msg("gw/will", std::to_string(++wills), 1, false, false); };
+    make_client(std::move(options));
+    on_loop([&] { client_->start(); });
+    ASSERT_TRUE(wait_connected_count(1));
+    EXPECT_EQ(wills.load(), 1);
+
+    broker.stop();
+    ASSERT_TRUE(wait_disconnected());
+    on_loop([&] {
+        for (int i = 0; i < 5; ++i) client_->publish(msg("gw/seq", "stale", 1, false, false));
+    });
+    EXPECT_EQ(client_->stats().queued, 0u);
+    EXPECT_EQ(client_->stats().discarded, 5u);
+    broker.start();
+    ASSERT_TRUE(wait_connected_count(2));
+    EXPECT_EQ(wills.load(), 2);  // a new will for the new connection
+    on_loop([&] { client_->publish(msg("gw/seq", "fresh", 1, false, false)); });
+
+    // A clean stop says the last will itself, after everything queued.
+    client_->stop(2s);
+    stop_loop();
+    ASSERT_TRUE(recorder.wait_for([](const std::vector<Received>& all) {
+        return !all.empty() && all.back().topic == "gw/will" && all.back().payload == "2";
+    }));
+    // (The broker may have said will 1 itself when it went down: the connection died then.)
+    const auto seq = recorder.messages_on("gw/seq");
+    ASSERT_EQ(seq.size(), 1u);
+    EXPECT_EQ(seq[0].payload, "fresh");
+    EXPECT_EQ(recorder.messages().back().payload, "2");
+}
+
 TEST_F(ClientFixture, RetriesInitialConnectAndReconnectsAfterLoss) {
     Mosquitto broker;
     broker.stop();

@@ -42,6 +42,18 @@ TEST(Outbox, BothLanesAreServedInTurnSoNeitherStarvesTheOther) {
     EXPECT_TRUE(outbox.empty());
 }
 
+TEST(Outbox, DiscardAllEmptiesBothLanes) {
+    Outbox outbox(100, 100);
+    for (const bool batch : {false, true, false}) {
+        auto m = message(batch ? "t/_values" : "t/1", "1", batch);
+        m.coalesce = false;
+        outbox.push(m);
+    }
+    EXPECT_EQ(outbox.discard_all(), 3u);
+    EXPECT_TRUE(outbox.empty());
+    EXPECT_TRUE(drain(outbox).empty());
+}
+
 TEST(Outbox, APushQueuedWholeGetsASpareBackAndACoalescedOneTheBuffersItReplaced) {
     Outbox outbox(100, 100);
     const std::string long_payload(200, 'x');

@@ -5,17 +5,14 @@
 #include "eip2mqtt/adapters/sparkplug/payload.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "sparkplug_b.pb.h"
-#include "tests/support/child_process.hpp"
+#include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::adapters::sparkplug {
 namespace {
@@ -73,20 +70,8 @@ Payload every_type() {
     return p;
 }
 
-/// The payload as Eclipse Tahu's JavaScript decoder reads it.
-json decoded_by_tahu(const std::string& bytes) {
-    const auto path = std::filesystem::temp_directory_path() /
-                      ("eip2mqtt_sparkplug_" + std::to_string(::getpid()) + ".bin");
-    std::ofstream(path, std::ios::binary) << bytes;
-    const auto result = test::run_command({EIP2MQTT_NODE, EIP2MQTT_TAHU_DECODER, path.string()},
-                                          std::chrono::seconds(60));
-    std::filesystem::remove(path);
-    EXPECT_EQ(result.status, 0) << result.output;
-    return json::parse(result.output);
-}
-
 TEST(SparkplugPayload, TahuReadsEveryDatatypeAsWritten) {
-    const auto tahu = decoded_by_tahu(encode(every_type()));
+    const auto tahu = test::tahu_decode(encode(every_type()));
     EXPECT_EQ(tahu["timestamp"], "1700000000456");
     EXPECT_EQ(tahu["seq"], "255");
     const auto& m = tahu["metrics"];

@@ -595,3 +595,58 @@ TEST(LoadConfig, MissingIdentityKeysDropTheExchangeWithoutEchoes) {
 
 }  // namespace
 }  // namespace eip2mqtt::adapters::yaml
+
+namespace eip2mqtt::adapters::yaml {
+namespace {
+
+TEST(LoadConfig, SparkplugSectionWithItsDefaults) {
+    const auto config =
+        good("gateway: { id: gw7 }\nsparkplug: { group_id: plant1 }\n" + minimal_exchange);
+    EXPECT_TRUE(config.sparkplug.enabled());
+    EXPECT_EQ(config.sparkplug.node_id(config.gateway), "gw7");
+    EXPECT_TRUE(config.sparkplug.uns);
+    EXPECT_EQ(config.sparkplug.qos, 0);
+    EXPECT_TRUE(config.sparkplug.primary_host_id.empty());
+    const auto full = good(
+        "sparkplug: { group_id: g, edge_node_id: n, primary_host_id: scada, uns: false, qos: 1 "
+        "}\n" +
+        minimal_exchange);
+    EXPECT_EQ(full.sparkplug.node_id(full.gateway), "n");
+    EXPECT_EQ(full.sparkplug.primary_host_id, "scada");
+    EXPECT_FALSE(full.sparkplug.uns);
+    EXPECT_EQ(full.sparkplug.qos, 1);
+    EXPECT_FALSE(good(minimal_exchange).sparkplug.enabled());
+}
+
+TEST(LoadConfig, SparkplugIdsFollowTheTopicElementRules) {
+    const auto text =
+        dump(bad("sparkplug:\n"
+                 "  group_id: plant/1\n"
+                 "  edge_node_id: gw+\n"
+                 "  primary_host_id: 'sc#ada'\n"
+                 "  qos: 2\n"
+                 "  uns: maybe\n"
+                 "  grop_id: x\n"
+                 "exchanges:\n"
+                 "  - { name: area/ex, producer_id: 10.0.0.1, exchange_id: 1, length: 8 }\n"));
+    EXPECT_NE(text.find("test.yaml:2:3: sparkplug group_id 'plant/1' contains '/', '+' or '#'"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("test.yaml:3:3: sparkplug edge_node_id 'gw+'"), std::string::npos) << text;
+    EXPECT_NE(text.find("test.yaml:4:3: sparkplug primary_host_id 'sc#ada'"), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("test.yaml:5:"), std::string::npos) << text;  // qos 0 or 1
+    EXPECT_NE(text.find("test.yaml:6:"), std::string::npos) << text;  // not a boolean
+    EXPECT_NE(text.find("unknown key 'grop_id' in sparkplug (did you mean 'group_id'?)"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("exchange name (a Sparkplug device ID) 'area/ex'"), std::string::npos)
+        << text;
+    // Without group_id there is no Sparkplug: say so rather than ignore the section.
+    EXPECT_NE(dump(bad("sparkplug: { edge_node_id: n }\n" + minimal_exchange))
+                  .find("sparkplug lacks 'group_id'"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::adapters::yaml

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "tests/app/support/test_plan.hpp"
 #include "tests/app/support/uns_json_recorder.hpp"
 
 namespace eip2mqtt::app::northbound {
@@ -18,23 +19,11 @@ namespace {
 using core::quality::Quality;
 
 core::plan::ExchangePlan plan(std::string name, core::plan::Direction direction) {
-    core::plan::ExchangeSpec spec;
-    spec.name = name;
-    spec.direction = direction;
-    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
-    spec.exchange_id = 1;
-    spec.length = 8;
-    spec.destination = "127.0.0.1";
-    spec.topic = "t1/" + name;
-    for (const auto* tag_name : {"A", "B"}) {
-        core::plan::TagSpec tag;
-        tag.name = tag_name;
-        tag.address = {static_cast<std::uint16_t>(tag_name[0] == 'A' ? 0 : 4), 0};
-        tag.type = core::plan::TagType::dint;
-        tag.writable = true;
-        spec.tags.push_back(tag);
-    }
-    return core::plan::make_exchange_plan(std::move(spec), "acme");
+    using core::plan::TagType;
+    return test::test_plan(
+        name, direction, 8,
+        {test::test_tag("A", 0, TagType::dint, true), test::test_tag("B", 4, TagType::dint, true)},
+        "t1/" + name);
 }
 
 class UnsJsonTest : public ::testing::Test {

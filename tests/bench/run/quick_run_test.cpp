@@ -62,6 +62,8 @@ TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
         "tag publications/s, QoS 1, 100 % changing",             // 2
         "tag publications/s, QoS 1, 10 % changing",              // 3
         "tag updates/s carried in batch mode",                   // 4
+        "tag updates/s carried by Sparkplug B DDATA, QoS 0",     // 4
+        "tag updates/s carried by Sparkplug B DDATA, QoS 1",     // 4
         "latency datagram -> subscriber p99, QoS 0",             // 5
         "latency datagram -> subscriber p99, QoS 1",             // 5
         "resident memory, 1,000 x 100 consumed + 100 produced",  // 6, inline YAML

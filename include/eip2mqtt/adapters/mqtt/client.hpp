@@ -40,6 +40,8 @@ struct TlsOptions {
 };
 
 struct ClientOptions {
+    /// How its log lines begin ("MQTT connected to ..."), to tell two connections apart.
+    std::string log_name = "MQTT";
     std::string url = "tcp://localhost:1883";
     std::string client_id = "eip2mqtt";
     int version = 5;  ///< 5 or 3 (3.1.1)
@@ -56,6 +58,16 @@ struct ClientOptions {
     /// and before a clean disconnect. Empty topic: none.
     std::string availability_topic;
     int availability_qos = 1;
+
+    /// A last will made anew, on the loop, before every CONNECT (Sparkplug's NDEATH carries a
+    /// bdSeq that changes with each connection); a clean stop() publishes the last one made,
+    /// after the queue was flushed. Use it or availability_topic, not both.
+    std::function<Message()> will;
+    /// What was published for one connection means nothing on the next (Sparkplug: sequence
+    /// numbers and aliases start again with every birth). Publications made while disconnected
+    /// are dropped, and so is what was queued or in flight when the connection went: the
+    /// on_connected handler starts on an empty queue.
+    bool session_bound = false;
 
     std::size_t buffer_max_messages = 100000;
     std::size_t batch_lane_max_messages = 1000;  ///< `_values` waiting; oldest dropped beyond
@@ -76,6 +88,8 @@ struct ClientStats {
     std::uint64_t connects = 0;
     std::uint64_t connection_losses = 0;
     std::uint64_t received = 0;  ///< messages received on subscriptions
+    /// Dropped by a session_bound client because they belonged to a connection that went.
+    std::uint64_t discarded = 0;
     /// Dropped because a broker would refuse them (a topic or size beyond MQTT's limits), or
     /// after the broker closed the connection twice with one of them alone in flight.
     std::uint64_t refused = 0;

@@ -36,11 +36,14 @@ enum class DataType : std::uint32_t {
 /// lint -> Int64, real -> Float, lreal -> Double.
 DataType datatype_of(core::plan::TagType type);
 
-/// A metric property (engineering unit, description, writable, limits, quality).
+/// A metric's or a property's value: a tag's, or a text (an exchange's state, a unit).
+using MetricValue = std::variant<core::plan::Value, std::string>;
+
+/// A metric property (engineering unit, description, writable, limits).
 struct Property {
     std::string key;
     DataType type = DataType::string;
-    std::variant<core::plan::Value, std::string> value;
+    MetricValue value;
 };
 
 struct Metric {
@@ -49,7 +52,7 @@ struct Metric {
     std::uint64_t timestamp_ms = 0;
     DataType datatype = DataType::boolean;
     /// nullopt: is_null (a value the gateway does not have).
-    std::optional<core::plan::Value> value;
+    std::optional<MetricValue> value;
     bool historical = false;
     std::vector<Property> properties;
 };

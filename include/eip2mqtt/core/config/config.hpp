@@ -103,12 +103,29 @@ struct MetricsSection {
     Marks marks;
 };
 
+/// `sparkplug:` (issue #15): the gateway as a Sparkplug B edge node, beside the JSON tree.
+struct SparkplugSection {
+    std::string group_id;      ///< empty: Sparkplug is off
+    std::string edge_node_id;  ///< default: gateway.id
+    std::string primary_host_id;
+    bool uns = true;  ///< keep the JSON topic tree as well
+    /// QoS of births and data; the specification says 0 (the NDEATH will is always 1).
+    int qos = 0;
+    Marks marks;
+
+    bool enabled() const { return !group_id.empty(); }
+    const std::string& node_id(const GatewaySection& gateway) const {
+        return edge_node_id.empty() ? gateway.id : edge_node_id;
+    }
+};
+
 struct Config {
     std::string file;  ///< path it was loaded from
     GatewaySection gateway;
     MqttSection mqtt;
     EipSection eip;
     MetricsSection metrics;
+    SparkplugSection sparkplug;
     std::vector<ExchangeConfig> exchanges;
 };
 

@@ -15,6 +15,7 @@ namespace eip2mqtt::core::plan {
 /// The settings few tags use, kept out of line by TagSpec.
 struct TagExtras {
     std::string unit;
+    std::string description;  ///< carried north where a protocol has room (Sparkplug)
     std::optional<double> min;
     std::optional<double> max;
     std::optional<Value> initial;  ///< produced exchanges: value when no image is persisted
@@ -35,6 +36,7 @@ struct TagSpec {
     std::chrono::seconds refresh{60};  ///< republish at least this often
 
     const std::string& unit() const { return extras_.get().unit; }
+    const std::string& description() const { return extras_.get().description; }
     const std::optional<double>& min() const { return extras_.get().min; }
     const std::optional<double>& max() const { return extras_.get().max; }
     const std::optional<Value>& initial() const { return extras_.get().initial; }

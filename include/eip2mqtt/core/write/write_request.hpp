@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/tag_plan.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
 #include "eip2mqtt/core/result.hpp"
@@ -65,6 +66,11 @@ struct TagWrite {
     std::size_t tag_index = 0;
     plan::Value value;
 };
+
+/// A word and one of its bits in one write: which would win? Neither is written
+/// (overlapping_tags); nullopt when no two of `writes` share bits.
+std::optional<WriteRejection> overlap_rejection(const plan::ExchangePlan& plan,
+                                                const std::vector<TagWrite>& writes);
 
 /// A validated write of one or more tags of one produced exchange, applied atomically.
 struct WriteBatch {

@@ -180,7 +180,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
         void on_success(const paho::token&) override {}
         void on_failure(const paho::token& tok) override {
             impl_.post([reason = detail::describe_failure(tok)](Impl& self) {
-                spdlog::warn("MQTT subscribe failed on {}: {}", self.options_.url, reason);
+                spdlog::warn("{} subscribe failed on {}: {}", self.options_.log_name,
+                             self.options_.url, reason);
             });
         }
         Impl& impl_;
@@ -222,8 +223,9 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     detail::InFlightWindow<Message> in_flight_;  ///< handed to Paho, not yet completed
     bool sending_ = false;                       ///< connected and announced: the sender may send
     bool sender_idle_ = false;                   ///< the sender waits on wake_sender_
-    bool window_full_ = false;  ///< the sender stopped at the limit: wait for the low mark
-    bool quit_ = false;         ///< the sender thread must end
+    bool window_full_ = false;          ///< the sender stopped at the limit: wait for the low mark
+    bool quit_ = false;                 ///< the sender thread must end
+    std::optional<Message> last_will_;  ///< options_.will's for the current connection
     core::ThrottledLog publish_failure_log_;
     core::ThrottledLog refused_log_;
 
@@ -240,6 +242,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     /// Never handed to Paho because the broker would refuse them, or dropped after the broker
     /// closed the connection on them twice.
     std::atomic<std::uint64_t> refused_{0};
+    std::atomic<std::uint64_t> discarded_{0};  ///< session_bound: of a connection that went
     /// The broker's Maximum Packet Size (MQTT 5 CONNACK), read on each connect.
     std::atomic<std::size_t> max_packet_size_{detail::max_mqtt_packet_size};
     detail::NagleSwitch nagle_;

@@ -40,6 +40,14 @@ void Outbox::recycle(Message&& message, std::size_t keep) {
     spares_.push_back(std::move(message));
 }
 
+std::size_t Outbox::discard_all() {
+    std::size_t count = 0;
+    for (auto* lane : {&queue_, &batch_queue_}) {
+        while (lane->pop()) ++count;
+    }
+    return count;
+}
+
 bool Outbox::release_after_backlog(std::size_t threshold) {
     if (!empty() || backlog_peak_ < threshold) return false;
     backlog_peak_ = 0;

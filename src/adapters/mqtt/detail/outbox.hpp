@@ -28,6 +28,9 @@ public:
     /// window's worth is what cycles; more only held memory after an overload).
     void recycle(Message&& message, std::size_t keep);
 
+    /// Drops everything queued (a session-bound client's connection went); returns how many.
+    std::size_t discard_all();
+
     bool empty() const { return queue_.empty() && batch_queue_.empty(); }
     std::size_t size() const { return queue_.size() + batch_queue_.size(); }
     /// After a backlog of at least `threshold` messages has drained, frees what the queues kept

@@ -39,8 +39,8 @@ using core::config::TagConfig;
 using core::plan::Direction;
 using core::plan::TagType;
 
-inline constexpr std::array<std::string_view, 5> top_keys{"gateway", "mqtt", "eip", "metrics",
-                                                          "exchanges"};
+inline constexpr std::array<std::string_view, 6> top_keys{"gateway", "mqtt",      "eip",
+                                                          "metrics", "sparkplug", "exchanges"};
 inline constexpr std::array<std::string_view, 5> gateway_keys{"id", "state_dir", "log_level",
                                                               "timestamp", "clock_tolerance_ms"};
 inline constexpr std::array<std::string_view, 16> mqtt_keys{"url",
@@ -66,6 +66,8 @@ inline constexpr std::array<std::string_view, 5> eip_keys{"bind", "port", "multi
                                                           "multicast_ttl", "multicast_interface"};
 inline constexpr std::array<std::string_view, 2> multicast_keys{"group", "interface"};
 inline constexpr std::array<std::string_view, 1> metrics_keys{"listen"};
+inline constexpr std::array<std::string_view, 5> sparkplug_keys{"group_id", "edge_node_id",
+                                                                "primary_host_id", "uns", "qos"};
 inline constexpr std::array<std::string_view, 15> exchange_keys{
     "name",      "direction",   "producer_id", "exchange_id", "length",
     "signature", "period_ms",   "timeout_ms",  "timestamp",   "clock_tolerance_ms",
@@ -199,6 +201,7 @@ private:
     void read_eip(const Node& node, const Mark& at, Config& config);
 
     void read_metrics(const Node& node, const Mark& at, Config& config);
+    void read_sparkplug(const Node& node, const Mark& at, Config& config);
 
     void read_exchanges(const Node& node, const Mark& at, Config& config);
 

@@ -1,0 +1,139 @@
+#pragma once
+/// The gateway as a Sparkplug B 3.0 edge node (issue #15; docs/sparkplug.md): every exchange a
+/// device named after it, its tags the device's metrics. NBIRTH with the node's counters and
+/// `Node Control/Rebirth`, DBIRTH per device with every tag (name, alias, datatype, value,
+/// properties), DDATA by exception with the changed tags by alias, DDEATH when a consumed
+/// exchange goes stale or mismatches and DBIRTH again at its first good datagram; NDEATH is the
+/// connection's will (next_will(), a new bdSeq for every CONNECT). A host's NCMD
+/// `Node Control/Rebirth` brings every birth again; its DCMD to a produced exchange's device is
+/// one write, decoded into a WriteRequest, and its echo is the DDATA of the datagram that
+/// carried it. With a primary host, births wait for its STATE to say online.
+///
+/// It needs an MQTT connection of its own (its will is the NDEATH), session-bound: what was
+/// queued for one connection is dropped when it goes, since seq and aliases start again with
+/// each birth.
+///
+/// Threading: the loop only.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "eip2mqtt/adapters/mqtt/message.hpp"
+#include "eip2mqtt/adapters/mqtt/publisher.hpp"
+#include "eip2mqtt/adapters/sparkplug/payload.hpp"
+#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
+
+namespace eip2mqtt::app::northbound {
+
+struct SparkplugOptions {
+    std::string group_id;
+    std::string edge_node_id;
+    std::string primary_host_id;  ///< empty: publish without waiting for a host
+    int qos = 0;                  ///< births and data; NDEATH is QoS 1
+};
+
+/// The options of `config`'s `sparkplug:` section.
+SparkplugOptions sparkplug_options(const core::config::Config& config);
+
+class SparkplugNode final : public Northbound {
+public:
+    /// Milliseconds since the Unix epoch, for payload timestamps.
+    using WallClock = std::function<std::int64_t()>;
+
+    /// `mqtt` (the node's own connection) and `writes` must outlive the node.
+    SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes,
+                  WallClock wall_clock);
+
+    /// The NDEATH for the next CONNECT's will, with the next bdSeq (0-255, then 0 again); the
+    /// NBIRTH that follows that connection carries the same bdSeq.
+    adapters::mqtt::Message next_will();
+    /// The connection is up: births now, or once the primary host says it is online.
+    void on_connected();
+    /// NCMD, DCMD or the primary host's STATE; anything else is ignored.
+    void on_message(const adapters::mqtt::Incoming& message);
+
+    void exchanges_changed(const ExchangeSet& running,
+                           std::span<const std::string> retired_topics) override;
+    void tag_samples(const SampleBatch& batch) override;
+    void consumed_status(const ConsumedStatus& status) override;
+    void produced_status(const core::plan::ExchangePlan& exchange,
+                         const ProducedStatus& status) override;
+    void exchange_state(const core::plan::ExchangePlan& exchange,
+                        core::exchange::ConsumeState state) override;
+    /// Sparkplug has no answer to a command: an accepted write shows as its echo, a refused one
+    /// in the log and the counters (the WriteDispatcher's).
+    void write_result(const WriteReply&, std::optional<std::string_view>) override {}
+    void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
+
+    bool born() const { return born_; }
+    std::uint8_t bd_seq() const { return bd_seq_; }
+
+private:
+    struct Device {
+        const core::plan::ExchangePlan* plan = nullptr;
+        std::optional<std::size_t> producer;  ///< index in ExchangeSet::produced
+        std::uint64_t alias_base = 0;         ///< a tag's alias is alias_base + its index
+        std::vector<std::optional<core::plan::Value>> values;
+        std::vector<std::int64_t> timestamps;
+        std::size_t known = 0;  ///< values that are set
+        bool up = false;        ///< consumed: state ok; produced: every value known
+        bool born = false;      ///< DBIRTH sent since the last NBIRTH
+        std::string birth_topic, data_topic, death_topic;
+    };
+    /// A node metric: the gateway's counters, each exchange's state and counters.
+    struct NodeMetric {
+        std::string name;
+        adapters::sparkplug::DataType type;
+        adapters::sparkplug::MetricValue value;
+        bool changed = false;  ///< since the last NBIRTH or NDATA
+    };
+
+    bool may_publish() const {
+        return connected_ && (options_.primary_host_id.empty() || host_online_);
+    }
+    /// NDEATH with the current bdSeq.
+    adapters::mqtt::Message death_message() const;
+    /// NBIRTH, then DBIRTH for every device that is up.
+    void birth();
+    void device_birth(Device& device);
+    void device_death(Device& device);
+    void publish(const std::string& topic, adapters::sparkplug::Payload& payload);
+    std::string node_topic(std::string_view type) const;
+    std::size_t node_metric(const std::string& name, adapters::sparkplug::DataType type);
+    void set_node_metric(std::size_t index, adapters::sparkplug::MetricValue value);
+    void on_node_command(const adapters::mqtt::Incoming& message);
+    /// A DCMD for `device` (nullptr: no exchange of that name): one WriteRequest, refused or not.
+    void on_device_command(const adapters::mqtt::Incoming& message, Device* device);
+    void on_state(const adapters::mqtt::Incoming& message);
+
+    SparkplugOptions options_;
+    adapters::mqtt::Publisher& mqtt_;
+    WriteHandler& writes_;
+    WallClock wall_clock_;
+    std::string ncmd_topic_, dcmd_prefix_, state_topic_;
+
+    std::vector<Device> devices_;
+    std::unordered_map<const core::plan::ExchangePlan*, std::size_t> device_of_plan_;
+    std::unordered_map<std::string, std::size_t> device_of_name_;
+    std::vector<NodeMetric> node_metrics_;
+    std::unordered_map<std::string, std::size_t> node_metric_of_name_;
+
+    bool connected_ = false;
+    bool host_online_ = false;
+    std::int64_t host_state_timestamp_ = 0;  ///< of the last STATE taken: older ones are stale
+    bool born_ = false;                      ///< NBIRTH sent on this connection, host online
+    std::uint8_t bd_seq_ = 0;                ///< of the current connection's will
+    std::uint8_t next_bd_seq_ = 0;
+    std::uint8_t seq_ = 0;                  ///< of the last message published
+    adapters::sparkplug::Payload payload_;  ///< filled again for every message
+    adapters::mqtt::Message message_;
+    core::ThrottledLog command_log_;  ///< NCMD and STATE that cannot be read
+};
+
+}  // namespace eip2mqtt::app::northbound

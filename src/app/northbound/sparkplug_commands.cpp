@@ -1,0 +1,183 @@
+// What hosts send the edge node: NCMD (rebirth), DCMD (writes to a produced exchange's tags) and
+// the primary host's STATE. A DCMD goes through the checks of a JSON write (retained, writable,
+// type, range, limits, overlapping tags) and reaches the WriteDispatcher as one WriteRequest:
+// all its metrics or none, in one datagram.
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+#include "eip2mqtt/core/printable.hpp"
+
+namespace eip2mqtt::app::northbound {
+namespace {
+
+using core::plan::Value;
+using core::write::WriteError;
+using core::write::WriteInput;
+using core::write::WriteRejection;
+
+constexpr std::string_view rebirth_name = "Node Control/Rebirth";
+constexpr std::uint64_t rebirth_alias = 1;
+
+/// A command's value as a JSON write's would be: integers exactly, a float or double that holds
+/// an integer as that integer (WriteInput's contract), others as double.
+WriteInput write_input(const Value& value) {
+    return std::visit(
+        [](auto v) -> WriteInput {
+            using T = decltype(v);
+            if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::int64_t> ||
+                          std::is_same_v<T, std::uint64_t>) {
+                return v;
+            } else {
+                const double d = v;
+                if (std::isfinite(d) && std::trunc(d) == d && d >= -0x1p63 && d < 0x1p63) {
+                    return static_cast<std::int64_t>(d);
+                }
+                return d;
+            }
+        },
+        value);
+}
+
+std::optional<std::size_t> find_tag(const core::plan::ExchangePlan& plan,
+                                    const adapters::sparkplug::CommandMetric& metric,
+                                    std::uint64_t alias_base) {
+    if (metric.alias && *metric.alias >= alias_base &&
+        *metric.alias - alias_base < plan.tags.size()) {
+        return static_cast<std::size_t>(*metric.alias - alias_base);
+    }
+    if (metric.name.empty()) return std::nullopt;
+    for (std::size_t i = 0; i < plan.tags.size(); ++i) {
+        if (plan.tags[i].spec.name == metric.name) return i;
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+void SparkplugNode::on_message(const adapters::mqtt::Incoming& message) {
+    if (message.topic == ncmd_topic_) {
+        on_node_command(message);
+    } else if (message.topic.starts_with(dcmd_prefix_)) {
+        const auto name = message.topic.substr(dcmd_prefix_.size());
+        const auto found = device_of_name_.find(name);
+        on_device_command(message,
+                          found == device_of_name_.end() ? nullptr : &devices_[found->second]);
+    } else if (!state_topic_.empty() && message.topic == state_topic_) {
+        on_state(message);
+    }
+}
+
+void SparkplugNode::on_node_command(const adapters::mqtt::Incoming& message) {
+    const auto metrics = adapters::sparkplug::decode_command(message.payload);
+    if (!metrics) {
+        if (const auto count = command_log_.record(std::chrono::steady_clock::now())) {
+            spdlog::warn("Sparkplug NCMD ignored: {} ({} ignored)", metrics.error(), count);
+        }
+        return;
+    }
+    for (const auto& metric : metrics.value()) {
+        const bool rebirth =
+            metric.name == rebirth_name || (metric.name.empty() && metric.alias == rebirth_alias);
+        if (rebirth && metric.value && std::holds_alternative<bool>(*metric.value) &&
+            std::get<bool>(*metric.value)) {
+            spdlog::info("Sparkplug rebirth requested by NCMD");
+            birth();
+        }
+    }
+}
+
+void SparkplugNode::on_device_command(const adapters::mqtt::Incoming& message, Device* device) {
+    WriteRequest request;
+    request.reply.origin = this;
+    request.target = message.topic;
+    const auto refuse = [&](WriteError error, std::string text) {
+        request.outcome = WriteRejection{error, std::move(text)};
+        writes_.on_write(std::move(request));
+    };
+    const auto device_name = message.topic.substr(dcmd_prefix_.size());
+    if (!device) return refuse(WriteError::unknown_tag, "no exchange named " + device_name);
+    const auto& plan = *device->plan;
+    // A retained command would fire again on every reconnect: never act on one.
+    if (message.retained) {
+        return refuse(WriteError::retained,
+                      "retained commands are refused; publish without retain");
+    }
+    if (!device->producer) {
+        return refuse(WriteError::read_only,
+                      "exchange " + plan.spec.name + " is consumed: its tags are read-only");
+    }
+    const auto metrics = adapters::sparkplug::decode_command(message.payload);
+    if (!metrics) return refuse(WriteError::malformed, "DCMD: " + metrics.error());
+    if (metrics.value().empty()) return refuse(WriteError::empty, "a DCMD with no metric");
+    ExchangeWrite write{*device->producer, {}};
+    write.writes.reserve(metrics.value().size());
+    for (const auto& metric : metrics.value()) {
+        const auto tag = find_tag(plan, metric, device->alias_base);
+        if (!tag) {
+            return refuse(
+                WriteError::unknown_tag,
+                "unknown metric " +
+                    (metric.name.empty() && metric.alias ? "alias " + std::to_string(*metric.alias)
+                                                         : metric.name) +
+                    " in exchange " + plan.spec.name);
+        }
+        const auto& spec = plan.tags[*tag].spec;
+        if (!metric.value) {
+            return refuse(WriteError::wrong_type,
+                          spec.name + ": no value of a datatype the gateway takes");
+        }
+        auto value = core::write::validate_write(spec, write_input(*metric.value));
+        if (!value) {
+            return refuse(value.error().error, spec.name + ": " + value.error().message);
+        }
+        write.writes.push_back({*tag, std::move(value).value()});
+    }
+    if (auto overlap = core::write::overlap_rejection(plan, write.writes)) {
+        return refuse(overlap->error, std::move(overlap->message));
+    }
+    request.outcome = std::move(write);
+    writes_.on_write(std::move(request));
+}
+
+void SparkplugNode::on_state(const adapters::mqtt::Incoming& message) {
+    // Sparkplug B 3.0: {"online": bool, "timestamp": ms}; a STATE older than the last one
+    // taken is stale (a retained one delivered after a newer live one) and ignored.
+    const auto json = nlohmann::json::parse(message.payload, nullptr, false);
+    if (json.is_discarded() || !json.is_object() || !json.contains("online") ||
+        !json["online"].is_boolean() || !json.contains("timestamp") ||
+        !json["timestamp"].is_number_integer()) {
+        if (const auto count = command_log_.record(std::chrono::steady_clock::now())) {
+            spdlog::warn(
+                "Sparkplug STATE of {} ignored: not {{\"online\": bool, \"timestamp\": ms}} "
+                "({} ignored)",
+                core::printable(options_.primary_host_id), count);
+        }
+        return;
+    }
+    const auto timestamp = json["timestamp"].get<std::int64_t>();
+    if (timestamp < host_state_timestamp_) return;
+    host_state_timestamp_ = timestamp;
+    const bool online = json["online"].get<bool>();
+    if (online == host_online_) return;
+    host_online_ = online;
+    if (online) {
+        spdlog::info("Sparkplug primary host {} is online: births", options_.primary_host_id);
+        birth();
+        return;
+    }
+    spdlog::warn(
+        "Sparkplug primary host {} is offline: NDEATH, publishing nothing until it is back",
+        options_.primary_host_id);
+    if (!born_) return;
+    // The will's NDEATH, said now: the host's applications see the node go.
+    mqtt_.publish(death_message());
+    born_ = false;
+    for (auto& device : devices_) device.born = false;
+}
+
+}  // namespace eip2mqtt::app::northbound

@@ -1,0 +1,334 @@
+// The edge node's lifecycle and data: births, deaths, DDATA by exception and the node's metrics
+// (NBIRTH, NDATA). Commands and the primary host's STATE are in sparkplug_commands.cpp.
+
+#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+
+#include <array>
+#include <span>
+
+#include "eip2mqtt/app/gateway_metrics.hpp"
+
+namespace eip2mqtt::app::northbound {
+namespace {
+
+using adapters::sparkplug::DataType;
+using adapters::sparkplug::Metric;
+using adapters::sparkplug::MetricValue;
+using adapters::sparkplug::Property;
+using core::plan::Value;
+
+constexpr std::string_view namespace_prefix = "spBv1.0/";
+/// Node metrics 0 and 1, in every NBIRTH (Sparkplug B 3.0 requires both).
+constexpr std::size_t bd_seq_metric = 0;
+constexpr std::size_t rebirth_metric = 1;
+/// bdSeq, Rebirth and the gateway's six counters; each exchange's metrics follow.
+constexpr std::size_t fixed_node_metrics = 8;
+
+std::uint64_t sum(std::span<const std::uint64_t> values) {
+    std::uint64_t total = 0;
+    for (const auto v : values) total += v;
+    return total;
+}
+
+Value counter(std::uint64_t value) { return Value{value}; }
+
+}  // namespace
+
+SparkplugOptions sparkplug_options(const core::config::Config& config) {
+    const auto& section = config.sparkplug;
+    return {section.group_id, section.node_id(config.gateway), section.primary_host_id,
+            section.qos};
+}
+
+SparkplugNode::SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt,
+                             WriteHandler& writes, WallClock wall_clock)
+    : options_(std::move(options)),
+      mqtt_(mqtt),
+      writes_(writes),
+      wall_clock_(std::move(wall_clock)) {
+    ncmd_topic_ = node_topic("NCMD");
+    dcmd_prefix_ =
+        std::string(namespace_prefix) + options_.group_id + "/DCMD/" + options_.edge_node_id + "/";
+    std::vector<std::string> filters{ncmd_topic_, dcmd_prefix_ + "+"};
+    if (!options_.primary_host_id.empty()) {
+        state_topic_ = std::string(namespace_prefix) + "STATE/" + options_.primary_host_id;
+        filters.push_back(state_topic_);
+    }
+    mqtt_.set_subscriptions(std::move(filters));
+    node_metric("bdSeq", DataType::int64);
+    node_metric("Node Control/Rebirth", DataType::boolean);
+    set_node_metric(rebirth_metric, Value{false});
+    for (const auto* name : {"Gateway/uptime_s", "Gateway/datagrams", "Gateway/accepted",
+                             "Gateway/dropped", "Gateway/writes_ok", "Gateway/writes_rejected"}) {
+        set_node_metric(node_metric(name, DataType::uint64), counter(0));
+    }
+}
+
+std::string SparkplugNode::node_topic(std::string_view type) const {
+    return std::string(namespace_prefix) + options_.group_id + "/" + std::string(type) + "/" +
+           options_.edge_node_id;
+}
+
+adapters::mqtt::Message SparkplugNode::next_will() {
+    bd_seq_ = next_bd_seq_++;  // 255 is followed by 0
+    return death_message();
+}
+
+adapters::mqtt::Message SparkplugNode::death_message() const {
+    adapters::sparkplug::Payload death;
+    death.timestamp_ms = static_cast<std::uint64_t>(wall_clock_());
+    death.metrics.push_back({"bdSeq",
+                             std::nullopt,
+                             death.timestamp_ms,
+                             DataType::int64,
+                             Value{std::int64_t{bd_seq_}},
+                             false,
+                             {}});
+    adapters::mqtt::Message message;
+    message.topic = node_topic("NDEATH");
+    message.payload = adapters::sparkplug::encode(death);
+    message.qos = 1;  // the specification's: a host must learn of the death
+    message.retain = false;
+    message.coalesce = false;
+    return message;
+}
+
+void SparkplugNode::on_connected() {
+    connected_ = true;
+    born_ = false;
+    // Whatever the host said before this connection may be old: its retained STATE comes
+    // again right after our SUBSCRIBE, and births wait for it.
+    host_online_ = false;
+    host_state_timestamp_ = 0;
+    birth();
+}
+
+std::size_t SparkplugNode::node_metric(const std::string& name, DataType type) {
+    const auto [it, added] = node_metric_of_name_.emplace(name, node_metrics_.size());
+    if (added) {
+        MetricValue initial =
+            type == DataType::string ? MetricValue{std::string()} : MetricValue{counter(0)};
+        node_metrics_.push_back({name, type, std::move(initial), false});
+    }
+    return it->second;
+}
+
+void SparkplugNode::set_node_metric(std::size_t index, MetricValue value) {
+    auto& metric = node_metrics_[index];
+    if (metric.value == value) return;
+    metric.value = std::move(value);
+    metric.changed = true;
+}
+
+void SparkplugNode::publish(const std::string& topic, adapters::sparkplug::Payload& payload) {
+    payload.timestamp_ms = static_cast<std::uint64_t>(wall_clock_());
+    payload.seq = seq_;
+    seq_ = static_cast<std::uint8_t>(seq_ + 1);
+    message_.topic = topic;
+    message_.payload = adapters::sparkplug::encode(payload);
+    message_.qos = options_.qos;
+    message_.retain = false;
+    // Every message counts in seq: none may replace another.
+    message_.coalesce = false;
+    mqtt_.publish(std::move(message_));
+}
+
+void SparkplugNode::birth() {
+    if (!may_publish()) return;
+    seq_ = 0;  // NBIRTH is seq 0; every message after it counts on
+    set_node_metric(bd_seq_metric, Value{std::int64_t{bd_seq_}});
+    const auto now = static_cast<std::uint64_t>(wall_clock_());
+    payload_.metrics.clear();
+    for (std::size_t i = 0; i < node_metrics_.size(); ++i) {
+        auto& metric = node_metrics_[i];
+        payload_.metrics.push_back({metric.name, i, now, metric.type, metric.value, false, {}});
+        metric.changed = false;
+    }
+    publish(node_topic("NBIRTH"), payload_);
+    born_ = true;
+    for (auto& device : devices_) {
+        device.born = false;
+        if (device.up) device_birth(device);
+    }
+}
+
+void SparkplugNode::device_birth(Device& device) {
+    const auto& plan = *device.plan;
+    const auto now = wall_clock_();
+    payload_.metrics.clear();
+    payload_.metrics.reserve(plan.tags.size());
+    for (std::size_t i = 0; i < plan.tags.size(); ++i) {
+        const auto& spec = plan.tags[i].spec;
+        Metric metric{spec.name,
+                      device.alias_base + i,
+                      static_cast<std::uint64_t>(device.values[i] ? device.timestamps[i] : now),
+                      adapters::sparkplug::datatype_of(spec.type),
+                      std::nullopt,
+                      false,
+                      {}};
+        if (device.values[i]) metric.value = *device.values[i];
+        // Ignition's names where Ignition has one (engUnit, Documentation).
+        if (!spec.unit().empty()) {
+            metric.properties.push_back({"engUnit", DataType::string, spec.unit()});
+        }
+        if (!spec.description().empty()) {
+            metric.properties.push_back({"Documentation", DataType::string, spec.description()});
+        }
+        if (device.producer) {
+            metric.properties.push_back({"writable", DataType::boolean, Value{spec.writable}});
+            if (spec.min())
+                metric.properties.push_back({"min", DataType::float64, Value{*spec.min()}});
+            if (spec.max())
+                metric.properties.push_back({"max", DataType::float64, Value{*spec.max()}});
+        }
+        payload_.metrics.push_back(std::move(metric));
+    }
+    publish(device.birth_topic, payload_);
+    device.born = true;
+}
+
+void SparkplugNode::device_death(Device& device) {
+    payload_.metrics.clear();
+    publish(device.death_topic, payload_);
+    device.born = false;
+}
+
+void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<const std::string>) {
+    std::vector<Device> devices;
+    std::unordered_map<const core::plan::ExchangePlan*, std::size_t> of_plan;
+    std::unordered_map<std::string, std::size_t> of_name;
+    // Node metrics are listed in NBIRTH: those of exchanges are rebuilt, then all are born again.
+    node_metrics_.resize(fixed_node_metrics);
+    std::erase_if(node_metric_of_name_,
+                  [](const auto& entry) { return entry.second >= fixed_node_metrics; });
+    const auto add = [&](const core::plan::ExchangePlan* plan,
+                         std::optional<std::size_t> producer) {
+        Device device;
+        if (const auto old = device_of_plan_.find(plan); old != device_of_plan_.end()) {
+            device = std::move(devices_[old->second]);  // a kept exchange keeps its values
+        } else {
+            device.values.resize(plan->tags.size());
+            device.timestamps.resize(plan->tags.size(), 0);
+        }
+        device.plan = plan;
+        device.producer = producer;
+        device.alias_base = static_cast<std::uint64_t>(devices.size() + 1) << 32;
+        device.born = false;
+        const auto prefix = std::string(namespace_prefix) + options_.group_id + "/";
+        const auto suffix = "/" + options_.edge_node_id + "/" + plan->spec.name;
+        device.birth_topic = prefix + "DBIRTH" + suffix;
+        device.data_topic = prefix + "DDATA" + suffix;
+        device.death_topic = prefix + "DDEATH" + suffix;
+        const auto base = "Exchanges/" + plan->spec.name + "/";
+        node_metric(base + "state", DataType::string);
+        static constexpr std::array<const char*, 3> produced_counters{"sent", "send_errors",
+                                                                      "writes_applied"};
+        static constexpr std::array<const char*, 5> consumed_counters{
+            "received", "accepted", "missed", "timeouts", "restarts"};
+        const auto counters = producer ? std::span<const char* const>(produced_counters)
+                                       : std::span<const char* const>(consumed_counters);
+        for (const auto* name : counters) node_metric(base + name, DataType::uint64);
+        of_plan.emplace(plan, devices.size());
+        of_name.emplace(plan->spec.name, devices.size());
+        devices.push_back(std::move(device));
+    };
+    for (const auto* plan : running.consumed) add(plan, std::nullopt);
+    for (std::size_t i = 0; i < running.produced.size(); ++i) add(running.produced[i], i);
+    devices_ = std::move(devices);
+    device_of_plan_ = std::move(of_plan);
+    device_of_name_ = std::move(of_name);
+    if (born_) birth();
+}
+
+void SparkplugNode::tag_samples(const SampleBatch& batch) {
+    const auto found = device_of_plan_.find(&batch.exchange);
+    if (found == device_of_plan_.end()) return;
+    auto& device = devices_[found->second];
+    for (const auto& sample : batch.samples) {
+        if (!device.values[sample.tag]) ++device.known;
+        device.values[sample.tag] = sample.value;
+        device.timestamps[sample.tag] = batch.timestamp_ms;
+    }
+    if (device.producer && !device.up && device.known == device.values.size()) {
+        device.up = true;  // its first datagram: every value is known now
+        if (born_) device_birth(device);
+        return;
+    }
+    // A batch of every tag is the JSON tree's republication after its reconnect: the births
+    // hold these values already.
+    if (!born_ || !device.born || batch.all_tags || batch.quality != core::quality::Quality::good) {
+        return;
+    }
+    payload_.metrics.resize(batch.samples.size());
+    for (std::size_t i = 0; i < batch.samples.size(); ++i) {
+        const auto& sample = batch.samples[i];
+        auto& metric = payload_.metrics[i];
+        metric.name.clear();
+        metric.alias = device.alias_base + sample.tag;
+        metric.timestamp_ms = static_cast<std::uint64_t>(batch.timestamp_ms);
+        metric.datatype =
+            adapters::sparkplug::datatype_of(batch.exchange.tags[sample.tag].spec.type);
+        metric.value = sample.value;
+        metric.historical = false;
+        metric.properties.clear();
+    }
+    publish(device.data_topic, payload_);
+}
+
+void SparkplugNode::exchange_state(const core::plan::ExchangePlan& exchange,
+                                   core::exchange::ConsumeState state) {
+    const auto found = device_of_plan_.find(&exchange);
+    if (found == device_of_plan_.end()) return;
+    auto& device = devices_[found->second];
+    if (device.producer) return;
+    device.up = state == core::exchange::ConsumeState::ok;
+    if (!born_) return;
+    if (device.up && !device.born) device_birth(device);
+    if (!device.up && device.born) device_death(device);
+}
+
+void SparkplugNode::consumed_status(const ConsumedStatus& status) {
+    const auto base = "Exchanges/" + status.exchange.spec.name + "/";
+    const auto metric = [&](const char* name) { return node_metric_of_name_.at(base + name); };
+    const auto& counters = status.state.counters();
+    set_node_metric(metric("state"), std::string(core::exchange::to_string(status.state.state())));
+    set_node_metric(metric("received"), counter(counters.received));
+    set_node_metric(metric("accepted"), counter(counters.accepted));
+    set_node_metric(metric("missed"), counter(counters.missed));
+    set_node_metric(metric("timeouts"), counter(counters.timeouts));
+    set_node_metric(metric("restarts"), counter(counters.restarts));
+}
+
+void SparkplugNode::produced_status(const core::plan::ExchangePlan& exchange,
+                                    const ProducedStatus& status) {
+    const auto base = "Exchanges/" + exchange.spec.name + "/";
+    const auto metric = [&](const char* name) { return node_metric_of_name_.at(base + name); };
+    set_node_metric(metric("state"), std::string(status.paused ? "paused" : "producing"));
+    set_node_metric(metric("sent"), counter(status.sent));
+    set_node_metric(metric("send_errors"), counter(status.send_errors));
+    set_node_metric(metric("writes_applied"), counter(status.writes_applied));
+}
+
+void SparkplugNode::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
+    const auto& gateway = sources.gateway;
+    const auto metric = [&](const char* name) { return node_metric_of_name_.at(name); };
+    set_node_metric(metric("Gateway/uptime_s"),
+                    counter(static_cast<std::uint64_t>(uptime.count())));
+    set_node_metric(metric("Gateway/datagrams"), counter(sources.datagrams.datagrams));
+    set_node_metric(metric("Gateway/accepted"), counter(sources.datagrams.accepted));
+    set_node_metric(metric("Gateway/dropped"), counter(sum(sources.datagrams.dropped)));
+    set_node_metric(metric("Gateway/writes_ok"), counter(gateway.writes_ok));
+    set_node_metric(metric("Gateway/writes_rejected"), counter(sum(gateway.writes_rejected)));
+    if (!born_) return;
+    const auto now = static_cast<std::uint64_t>(wall_clock_());
+    payload_.metrics.clear();
+    for (std::size_t i = 0; i < node_metrics_.size(); ++i) {
+        auto& node = node_metrics_[i];
+        if (!node.changed) continue;
+        payload_.metrics.push_back({{}, i, now, node.type, node.value, false, {}});
+        node.changed = false;
+    }
+    if (!payload_.metrics.empty()) publish(node_topic("NDATA"), payload_);
+}
+
+}  // namespace eip2mqtt::app::northbound

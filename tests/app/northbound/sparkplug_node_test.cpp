@@ -1,0 +1,344 @@
+// The Sparkplug B edge node (issue #15) over a recording publisher: births, bdSeq and seq, DDATA
+// by alias, DDEATH and rebirth of a device, NCMD rebirth, DCMD writes accepted and refused, and
+// the primary host's STATE. Payloads are read back with the protobuf classes of our .proto; the
+// integration test reads them with Eclipse Tahu's decoder.
+
+#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "sparkplug_b.pb.h"
+#include "tests/app/support/test_plan.hpp"
+#include "tests/app/support/uns_json_recorder.hpp"
+
+namespace eip2mqtt::app::northbound {
+namespace {
+
+using adapters::sparkplug::DataType;
+using core::exchange::ConsumeState;
+using core::plan::Value;
+using core::quality::Quality;
+using core::write::WriteError;
+using Proto = org::eclipse::tahu::protobuf::Payload;
+
+constexpr std::int64_t now_ms = 1700000000000;
+
+/// A (dint, with a unit and a max), B (real) and C (dint, read-only).
+core::plan::ExchangePlan plan(std::string name, core::plan::Direction direction) {
+    using core::plan::TagType;
+    auto a = test::test_tag("A", 0, TagType::dint, true);
+    a.mutable_extras().unit = "rpm";
+    a.mutable_extras().max = 4000;
+    return test::test_plan(
+        name, direction, 12,
+        {a, test::test_tag("B", 4, TagType::real, true), test::test_tag("C", 8, TagType::dint)});
+}
+
+Proto decoded(const adapters::mqtt::Message& message) {
+    Proto proto;
+    EXPECT_TRUE(proto.ParseFromString(message.payload)) << message.topic;
+    return proto;
+}
+
+std::string command(std::vector<adapters::sparkplug::Metric> metrics) {
+    adapters::sparkplug::Payload payload;
+    payload.timestamp_ms = now_ms;
+    payload.metrics = std::move(metrics);
+    return adapters::sparkplug::encode(payload);
+}
+
+adapters::sparkplug::Metric by_name(std::string name, DataType type, Value value) {
+    return {std::move(name), std::nullopt, now_ms, type, value, false, {}};
+}
+
+class SparkplugNodeTest : public ::testing::Test, public WriteHandler {
+protected:
+    explicit SparkplugNodeTest(std::string primary_host = "")
+        : node_({"plant1", "gw1", std::move(primary_host), 0}, publisher_, *this,
+                [] { return now_ms; }) {
+        node_.exchanges_changed({{&consumed_}, {&produced_}}, {});
+    }
+
+    void on_write(WriteRequest&& request) override { writes_.push_back(std::move(request)); }
+
+    std::vector<std::string> topics() const {
+        std::vector<std::string> out;
+        for (const auto& m : publisher_.published) out.push_back(m.topic);
+        return out;
+    }
+    std::vector<std::uint64_t> seqs() const {
+        std::vector<std::uint64_t> out;
+        for (const auto& m : publisher_.published) out.push_back(decoded(m).seq());
+        return out;
+    }
+    /// The consumed exchange's first datagram, as the ExchangeConsumer reports it.
+    void first_datagram() {
+        const std::vector<TagSample> samples{
+            {0, Value{std::int64_t{7}}}, {1, Value{1.5f}}, {2, Value{std::int64_t{0}}}};
+        node_.tag_samples({consumed_, Quality::good, now_ms - 5, false, samples});
+        node_.exchange_state(consumed_, ConsumeState::ok);
+    }
+    /// The produced exchange's first datagram sent: every value echoed.
+    void first_production() {
+        const std::vector<TagSample> samples{
+            {0, Value{std::int64_t{0}}}, {1, Value{0.0f}}, {2, Value{std::int64_t{0}}}};
+        node_.tag_samples({produced_, Quality::good, now_ms - 2, false, samples});
+    }
+    adapters::mqtt::Incoming dcmd(std::string payload, std::string device = "out") {
+        adapters::mqtt::Incoming in;
+        in.topic = "spBv1.0/plant1/DCMD/gw1/" + device;
+        in.payload = std::move(payload);
+        return in;
+    }
+    core::write::WriteError rejection(std::size_t i) const {
+        return std::get<core::write::WriteRejection>(writes_.at(i).outcome).error;
+    }
+
+    core::plan::ExchangePlan consumed_ = plan("in", core::plan::Direction::consume);
+    core::plan::ExchangePlan produced_ = plan("out", core::plan::Direction::produce);
+    test::RecordingPublisher publisher_;
+    std::vector<WriteRequest> writes_;
+    SparkplugNode node_;
+};
+
+TEST_F(SparkplugNodeTest, SubscribesToItsCommandsBeforeAnyBirth) {
+    EXPECT_EQ(publisher_.subscriptions,
+              (std::vector<std::string>{"spBv1.0/plant1/NCMD/gw1", "spBv1.0/plant1/DCMD/gw1/+"}));
+    EXPECT_TRUE(publisher_.published.empty());
+}
+
+TEST_F(SparkplugNodeTest, EachConnectionHasANewBdSeqThatItsNbirthCarries) {
+    for (int connection = 0; connection < 258; ++connection) {
+        const auto will = node_.next_will();
+        EXPECT_EQ(will.topic, "spBv1.0/plant1/NDEATH/gw1");
+        EXPECT_EQ(will.qos, 1);
+        EXPECT_FALSE(will.retain);
+        const auto death = decoded(will);
+        EXPECT_FALSE(death.has_seq());
+        ASSERT_EQ(death.metrics_size(), 1);
+        EXPECT_EQ(death.metrics(0).name(), "bdSeq");
+        EXPECT_EQ(death.metrics(0).long_value(), static_cast<std::uint64_t>(connection % 256));
+        publisher_.published.clear();
+        node_.on_connected();
+        ASSERT_EQ(topics().front(), "spBv1.0/plant1/NBIRTH/gw1");
+        const auto birth = decoded(publisher_.published.front());
+        EXPECT_EQ(birth.seq(), 0u);
+        EXPECT_EQ(birth.metrics(0).name(), "bdSeq");
+        EXPECT_EQ(birth.metrics(0).long_value(), death.metrics(0).long_value());
+    }
+}
+
+TEST_F(SparkplugNodeTest, NbirthListsRebirthAndTheNodeCounters) {
+    node_.next_will();
+    node_.on_connected();
+    const auto birth = decoded(publisher_.published.at(0));
+    std::vector<std::string> names;
+    for (const auto& m : birth.metrics()) names.push_back(m.name());
+    EXPECT_EQ(names.at(1), "Node Control/Rebirth");
+    EXPECT_FALSE(birth.metrics(1).boolean_value());
+    EXPECT_NE(std::find(names.begin(), names.end(), "Gateway/accepted"), names.end());
+    EXPECT_NE(std::find(names.begin(), names.end(), "Exchanges/in/state"), names.end());
+    EXPECT_NE(std::find(names.begin(), names.end(), "Exchanges/out/sent"), names.end());
+    for (int i = 0; i < birth.metrics_size(); ++i) {
+        EXPECT_EQ(birth.metrics(i).alias(), static_cast<std::uint64_t>(i)) << names[i];
+    }
+}
+
+TEST_F(SparkplugNodeTest, DevicesAreBornWithEveryTagOnceTheirValuesAreKnown) {
+    node_.next_will();
+    node_.on_connected();
+    EXPECT_EQ(topics(), std::vector<std::string>{"spBv1.0/plant1/NBIRTH/gw1"});
+    first_datagram();
+    first_production();
+    EXPECT_EQ(topics(),
+              (std::vector<std::string>{"spBv1.0/plant1/NBIRTH/gw1", "spBv1.0/plant1/DBIRTH/gw1/in",
+                                        "spBv1.0/plant1/DBIRTH/gw1/out"}));
+    EXPECT_EQ(seqs(), (std::vector<std::uint64_t>{0, 1, 2}));
+    const auto in = decoded(publisher_.published[1]);
+    ASSERT_EQ(in.metrics_size(), 3);
+    EXPECT_EQ(in.metrics(0).name(), "A");
+    EXPECT_EQ(in.metrics(0).datatype(), static_cast<std::uint32_t>(DataType::int32));
+    EXPECT_EQ(in.metrics(0).int_value(), 7u);
+    EXPECT_EQ(in.metrics(0).timestamp(), static_cast<std::uint64_t>(now_ms - 5));
+    EXPECT_EQ(in.metrics(1).datatype(), static_cast<std::uint32_t>(DataType::float32));
+    EXPECT_EQ(in.metrics(1).float_value(), 1.5f);
+    EXPECT_NE(in.metrics(0).alias(), in.metrics(1).alias());
+    ASSERT_EQ(in.metrics(0).properties().keys_size(), 1);  // consumed: the unit only
+    EXPECT_EQ(in.metrics(0).properties().keys(0), "engUnit");
+    EXPECT_EQ(in.metrics(0).properties().values(0).string_value(), "rpm");
+    const auto out = decoded(publisher_.published[2]);
+    const auto& props = out.metrics(0).properties();
+    ASSERT_EQ(props.keys_size(), 3);
+    EXPECT_EQ(props.keys(1), "writable");
+    EXPECT_TRUE(props.values(1).boolean_value());
+    EXPECT_EQ(props.keys(2), "max");
+    EXPECT_EQ(props.values(2).double_value(), 4000.0);
+    // Aliases are unique across the node, devices included.
+    EXPECT_NE(in.metrics(0).alias(), out.metrics(0).alias());
+}
+
+TEST_F(SparkplugNodeTest, DdataCarriesTheChangedTagsByAliasWithTheirTimestamp) {
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();
+    const auto birth = decoded(publisher_.published.back());
+    publisher_.published.clear();
+    const std::vector<TagSample> changed{{1, Value{2.5f}}};
+    node_.tag_samples({consumed_, Quality::good, now_ms + 100, false, changed});
+    ASSERT_EQ(topics(), std::vector<std::string>{"spBv1.0/plant1/DDATA/gw1/in"});
+    const auto data = decoded(publisher_.published[0]);
+    EXPECT_EQ(data.seq(), 2u);
+    ASSERT_EQ(data.metrics_size(), 1);
+    EXPECT_FALSE(data.metrics(0).has_name());
+    EXPECT_EQ(data.metrics(0).alias(), birth.metrics(1).alias());
+    EXPECT_EQ(data.metrics(0).timestamp(), static_cast<std::uint64_t>(now_ms + 100));
+    EXPECT_EQ(data.metrics(0).float_value(), 2.5f);
+    // The JSON tree's republication of every tag is no news to a Sparkplug host.
+    const std::vector<TagSample> all{{0, Value{std::int64_t{7}}}, {1, Value{2.5f}}};
+    node_.tag_samples({consumed_, Quality::good, now_ms + 200, true, all});
+    EXPECT_EQ(publisher_.published.size(), 1u);
+}
+
+TEST_F(SparkplugNodeTest, SeqRunsFrom0To255ThenStartsAgain) {
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();
+    for (int i = 0; i < 300; ++i) {
+        const std::vector<TagSample> changed{{0, Value{std::int64_t{i}}}};
+        node_.tag_samples({consumed_, Quality::good, now_ms, false, changed});
+    }
+    const auto all = seqs();
+    for (std::size_t i = 0; i < all.size(); ++i) EXPECT_EQ(all[i], i % 256) << i;
+}
+
+TEST_F(SparkplugNodeTest, AStaleExchangeDiesAndIsBornAgainWithItsFirstGoodDatagram) {
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();
+    publisher_.published.clear();
+    const std::vector<TagSample> stale{{0, Value{std::int64_t{7}}}, {1, Value{1.5f}}};
+    node_.tag_samples({consumed_, Quality::stale, now_ms + 1000, false, stale});
+    node_.exchange_state(consumed_, ConsumeState::stale);
+    EXPECT_EQ(topics(), std::vector<std::string>{"spBv1.0/plant1/DDEATH/gw1/in"});
+    const std::vector<TagSample> back{{0, Value{std::int64_t{8}}}, {1, Value{1.5f}}};
+    node_.tag_samples({consumed_, Quality::good, now_ms + 2000, false, back});
+    node_.exchange_state(consumed_, ConsumeState::ok);
+    EXPECT_EQ(topics(), (std::vector<std::string>{"spBv1.0/plant1/DDEATH/gw1/in",
+                                                  "spBv1.0/plant1/DBIRTH/gw1/in"}));
+    const auto reborn = decoded(publisher_.published[1]);
+    EXPECT_EQ(reborn.metrics(0).int_value(), 8u);
+    EXPECT_EQ(reborn.metrics(0).timestamp(), static_cast<std::uint64_t>(now_ms + 2000));
+}
+
+TEST_F(SparkplugNodeTest, NcmdRebirthBringsEveryBirthAgainFromSeq0) {
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();
+    first_production();
+    publisher_.published.clear();
+    adapters::mqtt::Incoming ncmd;
+    ncmd.topic = "spBv1.0/plant1/NCMD/gw1";
+    ncmd.payload = command({by_name("Node Control/Rebirth", DataType::boolean, Value{true})});
+    node_.on_message(ncmd);
+    EXPECT_EQ(topics(),
+              (std::vector<std::string>{"spBv1.0/plant1/NBIRTH/gw1", "spBv1.0/plant1/DBIRTH/gw1/in",
+                                        "spBv1.0/plant1/DBIRTH/gw1/out"}));
+    EXPECT_EQ(seqs(), (std::vector<std::uint64_t>{0, 1, 2}));
+    // Hostile bytes on NCMD: ignored, nothing published.
+    ncmd.payload = "\xff\xff\xff";
+    node_.on_message(ncmd);
+    EXPECT_EQ(publisher_.published.size(), 3u);
+}
+
+TEST_F(SparkplugNodeTest, ADcmdIsOneWriteOfEveryMetricByNameOrAlias) {
+    node_.next_will();
+    node_.on_connected();
+    first_production();
+    const auto birth = decoded(publisher_.published.back());
+    adapters::sparkplug::Metric by_alias{
+        "", birth.metrics(1).alias(), now_ms, DataType::float32, Value{2.5f}, false, {}};
+    node_.on_message(
+        dcmd(command({by_name("A", DataType::int32, Value{std::int64_t{1200}}), by_alias})));
+    ASSERT_EQ(writes_.size(), 1u);
+    EXPECT_EQ(writes_[0].reply.origin, &node_);
+    const auto& write = std::get<ExchangeWrite>(writes_[0].outcome);
+    EXPECT_EQ(write.producer, 0u);
+    ASSERT_EQ(write.writes.size(), 2u);
+    EXPECT_EQ(write.writes[0].tag_index, 0u);
+    EXPECT_TRUE(core::plan::same_value(write.writes[0].value, Value{std::int64_t{1200}}));
+    EXPECT_EQ(write.writes[1].tag_index, 1u);
+    EXPECT_TRUE(core::plan::same_value(write.writes[1].value, Value{2.5f}));
+}
+
+TEST_F(SparkplugNodeTest, ARefusedDcmdSaysWhyAndWritesNothing) {
+    const auto a = [](Value v) { return by_name("A", DataType::int32, v); };
+    node_.on_message(dcmd(command({a(Value{std::int64_t{5000}})})));  // over max 4000
+    node_.on_message(
+        dcmd(command({by_name("C", DataType::int32, Value{std::int64_t{1}})})));  // read-only
+    node_.on_message(dcmd(command({by_name("Z", DataType::int32, Value{std::int64_t{1}})})));
+    node_.on_message(dcmd(command({by_name("A", DataType::boolean, Value{true})})));  // for a dint
+    node_.on_message(dcmd("\x0a\xff\xff"));                                   // not protobuf
+    node_.on_message(dcmd(command({})));                                      // no metric
+    node_.on_message(dcmd(command({a(Value{std::int64_t{1}})}), "in"));       // consumed
+    node_.on_message(dcmd(command({a(Value{std::int64_t{1}})}), "nowhere"));  // no such device
+    auto retained = dcmd(command({a(Value{std::int64_t{1}})}));
+    retained.retained = true;
+    node_.on_message(retained);
+    // One valid metric and one bad: nothing of it is written.
+    node_.on_message(dcmd(command({a(Value{std::int64_t{1}}), a(Value{std::int64_t{9000}})})));
+    const std::vector<WriteError> expected{WriteError::above_max,   WriteError::read_only,
+                                           WriteError::unknown_tag, WriteError::wrong_type,
+                                           WriteError::malformed,   WriteError::empty,
+                                           WriteError::read_only,   WriteError::unknown_tag,
+                                           WriteError::retained,    WriteError::above_max};
+    ASSERT_EQ(writes_.size(), expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        ASSERT_TRUE(std::holds_alternative<core::write::WriteRejection>(writes_[i].outcome)) << i;
+        EXPECT_EQ(rejection(i), expected[i]) << i;
+        EXPECT_EQ(writes_[i].reply.origin, &node_);
+    }
+}
+
+class SparkplugPrimaryHostTest : public SparkplugNodeTest {
+protected:
+    SparkplugPrimaryHostTest() : SparkplugNodeTest("scada") {}
+    void state(std::string payload) {
+        adapters::mqtt::Incoming in;
+        in.topic = "spBv1.0/STATE/scada";
+        in.payload = std::move(payload);
+        in.retained = true;
+        node_.on_message(in);
+    }
+};
+
+TEST_F(SparkplugPrimaryHostTest, BirthsWaitForThePrimaryHostToBeOnline) {
+    EXPECT_EQ(publisher_.subscriptions.back(), "spBv1.0/STATE/scada");
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();
+    EXPECT_TRUE(publisher_.published.empty());
+    state(R"({"online":false,"timestamp":100})");
+    state("not json");
+    EXPECT_TRUE(publisher_.published.empty());
+    state(R"({"online":true,"timestamp":200})");
+    EXPECT_EQ(topics(), (std::vector<std::string>{"spBv1.0/plant1/NBIRTH/gw1",
+                                                  "spBv1.0/plant1/DBIRTH/gw1/in"}));
+    state(R"({"online":false,"timestamp":150})");  // older than the last: ignored
+    EXPECT_EQ(publisher_.published.size(), 2u);
+    state(R"({"online":false,"timestamp":300})");
+    ASSERT_EQ(publisher_.published.size(), 3u);
+    EXPECT_EQ(topics().back(), "spBv1.0/plant1/NDEATH/gw1");
+    const std::vector<TagSample> changed{{0, Value{std::int64_t{9}}}};
+    node_.tag_samples({consumed_, Quality::good, now_ms, false, changed});
+    EXPECT_EQ(publisher_.published.size(), 3u);  // nothing while the host is away
+    state(R"({"online":true,"timestamp":400})");
+    EXPECT_EQ(topics().at(3), "spBv1.0/plant1/NBIRTH/gw1");
+    EXPECT_EQ(decoded(publisher_.published.at(4)).metrics(0).int_value(), 9u);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app::northbound

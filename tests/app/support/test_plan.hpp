@@ -1,0 +1,40 @@
+#pragma once
+// Exchange plans for unit tests of the app layer: what a test does not name is the same
+// everywhere (producer 10.0.0.1, exchange 1, destination 127.0.0.1, base topic "acme").
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+
+namespace eip2mqtt::test {
+
+inline core::plan::TagSpec test_tag(std::string name, std::uint16_t byte, core::plan::TagType type,
+                                    bool writable = false) {
+    core::plan::TagSpec tag;
+    tag.name = std::move(name);
+    tag.address = {byte, 0};
+    tag.type = type;
+    tag.writable = writable;
+    return tag;
+}
+
+/// `length` data bytes; the topic is the name unless given.
+inline core::plan::ExchangePlan test_plan(std::string name, core::plan::Direction direction,
+                                          std::size_t length, std::vector<core::plan::TagSpec> tags,
+                                          std::string topic = "") {
+    core::plan::ExchangeSpec spec;
+    spec.topic = topic.empty() ? name : std::move(topic);
+    spec.name = std::move(name);
+    spec.direction = direction;
+    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+    spec.exchange_id = 1;
+    spec.length = length;
+    spec.destination = "127.0.0.1";
+    spec.tags = std::move(tags);
+    return core::plan::make_exchange_plan(std::move(spec), "acme");
+}
+
+}  // namespace eip2mqtt::test

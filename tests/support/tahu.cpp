@@ -1,0 +1,52 @@
+#include "tests/support/tahu.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tests/support/child_process.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+std::filesystem::path temp_file(const char* suffix) {
+    static std::atomic<int> next{0};
+    return std::filesystem::temp_directory_path() /
+           ("eip2mqtt_tahu_" + std::to_string(::getpid()) + "_" + std::to_string(next++) + suffix);
+}
+
+}  // namespace
+
+nlohmann::json tahu_decode(const std::string& bytes) {
+    const auto path = temp_file(".bin");
+    std::ofstream(path, std::ios::binary) << bytes;
+    const auto result = run_command({EIP2MQTT_NODE, EIP2MQTT_TAHU_SCRIPT, "decode", path.string()},
+                                    std::chrono::seconds(60));
+    std::filesystem::remove(path);
+    EXPECT_EQ(result.status, 0) << result.output;
+    auto json = nlohmann::json::parse(result.output, nullptr, false);
+    EXPECT_FALSE(json.is_discarded()) << result.output;
+    return json;
+}
+
+std::string tahu_encode(const nlohmann::json& payload) {
+    const auto input = temp_file(".json");
+    const auto output = temp_file(".bin");
+    std::ofstream(input) << payload.dump();
+    const auto result = run_command(
+        {EIP2MQTT_NODE, EIP2MQTT_TAHU_SCRIPT, "encode", input.string(), output.string()},
+        std::chrono::seconds(60));
+    EXPECT_EQ(result.status, 0) << result.output;
+    std::ifstream file(output, std::ios::binary);
+    std::stringstream bytes;
+    bytes << file.rdbuf();
+    std::filesystem::remove(input);
+    std::filesystem::remove(output);
+    return bytes.str();
+}
+
+}  // namespace eip2mqtt::test

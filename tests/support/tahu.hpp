@@ -1,0 +1,19 @@
+#pragma once
+/// Sparkplug B payloads through Eclipse Tahu's JavaScript library (tests/support/tahu/tahu.js,
+/// run by Node.js): an implementation we did not write reads what the gateway publishes and
+/// writes what a host would send it.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace eip2mqtt::test {
+
+/// The payload as Tahu decodes it: {"timestamp": "..", "seq": "..", "metrics": [{"name",
+/// "alias", "type", "value", "timestamp", "properties"}..]}, 64-bit integers as strings.
+nlohmann::json tahu_decode(const std::string& bytes);
+
+/// The protobuf bytes Tahu encodes for `payload` ({"timestamp": ms, "metrics": [{"name",
+/// "alias", "type", "value"}..]}).
+std::string tahu_encode(const nlohmann::json& payload);
+
+}  // namespace eip2mqtt::test
