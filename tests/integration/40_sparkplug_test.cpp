@@ -285,3 +285,29 @@ TEST_F(SparkplugTest, ACleanStopEndsWithNdeathAndAKillLeavesTheWill) {
 
 }  // namespace
 }  // namespace eip2mqtt::test
+
+namespace eip2mqtt::test {
+namespace {
+
+TEST_F(SparkplugTest, WithoutTheUnsTheJsonTreeIsSilentButAvailabilityStays) {
+    start_node("  uns: false\n");
+    send_plant(1, 5, 1.0f);
+    next_on(device_topic("DBIRTH", "plant"), 0);
+    // A clean stop flushes the JSON connection and ends it with `offline`: whatever it
+    // published has arrived by then.
+    const auto from = recorder_->count();
+    ::kill(gateway_->pid(), SIGTERM);
+    EXPECT_EQ(gateway_->wait(10s), 0);
+    ASSERT_TRUE(recorder_
+                    ->wait_for_message(
+                        availability_topic(), [](const std::string& p) { return p == "offline"; },
+                        10s, from)
+                    .has_value());
+    for (const auto& m : recorder_->messages()) {
+        if (!m.topic.starts_with(std::string(base_topic) + "/")) continue;
+        EXPECT_TRUE(m.topic == availability_topic()) << m.topic;
+    }
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test

@@ -95,6 +95,8 @@ public:
 
     /// The running exchanges, at start and after each reload. `retired_topics` are the retained
     /// topics of the JSON tree that no running exchange uses any more (core::plan::diff_plans).
+    /// A kept exchange has the same plan object as before; the exchanges a reload stops are
+    /// destroyed only after this call, so no new plan has the address of one of them.
     virtual void exchanges_changed(const ExchangeSet& running,
                                    std::span<const std::string> retired_topics) = 0;
     virtual void tag_samples(const SampleBatch& batch) = 0;

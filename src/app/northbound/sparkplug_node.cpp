@@ -204,8 +204,10 @@ void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<cons
     const auto add = [&](const core::plan::ExchangePlan* plan,
                          std::optional<std::size_t> producer) {
         Device device;
+        // A kept exchange keeps its plan object, and with it its values. The address cannot be
+        // a removed exchange's: the gateway destroys those only after this call.
         if (const auto old = device_of_plan_.find(plan); old != device_of_plan_.end()) {
-            device = std::move(devices_[old->second]);  // a kept exchange keeps its values
+            device = std::move(devices_[old->second]);
         } else {
             device.values.resize(plan->tags.size());
             device.timestamps.resize(plan->tags.size(), 0);

@@ -203,6 +203,24 @@ TEST_F(SparkplugNodeTest, DdataCarriesTheChangedTagsByAliasWithTheirTimestamp) {
     EXPECT_EQ(publisher_.published.size(), 1u);
 }
 
+TEST_F(SparkplugNodeTest, AReloadBringsEveryBirthAgainAndAKeptExchangeKeepsItsValues) {
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();
+    const auto added = plan("added", core::plan::Direction::consume);
+    publisher_.published.clear();
+    node_.exchanges_changed({{&consumed_, &added}, {}}, {});
+    // The node's metrics changed (a device more, one less): NBIRTH, then the devices that are up.
+    EXPECT_EQ(topics(), (std::vector<std::string>{"spBv1.0/plant1/NBIRTH/gw1",
+                                                  "spBv1.0/plant1/DBIRTH/gw1/in"}));
+    EXPECT_EQ(decoded(publisher_.published[1]).metrics(0).int_value(), 7u);
+    const auto birth = decoded(publisher_.published[0]);
+    bool named = false;
+    for (const auto& m : birth.metrics()) named = named || m.name() == "Exchanges/added/state";
+    EXPECT_TRUE(named);
+    for (const auto& m : birth.metrics()) EXPECT_NE(m.name(), "Exchanges/out/state");
+}
+
 TEST_F(SparkplugNodeTest, SeqRunsFrom0To255ThenStartsAgain) {
     node_.next_will();
     node_.on_connected();
