@@ -42,6 +42,7 @@ Gateway::Gateway(core::config::Config config)
         loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
     uns_json_ = std::make_unique<northbound::UnsJson>(northbound::uns_json_options(config_), *mqtt_,
                                                       writes_);
+    make_history();
     if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*uns_json_);
     if (config_.sparkplug.enabled()) {
         sparkplug_mqtt_ = std::make_unique<adapters::mqtt::Client>(
@@ -104,6 +105,9 @@ void Gateway::start() {
     started_at_ = std::chrono::steady_clock::now();
     last_refresh_scan_ = started_at_;
     mqtt_->set_on_connected([this] { on_connected(); });
+    if (history_) {
+        mqtt_->set_on_acknowledged([this](std::uint64_t id) { history_->on_acknowledged(id); });
+    }
     mqtt_->set_on_message(
         [this](const adapters::mqtt::Incoming& message) { uns_json_->on_message(message); });
     for (std::size_t i = 0; i < producers_.size(); ++i) {
@@ -167,6 +171,8 @@ void Gateway::on_connected() {
     const auto wall = std::chrono::system_clock::now();
     for (auto& consumer : consumers_) consumer->republish(now);
     for (auto& producer : producers_) producer->republish(wall);
+    // History goes behind the current state.
+    if (history_) history_->on_connected(now);
 }
 
 void Gateway::schedule_tick() {
@@ -186,14 +192,16 @@ void Gateway::on_tick() {
         last_refresh_scan_ = now;
         if (prometheus_) {
             const auto stats = mqtt_->stats();
-            prometheus_->update(
-                metrics_snapshot({datagram_router_.counters(), writes_.counters(), stats},
-                                 consumers_, producers_, now));
+            const auto history = history_ ? std::optional(history_->stats()) : std::nullopt;
+            prometheus_->update(metrics_snapshot({datagram_router_.counters(), writes_.counters(),
+                                                  stats, history ? &*history : nullptr},
+                                                 consumers_, producers_, now));
         }
     }
     // Every tick: each producer publishes its `_status` at its own phase of the second, so
     // 1,000 of them never publish in one handler (a 25 ms stall of the loop, issue #6).
     for (auto& producer : producers_) producer->on_tick(now);
+    if (history_) history_->on_tick(now);
     // The summary of a flood of drops that stopped, which no next drop would log.
     datagram_router_.flush_log(now);
     for (auto& consumer : consumers_) {
@@ -223,7 +231,10 @@ void Gateway::publish_metrics() {
     const auto stats = mqtt_->stats();
     const auto uptime = std::chrono::duration_cast<std::chrono::seconds>(
         std::chrono::steady_clock::now() - started_at_);
-    northbound_.gateway_metrics({datagram_router_.counters(), writes_.counters(), stats}, uptime);
+    const auto history = history_ ? std::optional(history_->stats()) : std::nullopt;
+    northbound_.gateway_metrics(
+        {datagram_router_.counters(), writes_.counters(), stats, history ? &*history : nullptr},
+        uptime);
     notifier_.status(status_line());
 }
 

@@ -1,5 +1,7 @@
 #include "eip2mqtt/app/gateway_metrics.hpp"
 
+#include <algorithm>
+
 namespace eip2mqtt::app {
 namespace {
 
@@ -64,6 +66,23 @@ std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& c
     return out;
 }
 
+adapters::metrics::HistoryMetrics history_metrics(const history::HistoryStats& stats) {
+    adapters::metrics::HistoryMetrics h;
+    h.entries = stats.journal.entries;
+    h.bytes = stats.journal.bytes;
+    if (stats.journal.oldest_timestamp_ms) {
+        h.oldest_age_seconds = std::max<double>(
+            0,
+            static_cast<double>(stats.taken_at_ms - *stats.journal.oldest_timestamp_ms) / 1000.0);
+    }
+    h.dropped = stats.journal.dropped;
+    h.journaled = stats.journaled;
+    h.replayed = stats.replayed;
+    h.discarded = stats.discarded;
+    h.replaying = stats.replaying;
+    return h;
+}
+
 adapters::metrics::MetricsSnapshot metrics_snapshot(
     const MetricsSources& sources, std::span<const std::unique_ptr<ExchangeConsumer>> consumers,
     std::span<const std::unique_ptr<ExchangeProducer>> producers, core::MonoTime now) {
@@ -86,6 +105,9 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     g.writes_ok = sources.gateway.writes_ok;
     g.writes_cancelled = sources.gateway.writes_cancelled;
     g.writes_rejected = rejections_by_name(sources.gateway);
+    if (sources.history) {
+        g.history = history_metrics(*sources.history);
+    }
     return snapshot;
 }
 

@@ -27,7 +27,8 @@ auto session_settings(const core::config::Config& c) {
         c.mqtt.username, c.mqtt.password_file, c.mqtt.tls.has_value(), c.mqtt.base_topic,
         c.mqtt.keepalive, c.mqtt.session_expiry, c.eip.bind, c.eip.port, c.eip.multicast.size(),
         c.eip.multicast_ttl, c.eip.multicast_interface, c.metrics.listen, c.sparkplug.group_id,
-        c.sparkplug.edge_node_id, c.sparkplug.primary_host_id, c.sparkplug.uns, c.sparkplug.qos);
+        c.sparkplug.edge_node_id, c.sparkplug.primary_host_id, c.sparkplug.uns, c.sparkplug.qos,
+        c.mqtt.store_and_forward);
 }
 
 }  // namespace
@@ -167,9 +168,7 @@ void Gateway::reload() {
     if (session_settings(config) != session_settings(config_)) {
         spdlog::error(
             "reload refused: changes to the gateway, mqtt, eip, metrics or sparkplug sections need "
-            "a "
-            "restart "
-            "(systemctl restart eip2mqtt); the running configuration is kept");
+            "a restart (systemctl restart eip2mqtt); the running configuration is kept");
         notifier_.ready(status_line());
         return;
     }

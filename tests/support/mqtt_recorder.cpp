@@ -53,6 +53,11 @@ struct MqttRecorder::Impl {
             r.correlation_data =
                 ::mqtt::get<std::string>(props, ::mqtt::property::CORRELATION_DATA);
         }
+        for (std::size_t i = 0; i < props.count(::mqtt::property::USER_PROPERTY); ++i) {
+            auto [name, value] =
+                ::mqtt::get<::mqtt::string_pair>(props, ::mqtt::property::USER_PROPERTY, i);
+            r.user_properties.emplace_back(std::move(name), std::move(value));
+        }
         {
             std::lock_guard lock(mutex);
             messages.push_back(std::move(r));

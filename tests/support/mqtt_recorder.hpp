@@ -10,6 +10,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace eip2mqtt::test {
@@ -21,6 +22,7 @@ struct Received {
     std::chrono::steady_clock::time_point at;
     /// MQTT 5 properties, when present.
     std::string correlation_data;
+    std::vector<std::pair<std::string, std::string>> user_properties;
 };
 
 class MqttRecorder {

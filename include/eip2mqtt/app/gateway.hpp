@@ -27,6 +27,7 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/gateway_metrics.hpp"
+#include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "eip2mqtt/app/northbound/sparkplug_node.hpp"
@@ -55,6 +56,10 @@ public:
 private:
     void start();
     void on_connected();
+    /// With `mqtt.store_and_forward`: the journal and what journals and replays it
+    /// (gateway_history.cpp). A journal that cannot be opened is logged; the gateway runs
+    /// without it.
+    void make_history();
     /// The plans of config_'s exchanges, for apply_exchanges. The exchange configs (every tag
     /// again, with the marks of its keys) served validation only: they are released here.
     std::vector<core::plan::ExchangePlan> take_plans();
@@ -95,6 +100,7 @@ private:
     /// With `sparkplug:`, the edge node and its own connection (its will is the NDEATH).
     std::unique_ptr<adapters::mqtt::Client> sparkplug_mqtt_;
     std::unique_ptr<northbound::SparkplugNode> sparkplug_;
+    std::unique_ptr<history::StoreAndForward> history_;  ///< with mqtt.store_and_forward
     northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
     DatagramRouter datagram_router_;

@@ -17,6 +17,7 @@
 #include "eip2mqtt/app/datagram_router.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
+#include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
 
@@ -36,7 +37,11 @@ struct MetricsSources {
     const DatagramCounters& datagrams;
     const GatewayCounters& gateway;
     const adapters::mqtt::ClientStats& mqtt;
+    const history::HistoryStats* history = nullptr;  ///< with store and forward
 };
+
+/// Store and forward's figures for Prometheus and the metrics topic.
+adapters::metrics::HistoryMetrics history_metrics(const history::HistoryStats& stats);
 
 /// Drops by reason name, every reason listed, for the metrics topic and Prometheus alike.
 std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& counters);

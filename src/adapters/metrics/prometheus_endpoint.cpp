@@ -221,12 +221,35 @@ void add_gateway_families(std::vector<MetricFamily>& out, const MetricsSnapshot&
                counter, static_cast<double>(g.writes_cancelled));
 }
 
+/// Store and forward's journal, when enabled.
+void add_history_families(std::vector<MetricFamily>& out, const HistoryMetrics& h) {
+    add_single(out, "history_entries", "Journaled entries waiting for their replay", gauge,
+               static_cast<double>(h.entries));
+    add_single(out, "history_bytes", "Size of the journal on disk", gauge,
+               static_cast<double>(h.bytes));
+    add_single(out, "history_oldest_age_seconds", "Age of the oldest journaled entry", gauge,
+               h.oldest_age_seconds);
+    add_single(out, "history_dropped_total",
+               "Journaled entries dropped for the bound or a full disk", counter,
+               static_cast<double>(h.dropped));
+    add_single(out, "history_journaled_total", "Entries journaled while MQTT was down", counter,
+               static_cast<double>(h.journaled));
+    add_single(out, "history_replayed_total", "Journaled entries replayed and acknowledged",
+               counter, static_cast<double>(h.replayed));
+    add_single(out, "history_discarded_total",
+               "Journaled entries not replayable: their exchange is gone or changed", counter,
+               static_cast<double>(h.discarded));
+    add_single(out, "history_replaying", "1 while the journal is being replayed", gauge,
+               h.replaying ? 1 : 0);
+}
+
 std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
     std::vector<MetricFamily> out;
     add_state_families(out, snapshot);
     add_exchange_counters(out, snapshot);
     add_clock_families(out, snapshot);
     add_gateway_families(out, snapshot);
+    if (snapshot.gateway.history) add_history_families(out, *snapshot.gateway.history);
     return out;
 }
 

@@ -18,6 +18,10 @@ void Client::set_on_connected(ConnectedHandler handler) {
 
 void Client::set_on_message(MessageHandler handler) { impl_->on_message_ = std::move(handler); }
 
+void Client::set_on_acknowledged(AcknowledgedHandler handler) {
+    impl_->on_acknowledged_ = std::move(handler);
+}
+
 void Client::set_subscriptions(std::vector<std::string> filters) {
     Impl& impl = *impl_;
     std::set<std::string> old(impl.subscriptions_.begin(), impl.subscriptions_.end());

@@ -91,9 +91,16 @@ void Client::Impl::sender_main() {
             }
             auto out =
                 paho::make_message(message.topic, message.payload, message.qos, message.retain);
-            if (!message.correlation_data.empty() && options_.version == 5) {
-                out->set_properties(
-                    paho::properties{{paho::property::CORRELATION_DATA, message.correlation_data}});
+            if (options_.version == 5 &&
+                (!message.correlation_data.empty() || message.historical)) {
+                paho::properties properties;
+                if (!message.correlation_data.empty()) {
+                    properties.add({paho::property::CORRELATION_DATA, message.correlation_data});
+                }
+                if (message.historical) {
+                    properties.add({paho::property::USER_PROPERTY, "historical", "true"});
+                }
+                out->set_properties(std::move(properties));
             }
             const auto id = in_flight_.add(std::move(message));
             burst.push_back({id, std::move(out)});
@@ -174,6 +181,11 @@ void Client::Impl::on_publish_done(std::uint64_t id, int rc, int reason_code,
         if (rc == 0) {
             if (probe_ == id) probe_.reset();
             published_.fetch_add(1, std::memory_order_relaxed);
+            if (item->ack_token != 0) {
+                post([token = item->ack_token](Impl& self) {
+                    if (self.on_acknowledged_) self.on_acknowledged_(token);
+                });
+            }
             recycle(std::move(*item));
         } else if (requeue_in_flight_ && item->qos > 0 && !stopping_ &&
                    !broker_refused(rc, reason_code)) {

@@ -83,6 +83,8 @@ void Loader::read_mqtt(const Node& node, const Mark& at, Config& config) {
                      if (const auto n = integer<int>(value, key, k, 1, 86400)) {
                          mqtt.metrics_interval = std::chrono::seconds(*n);
                      }
+                 } else if (key == "store_and_forward") {
+                     read_store_and_forward(value, k, config);
                  } else if (key == "buffer") {
                      walk(value, k, "buffer", "in mqtt.buffer", buffer_keys,
                           [&](const std::string& key2, const Node& v2, const Mark& k2) {
@@ -105,6 +107,30 @@ void Loader::read_mqtt(const Node& node, const Mark& at, Config& config) {
                               if (key2 == "key_file") tls.key_file = *s;
                           });
                      if (!value.is_null()) mqtt.tls = tls;
+                 }
+             });
+}
+
+void Loader::read_store_and_forward(const Node& node, const Mark& at, Config& config) {
+    auto& section = config.mqtt.store_and_forward;
+    section.marks =
+        walk(node, at, "store_and_forward", "in mqtt.store_and_forward", store_and_forward_keys,
+             [&](const std::string& key, const Node& value, const Mark& k) {
+                 if (key == "enabled") {
+                     if (const auto b = boolean(value, key, k)) section.enabled = *b;
+                 } else if (key == "max_mb") {
+                     // A journal smaller than a megabyte would drop history at once.
+                     if (const auto n = integer<std::uint64_t>(value, key, k, 1, 1ull << 30)) {
+                         section.max_mb = *n;
+                     }
+                 } else if (key == "replay_rate") {
+                     if (const auto n = integer<std::uint32_t>(value, key, k, 1, 1000000)) {
+                         section.replay_rate = *n;
+                     }
+                 } else if (key == "fsync_interval_ms") {
+                     if (const auto n = integer<std::uint32_t>(value, key, k, 10, 3600000)) {
+                         section.fsync_interval = std::chrono::milliseconds(*n);
+                     }
                  }
              });
 }

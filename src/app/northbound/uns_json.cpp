@@ -50,7 +50,8 @@ void UnsJson::tag_samples(const SampleBatch& batch) {
     }
     // `_values` carries what consumed datagrams bring, not the echo of produced ones.
     if (settings.batch && !batch.samples.empty() &&
-        plan.spec.direction == core::plan::Direction::consume) {
+        plan.spec.direction == core::plan::Direction::consume &&
+        !(journaling_ && (batch.all_tags || journaling_()))) {
         message_.topic = plan.values_topic;
         format_values_payload(message_.payload, batch);
         message_.qos = settings.qos;
@@ -58,6 +59,16 @@ void UnsJson::tag_samples(const SampleBatch& batch) {
         message_.batch_lane = true;
         mqtt_.publish(std::move(message_));
     }
+}
+
+void UnsJson::replay(const SampleBatch& batch, std::uint64_t ack_token) {
+    message_.topic.assign(batch.exchange.topic).append("/_history");
+    format_values_payload(message_.payload, batch);
+    message_.qos = 1;  // an entry leaves the journal on its PUBACK
+    message_.coalesce = false;
+    message_.historical = true;
+    message_.ack_token = ack_token;
+    mqtt_.publish(std::move(message_));
 }
 
 void UnsJson::consumed_status(const ConsumedStatus& status) {

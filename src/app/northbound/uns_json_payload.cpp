@@ -86,7 +86,7 @@ std::string format_write_result(std::optional<std::string_view> error) {
 
 std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime) {
     const auto& mqtt = sources.mqtt;
-    const nlohmann::json metrics = {
+    nlohmann::json metrics = {
         {"uptime_s", uptime.count()},
         {"datagrams", sources.datagrams.datagrams},
         {"accepted", sources.datagrams.accepted},
@@ -101,6 +101,19 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"writes_rejected", rejections_by_name(sources.gateway)},
         {"writes_cancelled", sources.gateway.writes_cancelled},
     };
+    if (sources.history) {
+        const auto h = history_metrics(*sources.history);
+        metrics["history_dropped"] = h.dropped;
+        metrics["history"] = {
+            {"entries", h.entries},
+            {"bytes", h.bytes},
+            {"oldest_age_s", h.oldest_age_seconds},
+            {"journaled", h.journaled},
+            {"replayed", h.replayed},
+            {"discarded", h.discarded},
+            {"replaying", h.replaying},
+        };
+    }
     return metrics.dump();
 }
 

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <future>
 #include <mutex>
+#include <numeric>
 #include <thread>
 
 #include "tests/support/mosquitto.hpp"
@@ -353,6 +354,64 @@ TEST_F(ClientFixture, BuffersWhileBrokerIsDownAndDeliversInOrder) {
     EXPECT_EQ(stats.connection_losses, 1u);
     EXPECT_EQ(stats.connects, 2u);
     EXPECT_EQ(stats.dropped_overflow, 0u);
+}
+
+TEST_F(ClientFixture, ReportsAckTokensOnlyOnceTheBrokerAcknowledgedAndMarksHistorical) {
+    test::MosquittoOptions bo;
+    bo.persistence = true;  // the recorder's session (and its queue) survives the restart
+    Mosquitto broker(bo);
+    MqttRecorder recorder(broker.url(), {"gw/#"}, "ack-recorder");
+    std::vector<std::uint64_t> acknowledged;
+    make_client(options_for(broker));
+    client_->set_on_acknowledged([this, &acknowledged](std::uint64_t token) {
+        {
+            std::lock_guard lock(mutex_);
+            acknowledged.push_back(token);
+        }
+        cv_.notify_all();
+    });
+    const auto wait_acknowledged = [&](std::size_t n) {
+        std::unique_lock lock(mutex_);
+        return cv_.wait_for(lock, kTimeout, [&] { return acknowledged.size() >= n; });
+    };
+    const auto publish_tokens = [&](std::uint64_t first, std::uint64_t last) {
+        on_loop([&] {
+            for (auto token = first; token <= last; ++token) {
+                auto m = msg("gw/history", std::to_string(token), 1, false, false);
+                m.ack_token = token;
+                m.historical = token % 2 == 0;
+                client_->publish(std::move(m));
+            }
+        });
+    };
+    on_loop([&] { client_->start(); });
+    ASSERT_TRUE(wait_connected_count(1));
+    publish_tokens(1, 20);
+    on_loop([&] { client_->publish(msg("gw/live", "no token")); });
+    ASSERT_TRUE(wait_acknowledged(20));
+
+    broker.stop();
+    ASSERT_TRUE(wait_disconnected());
+    publish_tokens(21, 30);
+    {
+        std::lock_guard lock(mutex_);
+        EXPECT_EQ(acknowledged.size(), 20u);  // nothing can be acknowledged without a broker
+    }
+    broker.start();
+    ASSERT_TRUE(wait_connected_count(2));
+    ASSERT_TRUE(wait_acknowledged(30));
+    ASSERT_TRUE(recorder.wait_for(has_n_on("gw/history", 30)));
+
+    std::lock_guard lock(mutex_);
+    std::vector<std::uint64_t> expected(30);
+    std::iota(expected.begin(), expected.end(), 1);
+    EXPECT_EQ(acknowledged, expected);  // each once, in order, and none for the untokened one
+    const auto history = recorder.messages_on("gw/history");
+    for (const auto& r : history) {
+        const bool historical = std::stoull(r.payload) % 2 == 0;
+        const std::vector<std::pair<std::string, std::string>> marked{{"historical", "true"}};
+        EXPECT_EQ(r.user_properties, historical ? marked : decltype(marked){}) << r.payload;
+    }
 }
 
 TEST_F(ClientFixture, ASessionBoundClientMakesAWillPerConnectAndDropsWhatAConnectionLeft) {

@@ -25,6 +25,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,18 @@ struct ExchangeMetrics {
     std::uint64_t skipped_deadlines = 0;
 };
 
+/// Store and forward's journal, when enabled.
+struct HistoryMetrics {
+    std::uint64_t entries = 0;
+    std::uint64_t bytes = 0;
+    double oldest_age_seconds = 0;  ///< 0 when empty
+    std::uint64_t dropped = 0;      ///< for the bound or a full disk
+    std::uint64_t journaled = 0;
+    std::uint64_t replayed = 0;
+    std::uint64_t discarded = 0;  ///< their exchange gone or changed
+    bool replaying = false;
+};
+
 /// What the gateway as a whole reports.
 struct GatewayMetrics {
     std::uint64_t datagrams = 0;  ///< received on the EIP socket
@@ -73,6 +86,7 @@ struct GatewayMetrics {
     std::uint64_t writes_ok = 0;
     std::map<std::string, std::uint64_t> writes_rejected;  ///< by rejection reason
     std::uint64_t writes_cancelled = 0;  ///< accepted, then answered "reloaded" unproduced
+    std::optional<HistoryMetrics> history;
 };
 
 /// Everything the endpoint serves, as plain values: the gateway loop fills one and hands it

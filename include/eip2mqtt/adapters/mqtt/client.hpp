@@ -99,6 +99,7 @@ class Client final : public Publisher {
 public:
     using ConnectedHandler = std::function<void()>;
     using MessageHandler = std::function<void(Incoming)>;
+    using AcknowledgedHandler = std::function<void(std::uint64_t ack_token)>;
 
     Client(boost::asio::any_io_executor loop, ClientOptions options);
     ~Client() override;
@@ -109,6 +110,10 @@ public:
     void set_on_connected(ConnectedHandler handler);
     /// Runs on the loop for every message received on a subscription.
     void set_on_message(MessageHandler handler);
+    /// Runs on the loop with the `ack_token` of each publication that has one, once the broker
+    /// acknowledged it. A publication the connection lost before that is sent again (QoS 1, as
+    /// any other) and acknowledged then, or never: its token is never reported as acknowledged.
+    void set_on_acknowledged(AcknowledgedHandler handler);
     /// Topic filters (QoS 1) subscribed on every connect; may be changed at any time.
     void set_subscriptions(std::vector<std::string> filters) override;
 

@@ -19,6 +19,12 @@ struct Message {
     /// Batch mode's `{exchange}/_values`: queued in a lane of its own, served in turn with the
     /// others, so that a saturated per-tag flow cannot starve it (nor it the per-tag topics).
     bool batch_lane = false;
+    /// Non-zero: once the broker acknowledged it (QoS 1 PUBACK; QoS 0: once written), the
+    /// client hands this token to its on_acknowledged handler (store-and-forward deletes a
+    /// journal entry only then).
+    std::uint64_t ack_token = 0;
+    /// MQTT 5 user property `historical=true`: a replayed sample, not a live one.
+    bool historical = false;
 
     /// Blank again, as a default Message, but the strings keep their buffers: a message is
     /// filled again instead of allocated anew for every publication (#6).
@@ -30,6 +36,8 @@ struct Message {
         retain = false;
         coalesce = true;
         batch_lane = false;
+        ack_token = 0;
+        historical = false;
     }
 };
 

@@ -5,10 +5,12 @@
 ///
 /// Threading: the loop only.
 
+#include <functional>
 #include <string>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
+#include "eip2mqtt/app/history/history_sink.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/write_router.hpp"
 #include "eip2mqtt/core/config/config.hpp"
@@ -34,7 +36,7 @@ struct UnsJsonOptions {
 /// The options of `config`'s `mqtt:` and `gateway:` sections.
 UnsJsonOptions uns_json_options(const core::config::Config& config);
 
-class UnsJson final : public Northbound {
+class UnsJson final : public Northbound, public history::HistorySink {
 public:
     /// `mqtt` and `writes` must outlive the northbound.
     UnsJson(UnsJsonOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes);
@@ -42,6 +44,10 @@ public:
     /// New settings (a reload); the exchanges it changes are restarted and republish.
     void set_options(UnsJsonOptions options);
     const UnsJsonOptions& options() const { return options_; }
+    /// With store and forward: while `journaling` says so, `_values` is not published (the
+    /// journal has the samples and replays them on `_history`), and a reconnect's republish
+    /// does not repeat `_values`, so that `_values` and `_history` carry each sample once.
+    void set_journal_gate(std::function<bool()> journaling) { journaling_ = std::move(journaling); }
 
     /// A message on one of our subscriptions: a write on a `…/set` topic is decoded and handed
     /// to the WriteHandler, refused or not; anything else is ignored.
@@ -57,12 +63,16 @@ public:
     void exchange_state(const core::plan::ExchangePlan&, core::exchange::ConsumeState) override {}
     void write_result(const WriteReply& reply, std::optional<std::string_view> error) override;
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
+    /// `{exchange}/_history`: the `_values` shape, QoS 1, not retained, MQTT 5 user property
+    /// `historical=true`.
+    void replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
 private:
     UnsJsonOptions options_;
     adapters::mqtt::Publisher& mqtt_;
     WriteHandler& writes_;
     WriteRouter router_;
+    std::function<bool()> journaling_;
     /// Every tag publication is filled in here; the publisher takes its content and leaves
     /// spare buffers (Client::publish), so the data path does not allocate.
     adapters::mqtt::Message message_;

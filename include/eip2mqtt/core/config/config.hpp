@@ -58,6 +58,21 @@ struct TlsSection {
 
 enum class PayloadFormat : std::uint8_t { json, raw };
 
+/// `mqtt.store_and_forward` (issue #16): while the broker is out of reach, what the exchanges
+/// bring is journaled on disk, then replayed on `{exchange}/_history` once it is back.
+struct StoreAndForwardSection {
+    bool enabled = false;
+    std::uint64_t max_mb = 256;                      ///< the journal's bound on disk
+    std::uint32_t replay_rate = 2000;                ///< history messages per second at most
+    std::chrono::milliseconds fsync_interval{1000};  ///< power loss loses at most this much
+    Marks marks;
+
+    friend bool operator==(const StoreAndForwardSection& a, const StoreAndForwardSection& b) {
+        return a.enabled == b.enabled && a.max_mb == b.max_mb && a.replay_rate == b.replay_rate &&
+               a.fsync_interval == b.fsync_interval;
+    }
+};
+
 struct MqttSection {
     std::string url = "tcp://localhost:1883";
     int version = 5;        ///< 5 or 3 (3.1.1)
@@ -80,6 +95,7 @@ struct MqttSection {
     /// writes sent to it) on the broker while the gateway is away, up to this long.
     std::chrono::seconds session_expiry{0};
     std::chrono::seconds metrics_interval{10};
+    StoreAndForwardSection store_and_forward;
     Marks marks;
 };
 

@@ -203,6 +203,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     detail::ReconnectBackoff backoff_;
     ConnectedHandler on_connected_;
     MessageHandler on_message_;
+    AcknowledgedHandler on_acknowledged_;
     std::vector<std::string> subscriptions_;
     core::ThrottledLog connect_failure_log_;
 

@@ -43,7 +43,7 @@ inline constexpr std::array<std::string_view, 6> top_keys{"gateway", "mqtt",    
                                                           "metrics", "sparkplug", "exchanges"};
 inline constexpr std::array<std::string_view, 5> gateway_keys{"id", "state_dir", "log_level",
                                                               "timestamp", "clock_tolerance_ms"};
-inline constexpr std::array<std::string_view, 16> mqtt_keys{"url",
+inline constexpr std::array<std::string_view, 17> mqtt_keys{"url",
                                                             "version",
                                                             "client_id",
                                                             "username",
@@ -58,10 +58,13 @@ inline constexpr std::array<std::string_view, 16> mqtt_keys{"url",
                                                             "keepalive_s",
                                                             "metrics_interval_s",
                                                             "session_expiry_s",
-                                                            "allow_response_topics_under_base"};
+                                                            "allow_response_topics_under_base",
+                                                            "store_and_forward"};
 inline constexpr std::array<std::string_view, 4> tls_keys{"ca_file", "cert_file", "key_file",
                                                           "verify"};
 inline constexpr std::array<std::string_view, 1> buffer_keys{"max_messages"};
+inline constexpr std::array<std::string_view, 4> store_and_forward_keys{
+    "enabled", "max_mb", "replay_rate", "fsync_interval_ms"};
 inline constexpr std::array<std::string_view, 5> eip_keys{"bind", "port", "multicast",
                                                           "multicast_ttl", "multicast_interface"};
 inline constexpr std::array<std::string_view, 2> multicast_keys{"group", "interface"};
@@ -197,6 +200,7 @@ private:
     void read_gateway(const Node& node, const Mark& at, Config& config);
 
     void read_mqtt(const Node& node, const Mark& at, Config& config);
+    void read_store_and_forward(const Node& node, const Mark& at, Config& config);
 
     void read_eip(const Node& node, const Mark& at, Config& config);
 

@@ -39,6 +39,11 @@ void check_sparkplug(const Config& config, Diagnostics& out) {
         check("sparkplug primary_host_id", sparkplug.primary_host_id,
               sparkplug.marks.of("primary_host_id"));
     }
+    if (config.mqtt.store_and_forward.enabled && !sparkplug.uns) {
+        out.push_back({sparkplug.marks.of("uns"),
+                       "mqtt.store_and_forward replays history on the JSON tree's _history "
+                       "topics: it needs sparkplug uns: true"});
+    }
     for (const auto& exchange : config.exchanges) {
         // An empty name is reported by the exchange checks already.
         if (exchange.spec.name.empty()) continue;

@@ -25,14 +25,14 @@ void check_topic_collisions(const Config& config, const std::set<const ExchangeC
     const auto full_topic = [&](const ExchangeConfig& exchange) {
         return base.empty() ? exchange.spec.topic : base + "/" + exchange.spec.topic;
     };
-    // An exchange on topic t claims t/_status, t/_values, t/set and t/set/result; each of
-    // its tags t/{name}, t/{name}/set and t/{name}/set/result. Every claim is t and more
-    // levels, so claims of two exchanges can meet only when their topics are the same or
-    // one is an ancestor of the other (at any depth: t/set/result is a tag `result`'s
-    // topic under t/set, t/{name}/set/result one under t/{name}/set). An exchange whose
-    // topic is none of these cannot collide through its tags, and its tags are not
-    // claimed: 100,000 tags would otherwise cost 300,000 map entries. Topics refused for
-    // a reserved level (`_…`, `set`) still take part, so their collisions are shown too.
+    // An exchange on topic t claims t/_status, t/_values, t/_history, t/set and t/set/result; each
+    // of its tags t/{name}, t/{name}/set and t/{name}/set/result. Every claim is t and more levels,
+    // so claims of two exchanges can meet only when their topics are the same or one is an ancestor
+    // of the other (at any depth: t/set/result is a tag `result`'s topic under t/set,
+    // t/{name}/set/result one under t/{name}/set). An exchange whose topic is none of these cannot
+    // collide through its tags, and its tags are not claimed: 100,000 tags would otherwise cost
+    // 300,000 map entries. Topics refused for a reserved level (`_…`, `set`) still take part, so
+    // their collisions are shown too.
     std::unordered_map<std::string, int> topic_uses;
     std::unordered_set<std::string> ancestors;  ///< of some exchange's topic
     for (const auto& exchange : config.exchanges) {
@@ -70,6 +70,7 @@ void check_topic_collisions(const Config& config, const std::set<const ExchangeC
         const Owner owner{&exchange, nullptr};
         (void)(claim(topic + "/_status", owner, topic_mark) &&
                claim(topic + "/_values", owner, topic_mark) &&
+               claim(topic + "/_history", owner, topic_mark) &&
                claim(topic + "/set", owner, topic_mark) &&
                claim(topic + "/set/result", owner, topic_mark));
         if (!nested(topic)) continue;

@@ -1,0 +1,20 @@
+#pragma once
+/// Where store and forward (app/history/store_and_forward) hands the samples it replays: a
+/// northbound that can publish history (the JSON tree's `_history`).
+
+#include <cstdint>
+
+#include "eip2mqtt/app/northbound.hpp"
+
+namespace eip2mqtt::app::history {
+
+/// Where replayed samples go.
+class HistorySink {
+public:
+    virtual ~HistorySink() = default;
+    /// Publishes `batch` as history; the publication carries `ack_token`, which must come back
+    /// to StoreAndForward::on_acknowledged once the broker acknowledged it.
+    virtual void replay(const SampleBatch& batch, std::uint64_t ack_token) = 0;
+};
+
+}  // namespace eip2mqtt::app::history

@@ -1,0 +1,134 @@
+#pragma once
+/// Store and forward (issue #16): while the MQTT connection is down, every accepted datagram's
+/// changes (and every quality change) go to the journal on disk, in arrival order; once the
+/// broker is back and the current state republished, they are replayed oldest first, at most
+/// `replay_rate` a second and only while live publications are not waiting, to a HistorySink
+/// (the JSON tree's `_history`). An entry leaves the journal only when the broker acknowledged
+/// its replay.
+///
+/// The cut between live and journaled is journaling(): the JSON tree asks the same question
+/// before it publishes `_values`, at the same moment on the same loop, so every sample goes
+/// either live or to the journal, never both and never neither.
+///
+/// Threading: the loop only (the journal is one SQLite connection).
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "eip2mqtt/adapters/history/journal.hpp"
+#include "eip2mqtt/adapters/history/sample_codec.hpp"
+#include "eip2mqtt/app/history/history_sink.hpp"
+#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
+#include "eip2mqtt/core/time.hpp"
+
+namespace eip2mqtt::app::history {
+
+/// What store and forward needs of the MQTT connection, asked on the loop.
+struct LinkProbe {
+    std::function<bool()> connected;
+    /// Publications waiting or in flight: replay waits while live data queues, and an empty
+    /// client with replayed entries still unacknowledged means the client dropped them.
+    std::function<std::uint64_t()> backlog;
+};
+
+struct StoreAndForwardOptions {
+    std::uint32_t replay_rate = 2000;
+    std::chrono::milliseconds fsync_interval{1000};
+};
+
+struct HistoryStats {
+    adapters::history::JournalStats journal;
+    std::uint64_t journaled = 0;  ///< entries appended since start
+    std::uint64_t replayed = 0;   ///< entries the broker acknowledged since start
+    /// Entries whose exchange is gone or changed its tags since: they cannot be replayed.
+    std::uint64_t discarded = 0;
+    std::uint64_t failures = 0;  ///< journal operations that failed (logged)
+    bool replaying = false;
+    std::int64_t taken_at_ms = 0;  ///< wall time of these figures, for the oldest entry's age
+};
+
+class StoreAndForward final : public Northbound {
+public:
+    StoreAndForward(std::unique_ptr<adapters::history::Journal> journal,
+                    StoreAndForwardOptions options, LinkProbe link, HistorySink& sink);
+    ~StoreAndForward() override;
+
+    /// True while samples go to the journal instead of the live `_values`.
+    bool journaling() const { return !link_.connected(); }
+
+    /// After the reconnect's republish: the replay of what the journal holds begins.
+    void on_connected(core::MonoTime now);
+    /// The broker acknowledged the replay of entry `id`.
+    void on_acknowledged(std::uint64_t id);
+    /// Every gateway tick: commits what was journaled (durably every fsync interval), deletes
+    /// acknowledged entries, replays what the rate allows.
+    void on_tick(core::MonoTime now);
+    HistoryStats stats();
+
+    void exchanges_changed(const ExchangeSet& running,
+                           std::span<const std::string> retired_topics) override;
+    void tag_samples(const SampleBatch& batch) override;
+    void consumed_status(const ConsumedStatus&) override {}
+    void produced_status(const core::plan::ExchangePlan&, const ProducedStatus&) override {}
+    void exchange_state(const core::plan::ExchangePlan&, core::exchange::ConsumeState) override {}
+    void write_result(const WriteReply&, std::optional<std::string_view>) override {}
+    void gateway_metrics(const MetricsSources&, std::chrono::seconds) override {}
+
+private:
+    struct Known {
+        const core::plan::ExchangePlan* plan = nullptr;
+        std::uint64_t layout = 0;
+    };
+
+    void replay_some(core::MonoTime now);
+    /// Hands one entry to the sink; false when it cannot be replayed (then it is deleted).
+    bool replay_entry(const adapters::history::JournalEntry& entry);
+    /// Why `entry` cannot be replayed (empty: it can, and samples_ holds its samples).
+    std::string unusable(const adapters::history::JournalEntry& entry);
+    /// Drops the replay's place, so that the unacknowledged entries go again.
+    void rewind();
+    void fail(const char* what, const std::exception& error);
+
+    std::unique_ptr<adapters::history::Journal> journal_;
+    StoreAndForwardOptions options_;
+    LinkProbe link_;
+    HistorySink& sink_;
+    std::map<std::string, Known, std::less<>> exchanges_;
+
+    adapters::history::JournalEntry entry_;  ///< filled for each append, buffers kept
+    std::vector<adapters::history::JournaledSample> journaled_samples_;
+    std::vector<TagSample> samples_;  ///< of a replayed entry
+    bool appended_ = false;           ///< since the last commit
+    core::MonoTime last_durable_{};
+
+    bool replaying_ = false;
+    std::uint64_t cursor_ = 0;             ///< the last entry handed to the sink
+    std::set<std::uint64_t> outstanding_;  ///< handed over, not acknowledged yet
+    std::vector<std::uint64_t> acknowledged_;
+    double allowance_ = 0;  ///< entries the rate allows now
+    std::optional<core::MonoTime> last_replay_;
+    int idle_with_outstanding_ = 0;  ///< ticks the client held none of outstanding_
+    std::uint64_t replay_started_with_ = 0;
+    core::MonoTime replay_started_{};
+
+    std::uint64_t journaled_ = 0;
+    std::uint64_t replayed_ = 0;
+    std::uint64_t discarded_ = 0;
+    std::uint64_t failures_ = 0;
+    core::ThrottledLog failure_log_;
+    core::ThrottledLog discard_log_;
+};
+
+/// A fingerprint of an exchange's tags (names, types, addresses): a journaled entry is replayed
+/// only into an exchange with the layout it was journaled with.
+std::uint64_t layout_fingerprint(const core::plan::ExchangePlan& plan);
+
+}  // namespace eip2mqtt::app::history

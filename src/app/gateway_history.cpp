@@ -1,0 +1,47 @@
+// Store and forward in the gateway (issue #16): the journal under gateway.state_dir, fed by the
+// exchanges through the fan-out while MQTT is down, replayed on the JSON tree's `_history`.
+
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+
+#include "eip2mqtt/app/gateway.hpp"
+
+namespace eip2mqtt::app {
+
+void Gateway::make_history() {
+    const auto& settings = config_.mqtt.store_and_forward;
+    if (!settings.enabled) return;
+    adapters::history::JournalOptions options;
+    options.path = (std::filesystem::path(config_.gateway.state_dir) / "history.sqlite").string();
+    options.max_bytes = settings.max_mb << 20;
+    std::unique_ptr<adapters::history::Journal> journal;
+    try {
+        std::filesystem::create_directories(config_.gateway.state_dir);
+        std::string set_aside;
+        journal = adapters::history::Journal::open(options, set_aside);
+        if (!set_aside.empty()) spdlog::warn("store and forward: {}", set_aside);
+    } catch (const std::exception& error) {
+        spdlog::error(
+            "store and forward is off: the journal {} cannot be opened ({}); check that "
+            "gateway.state_dir is writable by the service",
+            options.path, error.what());
+        return;
+    }
+    history::LinkProbe link{[this] { return mqtt_->connected(); },
+                            [this] {
+                                const auto stats = mqtt_->stats();
+                                return stats.queued + stats.in_flight;
+                            }};
+    history_ = std::make_unique<history::StoreAndForward>(
+        std::move(journal),
+        history::StoreAndForwardOptions{settings.replay_rate, settings.fsync_interval},
+        std::move(link), *uns_json_);
+    uns_json_->set_journal_gate([this] { return history_->journaling(); });
+    northbound_.add(*history_);
+    const auto stats = history_->stats();
+    spdlog::info("store and forward: journal {} ({} entries, bound {} MB)", options.path,
+                 stats.journal.entries, settings.max_mb);
+}
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,254 @@
+#include "eip2mqtt/app/history/store_and_forward.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "eip2mqtt/adapters/history/sample_codec.hpp"
+
+namespace eip2mqtt::app::history {
+namespace {
+
+using adapters::history::JournaledSample;
+using adapters::history::JournalEntry;
+
+/// Live publications waiting beyond this hold the replay back: live data goes first.
+constexpr std::uint64_t kLiveBacklog = 1000;
+/// Replayed entries unacknowledged at most: a window's worth keeps the broker busy without
+/// filling the client's queue with history.
+constexpr std::size_t kMaxOutstanding = 1000;
+/// Ticks the client must hold none of the outstanding entries before they count as dropped:
+/// an acknowledgement posted to the loop just before may still be on its way for one tick.
+constexpr int kIdleTicksBeforeRewind = 2;
+
+std::uint64_t fnv1a(std::uint64_t hash, std::string_view bytes) {
+    for (const unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
+    return hash;
+}
+
+double seconds_since(core::MonoTime from, core::MonoTime now) {
+    return std::chrono::duration<double>(now - from).count();
+}
+
+}  // namespace
+
+std::uint64_t layout_fingerprint(const core::plan::ExchangePlan& plan) {
+    std::uint64_t hash = 14695981039346656037ull;
+    for (const auto& tag : plan.tags) {
+        const auto& spec = tag.spec;
+        hash = fnv1a(hash, spec.name);
+        const char shape[4] = {
+            static_cast<char>(spec.type), static_cast<char>(spec.address.byte & 0xff),
+            static_cast<char>(spec.address.byte >> 8), static_cast<char>(spec.address.bit)};
+        hash = fnv1a(hash, {shape, sizeof shape});
+    }
+    return hash;
+}
+
+StoreAndForward::StoreAndForward(std::unique_ptr<adapters::history::Journal> journal,
+                                 StoreAndForwardOptions options, LinkProbe link, HistorySink& sink)
+    : journal_(std::move(journal)),
+      options_(options),
+      link_(std::move(link)),
+      sink_(sink),
+      last_durable_(std::chrono::steady_clock::now()) {}
+
+StoreAndForward::~StoreAndForward() {
+    try {
+        if (!acknowledged_.empty()) journal_->remove(acknowledged_);
+        journal_->commit(true);
+    } catch (const std::exception& error) {
+        spdlog::error("store and forward: the journal could not be closed cleanly: {}",
+                      error.what());
+    }
+}
+
+void StoreAndForward::exchanges_changed(const ExchangeSet& running, std::span<const std::string>) {
+    exchanges_.clear();
+    for (const auto* plan : running.consumed) {
+        exchanges_[plan->spec.name] = {plan, layout_fingerprint(*plan)};
+    }
+}
+
+void StoreAndForward::tag_samples(const SampleBatch& batch) {
+    // A republish after a reconnect says nothing new: the samples it repeats went live or to
+    // the journal when they came. A produced exchange's echo is what the writers sent.
+    if (batch.all_tags || !journaling() ||
+        batch.exchange.spec.direction != core::plan::Direction::consume) {
+        return;
+    }
+    const auto known = exchanges_.find(batch.exchange.spec.name);
+    if (known == exchanges_.end()) return;
+    journaled_samples_.clear();
+    for (const auto& sample : batch.samples) {
+        journaled_samples_.push_back({static_cast<std::uint32_t>(sample.tag), sample.value});
+    }
+    entry_.exchange = batch.exchange.spec.name;
+    entry_.layout = known->second.layout;
+    entry_.timestamp_ms = batch.timestamp_ms;
+    entry_.quality = static_cast<std::uint8_t>(batch.quality);
+    entry_.samples.clear();
+    adapters::history::encode_samples(journaled_samples_, entry_.samples);
+    try {
+        journal_->append(entry_);
+        appended_ = true;
+        ++journaled_;
+    } catch (const std::exception& error) {
+        fail("a sample could not be journaled", error);
+    }
+}
+
+void StoreAndForward::on_connected(core::MonoTime now) {
+    // What the client still holds of an earlier replay goes again after the reconnect and is
+    // acknowledged then: the replay resumes after it, without sending anything twice.
+    replaying_ = true;
+    idle_with_outstanding_ = 0;
+    last_replay_ = now;
+    allowance_ = 0;
+    replay_started_ = now;
+    replay_started_with_ = replayed_;
+    const auto entries = stats().journal.entries;
+    if (entries > outstanding_.size()) {
+        spdlog::info("store and forward: replaying {} journaled entries on _history", entries);
+    }
+}
+
+void StoreAndForward::on_acknowledged(std::uint64_t id) {
+    // Deleted even when a rewind forgot it meanwhile: the broker has it.
+    acknowledged_.push_back(id);
+    if (outstanding_.erase(id) > 0) ++replayed_;
+}
+
+void StoreAndForward::on_tick(core::MonoTime now) {
+    try {
+        if (!acknowledged_.empty()) {
+            journal_->remove(acknowledged_);
+            acknowledged_.clear();
+        }
+        const bool durable = now - last_durable_ >= options_.fsync_interval;
+        if (appended_ || durable) {
+            journal_->commit(durable);
+            appended_ = false;
+        }
+        if (durable) last_durable_ = now;
+        if (replaying_) replay_some(now);
+    } catch (const std::exception& error) {
+        fail("the journal failed", error);
+    }
+    if (const auto count = failure_log_.flush(now)) {
+        spdlog::error("store and forward: {} more journal failures", count);
+    }
+}
+
+void StoreAndForward::replay_some(core::MonoTime now) {
+    if (!link_.connected()) {
+        last_replay_ = now;
+        return;
+    }
+    const double rate = options_.replay_rate;
+    allowance_ =
+        std::min(allowance_ + rate * seconds_since(*last_replay_, now), std::max(1.0, rate / 10));
+    last_replay_ = now;
+    const auto backlog = link_.backlog();
+    if (!outstanding_.empty() && backlog == 0) {
+        // The client holds none of them and never acknowledged them: it dropped them (a full
+        // queue, a refusal). They go again.
+        if (++idle_with_outstanding_ >= kIdleTicksBeforeRewind) rewind();
+        return;
+    }
+    idle_with_outstanding_ = 0;
+    if (backlog > kLiveBacklog) return;
+    const auto room = std::min<double>(allowance_, kMaxOutstanding - outstanding_.size());
+    if (room < 1) return;
+    const auto entries = journal_->oldest(static_cast<std::size_t>(room), cursor_);
+    if (entries.empty() && outstanding_.empty()) {
+        replaying_ = false;
+        if (replayed_ > replay_started_with_) {
+            spdlog::info("store and forward: {} journaled entries replayed in {:.1f} s",
+                         replayed_ - replay_started_with_, seconds_since(replay_started_, now));
+        }
+        return;
+    }
+    std::vector<std::uint64_t> unusable;
+    for (const auto& entry : entries) {
+        cursor_ = entry.id;
+        allowance_ -= 1;
+        if (replay_entry(entry)) {
+            outstanding_.insert(entry.id);
+        } else {
+            unusable.push_back(entry.id);
+        }
+    }
+    if (!unusable.empty()) journal_->remove(unusable);
+}
+
+std::string StoreAndForward::unusable(const JournalEntry& entry) {
+    const auto known = exchanges_.find(entry.exchange);
+    if (known == exchanges_.end()) return "no such exchange any more";
+    if (known->second.layout != entry.layout) return "its tags changed since";
+    auto decoded = adapters::history::decode_samples(entry.samples);
+    if (!decoded) return decoded.error();
+    const auto& plan = *known->second.plan;
+    samples_.clear();
+    for (const auto& sample : decoded.value()) {
+        if (sample.tag >= plan.tags.size()) return "a tag index beyond the exchange's tags";
+        samples_.push_back({sample.tag, sample.value});
+    }
+    return {};
+}
+
+bool StoreAndForward::replay_entry(const JournalEntry& entry) {
+    if (const auto problem = unusable(entry); !problem.empty()) {
+        ++discarded_;
+        if (const auto count = discard_log_.record(std::chrono::steady_clock::now())) {
+            spdlog::warn(
+                "store and forward: journaled entries of exchange {} cannot be replayed ({}); "
+                "deleted ({} since the last report)",
+                entry.exchange, problem, count);
+        }
+        return false;
+    }
+    const auto& plan = *exchanges_.find(entry.exchange)->second.plan;
+    sink_.replay({plan, static_cast<core::quality::Quality>(entry.quality), entry.timestamp_ms,
+                  false, samples_},
+                 entry.id);
+    return true;
+}
+
+void StoreAndForward::rewind() {
+    spdlog::warn(
+        "store and forward: {} replayed entries were never acknowledged (the MQTT client dropped "
+        "them); they go again",
+        outstanding_.size());
+    outstanding_.clear();
+    cursor_ = 0;
+    idle_with_outstanding_ = 0;
+}
+
+void StoreAndForward::fail(const char* what, const std::exception& error) {
+    ++failures_;
+    if (const auto count = failure_log_.record(std::chrono::steady_clock::now())) {
+        spdlog::error("store and forward: {}: {} ({} since the last report); live data goes on",
+                      what, error.what(), count);
+    }
+}
+
+HistoryStats StoreAndForward::stats() {
+    HistoryStats stats;
+    try {
+        stats.journal = journal_->stats();
+    } catch (const std::exception& error) {
+        fail("the journal's figures could not be read", error);
+    }
+    stats.journaled = journaled_;
+    stats.replayed = replayed_;
+    stats.discarded = discarded_;
+    stats.failures = failures_;
+    stats.replaying = replaying_;
+    stats.taken_at_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                            std::chrono::system_clock::now().time_since_epoch())
+                            .count();
+    return stats;
+}
+
+}  // namespace eip2mqtt::app::history

@@ -1,0 +1,267 @@
+// Store and forward (issue #16) over a real journal file, a recording sink and a connection the
+// test switches: what is journaled and when, the replay's order, rate and resumption, and what
+// leaves the journal (acknowledged entries only, or those no exchange can take any more).
+
+#include "eip2mqtt/app/history/store_and_forward.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <numeric>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "tests/app/support/test_plan.hpp"
+
+namespace eip2mqtt::app::history {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+using core::plan::Direction;
+using core::plan::TagType;
+using core::quality::Quality;
+
+struct Replayed {
+    std::string exchange;
+    Quality quality;
+    std::int64_t timestamp_ms;
+    std::vector<std::pair<std::size_t, std::int64_t>> samples;
+    std::uint64_t token;
+};
+
+class RecordingSink final : public HistorySink {
+public:
+    void replay(const SampleBatch& batch, std::uint64_t ack_token) override {
+        Replayed r{batch.exchange.spec.name, batch.quality, batch.timestamp_ms, {}, ack_token};
+        for (const auto& s : batch.samples) {
+            r.samples.emplace_back(s.tag, std::get<std::int64_t>(s.value));
+        }
+        replayed.push_back(std::move(r));
+    }
+    std::vector<Replayed> replayed;
+};
+
+class StoreAndForwardTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("eip2mqtt_saf_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        open();
+    }
+    void TearDown() override {
+        saf_.reset();
+        fs::remove_all(dir_);
+    }
+
+    void open(std::uint32_t replay_rate = 100) {
+        saf_.reset();
+        std::string set_aside;
+        auto journal = adapters::history::Journal::open(
+            {(dir_ / "history.sqlite").string(), 256ull << 20}, set_aside);
+        saf_ = std::make_unique<StoreAndForward>(
+            std::move(journal), StoreAndForwardOptions{replay_rate, 1000ms},
+            LinkProbe{[this] { return connected_; }, [this] { return backlog(); }}, sink_);
+        saf_->exchanges_changed({{&plant_}, {&produced_}}, {});
+    }
+
+    /// One datagram's change of the counter (tag 1), at `timestamp`.
+    void counter(std::int64_t value, std::int64_t timestamp = 1000, Quality quality = Quality::good,
+                 bool all_tags = false, const core::plan::ExchangePlan* plan = nullptr) {
+        const std::vector<TagSample> samples{{1, core::plan::Value{value}}};
+        saf_->tag_samples({plan ? *plan : plant_, quality, timestamp, all_tags, samples});
+    }
+
+    /// Connects, then ticks every 10 ms for `duration`.
+    void run_for(std::chrono::milliseconds duration) {
+        for (auto t = 0ms; t < duration; t += 10ms) {
+            now_ += 10ms;
+            saf_->on_tick(now_);
+        }
+    }
+    void reconnect() {
+        connected_ = true;
+        saf_->on_connected(now_);
+    }
+    void acknowledge_all() {
+        for (const auto& r : sink_.replayed) {
+            if (acknowledged_.insert(r.token).second) saf_->on_acknowledged(r.token);
+        }
+    }
+    /// By default the client holds what it was given until it is acknowledged.
+    std::uint64_t backlog() const {
+        return backlog_ ? *backlog_ : sink_.replayed.size() - acknowledged_.size();
+    }
+    std::vector<std::int64_t> replayed_values(std::size_t from = 0) const {
+        std::vector<std::int64_t> values;
+        for (std::size_t i = from; i < sink_.replayed.size(); ++i) {
+            values.push_back(sink_.replayed[i].samples.at(0).second);
+        }
+        return values;
+    }
+    std::uint64_t entries() { return saf_->stats().journal.entries; }
+
+    core::plan::ExchangePlan plant_ = test::test_plan(
+        "plant", Direction::consume, 8,
+        {test::test_tag("state", 0, TagType::dint), test::test_tag("counter", 4, TagType::dint)});
+    core::plan::ExchangePlan produced_ = test::test_plan("setpoints", Direction::produce, 4,
+                                                         {test::test_tag("sp", 0, TagType::dint)});
+    fs::path dir_;
+    bool connected_ = false;
+    std::optional<std::uint64_t> backlog_;
+    std::set<std::uint64_t> acknowledged_;
+    core::MonoTime now_ = std::chrono::steady_clock::now();
+    RecordingSink sink_;
+    std::unique_ptr<StoreAndForward> saf_;
+};
+
+TEST_F(StoreAndForwardTest, JournalsAcceptedChangesOnlyWhileDisconnected) {
+    connected_ = true;
+    EXPECT_FALSE(saf_->journaling());
+    counter(1);
+    connected_ = false;
+    EXPECT_TRUE(saf_->journaling());
+    counter(2, 1010);
+    counter(3, 1020, Quality::stale);       // a quality change is history too
+    counter(3, 1030, Quality::good, true);  // a republish repeats what is known: not journaled
+    counter(9, 1040, Quality::good, false, &produced_);  // an echo of what writers sent: neither
+    run_for(10ms);
+    EXPECT_EQ(entries(), 2u);
+    EXPECT_EQ(saf_->stats().journaled, 2u);
+    EXPECT_TRUE(sink_.replayed.empty());  // nothing goes while disconnected
+}
+
+TEST_F(StoreAndForwardTest, ReplaysOldestFirstAtTheRateWithTheirTimeAndQuality) {
+    for (int i = 1; i <= 30; ++i) counter(i, 1000 + i, i == 30 ? Quality::stale : Quality::good);
+    run_for(10ms);
+    reconnect();
+    run_for(100ms);  // 100 a second: at most 10 in 100 ms
+    ASSERT_GE(sink_.replayed.size(), 9u);
+    ASSERT_LE(sink_.replayed.size(), 10u);
+    EXPECT_EQ(sink_.replayed[0].exchange, "plant");
+    EXPECT_EQ(sink_.replayed[0].timestamp_ms, 1001);
+    EXPECT_EQ(sink_.replayed[0].quality, Quality::good);
+    run_for(300ms);
+    ASSERT_EQ(sink_.replayed.size(), 30u);
+    std::vector<std::int64_t> expected(30);
+    std::iota(expected.begin(), expected.end(), 1);
+    EXPECT_EQ(replayed_values(), expected);
+    EXPECT_EQ(sink_.replayed.back().quality, Quality::stale);
+    EXPECT_EQ(sink_.replayed.back().samples[0].first, 1u);  // the counter's tag index
+}
+
+TEST_F(StoreAndForwardTest, AnEntryLeavesTheJournalOnlyOnceAcknowledged) {
+    for (int i = 1; i <= 5; ++i) counter(i);
+    run_for(10ms);
+    reconnect();
+    run_for(100ms);
+    ASSERT_EQ(sink_.replayed.size(), 5u);
+    EXPECT_TRUE(saf_->stats().replaying);
+    for (const auto i : {0, 1}) {
+        acknowledged_.insert(sink_.replayed[i].token);
+        saf_->on_acknowledged(sink_.replayed[i].token);
+    }
+    run_for(10ms);
+    EXPECT_EQ(entries(), 3u);
+    EXPECT_EQ(saf_->stats().replayed, 2u);
+
+    // A restart now: the three unacknowledged entries are replayed again, and only they.
+    open();
+    sink_.replayed.clear();
+    acknowledged_.clear();
+    reconnect();
+    run_for(100ms);
+    EXPECT_EQ(replayed_values(), (std::vector<std::int64_t>{3, 4, 5}));
+    acknowledge_all();
+    run_for(20ms);
+    EXPECT_EQ(entries(), 0u);
+    EXPECT_FALSE(saf_->stats().replaying);
+}
+
+TEST_F(StoreAndForwardTest, AReconnectDuringTheReplayResumesWithoutSendingAnythingTwice) {
+    for (int i = 1; i <= 20; ++i) counter(i);
+    run_for(10ms);
+    reconnect();
+    run_for(50ms);
+    const auto sent = sink_.replayed.size();
+    ASSERT_GT(sent, 0u);
+    ASSERT_LT(sent, 20u);
+    // Lost: the client keeps what it was given (and sends it again after the reconnect).
+    connected_ = false;
+    counter(21);  // the new outage is journaled behind
+    run_for(500ms);
+    EXPECT_EQ(sink_.replayed.size(), sent);
+    reconnect();
+    acknowledge_all();  // the client's resent ones are acknowledged after the reconnect
+    run_for(500ms);
+    std::vector<std::int64_t> expected(21);
+    std::iota(expected.begin(), expected.end(), 1);
+    EXPECT_EQ(replayed_values(), expected);
+    acknowledge_all();
+    run_for(20ms);
+    EXPECT_EQ(entries(), 0u);
+}
+
+TEST_F(StoreAndForwardTest, WhatTheClientDroppedUnacknowledgedGoesAgain) {
+    for (int i = 1; i <= 3; ++i) counter(i);
+    run_for(10ms);
+    reconnect();
+    run_for(50ms);
+    ASSERT_EQ(sink_.replayed.size(), 3u);
+    // The client holds none of them and acknowledged none: dropped (a full queue).
+    backlog_ = 0;
+    run_for(30ms);
+    EXPECT_EQ(replayed_values(), (std::vector<std::int64_t>{1, 2, 3, 1, 2, 3}));
+}
+
+TEST_F(StoreAndForwardTest, LiveDataWaitingHoldsTheReplayBack) {
+    counter(1);
+    run_for(10ms);
+    reconnect();
+    backlog_ = 5000;
+    run_for(200ms);
+    EXPECT_TRUE(sink_.replayed.empty());
+    backlog_.reset();
+    run_for(20ms);
+    EXPECT_EQ(sink_.replayed.size(), 1u);
+}
+
+TEST_F(StoreAndForwardTest, EntriesOfAnExchangeWhoseTagsChangedAreDeletedAndCounted) {
+    counter(1);
+    counter(2);
+    run_for(10ms);
+    auto changed = test::test_plan(
+        "plant", Direction::consume, 8,
+        {test::test_tag("state", 0, TagType::dint), test::test_tag("count", 4, TagType::dint)});
+    saf_->exchanges_changed({{&changed}, {}}, {});
+    reconnect();
+    run_for(100ms);
+    EXPECT_TRUE(sink_.replayed.empty());
+    EXPECT_EQ(saf_->stats().discarded, 2u);
+    EXPECT_EQ(entries(), 0u);
+}
+
+TEST_F(StoreAndForwardTest, TheLayoutFingerprintFollowsNamesTypesAndAddresses) {
+    const auto base = layout_fingerprint(plant_);
+    EXPECT_EQ(base,
+              layout_fingerprint(test::test_plan("other", Direction::consume, 8,
+                                                 {test::test_tag("state", 0, TagType::dint),
+                                                  test::test_tag("counter", 4, TagType::dint)})));
+    for (const auto& tags : std::vector<std::vector<core::plan::TagSpec>>{
+             {test::test_tag("state", 0, TagType::dint),
+              test::test_tag("counter", 4, TagType::udint)},
+             {test::test_tag("state", 0, TagType::dint),
+              test::test_tag("counter", 6, TagType::dint)},
+             {test::test_tag("state", 0, TagType::dint)}}) {
+        EXPECT_NE(base, layout_fingerprint(test::test_plan("plant", Direction::consume, 10, tags)));
+    }
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app::history
