@@ -188,6 +188,8 @@ void Gateway::on_tick() {
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
+    // Before the metrics: figures showing a datagram accepted then show it journaled for good.
+    if (history_) history_->on_tick(now);
     if (refresh_scan) {
         last_refresh_scan_ = now;
         if (prometheus_) {
@@ -201,7 +203,6 @@ void Gateway::on_tick() {
     // Every tick: each producer publishes its `_status` at its own phase of the second, so
     // 1,000 of them never publish in one handler (a 25 ms stall of the loop, issue #6).
     for (auto& producer : producers_) producer->on_tick(now);
-    if (history_) history_->on_tick(now);
     // The summary of a flood of drops that stopped, which no next drop would log.
     datagram_router_.flush_log(now);
     for (auto& consumer : consumers_) {

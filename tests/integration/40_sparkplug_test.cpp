@@ -226,7 +226,8 @@ TEST_F(SparkplugTest, ARefusedOrHostileDcmdChangesNothingAndIsCounted) {
     EXPECT_TRUE(metrics.has_value());
     // None of the refused values was ever echoed.
     for (const auto& m : recorder_->messages_on(device_topic("DDATA", "sp"))) {
-        for (const auto& value : tahu_decode(m.payload)["metrics"]) {
+        const auto decoded = tahu_decode(m.payload);  // outlives the loop over its metrics
+        for (const auto& value : decoded["metrics"]) {
             EXPECT_NE(value["value"], 9000);
             EXPECT_NE(value["value"], 10);
         }

@@ -47,6 +47,7 @@ struct MqttRecorder::Impl {
         r.topic = msg->get_topic();
         r.payload = msg->get_payload_str();
         r.retained = msg->is_retained();
+        r.duplicate = msg->is_duplicate();
         r.at = std::chrono::steady_clock::now();
         const auto& props = msg->get_properties();
         if (props.contains(::mqtt::property::CORRELATION_DATA)) {

@@ -19,6 +19,8 @@ struct Received {
     std::string topic;
     std::string payload;
     bool retained = false;
+    /// A QoS 1 delivery the broker made again after the recorder's session resumed (DUP).
+    bool duplicate = false;
     std::chrono::steady_clock::time_point at;
     /// MQTT 5 properties, when present.
     std::string correlation_data;

@@ -152,7 +152,17 @@ std::unique_ptr<Journal> Journal::open(const JournalOptions& options, std::strin
 }
 
 Journal::Journal(std::unique_ptr<Db> db, JournalOptions options)
-    : db_(std::move(db)), options_(std::move(options)) {}
+    : db_(std::move(db)), options_(std::move(options)) {
+    // The bound covers the WAL too: a sixteenth of it, checkpointed into the file when full and
+    // cut back to that size after, the rest for the entries themselves.
+    const auto page = static_cast<std::uint64_t>(query_int(db_->db, "PRAGMA page_size"));
+    const auto wal = options_.max_bytes / 16;
+    exec(db_->db,
+         ("PRAGMA wal_autocheckpoint=" + std::to_string(std::max<std::uint64_t>(1, wal / page)))
+             .c_str());
+    exec(db_->db, ("PRAGMA journal_size_limit=" + std::to_string(wal)).c_str());
+    table_bound_ = options_.max_bytes - wal;
+}
 
 Journal::~Journal() {
     try {
@@ -231,7 +241,7 @@ void Journal::enforce_bound() {
         const auto used = static_cast<std::uint64_t>((query_int(db_->db, "PRAGMA page_count") -
                                                       query_int(db_->db, "PRAGMA freelist_count")) *
                                                      query_int(db_->db, "PRAGMA page_size"));
-        if (used <= options_.max_bytes || db_->entries == 0) return;
+        if (used <= table_bound_ || db_->entries == 0) return;
         drop_oldest(std::max<std::uint64_t>(1, db_->entries / 10));
     }
 }

@@ -650,3 +650,50 @@ TEST(LoadConfig, SparkplugIdsFollowTheTopicElementRules) {
 
 }  // namespace
 }  // namespace eip2mqtt::adapters::yaml
+
+namespace eip2mqtt::adapters::yaml {
+namespace {
+
+TEST(LoadConfig, StoreAndForwardWithItsDefaultsAndLimits) {
+    const auto defaults = good(minimal_exchange).mqtt.store_and_forward;
+    EXPECT_FALSE(defaults.enabled);
+    EXPECT_EQ(defaults.max_mb, 256u);
+    EXPECT_EQ(defaults.replay_rate, 2000u);
+    EXPECT_EQ(defaults.fsync_interval, std::chrono::milliseconds(1000));
+    const auto full = good(
+        "mqtt:\n  store_and_forward: { enabled: true, max_mb: 8, replay_rate: 50, "
+        "fsync_interval_ms: 250 }\n" +
+        minimal_exchange);
+    EXPECT_TRUE(full.mqtt.store_and_forward.enabled);
+    EXPECT_EQ(full.mqtt.store_and_forward.max_mb, 8u);
+    EXPECT_EQ(full.mqtt.store_and_forward.replay_rate, 50u);
+    EXPECT_EQ(full.mqtt.store_and_forward.fsync_interval, std::chrono::milliseconds(250));
+
+    const auto text =
+        dump(bad("mqtt:\n"
+                 "  store_and_forward:\n"
+                 "    enabled: sometimes\n"
+                 "    max_mb: 0\n"
+                 "    replay_rate: -1\n"
+                 "    fsync_interval_ms: 5\n"
+                 "    max_bm: 3\n" +
+                 minimal_exchange));
+    EXPECT_NE(text.find("test.yaml:3:"), std::string::npos) << text;  // not a boolean
+    EXPECT_NE(text.find("test.yaml:4:5: 'max_mb' 0 is outside 1.."), std::string::npos) << text;
+    EXPECT_NE(text.find("test.yaml:5:5: 'replay_rate' -1 is outside 1.."), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("test.yaml:6:5: 'fsync_interval_ms' 5 is outside 10.."), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("unknown key 'max_bm' in mqtt.store_and_forward (did you mean 'max_mb'?)"),
+              std::string::npos)
+        << text;
+    // It replays on the JSON tree: a Sparkplug-only gateway cannot have it.
+    EXPECT_NE(dump(bad("mqtt: { store_and_forward: { enabled: true } }\n"
+                       "sparkplug: { group_id: g, uns: false }\n" +
+                       minimal_exchange))
+                  .find("it needs sparkplug uns: true"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::adapters::yaml

@@ -79,6 +79,7 @@ private:
     bool in_transaction_ = false;
     std::uint64_t in_transaction_entries_ = 0;
     std::uint64_t dropped_ = 0;
+    std::uint64_t table_bound_ = 0;  ///< max_bytes less the WAL's share
 };
 
 }  // namespace eip2mqtt::adapters::history
