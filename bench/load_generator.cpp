@@ -5,7 +5,8 @@
 // at offset 0 carrying CLOCK_REALTIME ns at send time (end-to-end latency), tags 1..T-1 are dints
 // at 8 + 4 (i - 1). Datagram i goes to exchange i mod E, so with R = E x 1000 / period_ms every
 // exchange is sent exactly once per period. Per datagram, round(change x T) tags change: "ts" (if
-// stamping) and the next dints in rotation, set to the exchange's datagram count.
+// stamping) and the next dints in rotation, set to the exchange's datagram count. --request-id
+// starts every exchange's sequence there (a run continuing an earlier one's).
 //
 // Prints one JSON line: sent, errors, elapsed_s, rate.
 
@@ -44,7 +45,7 @@ int main(int argc, char** argv) {
     const bench::Options opt(
         argc, argv,
         {"host", "port", "exchanges", "first-exchange", "producer", "tags", "rate", "duration",
-         "count", "change", "no-stamp", "batch-us", "final-value"});
+         "count", "change", "no-stamp", "batch-us", "final-value", "request-id"});
     const std::string host = opt.str("host", "127.0.0.1");
     const auto port = static_cast<std::uint16_t>(opt.num("port", 18246));
     const auto exchanges = static_cast<std::size_t>(opt.num("exchanges", 1));
@@ -73,6 +74,8 @@ int main(int argc, char** argv) {
         b[1] = 0x01;
         std::memcpy(&b[4], &producer.s_addr, 4);  // dotted (network) order
         put_u32(&b[8], first + static_cast<std::uint32_t>(e));
+        // A run that follows another on the same exchanges continues its sequence.
+        state[e].request_id = static_cast<std::uint16_t>(opt.num("request-id", 0));
     }
 
     const int fd = socket(AF_INET, SOCK_DGRAM, 0);

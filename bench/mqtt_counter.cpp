@@ -7,8 +7,8 @@
 // every message with --stamp-all, carries CLOCK_REALTIME ns as its value: latency = receive time
 // - value. The payload is the gateway's JSON ({"value":V,...}) or a raw value; V is read with
 // strtoll after `"value":`, no JSON parser.
-// Batch mode (--batch): counts `_values` messages and the tag updates they carry (the members of
-// "values"); "ts" inside them is the send time.
+// Batch mode (--batch): counts `_values` (and store and forward's `_history`) messages and the
+// tag updates they carry (the members of "values"); "ts" inside them is the send time.
 // Sparkplug mode (--sparkplug): counts DDATA messages and the metrics they carry (the tag
 // updates), decoded with the protobuf classes of the gateway's own .proto; no latency.
 // --expect-last V: after the run, how many counted topics ended on value V (newest value wins);
@@ -118,7 +118,7 @@ void on_message(mosquitto*, void* user, const mosquitto_message* msg) {
         if (!ddata.ParseFromArray(payload, length)) return;
         s.updates += static_cast<std::uint64_t>(ddata.metrics_size());
     } else if (s.batch) {
-        if (std::strcmp(level, "_values") != 0) return;
+        if (std::strcmp(level, "_values") != 0 && std::strcmp(level, "_history") != 0) return;
         const char* values = static_cast<const char*>(
             memmem(payload, static_cast<std::size_t>(length), "\"values\":{", 10));
         if (values == nullptr) return;

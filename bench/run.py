@@ -151,7 +151,8 @@ class Bench:
             shutil.rmtree(self.tmp, ignore_errors=True)
 
     def write_config(self, name, consumed=(), produced=(), qos=1, batch=False, udp_port=0,
-                     point_list=False, sparkplug=False):
+                     point_list=False, sparkplug=False, broker_port=None, prometheus=0,
+                     store_and_forward=None, log_level="warn"):
         """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
         destination). Tag 0 is the lint "ts", tags 1.. dints (load_generator's layout). With
         point_list, the consumed tags are rows of one CSV ({name}.csv, a SCADA point list whose
@@ -160,9 +161,9 @@ class Bench:
         state = os.path.join(self.tmp, name + "-state")
         os.makedirs(state, exist_ok=True)
         lines = [
-            f"gateway: {{ id: {name}, state_dir: {state}, log_level: warn }}",
+            f"gateway: {{ id: {name}, state_dir: {state}, log_level: {log_level} }}",
             "mqtt:",
-            f"  url: tcp://{HOST}:{self.broker_port}",
+            f"  url: tcp://{HOST}:{broker_port or self.broker_port}",
             "  version: 5",
             "  base_topic: b",
             f"  qos: {qos}",
@@ -173,6 +174,12 @@ class Bench:
             "  buffer: { max_messages: 250000 }",  # above any scenario's topic count
             f"eip: {{ bind: {HOST}, port: {udp_port} }}",
         ]
+        if store_and_forward:
+            lines.insert(lines.index("eip: { bind: " + f"{HOST}, port: {udp_port} }}"),
+                         "  store_and_forward: { " +
+                         ", ".join(f"{k}: {v}" for k, v in store_and_forward.items()) + " }")
+        if prometheus:
+            lines.append(f"metrics: {{ listen: {HOST}:{prometheus} }}")
         if sparkplug:
             # Sparkplug alone (uns: false), at the scenario's QoS.
             lines.append(f"sparkplug: {{ group_id: bench, uns: false, qos: {qos} }}")
@@ -310,29 +317,7 @@ class Bench:
         steps = 2 if self.quick else 3
 
         def ceiling(trial):
-            ok_rate, bad, rate, trials = 0.0, None, 25000, 0
-            while rate <= 3200000 and trials < 10:
-                trials += 1
-                ok, achieved = trial(rate, trials)
-                if not ok:
-                    bad = rate
-                    break
-                ok_rate = max(ok_rate, achieved)
-                if achieved < 0.9 * rate:  # the generator itself cannot go faster
-                    self.notes.append(f"scenario 1: the load generator topped out at "
-                                      f"{achieved:.0f} datagrams/s")
-                    return ok_rate, trials
-                rate *= 2
-            good = rate / 2 if bad else rate
-            for _ in range(steps if bad else 0):
-                mid = (good + bad) / 2
-                trials += 1
-                ok, achieved = trial(mid, trials)
-                if ok:
-                    good, ok_rate = mid, max(ok_rate, achieved)
-                else:
-                    bad = mid
-            return ok_rate, trials
+            return self.zero_loss_ceiling(trial, steps, 25000, "scenario 1")
 
         def sink_trial(rate, n):
             port = free_port(socket.SOCK_DGRAM)
@@ -375,6 +360,33 @@ class Bench:
         self.row("datagrams/s accepted, zero loss, no changes (1 x 100 tags)",
                  f"{gw_ceiling:,.0f}", f"{udp_ceiling:,.0f} (recvmmsg sink)", f"{ratio:.2f}",
                  ">= 0.70", "yes" if ratio >= 0.70 else "no")
+
+    def zero_loss_ceiling(self, trial, steps, start, scenario):
+        """The highest offered rate `trial(rate, n)` passes with zero loss: doubling from
+        `start`, then `steps` bisections. Returns (rate achieved, trials)."""
+        ok_rate, bad, rate, trials = 0.0, None, start, 0
+        while rate <= 3200000 and trials < 10:
+            trials += 1
+            ok, achieved = trial(rate, trials)
+            if not ok:
+                bad = rate
+                break
+            ok_rate = max(ok_rate, achieved)
+            if achieved < 0.9 * rate:  # the generator itself cannot go faster
+                self.notes.append(f"{scenario}: the load generator topped out at "
+                                  f"{achieved:.0f} datagrams/s")
+                return ok_rate, trials
+            rate *= 2
+        good = rate / 2 if bad else rate
+        for _ in range(steps if bad else 0):
+            mid = (good + bad) / 2
+            trials += 1
+            ok, achieved = trial(mid, trials)
+            if ok:
+                good, ok_rate = mid, max(ok_rate, achieved)
+            else:
+                bad = mid
+        return ok_rate, trials
 
     def rounds_label(self, which="median"):
         return f", {which} of {self.rounds} paired rounds" if self.rounds > 1 else ""
@@ -755,6 +767,119 @@ class Bench:
                  "bounded (<= topics)",
                  "yes" if 0 <= max_buffered <= bound else "no")
 
+    def prometheus(self, port, timeout=2):
+        """The gateway's Prometheus page as {name: value} (unlabelled figures only)."""
+        import urllib.request
+        try:
+            with urllib.request.urlopen(f"http://{HOST}:{port}/metrics", timeout=timeout) as r:
+                text = r.read().decode()
+        except OSError:
+            return {}
+        out = {}
+        for line in text.splitlines():
+            if line and not line.startswith("#") and "{" not in line:
+                name, _, value = line.partition(" ")
+                out[name] = float(value)
+        return out
+
+    def settled_prometheus(self, port, key, reads=10):
+        """The page once `key` stopped moving between two refreshes (once a second; bounded)."""
+        previous = None
+        for _ in range(reads):
+            time.sleep(1.1)
+            page = self.prometheus(port)
+            if previous and key in page and page[key] == previous.get(key):
+                return page
+            previous = page
+        return previous or {}
+
+    def s10_store_and_forward(self):
+        print("[10] store and forward: journaling cost, replay rate, disk per tag update",
+              flush=True)
+        exchanges, change = 100, 0.1
+        duration = 1 if self.quick else 2
+        steps = 2 if self.quick else 3
+        per_datagram = round(change * TAGS)  # "ts" and the next dints (load_generator)
+
+        def ceiling(name, saf):
+            """Zero-loss datagram rate, 100 x 100 tags, 10 % changing, batch mode, the broker
+            out of reach (a port nobody listens on): journaled, or buffered in memory."""
+            udp_port, prom = free_port(socket.SOCK_DGRAM), free_port()
+            config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, 101)], qos=1,
+                                       batch=True, udp_port=udp_port, broker_port=free_port(),
+                                       prometheus=prom, store_and_forward=saf)
+            gw = self.start_gateway(name, config)
+            state = {"id": 0}
+
+            def trial(rate, n):
+                before = self.settled_prometheus(prom, "eip2mqtt_datagrams_accepted_total")
+                gen = self.generate(udp_port, exchanges, rate, duration=duration, change=change,
+                                    extra=["--request-id", str(state["id"])])
+                state["id"] = (state["id"] + -(-gen["sent"] // exchanges) + 1) % 65536
+                after = self.settled_prometheus(prom, "eip2mqtt_datagrams_accepted_total")
+                accepted = (after.get("eip2mqtt_datagrams_accepted_total", 0) -
+                            before.get("eip2mqtt_datagrams_accepted_total", 0))
+                ok = accepted == gen["sent"] and gen["errors"] == 0
+                print(f"    {name} {rate:9.0f}/s: sent {gen['sent']} accepted {accepted:.0f} "
+                      f"({gen['rate']:.0f}/s)", flush=True)
+                return ok, gen["rate"]
+
+            rate, _ = self.zero_loss_ceiling(trial, steps, 10000, "scenario 10")
+            stop(gw)
+            return rate
+
+        memory = ceiling("g10m", None)
+        journaled = ceiling("g10j", {"enabled": "true"})
+        ratio = journaled / memory if memory else 0
+        self.row(f"datagrams/s accepted, zero loss, journaling ({exchanges} x {TAGS} tags, "
+                 f"10 % changing, broker down)", f"{journaled:,.0f}",
+                 f"{memory:,.0f} (same, without store and forward)", f"{ratio:.2f}", ">= 0.90",
+                 "yes" if ratio >= 0.9 else "no")
+
+        # A known outage journaled, then replayed as fast as the broker takes it.
+        count = 20000 if self.quick else 200000
+        name, udp_port, prom, port = "g10r", free_port(socket.SOCK_DGRAM), free_port(), free_port()
+        config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, 101)], qos=1,
+                                   batch=True, udp_port=udp_port, broker_port=port,
+                                   prometheus=prom, log_level="info",
+                                   store_and_forward={"enabled": "true",
+                                                      "replay_rate": 1000000})
+        gw = self.start_gateway(name, config)
+        time.sleep(0.5)
+        gen = self.generate(udp_port, exchanges, min(20000, journaled or 20000), count=count,
+                            change=change)
+        page = self.settled_prometheus(prom, "eip2mqtt_history_entries")
+        entries = page.get("eip2mqtt_history_entries", 0)
+        disk = page.get("eip2mqtt_history_bytes", 0)
+        # Every tag of an exchange's first datagram, then `per_datagram` of each next one.
+        updates = entries * per_datagram + exchanges * (TAGS - per_datagram)
+        broker = subprocess.Popen(["mosquitto", "-p", str(port)], stdout=subprocess.DEVNULL,
+                                  stderr=subprocess.DEVNULL)
+        self.procs.append(broker)
+        log = os.path.join(self.tmp, name + ".log")
+        replay_s, replayed = None, 0
+        deadline = time.monotonic() + 120
+        while replay_s is None and time.monotonic() < deadline:
+            time.sleep(0.2)
+            with open(log) as f:
+                for line in f:
+                    # "store and forward: N journaled entries replayed in X s" (its own clock)
+                    if "journaled entries replayed in" in line:
+                        replayed = int(line.split("store and forward: ")[1].split()[0])
+                        replay_s = float(line.split(" replayed in ")[1].split()[0])
+        stop(gw)
+        stop(broker)
+        print(f"    sent {gen['sent']} datagrams; journaled {entries:.0f} entries, {disk:.0f} "
+              f"bytes; replayed {replayed:.0f} in {replay_s} s", flush=True)
+        rate = replayed / replay_s if replay_s else 0
+        self.row("history replay rate, messages/s (_history, QoS 1, Debian's default Mosquitto)",
+                 f"{rate:,.0f} ({rate * per_datagram:,.0f} tag updates/s)",
+                 f"{entries:,.0f} entries journaled", "-", ">= 2,000 (default replay_rate)",
+                 "yes" if rate >= 2000 and replayed == entries else "no")
+        self.row("journal disk bytes per journaled tag update (file + WAL)",
+                 f"{disk / updates if updates else 0:.1f}",
+                 f"{updates:,.0f} tag updates in {disk / 1e6:.1f} MB", "-", "-", "-")
+
     # --- output ---------------------------------------------------------------------------
     def machine(self):
         model = "unknown"
@@ -807,7 +932,7 @@ def mosquitto_version():
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
-    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-9)")
+    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-10)")
     args = parser.parse_args()
     only = {int(x) for x in args.only.split(",") if x}
     for path in (GATEWAY, tool("load_generator"), tool("mqtt_counter"), tool("yaml_parse"),
@@ -837,6 +962,8 @@ def main():
             bench.s8_overload()
         if bench.wanted(9):
             bench.s9_write_latency()
+        if bench.wanted(10):
+            bench.s10_store_and_forward()
     finally:
         bench.close()
     bench.report(command)

@@ -1,7 +1,8 @@
-// The journal on SQLite: one table of entries whose AUTOINCREMENT ids never come back (a replay
-// resumes after the last id it saw, across deletions), WAL mode with synchronous=NORMAL (a
-// commit is write()s, a checkpoint the fsync), and the file marked with our application_id so
-// that another database is never taken for a journal.
+// The journal on SQLite: one table of entries whose ids never come back within a process (a
+// replay resumes after the last id it saw, across deletions): the journal numbers them itself,
+// from the largest in the file, which costs SQLite's AUTOINCREMENT bookkeeping on every insert, WAL
+// mode with synchronous=NORMAL (a commit is write()s, a checkpoint the fsync), and the file marked
+// with our application_id so that another database is never taken for a journal.
 
 #include "eip2mqtt/adapters/history/journal.hpp"
 
@@ -72,6 +73,7 @@ struct Journal::Db {
     sqlite3* db = nullptr;
     std::unique_ptr<Statement> insert, select_after, remove, oldest_time, drop_oldest;
     std::uint64_t entries = 0;
+    std::uint64_t next_id = 1;
 
     explicit Db(const std::string& path) {
         if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
@@ -90,14 +92,14 @@ struct Journal::Db {
             exec(db, "PRAGMA synchronous=NORMAL");
             exec(db,
                  "CREATE TABLE IF NOT EXISTS entries("
-                 " id INTEGER PRIMARY KEY AUTOINCREMENT, exchange TEXT NOT NULL,"
+                 " id INTEGER PRIMARY KEY, exchange TEXT NOT NULL,"
                  " layout INTEGER NOT NULL, timestamp_ms INTEGER NOT NULL,"
                  " quality INTEGER NOT NULL, samples BLOB NOT NULL)");
             exec(db, ("PRAGMA application_id=" + std::to_string(application_id)).c_str());
             insert = std::make_unique<Statement>(
                 db,
-                "INSERT INTO entries(exchange, layout, timestamp_ms, quality, samples)"
-                " VALUES(?, ?, ?, ?, ?)");
+                "INSERT INTO entries(exchange, layout, timestamp_ms, quality, samples, id)"
+                " VALUES(?, ?, ?, ?, ?, ?)");
             select_after = std::make_unique<Statement>(
                 db,
                 "SELECT id, exchange, layout, timestamp_ms, quality, samples FROM entries"
@@ -110,6 +112,9 @@ struct Journal::Db {
             // Reads every page of the table: a damaged file shows here, not in the middle of a
             // replay. (Counting is also what stats() starts from.)
             entries = static_cast<std::uint64_t>(query_int(db, "SELECT count(*) FROM entries"));
+            next_id = static_cast<std::uint64_t>(
+                          query_int(db, "SELECT coalesce(max(id), 0) FROM entries")) +
+                      1;
         } catch (...) {
             insert.reset();
             select_after.reset();
@@ -184,6 +189,8 @@ void Journal::append(JournalEntry& entry) {
     sqlite3_bind_int(stmt, 4, entry.quality);
     sqlite3_bind_blob(stmt, 5, entry.samples.data(), static_cast<int>(entry.samples.size()),
                       SQLITE_STATIC);
+    entry.id = db_->next_id++;
+    sqlite3_bind_int64(stmt, 6, static_cast<sqlite3_int64>(entry.id));
     const int rc = sqlite3_step(stmt);
     sqlite3_reset(stmt);
     if (rc == SQLITE_FULL) {
@@ -202,7 +209,6 @@ void Journal::append(JournalEntry& entry) {
     } else if (rc != SQLITE_DONE) {
         throw std::runtime_error(std::string("journal: ") + sqlite3_errmsg(db_->db));
     }
-    entry.id = static_cast<std::uint64_t>(sqlite3_last_insert_rowid(db_->db));
     ++db_->entries;
     ++in_transaction_entries_;
 }

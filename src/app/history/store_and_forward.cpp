@@ -47,16 +47,19 @@ std::uint64_t layout_fingerprint(const core::plan::ExchangePlan& plan) {
 
 StoreAndForward::StoreAndForward(std::unique_ptr<adapters::history::Journal> journal,
                                  StoreAndForwardOptions options, LinkProbe link, HistorySink& sink)
-    : journal_(std::move(journal)),
+    : writer_(std::move(journal)),
       options_(options),
       link_(std::move(link)),
       sink_(sink),
       last_durable_(std::chrono::steady_clock::now()) {}
 
 StoreAndForward::~StoreAndForward() {
+    // The writer commits durably what it is handed before it stops.
+    writer_.append(pending_, true);
     try {
-        if (!acknowledged_.empty()) journal_->remove(acknowledged_);
-        journal_->commit(true);
+        if (!acknowledged_.empty()) {
+            writer_.with([&](auto& journal) { journal.remove(acknowledged_); });
+        }
     } catch (const std::exception& error) {
         spdlog::error("store and forward: the journal could not be closed cleanly: {}",
                       error.what());
@@ -65,8 +68,11 @@ StoreAndForward::~StoreAndForward() {
 
 void StoreAndForward::exchanges_changed(const ExchangeSet& running, std::span<const std::string>) {
     exchanges_.clear();
+    layouts_.clear();
     for (const auto* plan : running.consumed) {
-        exchanges_[plan->spec.name] = {plan, layout_fingerprint(*plan)};
+        const auto layout = layout_fingerprint(*plan);
+        exchanges_[plan->spec.name] = {plan, layout};
+        layouts_[plan] = layout;
     }
 }
 
@@ -77,25 +83,19 @@ void StoreAndForward::tag_samples(const SampleBatch& batch) {
         batch.exchange.spec.direction != core::plan::Direction::consume) {
         return;
     }
-    const auto known = exchanges_.find(batch.exchange.spec.name);
-    if (known == exchanges_.end()) return;
+    const auto known = layouts_.find(&batch.exchange);
+    if (known == layouts_.end()) return;
     journaled_samples_.clear();
     for (const auto& sample : batch.samples) {
         journaled_samples_.push_back({static_cast<std::uint32_t>(sample.tag), sample.value});
     }
-    entry_.exchange = batch.exchange.spec.name;
-    entry_.layout = known->second.layout;
-    entry_.timestamp_ms = batch.timestamp_ms;
-    entry_.quality = static_cast<std::uint8_t>(batch.quality);
-    entry_.samples.clear();
-    adapters::history::encode_samples(journaled_samples_, entry_.samples);
-    try {
-        journal_->append(entry_);
-        appended_ = true;
-        ++journaled_;
-    } catch (const std::exception& error) {
-        fail("a sample could not be journaled", error);
-    }
+    auto& entry = pending_.emplace_back();
+    entry.exchange = batch.exchange.spec.name;
+    entry.layout = known->second;
+    entry.timestamp_ms = batch.timestamp_ms;
+    entry.quality = static_cast<std::uint8_t>(batch.quality);
+    adapters::history::encode_samples(journaled_samples_, entry.samples);
+    ++journaled_;
 }
 
 void StoreAndForward::on_connected(core::MonoTime now) {
@@ -107,7 +107,7 @@ void StoreAndForward::on_connected(core::MonoTime now) {
     allowance_ = 0;
     replay_started_ = now;
     replay_started_with_ = replayed_;
-    const auto entries = stats().journal.entries;
+    const auto entries = stats().journal.entries + pending_.size();
     if (entries > outstanding_.size()) {
         spdlog::info("store and forward: replaying {} journaled entries on _history", entries);
     }
@@ -120,17 +120,14 @@ void StoreAndForward::on_acknowledged(std::uint64_t id) {
 }
 
 void StoreAndForward::on_tick(core::MonoTime now) {
+    const bool durable = now - last_durable_ >= options_.fsync_interval;
+    if (!pending_.empty() || durable) writer_.append(pending_, durable);
+    if (durable) last_durable_ = now;
     try {
         if (!acknowledged_.empty()) {
-            journal_->remove(acknowledged_);
+            writer_.with([&](auto& journal) { journal.remove(acknowledged_); });
             acknowledged_.clear();
         }
-        const bool durable = now - last_durable_ >= options_.fsync_interval;
-        if (appended_ || durable) {
-            journal_->commit(durable);
-            appended_ = false;
-        }
-        if (durable) last_durable_ = now;
         if (replaying_) replay_some(now);
     } catch (const std::exception& error) {
         fail("the journal failed", error);
@@ -160,8 +157,11 @@ void StoreAndForward::replay_some(core::MonoTime now) {
     if (backlog > kLiveBacklog) return;
     const auto room = std::min<double>(allowance_, kMaxOutstanding - outstanding_.size());
     if (room < 1) return;
-    const auto entries = journal_->oldest(static_cast<std::size_t>(room), cursor_);
-    if (entries.empty() && outstanding_.empty()) {
+    // Asked before the read: when nothing waits for the writer then, the read sees it all.
+    const bool all_written = pending_.empty() && writer_.idle();
+    const auto entries = writer_.with(
+        [&](auto& journal) { return journal.oldest(static_cast<std::size_t>(room), cursor_); });
+    if (entries.empty() && outstanding_.empty() && all_written) {
         replaying_ = false;
         if (replayed_ > replay_started_with_) {
             spdlog::info("store and forward: {} journaled entries replayed in {:.1f} s",
@@ -179,7 +179,7 @@ void StoreAndForward::replay_some(core::MonoTime now) {
             unusable.push_back(entry.id);
         }
     }
-    if (!unusable.empty()) journal_->remove(unusable);
+    if (!unusable.empty()) writer_.with([&](auto& journal) { journal.remove(unusable); });
 }
 
 std::string StoreAndForward::unusable(const JournalEntry& entry) {
@@ -236,14 +236,14 @@ void StoreAndForward::fail(const char* what, const std::exception& error) {
 HistoryStats StoreAndForward::stats() {
     HistoryStats stats;
     try {
-        stats.journal = journal_->stats();
+        stats.journal = writer_.with([](auto& journal) { return journal.stats(); });
     } catch (const std::exception& error) {
         fail("the journal's figures could not be read", error);
     }
     stats.journaled = journaled_;
     stats.replayed = replayed_;
     stats.discarded = discarded_;
-    stats.failures = failures_;
+    stats.failures = failures_ + writer_.failures();
     stats.replaying = replaying_;
     stats.taken_at_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
                             std::chrono::system_clock::now().time_since_epoch())

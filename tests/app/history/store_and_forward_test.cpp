@@ -78,11 +78,13 @@ protected:
         saf_->tag_samples({plan ? *plan : plant_, quality, timestamp, all_tags, samples});
     }
 
-    /// Connects, then ticks every 10 ms for `duration`.
+    /// Ticks every 10 ms for `duration`; the journal's writer is waited for after each tick,
+    /// so that what a tick hands over is in the journal at the next.
     void run_for(std::chrono::milliseconds duration) {
         for (auto t = 0ms; t < duration; t += 10ms) {
             now_ += 10ms;
             saf_->on_tick(now_);
+            saf_->flush();
         }
     }
     void reconnect() {

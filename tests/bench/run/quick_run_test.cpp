@@ -80,6 +80,9 @@ TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
         "overload: largest publish queue seen",                  // 8
         "write latency /set -> datagram p99 (ms), 1 exchange",   // 9
         "write latency /set -> datagram p99 (ms), 1 + 100",      // 9
+        "datagrams/s accepted, zero loss, journaling",           // 10
+        "history replay rate",                                   // 10
+        "journal disk bytes per journaled tag update",           // 10
     };
     ASSERT_EQ(rows.size(), figures.size()) << table << run.output;
     for (std::size_t i = 0; i < rows.size(); ++i) {

@@ -10,7 +10,8 @@
 /// before it publishes `_values`, at the same moment on the same loop, so every sample goes
 /// either live or to the journal, never both and never neither.
 ///
-/// Threading: the loop only (the journal is one SQLite connection).
+/// Threading: the loop only. The journal's appends and commits run on the JournalWriter's
+/// thread, handed over once a tick; reads and deletions on the loop, under its lock.
 
 #include <chrono>
 #include <cstdint>
@@ -20,9 +21,11 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "eip2mqtt/adapters/history/journal.hpp"
+#include "eip2mqtt/adapters/history/journal_writer.hpp"
 #include "eip2mqtt/adapters/history/sample_codec.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
 #include "eip2mqtt/app/northbound.hpp"
@@ -61,6 +64,9 @@ public:
                     StoreAndForwardOptions options, LinkProbe link, HistorySink& sink);
     ~StoreAndForward() override;
 
+    /// Blocks until everything journaled so far is committed (tests).
+    void flush() { writer_.flush(); }
+
     /// True while samples go to the journal instead of the live `_values`.
     bool journaling() const { return !link_.connected(); }
 
@@ -97,16 +103,17 @@ private:
     void rewind();
     void fail(const char* what, const std::exception& error);
 
-    std::unique_ptr<adapters::history::Journal> journal_;
+    adapters::history::JournalWriter writer_;
     StoreAndForwardOptions options_;
     LinkProbe link_;
     HistorySink& sink_;
     std::map<std::string, Known, std::less<>> exchanges_;
+    /// The same by plan, for the data path (a kept exchange keeps its plan object).
+    std::unordered_map<const core::plan::ExchangePlan*, std::uint64_t> layouts_;
 
-    adapters::history::JournalEntry entry_;  ///< filled for each append, buffers kept
+    std::vector<adapters::history::JournalEntry> pending_;  ///< for the writer, at the next tick
     std::vector<adapters::history::JournaledSample> journaled_samples_;
     std::vector<TagSample> samples_;  ///< of a replayed entry
-    bool appended_ = false;           ///< since the last commit
     core::MonoTime last_durable_{};
 
     bool replaying_ = false;
