@@ -55,6 +55,7 @@ Gateway::Gateway(core::config::Config config)
                     .count();
             });
         northbound_.add(*sparkplug_);
+        if (history_) history_->add_sink(*sparkplug_);
     }
     apply_exchanges(take_plans(), false, false);
 

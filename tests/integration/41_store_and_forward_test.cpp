@@ -22,6 +22,7 @@
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/http_get.hpp"
 #include "tests/support/schema_check.hpp"
+#include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test {
 namespace {
@@ -89,15 +90,17 @@ private:
 
 class StoreAndForwardTest : public GatewayTest {
 protected:
-    void start_gateway_with(const std::string& store_and_forward, bool prometheus = false) {
+    void start_gateway_with(const std::string& store_and_forward, bool prometheus = false,
+                            const std::string& sections = "") {
         GatewayOptions options;
+        options.sections = sections;
         options.broker.persistence = true;  // the recorder's session survives the outage
         // Everything published before the recorder is back is kept for it (Mosquitto's
         // default keeps 1,000 messages per offline session and drops the rest).
         options.broker.extra_config = "max_queued_messages 0\n";
         if (prometheus) {
             prometheus_port_ = free_tcp_port();
-            options.sections =
+            options.sections +=
                 "metrics:\n  listen: 127.0.0.1:" + std::to_string(prometheus_port_) + "\n";
         }
         start(ExchangeYaml::consume("line", "10.0.0.2", 7)
@@ -364,6 +367,48 @@ TEST_F(StoreAndForwardTest, AReconnectDuringTheReplayResumesWhereItStopped) {
     ASSERT_TRUE(wait_all_received(last, 90s)) << gateway_->output();
     expect_each_value_once(last, 2);
     EXPECT_TRUE(wait_metric("eip2mqtt_history_entries", [](double v) { return v == 0; }));
+}
+
+TEST_F(StoreAndForwardTest, WithSparkplugTheHistoryIsAlsoHistoricalDdata) {
+    // 20 a second: the edge node, on a connection of its own, is born again long before the
+    // replay of one second of outage ends.
+    start_gateway_with("    enabled: true\n    replay_rate: 20\n", false,
+                       "sparkplug:\n  group_id: plant\n");
+    const std::string ddata = "spBv1.0/plant/DDATA/test-gw/line";
+    ASSERT_TRUE(recorder_->wait_for_message(ddata, nullptr, 10s));
+    stop_broker();
+    std::this_thread::sleep_for(1s);  // the scenario: a short outage
+    // The counter stops before the broker returns: what comes as DDATA after it is history.
+    const auto last = counter_->pause();
+    const auto from = recorder_->count();
+    broker_->start();
+    wait_online(from);
+    ASSERT_TRUE(wait_all_received(last)) << gateway_->output();
+    const auto history = values_on("_history");
+    ASSERT_FALSE(history.empty());
+    ASSERT_TRUE(recorder_->wait_for(
+        [&](const std::vector<Received>& all) {
+            return std::any_of(all.begin() + static_cast<std::ptrdiff_t>(from), all.end(),
+                               [&](const Received& m) { return m.topic == ddata; });
+        },
+        10s));
+
+    // Read by Tahu: every metric of those DDATA is historical, and they are the end of the
+    // JSON tree's history, in order (the node replays once it is born again, from then on).
+    std::vector<std::uint64_t> historical;
+    const auto messages = recorder_->messages();
+    for (std::size_t i = from; i < messages.size(); ++i) {
+        if (messages[i].topic != ddata || messages[i].duplicate) continue;
+        const auto payload = tahu_decode(messages[i].payload);
+        for (const auto& metric : payload["metrics"]) {
+            EXPECT_EQ(metric.value("isHistorical", false), true) << metric.dump();
+            historical.push_back(metric["value"].get<std::uint64_t>());
+        }
+    }
+    ASSERT_FALSE(historical.empty());
+    ASSERT_LE(historical.size(), history.size());
+    EXPECT_TRUE(std::equal(historical.begin(), historical.end(),
+                           history.end() - static_cast<std::ptrdiff_t>(historical.size())));
 }
 
 TEST_F(StoreAndForwardTest, AtTheBoundTheOldestEntriesAreDroppedAndCounted) {

@@ -209,9 +209,10 @@ bool StoreAndForward::replay_entry(const JournalEntry& entry) {
         return false;
     }
     const auto& plan = *exchanges_.find(entry.exchange)->second.plan;
-    sink_.replay({plan, static_cast<core::quality::Quality>(entry.quality), entry.timestamp_ms,
-                  false, samples_},
-                 entry.id);
+    const SampleBatch batch{plan, static_cast<core::quality::Quality>(entry.quality),
+                            entry.timestamp_ms, false, samples_};
+    sink_.replay(batch, entry.id);
+    for (auto* sink : extra_sinks_) sink->replay(batch, 0);
     return true;
 }
 

@@ -261,6 +261,18 @@ void SparkplugNode::tag_samples(const SampleBatch& batch) {
     if (!born_ || !device.born || batch.all_tags || batch.quality != core::quality::Quality::good) {
         return;
     }
+    publish_data(device, batch, false);
+}
+
+void SparkplugNode::replay(const SampleBatch& batch, std::uint64_t) {
+    const auto found = device_of_plan_.find(&batch.exchange);
+    if (found == device_of_plan_.end()) return;
+    const auto& device = devices_[found->second];
+    if (!born_ || !device.born || batch.quality != core::quality::Quality::good) return;
+    publish_data(device, batch, true);
+}
+
+void SparkplugNode::publish_data(const Device& device, const SampleBatch& batch, bool historical) {
     payload_.metrics.resize(batch.samples.size());
     for (std::size_t i = 0; i < batch.samples.size(); ++i) {
         const auto& sample = batch.samples[i];
@@ -271,7 +283,7 @@ void SparkplugNode::tag_samples(const SampleBatch& batch) {
         metric.datatype =
             adapters::sparkplug::datatype_of(batch.exchange.tags[sample.tag].spec.type);
         metric.value = sample.value;
-        metric.historical = false;
+        metric.historical = historical;
         metric.properties.clear();
     }
     publish(device.data_topic, payload_);

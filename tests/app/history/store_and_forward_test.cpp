@@ -158,6 +158,24 @@ TEST_F(StoreAndForwardTest, ReplaysOldestFirstAtTheRateWithTheirTimeAndQuality) 
     EXPECT_EQ(sink_.replayed.back().samples[0].first, 1u);  // the counter's tag index
 }
 
+TEST_F(StoreAndForwardTest, AnotherSinkGetsTheSameHistoryWithoutAToken) {
+    RecordingSink sparkplug;
+    saf_->add_sink(sparkplug);
+    for (int i = 1; i <= 3; ++i) counter(i, 1000 + i);
+    run_for(10ms);
+    reconnect();
+    run_for(50ms);
+    ASSERT_EQ(sparkplug.replayed.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(sparkplug.replayed[i].samples, sink_.replayed[i].samples);
+        EXPECT_EQ(sparkplug.replayed[i].timestamp_ms, sink_.replayed[i].timestamp_ms);
+        EXPECT_EQ(sparkplug.replayed[i].token, 0u);  // best effort: nothing waits for it
+    }
+    acknowledge_all();  // the first sink's acknowledgements alone empty the journal
+    run_for(20ms);
+    EXPECT_EQ(entries(), 0u);
+}
+
 TEST_F(StoreAndForwardTest, AnEntryLeavesTheJournalOnlyOnceAcknowledged) {
     for (int i = 1; i <= 5; ++i) counter(i);
     run_for(10ms);

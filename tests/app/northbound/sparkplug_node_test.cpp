@@ -203,6 +203,37 @@ TEST_F(SparkplugNodeTest, DdataCarriesTheChangedTagsByAliasWithTheirTimestamp) {
     EXPECT_EQ(publisher_.published.size(), 1u);
 }
 
+TEST_F(SparkplugNodeTest, ReplayedHistoryIsDdataWithEveryMetricHistoricalForABornDeviceOnly) {
+    const std::vector<TagSample> journaled{{1, Value{3.5f}}, {2, Value{std::int64_t{4}}}};
+    // Not born yet: the host could not resolve the aliases.
+    node_.replay({consumed_, Quality::good, now_ms - 60000, false, journaled}, 0);
+    EXPECT_TRUE(publisher_.published.empty());
+
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();
+    const auto birth = decoded(publisher_.published.back());
+    publisher_.published.clear();
+    node_.replay({consumed_, Quality::good, now_ms - 60000, false, journaled}, 0);
+    ASSERT_EQ(topics(), std::vector<std::string>{"spBv1.0/plant1/DDATA/gw1/in"});
+    const auto data = decoded(publisher_.published[0]);
+    ASSERT_EQ(data.metrics_size(), 2);
+    for (int i = 0; i < 2; ++i) {
+        EXPECT_TRUE(data.metrics(i).is_historical());
+        EXPECT_FALSE(data.metrics(i).has_name());
+        EXPECT_EQ(data.metrics(i).alias(), birth.metrics(i + 1).alias());
+        EXPECT_EQ(data.metrics(i).timestamp(), static_cast<std::uint64_t>(now_ms - 60000));
+    }
+    EXPECT_EQ(data.metrics(0).float_value(), 3.5f);
+    // A stale sample is no data in this convention (a DDEATH said it when it happened).
+    node_.replay({consumed_, Quality::stale, now_ms - 50000, false, journaled}, 0);
+    EXPECT_EQ(publisher_.published.size(), 1u);
+    // Live DDATA stays live.
+    node_.tag_samples({consumed_, Quality::good, now_ms + 100, false, journaled});
+    ASSERT_EQ(publisher_.published.size(), 2u);
+    EXPECT_FALSE(decoded(publisher_.published[1]).metrics(0).is_historical());
+}
+
 TEST_F(SparkplugNodeTest, AReloadBringsEveryBirthAgainAndAKeptExchangeKeepsItsValues) {
     node_.next_will();
     node_.on_connected();

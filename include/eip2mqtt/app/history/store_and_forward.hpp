@@ -64,6 +64,10 @@ public:
                     StoreAndForwardOptions options, LinkProbe link, HistorySink& sink);
     ~StoreAndForward() override;
 
+    /// Another sink the replay goes to as well (the Sparkplug node), best effort: an entry
+    /// leaves the journal on the acknowledgement of the first sink's publication only.
+    void add_sink(HistorySink& sink) { extra_sinks_.push_back(&sink); }
+
     /// Blocks until everything journaled so far is committed (tests).
     void flush() { writer_.flush(); }
 
@@ -107,6 +111,7 @@ private:
     StoreAndForwardOptions options_;
     LinkProbe link_;
     HistorySink& sink_;
+    std::vector<HistorySink*> extra_sinks_;
     std::map<std::string, Known, std::less<>> exchanges_;
     /// The same by plan, for the data path (a kept exchange keeps its plan object).
     std::unordered_map<const core::plan::ExchangePlan*, std::uint64_t> layouts_;

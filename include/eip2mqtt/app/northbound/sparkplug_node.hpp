@@ -25,6 +25,7 @@
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/adapters/sparkplug/payload.hpp"
+#include "eip2mqtt/app/history/history_sink.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -41,7 +42,7 @@ struct SparkplugOptions {
 /// The options of `config`'s `sparkplug:` section.
 SparkplugOptions sparkplug_options(const core::config::Config& config);
 
-class SparkplugNode final : public Northbound {
+class SparkplugNode final : public Northbound, public history::HistorySink {
 public:
     /// Milliseconds since the Unix epoch, for payload timestamps.
     using WallClock = std::function<std::int64_t()>;
@@ -70,6 +71,10 @@ public:
     /// in the log and the counters (the WriteDispatcher's).
     void write_result(const WriteReply&, std::optional<std::string_view>) override {}
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
+    /// Store and forward's history as DDATA with `is_historical` on every metric, by alias: for
+    /// a device born now, and good samples only (bad data is a DDEATH in this convention). Not
+    /// acknowledged back: the journal is kept by the JSON tree's `_history`.
+    void replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
     bool born() const { return born_; }
     std::uint8_t bd_seq() const { return bd_seq_; }
@@ -104,6 +109,8 @@ private:
     void device_birth(Device& device);
     void device_death(Device& device);
     void publish(const std::string& topic, adapters::sparkplug::Payload& payload);
+    /// DDATA of `batch`'s samples by alias, live or historical.
+    void publish_data(const Device& device, const SampleBatch& batch, bool historical);
     std::string node_topic(std::string_view type) const;
     std::size_t node_metric(const std::string& name, adapters::sparkplug::DataType type);
     void set_node_metric(std::size_t index, adapters::sparkplug::MetricValue value);
