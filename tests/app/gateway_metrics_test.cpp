@@ -107,3 +107,38 @@ TEST(MetricsSnapshot, CarriesTheGatewayFiguresAndEachExchange) {
 
 }  // namespace
 }  // namespace eip2mqtt::app
+
+namespace eip2mqtt::app {
+namespace {
+
+TEST(HistoryMetrics, TheJournalsFiguresWithTheOldestEntrysAge) {
+    const Counters counters;
+    history::HistoryStats stats;
+    stats.journal = {1200, 65536, 3, 1700000000000};
+    stats.journaled = 1500;
+    stats.replayed = 297;
+    stats.discarded = 1;
+    stats.replaying = true;
+    stats.taken_at_ms = 1700000012500;
+    const auto h = history_metrics(stats);
+    EXPECT_EQ(h.entries, 1200u);
+    EXPECT_EQ(h.bytes, 65536u);
+    EXPECT_EQ(h.dropped, 3u);
+    EXPECT_DOUBLE_EQ(h.oldest_age_seconds, 12.5);
+    EXPECT_TRUE(h.replaying);
+    stats.journal.oldest_timestamp_ms.reset();  // empty: no age
+    EXPECT_DOUBLE_EQ(history_metrics(stats).oldest_age_seconds, 0);
+
+    // On the metrics topic, and as its schema says.
+    MetricsSources sources = counters.sources();
+    sources.history = &stats;
+    const auto payload = northbound::metrics_json(sources, 42s);
+    const auto m = json::parse(payload);
+    EXPECT_EQ(m["history_dropped"], 3);
+    EXPECT_EQ(m["history"]["entries"], 1200);
+    EXPECT_EQ(m["history"]["replayed"], 297);
+    EXPECT_EQ(test::schema_problem(test::schema_file("metrics.json"), payload), "") << payload;
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app

@@ -201,6 +201,22 @@ protected:
         return last;
     }
 
+    /// Starts the broker again, waits until the gateway is online and live `_values` carry a
+    /// value sent after that, then pauses the counter; returns its last value.
+    std::uint64_t end_outage_once_live_again() {
+        const auto from = recorder_->count();
+        broker_->start();
+        wait_online(from);
+        const auto at_online = counter_->last();
+        EXPECT_TRUE(recorder_->wait_for(
+            [&](const std::vector<Received>& all) {
+                const auto live = values_on("_values", all);
+                return !live.empty() && live.back() > at_online;
+            },
+            10s));
+        return counter_->pause();
+    }
+
     void stop_broker() {
         const auto losses = count_output(" lost: ");
         broker_->stop();
@@ -257,16 +273,7 @@ TEST_F(StoreAndForwardTest, ABrokerOutageOfTenSecondsLeavesNoGapAndNoDuplicate) 
     stop_broker();
     std::this_thread::sleep_for(10s);  // the scenario: the broker stays down, traffic goes on
     const auto from = recorder_->count();
-    broker_->start();
-    wait_online(from);
-    const auto at_online = counter_->last();
-    ASSERT_TRUE(recorder_->wait_for(
-        [&](const std::vector<Received>& all) {
-            const auto live = values_on("_values", all);
-            return !live.empty() && live.back() > at_online;
-        },
-        10s));
-    const auto last = counter_->pause();
+    const auto last = end_outage_once_live_again();
     EXPECT_TRUE(wait_all_received(last)) << gateway_->output();
     expect_each_value_once(last);
 
@@ -331,17 +338,7 @@ TEST_F(StoreAndForwardTest, AGatewayKilledDuringTheOutageReplaysWhatItJournaled)
     counter_->resume();
     std::this_thread::sleep_for(2s);  // the scenario: the outage goes on after the restart
 
-    const auto from = recorder_->count();
-    broker_->start();
-    wait_online(from);
-    const auto at_online = counter_->last();
-    ASSERT_TRUE(recorder_->wait_for(
-        [&](const std::vector<Received>& all) {
-            const auto live = values_on("_values", all);
-            return !live.empty() && live.back() > at_online;
-        },
-        10s));
-    const auto last = counter_->pause();
+    const auto last = end_outage_once_live_again();
     EXPECT_TRUE(wait_all_received(last)) << gateway_->output();
     expect_each_value_once(last);
 }
