@@ -14,6 +14,8 @@
 // --expect-last V: after the run, how many counted topics ended on value V (newest value wins);
 // with --expect-topics N, stops as soon as N topics are on V.
 //
+// --skip-ms N: latency samples stamped within N ms of the first stamp are left out (counted as
+// latency_skipped): the load's first moments, when every process comes out of idle.
 // Stops after --idle-ms without a counted message (once one arrived), at --expect messages, or
 // after --max-s. Prints one JSON line.
 
@@ -51,6 +53,9 @@ struct State {
     std::uint64_t updates = 0;  ///< tag updates (batch mode: members of "values")
     std::uint64_t retained_skipped = 0;
     std::vector<std::int64_t> latency_ns;
+    std::int64_t skip_ns = 0;   ///< --skip-ms: latency ignored this long after the first stamp
+    long long first_stamp = 0;  ///< the first plausible stamp seen
+    std::uint64_t latency_skipped = 0;
     std::unordered_map<std::string, long long> last_value;
 };
 
@@ -76,7 +81,13 @@ bool read_value(const char* payload, int length, const char* key, long long& out
 
 void record_latency(State& s, long long stamp, std::int64_t now_wall) {
     // A plausible CLOCK_REALTIME stamp (after 2001); the overload run's final value is not one.
-    if (stamp > 1000000000000000000LL) s.latency_ns.push_back(now_wall - stamp);
+    if (stamp <= 1000000000000000000LL) return;
+    if (s.first_stamp == 0) s.first_stamp = stamp;
+    if (stamp - s.first_stamp < s.skip_ns) {
+        ++s.latency_skipped;  // the load's start-up, where sender and receiver come out of idle
+        return;
+    }
+    s.latency_ns.push_back(now_wall - stamp);
 }
 
 void on_connect(mosquitto* mosq, void* user, int rc) {
@@ -153,7 +164,7 @@ void on_message(mosquitto*, void* user, const mosquitto_message* msg) {
 int main(int argc, char** argv) {
     const bench::Options opt(
         argc, argv,
-        {"host", "port", "filter", "qos", "batch", "sparkplug", "stamp-tag", "stamp-all",
+        {"host", "port", "filter", "qos", "batch", "sparkplug", "stamp-tag", "stamp-all", "skip-ms",
          "expect-last", "expect-topics", "expect", "idle-ms", "max-s", "ready-file", "id"});
     State s;
     {
@@ -175,6 +186,7 @@ int main(int argc, char** argv) {
     s.expected_last = static_cast<long long>(opt.num("expect-last", 0));
     const auto expect_topics = static_cast<std::uint64_t>(opt.num("expect-topics", 0));
     s.ready_file = opt.str("ready-file", "");
+    s.skip_ns = static_cast<std::int64_t>(opt.num("skip-ms", 0) * 1e6);
     s.latency_ns.reserve(8 * 1024 * 1024);
     const auto idle_ns = static_cast<std::int64_t>(opt.num("idle-ms", 2000) * 1e6);
     const auto max_ns = static_cast<std::int64_t>(opt.num("max-s", 60) * 1e9);
@@ -210,12 +222,14 @@ int main(int argc, char** argv) {
     std::printf(
         "{\"subscribed\":%s,\"messages\":%llu,\"updates\":%llu,\"first_to_last_s\":%.4f,"
         "\"rate\":%.1f,\"update_rate\":%.1f,\"latency_n\":%zu,\"p50_us\":%.1f,\"p99_us\":%.1f,"
-        "\"max_us\":%.1f,\"last_ok\":%lld,\"last_bad\":%lld,\"retained_skipped\":%llu}\n",
+        "\"max_us\":%.1f,\"last_ok\":%lld,\"last_bad\":%lld,\"retained_skipped\":%llu,"
+        "\"latency_skipped\":%llu}\n",
         s.subscribed ? "true" : "false", static_cast<unsigned long long>(messages),
         static_cast<unsigned long long>(s.updates), span,
         span > 0 ? static_cast<double>(messages) / span : 0.0,
         span > 0 ? static_cast<double>(s.updates) / span : 0.0, lat.size(), p50, p99, max, last_ok,
-        last_bad, static_cast<unsigned long long>(s.retained_skipped));
+        last_bad, static_cast<unsigned long long>(s.retained_skipped),
+        static_cast<unsigned long long>(s.latency_skipped));
     mosquitto_destroy(mosq);
     mosquitto_lib_cleanup();
     return 0;

@@ -12,10 +12,6 @@ namespace {
 using std::chrono::duration_cast;
 using std::chrono::milliseconds;
 
-// docs/mqtt-api.md "Exchange status": the status is reported on every state change, then at most
-// once a second while its counters move.
-constexpr auto status_interval = std::chrono::seconds(1);
-
 std::int64_t to_ms(core::WallTime wall) {
     return duration_cast<milliseconds>(wall.time_since_epoch()).count();
 }
@@ -108,9 +104,11 @@ void ExchangeConsumer::on_tick(core::MonoTime now, core::WallTime wall, bool ref
         return;
     }
     if (refresh_scan) report_tags(now, false);
+    // docs/mqtt-api.md "Exchange status": the status is reported on every state change, then
+    // once a second (at this exchange's phase) while its counters move.
     if (status_dirty_ && exchange_.counters().received != last_status_received_ &&
-        (!last_status_at_ || now - *last_status_at_ >= status_interval)) {
-        report_status(now);
+        status_grid_.due(now)) {
+        report_status(now, true);
     }
 }
 
@@ -139,9 +137,13 @@ void ExchangeConsumer::report_tags(core::MonoTime now, bool all) {
     northbound_.tag_samples({plan_, *quality, timestamp_ms_, all, samples_});
 }
 
-void ExchangeConsumer::report_status(core::MonoTime now) {
+void ExchangeConsumer::report_status(core::MonoTime now, bool periodic) {
     northbound_.consumed_status({plan_, exchange_, last_seen_ms_, clock_});
-    last_status_at_ = now;
+    if (periodic) {
+        status_grid_.reported_on_grid(now);
+    } else {
+        status_grid_.reported_off_grid(now);
+    }
     last_status_received_ = exchange_.counters().received;
     status_dirty_ = false;
 }

@@ -46,6 +46,7 @@ adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& co
     options.clean_start = mqtt.session_expiry.count() == 0;
     options.availability_topic = availability_topic;
     options.buffer_max_messages = mqtt.buffer_max_messages;
+    options.batch_first = mqtt.batch_first;
     return options;
 }
 

@@ -137,6 +137,9 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
     // (the JSON tree's `set` subscriptions).
     northbound_.exchanges_changed(running_exchanges(), diff.cleared);
     datagram_router_.set_consumers(consumers_);
+    for (std::size_t i = 0; i < started_consumers.size(); ++i) {
+        started_consumers[i]->set_status_phase(i, started_consumers.size());
+    }
     if (!running) return;
 
     const auto now = std::chrono::steady_clock::now();

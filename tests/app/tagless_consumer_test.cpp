@@ -50,8 +50,11 @@ TEST(TaglessConsumer, PublishesOnlyItsStatusWithCountersThatMove) {
         wall += 20ms;
         consumer.on_datagram(datagram, now, wall);
     }
-    // The first datagram made it ok; a second later the counters that moved since.
-    consumer.on_tick(now + 1s, wall + 1s, false);
+    // The first datagram made it ok; at its phase of the second (here: whole seconds), and a
+    // second after that at least, the counters that moved since.
+    consumer.on_tick(now + 900ms, wall + 900ms, false);
+    ASSERT_EQ(published.size(), 1u);
+    consumer.on_tick(now + 2s, wall + 2s, false);
     ASSERT_EQ(published.size(), 2u);
     for (const auto& m : published) EXPECT_EQ(m.topic, "acme/10.0.0.9/3/_status");
     EXPECT_TRUE(has(published[0].payload, R"("state":"ok")")) << published[0].payload;
@@ -63,7 +66,7 @@ TEST(TaglessConsumer, PublishesOnlyItsStatusWithCountersThatMove) {
     std::vector<std::byte> longer(10);
     datagram.data = longer;
     datagram.header.request_id = 4;
-    consumer.on_datagram(datagram, now + 1s + 20ms, wall + 1s + 20ms);
+    consumer.on_datagram(datagram, now + 2s + 20ms, wall + 2s + 20ms);
     ASSERT_EQ(published.size(), 3u);
     EXPECT_EQ(published[2].topic, "acme/10.0.0.9/3/_status");
     EXPECT_TRUE(has(published[2].payload, R"("state":"length_mismatch")")) << published[2].payload;

@@ -14,6 +14,7 @@
 #include "eip2mqtt/core/exchange/arrival_stats.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
 #include "eip2mqtt/core/exchange/producer_clock.hpp"
+#include "eip2mqtt/core/exchange/status_grid.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/quality/report_filter.hpp"
 #include "eip2mqtt/core/time.hpp"
@@ -36,6 +37,12 @@ public:
     /// Reports every tag and the status again (after a reconnect: brokers lose retained state).
     void republish(core::MonoTime now);
 
+    /// This consumer is `index` of `count` started together: its periodic `_status` goes at its
+    /// own phase of the second (StatusGrid).
+    void set_status_phase(std::size_t index, std::size_t count) {
+        status_grid_.set_phase(index, count);
+    }
+
     const core::plan::ExchangePlan& plan() const { return plan_; }
     const core::exchange::ConsumedExchange& exchange() const { return exchange_; }
     const core::exchange::ProducerClock& clock() const { return clock_; }
@@ -48,7 +55,8 @@ public:
 
 private:
     void report_tags(core::MonoTime now, bool all);
-    void report_status(core::MonoTime now);
+    /// `periodic`: the once-a-second report (on the StatusGrid), not a state change's.
+    void report_status(core::MonoTime now, bool periodic = false);
     /// The timestamp of the accepted datagram's tags (ProducerClock), logging a clock change.
     std::int64_t sample_time(core::WallTime wall);
     void log_clock(bool first);
@@ -62,7 +70,7 @@ private:
     bool clock_seen_ = false;                   ///< a datagram was accepted since start
     std::int64_t timestamp_ms_ = 0;             ///< of the values the tags report
     std::optional<std::int64_t> last_seen_ms_;  ///< wall time of the last accepted datagram
-    std::optional<core::MonoTime> last_status_at_;
+    core::exchange::StatusGrid status_grid_;
     std::uint64_t last_status_received_ = 0;
     bool status_dirty_ = true;
     /// The samples of the batch being reported: capacity for every tag, so the data path does

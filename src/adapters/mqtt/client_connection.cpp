@@ -21,8 +21,9 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
       reconnect_timer_(loop_),
       loss_hold_timer_(loop_),
       backoff_(options_.min_backoff, options_.max_backoff),
-      outbox_(options_.buffer_max_messages, options_.batch_lane_max_messages),
-      in_flight_limit_(std::max<std::size_t>(1, options_.max_in_flight)) {
+      outbox_(options_.buffer_max_messages, options_.batch_lane_max_messages, options_.batch_first),
+      in_flight_limit_(std::max<std::size_t>(1, options_.max_in_flight)),
+      acknowledged_limit_(in_flight_limit_.load()) {
     const bool v5 = options_.version == 5;
     paho::create_options create(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
     // Paho C refuses commands beyond maxBufferedMessages (default 100) even while connected:
@@ -196,8 +197,8 @@ void Client::Impl::update_in_flight_limit() {
     // MQTT 5 §3.2.2.3.3: the broker's Receive Maximum, 65535 when absent (Mosquitto sends 20).
     // Paho C sends no more QoS >= 1 publications than that and queues the rest until its next
     // one-second cycle rather than on PUBACK, which capped us at 20 messages/s: the sender must
-    // not hand it more. (The token the listener sees lacks the CONNACK properties in Paho C++
-    // 1.2; the one connect() returned has them.)
+    // not hand it more of them (QoS 0 are not counted). (The token the listener sees lacks the
+    // CONNACK properties in Paho C++ 1.2; the one connect() returned has them.)
     std::size_t receive_maximum = 65535;
     try {
         // The listener posted on_connect just before Paho marks the token complete and
@@ -219,7 +220,8 @@ void Client::Impl::update_in_flight_limit() {
     if ((!options_.availability_topic.empty() || options_.will) && receive_maximum > 1) {
         --receive_maximum;  // room for `online` and `offline`, or the farewell
     }
-    in_flight_limit_ = std::max<std::size_t>(1, std::min(options_.max_in_flight, receive_maximum));
+    acknowledged_limit_ =
+        std::max<std::size_t>(1, std::min(options_.max_in_flight, receive_maximum));
 }
 
 void Client::Impl::on_connection_lost(std::string cause) {

@@ -25,6 +25,21 @@ void Client::Impl::enqueue(Message& message) {
     }
 }
 
+paho::message_ptr Client::Impl::to_paho(const Message& message) const {
+    auto out = paho::make_message(message.topic, message.payload, message.qos, message.retain);
+    if (options_.version == 5 && (!message.correlation_data.empty() || message.historical)) {
+        paho::properties properties;
+        if (!message.correlation_data.empty()) {
+            properties.add({paho::property::CORRELATION_DATA, message.correlation_data});
+        }
+        if (message.historical) {
+            properties.add({paho::property::USER_PROPERTY, "historical", "true"});
+        }
+        out->set_properties(std::move(properties));
+    }
+    return out;
+}
+
 void Client::Impl::recycle(Message&& message) {
     outbox_.recycle(std::move(message), in_flight_limit_.load(std::memory_order_relaxed));
 }
@@ -38,14 +53,32 @@ void Client::Impl::set_sending(bool enabled) {
     wake_sender_.notify_all();
 }
 
+namespace {
+
+/// Whether a window of `limit` with `pending` in it has room; once it was full, room means that
+/// an eighth of it completed (see ready_to_send).
+bool has_room(std::size_t pending, std::size_t limit, bool was_full) {
+    return pending <= (was_full ? limit - std::max<std::size_t>(1, limit / 8) : limit - 1);
+}
+
+}  // namespace
+
 bool Client::Impl::ready_to_send() const {
     if (quit_ || !sending_ || !link_up_.load(std::memory_order_relaxed) || !has_queued() ||
         suspect_waits()) {
         return false;
     }
-    const std::size_t limit = in_flight_limit_.load(std::memory_order_relaxed);
-    return in_flight_.pending() <=
-           (window_full_ ? limit - std::max<std::size_t>(1, limit / 8) : limit - 1);
+    return has_room(in_flight_.pending(), in_flight_limit_.load(std::memory_order_relaxed),
+                    window_full_) &&
+           (!next_awaits_ack() ||
+            has_room(in_flight_.pending_acknowledged(),
+                     acknowledged_limit_.load(std::memory_order_relaxed), acknowledged_full_));
+}
+
+bool Client::Impl::next_awaits_ack() const {
+    if (!retry_.empty()) return retry_.begin()->second.message.qos > 0;
+    const Message* next = outbox_.peek_next();
+    return next != nullptr && next->qos > 0;
 }
 
 void Client::Impl::sender_main() {
@@ -67,12 +100,14 @@ void Client::Impl::sender_main() {
         // Take a burst under the lock (Paho copies topic and payload in make_message, so the
         // window keeps our Message only for a re-send), then publish it without the lock.
         const std::size_t limit = in_flight_limit_;
+        const std::size_t acknowledged_limit = acknowledged_limit_;
         const std::size_t max_packet_size = max_packet_size_;
         Message message;
         std::string refused_topic;
         std::string refused_problem;
         while (in_flight_.pending() < limit) {
             if (suspect_waits()) break;
+            if (in_flight_.pending_acknowledged() >= acknowledged_limit && next_awaits_ack()) break;
             bool probe = false;
             if (!retry_.empty()) {
                 auto retry = std::move(retry_.extract(retry_.begin()).mapped());
@@ -89,20 +124,9 @@ void Client::Impl::sender_main() {
                 recycle(std::move(message));
                 continue;
             }
-            auto out =
-                paho::make_message(message.topic, message.payload, message.qos, message.retain);
-            if (options_.version == 5 &&
-                (!message.correlation_data.empty() || message.historical)) {
-                paho::properties properties;
-                if (!message.correlation_data.empty()) {
-                    properties.add({paho::property::CORRELATION_DATA, message.correlation_data});
-                }
-                if (message.historical) {
-                    properties.add({paho::property::USER_PROPERTY, "historical", "true"});
-                }
-                out->set_properties(std::move(properties));
-            }
-            const auto id = in_flight_.add(std::move(message));
+            auto out = to_paho(message);
+            const bool acknowledged = message.qos > 0;
+            const auto id = in_flight_.add(std::move(message), acknowledged);
             burst.push_back({id, std::move(out)});
             if (probe) {
                 probe_ = id;
@@ -110,7 +134,8 @@ void Client::Impl::sender_main() {
             }
         }
         window_full_ = in_flight_.pending() >= limit;
-        const bool backlog = window_full_ && has_queued();
+        acknowledged_full_ = in_flight_.pending_acknowledged() >= acknowledged_limit;
+        const bool backlog = (window_full_ || acknowledged_full_) && has_queued();
         // A large backlog (the first publication of every tag, a reconnect's republish, an
         // outage's buffer) leaves its freed messages in malloc's arenas: once it has drained,
         // give them back, so that resident memory follows the live data.

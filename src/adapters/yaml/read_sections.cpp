@@ -58,6 +58,8 @@ void Loader::read_mqtt(const Node& node, const Mark& at, Config& config) {
                      if (const auto b = boolean(value, key, k)) mqtt.retain = *b;
                  } else if (key == "batch") {
                      if (const auto b = boolean(value, key, k)) mqtt.batch = *b;
+                 } else if (key == "batch_first") {
+                     if (const auto b = boolean(value, key, k)) mqtt.batch_first = *b;
                  } else if (key == "allow_response_topics_under_base") {
                      if (const auto b = boolean(value, key, k)) {
                          mqtt.allow_response_topics_under_base = *b;

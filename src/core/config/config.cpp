@@ -161,6 +161,10 @@ private:
         if (mqtt.buffer_max_messages == 0) {
             error(mqtt.marks.of("buffer"), "buffer max_messages must be at least 1");
         }
+        if (mqtt.batch_first && !mqtt.batch) {
+            error(mqtt.marks.of("batch_first"),
+                  "batch_first puts _values first, and needs batch: true to have any");
+        }
         if (mqtt.keepalive.count() <= 0) {
             error(mqtt.marks.of("keepalive_s"), "keepalive_s must be at least 1");
         }

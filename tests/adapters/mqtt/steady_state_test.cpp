@@ -55,7 +55,7 @@ TEST(SteadyState, OutboxWindowAndSparesCycleWithoutAllocating) {
             for (std::size_t i = 0; i < kTopics; i += 2) publish(i, round + 1);  // coalesce
             std::size_t sent = 0;
             Message next;
-            while (outbox.take_next(next)) ids[sent++] = window.add(std::move(next));
+            while (outbox.take_next(next)) ids[sent++] = window.add(std::move(next), true);
             for (std::size_t i = 0; i < sent; ++i) {
                 outbox.recycle(std::move(*window.complete(ids[i])), 4 * kTopics);
             }

@@ -695,5 +695,15 @@ TEST(LoadConfig, StoreAndForwardWithItsDefaultsAndLimits) {
               std::string::npos);
 }
 
+TEST(LoadConfig, BatchFirstPutsValuesFirstAndNeedsBatch) {
+    EXPECT_FALSE(good(minimal_exchange).mqtt.batch_first);
+    EXPECT_TRUE(
+        good("mqtt: { batch: true, batch_first: true }\n" + minimal_exchange).mqtt.batch_first);
+    const auto text = dump(bad("mqtt:\n  batch_first: true\n" + minimal_exchange));
+    EXPECT_NE(text.find("test.yaml:2:3: batch_first puts _values first, and needs batch: true"),
+              std::string::npos)
+        << text;
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::yaml

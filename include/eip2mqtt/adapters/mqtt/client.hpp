@@ -71,6 +71,8 @@ struct ClientOptions {
 
     std::size_t buffer_max_messages = 100000;
     std::size_t batch_lane_max_messages = 1000;  ///< `_values` waiting; oldest dropped beyond
+    /// The batch lane is served first whenever both lanes wait (otherwise in turn).
+    bool batch_first = false;
     std::size_t max_in_flight = 256;  ///< publications handed to Paho and not yet completed (Paho C
                                       ///< scans its lists per publish: keep it short)
     std::chrono::milliseconds min_backoff{250};

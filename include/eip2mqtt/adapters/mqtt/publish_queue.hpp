@@ -28,6 +28,8 @@ public:
 
     /// Takes the oldest message; nullopt when empty.
     std::optional<Message> pop();
+    /// The message pop() would take, left in place; nullptr when empty.
+    const Message* oldest() const { return slots_.empty() ? nullptr : &slots_[0]; }
 
     std::size_t size() const { return slots_.size(); }
     bool empty() const { return slots_.empty(); }

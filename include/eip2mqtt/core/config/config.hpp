@@ -86,6 +86,10 @@ struct MqttSection {
     PayloadFormat payload = PayloadFormat::json;
     std::size_t buffer_max_messages = 100000;
     bool batch = false;
+    /// With batch: `_values` go before the tag topics whenever both wait (for a historian that
+    /// needs every sample more than the tag tree needs every intermediate value, which
+    /// coalesces: latest value wins). Off: the two are served in turn.
+    bool batch_first = false;
     /// Whether a write's MQTT 5 response topic may lie under base_topic outside a `set` topic.
     /// Off: a client that may only write `…/set` cannot make the gateway publish on its own
     /// topics (a tag, `_gateway/…/state`).

@@ -6,6 +6,9 @@
 /// completion for an id no longer here (abandoned on a connection loss, or never given) is
 /// ignored, so nothing is counted twice.
 ///
+/// It also counts the pending items that await the broker's acknowledgement (QoS >= 1): the
+/// broker's Receive Maximum bounds those alone (MQTT 5 §3.3.4), QoS 0 are done once written.
+///
 /// Module-private (src/adapters/mqtt/detail); not thread-safe: the client guards it.
 
 #include <cstddef>
@@ -20,10 +23,12 @@ namespace eip2mqtt::adapters::mqtt::detail {
 template <class T>
 class InFlightWindow {
 public:
-    /// Registers `item`; returns its id (1, 2, ...).
-    std::uint64_t add(T item) {
-        entries_.push_back({std::move(item), false});
+    /// Registers `item`, which awaits an acknowledgement when `acknowledged` (QoS >= 1);
+    /// returns its id (1, 2, ...).
+    std::uint64_t add(T item, bool acknowledged) {
+        entries_.push_back({std::move(item), false, acknowledged});
         ++pending_;
+        if (acknowledged) ++pending_acknowledged_;
         return next_id_++;
     }
 
@@ -34,6 +39,7 @@ public:
         if (entry.done) return std::nullopt;
         entry.done = true;
         --pending_;
+        if (entry.acknowledged) --pending_acknowledged_;
         std::optional<T> item(std::move(entry.item));
         while (!entries_.empty() && entries_.front().done) {
             entries_.pop_front();
@@ -51,20 +57,25 @@ public:
         entries_.clear();
         first_id_ = next_id_;
         pending_ = 0;
+        pending_acknowledged_ = 0;
     }
 
     std::size_t pending() const { return pending_; }
+    /// The pending items added with `acknowledged`.
+    std::size_t pending_acknowledged() const { return pending_acknowledged_; }
     bool empty() const { return pending_ == 0; }
 
 private:
     struct Entry {
         T item{};
         bool done = false;
+        bool acknowledged = false;
     };
     core::Ring<Entry> entries_;
     std::uint64_t first_id_ = 1;  ///< id of entries_.front()
     std::uint64_t next_id_ = 1;
     std::size_t pending_ = 0;
+    std::size_t pending_acknowledged_ = 0;
 };
 
 }  // namespace eip2mqtt::adapters::mqtt::detail

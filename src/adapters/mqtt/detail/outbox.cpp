@@ -5,8 +5,8 @@
 
 namespace eip2mqtt::adapters::mqtt::detail {
 
-Outbox::Outbox(std::size_t capacity, std::size_t batch_capacity)
-    : queue_(capacity), batch_queue_(batch_capacity) {}
+Outbox::Outbox(std::size_t capacity, std::size_t batch_capacity, bool batch_first)
+    : queue_(capacity), batch_queue_(batch_capacity), batch_first_(batch_first) {}
 
 void Outbox::push(Message& message) {
     (message.batch_lane ? batch_queue_ : queue_).push(std::move(message));
@@ -20,16 +20,21 @@ void Outbox::push(Message& message) {
     backlog_peak_ = std::max(backlog_peak_, queue_.size());
 }
 
+bool Outbox::next_is_batch() const {
+    return batch_queue_.empty() ? false : batch_first_ || queue_.empty() || next_from_batch_;
+}
+
 bool Outbox::take_next(Message& message) {
-    bool from_batch = !batch_queue_.empty();
-    if (from_batch && !queue_.empty()) {
-        from_batch = next_from_batch_;
-        next_from_batch_ = !next_from_batch_;
-    }
+    const bool from_batch = next_is_batch();
+    if (!batch_queue_.empty() && !queue_.empty()) next_from_batch_ = !next_from_batch_;
     auto next = (from_batch ? batch_queue_ : queue_).pop();
     if (!next) return false;
     message = std::move(*next);
     return true;
+}
+
+const Message* Outbox::peek_next() const {
+    return (next_is_batch() ? batch_queue_ : queue_).oldest();
 }
 
 void Outbox::recycle(Message&& message, std::size_t keep) {

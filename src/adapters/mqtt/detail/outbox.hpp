@@ -1,9 +1,10 @@
 #pragma once
 /// What waits to be sent, and the buffers that come back: the per-tag lane and batch mode's
 /// `_values` lane (each a PublishQueue, served in turn when both wait, so that neither starves
-/// the other), and the spare messages of completed publications, handed back to publish()'s
-/// callers to fill again: the loop allocated two strings per publication that Paho's thread then
-/// freed, and malloc's cross-thread traffic was 40 % of the loop's time (#6).
+/// the other, unless the batch lane is to go first), and the spare messages of completed
+/// publications, handed back to publish()'s callers to fill again: the loop allocated two strings
+/// per publication that Paho's thread then freed, and malloc's cross-thread traffic was 40 % of the
+/// loop's time (#6).
 ///
 /// Threading: none of its own; the client guards it with its mutex.
 
@@ -17,13 +18,16 @@ namespace eip2mqtt::adapters::mqtt::detail {
 
 class Outbox {
 public:
-    Outbox(std::size_t capacity, std::size_t batch_capacity);
+    /// `batch_first`: the batch lane goes first whenever both wait, instead of in turn.
+    Outbox(std::size_t capacity, std::size_t batch_capacity, bool batch_first = false);
 
     /// Queues `message` in its lane. Leaves it blank with buffers to fill again: those of the
     /// message it replaced, or a spare when it was queued whole.
     void push(Message& message);
     /// The next message, from the two lanes in turn; false when both are empty.
     bool take_next(Message& message);
+    /// The message take_next would take, left in place; nullptr when both lanes are empty.
+    const Message* peek_next() const;
     /// Keeps the buffers of a completed publication for a later push, up to `keep` spares (a
     /// window's worth is what cycles; more only held memory after an overload).
     void recycle(Message&& message, std::size_t keep);
@@ -42,9 +46,13 @@ public:
     void set_capacity(std::size_t capacity) { queue_.set_capacity(capacity); }
 
 private:
+    /// Whose turn it is: the batch lane when only it waits, or when both wait and it is its turn.
+    bool next_is_batch() const;
+
     PublishQueue queue_;
     PublishQueue batch_queue_;
-    bool next_from_batch_ = false;  ///< whose turn when both lanes wait
+    const bool batch_first_;
+    bool next_from_batch_ = false;  ///< whose turn when both lanes wait (not batch_first_)
     std::vector<Message> spares_;
     std::size_t backlog_peak_ = 0;  ///< largest queue since memory was last given back
 };
