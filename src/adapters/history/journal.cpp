@@ -167,6 +167,10 @@ Journal::Journal(std::unique_ptr<Db> db, JournalOptions options)
              .c_str());
     exec(db_->db, ("PRAGMA journal_size_limit=" + std::to_string(wal)).c_str());
     table_bound_ = options_.max_bytes - wal;
+    if (options_.disk_full_after_pages > 0) {
+        exec(db_->db,
+             ("PRAGMA max_page_count=" + std::to_string(options_.disk_full_after_pages)).c_str());
+    }
 }
 
 Journal::~Journal() {

@@ -116,6 +116,34 @@ TEST_F(JournalTest, TheBoundDropsTheOldestAndCountsThem) {
     EXPECT_EQ(left.front().timestamp_ms, static_cast<std::int64_t>(stats.dropped));
 }
 
+TEST_F(JournalTest, AFullDiskDropsTheOldestAndCountsThem) {
+    // The disk fills up far below max_bytes: SQLite's writes fail with SQLITE_FULL, as they do
+    // on ENOSPC (here from its page limit: 64 pages of 4 KiB).
+    std::string set_aside;
+    auto journal = Journal::open({path(), 256ull << 20, 64}, set_aside);
+    for (int i = 0; i < 4000; ++i) {
+        auto e = entry(i, 400);
+        journal->append(e);
+        if (i % 100 == 99) journal->commit(false);
+    }
+    journal->commit(false);
+    const auto stats = journal->stats();
+    EXPECT_GT(stats.dropped, 0u);
+    EXPECT_EQ(stats.entries + stats.dropped, 4000u);
+    // The newest survive, in order, and the journal takes entries again.
+    const auto left = journal->oldest(100000);
+    ASSERT_EQ(left.size(), stats.entries);
+    ASSERT_FALSE(left.empty());
+    EXPECT_EQ(left.back().timestamp_ms, 3999);
+    for (std::size_t i = 1; i < left.size(); ++i) {
+        EXPECT_LT(left[i - 1].timestamp_ms, left[i].timestamp_ms);
+    }
+    auto e = entry(4000);
+    journal->append(e);
+    journal->commit(false);
+    EXPECT_EQ(journal->oldest(100000).back().timestamp_ms, 4000);
+}
+
 TEST_F(JournalTest, ADamagedFileIsSetAsideAndANewJournalStarts) {
     std::ofstream(path(), std::ios::binary) << std::string(8192, '\x5a');
     auto journal = open();

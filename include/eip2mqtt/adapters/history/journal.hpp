@@ -24,6 +24,9 @@ namespace eip2mqtt::adapters::history {
 struct JournalOptions {
     std::string path;  ///< the SQLite file; its directory must exist
     std::uint64_t max_bytes = 256ull << 20;
+    /// Tests only, 0 = none: SQLite's max_page_count, past which its writes fail with
+    /// SQLITE_FULL exactly as on a full disk (ENOSPC), whatever max_bytes says.
+    std::uint64_t disk_full_after_pages = 0;
 };
 
 /// One accepted datagram's changes (or a quality change) of one exchange.
