@@ -18,7 +18,6 @@ std::vector<std::byte> restore(const adapters::state::ImagePersister& persister,
 }
 
 /// docs/mqtt-api.md "Exchange status": at most once a second while its counters move.
-constexpr std::chrono::nanoseconds status_interval = std::chrono::seconds(1);
 
 std::int64_t to_ms(core::WallTime wall) {
     return std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch()).count();
@@ -59,11 +58,7 @@ void ExchangeProducer::start(core::MonoTime start, std::size_t index, std::size_
     // `_status` once a second, each producer at its own phase of the second, as its sends
     // are spread over the period: 1,000 producers reporting in one handler held the loop
     // ~25 ms (MQTT client), so every exchange skipped deadlines (bench scenario 7).
-    if (count > 0) {
-        next_status_at_ = start + std::chrono::nanoseconds{status_interval.count() *
-                                                           static_cast<std::int64_t>(index) /
-                                                           static_cast<std::int64_t>(count)};
-    }
+    if (count > 0) status_grid_.start(start, index, count);
 }
 
 void ExchangeProducer::stop() {
@@ -180,12 +175,8 @@ void ExchangeProducer::report_echo(core::WallTime wall, bool all) {
 
 void ExchangeProducer::on_tick(core::MonoTime now) {
     if (counters_.sent == last_status_sent_) return;
-    if (now < next_status_at_) return;
-    // On a grid at the producer's phase, not "a second after the last one": after a stall of
-    // the loop (the republication that follows a connect) the producers do not all fall into
-    // one tick for good. Two publications are a second apart, less up to one tick.
-    next_status_at_ +=
-        (now - next_status_at_) / status_interval * status_interval + status_interval;
+    if (!status_grid_.due(now)) return;
+    status_grid_.reported_on_grid(now);
     report_status();
 }
 

@@ -23,6 +23,7 @@
 #include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/exchange/produced_image.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
+#include "eip2mqtt/core/exchange/status_grid.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/write/rate_limiter.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
@@ -110,7 +111,7 @@ private:
     std::vector<std::uint64_t> carried_;
     std::unordered_map<std::uint64_t, WriteReply> replies_;
     std::vector<core::write::RateLimiter> limiters_;  ///< one per tag
-    core::MonoTime next_status_at_{};                 ///< `_status` grid: phase set by start()
+    core::exchange::StatusGrid status_grid_;          ///< `_status`: phase set by start()
     std::uint64_t last_status_sent_ = 0;
     std::uint64_t next_write_id_ = 1;
     ProducerCounters counters_;

@@ -8,6 +8,13 @@ void StatusGrid::set_phase(std::size_t index, std::size_t count) {
                               static_cast<std::int64_t>(count);
 }
 
+void StatusGrid::start(MonoTime origin, std::size_t index, std::size_t count) {
+    set_phase(index, count);
+    next_ = origin + std::chrono::duration_cast<MonoTime::duration>(phase_);
+    // The grid is the points next_ + k * interval_: its phase, as reported_off_grid reads it.
+    phase_ = next_.time_since_epoch() % interval_;
+}
+
 void StatusGrid::reported_on_grid(MonoTime now) {
     if (next_ == MonoTime{}) {
         // The first report: onto the grid from here.

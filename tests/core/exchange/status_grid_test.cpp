@@ -47,6 +47,18 @@ TEST(StatusGrid, AReportOffTheGridDefersThePeriodicOneBySecondAtLeast) {
     EXPECT_EQ(grid.next(), t0 + 2500ms);
 }
 
+TEST(StatusGrid, StartedAtAnOriginTheFirstReportIsDueAtItsPhaseFromThere) {
+    // Producers: their sends are spread over the period from their start, and so their status.
+    StatusGrid grid;
+    grid.start(t0 + 7ms, 3, 10);
+    EXPECT_FALSE(grid.due(t0 + 306ms));
+    EXPECT_TRUE(grid.due(t0 + 307ms));
+    grid.reported_on_grid(t0 + 312ms);
+    EXPECT_EQ(grid.next(), t0 + 1307ms);
+    grid.reported_off_grid(t0 + 1400ms);  // stays on the same grid
+    EXPECT_EQ(grid.next(), t0 + 2307ms + 1s);
+}
+
 TEST(StatusGrid, ExchangesStartedTogetherReportInDifferentTicks) {
     // 100 exchanges, each with its first report in the same tick: their next ones spread over
     // the second, one per 10 ms tick.
