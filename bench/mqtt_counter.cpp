@@ -16,6 +16,7 @@
 //
 // --skip-ms N: latency samples stamped within N ms of the first stamp are left out (counted as
 // latency_skipped): the load's first moments, when every process comes out of idle.
+// --dump FILE: every latency sample as "ms since the first, latency us", to see where a tail lies.
 // Stops after --idle-ms without a counted message (once one arrived), at --expect messages, or
 // after --max-s. Prints one JSON line.
 
@@ -53,6 +54,8 @@ struct State {
     std::uint64_t updates = 0;  ///< tag updates (batch mode: members of "values")
     std::uint64_t retained_skipped = 0;
     std::vector<std::int64_t> latency_ns;
+    std::vector<std::int64_t> stamps_ns;  ///< with --dump: each latency sample's send time
+    bool dump = false;
     std::int64_t skip_ns = 0;   ///< --skip-ms: latency ignored this long after the first stamp
     long long first_stamp = 0;  ///< the first plausible stamp seen
     std::uint64_t latency_skipped = 0;
@@ -88,6 +91,7 @@ void record_latency(State& s, long long stamp, std::int64_t now_wall) {
         return;
     }
     s.latency_ns.push_back(now_wall - stamp);
+    if (s.dump) s.stamps_ns.push_back(stamp);
 }
 
 void on_connect(mosquitto* mosq, void* user, int rc) {
@@ -159,13 +163,29 @@ void on_message(mosquitto*, void* user, const mosquitto_message* msg) {
     s.messages.fetch_add(1, std::memory_order_relaxed);
 }
 
+/// --dump FILE: one line per latency sample, "ms since the first measured stamp, latency in us",
+/// in arrival order: where in the run the tail samples fall (bursts, a period, the start).
+void write_dump(const std::string& path, const State& s) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (f == nullptr) {
+        std::fprintf(stderr, "mqtt_counter: cannot write %s\n", path.c_str());
+        return;
+    }
+    const std::int64_t origin = s.stamps_ns.empty() ? 0 : s.stamps_ns.front();
+    for (std::size_t i = 0; i < s.stamps_ns.size(); ++i) {
+        std::fprintf(f, "%.3f %.1f\n", static_cast<double>(s.stamps_ns[i] - origin) / 1e6,
+                     static_cast<double>(s.latency_ns[i]) / 1e3);
+    }
+    std::fclose(f);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     const bench::Options opt(
         argc, argv,
         {"host", "port", "filter", "qos", "batch", "sparkplug", "stamp-tag", "stamp-all", "skip-ms",
-         "expect-last", "expect-topics", "expect", "idle-ms", "max-s", "ready-file", "id"});
+         "expect-last", "expect-topics", "expect", "idle-ms", "max-s", "ready-file", "id", "dump"});
     State s;
     {
         // --filter a,b,c
@@ -188,6 +208,9 @@ int main(int argc, char** argv) {
     s.ready_file = opt.str("ready-file", "");
     s.skip_ns = static_cast<std::int64_t>(opt.num("skip-ms", 0) * 1e6);
     s.latency_ns.reserve(8 * 1024 * 1024);
+    const std::string dump_path = opt.str("dump", "");
+    s.dump = !dump_path.empty();
+    if (s.dump) s.stamps_ns.reserve(8 * 1024 * 1024);
     const auto idle_ns = static_cast<std::int64_t>(opt.num("idle-ms", 2000) * 1e6);
     const auto max_ns = static_cast<std::int64_t>(opt.num("max-s", 60) * 1e9);
     const auto expect = static_cast<std::uint64_t>(opt.num("expect", 0));
@@ -207,6 +230,7 @@ int main(int argc, char** argv) {
     mosquitto_disconnect(mosq);
     mosquitto_loop_stop(mosq, true);
 
+    if (s.dump) write_dump(dump_path, s);
     const auto messages = s.messages.load();
     const double span = static_cast<double>(s.last_ns.load() - s.first_ns) / 1e9;
     std::vector<std::int64_t>& lat = s.latency_ns;
