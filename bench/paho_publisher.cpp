@@ -14,6 +14,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -46,7 +47,7 @@ struct Window final : mqtt::iaction_listener {
 int main(int argc, char** argv) {
     const bench::Options opt(argc, argv,
                              {"url", "qos", "topics", "base", "count", "duration", "rate", "window",
-                              "stamp", "version"});
+                              "stamp", "version", "id", "connections"});
     const std::string url = opt.str("url", "tcp://127.0.0.1:1883");
     const int qos = static_cast<int>(opt.num("qos", 0));
     const auto topics_n = static_cast<std::size_t>(std::max(1.0, opt.num("topics", 100)));
@@ -63,9 +64,18 @@ int main(int argc, char** argv) {
         topics.push_back(base + "/e1/t" + std::to_string(i));
     }
 
+    // --connections N: N clients of one process (Paho C's send and receive threads are the
+    // process's, shared by its clients), each topic always on the same one.
+    const auto connections = static_cast<std::size_t>(std::max(1.0, opt.num("connections", 1)));
     mqtt::create_options create(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
     create.set_max_buffered_messages(static_cast<int>(requested_window + 64));
-    mqtt::async_client client(url, "bench-paho-publisher", create, nullptr);
+    // --id: a client identifier of its own for each of several publishers on one broker.
+    const std::string id = opt.str("id", "bench-paho-publisher");
+    std::vector<std::unique_ptr<mqtt::async_client>> clients;
+    for (std::size_t c = 0; c < connections; ++c) {
+        clients.push_back(std::make_unique<mqtt::async_client>(
+            url, connections == 1 ? id : id + "-" + std::to_string(c), create, nullptr));
+    }
     mqtt::connect_options connect;
     connect.set_mqtt_version(v5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
     if (v5) {
@@ -75,29 +85,34 @@ int main(int argc, char** argv) {
     }
     std::size_t window_size = requested_window;
     try {
-        auto token = client.connect(connect);
-        token->wait_for(std::chrono::seconds(10));
-        // MQTT 5: the broker's Receive Maximum bounds the QoS >= 1 publications in flight
-        // (Mosquitto's default is 20). Paho C holds any beyond it in its queue until its next
-        // one-second cycle, so a plain application that ignored it would measure Paho's timer,
-        // not the broker: stay within it, as the gateway does.
-        const auto response = token->get_connect_response();
-        const auto& props = response.get_properties();
-        if (v5 && qos > 0 && props.contains(mqtt::property::RECEIVE_MAXIMUM)) {
-            window_size = std::min<std::size_t>(
-                window_size, mqtt::get<std::uint16_t>(props, mqtt::property::RECEIVE_MAXIMUM));
+        for (auto& client : clients) {
+            auto token = client->connect(connect);
+            token->wait_for(std::chrono::seconds(10));
+            // MQTT 5: the broker's Receive Maximum bounds the QoS >= 1 publications in flight
+            // (Mosquitto's default is 20). Paho C holds any beyond it in its queue until its
+            // next one-second cycle, so a plain application that ignored it would measure
+            // Paho's timer, not the broker: stay within it, as the gateway does.
+            const auto response = token->get_connect_response();
+            const auto& props = response.get_properties();
+            if (v5 && qos > 0 && props.contains(mqtt::property::RECEIVE_MAXIMUM)) {
+                window_size = std::min<std::size_t>(
+                    window_size, mqtt::get<std::uint16_t>(props, mqtt::property::RECEIVE_MAXIMUM));
+            }
         }
     } catch (const mqtt::exception& e) {
         bench::Options::fail(std::string("connect: ") + e.what());
     }
 
-    Window window;
+    std::vector<std::unique_ptr<Window>> windows;  // one per connection
+    for (std::size_t c = 0; c < connections; ++c) windows.push_back(std::make_unique<Window>());
     std::uint64_t published = 0;
     auto publish_one = [&] {
         // Stamped when the application has the value, before any wait for room in the window:
         // that wait is the broker's flow control, part of the latency a subscriber sees, and the
         // gateway's figure includes it (its stamp is the datagram's send time).
         const std::int64_t wall = bench::wall_ns();
+        const std::size_t topic = published % topics_n;
+        Window& window = *windows[topic % connections];
         {
             std::unique_lock lock(window.mutex);
             window.done.wait(lock, [&] { return window.outstanding < window_size; });
@@ -108,9 +123,8 @@ int main(int argc, char** argv) {
                               ",\"timestamp\":" + std::to_string(wall / 1000000) +
                               ",\"quality\":\"good\"}";
         try {
-            client.publish(
-                mqtt::make_message(topics[published % topics_n], std::move(payload), qos, false),
-                nullptr, window);
+            clients[topic % connections]->publish(
+                mqtt::make_message(topics[topic], std::move(payload), qos, false), nullptr, window);
         } catch (const mqtt::exception&) {
             window.finish(false);
         }
@@ -137,22 +151,27 @@ int main(int argc, char** argv) {
         }
     }
     const double elapsed = static_cast<double>(bench::mono_ns() - start) / 1e9;
-    {
-        std::unique_lock lock(window.mutex);
-        window.done.wait_for(lock, std::chrono::seconds(30),
-                             [&] { return window.outstanding == 0; });
+    std::uint64_t completed = 0;
+    std::uint64_t failed = 0;
+    for (auto& window : windows) {
+        std::unique_lock lock(window->mutex);
+        window->done.wait_for(lock, std::chrono::seconds(30),
+                              [&] { return window->outstanding == 0; });
     }
     const double drained = static_cast<double>(bench::mono_ns() - start) / 1e9;
-    try {
-        client.disconnect()->wait_for(std::chrono::seconds(5));
-    } catch (const mqtt::exception&) {
+    for (std::size_t c = 0; c < connections; ++c) {
+        completed += windows[c]->completed.load();
+        failed += windows[c]->failed.load();
+        try {
+            clients[c]->disconnect()->wait_for(std::chrono::seconds(5));
+        } catch (const mqtt::exception&) {
+        }
     }
     std::printf(
         "{\"published\":%llu,\"completed\":%llu,\"failed\":%llu,\"elapsed_s\":%.4f,"
-        "\"drained_s\":%.4f,\"rate\":%.1f,\"window\":%zu}\n",
-        static_cast<unsigned long long>(published),
-        static_cast<unsigned long long>(window.completed.load()),
-        static_cast<unsigned long long>(window.failed.load()), elapsed, drained,
-        static_cast<double>(window.completed.load()) / drained, window_size);
+        "\"drained_s\":%.4f,\"rate\":%.1f,\"window\":%zu,\"connections\":%zu}\n",
+        static_cast<unsigned long long>(published), static_cast<unsigned long long>(completed),
+        static_cast<unsigned long long>(failed), elapsed, drained,
+        static_cast<double>(completed) / drained, window_size, connections);
     return 0;
 }
