@@ -120,13 +120,20 @@ protected:
     /// first copy never arrived (the broker wrote it as it stopped) is the delivery, and counts.
     std::vector<const Received*> deliveries_on(const std::string& suffix,
                                                const std::vector<Received>& all) const {
+        return deliveries(topic("line/" + suffix), all, 0);
+    }
+    /// The same rule for any topic, kept from the `from`th message on (the repeats are known
+    /// from all of them).
+    static std::vector<const Received*> deliveries(const std::string& wanted,
+                                                   const std::vector<Received>& all,
+                                                   std::size_t from) {
         std::vector<const Received*> out;
         std::set<std::string_view> payloads;
-        const auto wanted = topic("line/" + suffix);
-        for (const auto& m : all) {
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            const auto& m = all[i];
             if (m.topic != wanted) continue;
             const bool repeat = !payloads.insert(m.payload).second;
-            if (m.duplicate && repeat) continue;
+            if ((m.duplicate && repeat) || i < from) continue;
             out.push_back(&m);
         }
         return out;
@@ -207,8 +214,9 @@ protected:
                 }
                 if (!values.empty()) ranges << "-" << values.back();
                 std::ostringstream repeated;  // every delivery flagged DUP, counted or not
+                const auto wanted = topic(std::string("line/") + suffix);
                 for (const auto& m : all) {
-                    if (m.duplicate && m.topic == topic(std::string("line/") + suffix)) {
+                    if (m.duplicate && m.topic == wanted) {
                         repeated << " " << counter_of(m);
                     }
                 }
@@ -425,9 +433,8 @@ TEST_F(StoreAndForwardTest, WithSparkplugTheHistoryIsAlsoHistoricalDdata) {
     // may have missed the replay's first entries.)
     std::vector<std::uint64_t> historical;
     const auto messages = recorder_->messages();
-    for (std::size_t i = from; i < messages.size(); ++i) {
-        if (messages[i].topic != ddata || messages[i].duplicate) continue;
-        const auto payload = tahu_decode(messages[i].payload);
+    for (const auto* m : deliveries(ddata, messages, from)) {
+        const auto payload = tahu_decode(m->payload);
         for (const auto& metric : payload["metrics"]) {
             EXPECT_EQ(metric.value("isHistorical", false), true) << metric.dump();
             historical.push_back(metric["value"].get<std::uint64_t>());
