@@ -1012,7 +1012,7 @@ class Bench:
             f"{' / '.join(f'{x:.1f}' for x in os.getloadavg())} (shared machine: other work "
             "shows here and in the noisier rows)",
             f"- command: `{command}`",
-            f"- gateway: `{os.path.relpath(GATEWAY, ROOT)}` (Release); Mosquitto "
+            f"- gateway: `{os.path.relpath(GATEWAY, ROOT)}` ({build_type()}); Mosquitto "
             f"{mosquitto_version()} on 127.0.0.1; subscriber: bench/mqtt_counter (libmosquitto)",
             "",
             "| figure | gateway | baseline (same run) | ratio | target | met? |",
@@ -1029,6 +1029,19 @@ class Bench:
             f.write(text)
         print()
         print(text)
+
+
+def build_type():
+    """The CMake build type of the tree measured (bench/run.sh builds Release; a tree given in
+    EIP2MQTT_BENCH_BUILD may be another)."""
+    try:
+        with open(os.path.join(BUILD, "CMakeCache.txt")) as f:
+            for line in f:
+                if line.startswith("CMAKE_BUILD_TYPE:"):
+                    return line.split("=", 1)[1].strip() or "no build type"
+    except OSError:
+        pass
+    return "build type unknown"
 
 
 def mosquitto_version():
