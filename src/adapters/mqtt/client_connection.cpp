@@ -154,10 +154,17 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
     // Subscribe before announcing `online`: the broker handles one connection's packets in
     // order, so whoever sees `online` can already write to us.
     renew_subscriptions(subscriptions_);
+    {
+        // Own publications of an earlier connection are answered there or never.
+        std::lock_guard lock(mutex_);
+        own_unacknowledged_ = 0;
+        ++own_generation_;
+    }
     try {
         if (!options_.availability_topic.empty()) {
-            client_->publish(paho::make_message(options_.availability_topic, "online",
-                                                options_.availability_qos, true));
+            publish_own(paho::make_message(options_.availability_topic, "online",
+                                           options_.availability_qos, true),
+                        options_.availability_qos > 0 ? reserve_own_slot() : 0);
         }
     } catch (const paho::exception& e) {
         spdlog::warn("{} cannot publish availability: {}", options_.log_name, e.what());
@@ -197,7 +204,8 @@ void Client::Impl::update_in_flight_limit() {
     // MQTT 5 §3.2.2.3.3: the broker's Receive Maximum, 65535 when absent (Mosquitto sends 20).
     // Paho C sends no more QoS >= 1 publications than that and queues the rest until its next
     // one-second cycle rather than on PUBACK, which capped us at 20 messages/s: the sender must
-    // not hand it more of them (QoS 0 are not counted). (The token the listener sees lacks the
+    // not hand it more of them, with our own `online` and `offline` counted while unacknowledged
+    // (detail/send_room.hpp; QoS 0 are not counted). (The token the listener sees lacks the
     // CONNACK properties in Paho C++ 1.2; the one connect() returned has them.)
     std::size_t receive_maximum = 65535;
     try {
@@ -216,9 +224,6 @@ void Client::Impl::update_in_flight_limit() {
         }
     } catch (const std::exception&) {
         // No CONNACK properties (MQTT 3.1.1): no limit beyond ours.
-    }
-    if ((!options_.availability_topic.empty() || options_.will) && receive_maximum > 1) {
-        --receive_maximum;  // room for `online` and `offline`, or the farewell
     }
     acknowledged_limit_ =
         std::max<std::size_t>(1, std::min(options_.max_in_flight, receive_maximum));

@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "adapters/mqtt/detail/client_impl.hpp"
+#include "adapters/mqtt/detail/send_room.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
 
@@ -53,26 +54,16 @@ void Client::Impl::set_sending(bool enabled) {
     wake_sender_.notify_all();
 }
 
-namespace {
-
-/// Whether a window of `limit` with `pending` in it has room; once it was full, room means that
-/// an eighth of it completed (see ready_to_send).
-bool has_room(std::size_t pending, std::size_t limit, bool was_full) {
-    return pending <= (was_full ? limit - std::max<std::size_t>(1, limit / 8) : limit - 1);
-}
-
-}  // namespace
-
 bool Client::Impl::ready_to_send() const {
     if (quit_ || !sending_ || !link_up_.load(std::memory_order_relaxed) || !has_queued() ||
         suspect_waits()) {
         return false;
     }
-    return has_room(in_flight_.pending(), in_flight_limit_.load(std::memory_order_relaxed),
-                    window_full_) &&
+    return detail::has_room(in_flight_.pending(), in_flight_limit_.load(std::memory_order_relaxed),
+                            window_full_) &&
            (!next_awaits_ack() ||
-            has_room(in_flight_.pending_acknowledged(),
-                     acknowledged_limit_.load(std::memory_order_relaxed), acknowledged_full_));
+            detail::has_acknowledged_room(in_flight_.pending_acknowledged(), own_unacknowledged_,
+                                          acknowledged_limit_.load(std::memory_order_relaxed)));
 }
 
 bool Client::Impl::next_awaits_ack() const {
@@ -107,7 +98,11 @@ void Client::Impl::sender_main() {
         std::string refused_problem;
         while (in_flight_.pending() < limit) {
             if (suspect_waits()) break;
-            if (in_flight_.pending_acknowledged() >= acknowledged_limit && next_awaits_ack()) break;
+            if (!detail::has_acknowledged_room(in_flight_.pending_acknowledged(),
+                                               own_unacknowledged_, acknowledged_limit) &&
+                next_awaits_ack()) {
+                break;
+            }
             bool probe = false;
             if (!retry_.empty()) {
                 auto retry = std::move(retry_.extract(retry_.begin()).mapped());
@@ -134,7 +129,6 @@ void Client::Impl::sender_main() {
             }
         }
         window_full_ = in_flight_.pending() >= limit;
-        acknowledged_full_ = in_flight_.pending_acknowledged() >= acknowledged_limit;
         // Nagle only for a backlog that waits on the sending itself. One that waits for PUBACKs
         // (the broker's Receive Maximum reached) gains nothing from fuller segments, and against
         // a broker that leaves Nagle on too (Mosquitto's default) each side then holds its next
@@ -243,6 +237,37 @@ void Client::Impl::on_publish_done(std::uint64_t id, int rc, int reason_code,
     }
 }
 
+std::uint64_t Client::Impl::reserve_own_slot() {
+    std::lock_guard lock(mutex_);
+    ++own_unacknowledged_;
+    return own_generation_;
+}
+
+paho::delivery_token_ptr Client::Impl::publish_own(paho::message_ptr message,
+                                                   std::uint64_t generation) {
+    if (message->get_qos() == 0) return client_->publish(std::move(message));
+    try {
+        return client_->publish(std::move(message), to_context(generation),
+                                own_publication_listener_);
+    } catch (const paho::exception&) {
+        release_own_slot(generation);
+        throw;
+    }
+}
+
+void Client::Impl::release_own_slot(std::uint64_t generation) {
+    bool wake = false;
+    {
+        std::lock_guard lock(mutex_);
+        // One of an earlier connection: on_connect has started this one's count afresh.
+        if (generation != own_generation_ || own_unacknowledged_ == 0) return;
+        --own_unacknowledged_;
+        wake = sender_idle_ && ready_to_send();
+    }
+    if (stopping_) completed_.notify_all();
+    if (wake) wake_sender_.notify_one();
+}
+
 std::string Client::Impl::requeue_after_loss(std::uint64_t id, Message&& message) {
     hold_for_reconnect();
     if (probe_ == id) {
@@ -347,13 +372,25 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
     }
 
     paho::delivery_token_ptr offline;
-    try {
-        if (!options_.availability_topic.empty()) {
-            offline = client_->publish(paho::make_message(options_.availability_topic, "offline",
-                                                          options_.availability_qos, true));
+    if (!options_.availability_topic.empty()) {
+        std::uint64_t generation = 0;
+        if (options_.availability_qos > 0) {
+            // Its slot first, so that the sender takes no freed one; then wait until the
+            // window has room for it, or Paho would hold it until its next one-second cycle.
+            generation = reserve_own_slot();
+            std::unique_lock lock(mutex_);
+            completed_.wait_until(lock, deadline, [this] {
+                return in_flight_.pending_acknowledged() + own_unacknowledged_ <=
+                       acknowledged_limit_;
+            });
         }
-    } catch (const paho::exception& e) {
-        spdlog::warn("{} cannot publish availability: {}", options_.log_name, e.what());
+        try {
+            offline = publish_own(paho::make_message(options_.availability_topic, "offline",
+                                                     options_.availability_qos, true),
+                                  generation);
+        } catch (const paho::exception& e) {
+            spdlog::warn("{} cannot publish availability: {}", options_.log_name, e.what());
+        }
     }
 
     std::size_t unsent = 0;

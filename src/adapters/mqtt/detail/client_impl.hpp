@@ -98,6 +98,15 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     /// A Paho listener: publication `id` completed with Paho return code `rc` and, when the
     /// broker refused it (MQTT 5), its reason code (>= 0x80).
     void on_publish_done(std::uint64_t id, int rc, int reason_code, const std::string& reason);
+    /// Takes a slot of the acknowledged window for one of the client's own QoS >= 1
+    /// publications (`online`, `offline`), under mutex_; returns the connection's generation,
+    /// which publish_own and its listener carry.
+    std::uint64_t reserve_own_slot();
+    /// Publishes one of the client's own messages outside the queues; at QoS >= 1 in the slot
+    /// reserve_own_slot() took for `generation`, given back when the broker answers.
+    paho::delivery_token_ptr publish_own(paho::message_ptr message, std::uint64_t generation);
+    /// The slot of an own publication of connection `generation` is free again.
+    void release_own_slot(std::uint64_t generation);
     void log_publish_failure(const std::string& topic, const std::string& reason);
     void stop(std::chrono::milliseconds flush_timeout);
 
@@ -108,11 +117,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
 
     // --- under mutex_ --------------------------------------------------------------------
     bool has_queued() const { return !retry_.empty() || !outbox_.empty(); }
-    /// Whether the sender has something to send and room to send it. After it filled the
-    /// window it waits until an eighth of the window completed, so that it wakes once per
-    /// burst rather than once per completion, yet keeps the window nearly full: at QoS 1 a
-    /// busy broker's PUBACKs take milliseconds, and throughput is what is in flight over that
-    /// time (refilling at a quarter cost a third of it).
+    /// Whether the sender has something to send and room to send it (detail/send_room.hpp).
     bool ready_to_send() const;
     /// Whether the next publication the sender would take awaits an acknowledgement (QoS >= 1),
     /// and so needs room under acknowledged_limit_ as well.
@@ -163,6 +168,18 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
             impl_.on_publish_done(detail::from_context(tok.get_user_context()),
                                   tok.get_return_code() == 0 ? -1 : tok.get_return_code(),
                                   tok.get_reason_code(), detail::describe_failure(tok));
+        }
+        Impl& impl_;
+    };
+
+    /// For the client's own publications: the context is the connection's generation.
+    struct OwnPublicationListener final : paho::iaction_listener {
+        explicit OwnPublicationListener(Impl& impl) : impl_(impl) {}
+        void on_success(const paho::token& tok) override {
+            impl_.release_own_slot(detail::from_context(tok.get_user_context()));
+        }
+        void on_failure(const paho::token& tok) override {
+            impl_.release_own_slot(detail::from_context(tok.get_user_context()));
         }
         Impl& impl_;
     };
@@ -229,8 +246,11 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     detail::InFlightWindow<Message> in_flight_;  ///< handed to Paho, not yet completed
     bool sending_ = false;                       ///< connected and announced: the sender may send
     bool sender_idle_ = false;                   ///< the sender waits on wake_sender_
-    bool window_full_ = false;          ///< the sender stopped at the limit: wait for the low mark
-    bool acknowledged_full_ = false;    ///< the same, for acknowledged_limit_
+    bool window_full_ = false;  ///< the sender stopped at the limit: wait for the low mark
+    /// The client's own QoS >= 1 publications the broker has not acknowledged on the connection
+    /// of generation own_generation_ (one per connect): they share acknowledged_limit_.
+    std::size_t own_unacknowledged_ = 0;
+    std::uint64_t own_generation_ = 0;
     bool quit_ = false;                 ///< the sender thread must end
     std::optional<Message> last_will_;  ///< options_.will's for the current connection
     core::ThrottledLog publish_failure_log_;
@@ -259,6 +279,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     detail::NagleSwitch nagle_;
 
     PublishListener publish_listener_{*this};
+    OwnPublicationListener own_publication_listener_{*this};
     ConnectListener connect_listener_{*this};
     SubscribeListener subscribe_listener_{*this};
     paho::connect_options connect_options_;
