@@ -316,6 +316,17 @@ class Bench:
             raise RuntimeError("mqtt_counter did not subscribe")
         return proc
 
+    def start_sink(self, port, *args, stdout=subprocess.PIPE):
+        """A bare recvmmsg receiver (bench/udp_sink) on `port`, once it has bound."""
+        self.counter_seq += 1
+        ready = os.path.join(self.tmp, f"sink{self.counter_seq}.ready")
+        proc = subprocess.Popen([tool("udp_sink"), "--port", str(port), *map(str, args),
+                                 "--ready-file", ready], stdout=stdout, text=True)
+        self.procs.append(proc)
+        if not wait_file(ready, 5):
+            raise RuntimeError("udp_sink did not bind")
+        return proc
+
     def finish(self, proc, timeout=150):
         out, err = proc.communicate(timeout=timeout)
         return last_json(out)
@@ -349,11 +360,7 @@ class Bench:
 
         def sink_trial(rate, n):
             port = free_port(socket.SOCK_DGRAM)
-            ready = os.path.join(self.tmp, f"sink{n}.ready")
-            sink = subprocess.Popen([tool("udp_sink"), "--port", str(port), "--idle-ms", "500",
-                                     "--max-s", str(duration + 20), "--ready-file", ready],
-                                    stdout=subprocess.PIPE, text=True)
-            wait_file(ready, 5)
+            sink = self.start_sink(port, "--idle-ms", 500, "--max-s", duration + 20)
             gen = self.generate(port, 1, rate, duration=duration, change=0, stamp=False)
             got = last_json(sink.communicate(timeout=duration + 30)[0])
             ok = got["received"] == gen["sent"] and gen["errors"] == 0
@@ -444,15 +451,8 @@ class Bench:
         """Bare Paho again, with the gateway's datagram input running beside it: the load
         generator at `datagrams`/s to a bare recvmmsg sink. On two cores that input takes a
         share of the machine that bare Paho alone never pays (issue #17's notes)."""
-        self.counter_seq += 1
         port = free_port(socket.SOCK_DGRAM)
-        ready = os.path.join(self.tmp, f"input{self.counter_seq}.ready")
-        sink = subprocess.Popen([tool("udp_sink"), "--port", str(port), "--idle-ms", "1000",
-                                 "--max-s", str(self.d + 30), "--ready-file", ready],
-                                stdout=subprocess.PIPE, text=True)
-        self.procs.append(sink)
-        if not wait_file(ready, 5):
-            raise RuntimeError("udp_sink did not bind")
+        sink = self.start_sink(port, "--idle-ms", 1000, "--max-s", self.d + 30)
         gen = subprocess.Popen([tool("load_generator"), "--port", str(port), "--exchanges",
                                 str(exchanges), "--tags", str(tags), "--rate", str(datagrams),
                                 "--change", str(change), "--duration", str(self.d + 1)],
@@ -712,14 +712,8 @@ class Bench:
         for count, jitter_target in ((100, 200), (1000, 1000)):
             def capture(sender):
                 port = free_port(socket.SOCK_DGRAM)
-                ready = os.path.join(self.tmp, f"psink{count}{sender}.ready")
-                if os.path.exists(ready):
-                    os.unlink(ready)
-                sink = subprocess.Popen([tool("udp_sink"), "--port", str(port), "--period-ms",
-                                         "10", "--skip-ms", "1000", "--duration",
-                                         str(duration + 1), "--ready-file", ready],
-                                        stdout=subprocess.PIPE, text=True)
-                wait_file(ready, 5)
+                sink = self.start_sink(port, "--period-ms", 10, "--skip-ms", 1000, "--duration",
+                                       duration + 1)
                 return sink, port
 
             rounds = []
@@ -768,12 +762,8 @@ class Bench:
                 # The background exchanges go to a sink that reads them, so that no kernel
                 # buffer fills and no send fails.
                 bport = free_port(socket.SOCK_DGRAM)
-                ready = os.path.join(self.tmp, "wsink.ready")
-                sink = subprocess.Popen([tool("udp_sink"), "--port", str(bport), "--duration",
-                                         str(count / 47 + 20), "--ready-file", ready],
-                                        stdout=subprocess.DEVNULL)
-                self.procs.append(sink)
-                wait_file(ready, 5)
+                sink = self.start_sink(bport, "--duration", count / 47 + 20,
+                                       stdout=subprocess.DEVNULL)
                 produced += [(9100 + i, 10, 10, f"{HOST}:{bport}") for i in range(background)]
             name = f"g9b{background}"
             config = self.write_config(name, produced=produced,
