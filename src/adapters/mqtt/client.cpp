@@ -78,7 +78,7 @@ ClientStats Client::stats() const {
     s.discarded = impl.discarded_;
     std::lock_guard lock(impl.mutex_);
     s.queued = impl.outbox_.size() + impl.retry_.size();
-    s.in_flight = impl.in_flight_.pending();
+    s.in_flight = impl.pending();
     s.dropped_overflow =
         impl.outbox_.tags().dropped_overflow() + impl.outbox_.batch().dropped_overflow();
     s.coalesced = impl.outbox_.tags().coalesced();

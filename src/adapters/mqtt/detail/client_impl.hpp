@@ -111,12 +111,38 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     void stop(std::chrono::milliseconds flush_timeout);
 
     // --- sender thread -------------------------------------------------------------------
+    /// A publication the sender took from the queues, with what it made of it without mutex_.
+    struct Taken {
+        Message message;
+        bool probe = false;     ///< a suspect, sent alone
+        paho::message_ptr out;  ///< Paho's message, unless refused
+        std::string problem;    ///< why a broker would refuse it (publication_problem)
+    };
+    struct Outgoing {
+        std::uint64_t id;
+        paho::message_ptr message;
+    };
     void sender_main();
+    /// Under mutex_: moves the next publications the windows have room for into `taken`,
+    /// counted in taking_ meanwhile.
+    void take_burst(std::vector<Taken>& taken);
+    /// Without mutex_: checks each taken publication and builds its Paho message, the costly
+    /// part (allocations and copies) that Paho's threads would otherwise wait for.
+    void prepare_burst(std::vector<Taken>& taken);
+    /// Under mutex_: adds the prepared publications to the window, in order, into `burst`;
+    /// recycles the refused ones. Returns whether the sender stopped on a backlog.
+    bool admit_burst(std::vector<Taken>& taken, std::vector<Outgoing>& burst);
     /// Paho's publish of one taken message; a synchronous refusal is handled here.
     void send(std::uint64_t id, const paho::message_ptr& message);
 
     // --- under mutex_ --------------------------------------------------------------------
     bool has_queued() const { return !retry_.empty() || !outbox_.empty(); }
+    /// Publications in flight, with those the sender has taken and not yet added (taking_).
+    std::size_t pending() const { return in_flight_.pending() + taking_; }
+    /// Of pending(), those awaiting an acknowledgement (QoS >= 1).
+    std::size_t pending_acknowledged() const {
+        return in_flight_.pending_acknowledged() + taking_acknowledged_;
+    }
     /// Whether the sender has something to send and room to send it (detail/send_room.hpp).
     bool ready_to_send() const;
     /// Whether the next publication the sender would take awaits an acknowledgement (QoS >= 1),
@@ -126,7 +152,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     /// nothing is in flight.
     bool suspect_waits() const {
         return probe_.has_value() || held_for_reconnect_ ||
-               (!retry_.empty() && retry_.begin()->second.suspect && !in_flight_.empty());
+               (!retry_.empty() && retry_.begin()->second.suspect && pending() != 0);
     }
     /// A publication in flight when the connection went: sent again after the reconnect as a
     /// suspect, alone; the suspect in flight alone when it goes again is dropped, since the
@@ -247,6 +273,10 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     bool sending_ = false;                       ///< connected and announced: the sender may send
     bool sender_idle_ = false;                   ///< the sender waits on wake_sender_
     bool window_full_ = false;  ///< the sender stopped at the limit: wait for the low mark
+    /// Taken from the queues by the sender and not yet in in_flight_ (take_burst to
+    /// admit_burst): counted as in flight, so that neither window nor stop() misses them.
+    std::size_t taking_ = 0;
+    std::size_t taking_acknowledged_ = 0;
     /// The client's own QoS >= 1 publications the broker has not acknowledged on the connection
     /// of generation own_generation_ (one per connect): they share acknowledged_limit_.
     std::size_t own_unacknowledged_ = 0;
