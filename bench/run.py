@@ -338,16 +338,28 @@ class Bench:
         out, err = proc.communicate(timeout=timeout)
         return last_json(out)
 
-    def generate(self, port, exchanges, rate, duration=None, count=None, change=0.1,
-                 stamp=True, tags=TAGS, first=1, extra=()):
+    @staticmethod
+    def generator_args(port, exchanges, rate, duration=None, count=None, change=0.1,
+                       stamp=True, tags=TAGS, first=1, extra=()):
         args = [tool("load_generator"), "--port", str(port), "--exchanges", str(exchanges),
                 "--first-exchange", str(first), "--tags", str(tags), "--rate", str(rate),
                 "--change", str(change)]
         args += ["--count", str(count)] if count is not None else ["--duration", str(duration)]
         if not stamp:
             args.append("--no-stamp")
-        args += list(extra)
-        return run_json(args, timeout=(duration or 10) + 60)
+        return args + list(extra)
+
+    def generate(self, port, exchanges, rate, duration=None, **kwargs):
+        """Runs the load generator to its end; its JSON line."""
+        return run_json(self.generator_args(port, exchanges, rate, duration, **kwargs),
+                        timeout=(duration or 10) + 60)
+
+    def start_generator(self, port, exchanges, rate, duration, **kwargs):
+        """The load generator, started and left running (registered for cleanup)."""
+        proc = subprocess.Popen(self.generator_args(port, exchanges, rate, duration, **kwargs),
+                                stdout=subprocess.PIPE, text=True)
+        self.procs.append(proc)
+        return proc
 
     def row(self, figure, gateway, baseline, ratio, target, met):
         self.rows.append((figure, gateway, baseline, ratio, target, met))
@@ -460,11 +472,8 @@ class Bench:
         share of the machine that bare Paho alone never pays (issue #17's notes)."""
         port = free_port(socket.SOCK_DGRAM)
         sink = self.start_sink(port, "--idle-ms", 1000, "--max-s", self.d + 30)
-        gen = subprocess.Popen([tool("load_generator"), "--port", str(port), "--exchanges",
-                                str(exchanges), "--tags", str(tags), "--rate", str(datagrams),
-                                "--change", str(change), "--duration", str(self.d + 1)],
-                               stdout=subprocess.PIPE, text=True)
-        self.procs.append(gen)
+        gen = self.start_generator(port, exchanges, datagrams, self.d + 1, change=change,
+                                   tags=tags)
         rate = self.paho_ceiling(qos, topics=topics)
         gen.communicate(timeout=self.d + 60)
         sink.communicate(timeout=self.d + 60)
@@ -820,10 +829,8 @@ class Bench:
                                      idle_ms=10000, max_s=duration + 120)
         time.sleep(0.5)
         rss0 = rss_kb(gw.pid)
-        gen = subprocess.Popen([tool("load_generator"), "--port", str(udp_port), "--exchanges",
-                                "100", "--tags", str(TAGS), "--rate", str(rate), "--duration",
-                                str(duration), "--change", "1.0", "--final-value",
-                                str(FINAL_VALUE)], stdout=subprocess.PIPE, text=True)
+        gen = self.start_generator(udp_port, 100, rate, duration, change=1.0,
+                                   extra=["--final-value", str(FINAL_VALUE)])
         peak = rss0
         deadline = time.monotonic() + duration + 30
         while gen.poll() is None and time.monotonic() < deadline:

@@ -14,7 +14,6 @@ round's ratios to bare Paho and their medians. Only 127.0.0.1; every wait is bou
 import os
 import socket
 import statistics
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -37,14 +36,9 @@ def two_gateways_rate(bench, qos, change, ceiling):
         bench.wait_online(name)
     counter = bench.start_counter("b/+/+", qos)
     rate = run.offered_datagrams(ceiling, change, TAGS) // 2
-    generators = []
-    for i, port in enumerate(ports):
-        generators.append(subprocess.Popen(
-            [run.tool("load_generator"), "--port", str(port), "--exchanges", str(half),
-             "--first-exchange", str(1 + i * half), "--tags", str(TAGS), "--rate", str(rate),
-             "--change", str(change), "--duration", str(bench.d)],
-            stdout=subprocess.PIPE, text=True))
-        bench.procs.append(generators[-1])
+    generators = [bench.start_generator(port, half, rate, bench.d, change=change, tags=TAGS,
+                                        first=1 + i * half)
+                  for i, port in enumerate(ports)]
     for generator in generators:
         generator.communicate(timeout=bench.d + 60)
     got = bench.finish(counter)

@@ -103,9 +103,6 @@ void Client::Impl::sender_main() {
         // give them back, so that resident memory follows the live data.
         const bool trim = retry_.empty() && outbox_.release_after_backlog(kTrimAfterBacklog);
         lock.unlock();
-        if (stopping_) {
-            completed_.notify_all();  // refused ones taken are no longer pending
-        }
         nagle_.set_backlogged(backlog);
         if (trim) {
             ::malloc_trim(0);
@@ -122,9 +119,9 @@ void Client::Impl::take_burst(std::vector<Taken>& taken) {
     const std::size_t limit = in_flight_limit_;
     const std::size_t acknowledged_limit = acknowledged_limit_;
     while (pending() < limit && !suspect_waits()) {
-        if (next_awaits_ack() &&
-            !detail::has_acknowledged_room(pending_acknowledged(), own_unacknowledged_,
-                                           acknowledged_limit)) {
+        if (!detail::has_acknowledged_room(pending_acknowledged(), own_unacknowledged_,
+                                           acknowledged_limit) &&
+            next_awaits_ack()) {
             break;
         }
         Taken& next = taken.emplace_back();
@@ -145,14 +142,14 @@ void Client::Impl::take_burst(std::vector<Taken>& taken) {
 void Client::Impl::prepare_burst(std::vector<Taken>& taken) {
     const std::size_t max_packet_size = max_packet_size_;
     for (auto& next : taken) {
-        next.problem = detail::publication_problem(next.message, max_packet_size);
-        if (next.problem.empty()) {
-            // Paho copies topic and payload: the window keeps our Message only for a re-send.
-            next.out = to_paho(next.message);
+        if (auto problem = detail::publication_problem(next.message, max_packet_size);
+            !problem.empty()) {
+            refused_.fetch_add(1, std::memory_order_relaxed);
+            log_refused(next.message.topic, problem);
             continue;
         }
-        refused_.fetch_add(1, std::memory_order_relaxed);
-        log_refused(next.message.topic, next.problem);
+        // Paho copies topic and payload: the window keeps our Message only for a re-send.
+        next.out = to_paho(next.message);
     }
 }
 
@@ -160,6 +157,7 @@ bool Client::Impl::admit_burst(std::vector<Taken>& taken, std::vector<Outgoing>&
     for (auto& next : taken) {
         if (!next.out) {
             recycle(std::move(next.message));
+            if (stopping_) completed_.notify_all();  // no longer pending: stop() may be done
             continue;
         }
         const bool acknowledged = next.message.qos > 0;

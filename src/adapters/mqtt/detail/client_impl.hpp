@@ -115,8 +115,7 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     struct Taken {
         Message message;
         bool probe = false;     ///< a suspect, sent alone
-        paho::message_ptr out;  ///< Paho's message, unless refused
-        std::string problem;    ///< why a broker would refuse it (publication_problem)
+        paho::message_ptr out;  ///< Paho's message; none when a broker would refuse it
     };
     struct Outgoing {
         std::uint64_t id;
