@@ -24,7 +24,6 @@ ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, Northbound& no
       exchange_(plan_),
       clock_(plan_.timestamp, plan_.clock_tolerance) {
     filters_.resize(plan_.tags.size());
-    samples_.reserve(plan_.tags.size());
 }
 
 std::int64_t ExchangeConsumer::sample_time(core::WallTime wall) {
@@ -121,7 +120,12 @@ void ExchangeConsumer::report_tags(core::MonoTime now, bool all) {
     const auto quality = core::quality::quality_of(exchange_.state());
     if (!quality || !exchange_.has_image()) return;
     const auto image = exchange_.image();
-    samples_.clear();
+    // The batch being reported, in one buffer for every consumer of the thread (the loop): the
+    // Northbound reads it before tag_samples returns. Its capacity follows the largest
+    // exchange, so the data path does not allocate; one buffer per consumer, sized for every
+    // tag, was 2.4 MB of resident memory with 100,000 tags (#6's memory target).
+    thread_local std::vector<TagSample> samples;
+    samples.clear();
     for (std::size_t i = 0; i < plan_.tags.size(); ++i) {
         const auto& tag = plan_.tags[i];
         auto& filter = filters_[i];
@@ -131,10 +135,10 @@ void ExchangeConsumer::report_tags(core::MonoTime now, bool all) {
             continue;
         }
         filter.published(value, *quality, now);
-        samples_.push_back({i, value});
+        samples.push_back({i, value});
     }
-    if (samples_.empty()) return;
-    northbound_.tag_samples({plan_, *quality, timestamp_ms_, all, samples_});
+    if (samples.empty()) return;
+    northbound_.tag_samples({plan_, *quality, timestamp_ms_, all, samples});
 }
 
 void ExchangeConsumer::report_status(core::MonoTime now, bool periodic) {

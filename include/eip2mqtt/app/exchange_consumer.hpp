@@ -73,9 +73,6 @@ private:
     core::exchange::StatusGrid status_grid_;
     std::uint64_t last_status_received_ = 0;
     bool status_dirty_ = true;
-    /// The samples of the batch being reported: capacity for every tag, so the data path does
-    /// not allocate.
-    std::vector<TagSample> samples_;
 };
 
 }  // namespace eip2mqtt::app

@@ -85,8 +85,9 @@ void UnsJson::produced_status(const core::plan::ExchangePlan& exchange,
 void UnsJson::write_result(const WriteReply& reply, std::optional<std::string_view> error) {
     // Each result must be delivered: never coalesced with another on the same topic.
     if (reply.topic.empty()) return;  // nowhere a broker accepts (WriteRouter::route)
-    mqtt_.publish(
-        {reply.topic, format_write_result(error), 1, false, false, reply.correlation_data});
+    adapters::mqtt::Message result{reply.topic, format_write_result(error), 1, false, false};
+    result.correlation_data = reply.correlation_data;
+    mqtt_.publish(std::move(result));
 }
 
 void UnsJson::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {

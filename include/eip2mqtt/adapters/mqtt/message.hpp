@@ -14,17 +14,17 @@ struct Message {
     /// Latest value wins: a newer message with the same topic replaces this one while it is
     /// still queued. Off for messages that must each be delivered (write results).
     bool coalesce = true;
-    /// MQTT 5 correlation data (binary), for a write result sent to a request's response topic.
-    std::string correlation_data;
     /// Batch mode's `{exchange}/_values`: queued in a lane of its own, served in turn with the
     /// others, so that a saturated per-tag flow cannot starve it (nor it the per-tag topics).
     bool batch_lane = false;
+    /// MQTT 5 user property `historical=true`: a replayed sample, not a live one.
+    bool historical = false;
+    /// MQTT 5 correlation data (binary), for a write result sent to a request's response topic.
+    std::string correlation_data;
     /// Non-zero: once the broker acknowledged it (QoS 1 PUBACK; QoS 0: once written), the
     /// client hands this token to its on_acknowledged handler (store-and-forward deletes a
     /// journal entry only then).
     std::uint64_t ack_token = 0;
-    /// MQTT 5 user property `historical=true`: a replayed sample, not a live one.
-    bool historical = false;
 
     /// Blank again, as a default Message, but the strings keep their buffers: a message is
     /// filled again instead of allocated anew for every publication (#6).
@@ -42,6 +42,10 @@ struct Message {
 };
 
 /// A message received on a subscription, copied off Paho's thread.
+// The four flags share the int's 8 bytes: 112 bytes a message, not 128 with a flag between
+// strings, and a queue holds one per topic (#6's memory under overload).
+static_assert(sizeof(Message) <= 3 * sizeof(std::string) + 16);
+
 struct Incoming {
     std::string topic;
     std::string payload;
