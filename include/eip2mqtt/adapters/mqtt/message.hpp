@@ -41,11 +41,11 @@ struct Message {
     }
 };
 
-/// A message received on a subscription, copied off Paho's thread.
 // The four flags share the int's 8 bytes: 112 bytes a message, not 128 with a flag between
 // strings, and a queue holds one per topic (#6's memory under overload).
 static_assert(sizeof(Message) <= 3 * sizeof(std::string) + 16);
 
+/// A message received on a subscription, copied off Paho's thread.
 struct Incoming {
     std::string topic;
     std::string payload;
