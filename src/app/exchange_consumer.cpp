@@ -120,11 +120,7 @@ void ExchangeConsumer::report_tags(core::MonoTime now, bool all) {
     const auto quality = core::quality::quality_of(exchange_.state());
     if (!quality || !exchange_.has_image()) return;
     const auto image = exchange_.image();
-    // The batch being reported, in one buffer for every consumer of the thread (the loop): the
-    // Northbound reads it before tag_samples returns. Its capacity follows the largest
-    // exchange, so the data path does not allocate; one buffer per consumer, sized for every
-    // tag, was 2.4 MB of resident memory with 100,000 tags (#6's memory target).
-    thread_local std::vector<TagSample> samples;
+    auto& samples = sample_buffer();
     samples.clear();
     for (std::size_t i = 0; i < plan_.tags.size(); ++i) {
         const auto& tag = plan_.tags[i];

@@ -39,7 +39,6 @@ ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
       datagram_(core::wire::header_size + plan_->length) {
     limiters_.reserve(plan_->tags.size());
     for (const auto& tag : plan_->tags) limiters_.emplace_back(tag.spec.max_writes_per_s());
-    samples_.reserve(plan_->tags.size());
     spdlog::info("exchange {}: producing to {} every {} ms, {} image", plan_->spec.name,
                  adapters::udp::to_string(destination_), plan_->spec.period.count(),
                  image_.restored() ? "restored" : "initial");
@@ -154,7 +153,8 @@ void ExchangeProducer::report_results(const std::vector<std::uint64_t>& write_id
 
 void ExchangeProducer::report_echo(core::WallTime wall, bool all) {
     const auto data = image_.data();
-    samples_.clear();
+    auto& samples = sample_buffer();
+    samples.clear();
     for (std::size_t i = 0; i < plan_->tags.size(); ++i) {
         const auto& tag = plan_->tags[i].spec;
         const auto value = core::plan::decode_value(data, tag.type, tag.address);
@@ -162,11 +162,11 @@ void ExchangeProducer::report_echo(core::WallTime wall, bool all) {
             const auto old = core::plan::decode_value(echoed_, tag.type, tag.address);
             if (core::plan::same_value(old, value)) continue;
         }
-        samples_.push_back({i, value});
+        samples.push_back({i, value});
     }
     echoed_.assign(data.begin(), data.end());
-    if (samples_.empty()) return;
-    northbound_.tag_samples({*plan_, core::quality::Quality::good, to_ms(wall), all, samples_});
+    if (samples.empty()) return;
+    northbound_.tag_samples({*plan_, core::quality::Quality::good, to_ms(wall), all, samples});
 }
 
 void ExchangeProducer::on_tick(core::MonoTime now) {

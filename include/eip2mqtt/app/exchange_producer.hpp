@@ -107,7 +107,6 @@ private:
     core::exchange::ProducedImage image_;
     std::vector<std::byte> datagram_;
     std::vector<std::byte> echoed_;  ///< data bytes as last reported
-    std::vector<TagSample> samples_;
     std::vector<std::uint64_t> carried_;
     std::unordered_map<std::uint64_t, WriteReply> replies_;
     std::vector<core::write::RateLimiter> limiters_;  ///< one per tag
