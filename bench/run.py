@@ -390,11 +390,7 @@ class Bench:
         udp_ceiling, _ = ceiling(sink_trial)
 
         name = "g1"
-        udp_port = free_port(socket.SOCK_DGRAM)
-        config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, 17)], qos=1,
-                                   udp_port=udp_port)
-        gw = self.start_gateway(name, config)
-        self.wait_online(name)
+        gw, udp_port = self.launch_gateway(name, [(i, TAGS) for i in range(1, 17)], 1)
 
         def gateway_trial(rate, n):
             before = self.settled_metrics(name)
@@ -479,13 +475,19 @@ class Bench:
         sink.communicate(timeout=self.d + 60)
         return rate
 
+    def launch_gateway(self, name, consumed, qos, **config):
+        """A gateway consuming `consumed` ((exchange, tags) pairs) on a UDP port of its own,
+        started and online: (process, port)."""
+        udp_port = free_port(socket.SOCK_DGRAM)
+        path = self.write_config(name, consumed=consumed, qos=qos, udp_port=udp_port, **config)
+        gw = self.start_gateway(name, path)
+        self.wait_online(name)
+        return gw, udp_port
+
     def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1, sparkplug=False,
                      tags=TAGS):
-        udp_port = free_port(socket.SOCK_DGRAM)
-        config = self.write_config(name, consumed=[(i, tags) for i in range(1, exchanges + 1)],
-                                   qos=qos, batch=batch, udp_port=udp_port, sparkplug=sparkplug)
-        gw = self.start_gateway(name, config)
-        self.wait_online(name)
+        gw, udp_port = self.launch_gateway(name, [(i, tags) for i in range(1, exchanges + 1)],
+                                           qos, batch=batch, sparkplug=sparkplug)
         if sparkplug:
             counter = self.start_counter("spBv1.0/bench/DDATA/#", qos, extra=["--sparkplug"])
         elif batch:
@@ -504,33 +506,25 @@ class Bench:
               flush=True)
         return got
 
-    def split_gateways_rate(self, qos, change, ceiling, exchanges, tags, parts=2):
-        """The tuning of issue #17 that a user can set: `parts` gateway processes, each consuming
-        its share of the exchanges, with its own Paho, its own connection and a load generator
-        of its own at its share of the datagrams one gateway is offered (gateway_rate)."""
-        share = exchanges // parts
-        gateways, ports = [], []
-        for i in range(parts):
-            name = f"split{i}"
-            port = free_port(socket.SOCK_DGRAM)
-            first = 1 + i * share
-            config = self.write_config(name, qos=qos, udp_port=port,
-                                       consumed=[(e, tags) for e in range(first, first + share)])
-            gateways.append((name, self.start_gateway(name, config)))
-            ports.append(port)
-        for name, _ in gateways:
-            self.wait_online(name)
+    def split_gateways_rate(self, qos, change, ceiling, exchanges, tags):
+        """The tuning of issue #17 that a user can set: two gateway processes, each consuming
+        half of the exchanges, with its own Paho, its own connection and a load generator of its
+        own at half the datagrams one gateway is offered (gateway_rate)."""
+        share = exchanges // 2
+        halves = [[(e, tags) for e in range(1 + i * share, 1 + (i + 1) * share)]
+                  for i in range(2)]
+        gateways = [self.launch_gateway(f"split{i}", half, qos) for i, half in enumerate(halves)]
         counter = self.start_counter("b/+/+", qos)
-        rate = offered_datagrams(ceiling, change, tags) // parts
+        rate = offered_datagrams(ceiling, change, tags) // 2
         generators = [self.start_generator(port, share, rate, self.d, change=change, tags=tags,
                                            first=1 + i * share)
-                      for i, port in enumerate(ports)]
+                      for i, (_, port) in enumerate(gateways)]
         for generator in generators:
             generator.communicate(timeout=self.d + 60)
         got = self.finish(counter)
-        for _, gateway in gateways:
+        for gateway, _ in gateways:
             stop(gateway)
-        print(f"    {parts} gateways: received {got['messages']} msgs at {got['rate']:.0f}/s",
+        print(f"    two gateways: received {got['messages']} msgs at {got['rate']:.0f}/s",
               flush=True)
         return got
 
@@ -652,11 +646,8 @@ class Bench:
             paho = self.finish(counter)
 
             name = f"g5q{qos}"
-            udp_port = free_port(socket.SOCK_DGRAM)
-            config = self.write_config(name, consumed=[(i, tags) for i in range(1, exchanges + 1)],
-                                       qos=qos, udp_port=udp_port)
-            gw = self.start_gateway(name, config)
-            self.wait_online(name)
+            gw, udp_port = self.launch_gateway(name, [(i, tags) for i in range(1, exchanges + 1)],
+                                               qos)
             # Warm-up: one datagram per exchange, so that every tag's first value (a one-off
             # burst of exchanges x tags retained messages, not a rate) is published before the
             # measured run; the counter skips the retained values it is then sent.
@@ -854,11 +845,7 @@ class Bench:
         ceiling = self.ceilings.get(("gw", 1)) or self.ceilings.get(1) or self.paho_ceiling(1)
         rate = max(100, round(5 * ceiling / TAGS))
         name = "g8"
-        udp_port = free_port(socket.SOCK_DGRAM)
-        config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, 101)], qos=1,
-                                   udp_port=udp_port)
-        gw = self.start_gateway(name, config)
-        self.wait_online(name)
+        gw, udp_port = self.launch_gateway(name, [(i, TAGS) for i in range(1, 101)], 1)
         metrics_log = open(os.path.join(self.tmp, "g8-metrics.log"), "w")
         metrics = subprocess.Popen(["mosquitto_sub", "-h", HOST, "-p", str(self.broker_port),
                                     "-W", str(duration + 90), "-t", f"b/_gateway/{name}/metrics"],
