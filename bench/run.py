@@ -109,10 +109,14 @@ def offered_datagrams(ceiling, change, tags):
 
 
 def ratio_text(ratio, meets):
-    """The ratio to 2 decimals, or to 3 where 2 would fall on the other side of the target
-    (`meets`, a test of a ratio): a 0.898 is not shown as 0.90 next to 'no'."""
-    text = f"{ratio:.2f}"
-    return text if meets(float(text)) == meets(ratio) else f"{ratio:.3f}"
+    """The ratio to 2 decimals, or to as many more as it takes for the figure shown to fall on
+    the same side of the target (`meets`, a test of a ratio): a 0.8998 is shown neither as 0.90
+    nor as 0.900 next to 'no'."""
+    for decimals in range(2, 7):
+        text = f"{ratio:.{decimals}f}"
+        if meets(float(text)) == meets(ratio):
+            return text
+    return text
 
 
 def median_round(results):
