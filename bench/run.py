@@ -515,14 +515,14 @@ class Bench:
         half of the exchanges, with its own Paho, its own connection and a load generator of its
         own at half the datagrams one gateway is offered (gateway_rate)."""
         share = exchanges // 2
-        halves = [[(e, tags) for e in range(1 + i * share, 1 + (i + 1) * share)]
-                  for i in range(2)]
-        gateways = [self.launch_gateway(f"split{i}", half, qos) for i, half in enumerate(halves)]
+        firsts = (1, 1 + share)  # each half's first exchange
+        gateways = [self.launch_gateway(f"split{i}", [(e, tags) for e in range(f, f + share)], qos)
+                    for i, f in enumerate(firsts)]
         counter = self.start_counter("b/+/+", qos)
         rate = offered_datagrams(ceiling, change, tags) // 2
         generators = [self.start_generator(port, share, rate, self.d, change=change, tags=tags,
-                                           first=1 + i * share)
-                      for i, (_, port) in enumerate(gateways)]
+                                           first=f)
+                      for f, (_, port) in zip(firsts, gateways)]
         for generator in generators:
             generator.communicate(timeout=self.d + 60)
         got = self.finish(counter)

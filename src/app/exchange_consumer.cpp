@@ -121,7 +121,6 @@ void ExchangeConsumer::report_tags(core::MonoTime now, bool all) {
     if (!quality || !exchange_.has_image()) return;
     const auto image = exchange_.image();
     auto& samples = sample_buffer();
-    samples.clear();
     for (std::size_t i = 0; i < plan_.tags.size(); ++i) {
         const auto& tag = plan_.tags[i];
         auto& filter = filters_[i];

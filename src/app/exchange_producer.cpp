@@ -154,7 +154,6 @@ void ExchangeProducer::report_results(const std::vector<std::uint64_t>& write_id
 void ExchangeProducer::report_echo(core::WallTime wall, bool all) {
     const auto data = image_.data();
     auto& samples = sample_buffer();
-    samples.clear();
     for (std::size_t i = 0; i < plan_->tags.size(); ++i) {
         const auto& tag = plan_->tags[i].spec;
         const auto value = core::plan::decode_value(data, tag.type, tag.address);

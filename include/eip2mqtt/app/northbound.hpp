@@ -43,13 +43,14 @@ struct TagSample {
     core::plan::Value value;
 };
 
-/// Where an exchange gathers the samples of the SampleBatch it is about to report: one buffer
-/// per thread, shared by every consumed and produced exchange of the loop, since the Northbound
-/// reads a batch before tag_samples returns. The caller clears it; its capacity follows the
-/// largest exchange, so the data path does not allocate. A buffer per exchange, sized for
-/// every tag, was 2.4 MB of resident memory with 100,000 consumed tags (#6's memory target).
+/// Where an exchange gathers the samples of the SampleBatch it is about to report, empty: one
+/// buffer per thread, shared by every consumed and produced exchange of the loop, since the
+/// Northbound reads a batch before tag_samples returns. Its capacity follows the largest
+/// exchange, so the data path does not allocate. A buffer per exchange, sized for every tag,
+/// was 2.4 MB of resident memory with 100,000 consumed tags (#6's memory target).
 inline std::vector<TagSample>& sample_buffer() {
     thread_local std::vector<TagSample> samples;
+    samples.clear();
     return samples;
 }
 
