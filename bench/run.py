@@ -103,6 +103,12 @@ def median(values):
     return sorted(values)[len(values) // 2]
 
 
+def consumed_list(count, tags=TAGS, first=1):
+    """The consumed exchanges `first` .. `first + count - 1`, each of `tags` tags, as
+    `Bench.write_config` takes them."""
+    return [(i, tags) for i in range(first, first + count)]
+
+
 def offered_datagrams(ceiling, change, tags):
     """Datagrams/s offering 1.5 x `ceiling` tag updates/s, `change` of `tags` changing in each."""
     return max(100, round(1.5 * ceiling / max(1, round(change * tags))))
@@ -394,7 +400,7 @@ class Bench:
         udp_ceiling, _ = ceiling(sink_trial)
 
         name = "g1"
-        gw, udp_port = self.launch_gateway(name, [(i, TAGS) for i in range(1, 17)], 1)
+        gw, udp_port = self.launch_gateway(name, consumed_list(16), 1)
 
         def gateway_trial(rate, n):
             before = self.settled_metrics(name)
@@ -490,7 +496,7 @@ class Bench:
 
     def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1, sparkplug=False,
                      tags=TAGS):
-        gw, udp_port = self.launch_gateway(name, [(i, tags) for i in range(1, exchanges + 1)],
+        gw, udp_port = self.launch_gateway(name, consumed_list(exchanges, tags),
                                            qos, batch=batch, sparkplug=sparkplug)
         if sparkplug:
             counter = self.start_counter("spBv1.0/bench/DDATA/#", qos, extra=["--sparkplug"])
@@ -516,7 +522,7 @@ class Bench:
         own at half the datagrams one gateway is offered (gateway_rate)."""
         share = exchanges // 2
         firsts = (1, 1 + share)  # each half's first exchange
-        gateways = [self.launch_gateway(f"split{i}", [(e, tags) for e in range(f, f + share)], qos)
+        gateways = [self.launch_gateway(f"split{i}", consumed_list(share, tags, f), qos)
                     for i, f in enumerate(firsts)]
         counter = self.start_counter("b/+/+", qos)
         rate = offered_datagrams(ceiling, change, tags) // 2
@@ -650,8 +656,7 @@ class Bench:
             paho = self.finish(counter)
 
             name = f"g5q{qos}"
-            gw, udp_port = self.launch_gateway(name, [(i, tags) for i in range(1, exchanges + 1)],
-                                               qos)
+            gw, udp_port = self.launch_gateway(name, consumed_list(exchanges, tags), qos)
             # Warm-up: one datagram per exchange, so that every tag's first value (a one-off
             # burst of exchanges x tags retained messages, not a rate) is published before the
             # measured run; the counter skips the retained values it is then sent.
@@ -692,7 +697,7 @@ class Bench:
         for form, name, point_list in (("inline YAML", "g6", False),
                                        ("point lists", "g6p", True)):
             config = self.write_config(
-                name, consumed=[(i, TAGS) for i in range(1, 1001)],
+                name, consumed=consumed_list(1000),
                 produced=[(5000 + i, 10, 100, f"{HOST}:{sink_port}") for i in range(100)], qos=1,
                 udp_port=udp_port, point_list=point_list)
             times, rss_idle, rss_data, hwm = self.startup_and_memory(name, config, udp_port, runs)
@@ -849,7 +854,7 @@ class Bench:
         ceiling = self.ceilings.get(("gw", 1)) or self.ceilings.get(1) or self.paho_ceiling(1)
         rate = max(100, round(5 * ceiling / TAGS))
         name = "g8"
-        gw, udp_port = self.launch_gateway(name, [(i, TAGS) for i in range(1, 101)], 1)
+        gw, udp_port = self.launch_gateway(name, consumed_list(100), 1)
         metrics_log = open(os.path.join(self.tmp, "g8-metrics.log"), "w")
         metrics = subprocess.Popen(["mosquitto_sub", "-h", HOST, "-p", str(self.broker_port),
                                     "-W", str(duration + 90), "-t", f"b/_gateway/{name}/metrics"],
@@ -953,7 +958,7 @@ class Bench:
             """Zero-loss datagram rate, 100 x 100 tags, 10 % changing, batch mode, the broker
             out of reach (a port nobody listens on): journaled, or buffered in memory."""
             udp_port, prom = free_port(socket.SOCK_DGRAM), free_port()
-            config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, 101)], qos=1,
+            config = self.write_config(name, consumed=consumed_list(100), qos=1,
                                        batch=True, udp_port=udp_port, broker_port=free_port(),
                                        prometheus=prom, store_and_forward=saf)
             gw = self.start_gateway(name, config)
@@ -987,7 +992,7 @@ class Bench:
         # A known outage journaled, then replayed as fast as the broker takes it.
         count = 20000 if self.quick else 200000
         name, udp_port, prom, port = "g10r", free_port(socket.SOCK_DGRAM), free_port(), free_port()
-        config = self.write_config(name, consumed=[(i, TAGS) for i in range(1, 101)], qos=1,
+        config = self.write_config(name, consumed=consumed_list(100), qos=1,
                                    batch=True, udp_port=udp_port, broker_port=port,
                                    prometheus=prom, log_level="info",
                                    store_and_forward={"enabled": "true",
