@@ -28,7 +28,7 @@ auto session_settings(const core::config::Config& c) {
         c.mqtt.keepalive, c.mqtt.session_expiry, c.eip.bind, c.eip.port, c.eip.multicast.size(),
         c.eip.multicast_ttl, c.eip.multicast_interface, c.metrics.listen, c.sparkplug.group_id,
         c.sparkplug.edge_node_id, c.sparkplug.primary_host_id, c.sparkplug.uns, c.sparkplug.qos,
-        c.mqtt.store_and_forward);
+        c.sparkplug.max_packet_bytes, c.mqtt.store_and_forward);
 }
 
 }  // namespace

@@ -70,8 +70,8 @@ inline constexpr std::array<std::string_view, 5> eip_keys{"bind", "port", "multi
                                                           "multicast_ttl", "multicast_interface"};
 inline constexpr std::array<std::string_view, 2> multicast_keys{"group", "interface"};
 inline constexpr std::array<std::string_view, 1> metrics_keys{"listen"};
-inline constexpr std::array<std::string_view, 5> sparkplug_keys{"group_id", "edge_node_id",
-                                                                "primary_host_id", "uns", "qos"};
+inline constexpr std::array<std::string_view, 6> sparkplug_keys{
+    "group_id", "edge_node_id", "primary_host_id", "uns", "qos", "max_packet_bytes"};
 inline constexpr std::array<std::string_view, 15> exchange_keys{
     "name",      "direction",   "producer_id", "exchange_id", "length",
     "signature", "period_ms",   "timeout_ms",  "timestamp",   "clock_tolerance_ms",
