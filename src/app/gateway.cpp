@@ -120,7 +120,10 @@ void Gateway::start() {
     });
     mqtt_->start();
     if (sparkplug_mqtt_) {
-        sparkplug_mqtt_->set_on_connected([this] { sparkplug_->on_connected(); });
+        sparkplug_mqtt_->set_on_connected(
+            [this] { sparkplug_->on_connected(sparkplug_mqtt_->max_packet_size()); });
+        sparkplug_mqtt_->set_on_acknowledged(
+            [this](std::uint64_t token) { sparkplug_->on_acknowledged(token); });
         sparkplug_mqtt_->set_on_message(
             [this](const adapters::mqtt::Incoming& message) { sparkplug_->on_message(message); });
         sparkplug_mqtt_->start();
@@ -191,6 +194,7 @@ void Gateway::on_tick() {
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
     // Before the metrics: figures showing a datagram accepted then show it journaled for good.
     if (history_) history_->on_tick(now);
+    if (sparkplug_) sparkplug_->tick(now);
     if (refresh_scan) {
         last_refresh_scan_ = now;
         if (prometheus_) {
@@ -235,7 +239,8 @@ void Gateway::publish_metrics() {
         std::chrono::steady_clock::now() - started_at_);
     const auto history = history_ ? std::optional(history_->stats()) : std::nullopt;
     northbound_.gateway_metrics(
-        {datagram_router_.counters(), writes_.counters(), stats, history ? &*history : nullptr},
+        {datagram_router_.counters(), writes_.counters(), stats, history ? &*history : nullptr,
+         sparkplug_ ? &sparkplug_->stats() : nullptr},
         uptime);
     notifier_.status(status_line());
 }

@@ -18,6 +18,7 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
+#include "eip2mqtt/app/northbound/sparkplug_stats.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
 
@@ -37,7 +38,8 @@ struct MetricsSources {
     const DatagramCounters& datagrams;
     const GatewayCounters& gateway;
     const adapters::mqtt::ClientStats& mqtt;
-    const history::HistoryStats* history = nullptr;  ///< with store and forward
+    const history::HistoryStats* history = nullptr;         ///< with store and forward
+    const northbound::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
 };
 
 /// Store and forward's figures for Prometheus and the metrics topic.

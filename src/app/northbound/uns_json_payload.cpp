@@ -114,6 +114,13 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
             {"replaying", h.replaying},
         };
     }
+    if (sources.sparkplug) {
+        const auto& sp = *sources.sparkplug;
+        metrics["sparkplug"] = {{"births_refused", sp.births_refused},
+                                {"data_refused", sp.data_refused},
+                                {"rebirth_requests", sp.rebirth_requests},
+                                {"node_births", sp.node_births}};
+    }
     return metrics.dump();
 }
 
