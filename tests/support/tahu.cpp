@@ -33,6 +33,27 @@ nlohmann::json tahu_decode(const std::string& bytes) {
     return json;
 }
 
+std::vector<nlohmann::json> tahu_decode_all(const std::vector<std::string>& payloads) {
+    if (payloads.empty()) return {};
+    std::vector<std::string> argv{EIP2MQTT_NODE, EIP2MQTT_TAHU_SCRIPT, "decode-all"};
+    std::vector<std::filesystem::path> files;
+    for (const auto& bytes : payloads) {
+        files.push_back(temp_file(".bin"));
+        std::ofstream(files.back(), std::ios::binary) << bytes;
+        argv.push_back(files.back().string());
+    }
+    const auto result = run_command(argv, std::chrono::seconds(120));
+    for (const auto& file : files) std::filesystem::remove(file);
+    EXPECT_EQ(result.status, 0) << result.output;
+    const auto json = nlohmann::json::parse(result.output, nullptr, false);
+    if (!json.is_array() || json.size() != payloads.size()) {
+        ADD_FAILURE() << "Tahu decoded " << payloads.size()
+                      << " payloads into: " << result.output.substr(0, 2000);
+        return std::vector<nlohmann::json>(payloads.size(), nlohmann::json::object());
+    }
+    return {json.begin(), json.end()};
+}
+
 std::string tahu_encode(const nlohmann::json& payload) {
     const auto input = temp_file(".json");
     const auto output = temp_file(".bin");

@@ -5,12 +5,17 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace eip2mqtt::test {
 
 /// The payload as Tahu decodes it: {"timestamp": "..", "seq": "..", "metrics": [{"name",
 /// "alias", "type", "value", "timestamp", "properties"}..]}, 64-bit integers as strings.
 nlohmann::json tahu_decode(const std::string& bytes);
+
+/// Each of `payloads` as tahu_decode() gives it, in order, with one run of Node.js: many
+/// messages decoded one by one would take a Node.js start each.
+std::vector<nlohmann::json> tahu_decode_all(const std::vector<std::string>& payloads);
 
 /// The protobuf bytes Tahu encodes for `payload` ({"timestamp": ms, "metrics": [{"name",
 /// "alias", "type", "value"}..]}).
