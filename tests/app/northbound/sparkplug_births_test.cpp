@@ -44,9 +44,9 @@ std::vector<TagSample> every_tag(std::size_t count, std::int64_t value) {
     return samples;
 }
 
-class SparkplugPacketSizeTest : public SparkplugNodeTest {
+class SparkplugNodePacketSizeTest : public SparkplugNodeTest {
 protected:
-    SparkplugPacketSizeTest() { node_.exchanges_changed({{&consumed_, &big_}, {&produced_}}, {}); }
+    SparkplugNodePacketSizeTest() { node_.exchanges_changed({{&consumed_, &big_}, {&produced_}}, {}); }
 
     void datagrams(std::int64_t value) {
         node_.tag_samples({big_, Quality::good, now_ms, false, every_tag(big_tags, value)});
@@ -56,7 +56,7 @@ protected:
     core::plan::ExchangePlan big_ = big_plan();
 };
 
-TEST_F(SparkplugPacketSizeTest, ADbirthOverTheBrokersLimitIsNotPublishedAndItsDeviceStaysUnborn) {
+TEST_F(SparkplugNodePacketSizeTest, ADbirthOverTheBrokersLimitIsNotPublishedAndItsDeviceStaysUnborn) {
     node_.next_will();
     node_.on_connected(4000);  // the big device's DBIRTH is some 12 kB, the others' far less
     datagrams(1);
@@ -93,7 +93,7 @@ TEST_F(SparkplugPacketSizeTest, ADbirthOverTheBrokersLimitIsNotPublishedAndItsDe
     EXPECT_TRUE(counted);
 }
 
-TEST_F(SparkplugPacketSizeTest, AnNbirthOverTheLimitLeavesTheWholeNodeUnbornAndSilent) {
+TEST_F(SparkplugNodePacketSizeTest, AnNbirthOverTheLimitLeavesTheWholeNodeUnbornAndSilent) {
     node_.next_will();
     node_.on_connected(100);  // less than any NBIRTH
     datagrams(1);
@@ -111,7 +111,7 @@ TEST_F(SparkplugPacketSizeTest, AnNbirthOverTheLimitLeavesTheWholeNodeUnbornAndS
     EXPECT_EQ(rejection(0), core::write::WriteError::offline);
 }
 
-TEST_F(SparkplugPacketSizeTest, MaxPacketBytesLowersTheBrokersLimit) {
+TEST_F(SparkplugNodePacketSizeTest, MaxPacketBytesLowersTheBrokersLimit) {
     SparkplugNode node({"plant1", "gw1", "", 0, 4000}, publisher_, *this, [] { return now_ms; });
     node.exchanges_changed({{&big_}, {}}, {});
     node.next_will();
@@ -122,7 +122,7 @@ TEST_F(SparkplugPacketSizeTest, MaxPacketBytesLowersTheBrokersLimit) {
     EXPECT_EQ(node.stats().births_refused, 1u);
 }
 
-TEST_F(SparkplugPacketSizeTest, CheckEstimatesEachBirthAtLeastAsLargeAsItIs) {
+TEST_F(SparkplugNodePacketSizeTest, CheckEstimatesEachBirthAtLeastAsLargeAsItIs) {
     const std::vector<core::plan::ExchangePlan> plans{
         test::sparkplug_plan("in", core::plan::Direction::consume), big_plan(),
         test::sparkplug_plan("out", core::plan::Direction::produce)};
