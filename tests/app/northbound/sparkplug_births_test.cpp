@@ -46,7 +46,9 @@ std::vector<TagSample> every_tag(std::size_t count, std::int64_t value) {
 
 class SparkplugNodePacketSizeTest : public SparkplugNodeTest {
 protected:
-    SparkplugNodePacketSizeTest() { node_.exchanges_changed({{&consumed_, &big_}, {&produced_}}, {}); }
+    SparkplugNodePacketSizeTest() {
+        node_.exchanges_changed({{&consumed_, &big_}, {&produced_}}, {});
+    }
 
     void datagrams(std::int64_t value) {
         node_.tag_samples({big_, Quality::good, now_ms, false, every_tag(big_tags, value)});
@@ -56,7 +58,8 @@ protected:
     core::plan::ExchangePlan big_ = big_plan();
 };
 
-TEST_F(SparkplugNodePacketSizeTest, ADbirthOverTheBrokersLimitIsNotPublishedAndItsDeviceStaysUnborn) {
+TEST_F(SparkplugNodePacketSizeTest,
+       ADbirthOverTheBrokersLimitIsNotPublishedAndItsDeviceStaysUnborn) {
     node_.next_will();
     node_.on_connected(4000);  // the big device's DBIRTH is some 12 kB, the others' far less
     datagrams(1);
