@@ -206,18 +206,7 @@ void Gateway::on_tick() {
     for (auto& producer : producers_) producer->on_tick(now);
     // The summary of a flood of drops that stopped, which no next drop would log.
     datagram_router_.flush_log(now);
-    for (auto& consumer : consumers_) {
-        const auto before = consumer->exchange().state();
-        consumer->on_tick(now, wall, refresh_scan);
-        const auto after = consumer->exchange().state();
-        if (before != after && after == core::exchange::ConsumeState::stale) {
-            spdlog::warn("exchange {} is stale: no datagram for {} ms; tags marked stale",
-                         consumer->plan().spec.name, consumer->plan().timeout.count());
-        } else if (before != after) {
-            spdlog::info("exchange {} is {}", consumer->plan().spec.name,
-                         core::exchange::to_string(after));
-        }
-    }
+    for (auto& consumer : consumers_) consumer->on_tick(now, wall, refresh_scan);
 }
 
 void Gateway::schedule_metrics() {
