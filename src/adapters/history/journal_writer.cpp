@@ -54,8 +54,7 @@ void JournalWriter::run() {
         lock.unlock();
         try {
             std::lock_guard journal(journal_mutex_);
-            for (auto& entry : batch) journal_->append(entry);
-            journal_->commit(durable);
+            journal_->write(batch, durable);
         } catch (const std::exception& error) {
             failures_.fetch_add(1, std::memory_order_relaxed);
             if (const auto count = failure_log_.record(std::chrono::steady_clock::now())) {
