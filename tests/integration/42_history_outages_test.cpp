@@ -254,10 +254,11 @@ TEST_F(HistoryOutagesTest, AFullDiskKeepsTheNewestThroughTwoOutagesAndARestart) 
 }
 
 TEST_F(HistoryOutagesTest, SparkplugHistoryOfThreeOutagesHasEveryJournaledSample) {
-    // The node's own connection comes back after the JSON tree's: its replay waits for its
-    // births, and the journal keeps each entry until the node has it too.
+    // The node's births wait for its primary host, which says it is online again only once the
+    // JSON tree has replayed the outage: the node's own replay must wait for its births, and the
+    // journal keep each entry until the node has it too.
     auto options = broker_keeping_everything();
-    options.sections = "sparkplug:\n  group_id: plant\n  qos: 1\n";
+    options.sections = "sparkplug:\n  group_id: plant\n  qos: 1\n  primary_host_id: scada\n";
     start(ExchangeYaml::consume("line", "10.0.0.2", 7)
               .length(4)
               .period_ms(10)
@@ -266,6 +267,15 @@ TEST_F(HistoryOutagesTest, SparkplugHistoryOfThreeOutagesHasEveryJournaledSample
               .str(),
           "  batch: true\n  store_and_forward:\n    enabled: true\n    replay_rate: 500\n",
           std::move(options));
+    const std::string state = "spBv1.0/STATE/scada";
+    int host_timestamp = 0;
+    const auto host = [&](bool online) {
+        recorder_->publish(state,
+                           std::string(R"({"online":)") + (online ? "true" : "false") +
+                               R"(,"timestamp":)" + std::to_string(++host_timestamp) + "}",
+                           true);
+    };
+    host(true);
     producer_ = std::make_unique<Producer>(
         [](std::uint64_t n) {
             return DatagramBuilder("10.0.0.2", 7, 4)
@@ -276,10 +286,22 @@ TEST_F(HistoryOutagesTest, SparkplugHistoryOfThreeOutagesHasEveryJournaledSample
         [this](const auto& d) { send(d); }, 10ms);
     const std::string ddata = "spBv1.0/plant/DDATA/test-gw/line";
     ASSERT_TRUE(recorder_->wait_for_message(ddata, nullptr, 10s));
+    const auto history = topic("line/_history");
     for (int outage = 0; outage < 3; ++outage) {
+        host(false);  // retained: after the outage, the node waits for the host again
         stop_broker();
         std::this_thread::sleep_for(5s);  // the scenario: three outages of 5 s
+        const auto from = recorder_->count();
         start_broker();
+        // The JSON tree replays the outage while the node is not born.
+        ASSERT_TRUE(recorder_->wait_for(
+            [&](const std::vector<Received>& all) {
+                return std::count_if(all.begin() + static_cast<std::ptrdiff_t>(from), all.end(),
+                                     [&](const Received& m) { return m.topic == history; }) >= 300;
+            },
+            30s))
+            << gateway_->output();
+        host(true);
         EXPECT_TRUE(wait_replayed(60s)) << gateway_->output();
     }
     producer_->pause();
