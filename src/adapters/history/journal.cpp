@@ -285,6 +285,8 @@ void Journal::remove_through(std::uint64_t last_id) {
     db_->entries -= std::min(db_->entries, removed);
 }
 
+std::uint64_t Journal::last_id() const { return db_->next_id - 1; }
+
 JournalStats Journal::stats() {
     JournalStats stats;
     stats.entries = db_->entries;

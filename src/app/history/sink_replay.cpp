@@ -15,6 +15,9 @@ constexpr std::size_t kMaxOutstanding = 1000;
 /// Ticks the client must hold none of the outstanding entries before they count as dropped:
 /// an acknowledgement posted to the loop just before may still be on its way for one tick.
 constexpr int kIdleTicksBeforeRewind = 2;
+/// How long a sink must have stayed connected after entries were journaled for them to count
+/// as published live: a connection that went is noticed well within it (the broker's close).
+constexpr auto kLiveGrace = std::chrono::seconds(2);
 
 }  // namespace
 
@@ -54,6 +57,20 @@ void SinkReplay::handed(std::uint64_t id, bool outstanding) {
     cursor_ = id;
     allowance_ -= 1;
     if (outstanding) outstanding_.insert(id);
+}
+
+void SinkReplay::note_live(core::MonoTime now, std::uint64_t last_id) {
+    if (active_ || !link_.connected()) {
+        live_since_.reset();
+        return;
+    }
+    if (live_since_ && now - *live_since_ >= kLiveGrace && outstanding_.empty()) {
+        cursor_ = std::max(cursor_, live_mark_);
+    }
+    if (!live_since_ || now - *live_since_ >= kLiveGrace) {
+        live_since_ = now;
+        live_mark_ = last_id;
+    }
 }
 
 bool SinkReplay::acknowledge(std::uint64_t id) { return outstanding_.erase(id) > 0; }

@@ -125,7 +125,11 @@ void StoreAndForward::on_tick(core::MonoTime now) {
         delete_delivered();
         if (first_.active()) replay_some(first_, now, true);
         for (auto& replay : extra_) {
-            if (replay->active()) replay_some(*replay, now, false);
+            if (replay->active()) {
+                replay_some(*replay, now, false);
+            } else {
+                replay->note_live(now, writer_.last_id());
+            }
         }
     } catch (const std::exception& error) {
         fail("the journal failed", error);

@@ -215,11 +215,11 @@ TEST_F(StoreAndForwardTest, AnotherSinkReplaysOnceItsOwnConnectionIsUp) {
 
 TEST_F(StoreAndForwardTest, WhatAnotherSinksConnectionLostGoesAgainOnItsNextConnection) {
     OtherNorthbound sparkplug;
-    sparkplug.connected = true;
     saf_->add_sink(sparkplug.sink, sparkplug.link());
     for (int i = 1; i <= 5; ++i) counter(i, 1000 + i);
     run_for(10ms);
     reconnect();
+    sparkplug.connected = true;
     saf_->on_connected(sparkplug.sink, now_);
     run_for(100ms);
     acknowledge_all();
@@ -243,16 +243,34 @@ TEST_F(StoreAndForwardTest, WhatAnotherSinksConnectionLostGoesAgainOnItsNextConn
     EXPECT_EQ(sink_.replayed.size(), 5u);  // the JSON tree's replay is its own: nothing again
 }
 
+TEST_F(StoreAndForwardTest, WhatAnotherSinkPublishedLiveIsNotWaitedFor) {
+    // The other northbound's connection stayed up through the first one's outage: it published
+    // those samples live, and the journal does not keep them for it.
+    OtherNorthbound sparkplug;
+    sparkplug.connected = true;
+    saf_->add_sink(sparkplug.sink, sparkplug.link());
+    for (int i = 1; i <= 3; ++i) counter(i, 1000 + i);
+    run_for(20ms);
+    reconnect();
+    run_for(50ms);
+    acknowledge_all();
+    run_for(100ms);
+    EXPECT_EQ(entries(), 3u) << "a connection that went may not have been noticed yet";
+    run_for(4s);
+    EXPECT_TRUE(sparkplug.sink.replayed.empty());
+    EXPECT_EQ(entries(), 0u);
+}
+
 TEST_F(StoreAndForwardTest, AnEntryASinkHasNoUseForIsNotWaitedFor) {
     OtherNorthbound sparkplug;
     sparkplug.sink.good_only = true;
-    sparkplug.connected = true;
     saf_->add_sink(sparkplug.sink, sparkplug.link());
     counter(1, 1001);
     counter(2, 1002, Quality::stale);
     counter(3, 1003);
     run_for(10ms);
     reconnect();
+    sparkplug.connected = true;
     saf_->on_connected(sparkplug.sink, now_);
     run_for(50ms);
     EXPECT_EQ(sparkplug.values(), (std::vector<std::int64_t>{1, 3}));

@@ -78,6 +78,8 @@ public:
     /// Deletes every entry up to `last_id`, that one included.
     void remove_through(std::uint64_t last_id);
     JournalStats stats();
+    /// The id of the last entry written (0: none yet).
+    std::uint64_t last_id() const;
 
 private:
     struct Db;

@@ -49,6 +49,11 @@ public:
     /// Entry `id` was handed over; `outstanding`: it waits for an acknowledgement (otherwise
     /// the sink had no use for it, and it counts as delivered).
     void handed(std::uint64_t id, bool outstanding);
+    /// Every tick between its replays: entries journaled (for another sink) while this one
+    /// was connected, and stayed connected for a grace period after, count as delivered: it
+    /// published them live. (The grace covers a connection that went before it was noticed.)
+    /// `last_id`: the last entry journaled so far.
+    void note_live(core::MonoTime now, std::uint64_t last_id);
     /// The broker acknowledged `id`; false when it was not waited for (a rewind forgot it).
     bool acknowledge(std::uint64_t id);
     /// Every entry up to this one is delivered to this sink.
@@ -67,7 +72,9 @@ private:
     std::set<std::uint64_t> outstanding_;  ///< handed over, not acknowledged yet
     double allowance_ = 0;                 ///< entries the rate allows now
     std::optional<core::MonoTime> last_;
-    int idle_with_outstanding_ = 0;  ///< ticks the client held none of outstanding_
+    int idle_with_outstanding_ = 0;             ///< ticks the client held none of outstanding_
+    std::optional<core::MonoTime> live_since_;  ///< connected between replays since then
+    std::uint64_t live_mark_ = 0;               ///< the last entry journaled then
 };
 
 }  // namespace eip2mqtt::app::history
