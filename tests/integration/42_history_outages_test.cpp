@@ -148,6 +148,43 @@ protected:
             .has_value();
     }
 
+    /// Live values (T0 / 1000) show `outages` gaps. In each, the journal kept the newest
+    /// entries: what reached `history` runs without a hole up to the gap's last value, in
+    /// order, and only the oldest of the gap, those the full disk could not hold, are missing.
+    void expect_newest_kept_in_each_outage(const std::string& values, const std::string& history,
+                                           std::size_t outages) {
+        const auto all = recorder_->messages();
+        std::set<std::uint64_t> live;
+        for (const auto v : values_on(values, "T0", all)) live.insert(v / 1000);
+        std::vector<std::uint64_t> replayed;
+        for (const auto v : values_on(history, "T0", all)) replayed.push_back(v / 1000);
+        const std::set<std::uint64_t> replayed_set(replayed.begin(), replayed.end());
+        EXPECT_LE(replayed.size() - replayed_set.size(), 10u) << "QoS 1 repeats at most";
+        std::vector<std::pair<std::uint64_t, std::uint64_t>> gaps;  // first and last value
+        for (auto it = live.begin(); it != live.end() && std::next(it) != live.end(); ++it) {
+            if (*std::next(it) > *it + 1) gaps.emplace_back(*it + 1, *std::next(it) - 1);
+        }
+        ASSERT_EQ(gaps.size(), outages) << "live values should show the outages";
+        for (const auto& [first, end] : gaps) {
+            std::uint64_t kept = 0;
+            for (auto v = end; v >= first && replayed_set.contains(v); --v) ++kept;
+            std::uint64_t stray = 0;
+            for (auto v = first; v + kept <= end; ++v) stray += replayed_set.contains(v) ? 1 : 0;
+            EXPECT_GT(kept, 300u) << "outage " << first << "-" << end;
+            EXPECT_EQ(stray, 0u) << "outage " << first << "-" << end
+                                 << ": an older entry outlived a newer";
+            EXPECT_LT(kept, end - first + 1) << "the disk never filled";
+            std::cout << "outage of values " << first << "-" << end << ": " << kept
+                      << " newest replayed, " << end - first + 1 - kept << " oldest dropped\n";
+        }
+        std::vector<std::uint64_t> firsts;
+        std::set<std::uint64_t> seen;
+        for (const auto v : replayed) {
+            if (seen.insert(v).second) firsts.push_back(v);
+        }
+        EXPECT_TRUE(std::is_sorted(firsts.begin(), firsts.end()));
+    }
+
     std::map<std::string, std::size_t> expected_;
     std::unique_ptr<TmpfsMount> disk_;
     std::unique_ptr<Producer> producer_;
@@ -215,40 +252,7 @@ TEST_F(HistoryOutagesTest, AFullDiskKeepsTheNewestThroughTwoOutagesAndARestart) 
         },
         30s));
 
-    // Live values have two gaps, the outages. In each, the journal kept the newest entries:
-    // what reached `_history` runs without a hole up to the gap's last value, in order, and
-    // only the oldest of the gap, those the full disk could not hold, are missing.
-    const auto all = recorder_->messages();
-    std::vector<std::uint64_t> live;
-    for (const auto v : values_on(values, "T0", all)) live.push_back(v / 1000);
-    std::vector<std::uint64_t> replayed;
-    for (const auto v : values_on(history, "T0", all)) replayed.push_back(v / 1000);
-    std::set<std::uint64_t> live_set(live.begin(), live.end());
-    const std::set<std::uint64_t> replayed_set(replayed.begin(), replayed.end());
-    EXPECT_LE(replayed.size() - replayed_set.size(), 10u) << "QoS 1 repeats at most";
-    std::vector<std::pair<std::uint64_t, std::uint64_t>> gaps;  // first and last value
-    for (auto it = live_set.begin(); std::next(it) != live_set.end(); ++it) {
-        if (*std::next(it) > *it + 1) gaps.emplace_back(*it + 1, *std::next(it) - 1);
-    }
-    ASSERT_EQ(gaps.size(), 2u) << "live values should show the two outages";
-    for (const auto& [first, end] : gaps) {
-        std::uint64_t kept = 0;
-        for (auto v = end; v >= first && replayed_set.contains(v); --v) ++kept;
-        std::uint64_t stray = 0;
-        for (auto v = first; v + kept <= end; ++v) stray += replayed_set.contains(v) ? 1 : 0;
-        EXPECT_GT(kept, 300u) << "outage " << first << "-" << end;
-        EXPECT_EQ(stray, 0u) << "outage " << first << "-" << end
-                             << ": an older entry outlived a newer";
-        std::cout << "outage of values " << first << "-" << end << ": " << kept
-                  << " newest replayed, " << end - first + 1 - kept << " oldest dropped\n";
-    }
-    EXPECT_LT(gaps[0].first + 1000, gaps[0].second - 300) << "the disk never filled";
-    std::vector<std::uint64_t> firsts;
-    std::set<std::uint64_t> seen;
-    for (const auto v : replayed) {
-        if (seen.insert(v).second) firsts.push_back(v);
-    }
-    EXPECT_TRUE(std::is_sorted(firsts.begin(), firsts.end()));
+    expect_newest_kept_in_each_outage(values, history, 2);
     EXPECT_EQ(gateway_->output().find("journal failed"), std::string::npos) << gateway_->output();
     EXPECT_EQ(gateway_->output().find("set aside"), std::string::npos) << gateway_->output();
 }
