@@ -55,7 +55,7 @@ Gateway::Gateway(core::config::Config config)
                     .count();
             });
         northbound_.add(*sparkplug_);
-        if (history_) history_->add_sink(*sparkplug_);
+        add_sparkplug_history();
     }
     apply_exchanges(take_plans(), false, false);
 
@@ -120,9 +120,11 @@ void Gateway::start() {
     });
     mqtt_->start();
     if (sparkplug_mqtt_) {
-        sparkplug_mqtt_->set_on_connected([this] { sparkplug_->on_connected(); });
-        sparkplug_mqtt_->set_on_message(
-            [this](const adapters::mqtt::Incoming& message) { sparkplug_->on_message(message); });
+        sparkplug_mqtt_->set_on_connected(
+            [this] { on_sparkplug_event(true, [this] { sparkplug_->on_connected(); }); });
+        sparkplug_mqtt_->set_on_message([this](const adapters::mqtt::Incoming& message) {
+            on_sparkplug_event(false, [&] { sparkplug_->on_message(message); });
+        });
         sparkplug_mqtt_->start();
     }
     wait_signal();

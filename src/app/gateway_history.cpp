@@ -44,4 +44,27 @@ void Gateway::make_history() {
                  stats.journal.entries, settings.max_mb);
 }
 
+void Gateway::add_sparkplug_history() {
+    if (!history_) return;
+    history::LinkProbe link{[this] { return sparkplug_mqtt_->connected() && sparkplug_->born(); },
+                            [this] {
+                                const auto stats = sparkplug_mqtt_->stats();
+                                return stats.queued + stats.in_flight;
+                            }};
+    history_->add_sink(*sparkplug_, std::move(link));
+    sparkplug_mqtt_->set_on_acknowledged(
+        [this](std::uint64_t id) { history_->on_acknowledged(*sparkplug_, id); });
+}
+
+void Gateway::on_sparkplug_event(bool connection, const std::function<void()>& event) {
+    // Born by this event (a connection without a primary host, or the host's STATE online):
+    // the node replays on the births' heels. Every birth on a new connection comes from one of
+    // these, and the old connection's unacknowledged history goes again.
+    const bool was_born = !connection && sparkplug_->born();
+    event();
+    if (history_ && sparkplug_->born() && !was_born) {
+        history_->on_connected(*sparkplug_, std::chrono::steady_clock::now());
+    }
+}
+
 }  // namespace eip2mqtt::app

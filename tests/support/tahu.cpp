@@ -33,6 +33,41 @@ nlohmann::json tahu_decode(const std::string& bytes) {
     return json;
 }
 
+std::vector<nlohmann::json> tahu_decode_all(const std::vector<std::string>& payloads) {
+    static constexpr char alphabet[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const auto path = temp_file(".b64");
+    {
+        std::ofstream file(path);
+        for (const auto& bytes : payloads) {
+            std::string line;
+            for (std::size_t i = 0; i < bytes.size(); i += 3) {
+                std::uint32_t n = static_cast<std::uint8_t>(bytes[i]) << 16;
+                if (i + 1 < bytes.size()) n |= static_cast<std::uint8_t>(bytes[i + 1]) << 8;
+                if (i + 2 < bytes.size()) n |= static_cast<std::uint8_t>(bytes[i + 2]);
+                line += alphabet[(n >> 18) & 63];
+                line += alphabet[(n >> 12) & 63];
+                line += i + 1 < bytes.size() ? alphabet[(n >> 6) & 63] : '=';
+                line += i + 2 < bytes.size() ? alphabet[n & 63] : '=';
+            }
+            file << line << '\n';
+        }
+    }
+    const auto result =
+        run_command({EIP2MQTT_NODE, EIP2MQTT_TAHU_SCRIPT, "decode-lines", path.string()},
+                    std::chrono::seconds(120));
+    std::filesystem::remove(path);
+    EXPECT_EQ(result.status, 0) << result.output;
+    std::vector<nlohmann::json> out;
+    std::istringstream lines(result.output);
+    for (std::string line; std::getline(lines, line);) {
+        out.push_back(nlohmann::json::parse(line, nullptr, false));
+        EXPECT_FALSE(out.back().is_discarded()) << line;
+    }
+    EXPECT_EQ(out.size(), payloads.size());
+    return out;
+}
+
 std::string tahu_encode(const nlohmann::json& payload) {
     const auto input = temp_file(".json");
     const auto output = temp_file(".bin");

@@ -5,12 +5,16 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace eip2mqtt::test {
 
 /// The payload as Tahu decodes it: {"timestamp": "..", "seq": "..", "metrics": [{"name",
 /// "alias", "type", "value", "timestamp", "properties"}..]}, 64-bit integers as strings.
 nlohmann::json tahu_decode(const std::string& bytes);
+/// The same for many payloads, in one run of Node.js (a run per payload takes minutes for
+/// thousands).
+std::vector<nlohmann::json> tahu_decode_all(const std::vector<std::string>& payloads);
 
 /// The protobuf bytes Tahu encodes for `payload` ({"timestamp": ms, "metrics": [{"name",
 /// "alias", "type", "value"}..]}).

@@ -9,6 +9,7 @@
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -60,6 +61,11 @@ private:
     /// (gateway_history.cpp). A journal that cannot be opened is logged; the gateway runs
     /// without it.
     void make_history();
+    /// The Sparkplug node's history goes through store and forward too, on its own connection.
+    void add_sparkplug_history();
+    /// Runs `event` (the node's connection, or a message for it); once the node is born by it,
+    /// its replay of history starts.
+    void on_sparkplug_event(bool connection, const std::function<void()>& event);
     /// The plans of config_'s exchanges, for apply_exchanges. The exchange configs (every tag
     /// again, with the marks of its keys) served validation only: they are released here.
     std::vector<core::plan::ExchangePlan> take_plans();

@@ -61,7 +61,7 @@ void UnsJson::tag_samples(const SampleBatch& batch) {
     }
 }
 
-void UnsJson::replay(const SampleBatch& batch, std::uint64_t ack_token) {
+bool UnsJson::replay(const SampleBatch& batch, std::uint64_t ack_token) {
     message_.topic.assign(batch.exchange.topic).append("/_history");
     format_values_payload(message_.payload, batch);
     message_.qos = 1;  // an entry leaves the journal on its PUBACK
@@ -69,6 +69,7 @@ void UnsJson::replay(const SampleBatch& batch, std::uint64_t ack_token) {
     message_.historical = true;
     message_.ack_token = ack_token;
     mqtt_.publish(std::move(message_));
+    return true;
 }
 
 void UnsJson::consumed_status(const ConsumedStatus& status) {

@@ -72,9 +72,9 @@ public:
     void write_result(const WriteReply&, std::optional<std::string_view>) override {}
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
     /// Store and forward's history as DDATA with `is_historical` on every metric, by alias: for
-    /// a device born now, and good samples only (bad data is a DDEATH in this convention). Not
-    /// acknowledged back: the journal is kept by the JSON tree's `_history`.
-    void replay(const SampleBatch& batch, std::uint64_t ack_token) override;
+    /// a device born now, and good samples only (bad data is a DDEATH in this convention); the
+    /// DDATA carries `ack_token`, which the node's connection hands back once it is sent.
+    bool replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
     bool born() const { return born_; }
     std::uint8_t bd_seq() const { return bd_seq_; }
@@ -108,9 +108,11 @@ private:
     void birth();
     void device_birth(Device& device);
     void device_death(Device& device);
-    void publish(const std::string& topic, adapters::sparkplug::Payload& payload);
-    /// DDATA of `batch`'s samples by alias, live or historical.
-    void publish_data(const Device& device, const SampleBatch& batch, bool historical);
+    void publish(const std::string& topic, adapters::sparkplug::Payload& payload,
+                 std::uint64_t ack_token = 0);
+    /// DDATA of `batch`'s samples by alias, live or historical (with the journal entry's token).
+    void publish_data(const Device& device, const SampleBatch& batch, bool historical,
+                      std::uint64_t ack_token = 0);
     std::string node_topic(std::string_view type) const;
     std::size_t node_metric(const std::string& name, adapters::sparkplug::DataType type);
     void set_node_metric(std::size_t index, adapters::sparkplug::MetricValue value);

@@ -65,7 +65,7 @@ public:
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
     /// `{exchange}/_history`: the `_values` shape, QoS 1, not retained, MQTT 5 user property
     /// `historical=true`.
-    void replay(const SampleBatch& batch, std::uint64_t ack_token) override;
+    bool replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
 private:
     UnsJsonOptions options_;
