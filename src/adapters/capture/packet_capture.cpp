@@ -92,19 +92,17 @@ std::uint64_t PacketCapture::kernel_drops() const {
 
 void PacketCapture::do_wait() {
     readable_.async_wait(boost::asio::posix::stream_descriptor::wait_read,
-                         [this](const boost::system::error_code& error) {
-                             if (error == boost::asio::error::operation_aborted || stopped_) {
-                                 return;
-                             }
-                             const auto on_frame = [](u_char* self, const pcap_pkthdr* header,
-                                                      const u_char* bytes) {
-                                 reinterpret_cast<PacketCapture*>(self)->on_frame(
-                                     {reinterpret_cast<const std::byte*>(bytes), header->caplen});
-                             };
-                             pcap_dispatch(handle_, max_frames_per_wakeup, on_frame,
-                                           reinterpret_cast<u_char*>(this));
-                             if (!stopped_) do_wait();
-                         });
+                         [this](const boost::system::error_code& error) { on_readable(error); });
+}
+
+void PacketCapture::on_readable(const boost::system::error_code& error) {
+    if (error == boost::asio::error::operation_aborted || stopped_) return;
+    const auto frame = [](u_char* self, const pcap_pkthdr* header, const u_char* bytes) {
+        reinterpret_cast<PacketCapture*>(self)->on_frame(
+            {reinterpret_cast<const std::byte*>(bytes), header->caplen});
+    };
+    pcap_dispatch(handle_, max_frames_per_wakeup, frame, reinterpret_cast<u_char*>(this));
+    if (!stopped_) do_wait();
 }
 
 void PacketCapture::on_frame(std::span<const std::byte> frame) {

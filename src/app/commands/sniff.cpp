@@ -185,10 +185,10 @@ public:
     }
 
     /// The per-exchange table, rates over the last interval; `fragments`: IP fragments the
-    /// capture saw and could not decode.
-    void print_statistics(std::uint64_t fragments) {
+    /// capture saw and could not decode; `kernel_drops`: frames the capture was too slow for.
+    void print_statistics(std::uint64_t fragments, std::uint64_t kernel_drops) {
         const auto now = Clock::now();
-        if (exchanges_.empty() && dropped_.empty() && fragments == 0) return;
+        if (exchanges_.empty() && dropped_.empty() && fragments == 0 && kernel_drops == 0) return;
         std::size_t width = 8;
         for (const auto& exchange : exchanges_) width = std::max(width, exchange.label.size());
         out_ << fmt::format("-- statistics at {} --\n",
@@ -219,6 +219,10 @@ public:
         if (fragments != 0) {
             out_ << fmt::format("ip fragments: {} (not decoded: EIP datagrams fit one frame)\n",
                                 fragments);
+        }
+        if (kernel_drops != 0) {
+            // The capture's own loss, not the network's: the gateway may well have them all.
+            out_ << fmt::format("capture dropped: {} (sniff could not keep up)\n", kernel_drops);
         }
         out_ << std::flush;
     }
@@ -340,7 +344,7 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
         tick.expires_at(deadline);
         tick.async_wait([&](const boost::system::error_code& error) {
             if (error) return;
-            sniffer.print_statistics(capture->stats().fragments);
+            sniffer.print_statistics(capture->stats().fragments, capture->kernel_drops());
             deadline += interval;  // absolute deadlines: the interval never drifts
             schedule();
         });
@@ -349,7 +353,7 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
 
     detail::run_until_stopped(loop, options.duration_s);
     capture->stop();
-    sniffer.print_statistics(capture->stats().fragments);
+    sniffer.print_statistics(capture->stats().fragments, capture->kernel_drops());
     sniffer.print_skeleton();
     return 0;
 }

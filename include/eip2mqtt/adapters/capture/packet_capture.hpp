@@ -65,6 +65,7 @@ public:
 
 private:
     void do_wait();
+    void on_readable(const boost::system::error_code& error);
     void on_frame(std::span<const std::byte> frame);
 
     ::pcap* handle_ = nullptr;
