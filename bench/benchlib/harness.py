@@ -1,0 +1,31 @@
+"""The run's state and the parts the scenarios call: Bench."""
+
+import tempfile
+
+from benchlib.gateways import Gateways
+from benchlib.measures import Measures
+from benchlib.processes import Processes
+from benchlib.report import Report
+
+
+class Bench(Processes, Gateways, Measures, Report):
+    def __init__(self, quick, only):
+        self.quick = quick
+        self.only = only
+        # Scenarios whose figures the host's other work moves most (2, 3, 5, 7) repeat their
+        # baseline and gateway runs in turn, and report the median round.
+        self.rounds = 1 if quick else 3
+        self.tmp = tempfile.mkdtemp(prefix="eip2mqtt-bench-")
+        self.rows = []
+        self.notes = []
+        self.brokers = {}  # setup -> (process, port)
+        self.broker_port = 0  # the broker the next step talks to (use_broker)
+        self.procs = []
+        self.counter_seq = 0
+        self.d = 2 if quick else 5  # seconds per throughput run
+        # Scenario 2's figures later scenarios take as their load: bare Paho's per-tag rate
+        # (by QoS) and the gateway's (by ("gw", QoS)), 1 x 100 tags on the tuned broker.
+        self.ceilings = {}
+
+    def wanted(self, n):
+        return not self.only or n in self.only
