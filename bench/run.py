@@ -2,14 +2,16 @@
 """The benchmark driver behind bench/run.sh; see bench/README.md.
 
 Starts its own Mosquitto on a free loopback port, runs every scenario against the gateway built
-from this repository and against its same-run baseline, and writes one markdown table to
-bench/results/latest.md (also printed). Every wait is bounded in time; only 127.0.0.1 is used.
-The harness is in bench/benchlib/, one module per scenario in bench/scenarios/.
+from this repository and against its same-run baseline (and, with --against-binary, against an
+earlier build in alternating rounds), and writes one markdown table to bench/results/latest.md
+(also printed). Every wait is bounded in time; only 127.0.0.1 is used. The harness is in
+bench/benchlib/, one module per scenario in bench/scenarios/.
 """
 
 import argparse
 import os
 import sys
+import time
 
 from benchlib.harness import Bench
 from benchlib.util import GATEWAY, tool
@@ -35,27 +37,54 @@ def parse_args():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
     parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-10)")
+    parser.add_argument("--against-binary", default="", metavar="PATH",
+                        help="an earlier build's eip2mqtt, run beside this one in every "
+                             "scenario (bench/run.sh --against REV builds it)")
+    parser.add_argument("--against-label", default="", metavar="NAME",
+                        help="how the report names that build (default: its path)")
     return parser.parse_args()
+
+
+def command_line(args):
+    """The run as bench/run.sh's command line, for the report."""
+    return ("bench/run.sh" + (" --quick" if args.quick else "") +
+            (f" --only {args.only}" if args.only else "") +
+            (f" --against {args.against_label or args.against_binary}"
+             if args.against_binary else ""))
+
+
+def check_programs(args):
+    for path in (GATEWAY, tool("load_generator"), tool("mqtt_counter"), tool("yaml_parse"),
+                 tool("write_latency")) + ((args.against_binary,) if args.against_binary else ()):
+        if not os.access(path, os.X_OK):
+            sys.exit(f"missing {path}: run bench/run.sh, which builds first")
+
+
+def run_scenarios(bench):
+    for numbers, scenario in SCENARIOS:
+        if any(bench.wanted(n) for n in numbers):
+            start = time.monotonic()
+            scenario.run(bench)
+            print(f"    (scenario {','.join(map(str, numbers))}: "
+                  f"{time.monotonic() - start:.0f} s)", flush=True)
+    if not bench.paho_rates:  # scenario 2 did not run: the machine is still named by them
+        for qos in (0, 1):
+            bench.paho_rates[(qos, "tuned broker")] = bench.paho_ceiling(qos)
 
 
 def main():
     args = parse_args()
-    only = {int(x) for x in args.only.split(",") if x}
-    for path in (GATEWAY, tool("load_generator"), tool("mqtt_counter"), tool("yaml_parse"),
-                 tool("write_latency")):
-        if not os.access(path, os.X_OK):
-            sys.exit(f"missing {path}: run bench/run.sh, which builds first")
-    bench = Bench(args.quick, only)
-    command = "bench/run.sh" + (" --quick" if args.quick else "") + \
-        (f" --only {args.only}" if args.only else "")
+    check_programs(args)
+    against = None
+    if args.against_binary:
+        against = (args.against_label or args.against_binary, args.against_binary)
+    bench = Bench(args.quick, {int(x) for x in args.only.split(",") if x}, against)
     try:
         bench.start_broker()
-        for numbers, scenario in SCENARIOS:
-            if any(bench.wanted(n) for n in numbers):
-                scenario.run(bench)
+        run_scenarios(bench)
     finally:
         bench.close()
-    bench.report(command)
+    bench.report(command_line(args))
 
 
 if __name__ == "__main__":

@@ -1,5 +1,7 @@
 """The gateway configurations the scenarios run: one YAML file (and, with point lists, one CSV)
-per gateway, in the run's temporary directory."""
+per gateway, in the run's temporary directory. Only the keys a scenario needs are written, the
+defaults left out, so that an earlier build (--against-binary), whose configuration lacks some
+of today's keys, reads every configuration that does not need them."""
 
 import os
 
@@ -22,16 +24,16 @@ def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, promet
         f"gateway: {{ id: {name}, state_dir: {state}, log_level: {log_level} }}",
         "mqtt:",
         f"  url: tcp://{HOST}:{broker_port}",
-        "  version: 5",
         "  base_topic: b",
         f"  qos: {qos}",
         "  retain: false",
-        "  payload: json",
-        f"  batch: {'true' if batch else 'false'}",
-        f"  batch_first: {'true' if batch == 'first' else 'false'}",
         "  metrics_interval_s: 1",
         "  buffer: { max_messages: 250000 }",  # above any scenario's topic count
     ]
+    if batch:
+        lines.append("  batch: true")
+    if batch == "first":
+        lines.append("  batch_first: true")
     if store_and_forward:
         lines.append("  store_and_forward: { " +
                      ", ".join(f"{k}: {v}" for k, v in store_and_forward.items()) + " }")
@@ -86,13 +88,14 @@ def produced_lines(produced):
 
 def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=False,
                  udp_port=0, point_list=False, sparkplug=False, prometheus=0,
-                 store_and_forward=None, log_level="warn"):
+                 store_and_forward=None, log_level="warn", state_suffix=""):
     """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
     destination). With point_list, the consumed tags are rows of one CSV ({name}.csv, a SCADA
     point list whose Node column names the exchange) that every consumed exchange names in
-    `points:`. batch: True for `_values`, "first" for `_values` first (batch_first)."""
+    `points:`. batch: True for `_values`, "first" for `_values` first (batch_first).
+    state_suffix: the state directory's, so that each build keeps its own."""
     path = os.path.join(tmp, name + ".yaml")
-    state = os.path.join(tmp, name + "-state")
+    state = os.path.join(tmp, name + "-state" + state_suffix)
     os.makedirs(state, exist_ok=True)
     lines = head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
                        store_and_forward, log_level)

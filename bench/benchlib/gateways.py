@@ -8,29 +8,36 @@ import subprocess
 import time
 
 from benchlib import config
-from benchlib.util import GATEWAY, HOST, free_port
+from benchlib.util import HOST, free_port
 
 
 class Gateways:
-    def write_config(self, name, broker_port=None, **kwargs):
-        """config.write_config in this run's directory, on the broker in use by default."""
-        return config.write_config(self.tmp, name, broker_port or self.broker_port, **kwargs)
+    def write_config(self, name, broker_port=None, build=None, **kwargs):
+        """config.write_config in this run's directory, on the broker in use by default, with a
+        state directory of `build`'s own (the build under test's by default)."""
+        suffix = "" if build is None or build.new else "-against"
+        return config.write_config(self.tmp, name, broker_port or self.broker_port,
+                                   state_suffix=suffix, **kwargs)
 
-    def start_gateway(self, name, config_path, notify_socket=None, args=()):
+    def start_gateway(self, name, config_path, notify_socket=None, args=(), build=None):
+        """`build` (the build under test by default) running `config_path`; NotInBuild when an
+        earlier build refuses the configuration."""
+        build = build or self.build
+        build.require(config_path)
         log = open(os.path.join(self.tmp, name + ".log"), "w")
         env = dict(os.environ)
         env.pop("NOTIFY_SOCKET", None)
         if notify_socket:
             env["NOTIFY_SOCKET"] = notify_socket
-        proc = subprocess.Popen([GATEWAY, "run", "-c", config_path, *args], stdout=log,
+        proc = subprocess.Popen([build.gateway, "run", "-c", config_path, *args], stdout=log,
                                 stderr=log, env=env)
         self.procs.append(proc)
         return proc
 
-    def wait_online(self, name, timeout=10):
+    def wait_online(self, name, timeout=10, proc=None, build=None):
         """Until the gateway's state topic says `online`. The retained `offline` of an earlier
         instance of the same gateway may come first: read on (bounded by -W) rather than take
-        the first message."""
+        the first message. An earlier build's gateway `proc` that ended instead is NotInBuild."""
         sub = subprocess.Popen(["mosquitto_sub", "-h", HOST, "-p", str(self.broker_port), "-W",
                                 str(timeout), "-t", f"b/_gateway/{name}/state"],
                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
@@ -43,16 +50,18 @@ class Gateways:
         finally:
             sub.kill()
             sub.wait(timeout=5)
+        if proc is not None:
+            (build or self.build).start_failed(proc, os.path.join(self.tmp, name + ".log"))
         raise RuntimeError(f"gateway {name} did not come online: {seen!r}")
 
-    def launch_gateway(self, name, consumed, qos, **config_args):
-        """A gateway consuming `consumed` ((exchange, tags) pairs) on a UDP port of its own,
-        started and online: (process, port)."""
+    def launch_gateway(self, name, consumed, qos, build=None, **config_args):
+        """A gateway of `build` consuming `consumed` ((exchange, tags) pairs) on a UDP port of
+        its own, started and online: (process, port)."""
         udp_port = free_port(socket.SOCK_DGRAM)
         path = self.write_config(name, consumed=consumed, qos=qos, udp_port=udp_port,
-                                 **config_args)
-        gw = self.start_gateway(name, path)
-        self.wait_online(name)
+                                 build=build, **config_args)
+        gw = self.start_gateway(name, path, build=build)
+        self.wait_online(name, proc=gw, build=build)
         return gw, udp_port
 
     def metrics(self, name, timeout=4):

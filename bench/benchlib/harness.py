@@ -2,14 +2,17 @@
 
 import tempfile
 
+from benchlib.builds import Build, NotInBuild, in_order
 from benchlib.gateways import Gateways
 from benchlib.measures import Measures
 from benchlib.processes import Processes
 from benchlib.report import Report
+from benchlib.util import GATEWAY
 
 
 class Bench(Processes, Gateways, Measures, Report):
-    def __init__(self, quick, only):
+    def __init__(self, quick, only, against=None):
+        """against: (label, gateway binary) of an earlier build to run beside this one."""
         self.quick = quick
         self.only = only
         # Scenarios whose figures the host's other work moves most (2, 3, 5, 7) repeat their
@@ -26,6 +29,23 @@ class Bench(Processes, Gateways, Measures, Report):
         # Scenario 2's figures later scenarios take as their load: bare Paho's per-tag rate
         # (by QoS) and the gateway's (by ("gw", QoS)), 1 x 100 tags on the tuned broker.
         self.ceilings = {}
+        # Bare Paho's rate by (QoS, broker), 1 x 100 tags: the machine, in the report.
+        self.paho_rates = {}
+        self.build = Build("this build", GATEWAY, new=True)
+        self.against = Build(against[0], against[1], new=False) if against else None
+        self.builds = [self.build] + ([self.against] if self.against else [])
 
     def wanted(self, n):
         return not self.only or n in self.only
+
+    def per_build(self, round_index, measure):
+        """measure(build) for each build, in round `round_index`'s order: {build: its result},
+        None for an earlier build that cannot run it."""
+        out = {}
+        for build in in_order(self.builds, round_index):
+            try:
+                out[build] = measure(build)
+            except NotInBuild as e:
+                print(f"    not in {build.label}: {e.reason}", flush=True)
+                out[build] = None
+        return out

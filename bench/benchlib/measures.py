@@ -75,9 +75,10 @@ class Measures:
         return rate
 
     def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1, sparkplug=False,
-                     tags=TAGS):
+                     tags=TAGS, build=None):
+        """`build`'s gateway offered 1.5 x `ceiling` tag updates/s: the counter's JSON."""
         gw, udp_port = self.launch_gateway(name, consumed_list(exchanges, tags),
-                                           qos, batch=batch, sparkplug=sparkplug)
+                                           qos, batch=batch, sparkplug=sparkplug, build=build)
         if sparkplug:
             counter = self.start_counter("spBv1.0/bench/DDATA/#", qos, extra=["--sparkplug"])
         elif batch:
@@ -96,13 +97,14 @@ class Measures:
               flush=True)
         return got
 
-    def split_gateways_rate(self, qos, change, ceiling, exchanges, tags):
+    def split_gateways_rate(self, qos, change, ceiling, exchanges, tags, build=None):
         """The tuning a user can set: two gateway processes, each consuming half of the
         exchanges, with its own Paho, its own connection and a load generator of its own at
         half the datagrams one gateway is offered (gateway_rate)."""
         share = exchanges // 2
         firsts = (1, 1 + share)  # each half's first exchange
-        gateways = [self.launch_gateway(f"split{i}", consumed_list(share, tags, f), qos)
+        gateways = [self.launch_gateway(f"split{i}", consumed_list(share, tags, f), qos,
+                                        build=build)
                     for i, f in enumerate(firsts)]
         counter = self.start_counter("b/+/+", qos)
         rate = offered_datagrams(ceiling, change, tags) // 2

@@ -1,37 +1,89 @@
-"""The report: the table's rows as the scenarios give them, the machine they ran on, and the
-markdown file (bench/results/latest.md, quick.md or partial.md)."""
+"""The report: the table's rows as the scenarios give them, with the earlier build's figures
+beside them (--against-binary), the machine they ran on, and the markdown file (bench/results/latest.md, quick.md or partial.md)."""
 
 import datetime
 import os
-import platform
-import subprocess
 
-from benchlib.util import BUILD, GATEWAY, RESULTS, ROOT
+from benchlib import machine
+from benchlib.util import GATEWAY, RESULTS, ROOT, median
+
+def ratios_text(ratios):
+    text = f"{median(ratios):.2f}"
+    if len(ratios) > 1:
+        text += " (rounds: " + ", ".join(f"{r:.2f}" for r in ratios) + ")"
+    return text
 
 
 class Report:
-    def row(self, figure, gateway, baseline, ratio, target, met):
-        self.rows.append((figure, gateway, baseline, ratio, target, met))
-        print(f"  {figure}: {gateway} | {baseline} | {ratio} | {target} | {met}", flush=True)
+    def row(self, figure, gateway, baseline, ratio, target, met, against=None):
+        """One row of the table; `against`: the earlier build's two cells (versus), which
+        every row carries when the run has an earlier build."""
+        cells = [figure, gateway, baseline, ratio, target, met]
+        if self.against:
+            if against is None:
+                raise RuntimeError(f"a row without {self.against.label}'s figure: {figure}")
+            cells += list(against)
+        self.rows.append(tuple(cells))
+        print("  " + figure + ": " + " | ".join(str(c) for c in cells[1:]), flush=True)
 
-    def report(self, command):
+    def versus(self, rounds, value, shown=None, fmt="{:,.0f}".format):
+        """The earlier build's cells of a row from `rounds` ({build: result} of each round):
+        its figure (`shown` of its results, or `fmt` of its median value) and the ratio this
+        build / it, the median over rounds of each round's ratio. None without an earlier
+        build; "not in LABEL" where it cannot run the scenario."""
+        if self.against is None:
+            return None
+        label = self.against.label
+        new = [r[self.build] for r in rounds]
+        old = [r.get(self.against) for r in rounds]
+        if any(o is None for o in old):
+            return f"not in {label}", "-"
+        text = shown(old) if shown else fmt(median([value(o) for o in old]))
+        ratios = [value(n) / value(o) for n, o in zip(new, old) if value(o)]
+        if ratios:
+            return text, ratios_text(ratios)
+        return text, "- (both 0)" if all(value(n) == 0 for n in new) else f"- ({label} 0)"
+
+    def header(self, command):
         lines = [
             "# eip2mqtt benchmark results",
             "",
             f"- date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M UTC}",
-            f"- machine: {machine()}",
+            f"- machine: {machine.description()}",
+            f"- bare Paho on this machine, this run: {self.paho_summary()}",
             f"- load average at the end (1/5/15 min): "
             f"{' / '.join(f'{x:.1f}' for x in os.getloadavg())} (shared machine: other work "
             "shows here and in the noisier rows)",
             f"- command: `{command}`",
-            f"- gateway: `{os.path.relpath(GATEWAY, ROOT)}` ({build_type()}); Mosquitto "
-            f"{mosquitto_version()} on 127.0.0.1; subscriber: bench/mqtt_counter (libmosquitto)",
-            "",
-            "| figure | gateway | baseline (same run) | ratio | target | met? |",
-            "|---|---|---|---|---|---|",
+            f"- gateway: `{os.path.relpath(GATEWAY, ROOT)}` ({machine.build_type()}); Mosquitto "
+            f"{machine.mosquitto_version()} on 127.0.0.1; subscriber: bench/mqtt_counter "
+            "(libmosquitto)",
         ]
-        for r in self.rows:
-            lines.append("| " + " | ".join(str(c) for c in r) + " |")
+        if self.against:
+            label = self.against.label
+            lines.append(
+                f"- against: {label} (`{self.against.gateway}`), in the same run: each "
+                f"scenario runs both builds in alternating rounds (this build first in round 1, "
+                f"{label} first in round 2, ...), beside the same round's baselines; "
+                f"`this / {label}` is the median of the rounds' ratios")
+        return lines
+
+    def paho_summary(self):
+        parts = [f"QoS {qos} {rate:,.0f} messages/s ({broker})"
+                 for (qos, broker), rate in sorted(self.paho_rates.items())]
+        return ("; ".join(parts) + f" (bench/paho_publisher, 100 topics, median round)"
+                if parts else "not measured")
+
+    def table(self):
+        head = "| figure | gateway | baseline (same run) | ratio | target | met? |"
+        rule = "|---|---|---|---|---|---|"
+        if self.against:
+            head += f" {self.against.label} | this / {self.against.label} |"
+            rule += "---|---|"
+        return [head, rule] + ["| " + " | ".join(str(c) for c in r) + " |" for r in self.rows]
+
+    def report(self, command):
+        lines = self.header(command) + [""] + self.table()
         if self.notes:
             lines += ["", "Notes:"] + [f"- {n}" for n in self.notes]
         text = "\n".join(lines) + "\n"
@@ -42,35 +94,3 @@ class Report:
         print()
         print(text)
 
-
-def machine():
-    model = "unknown"
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    model = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return (f"{os.cpu_count()} CPUs ({len(os.sched_getaffinity(0))} usable), {model}, "
-            f"Linux {platform.release()}")
-
-
-def build_type():
-    """The CMake build type of the tree measured (bench/run.sh builds Release; a tree given in
-    EIP2MQTT_BENCH_BUILD may be another)."""
-    try:
-        with open(os.path.join(BUILD, "CMakeCache.txt")) as f:
-            for line in f:
-                if line.startswith("CMAKE_BUILD_TYPE:"):
-                    return line.split("=", 1)[1].strip() or "no build type"
-    except OSError:
-        pass
-    return "build type unknown"
-
-
-def mosquitto_version():
-    out = subprocess.run(["mosquitto", "-h"], capture_output=True, text=True, timeout=5)
-    first = (out.stdout or out.stderr).splitlines()
-    return first[0].split()[-1] if first else "?"

@@ -33,10 +33,10 @@ def paho_latency(bench, qos, topics, messages, duration):
     return bench.finish(counter)
 
 
-def gateway_latency(bench, qos, shape, duration):
+def gateway_latency(bench, qos, shape, duration, build):
     exchanges, tags, datagrams, change = shape
     name = f"g5q{qos}"
-    gw, udp_port = bench.launch_gateway(name, consumed_list(exchanges, tags), qos)
+    gw, udp_port = bench.launch_gateway(name, consumed_list(exchanges, tags), qos, build=build)
     # Warm-up: one datagram per exchange, so that every tag's first value (a one-off burst of
     # exchanges x tags retained messages, not a rate) is published before the measured run;
     # the counter skips the retained values it is then sent.
@@ -50,26 +50,45 @@ def gateway_latency(bench, qos, shape, duration):
     return got
 
 
-def latency_row(bench, qos, shape, duration, setup, broker):
+def measure_rounds(bench, qos, shape, duration):
+    """Paired rounds: bare Paho, then each build's gateway (in the round's order). Per round,
+    {build: (p99 ratio to bare Paho, gateway's counter JSON, bare Paho's)}."""
     exchanges, tags, datagrams, change = shape
     per_datagram = round(change * tags)
-    messages = datagrams * per_datagram
-    print(f"  QoS {qos}, {exchanges} x {tags} tags, {messages} msgs/s, {broker}", flush=True)
     rounds = []
-    for _ in range(bench.rounds):
-        paho = paho_latency(bench, qos, exchanges * per_datagram, messages, duration)
-        got = gateway_latency(bench, qos, shape, duration)
-        print(f"    qos{qos}: gateway n={got['latency_n']} p50 {got['p50_us']} p99 "
-              f"{got['p99_us']} max {got['max_us']}; paho n={paho['latency_n']} p50 "
-              f"{paho['p50_us']} p99 {paho['p99_us']} max {paho['max_us']}", flush=True)
-        ratio = got["p99_us"] / paho["p99_us"] if paho["p99_us"] else 0
-        rounds.append((ratio, got, paho))
+    for r in range(bench.rounds):
+        paho = paho_latency(bench, qos, exchanges * per_datagram, datagrams * per_datagram,
+                            duration)
+
+        def one(build):
+            got = gateway_latency(bench, qos, shape, duration, build)
+            print(f"    qos{qos} {build.label}: gateway n={got['latency_n']} p50 "
+                  f"{got['p50_us']} p99 {got['p99_us']} max {got['max_us']}; paho "
+                  f"n={paho['latency_n']} p50 {paho['p50_us']} p99 {paho['p99_us']} max "
+                  f"{paho['max_us']}", flush=True)
+            return got["p99_us"] / paho["p99_us"] if paho["p99_us"] else 0, got, paho
+
+        rounds.append(bench.per_build(r, one))
+    return rounds
+
+
+def latency_row(bench, qos, shape, duration, setup, broker):
+    exchanges, tags, datagrams, change = shape
+    messages = datagrams * round(change * tags)
+    print(f"  QoS {qos}, {exchanges} x {tags} tags, {messages} msgs/s, {broker}", flush=True)
+    runs = measure_rounds(bench, qos, shape, duration)
+    rounds = [r[bench.build] for r in runs]
     # The round of median ratio, each gateway run with the baseline measured just before it;
     # the gateway's p99 of every round is listed.
     ratio, got, paho = median_round(rounds)
     p99 = median([r[1]["p99_us"] for r in rounds])
     absolute = setup == "tuned"  # the 1 ms target is the tuned broker's
     ok = ratio <= 1.5 and (p99 <= 1000 or not absolute)
+
+    def shown(old):
+        old_ratio, old_got, _ = median_round(old)
+        return f"{old_got['p99_us']:,.0f} ({old_ratio:.2f} x bare Paho)"
+
     bench.row(f"latency datagram -> subscriber p99, QoS {qos}, {exchanges} x {tags} tags, "
               f"{messages:,} msgs/s, {broker} (us){bench.rounds_label()}",
               f"{got['p99_us']:,.0f} (p50 {got['p50_us']:,.0f}, max {got['max_us']:,.0f}"
@@ -77,4 +96,5 @@ def latency_row(bench, qos, shape, duration, setup, broker):
               f"{paho['p99_us']:,.0f} (bare Paho p50 {paho['p50_us']:,.0f}, "
               f"max {paho['max_us']:,.0f})",
               f"{ratio_text(ratio, lambda r: r <= 1.5)}{bench.ratios_note(rounds)}",
-              "<= 1,000 us and <= 1.5" if absolute else "<= 1.5", "yes" if ok else "no")
+              "<= 1,000 us and <= 1.5" if absolute else "<= 1.5", "yes" if ok else "no",
+              bench.versus(runs, lambda run: run[1]["p99_us"], shown=shown))

@@ -22,9 +22,9 @@ def metrics_samples(path):
     return samples
 
 
-def overload(bench, rate, duration):
-    """Runs the overload: what rows() reports, as a dict."""
-    gw, udp_port = bench.launch_gateway(NAME, consumed_list(100), 1)
+def overload(bench, rate, duration, build):
+    """Runs the overload on `build`: what rows() reports, as a dict."""
+    gw, udp_port = bench.launch_gateway(NAME, consumed_list(100), 1, build=build)
     log_path = os.path.join(bench.tmp, f"{NAME}-metrics.log")
     metrics_log = open(log_path, "w")
     metrics = subprocess.Popen(["mosquitto_sub", "-h", HOST, "-p", str(bench.broker_port),
@@ -57,38 +57,53 @@ def overload(bench, rate, duration):
     stop(gw)
     samples = metrics_samples(log_path)
     last = samples[-1] if samples else {}
-    return {"sent": sent, "got": got, "settle_ms": settle_ms, "rss0": rss0, "peak": peak,
+    return {"sent": sent, "got": got, "total": sent["sent"] + sent["final"],
+            "settle_ms": settle_ms, "rss0": rss0, "peak": peak,
             "max_buffered": max((s.get("buffered", 0) for s in samples), default=-1),
             "last": last, "accepted": (final or last).get("accepted", 0)}
 
 
-def rows(bench, r, ceiling):
-    sent, got, last, max_buffered = r["sent"], r["got"], r["last"], r["max_buffered"]
-    growth = (r["peak"] - r["rss0"]) / 1024
-    topics = 100 * TAGS
-    print(f"    offered {sent['rate']:.0f} datagrams/s x {TAGS} = "
+def log(r, ceiling, label):
+    sent, got, last = r["sent"], r["got"], r["last"]
+    print(f"    {label}: offered {sent['rate']:.0f} datagrams/s x {TAGS} = "
           f"{sent['rate'] * TAGS:.0f} tag updates/s (ceiling {ceiling:.0f}/s); RSS "
           f"{r['rss0'] / 1024:.1f} -> peak {r['peak'] / 1024:.1f} MB; delivered {got['messages']} "
-          f"at {got['rate']:.0f}/s; last value ok {got['last_ok']}/{topics} bad "
-          f"{got['last_bad']}; max buffered {max_buffered}; coalesced "
+          f"at {got['rate']:.0f}/s; last value ok {got['last_ok']}/{100 * TAGS} bad "
+          f"{got['last_bad']}; max buffered {r['max_buffered']}; coalesced "
           f"{last.get('publications_coalesced')}, dropped {last.get('publications_dropped')}",
           flush=True)
+
+
+def growth_mb(r):
+    return (r["peak"] - r["rss0"]) / 1024
+
+
+def rows(bench, runs):
+    r = runs[bench.build]
+    got, max_buffered = r["got"], r["max_buffered"]
+    topics = 100 * TAGS
+    growth = growth_mb(r)
     bench.row("overload 5 x ceiling: RSS growth (MB)", f"{growth:.1f}",
-              f"{r['rss0'] / 1024:.1f} MB before", "-", "<= 5 MB", "yes" if growth <= 5 else "no")
+              f"{r['rss0'] / 1024:.1f} MB before", "-", "<= 5 MB", "yes" if growth <= 5 else "no",
+              bench.versus([runs], growth_mb, fmt="{:.1f}".format))
     bench.row("overload: newest value of each tag wins (topics ending on the last value)",
               f"{got['last_ok']:,} / {topics:,} (all seen {r['settle_ms']:,.0f} ms after the last "
               "send)", "-", "-", "all",
-              "yes" if got["last_ok"] == topics and got["last_bad"] == 0 else "no")
-    total = sent["sent"] + sent["final"]
+              "yes" if got["last_ok"] == topics and got["last_bad"] == 0 else "no",
+              bench.versus([runs], lambda o: o["got"]["last_ok"],
+                           fmt=lambda v: f"{v:,} / {topics:,}"))
     bench.row("overload: datagrams accepted / sent (UDP drops before the gateway reads them)",
-              f"{r['accepted']:,} / {total:,}", "-", "-", "all (incl. the final ones)",
-              "yes" if r["accepted"] == total else "no")
+              f"{r['accepted']:,} / {r['total']:,}", "-", "-", "all (incl. the final ones)",
+              "yes" if r["accepted"] == r["total"] else "no",
+              bench.versus([runs], lambda o: o["accepted"] / o["total"],
+                           shown=lambda old: f"{old[0]['accepted']:,} / {old[0]['total']:,}"))
     # Latest value per topic: the queue never holds more than one message per topic the
     # gateway publishes (tags, each exchange's _status, its own state and metrics).
     bound = topics + 100 + 2
     bench.row("overload: largest publish queue seen (messages)", f"{max_buffered:,}",
               f"{bound:,} topics ({topics:,} tags, 100 _status, 2 of the gateway)", "-",
-              "bounded (<= topics)", "yes" if 0 <= max_buffered <= bound else "no")
+              "bounded (<= topics)", "yes" if 0 <= max_buffered <= bound else "no",
+              bench.versus([runs], lambda o: o["max_buffered"], fmt="{:,}".format))
 
 
 def run(bench):
@@ -97,4 +112,10 @@ def run(bench):
     duration = 3 if bench.quick else 10
     ceiling = bench.ceilings.get(("gw", 1)) or bench.ceilings.get(1) or bench.paho_ceiling(1)
     rate = max(100, round(5 * ceiling / TAGS))
-    rows(bench, overload(bench, rate, duration), ceiling)
+
+    def one(build):
+        r = overload(bench, rate, duration, build)
+        log(r, ceiling, build.label)
+        return r
+
+    rows(bench, bench.per_build(0, one))

@@ -13,14 +13,18 @@ PER_DATAGRAM = round(CHANGE * TAGS)  # "ts" and the next dints (load_generator)
 ACCEPTED = "eip2mqtt_datagrams_accepted_total"
 
 
-def ceiling(bench, name, saf, duration, steps):
+def ceiling_config(bench, name, saf, build, udp_port=0, prom=0):
+    return bench.write_config(name, consumed=consumed_list(100), qos=1, batch=True,
+                              udp_port=udp_port, broker_port=free_port(), prometheus=prom,
+                              store_and_forward=saf, build=build)
+
+
+def ceiling(bench, name, saf, duration, steps, build):
     """Zero-loss datagram rate, 100 x 100 tags, 10 % changing, batch mode, the broker out of
     reach (a port nobody listens on): journaled, or buffered in memory."""
     udp_port, prom = free_port(socket.SOCK_DGRAM), free_port()
-    config = bench.write_config(name, consumed=consumed_list(100), qos=1, batch=True,
-                                udp_port=udp_port, broker_port=free_port(), prometheus=prom,
-                                store_and_forward=saf)
-    gw = bench.start_gateway(name, config)
+    config = ceiling_config(bench, name, saf, build, udp_port, prom)
+    gw = bench.start_gateway(name, config, build=build)
     state = {"id": 0}
 
     def trial(rate, n):
@@ -51,15 +55,16 @@ def replayed_from_log(log):
     return 0, None
 
 
-def replay(bench, journaled):
-    """A known outage journaled, then replayed as fast as the broker takes it."""
+def replay(bench, journaled, build):
+    """A known outage journaled by `build`, then replayed as fast as the broker takes it."""
     count = 20000 if bench.quick else 200000
     name, udp_port, prom, port = "g10r", free_port(socket.SOCK_DGRAM), free_port(), free_port()
     config = bench.write_config(name, consumed=consumed_list(100), qos=1, batch=True,
                                 udp_port=udp_port, broker_port=port, prometheus=prom,
                                 log_level="info",
-                                store_and_forward={"enabled": "true", "replay_rate": 1000000})
-    gw = bench.start_gateway(name, config)
+                                store_and_forward={"enabled": "true", "replay_rate": 1000000},
+                                build=build)
+    gw = bench.start_gateway(name, config, build=build)
     time.sleep(0.5)
     gen = bench.generate(udp_port, EXCHANGES, min(20000, journaled or 20000), count=count,
                          change=CHANGE)
@@ -79,32 +84,59 @@ def replay(bench, journaled):
             "replay_s": replay_s}
 
 
-def replay_rows(bench, r):
-    entries, disk, replayed, replay_s = r["entries"], r["disk"], r["replayed"], r["replay_s"]
-    # Every tag of an exchange's first datagram, then PER_DATAGRAM of each next one.
-    updates = entries * PER_DATAGRAM + EXCHANGES * (TAGS - PER_DATAGRAM)
-    print(f"    sent {r['sent']} datagrams; journaled {entries:.0f} entries, {disk:.0f} "
-          f"bytes; replayed {replayed:.0f} in {replay_s} s", flush=True)
-    rate = replayed / replay_s if replay_s else 0
+def replay_rows(bench, runs):
+    r = runs[bench.build]["replay"]
+    entries, disk, replayed = r["entries"], r["disk"], r["replayed"]
+    rate = replay_rate(r)
     bench.row("history replay rate, messages/s (_history, QoS 1, Debian's default Mosquitto)",
               f"{rate:,.0f} ({rate * PER_DATAGRAM:,.0f} tag updates/s)",
               f"{entries:,.0f} entries journaled", "-", ">= 2,000 (default replay_rate)",
-              "yes" if rate >= 2000 and replayed == entries else "no")
+              "yes" if rate >= 2000 and replayed == entries else "no",
+              bench.versus([runs], lambda o: replay_rate(o["replay"])))
+    updates = journaled_updates(r)
     bench.row("journal disk bytes per journaled tag update (file + WAL)",
-              f"{disk / updates if updates else 0:.1f}",
-              f"{updates:,.0f} tag updates in {disk / 1e6:.1f} MB", "-", "-", "-")
+              f"{disk_per_update(r):.1f}",
+              f"{updates:,.0f} tag updates in {disk / 1e6:.1f} MB", "-", "-", "-",
+              bench.versus([runs], lambda o: disk_per_update(o["replay"]), fmt="{:.1f}".format))
+
+
+def replay_rate(r):
+    return r["replayed"] / r["replay_s"] if r["replay_s"] else 0
+
+
+def journaled_updates(r):
+    """Every tag of an exchange's first datagram, then PER_DATAGRAM of each next one."""
+    return r["entries"] * PER_DATAGRAM + EXCHANGES * (TAGS - PER_DATAGRAM)
+
+
+def disk_per_update(r):
+    updates = journaled_updates(r)
+    return r["disk"] / updates if updates else 0
+
+
+def measure(bench, build):
+    """Every figure of the scenario on `build`; NotInBuild at once when it has no store and
+    forward."""
+    build.require(ceiling_config(bench, "g10probe", {"enabled": "true"}, build))
+    duration = 1 if bench.quick else 2
+    steps = 2 if bench.quick else 3
+    memory = ceiling(bench, "g10m", None, duration, steps, build)
+    journaled = ceiling(bench, "g10j", {"enabled": "true"}, duration, steps, build)
+    r = replay(bench, journaled, build)
+    print(f"    {build.label}: sent {r['sent']} datagrams; journaled {r['entries']:.0f} entries, "
+          f"{r['disk']:.0f} bytes; replayed {r['replayed']:.0f} in {r['replay_s']} s", flush=True)
+    return {"memory": memory, "journaled": journaled, "replay": r}
 
 
 def run(bench):
     print("[10] store and forward: journaling cost, replay rate, disk per tag update",
           flush=True)
-    duration = 1 if bench.quick else 2
-    steps = 2 if bench.quick else 3
-    memory = ceiling(bench, "g10m", None, duration, steps)
-    journaled = ceiling(bench, "g10j", {"enabled": "true"}, duration, steps)
+    runs = bench.per_build(0, lambda build: measure(bench, build))
+    memory, journaled = runs[bench.build]["memory"], runs[bench.build]["journaled"]
     ratio = journaled / memory if memory else 0
     bench.row(f"datagrams/s accepted, zero loss, journaling ({EXCHANGES} x {TAGS} tags, "
               f"10 % changing, broker down)", f"{journaled:,.0f}",
               f"{memory:,.0f} (same, without store and forward)", f"{ratio:.2f}", ">= 0.90",
-              "yes" if ratio >= 0.9 else "no")
-    replay_rows(bench, replay(bench, journaled))
+              "yes" if ratio >= 0.9 else "no",
+              bench.versus([runs], lambda o: o["journaled"]))
+    replay_rows(bench, runs)
