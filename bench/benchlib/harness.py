@@ -15,8 +15,8 @@ class Bench(Processes, Gateways, Measures, Report):
         """against: (label, gateway binary) of an earlier build to run beside this one."""
         self.quick = quick
         self.only = only
-        # Scenarios whose figures the host's other work moves most (2, 3, 5, 7) repeat their
-        # baseline and gateway runs in turn, and report the median round.
+        # Scenarios whose figures the host's other work moves most (2, 3, 5, 7, and the loss of
+        # 1) repeat their baseline and gateway runs in turn, and report the median round.
         self.rounds = 1 if quick else 3
         self.tmp = tempfile.mkdtemp(prefix="eip2mqtt-bench-")
         self.rows = []

@@ -1,9 +1,13 @@
-"""Scenario 1: datagrams/s accepted with zero loss, against a bare recvmmsg receiver."""
+"""Scenario 1: datagrams/s accepted with zero loss, against a bare recvmmsg receiver; and the
+datagrams lost at 70 % of that receiver's ceiling with many small exchanges."""
 
 import socket
 import time
 
-from benchlib.util import consumed_list, free_port, last_json, stop
+from benchlib.util import consumed_list, free_port, last_json, median, stop
+
+# The loss row: 100 exchanges of 10 tags, offered 70 % of the bare receiver's ceiling.
+LOSS_EXCHANGES, LOSS_TAGS, LOSS_SHARE = 100, 10, 0.7
 
 
 def sink_ceiling(bench, duration, steps, exchanges=1, tags=100):
@@ -63,8 +67,39 @@ def ceiling_row(bench, duration, steps):
               bench.versus(rounds, lambda rate: rate))
 
 
+def lost(bench, rate, duration, build):
+    """Datagrams `build`'s gateway did not accept of `rate`/s sent for `duration`."""
+    name = "g1l"
+    gw, udp_port = bench.launch_gateway(name, consumed_list(LOSS_EXCHANGES, LOSS_TAGS), 1,
+                                        build=build)
+    trial = accepted_trial(bench, name, udp_port, LOSS_EXCHANGES, LOSS_TAGS, duration)
+    trial(rate, 1)
+    stop(gw)
+    sent, accepted = trial.last
+    return sent - accepted, sent
+
+
+def loss_row(bench, duration, steps):
+    ceiling = sink_ceiling(bench, duration, steps, LOSS_EXCHANGES, LOSS_TAGS)
+    rate = round(LOSS_SHARE * ceiling)
+    loss_s = 3 if not bench.quick else 1
+    rounds = [bench.per_build(r, lambda b: lost(bench, rate, loss_s, b))
+              for r in range(bench.rounds)]
+    losses = [r[bench.build][0] for r in rounds]
+    middle = median(losses)
+    note = "; rounds: " + ", ".join(f"{n:,}" for n in losses) if len(losses) > 1 else ""
+    bench.row(f"datagrams lost at 70 % of the bare recvmmsg ceiling, {LOSS_EXCHANGES} x "
+              f"{LOSS_TAGS} tags, no tag changing, {loss_s} s{bench.rounds_label()}",
+              f"{middle:,} (of {median([r[bench.build][1] for r in rounds]):,} sent{note})",
+              f"{rate:,} datagrams/s offered ({LOSS_SHARE} x {ceiling:,.0f}, the recvmmsg "
+              "sink's zero-loss rate with the same datagrams)", "-", "0",
+              "yes" if middle == 0 else "no",
+              bench.versus(rounds, lambda r: r[0], fmt="{:,}".format))
+
+
 def run(bench):
     print("[1] datagrams/s accepted with zero loss, no changes", flush=True)
     duration = 1 if bench.quick else 2
     steps = 2 if bench.quick else 3
     ceiling_row(bench, duration, steps)
+    loss_row(bench, duration, steps)
