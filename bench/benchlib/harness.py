@@ -20,6 +20,7 @@ class Bench(Processes, Gateways, Measures, Report):
         self.rounds = 1 if quick else 3
         self.tmp = tempfile.mkdtemp(prefix="eip2mqtt-bench-")
         self.rows = []
+        self.cpu_rows = []  # (figure, run, [CpuSampler.per_publication of each round])
         self.notes = []
         self.brokers = {}  # setup -> (process, port)
         self.broker_port = 0  # the broker the next step talks to (use_broker)

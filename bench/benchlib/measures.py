@@ -2,9 +2,11 @@
 load, the zero-loss rate of a receiver, and how rounds are written in a row."""
 
 import socket
+import subprocess
 
-from benchlib.util import (HOST, PAHO_WINDOW, TAGS, consumed_list, free_port,
-                           offered_datagrams, run_json, stop, tool)
+from benchlib.cpu import CpuSampler
+from benchlib.util import (HOST, PAHO_WINDOW, TAGS, consumed_list, free_port, last_json,
+                           offered_datagrams, stop, tool)
 
 
 class Measures:
@@ -50,16 +52,42 @@ class Measures:
             return ""
         return "; rounds: " + ", ".join(f"{v:,.0f}" for v in values)
 
-    def paho_ceiling(self, qos, topics=TAGS):
+    def broker_pid(self):
+        return next(proc.pid for proc, port in self.brokers.values() if port == self.broker_port)
+
+    def run_load(self, args, timeout, role, groups, sample):
+        """Runs `args`, a run's load, to its end: (its JSON line, a CpuSampler of it as `role`,
+        of `groups` ({role: [pid, ...]}) and of the broker, or None unless `sample`)."""
+        proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.procs.append(proc)
+        sampler = None
+        if sample:
+            sampler = CpuSampler({**groups, role: [proc.pid],
+                                  "broker": [self.broker_pid()]}).start()
+        try:
+            out, err = proc.communicate(timeout=timeout)
+        finally:
+            if sampler:
+                sampler.stop()
+        if proc.returncode != 0:
+            raise RuntimeError(f"{args[0]} failed ({proc.returncode}): {err[-500:]}")
+        return last_json(out), sampler
+
+    def paho_run(self, qos, topics=TAGS, sample=False):
+        """Bare Paho as fast as its window allows: (messages/s counted, its CPU per
+        publication or None)."""
         counter = self.start_counter("p/+/+", qos)
-        pub = run_json([tool("paho_publisher"), "--url", f"tcp://{HOST}:{self.broker_port}",
-                        "--window", str(PAHO_WINDOW), "--qos", str(qos), "--duration",
-                        str(self.d), "--topics", str(topics)],
-                       timeout=self.d + 60)
+        pub, sampler = self.run_load(
+            [tool("paho_publisher"), "--url", f"tcp://{HOST}:{self.broker_port}", "--window",
+             str(PAHO_WINDOW), "--qos", str(qos), "--duration", str(self.d), "--topics",
+             str(topics)], self.d + 60, "publisher", {"subscriber": [counter.pid]}, sample)
         got = self.finish(counter)
         print(f"    paho qos{qos} ({topics} topics): published {pub['published']} received "
               f"{got['messages']} at {got['rate']:.0f}/s", flush=True)
-        return got["rate"]
+        return got["rate"], sampler and sampler.per_publication(got["rate"], self.d)
+
+    def paho_ceiling(self, qos, topics=TAGS):
+        return self.paho_run(qos, topics)[0]
 
     def paho_with_input(self, qos, topics, exchanges, tags, change, datagrams):
         """Bare Paho again, with the gateway's datagram input running beside it: the load
@@ -74,21 +102,28 @@ class Measures:
         sink.communicate(timeout=self.d + 60)
         return rate
 
+    def rate_counter(self, qos, batch, sparkplug):
+        if sparkplug:
+            return self.start_counter("spBv1.0/bench/DDATA/#", qos, extra=["--sparkplug"])
+        if batch:
+            return self.start_counter("b/+/_values", qos, extra=["--batch"])
+        return self.start_counter("b/+/+", qos)
+
     def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1, sparkplug=False,
-                     tags=TAGS, build=None):
-        """`build`'s gateway offered 1.5 x `ceiling` tag updates/s: the counter's JSON."""
+                     tags=TAGS, build=None, sample=False):
+        """`build`'s gateway offered 1.5 x `ceiling` tag updates/s: the counter's JSON, with
+        the run's CPU per publication as "cpu" when `sample`."""
         gw, udp_port = self.launch_gateway(name, consumed_list(exchanges, tags),
                                            qos, batch=batch, sparkplug=sparkplug, build=build)
-        if sparkplug:
-            counter = self.start_counter("spBv1.0/bench/DDATA/#", qos, extra=["--sparkplug"])
-        elif batch:
-            counter = self.start_counter("b/+/_values", qos, extra=["--batch"])
-        else:
-            counter = self.start_counter("b/+/+", qos)
+        counter = self.rate_counter(qos, batch, sparkplug)
         per_datagram = max(1, round(change * tags))
-        gen = self.generate(udp_port, exchanges, offered_datagrams(ceiling, change, tags),
-                            duration=self.d, change=change, tags=tags)
+        gen, sampler = self.run_load(
+            self.generator_args(udp_port, exchanges, offered_datagrams(ceiling, change, tags),
+                                duration=self.d, change=change, tags=tags),
+            self.d + 60, "load generator", {"gateway": [gw.pid], "subscriber": [counter.pid]},
+            sample)
         got = self.finish(counter)
+        got["cpu"] = sampler and sampler.per_publication(got["rate"], self.d)
         m = None if sparkplug else self.metrics(name)  # uns: false has no metrics topic
         stop(gw)
         print(f"    gateway {name}: offered {gen['rate']:.0f} datagrams/s x {per_datagram} tags; "
@@ -97,7 +132,8 @@ class Measures:
               flush=True)
         return got
 
-    def split_gateways_rate(self, qos, change, ceiling, exchanges, tags, build=None):
+    def split_gateways_rate(self, qos, change, ceiling, exchanges, tags, build=None,
+                            sample=False):
         """The tuning a user can set: two gateway processes, each consuming half of the
         exchanges, with its own Paho, its own connection and a load generator of its own at
         half the datagrams one gateway is offered (gateway_rate)."""
@@ -111,9 +147,17 @@ class Measures:
         generators = [self.start_generator(port, share, rate, self.d, change=change, tags=tags,
                                            first=f)
                       for f, (_, port) in zip(firsts, gateways)]
+        sampler = CpuSampler({"gateway": [g.pid for g, _ in gateways],
+                              "load generator": [g.pid for g in generators],
+                              "broker": [self.broker_pid()], "subscriber": [counter.pid]})
+        if sample:
+            sampler.start()
         for generator in generators:
             generator.communicate(timeout=self.d + 60)
+        if sample:
+            sampler.stop()
         got = self.finish(counter)
+        got["cpu"] = sampler.per_publication(got["rate"], self.d) if sample else None
         for gateway, _ in gateways:
             stop(gateway)
         print(f"    two gateways: received {got['messages']} msgs at {got['rate']:.0f}/s",

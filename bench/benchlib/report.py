@@ -1,11 +1,15 @@
 """The report: the table's rows as the scenarios give them, with the earlier build's figures
-beside them (--against-binary), the machine they ran on, and the markdown file (bench/results/latest.md, quick.md or partial.md)."""
+beside them (--against-binary), the CPU per publication of the per-tag rows, the machine they
+ran on, and the markdown file (bench/results/latest.md, quick.md or partial.md)."""
 
 import datetime
 import os
 
 from benchlib import machine
 from benchlib.util import GATEWAY, RESULTS, ROOT, median
+
+CPU_ROLES = ("gateway", "load generator", "broker", "subscriber")
+
 
 def ratios_text(ratios):
     text = f"{median(ratios):.2f}"
@@ -43,6 +47,10 @@ class Report:
         if ratios:
             return text, ratios_text(ratios)
         return text, "- (both 0)" if all(value(n) == 0 for n in new) else f"- ({label} 0)"
+
+    def cpu_row(self, figure, run, samples):
+        """CPU per publication of one run of a per-tag row, every round's."""
+        self.cpu_rows.append((figure, run, [s for s in samples if s]))
 
     def header(self, command):
         lines = [
@@ -82,10 +90,29 @@ class Report:
             rule += "---|---|"
         return [head, rule] + ["| " + " | ".join(str(c) for c in r) + " |" for r in self.rows]
 
+    def cpu_table(self):
+        if not self.cpu_rows:
+            return []
+        lines = [
+            "", "## CPU per publication, per-tag rows", "",
+            "CPU time per publication counted, over the loaded part of each run (1 s after the "
+            "load starts to 0.5 s before it ends, sampled every 0.25 s from /proc), median of "
+            "the rounds: the machine's busy time, then each process's (for bare Paho, its "
+            "publisher in the gateway column). Unlike a rate, it does not depend on who else "
+            "runs.", "",
+            "| figure | run | publications/s | machine busy (idle) | gateway | load generator "
+            "| broker | subscriber |",
+            "|---|---|---|---|---|---|---|---|",
+        ]
+        for figure, run, samples in self.cpu_rows:
+            lines.append("| " + " | ".join([figure, run] + cpu_cells(samples)) + " |")
+        return lines
+
     def report(self, command):
         lines = self.header(command) + [""] + self.table()
         if self.notes:
             lines += ["", "Notes:"] + [f"- {n}" for n in self.notes]
+        lines += self.cpu_table()
         text = "\n".join(lines) + "\n"
         os.makedirs(RESULTS, exist_ok=True)
         name = "quick.md" if self.quick else "partial.md" if self.only else "latest.md"
@@ -94,3 +121,20 @@ class Report:
         print()
         print(text)
 
+
+def cpu_cells(samples):
+    """The CPU table's figure cells from each round's CpuSampler.per_publication."""
+    if not samples:
+        return ["-"] * (2 + len(CPU_ROLES))
+
+    def middle(key):
+        values = [s[key] for s in samples if key in s]
+        return median(values) if values else None
+
+    cells = [f"{middle('rate'):,.0f}", f"{middle('machine'):.1f} us (idle {middle('idle'):.0f} %)"]
+    for role in CPU_ROLES:
+        value = middle(role)
+        if role == "gateway" and value is None:
+            value = middle("publisher")  # bare Paho's run: its publisher in that column
+        cells.append("-" if value is None else f"{value:.1f} us")
+    return cells

@@ -1,5 +1,6 @@
 """Scenarios 2 and 3: tag publications/s against bare Paho, every tag changing (2) and 10 %
-changing (3), in both exchange shapes, at QoS 0 and 1, on both brokers."""
+changing (3), in both exchange shapes, at QoS 0 and 1, on both brokers. Each run's CPU per
+publication (benchlib.cpu) goes to the report's second table."""
 
 from benchlib.util import SETUPS, SHAPES, median_round, offered_datagrams, ratio_text
 
@@ -19,26 +20,27 @@ def one_round(bench, r, qos, exchanges, tags, results):
     """Bare Paho, then each build's gateway (in round r's order) for each share of tags
     changing, then bare Paho beside the gateway's input; with many small exchanges, each
     build as two gateways too. Appends to results[(change, gateways)] one
-    ({build: (ratio, rate)}, paho, paho with input)."""
-    paho = bench.paho_ceiling(qos, topics=exchanges * tags)
+    ({build: (ratio, rate, cpu)}, paho, paho with input, paho's cpu)."""
+    paho, paho_cpu = bench.paho_run(qos, topics=exchanges * tags, sample=True)
     for change in (1.0, 0.1):
         def one(build):
             got = bench.gateway_rate(f"g2q{qos}c{int(change * 100)}", qos, change, paho,
-                                     exchanges=exchanges, tags=tags, build=build)
-            return got["rate"] / paho if paho else 0, got["rate"]
+                                     exchanges=exchanges, tags=tags, build=build, sample=True)
+            return got["rate"] / paho if paho else 0, got["rate"], got["cpu"]
 
         def split(build):
-            got = bench.split_gateways_rate(qos, change, paho, exchanges, tags, build=build)
-            return got["rate"] / paho if paho else 0, got["rate"]
+            got = bench.split_gateways_rate(qos, change, paho, exchanges, tags, build=build,
+                                            sample=True)
+            return got["rate"] / paho if paho else 0, got["rate"], got["cpu"]
 
         single = bench.per_build(r, one)
         # Not the target's baseline: what bare Paho keeps of its rate when the datagrams the
         # gateway was offered are sent and received beside it.
         loaded = bench.paho_with_input(qos, exchanges * tags, exchanges, tags, change,
                                        offered_datagrams(paho, change, tags))
-        results[(change, 1)].append((single, paho, loaded))
+        results[(change, 1)].append((single, paho, loaded, paho_cpu))
         if exchanges > 1:
-            results[(change, 2)].append((bench.per_build(r, split), paho, loaded))
+            results[(change, 2)].append((bench.per_build(r, split), paho, loaded, paho_cpu))
 
 
 def measure_rounds(bench, qos, exchanges, tags):
@@ -55,15 +57,22 @@ def measure_rounds(bench, qos, exchanges, tags):
 
 def rounds_of(rounds, build):
     """One build's rounds as (ratio, rate, paho, paho with input)."""
-    return [(runs[build][0], runs[build][1], paho, loaded) for runs, paho, loaded in rounds]
+    return [(runs[build][0], runs[build][1], paho, loaded) for runs, paho, loaded, _ in rounds]
 
 
 def against_cells(bench, rounds):
     def shown(old):
-        ratio, rate = median_round(old)
+        ratio, rate, _ = median_round(old)
         return f"{rate:,.0f} ({ratio:.2f} x bare Paho)"
 
-    return bench.versus([runs for runs, _, _ in rounds], lambda run: run[1], shown=shown)
+    return bench.versus([runs for runs, _, _, _ in rounds], lambda run: run[1], shown=shown)
+
+
+def cpu_rows(bench, figure, rounds):
+    for build in bench.builds:
+        bench.cpu_row(figure, build.label,
+                      [runs[build][2] for runs, _, _, _ in rounds if runs.get(build)])
+    bench.cpu_row(figure, "bare Paho", [cpu for _, _, _, cpu in rounds])
 
 
 def publications_rows(bench, qos, exchanges, tags, setup, broker):
@@ -82,6 +91,7 @@ def publications_rows(bench, qos, exchanges, tags, setup, broker):
                   f"beside it, {loaded / paho if paho else 0:.2f} x)",
                   f"{ratio_text(ratio, lambda r: r >= 0.9)}{bench.ratios_note(own)}", ">= 0.90",
                   "yes" if ratio >= 0.9 else "no", against_cells(bench, rounds))
+        cpu_rows(bench, figure, rounds)
         if (exchanges, tags) == SHAPES[0] and change == 1.0 and parts == 1:
             bench.paho_rates[(qos, broker)] = paho
             if setup == "tuned":
