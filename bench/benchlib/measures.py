@@ -4,7 +4,7 @@ load, the zero-loss rate of a receiver, and how rounds are written in a row."""
 import socket
 import subprocess
 
-from benchlib.cpu import CpuSampler
+from benchlib.cpu import PERIOD_S, CpuSampler
 from benchlib.util import (HOST, PAHO_WINDOW, TAGS, consumed_list, free_port, last_json,
                            offered_datagrams, stop, tool)
 
@@ -52,6 +52,10 @@ class Measures:
             return ""
         return "; rounds: " + ", ".join(f"{v:,.0f}" for v in values)
 
+    def sample_period(self):
+        """CPU samples 0.25 s apart, closer in short runs (ten at least in a load)."""
+        return min(PERIOD_S, self.d / 10)
+
     def broker_pid(self):
         return next(proc.pid for proc, port in self.brokers.values() if port == self.broker_port)
 
@@ -62,8 +66,8 @@ class Measures:
         self.procs.append(proc)
         sampler = None
         if sample:
-            sampler = CpuSampler({**groups, role: [proc.pid],
-                                  "broker": [self.broker_pid()]}).start()
+            sampler = CpuSampler({**groups, role: [proc.pid], "broker": [self.broker_pid()]},
+                                 self.sample_period()).start()
         try:
             out, err = proc.communicate(timeout=timeout)
         finally:
@@ -124,7 +128,8 @@ class Measures:
             sample)
         got = self.finish(counter)
         got["cpu"] = sampler and sampler.per_publication(got["rate"], self.d)
-        m = None if sparkplug else self.metrics(name)  # uns: false has no metrics topic
+        # For the log line only (uns: false has no metrics topic).
+        m = None if sparkplug or self.quick else self.metrics(name)
         stop(gw)
         print(f"    gateway {name}: offered {gen['rate']:.0f} datagrams/s x {per_datagram} tags; "
               f"received {got['messages']} msgs, {got['updates']} updates at "
@@ -149,7 +154,8 @@ class Measures:
                       for f, (_, port) in zip(firsts, gateways)]
         sampler = CpuSampler({"gateway": [g.pid for g, _ in gateways],
                               "load generator": [g.pid for g in generators],
-                              "broker": [self.broker_pid()], "subscriber": [counter.pid]})
+                              "broker": [self.broker_pid()], "subscriber": [counter.pid]},
+                             self.sample_period())
         if sample:
             sampler.start()
         for generator in generators:

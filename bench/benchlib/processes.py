@@ -58,7 +58,10 @@ class Processes:
         else:
             shutil.rmtree(self.tmp, ignore_errors=True)
 
-    def start_counter(self, filters, qos, extra=(), max_s=120, idle_ms=1500):
+    def start_counter(self, filters, qos, extra=(), max_s=120, idle_ms=None):
+        """mqtt_counter on `filters`, subscribed; it ends `idle_ms` (the run's by default)
+        after the last message."""
+        idle_ms = idle_ms or self.idle_ms
         self.counter_seq += 1
         ready = os.path.join(self.tmp, f"counter{self.counter_seq}.ready")
         args = [tool("mqtt_counter"), "--port", str(self.broker_port), "--filter", filters,

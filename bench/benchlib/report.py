@@ -63,14 +63,14 @@ class Report:
             f"{' / '.join(f'{x:.1f}' for x in os.getloadavg())} (shared machine: other work "
             "shows here and in the noisier rows)",
             f"- command: `{command}`",
-            f"- gateway: `{os.path.relpath(GATEWAY, ROOT)}` ({machine.build_type()}); Mosquitto "
+            f"- gateway: `{shown_path(GATEWAY)}` ({machine.build_type()}); Mosquitto "
             f"{machine.mosquitto_version()} on 127.0.0.1; subscriber: bench/mqtt_counter "
             "(libmosquitto)",
         ]
         if self.against:
             label = self.against.label
             lines.append(
-                f"- against: {label} (`{self.against.gateway}`), in the same run: each "
+                f"- against: {label} (`{shown_path(self.against.gateway)}`), in the same run: each "
                 f"scenario runs both builds in alternating rounds (this build first in round 1, "
                 f"{label} first in round 2, ...), beside the same round's baselines; "
                 f"`this / {label}` is the median of the rounds' ratios")
@@ -79,7 +79,7 @@ class Report:
     def paho_summary(self):
         parts = [f"QoS {qos} {rate:,.0f} messages/s ({broker})"
                  for (qos, broker), rate in sorted(self.paho_rates.items())]
-        return ("; ".join(parts) + f" (bench/paho_publisher, 100 topics, median round)"
+        return ("; ".join(parts) + " (bench/paho_publisher, 100 topics, median round)"
                 if parts else "not measured")
 
     def table(self):
@@ -96,10 +96,11 @@ class Report:
         lines = [
             "", "## CPU per publication, per-tag rows", "",
             "CPU time per publication counted, over the loaded part of each run (1 s after the "
-            "load starts to 0.5 s before it ends, sampled every 0.25 s from /proc), median of "
-            "the rounds: the machine's busy time, then each process's (for bare Paho, its "
-            "publisher in the gateway column). Unlike a rate, it does not depend on who else "
-            "runs.", "",
+            "load starts to 0.5 s before it ends, a quarter of a shorter run at each end; "
+            "sampled from /proc every 0.25 s, or a tenth of a shorter run), median of the "
+            "rounds: the machine's busy time, "
+            "then each process's (for bare Paho, its publisher in the gateway column). Unlike "
+            "a rate, it does not depend on who else runs.", "",
             "| figure | run | publications/s | machine busy (idle) | gateway | load generator "
             "| broker | subscriber |",
             "|---|---|---|---|---|---|---|---|",
@@ -120,6 +121,12 @@ class Report:
             f.write(text)
         print()
         print(text)
+
+
+def shown_path(path):
+    """`path` from the repository's root when it lies under it."""
+    relative = os.path.relpath(path, ROOT)
+    return path if relative.startswith("..") else relative
 
 
 def cpu_cells(samples):

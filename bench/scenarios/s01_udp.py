@@ -26,9 +26,9 @@ def sink_ceiling(bench, duration, steps, exchanges=1, tags=100):
     return bench.zero_loss_ceiling(trial, steps, 25000, "scenario 1")[0]
 
 
-def accepted_trial(bench, name, udp_port, exchanges, tags, duration):
-    """A trial(rate, n) sending `exchanges` x `tags` (from exchange n when one) to gateway
-    `name`: (no datagram lost, rate achieved), the datagrams sent and accepted kept in
+def accepted_trial(bench, name, udp_port, exchanges, tags, duration, build):
+    """A trial(rate, n) sending `exchanges` x `tags` (from exchange n when one) to `build`'s
+    gateway `name`: (no datagram lost, rate achieved), the datagrams sent and accepted kept in
     trial.last."""
     def trial(rate, n):
         before = bench.settled_metrics(name)
@@ -40,7 +40,7 @@ def accepted_trial(bench, name, udp_port, exchanges, tags, duration):
         trial.last = (gen["sent"], accepted)
         ok = accepted == gen["sent"] and gen["errors"] == 0
         print(f"    gateway   {rate:9.0f}/s: sent {gen['sent']} accepted {accepted} "
-              f"({gen['rate']:.0f}/s)", flush=True)
+              f"({gen['rate']:.0f}/s; {build.label})", flush=True)
         return ok, gen["rate"]
 
     return trial
@@ -50,7 +50,7 @@ def gateway_ceiling(bench, duration, steps, build):
     """The same for `build`'s gateway consuming 16 exchanges; each trial sends to the next."""
     name = "g1"
     gw, udp_port = bench.launch_gateway(name, consumed_list(16), 1, build=build)
-    trial = accepted_trial(bench, name, udp_port, 1, 100, duration)
+    trial = accepted_trial(bench, name, udp_port, 1, 100, duration, build)
     rate = bench.zero_loss_ceiling(trial, steps, 25000, "scenario 1")[0]
     stop(gw)
     return rate
@@ -72,7 +72,7 @@ def lost(bench, rate, duration, build):
     name = "g1l"
     gw, udp_port = bench.launch_gateway(name, consumed_list(LOSS_EXCHANGES, LOSS_TAGS), 1,
                                         build=build)
-    trial = accepted_trial(bench, name, udp_port, LOSS_EXCHANGES, LOSS_TAGS, duration)
+    trial = accepted_trial(bench, name, udp_port, LOSS_EXCHANGES, LOSS_TAGS, duration, build)
     trial(rate, 1)
     stop(gw)
     sent, accepted = trial.last
@@ -100,6 +100,6 @@ def loss_row(bench, duration, steps):
 def run(bench):
     print("[1] datagrams/s accepted with zero loss, no changes", flush=True)
     duration = 1 if bench.quick else 2
-    steps = 2 if bench.quick else 3
+    steps = 1 if bench.quick else 3
     ceiling_row(bench, duration, steps)
     loss_row(bench, duration, steps)

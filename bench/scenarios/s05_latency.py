@@ -11,7 +11,7 @@ SKIP_MS = "500"
 
 def run(bench):
     print("[5] latency datagram -> subscriber", flush=True)
-    duration = 3 if bench.quick else 10
+    duration = 1.5 if bench.quick else 10
     # (exchanges, tags, datagrams/s, changing): 10 x 10 at 10k datagrams/s with one tag
     # (`ts`) changing, and 100 x 10 at 2k datagrams/s with `ts` and one more tag changing.
     shapes = ((10, 10, 10000, 0.1), (100, 10, 2000, 0.2))

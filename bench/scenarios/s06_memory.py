@@ -26,8 +26,8 @@ def run(bench):
         measured = bench.per_build(0, lambda build: startup_and_memory(
             bench, name, config(build), udp_port, runs, build))
         # Same-run floor: yaml-cpp alone parsing the same YAML file with a no-op handler.
-        floor = run_json([tool("yaml_parse"), "--file", config(bench.build), "--repeat", "3"],
-                         timeout=300)
+        floor = run_json([tool("yaml_parse"), "--file", config(bench.build), "--repeat",
+                          str(runs)], timeout=300)
         rows(bench, form, runs, floor, measured)
 
 

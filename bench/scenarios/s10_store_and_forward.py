@@ -57,7 +57,7 @@ def replayed_from_log(log):
 
 def replay(bench, journaled, build):
     """A known outage journaled by `build`, then replayed as fast as the broker takes it."""
-    count = 20000 if bench.quick else 200000
+    count = 10000 if bench.quick else 200000
     name, udp_port, prom, port = "g10r", free_port(socket.SOCK_DGRAM), free_port(), free_port()
     config = bench.write_config(name, consumed=consumed_list(100), qos=1, batch=True,
                                 udp_port=udp_port, broker_port=port, prometheus=prom,
@@ -119,7 +119,7 @@ def measure(bench, build):
     forward."""
     build.require(ceiling_config(bench, "g10probe", {"enabled": "true"}, build))
     duration = 1 if bench.quick else 2
-    steps = 2 if bench.quick else 3
+    steps = 1 if bench.quick else 3
     memory = ceiling(bench, "g10m", None, duration, steps, build)
     journaled = ceiling(bench, "g10j", {"enabled": "true"}, duration, steps, build)
     r = replay(bench, journaled, build)
