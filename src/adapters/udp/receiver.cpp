@@ -4,10 +4,12 @@
 #include <net/if.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <boost/asio/error.hpp>
 #include <boost/asio/ip/address_v4.hpp>
 #include <cerrno>
 #include <cstring>
+#include <string_view>
 #include <system_error>
 
 namespace eip2mqtt::adapters::udp {
@@ -19,7 +21,7 @@ constexpr std::size_t slot_size = 2048;
 // Datagrams read per wake-up before yielding to other handlers on the loop.
 constexpr std::size_t max_batches_per_wakeup = 16;
 
-void join_group(int fd, const MulticastMembership& membership) {
+ip_mreqn membership_request(const MulticastMembership& membership) {
     const auto group = parse_ipv4(membership.group);
     if (!group) {
         throw std::system_error(
@@ -40,12 +42,40 @@ void join_group(int fd, const MulticastMembership& membership) {
             request.imr_ifindex = static_cast<int>(index);
         }
     }
+    return request;
+}
+
+std::string_view interface_name(const MulticastMembership& membership) {
+    if (membership.interface.empty()) return "the default interface";
+    return membership.interface;
+}
+
+void join_group(int fd, const MulticastMembership& membership) {
+    const auto request = membership_request(membership);
     if (setsockopt(fd, IPPROTO_IP, IP_ADD_MEMBERSHIP, &request, sizeof request) != 0) {
         throw std::system_error(errno, std::generic_category(),
                                 "cannot join multicast group " + membership.group);
     }
-    spdlog::info("joined multicast group {} on {}", membership.group,
-                 membership.interface.empty() ? "the default interface" : membership.interface);
+    spdlog::info("joined multicast group {} on {}", membership.group, interface_name(membership));
+}
+
+/// Never throws: a group that cannot be left (its interface went, and the kernel left it then)
+/// is logged.
+void leave_group(int fd, const MulticastMembership& membership) {
+    try {
+        const auto request = membership_request(membership);
+        if (setsockopt(fd, IPPROTO_IP, IP_DROP_MEMBERSHIP, &request, sizeof request) != 0) {
+            throw std::system_error(errno, std::generic_category(), "setsockopt");
+        }
+        spdlog::info("left multicast group {} on {}", membership.group, interface_name(membership));
+    } catch (const std::system_error& e) {
+        spdlog::warn("cannot leave multicast group {} on {}: {}", membership.group,
+                     interface_name(membership), e.what());
+    }
+}
+
+bool contains(const std::vector<MulticastMembership>& list, const MulticastMembership& one) {
+    return std::find(list.begin(), list.end(), one) != list.end();
 }
 
 /// The destination address IP_PKTINFO gave for a received message, host byte order; 0 if none.
@@ -84,6 +114,7 @@ Receiver::Receiver(boost::asio::any_io_executor executor, const ReceiverOptions&
             ec, "cannot bind UDP " + options.bind + ":" + std::to_string(options.port));
     }
     for (const auto& membership : options.multicast) join_group(fd, membership);
+    memberships_ = options.multicast;
     if (options.destinations) {
         const int on = 1;
         if (setsockopt(fd, IPPROTO_IP, IP_PKTINFO, &on, sizeof on) != 0) {
@@ -118,6 +149,38 @@ void Receiver::stop() {
     stopped_ = true;
     boost::system::error_code ignored;
     socket_.close(ignored);
+}
+
+void Receiver::set_multicast(const std::vector<MulticastMembership>& memberships) {
+    const int fd = socket_.native_handle();
+    // Left first: a group moved from the default interface to the one the kernel chose anyway
+    // would otherwise be joined twice (EADDRINUSE).
+    std::vector<MulticastMembership> left;
+    for (const auto& membership : memberships_) {
+        if (contains(memberships, membership)) continue;
+        leave_group(fd, membership);
+        left.push_back(membership);
+    }
+    std::vector<MulticastMembership> joined;
+    try {
+        for (const auto& membership : memberships) {
+            if (contains(memberships_, membership) || contains(joined, membership)) continue;
+            join_group(fd, membership);
+            joined.push_back(membership);
+        }
+    } catch (const std::system_error&) {
+        for (const auto& membership : joined) leave_group(fd, membership);
+        for (const auto& membership : left) {
+            try {
+                join_group(fd, membership);
+            } catch (const std::system_error& e) {
+                spdlog::error("cannot join multicast group {} again: {}", membership.group,
+                              e.what());
+            }
+        }
+        throw;
+    }
+    memberships_ = memberships;
 }
 
 std::uint16_t Receiver::local_port() const {

@@ -7,9 +7,11 @@
 
 #include <boost/asio/io_context.hpp>
 #include <chrono>
+#include <system_error>
 #include <vector>
 
 #include "eip2mqtt/adapters/udp/sender.hpp"
+#include "tests/support/igmp.hpp"
 
 namespace eip2mqtt::adapters::udp {
 namespace {
@@ -66,6 +68,48 @@ TEST(Receiver, WithoutDestinationsThePlainHandlerRuns) {
     ASSERT_EQ(seen.size(), 1u);
     EXPECT_EQ(seen[0].bytes, std::vector<std::byte>(4, std::byte{7}));
     EXPECT_EQ(seen[0].destination, 0xFFFFFFFFu);
+}
+
+TEST(Receiver, SetMulticastLeavesTheGroupsDroppedAndJoinsTheNewOnes) {
+    const auto kept = test::test_multicast_group(11);
+    const auto dropped = test::test_multicast_group(12);
+    const auto added = test::test_multicast_group(13);
+    boost::asio::io_context io;
+    Receiver receiver(
+        io.get_executor(),
+        ReceiverOptions{
+            .bind = "127.0.0.1", .port = 0, .multicast = {{kept, "lo"}, {dropped, "lo"}}});
+    ASSERT_TRUE(test::igmp_joined("lo", kept));
+    ASSERT_TRUE(test::igmp_joined("lo", dropped));
+
+    receiver.set_multicast({{kept, "lo"}, {added, "lo"}});
+    EXPECT_TRUE(test::igmp_joined("lo", kept));
+    EXPECT_FALSE(test::igmp_joined("lo", dropped));
+    EXPECT_TRUE(test::igmp_joined("lo", added));
+
+    receiver.stop();
+    EXPECT_FALSE(test::igmp_joined("lo", kept));
+    EXPECT_FALSE(test::igmp_joined("lo", added));
+}
+
+TEST(Receiver, SetMulticastThatCannotJoinAGroupChangesNothing) {
+    // All or nothing: a reload refused for its multicast groups leaves the running ones joined.
+    const auto first = test::test_multicast_group(14);
+    const auto second = test::test_multicast_group(15);
+    const auto third = test::test_multicast_group(16);
+    boost::asio::io_context io;
+    Receiver receiver(
+        io.get_executor(),
+        ReceiverOptions{.bind = "127.0.0.1", .port = 0, .multicast = {{first, "lo"}}});
+    EXPECT_THROW(receiver.set_multicast({{second, "lo"}, {third, "no-such-if0"}}),
+                 std::system_error);
+    EXPECT_TRUE(test::igmp_joined("lo", first));
+    EXPECT_FALSE(test::igmp_joined("lo", second));
+
+    // Still able to change: what it holds is what it had.
+    receiver.set_multicast({{second, "lo"}});
+    EXPECT_FALSE(test::igmp_joined("lo", first));
+    EXPECT_TRUE(test::igmp_joined("lo", second));
 }
 
 }  // namespace

@@ -25,6 +25,8 @@ namespace eip2mqtt::adapters::udp {
 struct MulticastMembership {
     std::string group;      ///< e.g. 224.0.7.1
     std::string interface;  ///< interface name (eth0) or IPv4 address; empty: the kernel's choice
+
+    friend bool operator==(const MulticastMembership&, const MulticastMembership&) = default;
 };
 
 struct ReceiverOptions {
@@ -66,6 +68,10 @@ public:
     void start_with_destinations(DestinationHandler handler);
     /// Closes the socket; a pending wait completes with operation_aborted and stops quietly.
     void stop();
+    /// Leaves the groups joined that `memberships` lacks and joins those it adds (a reload),
+    /// on the bound socket. All or nothing: when a group cannot be joined, the groups are put
+    /// back as they were and std::system_error names the group.
+    void set_multicast(const std::vector<MulticastMembership>& memberships);
 
     std::uint16_t local_port() const;
     const ReceiverStats& stats() const { return stats_; }
@@ -89,6 +95,7 @@ private:
     std::vector<struct ::iovec> iovecs_;
     std::vector<struct ::sockaddr_in> sources_;
     std::vector<Control> controls_;  ///< one per slot with ReceiverOptions::destinations
+    std::vector<MulticastMembership> memberships_;  ///< joined, in the order asked
     ReceiverStats stats_;
     core::ThrottledLog error_log_;  ///< a failing socket fails on every wake-up
     bool stopped_ = false;
