@@ -19,6 +19,7 @@
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 #include "eip2mqtt/adapters/state/image_persister.hpp"
 #include "eip2mqtt/adapters/state/image_store.hpp"
+#include "eip2mqtt/adapters/state/state_dir_lock.hpp"
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
 #include "eip2mqtt/adapters/udp/sender.hpp"
@@ -86,6 +87,9 @@ private:
     void wait_signal();
 
     core::config::Config config_;
+    /// Taken first: a second gateway on the same state directory stops here, before it has
+    /// opened a socket or a file.
+    adapters::state::StateDirLock state_dir_;
     std::string availability_topic_;
 
     boost::asio::io_context loop_;
