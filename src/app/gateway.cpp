@@ -96,6 +96,13 @@ int Gateway::run() {
     for (auto& producer : producers_) producer->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
     if (persister_) persister_->flush();
+    for (const auto& producer : producers_) {
+        if (producer->saved()) continue;
+        spdlog::error(
+            "exchange {}: stopping with the image it produced not saved: the next "
+            "start produces the one saved before",
+            producer->plan().spec.name);
+    }
     // The edge node's NDEATH after its last data, then the JSON tree's `offline`.
     if (sparkplug_mqtt_) sparkplug_mqtt_->stop(stop_flush_timeout);
     mqtt_->stop(stop_flush_timeout);

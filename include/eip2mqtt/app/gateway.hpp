@@ -10,6 +10,7 @@
 #include <boost/asio/steady_timer.hpp>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -74,8 +75,10 @@ private:
                                       bool settings_changed) const;
     /// The running exchanges, as northbounds see them.
     ExchangeSet running_exchanges() const;
-    /// A new producer, opening the sending socket with the first one.
-    std::unique_ptr<ExchangeProducer> make_producer(core::plan::ExchangePlan plan);
+    /// A new producer, opening the sending socket with the first one; with the running image
+    /// of the one it replaces when given.
+    std::unique_ptr<ExchangeProducer> make_producer(core::plan::ExchangePlan plan,
+                                                    std::optional<ImageHandover> handover);
     /// SIGHUP: a valid new file is applied, an invalid one refused with its errors logged.
     void reload();
     void schedule_watchdog();
