@@ -137,7 +137,7 @@ private:
     void report_status();
     void report_results(std::span<const std::uint64_t> write_ids);
 
-    /// Shared with the saves under way, which may outlive this producer (reload).
+    /// On the heap, at one address for the producer's life: image_ and the northbounds keep it.
     std::shared_ptr<const core::plan::ExchangePlan> plan_;
     adapters::udp::Endpoint destination_;
     ProducerScheduler& scheduler_;
