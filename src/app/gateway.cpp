@@ -5,6 +5,7 @@
 #include <boost/asio/post.hpp>
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/app/mqtt_settings.hpp"
@@ -27,6 +28,8 @@ constexpr auto stop_flush_timeout = 3s;
 
 Gateway::Gateway(core::config::Config config)
     : config_(std::move(config)),
+      state_dir_(config_.gateway.state_dir,
+                 {config_.gateway.id, std::filesystem::absolute(config_.file).string()}),
       availability_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/state"),
       signals_(loop_, SIGINT, SIGTERM, SIGHUP),
       tick_timer_(loop_),
@@ -93,6 +96,13 @@ int Gateway::run() {
     for (auto& producer : producers_) producer->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
     if (persister_) persister_->flush();
+    for (const auto& producer : producers_) {
+        if (producer->saved()) continue;
+        spdlog::error(
+            "exchange {}: stopping with the image it produced not saved: the next "
+            "start produces the one saved before",
+            producer->plan().spec.name);
+    }
     // The edge node's NDEATH after its last data, then the JSON tree's `offline`.
     if (sparkplug_mqtt_) sparkplug_mqtt_->stop(stop_flush_timeout);
     mqtt_->stop(stop_flush_timeout);

@@ -19,7 +19,7 @@
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/tahu.hpp"
-#include "tests/support/tmpfs_mount.hpp"
+#include "tests/support/tmpfs.hpp"
 
 namespace eip2mqtt::test {
 namespace {
@@ -186,14 +186,13 @@ protected:
     }
 
     std::map<std::string, std::size_t> expected_;
-    std::unique_ptr<TmpfsMount> disk_;
+    std::unique_ptr<Tmpfs> disk_;
     std::unique_ptr<Producer> producer_;
 };
 
 TEST_F(HistoryOutagesTest, AFullDiskKeepsTheNewestThroughTwoOutagesAndARestart) {
-    if (const auto why = TmpfsMount::unavailable(); !why.empty()) GTEST_SKIP() << why;
-    std::filesystem::create_directories(dir_.path() + "/state");
-    disk_ = std::make_unique<TmpfsMount>(2 << 20, dir_.path() + "/state");
+    disk_ = std::make_unique<Tmpfs>(2 << 20, false, dir_.path() + "/state");
+    if (!disk_->mounted()) GTEST_SKIP() << disk_->error();
     // 200 tags, every one changing in every datagram, 200 datagrams a second: about 200 KB a
     // second to journal, so the 2 MB disk is full long before a 20 s outage ends.
     constexpr int tags = 200;
