@@ -44,7 +44,10 @@ int main(int argc, char** argv) {
     auto* sniff_cmd =
         cli.add_subcommand("sniff", "Print received datagrams and per-exchange statistics");
     sniff_cmd->add_option("--port", sniff.port, "UDP port (default: eip.port with -c, else 18246)");
-    sniff_cmd->add_option("--bind", sniff.bind, "Local address (default: eip.bind, else 0.0.0.0)");
+    sniff_cmd->add_option("--interface", sniff.interface,
+                          "Interface to capture on (default: any, every interface)");
+    sniff_cmd->add_option("--bind", sniff.bind,
+                          "Only datagrams sent to this address (default: to any address)");
     sniff_cmd->add_option("-c,--config", sniff.config_path, "Configuration: decode its tags");
     sniff_cmd->add_option("--duration", sniff.duration_s,
                           "Seconds to run (default: until stopped)");

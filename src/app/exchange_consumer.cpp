@@ -66,11 +66,27 @@ void ExchangeConsumer::log_clock(bool first) {
     }
 }
 
+void ExchangeConsumer::log_state_change(core::exchange::ConsumeState before, core::MonoTime now) {
+    using core::exchange::ConsumeState;
+    const auto after = exchange_.state();
+    if (after == ConsumeState::stale) {
+        spdlog::warn("exchange {} is stale: no datagram for {} ms; tags marked stale",
+                     plan_.spec.name, plan_.timeout.count());
+    } else if (after == ConsumeState::ok && before != ConsumeState::waiting) {
+        spdlog::info("exchange {} is ok again after {:.1f} s {}; tags good", plan_.spec.name,
+                     std::chrono::duration<double>(now - down_since_).count(),
+                     core::exchange::to_string(before));
+    }
+    if (before == ConsumeState::ok || before == ConsumeState::waiting) down_since_ = now;
+}
+
 core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::Datagram& datagram,
                                                              core::MonoTime now,
                                                              core::WallTime wall) {
+    const auto state_before = exchange_.state();
     const auto outcome = exchange_.on_datagram(datagram, now);
     const auto clock_before = clock_.state();
+    if (outcome.state_changed) log_state_change(state_before, now);
     if (outcome.accepted()) {
         arrivals_.on_arrival(now);
         last_seen_ms_ = to_ms(wall);
@@ -93,7 +109,9 @@ core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::D
 }
 
 void ExchangeConsumer::on_tick(core::MonoTime now, core::WallTime wall, bool refresh_scan) {
+    const auto state_before = exchange_.state();
     if (exchange_.on_tick(now)) {
+        log_state_change(state_before, now);
         // docs/protocol.md §4 rule 8: every tag of a stale exchange is reported again as
         // stale, keeping its last value; the timestamp says when it was found stale.
         timestamp_ms_ = to_ms(wall);

@@ -5,6 +5,7 @@
 #include <boost/asio/post.hpp>
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/app/mqtt_settings.hpp"
@@ -27,6 +28,8 @@ constexpr auto stop_flush_timeout = 3s;
 
 Gateway::Gateway(core::config::Config config)
     : config_(std::move(config)),
+      state_dir_(config_.gateway.state_dir,
+                 {config_.gateway.id, std::filesystem::absolute(config_.file).string()}),
       availability_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/state"),
       signals_(loop_, SIGINT, SIGTERM, SIGHUP),
       tick_timer_(loop_),
@@ -55,9 +58,9 @@ Gateway::Gateway(core::config::Config config)
                     .count();
             });
         northbound_.add(*sparkplug_);
-        if (history_) history_->add_sink(*sparkplug_);
+        add_sparkplug_history();
     }
-    apply_exchanges(take_plans(), false, false);
+    apply_exchanges(take_plans(config_), false);
 
     adapters::udp::ReceiverOptions receiver_options;
     receiver_options.bind = config_.eip.bind;
@@ -93,6 +96,13 @@ int Gateway::run() {
     for (auto& producer : producers_) producer->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
     if (persister_) persister_->flush();
+    for (const auto& producer : producers_) {
+        if (producer->saved()) continue;
+        spdlog::error(
+            "exchange {}: stopping with the image it produced not saved: the next "
+            "start produces the one saved before",
+            producer->plan().spec.name);
+    }
     // The edge node's NDEATH after its last data, then the JSON tree's `offline`.
     if (sparkplug_mqtt_) sparkplug_mqtt_->stop(stop_flush_timeout);
     mqtt_->stop(stop_flush_timeout);
@@ -120,12 +130,22 @@ void Gateway::start() {
     });
     mqtt_->start();
     if (sparkplug_mqtt_) {
-        sparkplug_mqtt_->set_on_connected(
-            [this] { sparkplug_->on_connected(sparkplug_mqtt_->max_packet_size()); });
-        sparkplug_mqtt_->set_on_acknowledged(
-            [this](std::uint64_t token) { sparkplug_->on_acknowledged(token); });
-        sparkplug_mqtt_->set_on_message(
-            [this](const adapters::mqtt::Incoming& message) { sparkplug_->on_message(message); });
+        sparkplug_mqtt_->set_on_connected([this] {
+            on_sparkplug_event(
+                true, [this] { sparkplug_->on_connected(sparkplug_mqtt_->max_packet_size()); });
+        });
+        // One handler for both owners of the tokens on the node's connection: the node's own
+        // NDEATH (whose acknowledgement may let a pending birth go), else a journal entry.
+        sparkplug_mqtt_->set_on_acknowledged([this](std::uint64_t token) {
+            on_sparkplug_event(false, [&] {
+                if (!sparkplug_->on_acknowledged(token) && history_) {
+                    history_->on_acknowledged(*sparkplug_, token);
+                }
+            });
+        });
+        sparkplug_mqtt_->set_on_message([this](const adapters::mqtt::Incoming& message) {
+            on_sparkplug_event(false, [&] { sparkplug_->on_message(message); });
+        });
         sparkplug_mqtt_->start();
     }
     wait_signal();
@@ -171,12 +191,9 @@ void Gateway::schedule_watchdog() {
 void Gateway::on_connected() {
     spdlog::info("republishing retained state of {} exchange(s)",
                  consumers_.size() + producers_.size());
-    const auto now = std::chrono::steady_clock::now();
-    const auto wall = std::chrono::system_clock::now();
-    for (auto& consumer : consumers_) consumer->republish(now);
-    for (auto& producer : producers_) producer->republish(wall);
+    republish_exchanges();
     // History goes behind the current state.
-    if (history_) history_->on_connected(now);
+    if (history_) history_->on_connected(std::chrono::steady_clock::now());
 }
 
 void Gateway::schedule_tick() {
@@ -194,7 +211,8 @@ void Gateway::on_tick() {
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
     // Before the metrics: figures showing a datagram accepted then show it journaled for good.
     if (history_) history_->on_tick(now);
-    if (sparkplug_) sparkplug_->tick(now);
+    // A pending rebirth may be born here: the node's replay of history starts with it.
+    if (sparkplug_) on_sparkplug_event(false, [&] { sparkplug_->tick(now); });
     if (refresh_scan) {
         last_refresh_scan_ = now;
         if (prometheus_) {
@@ -210,18 +228,7 @@ void Gateway::on_tick() {
     for (auto& producer : producers_) producer->on_tick(now);
     // The summary of a flood of drops that stopped, which no next drop would log.
     datagram_router_.flush_log(now);
-    for (auto& consumer : consumers_) {
-        const auto before = consumer->exchange().state();
-        consumer->on_tick(now, wall, refresh_scan);
-        const auto after = consumer->exchange().state();
-        if (before != after && after == core::exchange::ConsumeState::stale) {
-            spdlog::warn("exchange {} is stale: no datagram for {} ms; tags marked stale",
-                         consumer->plan().spec.name, consumer->plan().timeout.count());
-        } else if (before != after) {
-            spdlog::info("exchange {} is {}", consumer->plan().spec.name,
-                         core::exchange::to_string(after));
-        }
-    }
+    for (auto& consumer : consumers_) consumer->on_tick(now, wall, refresh_scan);
 }
 
 void Gateway::schedule_metrics() {

@@ -144,6 +144,9 @@ std::optional<WriteRouter::Target> WriteRouter::find_target(std::string_view ste
 std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& message) const {
     const std::string_view topic = message.topic;
     if (!topic.ends_with(set_suffix)) return std::nullopt;
+    // An empty message is how a retained one is cleared (`mosquitto_pub -r -n -t …/set`): the
+    // broker passes the clearing on to subscribers. It asks for nothing, so nothing answers it.
+    if (message.payload.empty()) return std::nullopt;
     const auto target = find_target(topic.substr(0, topic.size() - set_suffix.size()));
     if (!target) return std::nullopt;
     const auto& route = *target->route;

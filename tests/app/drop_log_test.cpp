@@ -1,13 +1,11 @@
 #include "eip2mqtt/app/drop_log.hpp"
 
 #include <gtest/gtest.h>
-#include <spdlog/sinks/ostream_sink.h>
-#include <spdlog/spdlog.h>
 
-#include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "tests/support/fakes/log_capture.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -15,31 +13,11 @@ namespace {
 using namespace std::chrono_literals;
 using core::wire::DropReason;
 
-/// Captures what spdlog's default logger writes, one string per line; the previous default
-/// logger is restored after the test.
 class DropLogTest : public ::testing::Test {
 protected:
-    void SetUp() override {
-        previous_ = spdlog::default_logger();
-        auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(out_);
-        sink->set_pattern("%v");
-        auto logger = std::make_shared<spdlog::logger>("drop_log_test", sink);
-        logger->set_level(spdlog::level::trace);
-        spdlog::set_default_logger(logger);
-    }
-    void TearDown() override { spdlog::set_default_logger(previous_); }
+    std::vector<std::string> lines() { return log_.lines(); }
 
-    /// The lines logged since the last call.
-    std::vector<std::string> lines() {
-        std::vector<std::string> result;
-        std::istringstream in(out_.str());
-        for (std::string line; std::getline(in, line);) result.push_back(line);
-        out_.str("");
-        return result;
-    }
-
-    std::ostringstream out_;
-    std::shared_ptr<spdlog::logger> previous_;
+    test::LogCapture log_;
     const core::MonoTime t0{std::chrono::hours(1)};
 };
 

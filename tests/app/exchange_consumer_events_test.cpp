@@ -14,6 +14,7 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "tests/app/support/recording_northbound.hpp"
+#include "tests/support/fakes/log_capture.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -115,6 +116,23 @@ TEST_F(ConsumerEvents, TimeoutReportsEveryTagStaleAndTheExchangeDownThenTheNextD
     EXPECT_EQ(north_.batches.back().quality, Quality::good);
     EXPECT_EQ(north_.batches.back().samples.size(), 2u);
     EXPECT_EQ(north_.states.back().state, ConsumeState::ok);
+}
+
+TEST_F(ConsumerEvents, GoingStaleAndComingBackAreEachLoggedOnce) {
+    test::LogCapture log;
+    datagram(1, 2);
+    log.lines();  // what the first datagram says of the producer's clock
+    advance(400ms);
+    consumer_.on_tick(now_, wall_, false);
+    advance(100ms);
+    consumer_.on_tick(now_, wall_, false);
+    EXPECT_EQ(log.lines(), std::vector<std::string>{
+                               "exchange e1 is stale: no datagram for 300 ms; tags marked stale"});
+    advance(2400ms);
+    datagram(1, 2);  // 2.5 s after it was found stale
+    datagram(1, 3);
+    EXPECT_EQ(log.lines(),
+              std::vector<std::string>{"exchange e1 is ok again after 2.5 s stale; tags good"});
 }
 
 TEST_F(ConsumerEvents, RepublishReportsEveryTagAsAWholeAndTheStatus) {

@@ -78,6 +78,19 @@ protected:
     WriteRouter router_{WriteRouterOptions{"acme", false}};
 };
 
+TEST_F(WriteRouterTest, AnEmptyMessageClearsARetainedWriteAndIsNoWriteAtAll) {
+    // What the broker passes on when a client clears a retained `set` message: no write, no
+    // rejection, no result.
+    for (const bool retained : {false, true}) {
+        for (const auto* topic : {"acme/t1/sp/SPEED/set", "acme/t1/sp/set", "acme/t1/in/A/set"}) {
+            adapters::mqtt::Incoming message;
+            message.topic = topic;
+            message.retained = retained;
+            EXPECT_FALSE(router_.route(message).has_value()) << topic;
+        }
+    }
+}
+
 TEST_F(WriteRouterTest, ATagWriteGoesToItsProducerAndAnswersOnItsResultTopic) {
     const auto decision = route("acme/t1/sp/SPEED/set", "12.5");
     const auto routed = accepted(decision);

@@ -1,6 +1,7 @@
 // `eip2mqtt sniff` decodes headers and tags and counts gaps and duplicates per exchange.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <map>
@@ -147,6 +148,24 @@ TEST(Sniff, StopsOnSigterm) {
     // Without a configuration: headers only, the exchange named by its key.
     EXPECT_EQ(sniff.output().find("PRESSAO"), std::string::npos);
     EXPECT_FALSE(last_row(sniff.output(), "10.0.0.9/3").empty()) << sniff.output();
+}
+
+TEST(Sniff, WithoutThePrivilegeToCaptureSaysHowToGetItAndNeverBindsThePort) {
+    // setpriv takes CAP_NET_RAW out of the bounding set: even root then runs sniff without it.
+    if (::access("/usr/bin/setpriv", X_OK) != 0) GTEST_SKIP() << "no /usr/bin/setpriv";
+    const auto port = free_udp_port();
+    const auto result =
+        run_command({"/usr/bin/setpriv", "--bounding-set", "-net_raw", "--", EIP2MQTT_BINARY,
+                     "sniff", "--port", std::to_string(port), "--duration", "5"},
+                    std::chrono::seconds(30));
+    EXPECT_EQ(result.status, 1) << result.output;
+    for (const auto* text : {"needs the CAP_NET_RAW capability", "sudo eip2mqtt sniff",
+                             "setcap cap_net_raw,cap_net_admin+eip /"}) {
+        EXPECT_NE(result.output.find(text), std::string::npos) << text << "\nin:\n"
+                                                               << result.output;
+    }
+    // It never fell back to a socket on the port, which would take datagrams from a gateway.
+    EXPECT_EQ(result.output.find("sniffing"), std::string::npos) << result.output;
 }
 
 }  // namespace

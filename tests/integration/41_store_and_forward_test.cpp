@@ -352,7 +352,10 @@ TEST_F(StoreAndForwardTest, AGatewayKilledDuringTheOutageReplaysWhatItJournaled)
     pause_when_delivered();
     stop_broker();
     counter_->resume();
-    std::this_thread::sleep_for(3s);  // the scenario: the outage goes on
+    // The scenario: the outage goes on, for 250 journaled datagrams (3 s at 100 a second on an
+    // idle machine; counted, not timed, since a loaded one sends fewer in 3 s).
+    EXPECT_TRUE(wait_metric(
+        "eip2mqtt_history_journaled_total", [](double v) { return v >= 250; }, 30s));
     const auto before_kill = counter_->pause();
     // Every datagram sent is accepted, and every entry journaled is committed (the journal's
     // figures count committed entries only).
@@ -433,8 +436,9 @@ TEST_F(StoreAndForwardTest, WithSparkplugTheHistoryIsAlsoHistoricalDdata) {
     // may have missed the replay's first entries.)
     std::vector<std::uint64_t> historical;
     const auto messages = recorder_->messages();
-    for (const auto* m : deliveries(ddata, messages, from)) {
-        const auto payload = tahu_decode(m->payload);
+    std::vector<std::string> payloads;  // decoded in one run of Node.js, not one each
+    for (const auto* m : deliveries(ddata, messages, from)) payloads.push_back(m->payload);
+    for (const auto& payload : tahu_decode_all(payloads)) {
         for (const auto& metric : payload["metrics"]) {
             EXPECT_EQ(metric.value("isHistorical", false), true) << metric.dump();
             historical.push_back(metric["value"].get<std::uint64_t>());
@@ -462,6 +466,9 @@ TEST_F(StoreAndForwardTest, AtTheBoundTheOldestEntriesAreDroppedAndCounted) {
     start(line.str(), "  store_and_forward:\n    enabled: true\n    max_mb: 1\n",
           std::move(options));
     stop_broker();
+    // The bound holds at all times, however slow the machine: the journal's files (database,
+    // WAL and reserve) are measured while the datagrams come, not only after.
+    double largest = 0;
     for (std::uint32_t n = 1; n <= 1500; ++n) {
         DatagramBuilder datagram("10.0.0.3", 8, 1400);
         datagram.request_id(static_cast<std::uint16_t>(n));
@@ -471,13 +478,16 @@ TEST_F(StoreAndForwardTest, AtTheBoundTheOldestEntriesAreDroppedAndCounted) {
         }
         send(datagram.build());
         std::this_thread::sleep_for(2ms);  // pacing: the socket's buffer, not synchronisation
+        if (n % 100 == 0) largest = std::max(largest, metric("eip2mqtt_history_bytes").value_or(0));
     }
     ASSERT_TRUE(wait_metric("eip2mqtt_history_dropped_total", [](double v) { return v > 0; }))
         << http_get(prometheus_port_, "/metrics");
     const auto bytes = metric("eip2mqtt_history_bytes");
     ASSERT_TRUE(bytes.has_value());
-    // The bound holds for the file and its WAL together, give or take one commit.
-    EXPECT_LT(*bytes, 1.25 * (1 << 20));
+    EXPECT_LE(*bytes, 1 << 20);
+    EXPECT_LE(largest, 1 << 20);
+    std::cout << "journal bytes at the end " << static_cast<std::uint64_t>(*bytes) << ", at most "
+              << static_cast<std::uint64_t>(largest) << " seen\n";
     // Live data goes on through it all: the gateway accepted every datagram it was sent.
     EXPECT_TRUE(
         wait_metric("eip2mqtt_datagrams_accepted_total", [](double v) { return v >= 1400; }));

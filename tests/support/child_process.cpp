@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -35,11 +36,19 @@ int decode_status(int status) {
 
 }  // namespace
 
+void end_with_parent(pid_t parent) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    // The parent may have ended before the line above: then nobody would send the signal.
+    if (::getppid() != parent) ::_exit(127);
+}
+
 ChildProcess::ChildProcess(std::vector<std::string> argv, std::map<std::string, std::string> env)
     : output_file_(temp_output_file()) {
+    const pid_t parent = ::getpid();
     pid_ = ::fork();
     if (pid_ < 0) throw std::runtime_error("fork failed");
     if (pid_ == 0) {
+        end_with_parent(parent);
         const int fd = ::open(output_file_.c_str(), O_WRONLY | O_TRUNC);
         ::dup2(fd, STDOUT_FILENO);
         ::dup2(fd, STDERR_FILENO);

@@ -39,6 +39,13 @@ private:
     std::string output_file_;
 };
 
+/// Called in a child between fork() and exec(): the child is killed when the test process
+/// ends, however it ends (a failed assertion that aborts, a crash, a timeout's SIGKILL), so a
+/// test never leaves a gateway or a broker running behind it. `parent` is the test process's
+/// pid, read before the fork. Children must be forked from a thread that outlives them (the
+/// kernel sends the signal when the forking thread ends): the tests' main thread.
+void end_with_parent(pid_t parent);
+
 /// Runs a command to completion (bounded by `timeout`); returns exit status and output.
 struct RunResult {
     int status = -1;

@@ -152,11 +152,13 @@ void Mosquitto::start() {
         return;
     }
     const std::string conf = dir_ + "/mosquitto.conf";
+    const pid_t parent = ::getpid();
     const pid_t pid = ::fork();
     if (pid < 0) {
         throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
     }
     if (pid == 0) {
+        end_with_parent(parent);
         // Child: keep the test's output clean; the broker logs to its file.
         const int devnull = ::open("/dev/null", O_RDWR);
         if (devnull >= 0) {

@@ -53,6 +53,7 @@ public:
     /// Starts it again on the same port, with the same persistence directory.
     void start();
     bool running() const { return pid_ > 0; }
+    pid_t pid() const { return pid_; }
     /// Directory holding mosquitto.conf, the log and persistence.
     const std::string& dir() const { return dir_; }
     /// The broker's log so far.

@@ -70,15 +70,12 @@ struct MqttRecorder::Impl {
     /// SEND_RETAINED_ON_NEW so a renewed subscription does not replay retained messages.
     ::mqtt::token_ptr subscribe(::mqtt::subscribe_options::RetainHandling handling) {
         const ::mqtt::subscribe_options opt(false, true, handling);
-        if (filters.size() == 1) {
-            // Paho C reads a one-topic SUBSCRIBE's options from a field Paho C++ 1.2's
-            // collection overload leaves unset: use the one-topic overload.
-            return client.subscribe(filters.front(), 1, opt);
-        }
-        auto topics = ::mqtt::string_collection::create(filters);
-        std::vector<int> qos(filters.size(), 1);
-        std::vector<::mqtt::subscribe_options> opts(filters.size(), opt);
-        return client.subscribe(topics, qos, opts);
+        // One SUBSCRIBE a filter: Paho C reads a one-topic SUBSCRIBE's options from a field
+        // Paho C++ 1.2's collection overload leaves unset, and its many-topic one crashed in
+        // MQTTAsync_subscribeMany. They complete in order: the last token says all are done.
+        ::mqtt::token_ptr last;
+        for (const auto& filter : filters) last = client.subscribe(filter, 1, opt);
+        return last;
     }
 };
 

@@ -35,23 +35,40 @@ nlohmann::json tahu_decode(const std::string& bytes) {
 
 std::vector<nlohmann::json> tahu_decode_all(const std::vector<std::string>& payloads) {
     if (payloads.empty()) return {};
-    std::vector<std::string> argv{EIP2MQTT_NODE, EIP2MQTT_TAHU_SCRIPT, "decode-all"};
-    std::vector<std::filesystem::path> files;
-    for (const auto& bytes : payloads) {
-        files.push_back(temp_file(".bin"));
-        std::ofstream(files.back(), std::ios::binary) << bytes;
-        argv.push_back(files.back().string());
+    static constexpr char alphabet[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const auto path = temp_file(".b64");
+    {
+        std::ofstream file(path);
+        for (const auto& bytes : payloads) {
+            std::string line;
+            for (std::size_t i = 0; i < bytes.size(); i += 3) {
+                std::uint32_t n = static_cast<std::uint8_t>(bytes[i]) << 16;
+                if (i + 1 < bytes.size()) n |= static_cast<std::uint8_t>(bytes[i + 1]) << 8;
+                if (i + 2 < bytes.size()) n |= static_cast<std::uint8_t>(bytes[i + 2]);
+                line += alphabet[(n >> 18) & 63];
+                line += alphabet[(n >> 12) & 63];
+                line += i + 1 < bytes.size() ? alphabet[(n >> 6) & 63] : '=';
+                line += i + 2 < bytes.size() ? alphabet[n & 63] : '=';
+            }
+            file << line << '\n';
+        }
     }
-    const auto result = run_command(argv, std::chrono::seconds(120));
-    for (const auto& file : files) std::filesystem::remove(file);
+    const auto result =
+        run_command({EIP2MQTT_NODE, EIP2MQTT_TAHU_SCRIPT, "decode-lines", path.string()},
+                    std::chrono::seconds(120));
+    std::filesystem::remove(path);
     EXPECT_EQ(result.status, 0) << result.output;
-    const auto json = nlohmann::json::parse(result.output, nullptr, false);
-    if (!json.is_array() || json.size() != payloads.size()) {
-        ADD_FAILURE() << "Tahu decoded " << payloads.size()
-                      << " payloads into: " << result.output.substr(0, 2000);
-        return std::vector<nlohmann::json>(payloads.size(), nlohmann::json::object());
+    std::vector<nlohmann::json> out;
+    std::istringstream lines(result.output);
+    for (std::string line; std::getline(lines, line);) {
+        out.push_back(nlohmann::json::parse(line, nullptr, false));
+        EXPECT_FALSE(out.back().is_discarded()) << line;
     }
-    return {json.begin(), json.end()};
+    EXPECT_EQ(out.size(), payloads.size()) << result.output.substr(0, 2000);
+    // A caller reads out[i] for each of its payloads.
+    out.resize(payloads.size(), nlohmann::json::object());
+    return out;
 }
 
 std::string tahu_encode(const nlohmann::json& payload) {

@@ -37,23 +37,27 @@ int run_sim(const SimOptions& options);
 int run_import_points(const std::string& csv_path, std::ostream& out, std::ostream& err);
 
 struct SniffOptions {
-    std::string bind;         ///< empty: eip.bind of the configuration, else 0.0.0.0
-    int port = 0;             ///< 0: eip.port of the configuration, else 18246
-    std::string config_path;  ///< optional: decode the tags of the configured exchanges
-    double duration_s = 0;    ///< 0: until SIGINT/SIGTERM
-    double interval_s = 1;    ///< seconds between statistics tables; > 0
-    std::uint64_t count = 0;  ///< stop after this many datagrams; 0: no limit
-    bool yaml = false;        ///< end with the skeleton of unconfigured exchanges
+    std::string interface = "any";  ///< where to capture; "any": every interface
+    std::string bind;               ///< when not empty: only datagrams sent to this IPv4 address
+    int port = 0;                   ///< 0: eip.port of the configuration, else 18246
+    std::string config_path;        ///< optional: decode the tags of the configured exchanges
+    double duration_s = 0;          ///< 0: until SIGINT/SIGTERM
+    double interval_s = 1;          ///< seconds between statistics tables; > 0
+    std::uint64_t count = 0;        ///< stop after this many datagrams; 0: no limit
+    bool yaml = false;              ///< end with the skeleton of unconfigured exchanges
 };
-/// `sniff`: a live decoder. Prints to `out` one line per datagram (receive time, source, header
-/// fields, data length; or why it is malformed), with `config_path` the decoded tags of the
-/// exchange matching its key (consumed or produced), and every `interval_s` a table per exchange
-/// (rate, mean period, jitter, missed, duplicates, out of order; docs/protocol.md §4 rule 6). With
-/// a configuration it also joins eip.multicast. Returns when stopped, after `duration_s` or after
-/// `count` datagrams, with a last table; with `yaml`, then the YAML skeleton
+/// `sniff`: a live decoder. Captures passively (libpcap: it needs CAP_NET_RAW) the UDP datagrams
+/// to the port, received or sent by this host, so it runs beside a gateway without taking any of
+/// its datagrams; without the privilege it says how to get it and returns 1, never binding the
+/// port. Prints to `out` one line per datagram (receive time, source, header fields, data
+/// length; or why it is malformed), with `config_path` the decoded tags of the exchange matching
+/// its key (consumed or produced), and every `interval_s` a table per exchange (rate, mean
+/// period, jitter, missed, duplicates, out of order; docs/protocol.md §4 rule 6). With a
+/// configuration it also joins eip.multicast (a socket that joins and receives nothing), so the
+/// groups' traffic reaches the host. Returns when stopped, after `duration_s` or after `count`
+/// datagrams, with a last table; with `yaml`, then the YAML skeleton
 /// (core::config::yaml_skeleton) of every exchange seen that the configuration lacks, its
-/// destinations read with IP_PKTINFO. Throws std::system_error when it cannot bind (a start-up
-/// error).
+/// destinations read from the captured IP headers.
 int run_sniff(const SniffOptions& options, std::ostream& out);
 
 }  // namespace eip2mqtt::app

@@ -60,6 +60,9 @@ private:
     /// The timestamp of the accepted datagram's tags (ProducerClock), logging a clock change.
     std::int64_t sample_time(core::WallTime wall);
     void log_clock(bool first);
+    /// Logs the exchange going stale and coming back, once each: the way in from a mismatch
+    /// is logged where the datagram's detail is known (DatagramRouter).
+    void log_state_change(core::exchange::ConsumeState before, core::MonoTime now);
 
     core::plan::ExchangePlan plan_;
     Northbound& northbound_;
@@ -73,6 +76,7 @@ private:
     core::exchange::StatusGrid status_grid_;
     std::uint64_t last_status_received_ = 0;
     bool status_dirty_ = true;
+    core::MonoTime down_since_{};  ///< when the exchange last left `ok`
 };
 
 }  // namespace eip2mqtt::app

@@ -31,6 +31,8 @@ struct GatewayCounters {
     /// Of writes_ok, those still queued when a reload changed or removed their exchange:
     /// answered `"reloaded"`, never produced.
     std::uint64_t writes_cancelled = 0;
+    /// Image saves of every produced exchange, and the writes whose save failed.
+    ImageSaveTotals image_saves;
 };
 
 /// Everything the metrics are made of, borrowed for one call.

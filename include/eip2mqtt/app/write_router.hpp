@@ -53,11 +53,12 @@ public:
     /// configuration's size.
     std::vector<std::string> subscriptions() const;
 
-    /// Decides what `message` asks; nullopt when its topic is not a `set` topic of ours (it is
-    /// ignored). The response topic must be one every broker accepts (no wildcard, valid UTF-8,
-    /// at most 65,535 bytes) and, unless allowed by the options, not a topic under the base
-    /// topic other than below a `set` level: otherwise the write is refused with
-    /// `bad_response_topic`, answered on `{set topic}/result`.
+    /// Decides what `message` asks; nullopt when its topic is not a `set` topic of ours, or
+    /// when its payload is empty (a retained write being cleared): it is ignored. The response
+    /// topic must be one every broker accepts (no wildcard, valid UTF-8, at most 65,535 bytes) and,
+    /// unless allowed by the options, not a topic under the base topic other than below a `set`
+    /// level: otherwise the write is refused with `bad_response_topic`, answered on `{set
+    /// topic}/result`.
     std::optional<WriteDecision> route(const adapters::mqtt::Incoming& message) const;
 
 private:

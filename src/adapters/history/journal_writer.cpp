@@ -8,7 +8,7 @@
 namespace eip2mqtt::adapters::history {
 
 JournalWriter::JournalWriter(std::unique_ptr<Journal> journal)
-    : journal_(std::move(journal)), worker_([this] { run(); }) {}
+    : journal_(std::move(journal)), last_id_(journal_->last_id()), worker_([this] { run(); }) {}
 
 JournalWriter::~JournalWriter() {
     {
@@ -54,8 +54,8 @@ void JournalWriter::run() {
         lock.unlock();
         try {
             std::lock_guard journal(journal_mutex_);
-            for (auto& entry : batch) journal_->append(entry);
-            journal_->commit(durable);
+            journal_->write(batch, durable);
+            last_id_.store(journal_->last_id(), std::memory_order_release);
         } catch (const std::exception& error) {
             failures_.fetch_add(1, std::memory_order_relaxed);
             if (const auto count = failure_log_.record(std::chrono::steady_clock::now())) {

@@ -42,13 +42,14 @@ Client::Impl::Impl(boost::asio::any_io_executor loop, ClientOptions options)
     // Paho's threads: copy, count, post; nothing else.
     client_->set_connection_lost_handler([this](const std::string& cause) {
         link_up_ = false;
-        post([cause](Impl& self) { self.on_connection_lost(cause.empty() ? "unknown" : cause); });
+        post([cause](Impl& self) { self.on_connection_lost(cause, cause.empty()); });
     });
     client_->set_disconnected_handler([this](const paho::properties&, paho::ReasonCode reason) {
         link_up_ = false;
         post([reason](Impl& self) {
-            self.on_connection_lost("broker sent DISCONNECT: " +
-                                    paho::exception::reason_code_str(reason));
+            self.on_connection_lost(detail::describe_disconnect(
+                static_cast<int>(reason), paho::exception::reason_code_str(reason),
+                self.options_.client_id));
         });
     });
     client_->set_message_callback([this](paho::const_message_ptr msg) {
@@ -113,7 +114,7 @@ void Client::Impl::do_connect() {
     }
 }
 
-void Client::Impl::on_connect(bool ok, std::string reason) {
+void Client::Impl::on_connect(bool ok, std::string reason, int return_code) {
     if (state_ != State::connecting) {
         return;  // stopped meanwhile
     }
@@ -122,24 +123,12 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
         reason = "connection lost right after connect";
     }
     if (!ok) {
-        reason = explain_connect_failure(std::move(reason));
-        if (const auto count = connect_failure_log_.record(Clock::now())) {
-            if (count == 1) {
-                spdlog::warn("{} cannot connect to {}: {}", options_.log_name, options_.url,
-                             reason);
-            } else {
-                spdlog::warn("{} cannot connect to {}: {} ({} failed attempts)", options_.log_name,
-                             options_.url, reason, count);
-            }
-            spdlog::info("{} reconnecting in {} ms", options_.log_name,
-                         schedule_reconnect().count());
-        } else {
-            schedule_reconnect();
-        }
+        on_connect_failed(std::move(reason), return_code);
         return;
     }
 
     state_ = State::connected;
+    connected_at_ = Clock::now();
     link_up_ = true;
     connected_ = true;
     connects_.fetch_add(1, std::memory_order_relaxed);
@@ -173,6 +162,28 @@ void Client::Impl::on_connect(bool ok, std::string reason) {
         on_connected_();
     }
     set_sending(true);
+}
+
+void Client::Impl::on_connect_failed(std::string reason, int return_code) {
+    reason = explain_connect_failure(std::move(reason));
+    if (options_.version == 5) {
+        if (auto refusal =
+                detail::mqtt5_refusal(return_code, reason, endpoint_ && endpoint_->tls)) {
+            // Paho has no words for the 3.1.1 return code 1 ("Unknown error code 1").
+            reason = return_code == 1 ? std::move(*refusal) : reason + ": " + *refusal;
+        }
+    }
+    if (const auto count = connect_failure_log_.record(Clock::now())) {
+        if (count == 1) {
+            spdlog::warn("{} cannot connect to {}: {}", options_.log_name, options_.url, reason);
+        } else {
+            spdlog::warn("{} cannot connect to {}: {} ({} failed attempts)", options_.log_name,
+                         options_.url, reason, count);
+        }
+        spdlog::info("{} reconnecting in {} ms", options_.log_name, schedule_reconnect().count());
+    } else {
+        schedule_reconnect();
+    }
 }
 
 std::string Client::Impl::explain_connect_failure(std::string reason) const {
@@ -229,9 +240,14 @@ void Client::Impl::update_in_flight_limit() {
         std::max<std::size_t>(1, std::min(options_.max_in_flight, receive_maximum));
 }
 
-void Client::Impl::on_connection_lost(std::string cause) {
+void Client::Impl::on_connection_lost(std::string cause, bool silent) {
     if (state_ != State::connected) {
         return;
+    }
+    if (silent_losses_.on_loss(silent, Clock::now() - connected_at_)) {
+        cause = "no reason given: " + detail::SilentLossPattern::explain(options_.client_id);
+    } else if (silent) {
+        cause = "no reason given (no DISCONNECT from the broker)";
     }
     connected_ = false;
     connection_losses_.fetch_add(1, std::memory_order_relaxed);

@@ -2,6 +2,7 @@
 // configuration, its tags), then per-exchange arrival statistics at each interval, so that an
 // engineer can see what a producer really sends before configuring the gateway for it. With
 // --yaml it ends with the configuration of every exchange seen that the configuration lacks.
+// It captures passively (detail/sniff_capture.hpp): it runs beside the gateway and takes nothing.
 
 #include <fmt/format.h>
 #include <time.h>
@@ -21,8 +22,10 @@
 #include <vector>
 
 #include "app/commands/detail/run_until_stopped.hpp"
+#include "app/commands/detail/sniff_capture.hpp"
+#include "eip2mqtt/adapters/udp/endpoint.hpp"
 #include "eip2mqtt/adapters/udp/interfaces.hpp"
-#include "eip2mqtt/adapters/udp/receiver.hpp"
+#include "eip2mqtt/adapters/udp/multicast.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/commands.hpp"
 #include "eip2mqtt/core/config/skeleton.hpp"
@@ -181,10 +184,11 @@ public:
         out_ << line << std::endl;
     }
 
-    /// The per-exchange table, rates over the last interval.
-    void print_statistics() {
+    /// The per-exchange table, rates over the last interval; `fragments`: IP fragments the
+    /// capture saw and could not decode; `kernel_drops`: frames the capture was too slow for.
+    void print_statistics(std::uint64_t fragments, std::uint64_t kernel_drops) {
         const auto now = Clock::now();
-        if (exchanges_.empty() && dropped_.empty()) return;
+        if (exchanges_.empty() && dropped_.empty() && fragments == 0 && kernel_drops == 0) return;
         std::size_t width = 8;
         for (const auto& exchange : exchanges_) width = std::max(width, exchange.label.size());
         out_ << fmt::format("-- statistics at {} --\n",
@@ -211,6 +215,14 @@ public:
                 line += fmt::format(" {}={}", core::wire::to_string(reason), count);
             }
             out_ << line << '\n';
+        }
+        if (fragments != 0) {
+            out_ << fmt::format("ip fragments: {} (not decoded: EIP datagrams fit one frame)\n",
+                                fragments);
+        }
+        if (kernel_drops != 0) {
+            // The capture's own loss, not the network's: the gateway may well have them all.
+            out_ << fmt::format("capture dropped: {} (sniff could not keep up)\n", kernel_drops);
         }
         out_ << std::flush;
     }
@@ -259,20 +271,20 @@ private:
     std::map<core::wire::DropReason, std::uint64_t> dropped_;
 };
 
-}  // namespace
-
-int run_sniff(const SniffOptions& options, std::ostream& out) {
-    if (!(options.interval_s > 0)) {
-        std::cerr << "eip2mqtt sniff: --interval must be positive\n";
-        return 2;
-    }
-    adapters::udp::ReceiverOptions receiver_options;
+/// What sniff takes from its options and configuration.
+struct SniffSetup {
+    std::uint16_t port = 18246;
     std::vector<core::plan::ExchangePlan> plans;
+    std::vector<adapters::udp::MulticastMembership> groups;
     std::optional<YamlSettings> yaml;
+};
+
+/// nullopt when the configuration does not load (its errors printed on stderr).
+std::optional<SniffSetup> load_setup(const SniffOptions& options) {
+    SniffSetup setup;
     if (options.yaml) {
-        yaml.emplace();
-        yaml->broadcast_addresses = adapters::udp::local_broadcast_addresses();
-        receiver_options.destinations = true;
+        setup.yaml.emplace();
+        setup.yaml->broadcast_addresses = adapters::udp::local_broadcast_addresses();
     }
     if (!options.config_path.empty()) {
         auto loaded = adapters::yaml::load_config(options.config_path);
@@ -280,36 +292,51 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
             for (const auto& diagnostic : loaded.error()) {
                 std::cerr << diagnostic.to_string() << '\n';
             }
-            return 1;
+            return std::nullopt;
         }
         const auto& config = loaded.value();
-        plans = core::config::make_plans(config);
-        if (yaml) yaml->clock_tolerance = config.gateway.exchange_defaults.clock_tolerance;
-        receiver_options.bind = config.eip.bind;
-        receiver_options.port = config.eip.port;
+        setup.plans = core::config::make_plans(config);
+        if (setup.yaml) {
+            setup.yaml->clock_tolerance = config.gateway.exchange_defaults.clock_tolerance;
+        }
+        setup.port = config.eip.port;
         for (const auto& group : config.eip.multicast) {
-            receiver_options.multicast.push_back({group.group, group.interface});
+            setup.groups.push_back({group.group, group.interface});
         }
     }
-    if (!options.bind.empty()) receiver_options.bind = options.bind;
-    if (options.port != 0) receiver_options.port = static_cast<std::uint16_t>(options.port);
+    if (options.port != 0) setup.port = static_cast<std::uint16_t>(options.port);
+    return setup;
+}
+
+}  // namespace
+
+int run_sniff(const SniffOptions& options, std::ostream& out) {
+    if (!(options.interval_s > 0)) {
+        std::cerr << "eip2mqtt sniff: --interval must be positive\n";
+        return 2;
+    }
+    auto setup = load_setup(options);
+    if (!setup) return 1;
+    const auto port = setup->port;
+
+    boost::asio::io_context loop;
+    auto capture = detail::open_capture(loop.get_executor(), options, port, std::cerr);
+    if (!capture) return 1;
+    // The groups' datagrams reach this host only while someone has joined them.
+    const adapters::udp::GroupMemberships memberships(setup->groups);
 
     const auto interval = std::chrono::duration_cast<std::chrono::nanoseconds>(
         std::chrono::duration<double>(options.interval_s));
-    Sniffer sniffer(out, std::move(plans), interval, std::move(yaml));
-
-    boost::asio::io_context loop;
-    adapters::udp::Receiver receiver(loop.get_executor(), receiver_options);
+    Sniffer sniffer(out, std::move(setup->plans), interval, std::move(setup->yaml));
     std::uint64_t seen = 0;
-    receiver.start_with_destinations([&](std::span<const std::byte> datagram,
-                                         const adapters::udp::Endpoint& from,
-                                         std::uint32_t destination, bool) {
-        // --count: the rest of a batch read with the last counted one is not shown.
+    capture->start([&](const adapters::capture::UdpFrame& frame) {
         if (options.count != 0 && seen >= options.count) return;
-        sniffer.on_datagram(datagram, from, destination);
+        sniffer.on_datagram(frame.payload, {frame.source, frame.source_port}, frame.destination);
         if (++seen == options.count) loop.stop();
     });
-    out << fmt::format("sniffing {}:{}", receiver_options.bind, receiver.local_port()) << std::endl;
+    out << fmt::format("sniffing {}:{} on {} (passive capture: the port stays the gateway's)",
+                       options.bind.empty() ? "0.0.0.0" : options.bind, port, options.interface)
+        << std::endl;
 
     boost::asio::steady_timer tick(loop);
     auto deadline = Clock::now() + interval;
@@ -317,7 +344,7 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
         tick.expires_at(deadline);
         tick.async_wait([&](const boost::system::error_code& error) {
             if (error) return;
-            sniffer.print_statistics();
+            sniffer.print_statistics(capture->stats().fragments, capture->kernel_drops());
             deadline += interval;  // absolute deadlines: the interval never drifts
             schedule();
         });
@@ -325,8 +352,8 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
     schedule();
 
     detail::run_until_stopped(loop, options.duration_s);
-    receiver.stop();
-    sniffer.print_statistics();
+    capture->stop();
+    sniffer.print_statistics(capture->stats().fragments, capture->kernel_drops());
     sniffer.print_skeleton();
     return 0;
 }

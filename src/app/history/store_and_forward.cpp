@@ -12,15 +12,6 @@ namespace {
 using adapters::history::JournaledSample;
 using adapters::history::JournalEntry;
 
-/// Live publications waiting beyond this hold the replay back: live data goes first.
-constexpr std::uint64_t kLiveBacklog = 1000;
-/// Replayed entries unacknowledged at most: a window's worth keeps the broker busy without
-/// filling the client's queue with history.
-constexpr std::size_t kMaxOutstanding = 1000;
-/// Ticks the client must hold none of the outstanding entries before they count as dropped:
-/// an acknowledgement posted to the loop just before may still be on its way for one tick.
-constexpr int kIdleTicksBeforeRewind = 2;
-
 std::uint64_t fnv1a(std::uint64_t hash, std::string_view bytes) {
     for (const unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
     return hash;
@@ -49,17 +40,14 @@ StoreAndForward::StoreAndForward(std::unique_ptr<adapters::history::Journal> jou
                                  StoreAndForwardOptions options, LinkProbe link, HistorySink& sink)
     : writer_(std::move(journal)),
       options_(options),
-      link_(std::move(link)),
-      sink_(sink),
+      first_(sink, std::move(link)),
       last_durable_(std::chrono::steady_clock::now()) {}
 
 StoreAndForward::~StoreAndForward() {
     // The writer commits durably what it is handed before it stops.
     writer_.append(pending_, true);
     try {
-        if (!acknowledged_.empty()) {
-            writer_.with([&](auto& journal) { journal.remove(acknowledged_); });
-        }
+        delete_delivered();
     } catch (const std::exception& error) {
         spdlog::error("store and forward: the journal could not be closed cleanly: {}",
                       error.what());
@@ -101,22 +89,32 @@ void StoreAndForward::tag_samples(const SampleBatch& batch) {
 void StoreAndForward::on_connected(core::MonoTime now) {
     // What the client still holds of an earlier replay goes again after the reconnect and is
     // acknowledged then: the replay resumes after it, without sending anything twice.
-    replaying_ = true;
-    idle_with_outstanding_ = 0;
-    last_replay_ = now;
-    allowance_ = 0;
+    first_.start(now, false);
     replay_started_ = now;
     replay_started_with_ = replayed_;
     const auto entries = stats().journal.entries + pending_.size();
-    if (entries > outstanding_.size()) {
+    if (entries > first_.outstanding()) {
         spdlog::info("store and forward: replaying {} journaled entries on _history", entries);
     }
 }
 
+void StoreAndForward::on_connected(HistorySink& sink, core::MonoTime now) {
+    if (auto* replay = replay_of(sink)) replay->start(now, true);
+}
+
 void StoreAndForward::on_acknowledged(std::uint64_t id) {
-    // Deleted even when a rewind forgot it meanwhile: the broker has it.
-    acknowledged_.push_back(id);
-    if (outstanding_.erase(id) > 0) ++replayed_;
+    if (first_.acknowledge(id)) ++replayed_;
+}
+
+void StoreAndForward::on_acknowledged(HistorySink& sink, std::uint64_t id) {
+    if (auto* replay = replay_of(sink)) replay->acknowledge(id);
+}
+
+SinkReplay* StoreAndForward::replay_of(HistorySink& sink) {
+    for (auto& replay : extra_) {
+        if (&replay->sink() == &sink) return replay.get();
+    }
+    return nullptr;
 }
 
 void StoreAndForward::on_tick(core::MonoTime now) {
@@ -124,11 +122,15 @@ void StoreAndForward::on_tick(core::MonoTime now) {
     if (!pending_.empty() || durable) writer_.append(pending_, durable);
     if (durable) last_durable_ = now;
     try {
-        if (!acknowledged_.empty()) {
-            writer_.with([&](auto& journal) { journal.remove(acknowledged_); });
-            acknowledged_.clear();
+        delete_delivered();
+        if (first_.active()) replay_some(first_, now, true);
+        for (auto& replay : extra_) {
+            if (replay->active()) {
+                replay_some(*replay, now, false);
+            } else {
+                replay->note_live(now, writer_.last_id());
+            }
         }
-        if (replaying_) replay_some(now);
     } catch (const std::exception& error) {
         fail("the journal failed", error);
     }
@@ -137,33 +139,25 @@ void StoreAndForward::on_tick(core::MonoTime now) {
     }
 }
 
-void StoreAndForward::replay_some(core::MonoTime now) {
-    if (!link_.connected()) {
-        last_replay_ = now;
-        return;
+void StoreAndForward::delete_delivered() {
+    auto through = first_.through();
+    for (const auto& replay : extra_) through = std::min(through, replay->through());
+    if (through > deleted_through_) {
+        writer_.with([&](auto& journal) { journal.remove_through(through); });
+        deleted_through_ = through;
     }
-    const double rate = options_.replay_rate;
-    allowance_ =
-        std::min(allowance_ + rate * seconds_since(*last_replay_, now), std::max(1.0, rate / 10));
-    last_replay_ = now;
-    const auto backlog = link_.backlog();
-    if (!outstanding_.empty() && backlog == 0) {
-        // The client holds none of them and never acknowledged them: it dropped them (a full
-        // queue, a refusal). They go again.
-        if (++idle_with_outstanding_ >= kIdleTicksBeforeRewind) rewind();
-        return;
-    }
-    idle_with_outstanding_ = 0;
-    if (backlog > kLiveBacklog) return;
-    const auto room = std::min<double>(allowance_, kMaxOutstanding - outstanding_.size());
-    if (room < 1) return;
+}
+
+void StoreAndForward::replay_some(SinkReplay& replay, core::MonoTime now, bool first) {
+    const auto room = replay.room(now, options_.replay_rate);
+    if (room == 0) return;
     // Asked before the read: when nothing waits for the writer then, the read sees it all.
     const bool all_written = pending_.empty() && writer_.idle();
-    const auto entries = writer_.with(
-        [&](auto& journal) { return journal.oldest(static_cast<std::size_t>(room), cursor_); });
-    if (entries.empty() && outstanding_.empty() && all_written) {
-        replaying_ = false;
-        if (replayed_ > replay_started_with_) {
+    const auto entries =
+        writer_.with([&](auto& journal) { return journal.oldest(room, replay.cursor()); });
+    if (entries.empty() && replay.outstanding() == 0 && all_written) {
+        replay.finish();
+        if (first && replayed_ > replay_started_with_) {
             spdlog::info("store and forward: {} journaled entries replayed in {:.1f} s",
                          replayed_ - replay_started_with_, seconds_since(replay_started_, now));
         }
@@ -171,14 +165,12 @@ void StoreAndForward::replay_some(core::MonoTime now) {
     }
     std::vector<std::uint64_t> unusable;
     for (const auto& entry : entries) {
-        cursor_ = entry.id;
-        allowance_ -= 1;
-        if (replay_entry(entry)) {
-            outstanding_.insert(entry.id);
-        } else {
+        if (!replay_entry(replay, entry)) {
+            replay.handed(entry.id, false);
             unusable.push_back(entry.id);
         }
     }
+    // At once: another sink's replay must not meet them (and count them) again.
     if (!unusable.empty()) writer_.with([&](auto& journal) { journal.remove(unusable); });
 }
 
@@ -197,7 +189,7 @@ std::string StoreAndForward::unusable(const JournalEntry& entry) {
     return {};
 }
 
-bool StoreAndForward::replay_entry(const JournalEntry& entry) {
+bool StoreAndForward::replay_entry(SinkReplay& replay, const JournalEntry& entry) {
     if (const auto problem = unusable(entry); !problem.empty()) {
         ++discarded_;
         if (const auto count = discard_log_.record(std::chrono::steady_clock::now())) {
@@ -211,19 +203,8 @@ bool StoreAndForward::replay_entry(const JournalEntry& entry) {
     const auto& plan = *exchanges_.find(entry.exchange)->second.plan;
     const SampleBatch batch{plan, static_cast<core::quality::Quality>(entry.quality),
                             entry.timestamp_ms, false, samples_};
-    sink_.replay(batch, entry.id);
-    for (auto* sink : extra_sinks_) sink->replay(batch, 0);
+    replay.handed(entry.id, replay.sink().replay(batch, entry.id));
     return true;
-}
-
-void StoreAndForward::rewind() {
-    spdlog::warn(
-        "store and forward: {} replayed entries were never acknowledged (the MQTT client dropped "
-        "them); they go again",
-        outstanding_.size());
-    outstanding_.clear();
-    cursor_ = 0;
-    idle_with_outstanding_ = 0;
 }
 
 void StoreAndForward::fail(const char* what, const std::exception& error) {
@@ -245,7 +226,8 @@ HistoryStats StoreAndForward::stats() {
     stats.replayed = replayed_;
     stats.discarded = discarded_;
     stats.failures = failures_ + writer_.failures();
-    stats.replaying = replaying_;
+    stats.replaying = first_.active();
+    for (const auto& replay : extra_) stats.replaying = stats.replaying || replay->active();
     stats.taken_at_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
                             std::chrono::system_clock::now().time_since_epoch())
                             .count();

@@ -55,15 +55,26 @@ void SparkplugNode::tick(core::MonoTime now) {
     }
 }
 
-void SparkplugNode::on_acknowledged(std::uint64_t ack_token) {
-    if (ack_token == 0 || ack_token != death_unacknowledged_) return;
+bool SparkplugNode::on_acknowledged(std::uint64_t ack_token) {
+    if ((ack_token & sparkplug_own_token) == 0) return false;
+    if (ack_token != death_unacknowledged_) return true;  // an NDEATH of an earlier connection
     death_unacknowledged_ = 0;
     if (rebirth_pending_ && birth_may_start()) birth();
+    return true;
 }
 
 void SparkplugNode::birth() {
     rebirth_pending_ = false;
     if (!may_publish()) return;
+    if (death_unacknowledged_ != 0) {
+        // birth_may_start() let it go at the deadline: a host may see this NBIRTH before the
+        // NDEATH, and take the node for dead.
+        spdlog::warn(
+            "Sparkplug: the broker did not acknowledge the NDEATH within {} s; births go on "
+            "without it",
+            death_acknowledgement_timeout.count());
+        death_unacknowledged_ = 0;
+    }
     // In progress from now: another request waits for the hold to end.
     birth_hold_until_ = now_ + rebirth_hold;
     born_ = false;
@@ -155,7 +166,7 @@ void SparkplugNode::birth_refused(const std::string& topic, bool& logged) {
 
 void SparkplugNode::publish_death() {
     auto death = death_message();
-    death.ack_token = ++next_ack_token_;
+    death.ack_token = sparkplug_own_token | ++next_ack_token_;
     death_unacknowledged_ = death.ack_token;
     death_deadline_ = now_ + death_acknowledgement_timeout;
     mqtt_.publish(std::move(death));

@@ -69,6 +69,8 @@ void SparkplugNode::on_message(const adapters::mqtt::Incoming& message) {
     if (message.topic == ncmd_topic_) {
         on_node_command(message);
     } else if (message.topic.starts_with(dcmd_prefix_)) {
+        // An empty DCMD is a retained one being cleared: nothing is asked.
+        if (message.payload.empty()) return;
         const auto name = message.topic.substr(dcmd_prefix_.size());
         const auto found = device_of_name_.find(name);
         on_device_command(message,

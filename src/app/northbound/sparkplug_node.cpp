@@ -139,7 +139,8 @@ void SparkplugNode::set_node_metric(std::size_t index, MetricValue value) {
     metric.changed = true;
 }
 
-bool SparkplugNode::publish(const std::string& topic, adapters::sparkplug::Payload& payload) {
+bool SparkplugNode::publish(const std::string& topic, adapters::sparkplug::Payload& payload,
+                            std::uint64_t ack_token) {
     payload.timestamp_ms = static_cast<std::uint64_t>(wall_clock_());
     payload.seq = seq_;
     message_.topic = topic;
@@ -155,6 +156,7 @@ bool SparkplugNode::publish(const std::string& topic, adapters::sparkplug::Paylo
     message_.retain = false;
     // Every message counts in seq: none may replace another.
     message_.coalesce = false;
+    message_.ack_token = ack_token;
     mqtt_.publish(std::move(message_));
     return true;
 }
@@ -230,15 +232,17 @@ void SparkplugNode::tag_samples(const SampleBatch& batch) {
     publish_data(device, batch, false);
 }
 
-void SparkplugNode::replay(const SampleBatch& batch, std::uint64_t) {
+bool SparkplugNode::replay(const SampleBatch& batch, std::uint64_t ack_token) {
     const auto found = device_of_plan_.find(&batch.exchange);
-    if (found == device_of_plan_.end()) return;
+    if (found == device_of_plan_.end()) return false;
     const auto& device = devices_[found->second];
-    if (!born_ || !device.born || batch.quality != core::quality::Quality::good) return;
-    publish_data(device, batch, true);
+    if (!born_ || !device.born || batch.quality != core::quality::Quality::good) return false;
+    // Refused for its size, it never will be published: the journal must not wait for it.
+    return publish_data(device, batch, true, ack_token);
 }
 
-void SparkplugNode::publish_data(const Device& device, const SampleBatch& batch, bool historical) {
+bool SparkplugNode::publish_data(const Device& device, const SampleBatch& batch, bool historical,
+                                 std::uint64_t ack_token) {
     payload_.metrics.resize(batch.samples.size());
     for (std::size_t i = 0; i < batch.samples.size(); ++i) {
         const auto& sample = batch.samples[i];
@@ -252,7 +256,9 @@ void SparkplugNode::publish_data(const Device& device, const SampleBatch& batch,
         metric.historical = historical;
         metric.properties.clear();
     }
-    if (!publish(device.data_topic, payload_)) data_refused();
+    if (publish(device.data_topic, payload_, ack_token)) return true;
+    data_refused();
+    return false;
 }
 
 void SparkplugNode::exchange_state(const core::plan::ExchangePlan& exchange,

@@ -61,7 +61,7 @@ void UnsJson::tag_samples(const SampleBatch& batch) {
     }
 }
 
-void UnsJson::replay(const SampleBatch& batch, std::uint64_t ack_token) {
+bool UnsJson::replay(const SampleBatch& batch, std::uint64_t ack_token) {
     message_.topic.assign(batch.exchange.topic).append("/_history");
     format_values_payload(message_.payload, batch);
     message_.qos = 1;  // an entry leaves the journal on its PUBACK
@@ -69,6 +69,7 @@ void UnsJson::replay(const SampleBatch& batch, std::uint64_t ack_token) {
     message_.historical = true;
     message_.ack_token = ack_token;
     mqtt_.publish(std::move(message_));
+    return true;
 }
 
 void UnsJson::consumed_status(const ConsumedStatus& status) {
@@ -83,9 +84,17 @@ void UnsJson::produced_status(const core::plan::ExchangePlan& exchange,
 }
 
 void UnsJson::write_result(const WriteReply& reply, std::optional<std::string_view> error) {
+    publish_result(reply, format_write_result(error));
+}
+
+void UnsJson::write_result_unsaved(const WriteReply& reply, std::string_view reason) {
+    publish_result(reply, format_write_result_unsaved(reason));
+}
+
+void UnsJson::publish_result(const WriteReply& reply, std::string payload) {
     // Each result must be delivered: never coalesced with another on the same topic.
     if (reply.topic.empty()) return;  // nowhere a broker accepts (WriteRouter::route)
-    adapters::mqtt::Message result{reply.topic, format_write_result(error), 1, false, false};
+    adapters::mqtt::Message result{reply.topic, std::move(payload), 1, false, false};
     result.correlation_data = reply.correlation_data;
     mqtt_.publish(std::move(result));
 }

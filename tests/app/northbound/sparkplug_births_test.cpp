@@ -1,8 +1,9 @@
 // The edge node's births against what the broker takes and how often a host asks: a birth over
 // the broker's Maximum Packet Size is not published (seq counts only what was), the device or
 // the node is then not born; a flood of rebirth requests makes one rebirth in progress and one
-// pending; a failed connect attempt leaves bdSeq as it was; and `check`'s estimate of a birth
-// is never below what is published.
+// pending; a failed connect attempt leaves bdSeq as it was; a historical DDATA over the limit
+// is refused and not waited for; and `check`'s estimate of a birth is never below what is
+// published.
 
 #include <gtest/gtest.h>
 
@@ -123,6 +124,40 @@ TEST_F(SparkplugNodePacketSizeTest, MaxPacketBytesLowersTheBrokersLimit) {
     node.exchange_state(big_, ConsumeState::ok);
     EXPECT_EQ(topics(), std::vector<std::string>{"spBv1.0/plant1/NBIRTH/gw1"});
     EXPECT_EQ(node.stats().births_refused, 1u);
+}
+
+TEST_F(SparkplugNodePacketSizeTest, AHistoricalDdataOverTheLimitIsRefusedAndNotWaitedFor) {
+    // 200 lints born at 0: each value a byte in the DBIRTH, ten bytes at -1 in a DDATA.
+    std::vector<core::plan::TagSpec> tags;
+    for (std::uint16_t i = 0; i < big_tags; ++i) {
+        tags.push_back(test::test_tag("L" + std::to_string(i), 8 * i, TagType::lint));
+    }
+    const auto wide =
+        test::test_plan("wide", core::plan::Direction::consume, 8 * big_tags, std::move(tags));
+    SparkplugNode node({"plant1", "gw1", "", 0, 0}, publisher_, *this, [] { return now_ms; });
+    node.exchanges_changed({{&wide}, {}}, {});
+    node.tag_samples({wide, Quality::good, now_ms, false, every_tag(big_tags, 0)});
+    node.exchange_state(wide, ConsumeState::ok);
+    node.next_will();
+    node.on_connected();
+    ASSERT_EQ(topics().back(), "spBv1.0/plant1/DBIRTH/gw1/wide");
+    // A broker whose limit the births just fit.
+    const auto birth_bytes = adapters::mqtt::publish_packet_bytes(publisher_.published.back());
+    node.next_will();
+    node.on_connected(birth_bytes);
+    ASSERT_EQ(topics().back(), "spBv1.0/plant1/DBIRTH/gw1/wide");
+    publisher_.published.clear();
+    // Refused: counted, and false, so that store and forward counts the entry delivered to the
+    // node instead of waiting for an acknowledgement that cannot come.
+    EXPECT_FALSE(
+        node.replay({wide, Quality::good, now_ms - 1000, false, every_tag(big_tags, -1)}, 41));
+    EXPECT_TRUE(publisher_.published.empty());
+    EXPECT_EQ(node.stats().data_refused, 1u);
+    // One that fits is published with the entry's token, for the journal.
+    EXPECT_TRUE(node.replay({wide, Quality::good, now_ms - 900, false, every_tag(10, -1)}, 42));
+    ASSERT_EQ(topics(), std::vector<std::string>{"spBv1.0/plant1/DDATA/gw1/wide"});
+    EXPECT_EQ(publisher_.published[0].ack_token, 42u);
+    EXPECT_TRUE(decoded(publisher_.published[0]).metrics(0).is_historical());
 }
 
 TEST_F(SparkplugNodePacketSizeTest, CheckEstimatesEachBirthAtLeastAsLargeAsItIs) {

@@ -76,6 +76,27 @@ TEST_P(SparkplugStateFlapTest, BirthsWaitForTheBrokersAcknowledgementOfTheNdeath
     EXPECT_EQ(topics().back(), "spBv1.0/plant1/DBIRTH/gw1/out");
 }
 
+TEST_P(SparkplugStateFlapTest, AJournalEntrysAcknowledgementIsNotTheNodesOwn) {
+    // The node's connection carries its NDEATH's token and the journal's entry ids (historical
+    // DDATA): the gateway hands each acknowledgement to the node first, the rest to the journal.
+    connect();
+    first_production();
+    state(true, 100);
+    state(false, 200);
+    const auto token = publisher_.published.back().ack_token;
+    state(true, 300);
+    advance(rebirth_hold * 3);
+    // Entry ids count from 1, as the node's own tokens do: none of them may pass for its NDEATH.
+    for (const std::uint64_t id :
+         {std::uint64_t{1}, std::uint64_t{2}, token & ~sparkplug_own_token}) {
+        EXPECT_FALSE(node_.on_acknowledged(id)) << id;
+    }
+    EXPECT_EQ(count_of("spBv1.0/plant1/NBIRTH/gw1"), 1u);
+    EXPECT_TRUE(node_.on_acknowledged(token));
+    EXPECT_EQ(count_of("spBv1.0/plant1/NBIRTH/gw1"), 2u);
+    EXPECT_EQ(topics().back(), "spBv1.0/plant1/DBIRTH/gw1/out");
+}
+
 TEST_P(SparkplugStateFlapTest, AFlappingHostCostsABirthASecondAndEveryDeathComesBeforeItsBirth) {
     connect();
     first_production();

@@ -281,6 +281,18 @@ TEST_F(SparkplugNodeTest, ARefusedDcmdSaysWhyAndWritesNothing) {
     }
 }
 
+TEST_F(SparkplugNodeTest, AnEmptyDcmdClearsARetainedCommandAndIsNoWriteAtAll) {
+    node_.next_will();
+    node_.on_connected();
+    first_production();
+    for (const bool retained : {false, true}) {
+        auto cleared = dcmd("");
+        cleared.retained = retained;
+        node_.on_message(cleared);
+    }
+    EXPECT_TRUE(writes_.empty());
+}
+
 TEST_F(SparkplugPrimaryHostTest, BirthsWaitForThePrimaryHostToBeOnline) {
     EXPECT_EQ(publisher_.subscriptions.back(), "spBv1.0/STATE/scada");
     node_.next_will();

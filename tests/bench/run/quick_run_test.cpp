@@ -1,12 +1,16 @@
 // The benchmark driver (bench/run.py, what `bench/run.sh` runs) end to end in its short form:
-// every scenario of issue #6 must run on this machine and put a measured figure in its row of
+// every scenario must run on this machine and put a measured figure in its row of
 // the table. Whether a target is met is the benchmark's to say, never a test's: only that each
-// row is there with a number. Runs alone (RUN_SERIAL): it saturates both cores on purpose.
+// row is there with a number. The regression guard (`--against`) runs too, against the build
+// under test itself, so that nothing more is built: every row must carry the earlier build's
+// figure and the ratio between the two, and every per-tag row its CPU per publication. Runs
+// alone (RUN_SERIAL): it saturates both cores on purpose.
 
 #include <gtest/gtest.h>
 
 #include <cctype>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -20,49 +24,58 @@ namespace {
 
 using namespace std::chrono_literals;
 
-/// The table's rows: the cells of each line starting with "| ", header and rule excluded.
-std::vector<std::vector<std::string>> table_rows(const std::string& markdown) {
-    std::vector<std::vector<std::string>> rows;
+using Row = std::vector<std::string>;
+
+/// The cells of a table line ("| a | b |"), or nothing for a line outside a table.
+Row cells_of(const std::string& line) {
+    if (line.rfind("| ", 0) != 0 || line.size() < 4 || line.substr(line.size() - 2) != " |") {
+        return {};
+    }
+    Row cells;
+    const std::string inner = line.substr(2, line.size() - 4);
+    std::size_t from = 0;
+    for (auto bar = inner.find(" | "); bar != std::string::npos; bar = inner.find(" | ", from)) {
+        cells.push_back(inner.substr(from, bar - from));
+        from = bar + 3;
+    }
+    cells.push_back(inner.substr(from));
+    return cells;
+}
+
+/// The rows of the table whose header starts with `header_start` (header and rule excluded).
+std::vector<Row> table_rows(const std::string& markdown, const std::string& header_start) {
+    std::vector<Row> rows;
+    bool inside = false;
     std::size_t at = 0;
     while (at < markdown.size()) {
         auto end = markdown.find('\n', at);
         if (end == std::string::npos) end = markdown.size();
         const std::string line = markdown.substr(at, end - at);
         at = end + 1;
-        if (line.rfind("| ", 0) != 0 || line.rfind("| figure ", 0) == 0) continue;
-        std::vector<std::string> cells;
-        std::size_t from = 2;
-        for (auto bar = line.find(" | ", from); bar != std::string::npos;
-             bar = line.find(" | ", from)) {
-            cells.push_back(line.substr(from, bar - from));
-            from = bar + 3;
+        if (line.rfind(header_start, 0) == 0) {
+            inside = true;
+            continue;
         }
-        rows.push_back(std::move(cells));
+        auto cells = cells_of(line);
+        if (cells.empty()) {
+            if (inside && line.empty() && !rows.empty()) break;
+            continue;
+        }
+        if (inside) rows.push_back(std::move(cells));
     }
     return rows;
 }
 
-TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
-    TempDir results;
-    const auto run = run_command(
-        {"/usr/bin/env", "PYTHONDONTWRITEBYTECODE=1", "EIP2MQTT_BENCH_BUILD=" EIP2MQTT_BUILD_DIR,
-         "EIP2MQTT_BENCH_RESULTS=" + results.path(), "python3",
-         std::string(EIP2MQTT_SOURCE_DIR) + "/bench/run.py", "--quick"},
-        900s);
-    ASSERT_EQ(run.status, 0) << run.output;
-    std::ifstream in(results.path() + "/quick.md");
-    const std::string table{std::istreambuf_iterator<char>(in), {}};
-    const auto rows = table_rows(table);
+const std::vector<std::string> brokers = {"tuned broker", "Debian's default broker"};
 
-    // One row per figure of the issue's table (scenario in brackets), in bench/README.md's order.
-    // Scenarios 2, 3 and 5 have a row per QoS, exchange shape and broker setup (issue #17); the
-    // many small exchanges of 2 and 3 also split over two gateway processes (the tuning row).
-    const std::vector<std::string> brokers = {"tuned broker", "Debian's default broker"};
-    std::vector<std::string> figures = {"datagrams/s accepted, zero loss"};  // 1
+/// The per-tag rows of scenarios 2 and 3: one per QoS, exchange shape and broker setup; the
+/// many small exchanges also split over two gateway processes (the tuning row).
+std::vector<std::string> per_tag_figures() {
+    std::vector<std::string> figures;
     for (const auto* qos : {"0", "1"}) {
         for (const auto* shape : {"1 x 100 tags", "100 x 10 tags"}) {
             for (const auto& broker : brokers) {
-                for (const auto* changing : {"100 %", "10 %"}) {  // 2, 3
+                for (const auto* changing : {"100 %", "10 %"}) {
                     const auto figure = std::string("tag publications/s, QoS ") + qos + ", " +
                                         changing + " changing, " + shape;
                     figures.push_back(figure + ", " + broker);
@@ -73,6 +86,16 @@ TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
             }
         }
     }
+    return figures;
+}
+
+/// One row per figure of the table (scenario in brackets), in bench/README.md's order.
+std::vector<std::string> expected_figures() {
+    std::vector<std::string> figures = {
+        "datagrams/s accepted, zero loss",                                // 1
+        "datagrams lost at 70 % of the bare recvmmsg ceiling, 100 x 10",  // 1
+    };
+    for (const auto& figure : per_tag_figures()) figures.push_back(figure);  // 2, 3
     for (const auto* batch : {"1 x 100 tags", "100 x 10 tags", "100 x 10 tags, batch_first"}) {
         figures.push_back(std::string("tag updates/s carried in batch mode (_values), QoS 1, ") +
                           batch);  // 4
@@ -110,22 +133,80 @@ TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
          }) {
         figures.push_back(figure);
     }
-    ASSERT_EQ(rows.size(), figures.size()) << table << run.output;
+    return figures;
+}
+
+bool starts_with_digit(const std::string& cell) {
+    return !cell.empty() && std::isdigit(static_cast<unsigned char>(cell[0]));
+}
+
+/// A row of the main table: the gateway's figure, and the earlier build's (here the same
+/// build's) figure and the ratio of the two, all measured.
+void expect_measured(const Row& row, const std::string& table) {
+    ASSERT_EQ(row.size(), 8u) << row[0] << " in\n" << table;
+    EXPECT_TRUE(starts_with_digit(row[1])) << row[0] << ": '" << row[1] << "'";
+    if (row[0].rfind("tag publications/s", 0) == 0) {
+        // Bare Paho is measured twice: alone (the target's baseline), and with the datagrams
+        // the gateway was offered sent and received beside it.
+        EXPECT_NE(row[2].find(" with the gateway's datagram input beside it"), std::string::npos)
+            << row[0] << ": '" << row[2] << "'";
+    }
+    // The same binary runs every scenario: never "not in".
+    EXPECT_TRUE(starts_with_digit(row[6])) << row[0] << ": '" << row[6] << "'";
+    // A ratio, unless the earlier build's figure is 0 (nothing to divide by).
+    const bool zero = std::strtod(row[6].c_str(), nullptr) == 0.0;
+    EXPECT_TRUE(starts_with_digit(row[7]) || (zero && row[7].rfind("- (", 0) == 0))
+        << row[0] << ": '" << row[7] << "'";
+}
+
+/// The CPU table: each per-tag row, for this build, the earlier one and bare Paho, with the
+/// publications counted, the machine's CPU and the gateway's (or publisher's) per publication.
+void expect_cpu_rows(const std::vector<Row>& rows, const std::vector<Row>& main_rows,
+                     const std::string& markdown) {
+    std::vector<std::string> per_tag;
+    for (const auto& row : main_rows) {
+        if (row[0].rfind("tag publications/s", 0) == 0) per_tag.push_back(row[0]);
+    }
+    ASSERT_EQ(rows.size(), 3 * per_tag.size()) << markdown;
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const auto& row = rows[i];
-        ASSERT_EQ(row.size(), 5u) << "row " << i << " of\n" << table;  // the last cell ends in " |"
-        EXPECT_EQ(row[0].rfind(figures[i], 0), 0u) << row[0];
-        // The gateway's figure is a measurement: it starts with a digit.
-        EXPECT_TRUE(!row[1].empty() && std::isdigit(static_cast<unsigned char>(row[1][0])))
-            << row[0] << ": '" << row[1] << "'";
-        if (row[0].rfind("tag publications/s", 0) == 0) {
-            // Bare Paho is measured twice: alone (the target's baseline), and with the datagrams
-            // the gateway was offered sent and received beside it.
-            EXPECT_NE(row[2].find(" with the gateway's datagram input beside it"),
-                      std::string::npos)
-                << row[0] << ": '" << row[2] << "'";
+        ASSERT_EQ(row.size(), 8u) << markdown;
+        EXPECT_EQ(row[0], per_tag[i / 3]);
+        EXPECT_EQ(row[1], (std::vector<std::string>{"this build", "self", "bare Paho"}[i % 3]));
+        for (std::size_t cell = 2; cell <= 4; ++cell) {
+            EXPECT_TRUE(starts_with_digit(row[cell]))
+                << row[0] << ", " << row[1] << ": '" << row[cell] << "'";
         }
     }
+}
+
+TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
+    TempDir results;
+    const std::string gateway = std::string(EIP2MQTT_BUILD_DIR) + "/eip2mqtt";
+    const auto run = run_command(
+        {"/usr/bin/env", "PYTHONDONTWRITEBYTECODE=1", "EIP2MQTT_BENCH_BUILD=" EIP2MQTT_BUILD_DIR,
+         "EIP2MQTT_BENCH_RESULTS=" + results.path(), "python3",
+         std::string(EIP2MQTT_SOURCE_DIR) + "/bench/run.py", "--quick", "--against-binary", gateway,
+         "--against-label", "self"},
+        1100s);
+    ASSERT_EQ(run.status, 0) << run.output;
+    std::ifstream in(results.path() + "/quick.md");
+    const std::string markdown{std::istreambuf_iterator<char>(in), {}};
+
+    // The machine is named by its CPU and by bare Paho's rate in this run.
+    EXPECT_NE(markdown.find("\n- machine: "), std::string::npos) << markdown;
+    EXPECT_NE(markdown.find("\n- bare Paho on this machine, this run: QoS 0 "), std::string::npos)
+        << markdown;
+    EXPECT_NE(markdown.find("\n- against: self "), std::string::npos) << markdown;
+
+    const auto rows = table_rows(markdown, "| figure | gateway |");
+    const auto figures = expected_figures();
+    ASSERT_EQ(rows.size(), figures.size()) << markdown << run.output;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        EXPECT_EQ(rows[i][0].rfind(figures[i], 0), 0u) << rows[i][0];
+        expect_measured(rows[i], markdown);
+    }
+    expect_cpu_rows(table_rows(markdown, "| figure | run |"), rows, markdown);
 }
 
 }  // namespace

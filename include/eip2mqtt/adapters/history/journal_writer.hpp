@@ -50,6 +50,9 @@ public:
         return queued_.empty() && !busy_;
     }
 
+    /// The id of the last entry written (0: none), without waiting for the worker.
+    std::uint64_t last_id() const { return last_id_.load(std::memory_order_acquire); }
+
     /// Journal operations of the worker that failed (each logged at most once a minute).
     std::uint64_t failures() const { return failures_.load(std::memory_order_relaxed); }
 
@@ -67,6 +70,7 @@ private:
     bool busy_ = false;  ///< the worker holds a batch
     bool quit_ = false;
     std::atomic<std::uint64_t> failures_{0};
+    std::atomic<std::uint64_t> last_id_{0};
     core::ThrottledLog failure_log_;  ///< the worker's
     std::thread worker_;
 };

@@ -8,7 +8,10 @@
 ///                                                       the other states of its direction
 ///   exchange_{received,accepted,missed,duplicates,out_of_order,restarts,signature_mismatches,
 ///             length_mismatches,wrong_source}_total{exchange,direction}   consume counters
-///   exchange_{sent,send_errors,skipped_deadlines}_total{exchange,direction}  produce counters
+///   exchange_{sent,send_errors,skipped_deadlines,save_failures}_total{exchange,direction}
+///                                                       produce counters
+///   exchange_image_saved{exchange,direction}            gauge, 1 while the image file holds
+///                                                       the image produced (or a newer one)
 ///   exchange_clock_state{exchange,direction,state}      gauge, 1 for none, synced or unsynced
 ///   exchange_clock_offset_seconds{exchange,direction}   gauge, may be negative; absent before
 ///                                                       the first stamped datagram
@@ -17,7 +20,8 @@
 ///   datagrams_total, datagrams_accepted_total, datagrams_dropped_total{reason}
 ///   mqtt_connected (0/1), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total,
 ///   mqtt_publications_refused_total
-///   writes_ok_total, writes_rejected_total{reason}, writes_cancelled_total
+///   writes_ok_total, writes_rejected_total{reason}, writes_cancelled_total,
+///   writes_not_saved_total, writes_sent_unsaved_total, image_save_failures_total
 /// Counters are the gateway's own counts, copied as they are: a reload that restarts them
 /// shows as a counter reset, which Prometheus's rate() handles.
 
@@ -59,6 +63,8 @@ struct ExchangeMetrics {
     std::uint64_t sent = 0;
     std::uint64_t send_errors = 0;
     std::uint64_t skipped_deadlines = 0;
+    std::uint64_t save_failures = 0;
+    bool image_saved = true;
 };
 
 /// Store and forward's journal, when enabled.
@@ -85,7 +91,10 @@ struct GatewayMetrics {
     std::uint64_t publications_refused = 0;  ///< ClientStats::refused
     std::uint64_t writes_ok = 0;
     std::map<std::string, std::uint64_t> writes_rejected;  ///< by rejection reason
-    std::uint64_t writes_cancelled = 0;  ///< accepted, then answered "reloaded" unproduced
+    std::uint64_t writes_cancelled = 0;     ///< accepted, then answered "reloaded" unproduced
+    std::uint64_t writes_not_saved = 0;     ///< accepted, then refused: their save failed
+    std::uint64_t writes_sent_unsaved = 0;  ///< sent, then their save failed
+    std::uint64_t image_save_failures = 0;
     std::optional<HistoryMetrics> history;
 };
 

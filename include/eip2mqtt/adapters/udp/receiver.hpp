@@ -1,6 +1,14 @@
 #pragma once
-/// Receives EIP datagrams on one UDP socket (Boost.Asio for readiness, recvmmsg to read a batch
-/// per system call). Buffers are allocated once; the steady path allocates nothing.
+/// Receives EIP datagrams (Boost.Asio for readiness, recvmmsg to read a batch per system call).
+/// Buffers are allocated once; the steady path allocates nothing.
+///
+/// The port is the gateway's own: the unicast socket is bound without SO_REUSEADDR or
+/// SO_REUSEPORT, so no other process can bind the port beside it and take its datagrams (Linux
+/// hands a unicast datagram to one socket only), and a second gateway on the port fails at start.
+/// Multicast is delivered to every socket bound to the group, so it can be shared: with a
+/// specific `bind` address each group gets a socket of its own, bound to the group with
+/// SO_REUSEADDR, beside which other programs on this host may consume the same group. With
+/// `bind` 0.0.0.0 the wildcard socket owns every address of the port and joins the groups itself.
 ///
 /// Threading: constructed, started and stopped on the loop; the handler runs on the loop.
 
@@ -12,20 +20,17 @@
 #include <boost/asio/ip/udp.hpp>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
+#include "eip2mqtt/adapters/udp/multicast.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::adapters::udp {
-
-struct MulticastMembership {
-    std::string group;      ///< e.g. 224.0.7.1
-    std::string interface;  ///< interface name (eth0) or IPv4 address; empty: the kernel's choice
-};
 
 struct ReceiverOptions {
     std::string bind = "0.0.0.0";
@@ -33,9 +38,6 @@ struct ReceiverOptions {
     std::vector<MulticastMembership> multicast;
     std::size_t batch = 64;                      ///< datagrams per recvmmsg
     int receive_buffer_bytes = 8 * 1024 * 1024;  ///< SO_RCVBUF request (the kernel may cap it)
-    /// Ask the kernel for each datagram's destination address (IP_PKTINFO), handed to a
-    /// DestinationHandler. Off for the gateway, which identifies exchanges by their key alone.
-    bool destinations = false;
 };
 
 struct ReceiverStats {
@@ -50,45 +52,53 @@ public:
     /// `datagram` views the receive buffer and is valid only during the call.
     using Handler = std::function<void(std::span<const std::byte> datagram, const Endpoint& from,
                                        bool truncated)>;
-    /// The same with the address the datagram was sent to (IPv4, host byte order: the group of
-    /// a multicast, the broadcast address of a broadcast), 0 when the kernel did not say.
-    using DestinationHandler =
-        std::function<void(std::span<const std::byte> datagram, const Endpoint& from,
-                           std::uint32_t destination, bool truncated)>;
 
-    /// Opens and binds the socket and joins the multicast groups; throws std::system_error with
-    /// a message naming the address on failure (a start-up error).
+    /// Opens and binds the sockets and joins the multicast groups; throws std::system_error with
+    /// a message naming the address on failure (a start-up error). A port another process
+    /// holds is refused with that process named (port_holders.hpp).
     Receiver(boost::asio::any_io_executor executor, const ReceiverOptions& options);
     ~Receiver();
 
     void start(Handler handler);
-    /// start() for ReceiverOptions::destinations (without it, every destination is 0).
-    void start_with_destinations(DestinationHandler handler);
-    /// Closes the socket; a pending wait completes with operation_aborted and stops quietly.
+    /// Closes the sockets; pending waits complete with operation_aborted and stop quietly.
     void stop();
+    /// Leaves the groups joined that `memberships` lacks and joins those it adds (a reload): on
+    /// the wildcard socket, or each on a socket of its own. All or nothing: when a group cannot
+    /// be joined, the groups are put back as they were and std::system_error names the group.
+    void set_multicast(const std::vector<MulticastMembership>& memberships);
 
     std::uint16_t local_port() const;
     const ReceiverStats& stats() const { return stats_; }
 
 private:
-    void do_wait();
-    void on_readable(const boost::system::error_code& error);
-    std::size_t drain();
+    void open_unicast(const ReceiverOptions& options);
+    /// Opens, binds and joins a group's own socket (a specific `bind`); returns its index.
+    std::size_t open_group(const MulticastMembership& membership);
+    /// Joins `membership` where it belongs; the socket index it holds, or `wildcard_joined`.
+    std::size_t join(const MulticastMembership& membership);
+    /// Leaves what join() made of `membership`; never throws.
+    void leave(const MulticastMembership& membership, std::size_t socket);
+    void do_wait(std::size_t socket);
+    void on_readable(std::size_t socket, const boost::system::error_code& error);
+    std::size_t drain(int fd);
 
-    boost::asio::ip::udp::socket socket_;
-    /// Room for one IP_PKTINFO control message.
-    struct Control {
-        alignas(struct ::cmsghdr) unsigned char bytes[CMSG_SPACE(sizeof(struct ::in_pktinfo))];
-    };
+    boost::asio::any_io_executor executor_;
+    /// [0] the unicast socket; then one per multicast group when bound to a specific address.
+    /// A group left by a reload leaves its socket closed in place: indices never move, and a
+    /// deque never moves a socket with a wait in flight when a reload adds one.
+    std::deque<boost::asio::ip::udp::socket> sockets_;
+    static constexpr std::size_t wildcard_joined = 0;
+    bool wildcard_ = false;
+    int receive_buffer_bytes_ = 0;
+    /// Joined, in the order asked, each with the socket that holds it.
+    std::vector<std::pair<MulticastMembership, std::size_t>> memberships_;
 
     Handler handler_;
-    DestinationHandler destination_handler_;
     std::size_t batch_;
     std::vector<std::byte> storage_;
     std::vector<struct ::mmsghdr> messages_;
     std::vector<struct ::iovec> iovecs_;
     std::vector<struct ::sockaddr_in> sources_;
-    std::vector<Control> controls_;  ///< one per slot with ReceiverOptions::destinations
     ReceiverStats stats_;
     core::ThrottledLog error_log_;  ///< a failing socket fails on every wake-up
     bool stopped_ = false;

@@ -3,8 +3,9 @@
 /// changes (and every quality change) go to the journal on disk, in arrival order; once the
 /// broker is back and the current state republished, they are replayed oldest first, at most
 /// `replay_rate` a second and only while live publications are not waiting, to a HistorySink
-/// (the JSON tree's `_history`). An entry leaves the journal only when the broker acknowledged
-/// its replay.
+/// (the JSON tree's `_history`), and to each other sink added (the Sparkplug node) once its own
+/// connection is up: each has its own SinkReplay. An entry leaves the journal only when the
+/// broker acknowledged its replay to every sink that has a use for it.
 ///
 /// The cut between live and journaled is journaling(): the JSON tree asks the same question
 /// before it publishes `_values`, at the same moment on the same loop, so every sample goes
@@ -28,19 +29,12 @@
 #include "eip2mqtt/adapters/history/journal_writer.hpp"
 #include "eip2mqtt/adapters/history/sample_codec.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
+#include "eip2mqtt/app/history/sink_replay.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::app::history {
-
-/// What store and forward needs of the MQTT connection, asked on the loop.
-struct LinkProbe {
-    std::function<bool()> connected;
-    /// Publications waiting or in flight: replay waits while live data queues, and an empty
-    /// client with replayed entries still unacknowledged means the client dropped them.
-    std::function<std::uint64_t()> backlog;
-};
 
 struct StoreAndForwardOptions {
     std::uint32_t replay_rate = 2000;
@@ -64,20 +58,27 @@ public:
                     StoreAndForwardOptions options, LinkProbe link, HistorySink& sink);
     ~StoreAndForward() override;
 
-    /// Another sink the replay goes to as well (the Sparkplug node), best effort: an entry
-    /// leaves the journal on the acknowledgement of the first sink's publication only.
-    void add_sink(HistorySink& sink) { extra_sinks_.push_back(&sink); }
+    /// Another sink the replay goes to as well, on a connection of its own (the Sparkplug
+    /// node's): its replay starts with on_connected(sink), and rewinds then, since what it was
+    /// handed before went with its last connection (a session-bound client drops it).
+    void add_sink(HistorySink& sink, LinkProbe link) {
+        extra_.push_back(std::make_unique<SinkReplay>(sink, std::move(link)));
+    }
 
     /// Blocks until everything journaled so far is committed (tests).
     void flush() { writer_.flush(); }
 
     /// True while samples go to the journal instead of the live `_values`.
-    bool journaling() const { return !link_.connected(); }
+    bool journaling() const { return !first_.link().connected(); }
 
     /// After the reconnect's republish: the replay of what the journal holds begins.
     void on_connected(core::MonoTime now);
-    /// The broker acknowledged the replay of entry `id`.
+    /// An added sink may publish history again (its connection is up, its births made).
+    void on_connected(HistorySink& sink, core::MonoTime now);
+    /// The broker acknowledged the replay of entry `id` to the first sink.
     void on_acknowledged(std::uint64_t id);
+    /// The broker acknowledged the replay of entry `id` to an added sink.
+    void on_acknowledged(HistorySink& sink, std::uint64_t id);
     /// Every gateway tick: commits what was journaled (durably every fsync interval), deletes
     /// acknowledged entries, replays what the rate allows.
     void on_tick(core::MonoTime now);
@@ -98,20 +99,20 @@ private:
         std::uint64_t layout = 0;
     };
 
-    void replay_some(core::MonoTime now);
-    /// Hands one entry to the sink; false when it cannot be replayed (then it is deleted).
-    bool replay_entry(const adapters::history::JournalEntry& entry);
+    void replay_some(SinkReplay& replay, core::MonoTime now, bool first);
+    /// Hands one entry to `replay`'s sink; false when it cannot be replayed (then it is deleted).
+    bool replay_entry(SinkReplay& replay, const adapters::history::JournalEntry& entry);
     /// Why `entry` cannot be replayed (empty: it can, and samples_ holds its samples).
     std::string unusable(const adapters::history::JournalEntry& entry);
-    /// Drops the replay's place, so that the unacknowledged entries go again.
-    void rewind();
+    /// Deletes what every sink has.
+    void delete_delivered();
+    SinkReplay* replay_of(HistorySink& sink);
     void fail(const char* what, const std::exception& error);
 
     adapters::history::JournalWriter writer_;
     StoreAndForwardOptions options_;
-    LinkProbe link_;
-    HistorySink& sink_;
-    std::vector<HistorySink*> extra_sinks_;
+    SinkReplay first_;  ///< the JSON tree's, whose connection decides what is journaled
+    std::vector<std::unique_ptr<SinkReplay>> extra_;
     std::map<std::string, Known, std::less<>> exchanges_;
     /// The same by plan, for the data path (a kept exchange keeps its plan object).
     std::unordered_map<const core::plan::ExchangePlan*, std::uint64_t> layouts_;
@@ -121,13 +122,7 @@ private:
     std::vector<TagSample> samples_;  ///< of a replayed entry
     core::MonoTime last_durable_{};
 
-    bool replaying_ = false;
-    std::uint64_t cursor_ = 0;             ///< the last entry handed to the sink
-    std::set<std::uint64_t> outstanding_;  ///< handed over, not acknowledged yet
-    std::vector<std::uint64_t> acknowledged_;
-    double allowance_ = 0;  ///< entries the rate allows now
-    std::optional<core::MonoTime> last_replay_;
-    int idle_with_outstanding_ = 0;  ///< ticks the client held none of outstanding_
+    std::uint64_t deleted_through_ = 0;  ///< every entry up to it is deleted
     std::uint64_t replay_started_with_ = 0;
     core::MonoTime replay_started_{};
 

@@ -55,6 +55,10 @@ struct SparkplugOptions {
 /// a second, not one each.
 inline constexpr std::chrono::seconds rebirth_hold{1};
 
+/// Set in every ack_token the node gives its own publications, never in a journal entry's id
+/// (SQLite row ids stay below 2^63): one acknowledgement handler tells them apart.
+inline constexpr std::uint64_t sparkplug_own_token = std::uint64_t{1} << 63;
+
 /// The options of `config`'s `sparkplug:` section.
 SparkplugOptions sparkplug_options(const core::config::Config& config);
 
@@ -76,8 +80,10 @@ public:
     void on_connected(std::size_t max_packet_bytes = adapters::mqtt::max_mqtt_packet_bytes);
     /// NCMD, DCMD or the primary host's STATE; anything else is ignored.
     void on_message(const adapters::mqtt::Incoming& message);
-    /// The broker acknowledged the publication that carried `ack_token` (the node's own NDEATH).
-    void on_acknowledged(std::uint64_t ack_token);
+    /// The broker acknowledged the publication that carried `ack_token`. True when the token
+    /// is the node's own (its NDEATH); false when it is another owner's, the journal entry of a
+    /// historical DDATA (replay()): the node's connection carries both.
+    bool on_acknowledged(std::uint64_t ack_token);
     /// The gateway's tick: a pending rebirth whose time has come, and the summaries of
     /// throttled logs.
     void tick(core::MonoTime now);
@@ -95,9 +101,9 @@ public:
     void write_result(const WriteReply&, std::optional<std::string_view>) override {}
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
     /// Store and forward's history as DDATA with `is_historical` on every metric, by alias: for
-    /// a device born now, and good samples only (bad data is a DDEATH in this convention). Not
-    /// acknowledged back: the journal is kept by the JSON tree's `_history`.
-    void replay(const SampleBatch& batch, std::uint64_t ack_token) override;
+    /// a device born now, and good samples only (bad data is a DDEATH in this convention); the
+    /// DDATA carries `ack_token`, which the node's connection hands back once it is sent.
+    bool replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
     bool born() const { return born_; }
     std::uint8_t bd_seq() const { return bd_seq_; }
@@ -140,16 +146,20 @@ private:
     void birth();
     void device_birth(Device& device);
     void device_death(Device& device);
-    /// Publishes with the next seq; false, with nothing published and seq unchanged, when the
-    /// message is over the largest packet the broker takes.
-    bool publish(const std::string& topic, adapters::sparkplug::Payload& payload);
+    /// Publishes with the next seq, the message carrying `ack_token` (0: none); false, with
+    /// nothing published and seq unchanged, when the message is over the largest packet the
+    /// broker takes.
+    bool publish(const std::string& topic, adapters::sparkplug::Payload& payload,
+                 std::uint64_t ack_token = 0);
     /// A birth that publish() refused: counted, logged once for each device or the node.
     void birth_refused(const std::string& topic, bool& logged);
     void data_refused();
     /// SparkplugStats into the node metrics, for the next NDATA.
     void publish_counters();
-    /// DDATA of `batch`'s samples by alias, live or historical.
-    void publish_data(const Device& device, const SampleBatch& batch, bool historical);
+    /// DDATA of `batch`'s samples by alias, live or historical (with the journal entry's
+    /// token); false when it was refused for its size (counted in data_refused).
+    bool publish_data(const Device& device, const SampleBatch& batch, bool historical,
+                      std::uint64_t ack_token = 0);
     std::string node_topic(std::string_view type) const;
     std::size_t node_metric(const std::string& name, adapters::sparkplug::DataType type);
     void set_node_metric(std::size_t index, adapters::sparkplug::MetricValue value);

@@ -41,7 +41,8 @@ public:
     /// `mqtt` and `writes` must outlive the northbound.
     UnsJson(UnsJsonOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes);
 
-    /// New settings (a reload); the exchanges it changes are restarted and republish.
+    /// New settings (a reload), used from the next publication on: a gateway whose publish
+    /// settings changed republishes its retained state.
     void set_options(UnsJsonOptions options);
     const UnsJsonOptions& options() const { return options_; }
     /// With store and forward: while `journaling` says so, `_values` is not published (the
@@ -62,12 +63,16 @@ public:
     /// Nothing of its own: `_status` says it.
     void exchange_state(const core::plan::ExchangePlan&, core::exchange::ConsumeState) override {}
     void write_result(const WriteReply& reply, std::optional<std::string_view> error) override;
+    void write_result_unsaved(const WriteReply& reply, std::string_view reason) override;
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
     /// `{exchange}/_history`: the `_values` shape, QoS 1, not retained, MQTT 5 user property
     /// `historical=true`.
-    void replay(const SampleBatch& batch, std::uint64_t ack_token) override;
+    bool replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
 private:
+    /// A write result on the reply's topic, with its correlation data.
+    void publish_result(const WriteReply& reply, std::string payload);
+
     UnsJsonOptions options_;
     adapters::mqtt::Publisher& mqtt_;
     WriteHandler& writes_;

@@ -20,6 +20,7 @@
 
 #include "adapters/mqtt/detail/broker_url.hpp"
 #include "adapters/mqtt/detail/connect_options.hpp"
+#include "adapters/mqtt/detail/connection_reasons.hpp"
 #include "adapters/mqtt/detail/in_flight_window.hpp"
 #include "adapters/mqtt/detail/outbox.hpp"
 #include "adapters/mqtt/detail/publication_check.hpp"
@@ -77,8 +78,12 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
 
     // --- loop ----------------------------------------------------------------------------
     void do_connect();
-    void on_connect(bool ok, std::string reason);
-    void on_connection_lost(std::string cause);
+    /// `return_code`: Paho's, on a failure (a CONNACK's code or reason code, or an error < 0).
+    void on_connect(bool ok, std::string reason, int return_code = 0);
+    /// Logs a failed attempt (throttled), with what the broker's refusal means, and retries.
+    void on_connect_failed(std::string reason, int return_code);
+    /// `silent`: Paho gave no cause (no DISCONNECT came; the socket closed or failed).
+    void on_connection_lost(std::string cause, bool silent = false);
     /// Adds what connect_token_ knows and, over TLS, what to check, to a generic reason.
     std::string explain_connect_failure(std::string reason) const;
     void update_in_flight_limit();
@@ -215,9 +220,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
             impl_.post([](Impl& self) { self.on_connect(true, {}); });
         }
         void on_failure(const paho::token& tok) override {
-            impl_.post([reason = detail::describe_failure(tok)](Impl& self) mutable {
-                self.on_connect(false, std::move(reason));
-            });
+            impl_.post([reason = detail::describe_failure(tok), rc = tok.get_return_code()](
+                           Impl& self) mutable { self.on_connect(false, std::move(reason), rc); });
         }
         Impl& impl_;
     };
@@ -253,6 +257,8 @@ struct Client::Impl : std::enable_shared_from_this<Impl> {
     AcknowledgedHandler on_acknowledged_;
     std::vector<std::string> subscriptions_;
     core::ThrottledLog connect_failure_log_;
+    Clock::time_point connected_at_{};
+    detail::SilentLossPattern silent_losses_;
 
     // Guarded by mutex_ (touched by the loop, the sender, Paho's threads and stop()).
     mutable std::mutex mutex_;

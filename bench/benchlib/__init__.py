@@ -1,0 +1,1 @@
+"""The benchmark's harness (bench/run.py is the entry point; see bench/README.md)."""

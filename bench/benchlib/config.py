@@ -1,0 +1,110 @@
+"""The gateway configurations the scenarios run: one YAML file (and, with point lists, one CSV)
+per gateway, in the run's temporary directory. Only the keys a scenario needs are written, the
+defaults left out, so that an earlier build (--against-binary), whose configuration lacks some
+of today's keys, reads every configuration that does not need them."""
+
+import os
+
+from benchlib.util import HOST
+
+
+def tag_lines(tags, writable):
+    """Tag 0 is the lint "ts", tags 1.. dints (load_generator's layout)."""
+    w = ", writable: true" if writable else ""
+    out = [f'      - {{ name: ts, address: "0.0", type: lint{w} }}']
+    for t in range(1, tags):
+        out.append(f'      - {{ name: t{t}, address: "{8 + 4 * (t - 1)}.0", type: dint{w} }}')
+    return out
+
+
+def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
+               store_and_forward, log_level):
+    """Everything above `exchanges:`."""
+    lines = [
+        f"gateway: {{ id: {name}, state_dir: {state}, log_level: {log_level} }}",
+        "mqtt:",
+        f"  url: tcp://{HOST}:{broker_port}",
+        "  base_topic: b",
+        f"  qos: {qos}",
+        "  retain: false",
+        "  metrics_interval_s: 1",
+        "  buffer: { max_messages: 250000 }",  # above any scenario's topic count
+    ]
+    if batch:
+        lines.append("  batch: true")
+    if batch == "first":
+        lines.append("  batch_first: true")
+    if store_and_forward:
+        lines.append("  store_and_forward: { " +
+                     ", ".join(f"{k}: {v}" for k, v in store_and_forward.items()) + " }")
+    lines.append(f"eip: {{ bind: {HOST}, port: {udp_port} }}")
+    if prometheus:
+        lines.append(f"metrics: {{ listen: {HOST}:{prometheus} }}")
+    if sparkplug:
+        # Sparkplug alone (uns: false), at the scenario's QoS.
+        lines.append(f"sparkplug: {{ group_id: bench, uns: false, qos: {qos} }}")
+    return lines
+
+
+def consumed_lines(name, consumed, point_list):
+    """The consumed exchanges' YAML, and the point list's CSV rows (with point_list)."""
+    lines = []
+    rows = ["TagName,Node,Address,DataType,AccessType"]
+    for exchange_id, tags in consumed:
+        lines += [
+            f"  - name: e{exchange_id}",
+            "    direction: consume",
+            "    producer_id: 10.0.0.1",
+            f"    exchange_id: {exchange_id}",
+            f"    length: {8 + 4 * (tags - 1)}",
+            "    period_ms: 1000",
+            "    timeout_ms: 0",
+            f"    topic: e{exchange_id}",
+        ]
+        if point_list:
+            lines.append(f"    points: {name}.csv")
+            rows.append(f"ts,e{exchange_id},0.0,Long,Read")
+            rows += [f"t{t},e{exchange_id},{8 + 4 * (t - 1)}.0,DInt,Read" for t in range(1, tags)]
+        else:
+            lines += ["    tags:"] + tag_lines(tags, False)
+    return lines, rows
+
+
+def produced_lines(produced):
+    lines = []
+    for exchange_id, tags, period, destination in produced:
+        lines += [
+            f"  - name: p{exchange_id}",
+            "    direction: produce",
+            "    producer_id: 10.0.0.2",
+            f"    exchange_id: {exchange_id}",
+            f"    destination: {destination}",
+            f"    period_ms: {period}",
+            f"    topic: p{exchange_id}",
+            "    tags:",
+        ] + tag_lines(tags, True)
+    return lines
+
+
+def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=False,
+                 udp_port=0, point_list=False, sparkplug=False, prometheus=0,
+                 store_and_forward=None, log_level="warn", state_suffix=""):
+    """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
+    destination). With point_list, the consumed tags are rows of one CSV ({name}.csv, a SCADA
+    point list whose Node column names the exchange) that every consumed exchange names in
+    `points:`. batch: True for `_values`, "first" for `_values` first (batch_first).
+    state_suffix: the state directory's, so that each build keeps its own."""
+    path = os.path.join(tmp, name + ".yaml")
+    state = os.path.join(tmp, name + "-state" + state_suffix)
+    os.makedirs(state, exist_ok=True)
+    lines = head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
+                       store_and_forward, log_level)
+    lines.append("exchanges:")
+    consumed_yaml, rows = consumed_lines(name, consumed, point_list)
+    lines += consumed_yaml + produced_lines(produced)
+    if point_list:
+        with open(os.path.join(tmp, name + ".csv"), "w") as f:
+            f.write("\n".join(rows) + "\n")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
