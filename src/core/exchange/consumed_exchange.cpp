@@ -32,22 +32,6 @@ bool times_out(ConsumeState state) {
 
 }  // namespace
 
-std::string_view to_string(ConsumeState state) {
-    switch (state) {
-        case ConsumeState::waiting:
-            return "waiting";
-        case ConsumeState::ok:
-            return "ok";
-        case ConsumeState::stale:
-            return "stale";
-        case ConsumeState::signature_mismatch:
-            return "signature_mismatch";
-        case ConsumeState::length_mismatch:
-            return "length_mismatch";
-    }
-    return "unknown";
-}
-
 ConsumedExchange::ConsumedExchange(const plan::ExchangePlan& plan)
     : length_(plan.length),
       timeout_(plan.timeout),

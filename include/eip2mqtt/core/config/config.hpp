@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "eip2mqtt/core/config/diagnostic.hpp"
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 
 namespace eip2mqtt::core::config {
@@ -57,6 +58,8 @@ struct TlsSection {
 };
 
 enum class PayloadFormat : std::uint8_t { json, raw };
+
+inline constexpr auto payload_format_names = enum_names<PayloadFormat>("json", "raw");
 
 /// `mqtt.store_and_forward` (issue #16): while the broker is out of reach, what the exchanges
 /// bring is journaled on disk, then replayed on `{exchange}/_history` once it is back.

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
@@ -24,7 +25,12 @@ enum class ConsumeState : std::uint8_t {
     length_mismatch,     ///< the last datagram's length differs from the configured one
 };
 
-std::string_view to_string(ConsumeState state);
+inline constexpr auto consume_state_names =
+    enum_names<ConsumeState>("waiting", "ok", "stale", "signature_mismatch", "length_mismatch");
+
+constexpr std::string_view to_string(ConsumeState state) {
+    return consume_state_names.name_of(state);
+}
 
 struct ConsumeCounters {
     std::uint64_t received = 0;  ///< datagrams for this exchange, whatever became of them

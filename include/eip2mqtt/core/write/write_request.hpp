@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/tag_plan.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
@@ -46,9 +47,14 @@ enum class WriteError : std::uint8_t {
     overlapping_tags,    ///< a multi-tag write sets two tags that share bits
 };
 
-inline constexpr std::size_t write_error_count = 17;
+inline constexpr auto write_error_names = enum_names<WriteError>(
+    "malformed", "unknown_tag", "read_only", "wrong_type", "not_integer", "below_min", "above_max",
+    "out_of_range", "not_finite", "retained", "expired", "queue_full", "empty", "rate_limited",
+    "bad_response_topic", "too_large", "overlapping_tags");
 
-std::string_view to_string(WriteError error);
+inline constexpr std::size_t write_error_count = write_error_names.size();
+
+constexpr std::string_view to_string(WriteError error) { return write_error_names.name_of(error); }
 
 /// A rejection with the message the client gets back: `"above max 4000"`.
 struct WriteRejection {
