@@ -1,6 +1,7 @@
 // mqtt_counter: a libmosquitto subscriber that counts publications and measures latency from a
-// send time embedded in them. libmosquitto, not Paho: it must never be the bottleneck (a Paho
-// subscriber tops out near 40k messages/s here; libmosquitto goes past 100k).
+// send time embedded in them. libmosquitto, not Paho: it must never be the bottleneck, and a Paho
+// subscriber tops out well below the gateway
+// (docs/decisions/0004-bench-subscriber-on-libmosquitto.md).
 //
 // Per-tag mode (default): counts messages on --filter whose last topic level does not start with
 // '_' (skipping _status, _values); the message whose last level is --stamp-tag (default "ts"), or

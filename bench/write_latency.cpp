@@ -1,4 +1,4 @@
-// write_latency: how long an MQTT write takes to reach the wire (issue #6). Publishes writes to
+// write_latency: how long an MQTT write takes to reach the wire. Publishes writes to
 // a produced exchange's tag `/set` topic at --rate writes/s (QoS 1, not retained, each a new
 // dint value) and listens on the exchange's UDP destination, decoding the produced datagrams
 // (32-byte header, then data; docs/protocol.md §2) for the tag at data byte --offset. The

@@ -1,6 +1,6 @@
 #pragma once
-/// Which time a consumed exchange's tags carry, and whether the producer's clock can be trusted
-/// (issue #13). A PLC without time synchronisation stamps its datagrams with its own clock (a
+/// Which time a consumed exchange's tags carry, and whether the producer's clock can be trusted.
+/// A PLC without time synchronisation stamps its datagrams with its own clock (a
 /// real capture reads the year 2000): published as is, a historian would file live values
 /// decades in the past. Pure: the receive time is passed in.
 

@@ -1,5 +1,5 @@
 #pragma once
-/// What the wire shows of one exchange nobody has configured yet (issue #13, `sniff --yaml`):
+/// What the wire shows of one exchange nobody has configured yet (`sniff --yaml`):
 /// its length, signature, period, destination and producer clock, gathered datagram by datagram
 /// into a summary that core::config::yaml_skeleton turns into configuration. Pure: receive
 /// times and destinations are passed in.

@@ -1,5 +1,5 @@
 #pragma once
-/// MQTT writes to produced tags (docs/mqtt-api.md "Writes"; issue #3): what a write asks for, why
+/// MQTT writes to produced tags (docs/mqtt-api.md "Writes"): what a write asks for, why
 /// one is rejected, and the validation of a value against its tag. Pure: the JSON parsing that
 /// yields a WriteInput lives in the MQTT adapter.
 
