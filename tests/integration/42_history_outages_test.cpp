@@ -18,6 +18,7 @@
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
+#include "tests/support/paced_producer.hpp"
 #include "tests/support/tahu.hpp"
 #include "tests/support/tmpfs.hpp"
 
@@ -28,55 +29,7 @@ using core::plan::TagType;
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-/// Sends datagram `n` (1, 2, ...) every `period`; pausable, so that a test knows what it sent.
-class Producer {
-public:
-    Producer(std::function<std::vector<std::byte>(std::uint64_t)> make,
-             std::function<void(const std::vector<std::byte>&)> send,
-             std::chrono::milliseconds period)
-        : thread_([this, make = std::move(make), send = std::move(send), period] {
-              std::unique_lock lock(mutex_);
-              while (!stop_) {
-                  if (paused_) {
-                      cv_.wait(lock, [this] { return stop_ || !paused_; });
-                      continue;
-                  }
-                  const auto n = ++last_;
-                  lock.unlock();
-                  send(make(n));
-                  std::this_thread::sleep_for(period);  // pacing the traffic, not synchronising
-                  lock.lock();
-              }
-          }) {}
-    ~Producer() {
-        {
-            std::lock_guard lock(mutex_);
-            stop_ = true;
-        }
-        cv_.notify_all();
-        thread_.join();
-    }
-    std::uint64_t pause() {
-        std::lock_guard lock(mutex_);
-        paused_ = true;
-        return last_;
-    }
-    void resume() {
-        {
-            std::lock_guard lock(mutex_);
-            paused_ = false;
-        }
-        cv_.notify_all();
-    }
-
-private:
-    std::mutex mutex_;
-    std::condition_variable cv_;
-    bool paused_ = false;
-    bool stop_ = false;
-    std::uint64_t last_ = 0;
-    std::thread thread_;
-};
+using Producer = PacedProducer;
 
 class HistoryOutagesTest : public GatewayTest {
 protected:
