@@ -7,12 +7,6 @@ namespace eip2mqtt::adapters::yaml::detail {
 namespace {
 
 namespace keys = core::config::keys;
-using core::config::GatewaySection;
-using core::config::MetricsSection;
-using core::config::MqttSection;
-using core::config::SparkplugSection;
-using core::config::StoreAndForwardSection;
-using core::config::TlsSection;
 
 /// How each key of `gateway` is read.
 constexpr KeyReader<GatewaySection> gateway_rows[]{

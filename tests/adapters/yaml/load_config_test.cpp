@@ -13,16 +13,6 @@
 namespace eip2mqtt::adapters::yaml {
 namespace {
 
-using core::config::Config;
-using core::config::Diagnostics;
-using core::plan::Direction;
-using core::plan::TagType;
-using loading::bad;
-using loading::data;
-using loading::dump;
-using loading::good;
-using loading::minimal_exchange;
-
 TEST(LoadConfig, ExampleConfigurationLoadsAndValidates) {
     const auto result =
         load_config(std::string(EIP2MQTT_SOURCE_DIR) + "/etc/eip2mqtt/eip2mqtt.yaml");

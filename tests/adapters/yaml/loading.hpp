@@ -1,6 +1,7 @@
 #pragma once
 /// Loading configuration text in the tests of the YAML loader (tests/adapters/yaml/
-/// load_config_test.cpp, read_sections_test.cpp, read_exchanges_test.cpp).
+/// load_config_test.cpp, read_sections_test.cpp, read_exchanges_test.cpp). For the tests only:
+/// it adds its names to the namespace.
 
 #include <gtest/gtest.h>
 
@@ -8,10 +9,12 @@
 
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 
-namespace eip2mqtt::adapters::yaml::loading {
+namespace eip2mqtt::adapters::yaml {
 
 using core::config::Config;
 using core::config::Diagnostics;
+using core::plan::Direction;
+using core::plan::TagType;
 
 inline const std::string data = std::string(EIP2MQTT_TEST_DATA) + "/configs/";
 
@@ -42,4 +45,4 @@ inline const std::string minimal_exchange =
     "exchanges:\n"
     "  - { name: ex, producer_id: 10.0.0.1, exchange_id: 1, length: 8 }\n";
 
-}  // namespace eip2mqtt::adapters::yaml::loading
+}  // namespace eip2mqtt::adapters::yaml

@@ -1,7 +1,7 @@
 #pragma once
 /// Configurations for the tests of validate() (tests/core/config/config_test.cpp and
 /// detail/*_test.cpp): every key of a built exchange or tag sits on its own fresh line, so that
-/// a diagnostic can be located.
+/// a diagnostic can be located. For the tests only: it adds its names to the namespace.
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include "eip2mqtt/core/config/config.hpp"
 
-namespace eip2mqtt::core::config::builders {
+namespace eip2mqtt::core::config {
 
 using namespace std::chrono_literals;
 using plan::Direction;
@@ -91,4 +91,4 @@ inline bool mentions(const Diagnostic& d, std::string_view text) {
     return d.message.find(text) != std::string::npos;
 }
 
-}  // namespace eip2mqtt::core::config::builders
+}  // namespace eip2mqtt::core::config

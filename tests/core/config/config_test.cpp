@@ -7,17 +7,6 @@
 namespace eip2mqtt::core::config {
 namespace {
 
-using namespace std::chrono_literals;
-using builders::at;
-using builders::exchange;
-using builders::mentions;
-using builders::next_line;
-using builders::only;
-using builders::tag;
-using builders::valid;
-using plan::Direction;
-using plan::TagType;
-
 TEST(Marks, AddKeepsTheFirstMarkOfAKey) {
     Marks marks;
     EXPECT_TRUE(marks.add("name", at(4, 7)));

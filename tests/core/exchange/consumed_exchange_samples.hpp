@@ -1,6 +1,7 @@
 #pragma once
 /// The exchange and datagrams the tests of ConsumedExchange feed it
-/// (tests/core/exchange/consumed_exchange*_test.cpp).
+/// (tests/core/exchange/consumed_exchange*_test.cpp). For the tests only: it adds its names to
+/// the namespace.
 
 #include <chrono>
 #include <cstddef>
@@ -10,10 +11,14 @@
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
 #include "tests/core/vectors.hpp"
 
-namespace eip2mqtt::core::exchange::samples {
+namespace eip2mqtt::core::exchange {
 
 using namespace std::chrono_literals;
+using test::from_hex;
+using test::to_hex;
+using wire::DropReason;
 using wire::Signature;
+namespace vectors = test::vectors;
 
 inline MonoTime at(std::chrono::milliseconds offset) { return MonoTime{} + offset; }
 
@@ -52,7 +57,7 @@ inline Sample sample(std::uint16_t request_id, std::size_t size = 15, Signature 
 /// Datagram with V5's header (signature 2.5) and `size` data bytes: V5 itself has none.
 inline Sample v5_with_data(std::size_t size = 15) {
     Sample s;
-    s.header = wire::decode_header(test::from_hex(test::vectors::v5));
+    s.header = wire::decode_header(from_hex(vectors::v5));
     s.data.assign(size, std::byte{0x42});
     return s;
 }
@@ -62,4 +67,4 @@ inline ConsumeOutcome feed(ConsumedExchange& exchange, const Sample& s,
     return exchange.on_datagram(s.datagram(), at(when));
 }
 
-}  // namespace eip2mqtt::core::exchange::samples
+}  // namespace eip2mqtt::core::exchange

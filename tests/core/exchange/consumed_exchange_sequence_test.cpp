@@ -10,19 +10,6 @@
 namespace eip2mqtt::core::exchange {
 namespace {
 
-using namespace std::chrono_literals;
-using samples::at;
-using samples::feed;
-using samples::make_plan;
-using samples::Sample;
-using samples::sample;
-using samples::v5_with_data;
-using test::from_hex;
-using test::to_hex;
-using wire::DropReason;
-using wire::Signature;
-namespace vectors = test::vectors;
-
 TEST(ConsumerRules, Rule6FirstDatagramResynchronisesWithoutCounting) {
     ConsumedExchange exchange(make_plan());
     EXPECT_TRUE(feed(exchange, sample(500)).accepted());

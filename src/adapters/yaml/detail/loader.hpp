@@ -34,10 +34,16 @@ using core::config::Diagnostic;
 using core::config::Diagnostics;
 using core::config::ExchangeConfig;
 using core::config::FileName;
+using core::config::GatewaySection;
 using core::config::in_quotes;
 using core::config::Mark;
 using core::config::Marks;
+using core::config::MetricsSection;
+using core::config::MqttSection;
+using core::config::SparkplugSection;
+using core::config::StoreAndForwardSection;
 using core::config::TagConfig;
+using core::config::TlsSection;
 using core::plan::Direction;
 using core::plan::TagType;
 

@@ -11,17 +11,6 @@
 namespace eip2mqtt::core::config {
 namespace {
 
-using namespace std::chrono_literals;
-using builders::at;
-using builders::exchange;
-using builders::mentions;
-using builders::next_line;
-using builders::only;
-using builders::tag;
-using builders::valid;
-using plan::Direction;
-using plan::TagType;
-
 TEST(Validate, LengthZeroOrOver1400) {
     auto c = valid();
     c.exchanges[0].spec.length = 0;

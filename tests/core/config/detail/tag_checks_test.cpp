@@ -11,17 +11,6 @@
 namespace eip2mqtt::core::config {
 namespace {
 
-using namespace std::chrono_literals;
-using builders::at;
-using builders::exchange;
-using builders::mentions;
-using builders::next_line;
-using builders::only;
-using builders::tag;
-using builders::valid;
-using plan::Direction;
-using plan::TagType;
-
 TEST(Validate, OverlappingTagsAreValid) {
     // As point lists name them: a word and a bit in it, a byte and its bit 0, one bit twice.
     auto c = valid();
