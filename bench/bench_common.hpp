@@ -2,10 +2,13 @@
 /// Helpers shared by the bench programs: `--key value` options, clocks and percentiles.
 /// Bench-only; nothing here is part of the gateway.
 
+#include <sys/socket.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <map>
 #include <string>
@@ -58,6 +61,19 @@ inline std::int64_t now_ns(clockid_t clock) {
 }
 inline std::int64_t mono_ns() { return now_ns(CLOCK_MONOTONIC); }
 inline std::int64_t wall_ns() { return now_ns(CLOCK_REALTIME); }
+
+/// The kernel's receive time (CLOCK_REALTIME ns) of a datagram received with SO_TIMESTAMPNS on,
+/// from its control messages; `fallback` when it carries none.
+inline std::int64_t kernel_receive_ns(msghdr& header, std::int64_t fallback) {
+    for (cmsghdr* c = CMSG_FIRSTHDR(&header); c != nullptr; c = CMSG_NXTHDR(&header, c)) {
+        if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
+            timespec ts{};
+            std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
+            return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+        }
+    }
+    return fallback;
+}
 
 inline void sleep_until_mono(std::int64_t deadline_ns) {
     timespec ts{static_cast<time_t>(deadline_ns / 1000000000),

@@ -1,6 +1,7 @@
 // mqtt_counter: a libmosquitto subscriber that counts publications and measures latency from a
-// send time embedded in them. libmosquitto, not Paho: it must never be the bottleneck (a Paho
-// subscriber tops out near 40k messages/s here; libmosquitto goes past 100k).
+// send time embedded in them. libmosquitto, not Paho: it must never be the bottleneck, and a Paho
+// subscriber tops out well below the gateway
+// (docs/decisions/0004-bench-subscriber-on-libmosquitto.md).
 //
 // Per-tag mode (default): counts messages on --filter whose last topic level does not start with
 // '_' (skipping _status, _values); the message whose last level is --stamp-tag (default "ts"), or
@@ -179,24 +180,28 @@ void write_dump(const std::string& path, const State& s) {
     std::fclose(f);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    const bench::Options opt(
-        argc, argv,
-        {"host", "port", "filter", "qos", "batch", "sparkplug", "stamp-tag", "stamp-all", "skip-ms",
-         "expect-last", "expect-topics", "expect", "idle-ms", "max-s", "ready-file", "id", "dump"});
-    State s;
-    {
-        // --filter a,b,c
-        std::string filters = opt.str("filter", "#");
-        for (std::size_t start = 0; start <= filters.size();) {
-            const auto comma = filters.find(',', start);
-            const auto end = comma == std::string::npos ? filters.size() : comma;
-            if (end > start) s.filters.push_back(filters.substr(start, end - start));
-            start = end + 1;
-        }
+/// Splits `--filter a,b,c`.
+std::vector<std::string> split_filters(const std::string& filters) {
+    std::vector<std::string> out;
+    for (std::size_t start = 0; start <= filters.size();) {
+        const auto comma = filters.find(',', start);
+        const auto end = comma == std::string::npos ? filters.size() : comma;
+        if (end > start) out.push_back(filters.substr(start, end - start));
+        start = end + 1;
     }
+    return out;
+}
+
+/// When to stop counting.
+struct Stop {
+    std::int64_t idle_ns = 0;         ///< without a counted message, once one arrived
+    std::int64_t max_ns = 0;          ///< in all
+    std::uint64_t expect = 0;         ///< messages; 0: no such bound
+    std::uint64_t expect_topics = 0;  ///< topics on the expected last value; 0: no such bound
+};
+
+void read_settings(const bench::Options& opt, State& s, Stop& stop) {
+    s.filters = split_filters(opt.str("filter", "#"));
     s.qos = static_cast<int>(opt.num("qos", 0));
     s.batch = opt.has("batch");
     s.sparkplug = opt.has("sparkplug");
@@ -204,33 +209,32 @@ int main(int argc, char** argv) {
     s.stamp_tag = opt.str("stamp-tag", "ts");
     s.track_last = opt.has("expect-last");
     s.expected_last = static_cast<long long>(opt.num("expect-last", 0));
-    const auto expect_topics = static_cast<std::uint64_t>(opt.num("expect-topics", 0));
     s.ready_file = opt.str("ready-file", "");
     s.skip_ns = static_cast<std::int64_t>(opt.num("skip-ms", 0) * 1e6);
     s.latency_ns.reserve(8 * 1024 * 1024);
-    const std::string dump_path = opt.str("dump", "");
-    s.dump = !dump_path.empty();
+    s.dump = !opt.str("dump", "").empty();
     if (s.dump) s.stamps_ns.reserve(8 * 1024 * 1024);
-    const auto idle_ns = static_cast<std::int64_t>(opt.num("idle-ms", 2000) * 1e6);
-    const auto max_ns = static_cast<std::int64_t>(opt.num("max-s", 60) * 1e9);
-    const auto expect = static_cast<std::uint64_t>(opt.num("expect", 0));
+    stop.expect_topics = static_cast<std::uint64_t>(opt.num("expect-topics", 0));
+    stop.idle_ns = static_cast<std::int64_t>(opt.num("idle-ms", 2000) * 1e6);
+    stop.max_ns = static_cast<std::int64_t>(opt.num("max-s", 60) * 1e9);
+    stop.expect = static_cast<std::uint64_t>(opt.num("expect", 0));
+}
 
-    mosquitto* mosq = bench::start_mosquitto(opt, "bench-counter", &s,
-                                             {on_connect, on_subscribe, on_message}, false);
+/// Waits while libmosquitto's thread counts, until `stop` says.
+void count_until(const State& s, const Stop& stop) {
     const std::int64_t start = bench::mono_ns();
     for (;;) {
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
         const std::int64_t now = bench::mono_ns();
-        if (now - start > max_ns) break;
+        if (now - start > stop.max_ns) break;
         const auto count = s.messages.load(std::memory_order_relaxed);
-        if (expect > 0 && count >= expect) break;
-        if (expect_topics > 0 && s.topics_on_expected.load() >= expect_topics) break;
-        if (count > 0 && now - s.last_ns.load(std::memory_order_relaxed) > idle_ns) break;
+        if (stop.expect > 0 && count >= stop.expect) break;
+        if (stop.expect_topics > 0 && s.topics_on_expected.load() >= stop.expect_topics) break;
+        if (count > 0 && now - s.last_ns.load(std::memory_order_relaxed) > stop.idle_ns) break;
     }
-    mosquitto_disconnect(mosq);
-    mosquitto_loop_stop(mosq, true);
+}
 
-    if (s.dump) write_dump(dump_path, s);
+void print_report(State& s) {
     const auto messages = s.messages.load();
     const double span = static_cast<double>(s.last_ns.load() - s.first_ns) / 1e9;
     std::vector<std::int64_t>& lat = s.latency_ns;
@@ -240,8 +244,9 @@ int main(int argc, char** argv) {
     long long last_ok = 0;
     long long last_bad = 0;
     if (s.track_last) {
-        const long long expected = static_cast<long long>(opt.num("expect-last", 0));
-        for (const auto& [topic, value] : s.last_value) (value == expected ? last_ok : last_bad)++;
+        for (const auto& [topic, value] : s.last_value) {
+            (value == s.expected_last ? last_ok : last_bad)++;
+        }
     }
     std::printf(
         "{\"subscribed\":%s,\"messages\":%llu,\"updates\":%llu,\"first_to_last_s\":%.4f,"
@@ -254,6 +259,26 @@ int main(int argc, char** argv) {
         span > 0 ? static_cast<double>(s.updates) / span : 0.0, lat.size(), p50, p99, max, last_ok,
         last_bad, static_cast<unsigned long long>(s.retained_skipped),
         static_cast<unsigned long long>(s.latency_skipped));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const bench::Options opt(
+        argc, argv,
+        {"host", "port", "filter", "qos", "batch", "sparkplug", "stamp-tag", "stamp-all", "skip-ms",
+         "expect-last", "expect-topics", "expect", "idle-ms", "max-s", "ready-file", "id", "dump"});
+    State s;
+    Stop stop;
+    read_settings(opt, s, stop);
+    mosquitto* mosq = bench::start_mosquitto(opt, "bench-counter", &s,
+                                             {on_connect, on_subscribe, on_message}, false);
+    count_until(s, stop);
+    mosquitto_disconnect(mosq);
+    mosquitto_loop_stop(mosq, true);
+
+    if (s.dump) write_dump(opt.str("dump", ""), s);
+    print_report(s);
     mosquitto_destroy(mosq);
     mosquitto_lib_cleanup();
     return 0;

@@ -18,6 +18,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -29,104 +30,143 @@ constexpr std::size_t batch = 64;
 constexpr std::size_t slot_size = 2048;
 constexpr std::size_t control_size = CMSG_SPACE(sizeof(timespec));
 
-}  // namespace
+struct Settings {
+    bool periods = false;  ///< period mode
+    double period_ns = 0;
+    std::int64_t idle_ns = 0;
+    std::int64_t max_ns = 0;
+    std::int64_t duration_ns = 0;
+    std::int64_t skip_ns = 0;
+    std::string bind;
+    std::uint16_t port = 0;
+    std::string ready_file;
+};
 
-int main(int argc, char** argv) {
+Settings read_settings(int argc, char** argv) {
     const bench::Options opt(
         argc, argv,
         {"bind", "port", "idle-ms", "max-s", "period-ms", "skip-ms", "duration", "ready-file"});
-    const bool periods = opt.has("period-ms");
-    const double period_ns = opt.num("period-ms", 10) * 1e6;
-    const auto idle_ns = static_cast<std::int64_t>(opt.num("idle-ms", 1000) * 1e6);
-    const auto max_ns = static_cast<std::int64_t>(opt.num("max-s", 60) * 1e9);
-    const auto duration_ns = static_cast<std::int64_t>(opt.num("duration", 0) * 1e9);
-    const auto skip_ns = static_cast<std::int64_t>(opt.num("skip-ms", 500) * 1e6);
+    Settings s;
+    s.periods = opt.has("period-ms");
+    s.period_ns = opt.num("period-ms", 10) * 1e6;
+    s.idle_ns = static_cast<std::int64_t>(opt.num("idle-ms", 1000) * 1e6);
+    s.max_ns = static_cast<std::int64_t>(opt.num("max-s", 60) * 1e9);
+    s.duration_ns = static_cast<std::int64_t>(opt.num("duration", 0) * 1e9);
+    s.skip_ns = static_cast<std::int64_t>(opt.num("skip-ms", 500) * 1e6);
+    s.bind = opt.str("bind", "127.0.0.1");
+    s.port = static_cast<std::uint16_t>(opt.num("port", 18246));
+    s.ready_file = opt.str("ready-file", "");
+    return s;
+}
 
+int bind_socket(const Settings& s) {
     const int fd = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
     const int rcvbuf = 8 * 1024 * 1024;
     setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
     const int on = 1;
     setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
-    if (periods) setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
+    if (s.periods) setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
-    addr.sin_port = htons(static_cast<std::uint16_t>(opt.num("port", 18246)));
-    inet_pton(AF_INET, opt.str("bind", "127.0.0.1").c_str(), &addr.sin_addr);
-    if (bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    addr.sin_port = htons(s.port);
+    inet_pton(AF_INET, s.bind.c_str(), &addr.sin_addr);
+    if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
         bench::Options::fail(std::string("bind: ") + std::strerror(errno));
     }
+    return fd;
+}
 
-    std::vector<unsigned char> storage(batch * slot_size);
-    std::vector<unsigned char> control(batch * control_size);
-    std::vector<iovec> iov(batch);
-    std::vector<mmsghdr> msgs(batch);
-    // Arrival times (realtime ns, kernel stamp) by exchange id: period mode only.
-    std::unordered_map<std::uint32_t, std::vector<std::int64_t>> arrivals;
+/// Receives in batches of up to `batch` datagrams and counts them; in period mode, keeps the
+/// arrival time of each by exchange id.
+class Sink {
+public:
+    Sink(const Settings& s, int fd)
+        : s_(s),
+          fd_(fd),
+          storage_(batch * slot_size),
+          control_(batch * control_size),
+          iov_(batch),
+          msgs_(batch) {}
 
-    bench::touch(opt.str("ready-file", ""));
-    const std::int64_t start = bench::mono_ns();
-    std::int64_t first = 0;
-    std::int64_t last = 0;
-    std::int64_t first_wall = 0;
-    std::uint64_t received = 0;
-    pollfd pfd{fd, POLLIN, 0};
-    for (;;) {
-        const std::int64_t now = bench::mono_ns();
-        if (now - start > max_ns) break;
-        if (duration_ns > 0 && now - start > duration_ns) break;
-        if (duration_ns == 0 && received > 0 && now - last > idle_ns) break;
-        if (poll(&pfd, 1, 50) <= 0) continue;
+    /// Receives until idle, the duration or the maximum time is over.
+    void run() {
+        const std::int64_t start = bench::mono_ns();
+        pollfd pfd{fd_, POLLIN, 0};
         for (;;) {
-            for (std::size_t i = 0; i < batch; ++i) {
-                iov[i] = {storage.data() + i * slot_size, slot_size};
-                msgs[i] = {};
-                msgs[i].msg_hdr.msg_iov = &iov[i];
-                msgs[i].msg_hdr.msg_iovlen = 1;
-                if (periods) {
-                    msgs[i].msg_hdr.msg_control = control.data() + i * control_size;
-                    msgs[i].msg_hdr.msg_controllen = control_size;
-                }
-            }
-            const int n = recvmmsg(fd, msgs.data(), batch, MSG_DONTWAIT, nullptr);
-            if (n <= 0) break;
-            last = bench::mono_ns();
-            if (received == 0) first = last;
-            received += static_cast<std::uint64_t>(n);
-            if (!periods) continue;
-            for (int i = 0; i < n; ++i) {
-                const auto& hdr = msgs[static_cast<std::size_t>(i)].msg_hdr;
-                if (msgs[static_cast<std::size_t>(i)].msg_len < 32) continue;
-                std::int64_t t = bench::wall_ns();
-                for (cmsghdr* c = CMSG_FIRSTHDR(&hdr); c != nullptr;
-                     c = CMSG_NXTHDR(const_cast<msghdr*>(&hdr), c)) {
-                    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
-                        timespec ts{};
-                        std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
-                        t = static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
-                    }
-                }
-                if (first_wall == 0) first_wall = t;
-                if (t - first_wall < skip_ns) continue;
-                std::uint32_t exchange = 0;
-                std::memcpy(
-                    &exchange,
-                    static_cast<unsigned char*>(iov[static_cast<std::size_t>(i)].iov_base) + 8, 4);
-                arrivals[exchange].push_back(t);
+            const std::int64_t now = bench::mono_ns();
+            if (now - start > s_.max_ns) break;
+            if (s_.duration_ns > 0 && now - start > s_.duration_ns) break;
+            if (s_.duration_ns == 0 && received_ > 0 && now - last_ > s_.idle_ns) break;
+            if (poll(&pfd, 1, 50) <= 0) continue;
+            while (receive_batch()) {
             }
         }
     }
-    const double span = static_cast<double>(last - first) / 1e9;
-    if (!periods) {
+
+    void print_count() const {
+        const double span = static_cast<double>(last_ - first_) / 1e9;
         std::printf("{\"received\":%llu,\"first_to_last_s\":%.4f,\"rate\":%.1f}\n",
-                    static_cast<unsigned long long>(received), span,
-                    span > 0 ? static_cast<double>(received) / span : 0.0);
-        return 0;
+                    static_cast<unsigned long long>(received_), span,
+                    span > 0 ? static_cast<double>(received_) / span : 0.0);
     }
+
+    void print_periods();
+
+private:
+    /// One recvmmsg; false when nothing was waiting.
+    bool receive_batch() {
+        for (std::size_t i = 0; i < batch; ++i) {
+            iov_[i] = {storage_.data() + i * slot_size, slot_size};
+            msgs_[i] = {};
+            msgs_[i].msg_hdr.msg_iov = &iov_[i];
+            msgs_[i].msg_hdr.msg_iovlen = 1;
+            if (s_.periods) {
+                msgs_[i].msg_hdr.msg_control = control_.data() + i * control_size;
+                msgs_[i].msg_hdr.msg_controllen = control_size;
+            }
+        }
+        const int n = recvmmsg(fd_, msgs_.data(), batch, MSG_DONTWAIT, nullptr);
+        if (n <= 0) return false;
+        last_ = bench::mono_ns();
+        if (received_ == 0) first_ = last_;
+        received_ += static_cast<std::uint64_t>(n);
+        if (s_.periods) record_arrivals(static_cast<std::size_t>(n));
+        return true;
+    }
+
+    void record_arrivals(std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i) {
+            if (msgs_[i].msg_len < 32) continue;
+            const std::int64_t t = bench::kernel_receive_ns(msgs_[i].msg_hdr, bench::wall_ns());
+            if (first_wall_ == 0) first_wall_ = t;
+            if (t - first_wall_ < s_.skip_ns) continue;
+            std::uint32_t exchange = 0;
+            std::memcpy(&exchange, static_cast<unsigned char*>(iov_[i].iov_base) + 8, 4);
+            arrivals_[exchange].push_back(t);
+        }
+    }
+
+    const Settings& s_;
+    int fd_;
+    std::vector<unsigned char> storage_;
+    std::vector<unsigned char> control_;
+    std::vector<iovec> iov_;
+    std::vector<mmsghdr> msgs_;
+    std::int64_t first_ = 0;
+    std::int64_t last_ = 0;
+    std::int64_t first_wall_ = 0;
+    std::uint64_t received_ = 0;
+    /// Arrival times (realtime ns, kernel stamp) by exchange id: period mode only.
+    std::unordered_map<std::uint32_t, std::vector<std::int64_t>> arrivals_;
+};
+
+void Sink::print_periods() {
+    const double period_ns = s_.period_ns;
     std::vector<double> jitter;
     double sum_intervals = 0;
     std::uint64_t intervals = 0;
     double worst_error = 0;
-    for (auto& [exchange, times] : arrivals) {
+    for (auto& [exchange, times] : arrivals_) {
         if (times.size() < 2) continue;
         std::sort(times.begin(), times.end());
         for (std::size_t i = 1; i < times.size(); ++i) {
@@ -145,9 +185,24 @@ int main(int argc, char** argv) {
         "{\"received\":%llu,\"exchanges\":%zu,\"intervals\":%llu,\"mean_period_ms\":%.6f,"
         "\"mean_error_pct\":%.5f,\"worst_exchange_error_pct\":%.5f,\"p50_jitter_us\":%.1f,"
         "\"p99_jitter_us\":%.1f,\"max_jitter_us\":%.1f}\n",
-        static_cast<unsigned long long>(received), arrivals.size(),
+        static_cast<unsigned long long>(received_), arrivals_.size(),
         static_cast<unsigned long long>(intervals), mean_period / 1e6,
         std::fabs(mean_period - period_ns) / period_ns * 100, worst_error,
         bench::percentile(jitter, 0.5) / 1e3, p99 / 1e3, max / 1e3);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Settings s = read_settings(argc, argv);
+    const int fd = bind_socket(s);
+    Sink sink(s, fd);
+    bench::touch(s.ready_file);
+    sink.run();
+    if (s.periods) {
+        sink.print_periods();
+    } else {
+        sink.print_count();
+    }
     return 0;
 }

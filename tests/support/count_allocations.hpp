@@ -1,6 +1,6 @@
 #pragma once
 /// Counts the heap allocations (operator new) that the calling thread makes while `f` runs, to
-/// show that a warm data path allocates nothing (issue #6). Using it links count_allocations.cpp,
+/// show that a warm data path allocates nothing. Using it links count_allocations.cpp,
 /// which replaces the test program's global operator new; it counts only while asked, and only
 /// on the asking thread (Paho's threads, say, are not counted).
 

@@ -58,6 +58,68 @@ std::string current_user() {
     return "root";
 }
 
+/// A password file for `users` in `dir`, made by mosquitto_passwd.
+void write_passwords(const std::vector<std::pair<std::string, std::string>>& users,
+                     const std::string& dir) {
+    for (std::size_t i = 0; i < users.size(); ++i) {
+        std::vector<std::string> argv{kMosquittoPasswd, "-b"};
+        if (i == 0) {
+            argv.emplace_back("-c");
+        }
+        argv.insert(argv.end(), {dir + "/passwd", users[i].first, users[i].second});
+        const auto result = run_command(std::move(argv), kStartDeadline);
+        if (result.status != 0) {
+            throw std::runtime_error("mosquitto_passwd failed: " + result.output);
+        }
+    }
+}
+
+/// The secure listener's lines: TLS, and passwords when there are users.
+void write_secure_listener(std::ofstream& conf, const MosquittoOptions& options,
+                           const std::string& dir, std::uint16_t secure_port) {
+    conf << "listener " << secure_port << " 127.0.0.1\n";
+    if (options.tls) {
+        conf << "cafile " << options.tls->ca_file << "\n"
+             << "certfile " << options.tls->cert_file << "\n"
+             << "keyfile " << options.tls->key_file << "\n"
+             << "require_certificate " << (options.tls->require_certificate ? "true" : "false")
+             << "\n";
+    }
+    if (options.users.empty()) {
+        conf << "allow_anonymous true\n";
+    } else {
+        conf << "allow_anonymous false\n"
+             << "password_file " << dir << "/passwd\n";
+    }
+}
+
+/// `dir`/mosquitto.conf: the plain listener on `port`, and the secure one on `secure_port`
+/// (0: none).
+void write_config(const MosquittoOptions& options, const std::string& dir, std::uint16_t port,
+                  std::uint16_t secure_port) {
+    std::ofstream conf(dir + "/mosquitto.conf");
+    if (secure_port != 0) {
+        // allow_anonymous and password_file then apply to the listener they follow.
+        conf << "per_listener_settings true\n";
+    }
+    conf << "listener " << port << " 127.0.0.1\n"
+         << "allow_anonymous true\n"
+         // As root, Mosquitto would switch to the "mosquitto" user and lose access to dir.
+         << "user " << current_user() << "\n"
+         << "log_dest file " << dir << "/mosquitto.log\n"
+         << "log_type all\n"
+         << "connection_messages true\n";
+    if (options.persistence) {
+        conf << "persistence true\n"
+             << "persistence_location " << dir << "/\n"
+             << "persistence_file mosquitto.db\n";
+    } else {
+        conf << "persistence false\n";
+    }
+    if (secure_port != 0) write_secure_listener(conf, options, dir, secure_port);
+    conf << options.extra_config << "\n";
+}
+
 }  // namespace
 
 Mosquitto::Mosquitto(MosquittoOptions options) : options_(std::move(options)) {
@@ -67,62 +129,13 @@ Mosquitto::Mosquitto(MosquittoOptions options) : options_(std::move(options)) {
         throw std::runtime_error(std::string("mkdtemp: ") + std::strerror(errno));
     }
     dir_ = templ;
-    const bool secure = options_.tls.has_value() || !options_.users.empty();
-    if (secure) {
+    if (options_.tls.has_value() || !options_.users.empty()) {
         do {
             secure_port_ = free_tcp_port();
         } while (secure_port_ == port_);
     }
-    for (std::size_t i = 0; i < options_.users.size(); ++i) {
-        std::vector<std::string> argv{kMosquittoPasswd, "-b"};
-        if (i == 0) {
-            argv.emplace_back("-c");
-        }
-        argv.insert(argv.end(),
-                    {dir_ + "/passwd", options_.users[i].first, options_.users[i].second});
-        const auto result = run_command(std::move(argv), kStartDeadline);
-        if (result.status != 0) {
-            throw std::runtime_error("mosquitto_passwd failed: " + result.output);
-        }
-    }
-
-    std::ofstream conf(dir_ + "/mosquitto.conf");
-    if (secure) {
-        // allow_anonymous and password_file then apply to the listener they follow.
-        conf << "per_listener_settings true\n";
-    }
-    conf << "listener " << port_ << " 127.0.0.1\n"
-         << "allow_anonymous true\n"
-         // As root, Mosquitto would switch to the "mosquitto" user and lose access to dir_.
-         << "user " << current_user() << "\n"
-         << "log_dest file " << dir_ << "/mosquitto.log\n"
-         << "log_type all\n"
-         << "connection_messages true\n";
-    if (options_.persistence) {
-        conf << "persistence true\n"
-             << "persistence_location " << dir_ << "/\n"
-             << "persistence_file mosquitto.db\n";
-    } else {
-        conf << "persistence false\n";
-    }
-    if (secure) {
-        conf << "listener " << secure_port_ << " 127.0.0.1\n";
-        if (options_.tls) {
-            conf << "cafile " << options_.tls->ca_file << "\n"
-                 << "certfile " << options_.tls->cert_file << "\n"
-                 << "keyfile " << options_.tls->key_file << "\n"
-                 << "require_certificate " << (options_.tls->require_certificate ? "true" : "false")
-                 << "\n";
-        }
-        if (options_.users.empty()) {
-            conf << "allow_anonymous true\n";
-        } else {
-            conf << "allow_anonymous false\n"
-                 << "password_file " << dir_ << "/passwd\n";
-        }
-    }
-    conf << options_.extra_config << "\n";
-    conf.close();
+    write_passwords(options_.users, dir_);
+    write_config(options_, dir_, port_, secure_port_);
 
     try {
         start();

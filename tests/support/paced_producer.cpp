@@ -1,5 +1,7 @@
 #include "tests/support/paced_producer.hpp"
 
+#include <utility>
+
 namespace eip2mqtt::test {
 
 PacedProducer::PacedProducer(std::function<std::vector<std::byte>(std::uint64_t)> make,
@@ -41,6 +43,11 @@ void PacedProducer::resume() {
         paused_ = false;
     }
     cv_.notify_all();
+}
+
+std::uint64_t PacedProducer::last() {
+    std::lock_guard lock(mutex_);
+    return last_;
 }
 
 }  // namespace eip2mqtt::test

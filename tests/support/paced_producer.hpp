@@ -1,6 +1,7 @@
 #pragma once
-// A thread sending datagram `n` (1, 2, ...) every `period`, pausable so that a test knows what
-// it sent: the steady traffic of the outage tests.
+/// A producer of datagrams for the integration tests: sends datagram `n` (1, 2, ...) every
+/// `period` from a thread of its own. It can be paused, so that a test knows which datagrams the
+/// gateway has been sent.
 
 #include <chrono>
 #include <condition_variable>
@@ -15,6 +16,7 @@ namespace eip2mqtt::test {
 
 class PacedProducer {
 public:
+    /// Starts sending at once: `make(n)` through `send`, then a pause of `period`.
     PacedProducer(std::function<std::vector<std::byte>(std::uint64_t)> make,
                   std::function<void(const std::vector<std::byte>&)> send,
                   std::chrono::milliseconds period);
@@ -22,9 +24,11 @@ public:
     PacedProducer(const PacedProducer&) = delete;
     PacedProducer& operator=(const PacedProducer&) = delete;
 
-    /// Stops sending; returns the last `n` sent.
+    /// Stops sending; returns the number of the last datagram sent.
     std::uint64_t pause();
     void resume();
+    /// The number of the last datagram sent.
+    std::uint64_t last();
 
 private:
     std::mutex mutex_;

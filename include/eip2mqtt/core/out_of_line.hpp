@@ -1,8 +1,9 @@
 #pragma once
 /// OutOfLine<T>: a copyable value of T kept on the heap, or not at all while it was never
 /// written, so that a member rarely set costs one pointer in a type held 100,000 times (the
-/// settings of a tag that few tags use, #6). Copies copy the T, and equality compares contents:
-/// an OutOfLine never written equals one holding a default T.
+/// settings of a tag that few tags use: docs/decisions/0001-configurations-of-100000-tags.md).
+/// Copies copy the T, and equality compares contents: an OutOfLine never written equals one holding
+/// a default T.
 ///
 /// Threading: as T; the shared default is immutable.
 

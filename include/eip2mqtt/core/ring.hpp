@@ -3,7 +3,7 @@
 /// std::deque allocates a block at its back and frees one at its front every few elements as
 /// it moves (512 bytes a block in libstdc++: three MQTT messages, 64 arrival times): on the
 /// data path, that was a malloc and a free every few datagrams or publications. A Ring
-/// allocates only when it grows past its largest size so far (#6).
+/// allocates only when it grows past its largest size so far.
 ///
 /// Elements are moved when the ring grows, so views into them (a std::string's inline buffer)
 /// must be taken again after a push_back that returned true.

@@ -68,22 +68,6 @@ core::Result<std::span<const std::byte>, FrameSkip> ip_packet(int link_type,
 
 }  // namespace
 
-std::string_view to_string(FrameSkip skip) {
-    switch (skip) {
-        case FrameSkip::unknown_link:
-            return "unknown_link";
-        case FrameSkip::not_ipv4:
-            return "not_ipv4";
-        case FrameSkip::not_udp:
-            return "not_udp";
-        case FrameSkip::fragment:
-            return "fragment";
-        case FrameSkip::malformed:
-            return "malformed";
-    }
-    return "unknown";
-}
-
 core::Result<UdpFrame, FrameSkip> decode_frame(int link_type, std::span<const std::byte> frame) {
     auto ip = ip_packet(link_type, frame);
     if (!ip) return core::fail(ip.error());

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "adapters/yaml/detail/key_readers.hpp"
 #include "adapters/yaml/detail/loader.hpp"
 #include "adapters/yaml/detail/read_file.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
@@ -9,6 +10,164 @@
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::adapters::yaml::detail {
+namespace {
+
+namespace keys = core::config::keys;
+
+/// The keys whose bad value leaves their exchange out of the model (what names it on the wire).
+bool is_identity_key(std::string_view key) {
+    return key == "name" || key == "direction" || key == "producer_id" || key == "exchange_id";
+}
+
+bool read_length(KeyValue& v, ExchangeDraft& d) {
+    const auto n = v.integer<long long>();
+    if (!n) return false;
+    if (*n < 0 || *n > std::numeric_limits<std::uint16_t>::max()) {
+        v.error(d.label + " length " + std::to_string(*n) + " is outside 1..1400");
+        return false;
+    }
+    d.spec.length = static_cast<std::uint16_t>(*n);
+    return true;
+}
+
+bool read_destination(KeyValue& v, ExchangeDraft& d) {
+    const auto s = v.text();
+    if (s && !s->empty() && !valid_host_port(*s, false)) {
+        v.error("destination " + in_quotes(*s) + " is not host or host:port (port 1..65535)");
+        return false;
+    }
+    if (s) d.spec.destination = *s;
+    return s.has_value();
+}
+
+/// Stores what `v.parsed(parse, problem)` reads in `field`.
+template <class Field, class Parse>
+bool parsed_to(KeyValue& v, Field& field, Parse parse, std::string_view problem) {
+    const auto value = v.parsed(parse, problem);
+    if (value) field = *value;
+    return value.has_value();
+}
+
+/// An entry of `exchanges`, while it is read.
+constexpr KeyReader<ExchangeDraft> exchange_rows[]{
+    {"name", [](KeyValue& v, ExchangeDraft& d) { return v.text_to(d.spec.name); }},
+    {"direction",
+     [](KeyValue& v, ExchangeDraft& d) {
+         return parsed_to(
+             v, d.spec.direction,
+             [](std::string_view s) { return core::plan::direction_names.parse(s); },
+             "is not consume or produce");
+     }},
+    {"producer_id",
+     [](KeyValue& v, ExchangeDraft& d) {
+         return parsed_to(v, d.spec.producer_id, core::wire::parse_producer_id,
+                          "is not a.b.c.d or a plain integer (GE decimal form)");
+     }},
+    {"exchange_id",
+     [](KeyValue& v, ExchangeDraft& d) { return v.integer_to<std::uint32_t>(d.spec.exchange_id); }},
+    {"length", read_length},
+    {"signature",
+     [](KeyValue& v, ExchangeDraft& d) {
+         return parsed_to(v, d.spec.signature, core::wire::parse_signature,
+                          "is not major.minor (each 0..255)");
+     }},
+    {"period_ms",
+     [](KeyValue& v, ExchangeDraft& d) { return v.integer_to<long long>(d.spec.period); }},
+    {"timeout_ms",
+     [](KeyValue& v, ExchangeDraft& d) { return v.integer_to<long long>(d.spec.timeout, 0); }},
+    {"timestamp",
+     [](KeyValue& v, ExchangeDraft& d) {
+         d.spec.timestamp = v.timestamp_source();
+         return d.spec.timestamp.has_value();
+     }},
+    {"clock_tolerance_ms",
+     [](KeyValue& v, ExchangeDraft& d) {
+         return v.integer_to<long long>(d.spec.clock_tolerance, 0);
+     }},
+    {"source",
+     [](KeyValue& v, ExchangeDraft& d) {
+         return parsed_to(v, d.spec.source, parse_ipv4, "is not an IPv4 address");
+     }},
+    {"destination", read_destination},
+    {"topic",
+     [](KeyValue& v, ExchangeDraft& d) {
+         d.topic_written = true;
+         return v.text_to(d.spec.topic);
+     }},
+    {"points", [](KeyValue& v, ExchangeDraft& d) { return v.text_to(d.points); }},
+    {"tags",
+     [](KeyValue& v, ExchangeDraft& d) {
+         d.tags_node.emplace(v.node());
+         return true;
+     }},
+};
+constexpr auto exchange_readers = bind_keys(keys::exchange, exchange_rows);
+
+bool read_type(KeyValue& v, TagDraft& d) {
+    const auto s = v.text();
+    const auto type =
+        s ? core::plan::parse_tag_type(*s, core::plan::TypeNaming::yaml) : std::nullopt;
+    if (type) {
+        d.spec.type = *type;
+    } else if (s) {
+        v.error("unknown type " + in_quotes(*s) +
+                " (expected bit, byte, int, word, dint, udint, real, lint or lreal)");
+    }
+    return type.has_value();
+}
+
+/// The settings few tags have live out of line (TagSpec::extras): only a value read makes room.
+template <class T, class Field>
+bool extra_to(TagDraft& d, const std::optional<T>& value, Field core::plan::TagExtras::*field) {
+    if (value) d.spec.mutable_extras().*field = *value;
+    return value.has_value();
+}
+
+/// An entry of an exchange's `tags`, while it is read.
+constexpr KeyReader<TagDraft> tag_rows[]{
+    {"name", [](KeyValue& v, TagDraft& d) { return v.text_to(d.spec.name); }},
+    // `126.0` unquoted is a YAML float: its scalar text is what was written.
+    {"address",
+     [](KeyValue& v, TagDraft& d) {
+         return parsed_to(v, d.spec.address, core::plan::parse_address,
+                          "is not byte.bit (byte 0..65535, bit 0..7)");
+     }},
+    {"type", read_type},
+    {"unit",
+     [](KeyValue& v, TagDraft& d) { return extra_to(d, v.text(), &core::plan::TagExtras::unit); }},
+    {"deadband", [](KeyValue& v, TagDraft& d) { return v.number_to(d.spec.deadband); }},
+    {"refresh_s",
+     [](KeyValue& v, TagDraft& d) { return v.integer_to<long long>(d.spec.refresh, 0); }},
+    {"writable", [](KeyValue& v, TagDraft& d) { return v.boolean_to(d.spec.writable); }},
+    {"min",
+     [](KeyValue& v, TagDraft& d) { return extra_to(d, v.number(), &core::plan::TagExtras::min); }},
+    {"max",
+     [](KeyValue& v, TagDraft& d) { return extra_to(d, v.number(), &core::plan::TagExtras::max); }},
+    {"initial",
+     [](KeyValue& v, TagDraft& d) {
+         d.initial.emplace(v.node());
+         d.initial_mark = v.at();
+         return true;
+     }},
+    {"description",
+     [](KeyValue& v, TagDraft& d) {
+         const auto s = v.text();
+         if (s && !s->empty()) d.spec.mutable_extras().description = *s;
+         return s.has_value();
+     }},
+    {"max_writes_per_s",
+     [](KeyValue& v, TagDraft& d) {
+         const auto rate = v.number();
+         if (rate && *rate < 0) {
+             v.error("'max_writes_per_s' must be 0 (no limit) or more");
+             return false;
+         }
+         return extra_to(d, rate, &core::plan::TagExtras::max_writes_per_s);
+     }},
+};
+constexpr auto tag_readers = bind_keys(keys::tag, tag_rows);
+
+}  // namespace
 
 void Loader::read_exchanges(const Node& node, const Mark& at, Config& config) {
     if (node.is_null()) return;
@@ -34,10 +193,10 @@ void Loader::read_exchange(const Node& node, int index, Config& config) {
     const auto& label = draft.label;
     const std::string where = "in " + label;
 
-    exchange.marks = walk(node, mark(node), label, where, exchange_keys,
-                          [&](const std::string& key, const Node& value, const Mark& k) {
-                              read_exchange_key(draft, key, value, k);
-                          });
+    const auto failed = [&](std::string_view key) {
+        draft.broken = draft.broken || is_identity_key(key);
+    };
+    exchange.marks = read_keys(node, mark(node), label, where, exchange_readers, draft, failed);
     if (!node.is_map()) return;
     for (const std::string_view required : {"name", "producer_id", "exchange_id"}) {
         if (!exchange.marks.contains(required)) {
@@ -53,8 +212,8 @@ void Loader::read_exchange(const Node& node, int index, Config& config) {
             error(exchange.marks.of("tags"), "expected a list for 'tags'");
         } else {
             // Sized once: vectors doubling per tag left freed blocks of every size among
-            // the tags, where the long-lived plans then landed (1,000 x 100 tags: RSS
-            // 29.5 MB idle, 25.2 MB sized once).
+            // the tags, where the long-lived plans then landed
+            // (docs/decisions/0001-configurations-of-100000-tags.md).
             exchange.tags.reserve(draft.tags_node->size());
             for (std::size_t i = 0; i < draft.tags_node->size(); ++i) {
                 const Node item = draft.tags_node->item(i);
@@ -66,86 +225,6 @@ void Loader::read_exchange(const Node& node, int index, Config& config) {
     if (!draft.broken) config.exchanges.push_back(std::move(exchange));
 }
 
-void Loader::read_exchange_key(ExchangeDraft& draft, const std::string& key, const Node& value,
-                               const Mark& k) {
-    auto& spec = draft.spec;
-    if (key == "name") {
-        if (const auto s = text(value, key, k)) {
-            spec.name = *s;
-        } else {
-            draft.broken = true;
-        }
-    } else if (key == "direction") {
-        const auto s = text(value, key, k);
-        if (s && *s == "consume") {
-            spec.direction = Direction::consume;
-        } else if (s && *s == "produce") {
-            spec.direction = Direction::produce;
-        } else {
-            if (s) error(k, "direction " + in_quotes(*s) + " is not consume or produce");
-            draft.broken = true;
-        }
-    } else if (key == "producer_id") {
-        if (const auto id = parsed(value, key, k, core::wire::parse_producer_id,
-                                   "is not a.b.c.d or a plain integer (GE decimal form)")) {
-            spec.producer_id = *id;
-        } else {
-            draft.broken = true;
-        }
-    } else if (key == "exchange_id") {
-        if (const auto n = integer<std::uint32_t>(value, key, k)) {
-            spec.exchange_id = *n;
-        } else {
-            draft.broken = true;
-        }
-    } else if (key == "length") {
-        if (const auto n = integer<long long>(value, key, k)) {
-            if (*n < 0 || *n > std::numeric_limits<std::uint16_t>::max()) {
-                error(k, draft.label + " length " + std::to_string(*n) + " is outside 1..1400");
-            } else {
-                spec.length = static_cast<std::uint16_t>(*n);
-            }
-        }
-    } else if (key == "signature") {
-        if (const auto sig = parsed(value, key, k, core::wire::parse_signature,
-                                    "is not major.minor (each 0..255)")) {
-            spec.signature = *sig;
-        }
-    } else if (key == "period_ms") {
-        if (const auto n = integer<long long>(value, key, k)) {
-            spec.period = std::chrono::milliseconds(*n);
-        }
-    } else if (key == "timeout_ms") {
-        if (const auto n = integer<long long>(value, key, k, 0)) {
-            spec.timeout = std::chrono::milliseconds(*n);
-        }
-    } else if (key == "timestamp") {
-        spec.timestamp = timestamp_source(value, key, k);
-    } else if (key == "clock_tolerance_ms") {
-        if (const auto n = integer<long long>(value, key, k, 0)) {
-            spec.clock_tolerance = std::chrono::milliseconds(*n);
-        }
-    } else if (key == "source") {
-        if (const auto ip = parsed(value, key, k, parse_ipv4, "is not an IPv4 address")) {
-            spec.source = *ip;
-        }
-    } else if (key == "destination") {
-        const auto s = text(value, key, k);
-        if (s && !s->empty() && !valid_host_port(*s, false)) {
-            error(k, "destination " + in_quotes(*s) + " is not host or host:port (port 1..65535)");
-        } else if (s) {
-            spec.destination = *s;
-        }
-    } else if (key == "topic") {
-        if (const auto s = text(value, key, k)) spec.topic = *s;
-        draft.topic_written = true;
-    } else if (key == "points") {
-        if (const auto s = text(value, key, k)) draft.points = *s;
-    } else if (key == "tags") {
-        draft.tags_node.emplace(value);
-    }
-}
-
 std::optional<TagConfig> Loader::read_tag(const Node& node, const std::string& exchange_label) {
     TagConfig tag;
     auto& spec = tag.spec;
@@ -155,11 +234,9 @@ std::optional<TagConfig> Loader::read_tag(const Node& node, const std::string& e
         return (name.is_scalar() ? "tag " + in_quotes(name.scalar()) : std::string("a tag")) +
                " of " + exchange_label;
     };
-    tag.marks = walk(
-        node, mark(node), "tag", [&] { return "in " + label(); }, tag_keys,
-        [&](const std::string& key, const Node& value, const Mark& k) {
-            read_tag_key(draft, key, value, k);
-        });
+    tag.marks = read_keys(
+        node, mark(node), "tag", [&] { return "in " + label(); }, tag_readers, draft,
+        [&](std::string_view) { draft.broken = true; });
     if (!node.is_map()) return std::nullopt;
     for (const std::string_view required : {"name", "address", "type"}) {
         if (!tag.marks.contains(required)) {
@@ -176,82 +253,6 @@ std::optional<TagConfig> Loader::read_tag(const Node& node, const std::string& e
     }
     if (draft.broken) return std::nullopt;
     return tag;
-}
-
-void Loader::read_tag_key(TagDraft& draft, const std::string& key, const Node& value,
-                          const Mark& k) {
-    auto& spec = draft.spec;
-    if (key == "name" || key == "unit" || key == "description") {
-        const auto s = text(value, key, k);
-        if (!s) {
-            draft.broken = true;
-        } else if (key == "name") {
-            spec.name = *s;
-        } else if (key == "unit") {
-            spec.mutable_extras().unit = *s;
-        } else if (!s->empty()) {
-            spec.mutable_extras().description = *s;
-        }
-    } else if (key == "address") {
-        // `126.0` unquoted is a YAML float: its scalar text is what was written.
-        if (const auto address = parsed(value, key, k, core::plan::parse_address,
-                                        "is not byte.bit (byte 0..65535, bit 0..7)")) {
-            spec.address = *address;
-        } else {
-            draft.broken = true;
-        }
-    } else if (key == "type") {
-        const auto s = text(value, key, k);
-        const auto type =
-            s ? core::plan::parse_tag_type(*s, core::plan::TypeNaming::yaml) : std::nullopt;
-        if (type) {
-            spec.type = *type;
-        } else {
-            if (s) {
-                error(k, "unknown type " + in_quotes(*s) +
-                             " (expected bit, byte, int, word, dint, udint, real, "
-                             "lint or lreal)");
-            }
-            draft.broken = true;
-        }
-    } else if (key == "deadband") {
-        if (const auto d = number(value, key, k)) {
-            spec.deadband = *d;
-        } else {
-            draft.broken = true;
-        }
-    } else if (key == "refresh_s") {
-        if (const auto n = integer<long long>(value, key, k, 0)) {
-            spec.refresh = std::chrono::seconds(*n);
-        } else {
-            draft.broken = true;
-        }
-    } else if (key == "max_writes_per_s") {
-        if (const auto d = number(value, key, k); d && *d >= 0) {
-            spec.mutable_extras().max_writes_per_s = *d;
-        } else {
-            if (d) error(k, "'max_writes_per_s' must be 0 (no limit) or more");
-            draft.broken = true;
-        }
-    } else if (key == "writable") {
-        if (const auto b = boolean(value, key, k)) {
-            spec.writable = *b;
-        } else {
-            draft.broken = true;
-        }
-    } else if (key == "min" || key == "max") {
-        const auto d = number(value, key, k);
-        if (!d) {
-            draft.broken = true;
-        } else if (key == "min") {
-            spec.mutable_extras().min = *d;
-        } else {
-            spec.mutable_extras().max = *d;
-        }
-    } else if (key == "initial") {
-        draft.initial.emplace(value);
-        draft.initial_mark = k;
-    }
 }
 
 std::optional<core::plan::Value> Loader::read_initial(const Node& value, TagType type,

@@ -1,140 +1,181 @@
 // The gateway, mqtt, eip, metrics and sparkplug sections of the configuration.
 
+#include "adapters/yaml/detail/key_readers.hpp"
 #include "adapters/yaml/detail/loader.hpp"
 
 namespace eip2mqtt::adapters::yaml::detail {
+namespace {
+
+namespace keys = core::config::keys;
+
+/// How each key of `gateway` is read.
+constexpr KeyReader<GatewaySection> gateway_rows[]{
+    {"id", [](KeyValue& v, GatewaySection& g) { return v.text_to(g.id); }},
+    {"state_dir", [](KeyValue& v, GatewaySection& g) { return v.text_to(g.state_dir); }},
+    {"log_level",
+     [](KeyValue& v, GatewaySection& g) {
+         const auto s = v.text();
+         if (s) g.log_level = lower(*s);
+         return s.has_value();
+     }},
+    {"timestamp",
+     [](KeyValue& v, GatewaySection& g) {
+         const auto source = v.timestamp_source();
+         if (source) g.exchange_defaults.timestamp = *source;
+         return source.has_value();
+     }},
+    {"clock_tolerance_ms",
+     [](KeyValue& v, GatewaySection& g) {
+         return v.integer_to<long long>(g.exchange_defaults.clock_tolerance, 0);
+     }},
+};
+constexpr auto gateway_readers = bind_keys(keys::gateway, gateway_rows);
+
+/// `mqtt.tls`
+constexpr KeyReader<TlsSection> tls_rows[]{
+    {"ca_file", [](KeyValue& v, TlsSection& t) { return v.text_to(t.ca_file); }},
+    {"cert_file", [](KeyValue& v, TlsSection& t) { return v.text_to(t.cert_file); }},
+    {"key_file", [](KeyValue& v, TlsSection& t) { return v.text_to(t.key_file); }},
+    {"verify", [](KeyValue& v, TlsSection& t) { return v.boolean_to(t.verify); }},
+};
+constexpr auto tls_readers = bind_keys(keys::tls, tls_rows);
+
+/// `mqtt.buffer`
+constexpr KeyReader<MqttSection> buffer_rows[]{
+    {"max_messages",
+     [](KeyValue& v, MqttSection& m) {
+         return v.integer_to<std::size_t>(m.buffer_max_messages, 1);
+     }},
+};
+constexpr auto buffer_readers = bind_keys(keys::buffer, buffer_rows);
+
+/// `mqtt.store_and_forward`
+constexpr KeyReader<StoreAndForwardSection> store_and_forward_rows[]{
+    {"enabled", [](KeyValue& v, StoreAndForwardSection& s) { return v.boolean_to(s.enabled); }},
+    // A journal smaller than a megabyte would drop history at once.
+    {"max_mb",
+     [](KeyValue& v, StoreAndForwardSection& s) {
+         return v.integer_to<std::uint64_t>(s.max_mb, 1, 1ULL << 30);
+     }},
+    {"replay_rate",
+     [](KeyValue& v, StoreAndForwardSection& s) {
+         return v.integer_to<std::uint32_t>(s.replay_rate, 1, 1000000);
+     }},
+    {"fsync_interval_ms",
+     [](KeyValue& v, StoreAndForwardSection& s) {
+         return v.integer_to<std::uint32_t>(s.fsync_interval, 10, 3600000);
+     }},
+};
+constexpr auto store_and_forward_readers =
+    bind_keys(keys::store_and_forward, store_and_forward_rows);
+
+bool read_version(KeyValue& v, MqttSection& m) {
+    const std::string text(v.node().scalar());
+    if (text == "3.1.1") {
+        m.version = 3;
+    } else if (const auto n = parse_integer<int>(text)) {
+        m.version = *n;  // validate() accepts 5 and 3
+    } else {
+        v.error("mqtt version must be 5 or 3.1.1");
+        return false;
+    }
+    return true;
+}
+
+bool read_tls(KeyValue& v, MqttSection& m) {
+    TlsSection tls;
+    v.mapping("in mqtt.tls", tls_readers, tls);
+    if (!v.node().is_null()) m.tls = tls;
+    return true;
+}
+
+bool read_payload(KeyValue& v, MqttSection& m) {
+    const auto format =
+        v.parsed([](std::string_view s) { return core::config::payload_format_names.parse(s); },
+                 "is not json or raw");
+    if (format) m.payload = *format;
+    return format.has_value();
+}
+
+/// `mqtt`
+constexpr KeyReader<MqttSection> mqtt_rows[]{
+    {"url", [](KeyValue& v, MqttSection& m) { return v.text_to(m.url); }},
+    {"version", read_version},
+    {"client_id", [](KeyValue& v, MqttSection& m) { return v.text_to(m.client_id); }},
+    {"username", [](KeyValue& v, MqttSection& m) { return v.text_to(m.username); }},
+    {"password_file", [](KeyValue& v, MqttSection& m) { return v.text_to(m.password_file); }},
+    {"tls", read_tls},
+    {"base_topic", [](KeyValue& v, MqttSection& m) { return v.text_to(m.base_topic); }},
+    {"qos", [](KeyValue& v, MqttSection& m) { return v.integer_to<int>(m.qos); }},
+    {"retain", [](KeyValue& v, MqttSection& m) { return v.boolean_to(m.retain); }},
+    {"payload", read_payload},
+    {"buffer",
+     [](KeyValue& v, MqttSection& m) {
+         v.mapping("in mqtt.buffer", buffer_readers, m);
+         return true;
+     }},
+    {"batch", [](KeyValue& v, MqttSection& m) { return v.boolean_to(m.batch); }},
+    {"batch_first", [](KeyValue& v, MqttSection& m) { return v.boolean_to(m.batch_first); }},
+    {"keepalive_s",
+     [](KeyValue& v, MqttSection& m) { return v.integer_to<int>(m.keepalive, 1, 65535); }},
+    {"metrics_interval_s",
+     [](KeyValue& v, MqttSection& m) { return v.integer_to<int>(m.metrics_interval, 1, 86400); }},
+    {"session_expiry_s",
+     [](KeyValue& v, MqttSection& m) {
+         return v.integer_to<long long>(m.session_expiry, 0, 4294967295LL);
+     }},
+    {"allow_response_topics_under_base",
+     [](KeyValue& v, MqttSection& m) { return v.boolean_to(m.allow_response_topics_under_base); }},
+    {"store_and_forward",
+     [](KeyValue& v, MqttSection& m) {
+         auto& section = m.store_and_forward;
+         section.marks = v.mapping("in mqtt.store_and_forward", store_and_forward_readers, section);
+         return true;
+     }},
+};
+constexpr auto mqtt_readers = bind_keys(keys::mqtt, mqtt_rows);
+
+/// `metrics`
+constexpr KeyReader<MetricsSection> metrics_rows[]{
+    {"listen",
+     [](KeyValue& v, MetricsSection& m) {
+         const auto s = v.text();
+         if (!s || s->empty()) return s.has_value();
+         if (!valid_host_port(*s, true)) {
+             v.error("listen " + in_quotes(*s) + " is not host:port");
+             return false;
+         }
+         m.listen = *s;
+         return true;
+     }},
+};
+constexpr auto metrics_readers = bind_keys(keys::metrics, metrics_rows);
+
+/// `sparkplug`
+constexpr KeyReader<SparkplugSection> sparkplug_rows[]{
+    {"group_id", [](KeyValue& v, SparkplugSection& s) { return v.text_to(s.group_id); }},
+    {"edge_node_id", [](KeyValue& v, SparkplugSection& s) { return v.text_to(s.edge_node_id); }},
+    {"primary_host_id",
+     [](KeyValue& v, SparkplugSection& s) { return v.text_to(s.primary_host_id); }},
+    {"uns", [](KeyValue& v, SparkplugSection& s) { return v.boolean_to(s.uns); }},
+    {"qos", [](KeyValue& v, SparkplugSection& s) { return v.integer_to<int>(s.qos, 0, 1); }},
+    // MQTT's own limit is 268,435,460 bytes; 0: none of ours.
+    {"max_packet_bytes",
+     [](KeyValue& v, SparkplugSection& s) {
+         return v.integer_to<std::size_t>(s.max_packet_bytes, 0, 268435460);
+     }},
+};
+constexpr auto sparkplug_readers = bind_keys(keys::sparkplug, sparkplug_rows);
+
+}  // namespace
 
 void Loader::read_gateway(const Node& node, const Mark& at, Config& config) {
-    auto& gateway = config.gateway;
-    gateway.marks = walk(node, at, "gateway", "in gateway", gateway_keys,
-                         [&](const std::string& key, const Node& value, const Mark& k) {
-                             auto& defaults = gateway.exchange_defaults;
-                             if (key == "timestamp") {
-                                 if (const auto source = timestamp_source(value, key, k)) {
-                                     defaults.timestamp = *source;
-                                 }
-                                 return;
-                             }
-                             if (key == "clock_tolerance_ms") {
-                                 if (const auto n = integer<long long>(value, key, k, 0)) {
-                                     defaults.clock_tolerance = std::chrono::milliseconds(*n);
-                                 }
-                                 return;
-                             }
-                             const auto s = text(value, key, k);
-                             if (!s) return;
-                             if (key == "id") gateway.id = *s;
-                             if (key == "state_dir") gateway.state_dir = *s;
-                             if (key == "log_level") gateway.log_level = lower(*s);
-                         });
+    config.gateway.marks =
+        read_keys(node, at, "gateway", "in gateway", gateway_readers, config.gateway);
 }
 
 void Loader::read_mqtt(const Node& node, const Mark& at, Config& config) {
-    auto& mqtt = config.mqtt;
-    mqtt.marks =
-        walk(node, at, "mqtt", "in mqtt", mqtt_keys,
-             [&](const std::string& key, const Node& value, const Mark& k) {
-                 if (key == "url" || key == "client_id" || key == "username" ||
-                     key == "password_file" || key == "base_topic") {
-                     const auto s = text(value, key, k);
-                     if (!s) return;
-                     if (key == "url") mqtt.url = *s;
-                     if (key == "client_id") mqtt.client_id = *s;
-                     if (key == "username") mqtt.username = *s;
-                     if (key == "password_file") mqtt.password_file = *s;
-                     if (key == "base_topic") mqtt.base_topic = *s;
-                 } else if (key == "version") {
-                     const std::string v(value.scalar());
-                     if (v == "3.1.1") {
-                         mqtt.version = 3;
-                     } else if (const auto n = parse_integer<int>(v)) {
-                         mqtt.version = *n;  // validate() accepts 5 and 3
-                     } else {
-                         error(k, "mqtt version must be 5 or 3.1.1");
-                     }
-                 } else if (key == "qos") {
-                     if (const auto n = integer<int>(value, key, k)) mqtt.qos = *n;
-                 } else if (key == "retain") {
-                     if (const auto b = boolean(value, key, k)) mqtt.retain = *b;
-                 } else if (key == "batch") {
-                     if (const auto b = boolean(value, key, k)) mqtt.batch = *b;
-                 } else if (key == "batch_first") {
-                     if (const auto b = boolean(value, key, k)) mqtt.batch_first = *b;
-                 } else if (key == "allow_response_topics_under_base") {
-                     if (const auto b = boolean(value, key, k)) {
-                         mqtt.allow_response_topics_under_base = *b;
-                     }
-                 } else if (key == "payload") {
-                     const auto s = text(value, key, k);
-                     if (s && *s == "json") {
-                         mqtt.payload = core::config::PayloadFormat::json;
-                     } else if (s && *s == "raw") {
-                         mqtt.payload = core::config::PayloadFormat::raw;
-                     } else if (s) {
-                         error(k, "payload " + in_quotes(*s) + " is not json or raw");
-                     }
-                 } else if (key == "keepalive_s") {
-                     if (const auto n = integer<int>(value, key, k, 1, 65535)) {
-                         mqtt.keepalive = std::chrono::seconds(*n);
-                     }
-                 } else if (key == "session_expiry_s") {
-                     if (const auto n = integer<long long>(value, key, k, 0, 4294967295LL)) {
-                         mqtt.session_expiry = std::chrono::seconds(*n);
-                     }
-                 } else if (key == "metrics_interval_s") {
-                     if (const auto n = integer<int>(value, key, k, 1, 86400)) {
-                         mqtt.metrics_interval = std::chrono::seconds(*n);
-                     }
-                 } else if (key == "store_and_forward") {
-                     read_store_and_forward(value, k, config);
-                 } else if (key == "buffer") {
-                     walk(value, k, "buffer", "in mqtt.buffer", buffer_keys,
-                          [&](const std::string& key2, const Node& v2, const Mark& k2) {
-                              if (const auto n = integer<std::size_t>(v2, key2, k2, 1)) {
-                                  mqtt.buffer_max_messages = *n;
-                              }
-                          });
-                 } else if (key == "tls") {
-                     core::config::TlsSection tls;
-                     walk(value, k, "tls", "in mqtt.tls", tls_keys,
-                          [&](const std::string& key2, const Node& v2, const Mark& k2) {
-                              if (key2 == "verify") {
-                                  if (const auto b = boolean(v2, key2, k2)) tls.verify = *b;
-                                  return;
-                              }
-                              const auto s = text(v2, key2, k2);
-                              if (!s) return;
-                              if (key2 == "ca_file") tls.ca_file = *s;
-                              if (key2 == "cert_file") tls.cert_file = *s;
-                              if (key2 == "key_file") tls.key_file = *s;
-                          });
-                     if (!value.is_null()) mqtt.tls = tls;
-                 }
-             });
-}
-
-void Loader::read_store_and_forward(const Node& node, const Mark& at, Config& config) {
-    auto& section = config.mqtt.store_and_forward;
-    section.marks =
-        walk(node, at, "store_and_forward", "in mqtt.store_and_forward", store_and_forward_keys,
-             [&](const std::string& key, const Node& value, const Mark& k) {
-                 if (key == "enabled") {
-                     if (const auto b = boolean(value, key, k)) section.enabled = *b;
-                 } else if (key == "max_mb") {
-                     // A journal smaller than a megabyte would drop history at once.
-                     if (const auto n = integer<std::uint64_t>(value, key, k, 1, 1ull << 30)) {
-                         section.max_mb = *n;
-                     }
-                 } else if (key == "replay_rate") {
-                     if (const auto n = integer<std::uint32_t>(value, key, k, 1, 1000000)) {
-                         section.replay_rate = *n;
-                     }
-                 } else if (key == "fsync_interval_ms") {
-                     if (const auto n = integer<std::uint32_t>(value, key, k, 10, 3600000)) {
-                         section.fsync_interval = std::chrono::milliseconds(*n);
-                     }
-                 }
-             });
+    config.mqtt.marks = read_keys(node, at, "mqtt", "in mqtt", mqtt_readers, config.mqtt);
 }
 
 void Loader::read_eip(const Node& node, const Mark& at, Config& config) {
@@ -194,37 +235,14 @@ void Loader::read_eip(const Node& node, const Mark& at, Config& config) {
 }
 
 void Loader::read_metrics(const Node& node, const Mark& at, Config& config) {
-    config.metrics.marks = walk(node, at, "metrics", "in metrics", metrics_keys,
-                                [&](const std::string& key, const Node& value, const Mark& k) {
-                                    const auto s = text(value, key, k);
-                                    if (!s || s->empty()) return;
-                                    if (!valid_host_port(*s, true)) {
-                                        error(k, "listen " + in_quotes(*s) + " is not host:port");
-                                        return;
-                                    }
-                                    config.metrics.listen = *s;
-                                });
+    config.metrics.marks =
+        read_keys(node, at, "metrics", "in metrics", metrics_readers, config.metrics);
 }
 
 void Loader::read_sparkplug(const Node& node, const Mark& at, Config& config) {
     auto& sparkplug = config.sparkplug;
     sparkplug.marks =
-        walk(node, at, "sparkplug", "in sparkplug", sparkplug_keys,
-             [&](const std::string& key, const Node& value, const Mark& k) {
-                 if (key == "uns") {
-                     if (const auto b = boolean(value, key, k)) sparkplug.uns = *b;
-                 } else if (key == "qos") {
-                     if (const auto n = integer<int>(value, key, k, 0, 1)) sparkplug.qos = *n;
-                 } else if (key == "max_packet_bytes") {
-                     // MQTT's own limit is 268,435,460 bytes; 0: none of ours.
-                     if (const auto n = integer<long long>(value, key, k, 0, 268435460LL))
-                         sparkplug.max_packet_bytes = static_cast<std::size_t>(*n);
-                 } else if (const auto s = text(value, key, k)) {
-                     if (key == "group_id") sparkplug.group_id = *s;
-                     if (key == "edge_node_id") sparkplug.edge_node_id = *s;
-                     if (key == "primary_host_id") sparkplug.primary_host_id = *s;
-                 }
-             });
+        read_keys(node, at, "sparkplug", "in sparkplug", sparkplug_readers, sparkplug);
     if (!node.is_null() && node.is_defined() && sparkplug.group_id.empty() &&
         !sparkplug.marks.contains("group_id")) {
         error(sparkplug.marks.node, "sparkplug lacks 'group_id' (required to enable Sparkplug B)");

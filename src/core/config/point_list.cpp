@@ -195,72 +195,106 @@ std::optional<PointRow> read_row(const std::vector<Field>& fields, const ColumnI
     return row;
 }
 
+/// The header row's columns; nullopt, with the error added, when it lacks one.
+std::optional<ColumnIndex> header_of(const std::vector<Field>& fields, const Mark& at,
+                                     Diagnostics& errors) {
+    ColumnIndex index{};
+    const auto missing = read_header(fields, index);
+    if (missing.empty()) return index;
+    errors.push_back({at, "point list header lacks column(s) " + missing +
+                              " (expected TagName, Node, Address, DataType, AccessType)"});
+    return std::nullopt;
+}
+
+/// Adds the data row of `fields` to `list`, or its errors.
+void add_row(const std::vector<Field>& fields, const ColumnIndex& index, const FileName& file,
+             int line_number, PointList& list) {
+    const std::size_t needed = *std::max_element(index.begin(), index.end()) + 1;
+    if (fields.size() < needed) {
+        list.errors.push_back({Mark{file, line_number, 1},
+                               "row has " + std::to_string(fields.size()) +
+                                   " fields, expected at least " + std::to_string(needed)});
+        return;
+    }
+    if (auto row = read_row(fields, index, file, line_number, list.errors)) {
+        list.rows.push_back(std::move(*row));
+    }
+}
+
+/// The lines of a point list, numbered from 1, without their line end (LF or CRLF), the first
+/// without its byte order mark.
+class Lines {
+public:
+    explicit Lines(std::string_view text) : text_(text) {}
+
+    /// The next line; false after the last.
+    bool next(std::string_view& line) {
+        if (pos_ >= text_.size()) return false;
+        auto end = text_.find('\n', pos_);
+        if (end == std::string_view::npos) end = text_.size();
+        line = text_.substr(pos_, end - pos_);
+        pos_ = end + 1;
+        ++number_;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        if (number_ == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
+        return true;
+    }
+
+    /// The number of the line next() gave last; 0 before the first.
+    int number() const { return number_; }
+
+    /// Skips the other lines of a record whose quoted field is still open at the end of the
+    /// current line; returns the number of the line where the quote closes, 0 when none does.
+    int skip_open_record() {
+        const auto rest = follow_quote(text_, pos_);
+        const int closed_at = rest.closed_at > 0 ? number_ + rest.closed_at : 0;
+        pos_ = rest.next;
+        number_ += rest.lines;
+        return closed_at;
+    }
+
+private:
+    std::string_view text_;
+    std::size_t pos_ = 0;
+    int number_ = 0;
+};
+
+/// A record goes on until its quote closes (CSV's rule): its other lines are not rows of their
+/// own, which they would be reported as.
+void skip_open_record(Lines& lines, const Mark& at, Diagnostics& errors) {
+    if (const int closed_at = lines.skip_open_record(); closed_at > 0) {
+        errors.push_back({at, "a quoted field runs past the end of the line, to line " +
+                                  std::to_string(closed_at) +
+                                  " (newlines inside fields are not supported)"});
+    } else {
+        errors.push_back(
+            {at, "unterminated quoted field (no closing quote before the end of the file)"});
+    }
+}
+
 }  // namespace
 
 PointList parse_point_list(std::string_view text, const FileName& file) {
     PointList list;
-    ColumnIndex index{};
-    bool have_header = false;
-    int line_number = 0;
-    std::size_t pos = 0;
-    std::vector<Field> fields;
     list.rows.reserve(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')));
-    while (pos < text.size()) {
-        auto end = text.find('\n', pos);
-        if (end == std::string_view::npos) end = text.size();
-        std::string_view line = text.substr(pos, end - pos);
-        pos = end + 1;
-        ++line_number;
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        if (line_number == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);  // BOM
+    Lines lines(text);
+    std::vector<Field> fields;
+    std::optional<ColumnIndex> header;
+    std::string_view line;
+    while (lines.next(line)) {
         const auto trimmed = trim(line);
         if (trimmed.empty() || trimmed.front() == '#') continue;
-
-        const auto row_mark = [&] { return Mark{file, line_number, 1}; };
         if (int open_quote = 1; !split(line, fields, open_quote)) {
-            // The record goes on until its quote closes (CSV's rule): its other lines are not
-            // rows of their own, which they would be reported as.
-            const auto rest = follow_quote(text, pos);
-            const Mark at{file, line_number, open_quote};
-            if (rest.closed_at > 0) {
-                list.errors.push_back(
-                    {at, "a quoted field runs past the end of the line, to line " +
-                             std::to_string(line_number + rest.closed_at) +
-                             " (newlines inside fields are not supported)"});
-            } else {
-                list.errors.push_back(
-                    {at,
-                     "unterminated quoted field (no closing quote before the end of the file)"});
-            }
-            pos = rest.next;
-            line_number += rest.lines;
-            continue;
-        }
-
-        if (!have_header) {
-            have_header = true;
-            if (const auto missing = read_header(fields, index); !missing.empty()) {
-                list.errors.push_back(
-                    {row_mark(), "point list header lacks column(s) " + missing +
-                                     " (expected TagName, Node, Address, DataType, AccessType)"});
-                return list;
-            }
-            continue;
-        }
-
-        const std::size_t needed = *std::max_element(index.begin(), index.end()) + 1;
-        if (fields.size() < needed) {
-            list.errors.push_back({row_mark(), "row has " + std::to_string(fields.size()) +
-                                                   " fields, expected at least " +
-                                                   std::to_string(needed)});
-            continue;
-        }
-        if (auto row = read_row(fields, index, file, line_number, list.errors)) {
-            list.rows.push_back(std::move(*row));
+            skip_open_record(lines, Mark{file, lines.number(), open_quote}, list.errors);
+        } else if (header) {
+            add_row(fields, *header, file, lines.number(), list);
+        } else {
+            header = header_of(fields, Mark{file, lines.number(), 1}, list.errors);
+            if (!header) return list;
         }
     }
-    if (!have_header) {
-        const Mark at{file, line_number == 0 ? 1 : line_number, 1};
+    if (!header) {
+        const Mark at{file, lines.number() == 0 ? 1 : lines.number(), 1};
         list.errors.push_back({at, "point list is empty (no header row)"});
     }
     return list;

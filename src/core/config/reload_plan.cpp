@@ -82,10 +82,6 @@ void compare_exchange(Collector& out, const plan::ExchangePlan& a, const plan::E
 
 }  // namespace
 
-std::string_view to_string(ReloadRule rule) {
-    return rule == ReloadRule::live ? "live" : "restart";
-}
-
 std::string ReloadPlan::describe(ReloadRule rule) const {
     std::string text;
     for (const auto& change : changes) {

@@ -32,22 +32,6 @@ bool times_out(ConsumeState state) {
 
 }  // namespace
 
-std::string_view to_string(ConsumeState state) {
-    switch (state) {
-        case ConsumeState::waiting:
-            return "waiting";
-        case ConsumeState::ok:
-            return "ok";
-        case ConsumeState::stale:
-            return "stale";
-        case ConsumeState::signature_mismatch:
-            return "signature_mismatch";
-        case ConsumeState::length_mismatch:
-            return "length_mismatch";
-    }
-    return "unknown";
-}
-
 ConsumedExchange::ConsumedExchange(const plan::ExchangePlan& plan)
     : length_(plan.length),
       timeout_(plan.timeout),
@@ -62,75 +46,89 @@ bool ConsumedExchange::accepts_source(std::uint32_t address) {
     return false;
 }
 
-ConsumeOutcome ConsumedExchange::on_datagram(const wire::Datagram& datagram, MonoTime now) {
-    ++counters_.received;
-    const ConsumeState before = state_;
-    const auto drop = [&](wire::DropReason reason) {
-        return ConsumeOutcome{reason, state_ != before};
-    };
-    // A mismatch leaves the sequence unknown: the next accepted datagram resynchronises.
-    const auto mismatch = [&](ConsumeState state, wire::DropReason reason) {
-        state_ = state;
-        resync_ = true;
-        timer_start_ = now;
-        return drop(reason);
-    };
-
-    const wire::Header& header = datagram.header;
-    const auto received = wire::Signature::from_wire(header.signature);
-
+// The steps of on_datagram, inline: the data path pays no call for them.
+inline std::optional<wire::DropReason> ConsumedExchange::check_form(const wire::Datagram& datagram,
+                                                                    wire::Signature received,
+                                                                    MonoTime now) {
     // §4 rule 4.
     if (!compatible(signature_, received)) {
         ++counters_.signature_mismatches;
-        return mismatch(ConsumeState::signature_mismatch, wire::DropReason::signature_mismatch);
+        return mismatch(ConsumeState::signature_mismatch, wire::DropReason::signature_mismatch,
+                        now);
     }
-
     // §4 rule 5.
     const std::size_t size = datagram.data.size();
     if (size == 0) {
         ++counters_.no_data;
-        return drop(wire::DropReason::no_data);
+        return wire::DropReason::no_data;
     }
     if (size != length_ && !(size > length_ && may_append(signature_, received))) {
         ++counters_.length_mismatches;
-        return mismatch(ConsumeState::length_mismatch, wire::DropReason::length_mismatch);
+        return mismatch(ConsumeState::length_mismatch, wire::DropReason::length_mismatch, now);
     }
+    return std::nullopt;
+}
 
+inline wire::DropReason ConsumedExchange::mismatch(ConsumeState state, wire::DropReason reason,
+                                                   MonoTime now) {
+    state_ = state;
+    resync_ = true;
+    timer_start_ = now;
+    return reason;
+}
+
+inline std::optional<wire::DropReason> ConsumedExchange::check_sequence(const wire::Header& header,
+                                                                        wire::Signature received) {
     // §4 rule 6: a new signature resynchronises, as do start-up, timeout and mismatches.
     if (has_image_ && wire::Signature::from_wire(last_header_.signature) != received) {
         resync_ = true;
     }
-    if (!resync_) {
-        const auto d = static_cast<std::uint16_t>(header.request_id - last_header_.request_id);
-        if (d == 0) {
-            // Proves the producer alive, but is no new sample: the update timer keeps running.
-            ++counters_.duplicates;
-            return drop(wire::DropReason::duplicate);
-        }
-        if (d >= 32768) {
-            // §4 rule 6: late or out of order, unless the producer restarted: its request ids
-            // start again while its clock goes on. Resynchronise at once, counting no missed
-            // datagrams across the restart (there were none).
-            if (!time_moved_forward(last_header_, header)) {
-                ++counters_.out_of_order;
-                return drop(wire::DropReason::out_of_order);
-            }
-            ++counters_.restarts;
-        } else {
-            counters_.missed += d - 1U;
-        }
+    if (resync_) return std::nullopt;
+    const auto d = static_cast<std::uint16_t>(header.request_id - last_header_.request_id);
+    if (d == 0) {
+        // Proves the producer alive, but is no new sample: the update timer keeps running.
+        ++counters_.duplicates;
+        return wire::DropReason::duplicate;
     }
+    if (d >= 32768) {
+        // §4 rule 6: late or out of order, unless the producer restarted: its request ids
+        // start again while its clock goes on. Resynchronise at once, counting no missed
+        // datagrams across the restart (there were none).
+        if (!time_moved_forward(last_header_, header)) {
+            ++counters_.out_of_order;
+            return wire::DropReason::out_of_order;
+        }
+        ++counters_.restarts;
+    } else {
+        counters_.missed += d - 1U;
+    }
+    return std::nullopt;
+}
 
+inline void ConsumedExchange::accept(const wire::Datagram& datagram, MonoTime now) {
     // §4 rule 7.
     image_.assign(datagram.data.begin(),
                   datagram.data.begin() + static_cast<std::ptrdiff_t>(length_));
     has_image_ = true;
-    last_header_ = header;
+    last_header_ = datagram.header;
     last_accepted_ = now;
     timer_start_ = now;
     resync_ = false;
     state_ = ConsumeState::ok;
     ++counters_.accepted;
+}
+
+ConsumeOutcome ConsumedExchange::on_datagram(const wire::Datagram& datagram, MonoTime now) {
+    ++counters_.received;
+    const ConsumeState before = state_;
+    const auto received = wire::Signature::from_wire(datagram.header.signature);
+    if (const auto reason = check_form(datagram, received, now)) {
+        return ConsumeOutcome{*reason, state_ != before};
+    }
+    if (const auto reason = check_sequence(datagram.header, received)) {
+        return ConsumeOutcome{*reason, state_ != before};
+    }
+    accept(datagram, now);
     return ConsumeOutcome{std::nullopt, state_ != before};
 }
 

@@ -2,18 +2,6 @@
 
 namespace eip2mqtt::core::exchange {
 
-std::string_view to_string(ClockState state) {
-    switch (state) {
-        case ClockState::none:
-            return "none";
-        case ClockState::synced:
-            return "synced";
-        case ClockState::unsynced:
-            return "unsynced";
-    }
-    return "unknown";
-}
-
 ProducerClock::ProducerClock(plan::TimestampSource source, std::chrono::milliseconds tolerance)
     : source_(source), tolerance_(tolerance) {}
 

@@ -4,20 +4,6 @@
 
 namespace eip2mqtt::core::exchange {
 
-std::string_view to_string(DestinationKind kind) {
-    switch (kind) {
-        case DestinationKind::unknown:
-            return "unknown";
-        case DestinationKind::unicast:
-            return "unicast";
-        case DestinationKind::broadcast:
-            return "broadcast";
-        case DestinationKind::multicast:
-            return "multicast";
-    }
-    return "unknown";
-}
-
 Destination classify_destination(std::uint32_t address,
                                  std::span<const std::uint32_t> broadcast_addresses) {
     if (address == 0) return {};

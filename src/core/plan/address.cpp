@@ -1,21 +1,10 @@
 #include "eip2mqtt/core/plan/address.hpp"
 
-#include <charconv>
+#include "core/detail/parse_decimal.hpp"
 
 namespace eip2mqtt::core::plan {
-namespace {
 
-template <class T>
-bool parse_decimal(std::string_view text, T& out) {
-    if (text.empty()) return false;
-    for (char c : text) {
-        if (c < '0' || c > '9') return false;
-    }
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-    return ec == std::errc{} && end == text.data() + text.size();
-}
-
-}  // namespace
+using core::detail::parse_decimal;
 
 std::optional<Address> parse_address(std::string_view text) {
     Address address;

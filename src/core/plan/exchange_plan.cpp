@@ -26,26 +26,6 @@ std::uint16_t resolved_length(const ExchangeSpec& spec) {
         std::min<std::size_t>(end, std::numeric_limits<std::uint16_t>::max()));
 }
 
-std::string_view to_string(TimestampSource source) {
-    switch (source) {
-        case TimestampSource::automatic:
-            return "auto";
-        case TimestampSource::producer:
-            return "producer";
-        case TimestampSource::receive:
-            return "receive";
-    }
-    return "unknown";
-}
-
-std::optional<TimestampSource> parse_timestamp_source(std::string_view text) {
-    for (const auto source :
-         {TimestampSource::automatic, TimestampSource::producer, TimestampSource::receive}) {
-        if (text == to_string(source)) return source;
-    }
-    return std::nullopt;
-}
-
 ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic,
                                 const ExchangeDefaults& defaults) {
     ExchangePlan plan;

@@ -46,30 +46,6 @@ std::optional<TagType> parse_tag_type(std::string_view name, TypeNaming naming) 
     return std::nullopt;
 }
 
-std::string_view to_string(TagType type) {
-    switch (type) {
-        case TagType::bit:
-            return "bit";
-        case TagType::byte:
-            return "byte";
-        case TagType::int_:
-            return "int";
-        case TagType::word:
-            return "word";
-        case TagType::dint:
-            return "dint";
-        case TagType::udint:
-            return "udint";
-        case TagType::real:
-            return "real";
-        case TagType::lint:
-            return "lint";
-        case TagType::lreal:
-            return "lreal";
-    }
-    return "?";
-}
-
 std::size_t size_of(TagType type) {
     switch (type) {
         case TagType::bit:

@@ -2,18 +2,6 @@
 
 namespace eip2mqtt::core::quality {
 
-std::string_view to_string(Quality quality) {
-    switch (quality) {
-        case Quality::good:
-            return "good";
-        case Quality::stale:
-            return "stale";
-        case Quality::bad:
-            return "bad";
-    }
-    return "bad";
-}
-
 std::optional<Quality> quality_of(exchange::ConsumeState state) {
     using exchange::ConsumeState;
     switch (state) {

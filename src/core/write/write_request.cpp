@@ -149,48 +149,6 @@ std::partial_ordering compare(const plan::Value& value, const WriteInput& input,
 
 }  // namespace
 
-std::string_view to_string(WriteError error) {
-    switch (error) {
-        case WriteError::malformed:
-            return "malformed";
-        case WriteError::unknown_tag:
-            return "unknown_tag";
-        case WriteError::read_only:
-            return "read_only";
-        case WriteError::wrong_type:
-            return "wrong_type";
-        case WriteError::not_integer:
-            return "not_integer";
-        case WriteError::below_min:
-            return "below_min";
-        case WriteError::above_max:
-            return "above_max";
-        case WriteError::out_of_range:
-            return "out_of_range";
-        case WriteError::not_finite:
-            return "not_finite";
-        case WriteError::retained:
-            return "retained";
-        case WriteError::expired:
-            return "expired";
-        case WriteError::queue_full:
-            return "queue_full";
-        case WriteError::empty:
-            return "empty";
-        case WriteError::rate_limited:
-            return "rate_limited";
-        case WriteError::bad_response_topic:
-            return "bad_response_topic";
-        case WriteError::too_large:
-            return "too_large";
-        case WriteError::overlapping_tags:
-            return "overlapping_tags";
-        case WriteError::offline:
-            return "offline";
-    }
-    return "unknown";
-}
-
 Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
                                                    const WriteInput& input) {
     if (!tag.writable) return fail(reject(WriteError::read_only, "tag is read-only"));

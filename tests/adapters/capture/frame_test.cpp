@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "tests/support/enumerators.hpp"
+
 namespace eip2mqtt::adapters::capture {
 namespace {
 
@@ -122,6 +124,8 @@ TEST(CaptureFrame, SaysWhyAFrameHasNoDatagram) {
     EXPECT_EQ(skip(link::linux_sll, Bytes(10, std::byte{0})), "malformed");
     EXPECT_EQ(skip(link::raw, {}), "not_ipv4");
 }
+
+TEST(FrameSkip, EveryReasonHasAName) { test::expect_every_value_named(frame_skip_names); }
 
 }  // namespace
 }  // namespace eip2mqtt::adapters::capture

@@ -1,4 +1,4 @@
-// The store-and-forward journal (issue #16) on a real SQLite file: entries come back oldest
+// The store-and-forward journal on a real SQLite file: entries come back oldest
 // first and resume after an id, survive a reopen, are deleted once acknowledged, the bound drops
 // the oldest and counts them, and a damaged or foreign file is set aside. A full disk (a real
 // tmpfs) and a symbolic link are in journal_full_disk_test.cpp.

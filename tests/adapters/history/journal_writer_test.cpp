@@ -1,4 +1,4 @@
-// The journal's writer thread (issue #16): batches handed over are appended in order, one after
+// The journal's writer thread: batches handed over are appended in order, one after
 // the other, flush() waits for them, with() sees only whole batches, and the destructor leaves
 // everything committed on disk.
 

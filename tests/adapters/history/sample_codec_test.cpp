@@ -1,4 +1,4 @@
-// The journal's sample encoding (issue #16): every value kind comes back as it went in, small
+// The journal's sample encoding: every value kind comes back as it went in, small
 // values stay small, and bytes that are not an encoding of ours are an error, never a crash.
 
 #include "eip2mqtt/adapters/history/sample_codec.hpp"

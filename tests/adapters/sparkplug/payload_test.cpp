@@ -1,4 +1,4 @@
-// Sparkplug B payloads (issue #15): each EGD type maps to its Sparkplug datatype, what we encode
+// Sparkplug B payloads: each EGD type maps to its Sparkplug datatype, what we encode
 // is read back by Eclipse Tahu's own decoder (an implementation we did not write), commands are
 // read by datatype, and hostile bytes give an error, never a crash.
 

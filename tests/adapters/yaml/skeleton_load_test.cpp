@@ -1,4 +1,4 @@
-// What `sniff --yaml` writes loads as it is (issue #13): the skeleton of an unconfigured
+// What `sniff --yaml` writes loads as it is: the skeleton of an unconfigured
 // exchange, under a configuration's other sections, is a valid configuration whose exchange
 // carries what was measured, and an exchange without tags is valid however `tags` is left out.
 

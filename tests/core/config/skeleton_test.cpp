@@ -1,4 +1,4 @@
-// yaml_skeleton (issue #13, `sniff --yaml`): the exact YAML of unconfigured exchanges.
+// yaml_skeleton (`sniff --yaml`): the exact YAML of unconfigured exchanges.
 
 #include "eip2mqtt/core/config/skeleton.hpp"
 

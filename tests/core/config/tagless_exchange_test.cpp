@@ -1,4 +1,4 @@
-// An exchange with no tags yet (issue #13): valid as long as its length is known, so that the
+// An exchange with no tags yet: valid as long as its length is known, so that the
 // skeleton `sniff --yaml` writes passes `check` and the gateway publishes its `_status` before
 // the byte map is known.
 

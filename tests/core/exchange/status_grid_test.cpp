@@ -1,4 +1,4 @@
-// StatusGrid (issue #17): each exchange's periodic `_status` at its own phase of the second, so
+// StatusGrid: each exchange's periodic `_status` at its own phase of the second, so
 // that exchanges started together do not all report in one tick.
 
 #include "eip2mqtt/core/exchange/status_grid.hpp"

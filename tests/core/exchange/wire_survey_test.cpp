@@ -1,4 +1,4 @@
-// WireSurvey (issue #13, `sniff --yaml`): what the wire shows of an unconfigured exchange,
+// WireSurvey (`sniff --yaml`): what the wire shows of an unconfigured exchange,
 // with injected receive times.
 
 #include "eip2mqtt/core/exchange/wire_survey.hpp"

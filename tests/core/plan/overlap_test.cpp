@@ -1,4 +1,4 @@
-// Which tags share bits (docs/protocol.md "Point lists"; issue #13): a word and its bits, a dint
+// Which tags share bits (docs/protocol.md "Point lists"): a word and its bits, a dint
 // and its halves, and the bounded listing `check` relies on.
 
 #include "eip2mqtt/core/plan/overlap.hpp"

@@ -14,7 +14,8 @@ TagSpec pressure() {
 }
 
 TEST(TagSpec, FitsSixtyFourBytes) {
-    // One per tag, 100,000 in a large plant (#6): 64 bytes, not 152, is 8.8 MB less.
+    // One per tag, 100,000 in a large plant (see
+    // docs/decisions/0001-configurations-of-100000-tags.md).
     EXPECT_LE(sizeof(TagSpec), 64u);
     EXPECT_EQ(sizeof(TagPlan), sizeof(TagSpec));
 }

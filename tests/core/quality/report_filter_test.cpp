@@ -168,7 +168,8 @@ TEST(ReportFilter, EveryQualityIsRecorded) {
 }
 
 TEST(ReportFilter, FitsThirtyTwoBytes) {
-    // One per consumed tag, 100,000 in a large plant (#6): 32 bytes, not 56, is 2.4 MB less.
+    // One per consumed tag, 100,000 in a large plant (see
+    // docs/decisions/0001-configurations-of-100000-tags.md).
     EXPECT_LE(sizeof(ReportFilter), 32u);
 }
 

@@ -7,6 +7,7 @@
 #include <span>
 #include <string_view>
 
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/result.hpp"
 
 namespace eip2mqtt::adapters::capture {
@@ -42,7 +43,11 @@ enum class FrameSkip {
     fragment,   ///< an IP fragment: only whole datagrams are decoded
     malformed,  ///< headers shorter than they must be or lengths that contradict each other
 };
-std::string_view to_string(FrameSkip skip);
+
+inline constexpr auto frame_skip_names =
+    core::enum_names<FrameSkip>("unknown_link", "not_ipv4", "not_udp", "fragment", "malformed");
+
+constexpr std::string_view to_string(FrameSkip skip) { return frame_skip_names.name_of(skip); }
 
 /// Decodes `frame`, captured on a link of `link_type`.
 core::Result<UdpFrame, FrameSkip> decode_frame(int link_type, std::span<const std::byte> frame);

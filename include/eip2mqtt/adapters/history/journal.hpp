@@ -1,5 +1,5 @@
 #pragma once
-/// The store-and-forward journal (issue #16): what the exchanges brought while the broker was
+/// The store-and-forward journal: what the exchanges brought while the broker was
 /// out of reach, on disk, in arrival order, until the broker acknowledged its replay. SQLite in
 /// WAL mode: an entry is written by the commit that ends its write() (it then survives the
 /// process being killed), and made durable against power loss by the next durable write,

@@ -1,7 +1,7 @@
 #pragma once
-/// Appends to the store-and-forward journal off the loop (issue #16). An SQLite insert costs a
-/// few microseconds: done on the loop for every datagram of an outage, it took 13 % of the loop
-/// at 80,000 datagrams a second, more than the 10 % the journal may cost. The loop hands over
+/// Appends to the store-and-forward journal off the loop. An SQLite insert costs a few
+/// microseconds: done on the loop for every datagram of an outage, it took more of the loop than
+/// the journal may cost (docs/decisions/0002-journal-appends-off-the-loop.md). The loop hands over
 /// each tick's entries at once; one worker thread appends and commits them, in order. The loop's
 /// other uses of the journal (the replay's reads and deletions, figures) go through with(),
 /// under the same lock, between two of the worker's batches.

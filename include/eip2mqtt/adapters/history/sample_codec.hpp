@@ -1,5 +1,5 @@
 #pragma once
-/// The samples of one journal entry as bytes (issue #16): for each tag, its index in the
+/// The samples of one journal entry as bytes: for each tag, its index in the
 /// exchange and its value, compactly, since an outage of hours journals millions of them. The
 /// index means something only with the exchange's layout, which the journal keeps beside it.
 ///

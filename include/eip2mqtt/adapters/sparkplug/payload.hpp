@@ -1,5 +1,5 @@
 #pragma once
-/// Sparkplug B payloads (issue #15), in our terms: what the gateway puts in a birth or a data
+/// Sparkplug B payloads, in our terms: what the gateway puts in a birth or a data
 /// message, and what a host's command asks, encoded and decoded with protobuf. Decoding never
 /// throws: hostile bytes give an error text.
 

@@ -1,5 +1,5 @@
 #pragma once
-/// Saves produced images off the loop (issue #6). ImageFile::save syncs the file to the disk,
+/// Saves produced images off the loop. ImageFile::save syncs the file to the disk,
 /// which takes milliseconds: done on the loop, it would delay the datagrams of every other
 /// exchange by as much. One worker thread saves instead, and each completion comes back to the
 /// loop, where the write results waiting for it are published (docs/mqtt-api.md "Results": a

@@ -1,5 +1,5 @@
 #pragma once
-/// Persisted produced images (issue #3): one file per produced exchange in `state_dir`
+/// Persisted produced images: one file per produced exchange in `state_dir`
 /// (ImageFile), so a restart keeps producing the last written values rather than zeros. A file
 /// carries a layout fingerprint: a file written for another layout (length, tag addresses or
 /// types) is ignored, so `initial` values apply instead.

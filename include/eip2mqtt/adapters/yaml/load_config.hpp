@@ -11,9 +11,10 @@
 
 namespace eip2mqtt::adapters::yaml {
 
-/// The largest configuration file or point list read: 64 MiB, over ten times the 5.4 MB of a
-/// plant of 100,000 inline tags. Only regular files are read (a directory, a FIFO or /dev/zero
-/// named by mistake is a diagnostic, not a crash, a hang or unbounded memory).
+/// The largest configuration file or point list read: 64 MiB, over ten times what a plant of
+/// 100,000 inline tags writes (docs/decisions/0001-configurations-of-100000-tags.md). Only regular
+/// files are read (a directory, a FIFO or /dev/zero named by mistake is a diagnostic, not a crash,
+/// a hang or unbounded memory).
 inline constexpr std::size_t max_file_bytes = std::size_t{64} << 20;
 
 /// Loads and validates `path`. Fails with every diagnostic (syntax, unknown keys, bad values,

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "eip2mqtt/core/config/diagnostic.hpp"
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 
 namespace eip2mqtt::core::config {
@@ -19,7 +20,8 @@ namespace eip2mqtt::core::config {
 struct Marks {
     Mark node;
     /// Each key written, with its mark, in document order. A mapping has a handful of keys, so
-    /// a flat vector: one heap block where a std::map took one per key (100,000 tags, #6).
+    /// a flat vector: one heap block where a std::map took one per key (100,000 tags: see
+    /// docs/decisions/0001-configurations-of-100000-tags.md).
     std::vector<std::pair<std::string, Mark>> keys;
 
     /// The key's mark, or the node's when the key was not written.
@@ -58,7 +60,9 @@ struct TlsSection {
 
 enum class PayloadFormat : std::uint8_t { json, raw };
 
-/// `mqtt.store_and_forward` (issue #16): while the broker is out of reach, what the exchanges
+inline constexpr auto payload_format_names = enum_names<PayloadFormat>("json", "raw");
+
+/// `mqtt.store_and_forward`: while the broker is out of reach, what the exchanges
 /// bring is journaled on disk, then replayed on `{exchange}/_history` once it is back.
 struct StoreAndForwardSection {
     bool enabled = false;
@@ -125,7 +129,7 @@ struct MetricsSection {
     Marks marks;
 };
 
-/// `sparkplug:` (issue #15): the gateway as a Sparkplug B edge node, beside the JSON tree.
+/// `sparkplug:`: the gateway as a Sparkplug B edge node, beside the JSON tree.
 struct SparkplugSection {
     std::string group_id;      ///< empty: Sparkplug is off
     std::string edge_node_id;  ///< default: gateway.id

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/enum_names.hpp"
 
 namespace eip2mqtt::core::config {
 
@@ -23,6 +24,10 @@ enum class ReloadRule : std::uint8_t {
     /// that changes it is refused whole, and nothing of it is applied.
     restart,
 };
+
+inline constexpr auto reload_rule_names = enum_names<ReloadRule>("live", "restart");
+
+constexpr std::string_view to_string(ReloadRule rule) { return reload_rule_names.name_of(rule); }
 
 /// One key of a mapping whose values `Of` holds.
 template <class Of>

@@ -12,8 +12,9 @@ namespace eip2mqtt::core::config {
 
 /// The name of a configuration file, shared by every Mark made in it: a path is longer than
 /// std::string's inline buffer, and a configuration of 100,000 tags or point-list rows holds a
-/// mark for each (issue #6: a heap copy per mark was a tenth of start-up). Names are interned
-/// for the life of the process (a gateway reads a handful of files), so a copy is a pointer.
+/// mark for each: a heap copy per mark weighed on start-up (see
+/// docs/decisions/0001-configurations-of-100000-tags.md). Names are interned for the life of the
+/// process (a gateway reads a handful of files), so a copy is a pointer.
 ///
 /// Threading: any; interning takes a lock, reading does not.
 class FileName {

@@ -15,8 +15,6 @@
 
 namespace eip2mqtt::core::config {
 
-std::string_view to_string(ReloadRule rule);
-
 struct KeyChange {
     enum class Kind : std::uint8_t { changed, added, removed };
 

@@ -1,5 +1,5 @@
 #pragma once
-/// From the wire to a configuration (issue #13, `sniff --yaml`): the YAML of consumed exchanges
+/// From the wire to a configuration (`sniff --yaml`): the YAML of consumed exchanges
 /// that were seen on the wire but are not configured, one per summary, as an `exchanges:` list
 /// the loader accepts and `check` passes as it is (no tags yet: the gateway then publishes only
 /// the exchange's `_status`). Keys carry what the configuration has a key for (producer_id,

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
@@ -24,7 +25,12 @@ enum class ConsumeState : std::uint8_t {
     length_mismatch,     ///< the last datagram's length differs from the configured one
 };
 
-std::string_view to_string(ConsumeState state);
+inline constexpr auto consume_state_names =
+    enum_names<ConsumeState>("waiting", "ok", "stale", "signature_mismatch", "length_mismatch");
+
+constexpr std::string_view to_string(ConsumeState state) {
+    return consume_state_names.name_of(state);
+}
 
 struct ConsumeCounters {
     std::uint64_t received = 0;  ///< datagrams for this exchange, whatever became of them
@@ -85,6 +91,19 @@ public:
     std::optional<MonoTime> last_accepted() const { return last_accepted_; }
 
 private:
+    /// Rules 4 and 5: the reason to drop a datagram (signed `received`) of another signature
+    /// or length.
+    std::optional<wire::DropReason> check_form(const wire::Datagram& datagram,
+                                               wire::Signature received, MonoTime now);
+    /// Rule 6: the reason to drop a datagram that is no new sample.
+    std::optional<wire::DropReason> check_sequence(const wire::Header& header,
+                                                   wire::Signature received);
+    /// A mismatch of signature or length: the exchange turns `state`, and the sequence is
+    /// unknown until the next accepted datagram resynchronises it.
+    wire::DropReason mismatch(ConsumeState state, wire::DropReason reason, MonoTime now);
+    /// Rule 7: takes the datagram's data as the image.
+    void accept(const wire::Datagram& datagram, MonoTime now);
+
     std::size_t length_;
     std::chrono::milliseconds timeout_;
     wire::Signature signature_;

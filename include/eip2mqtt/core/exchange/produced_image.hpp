@@ -1,6 +1,6 @@
 #pragma once
 /// The image of one produced exchange: its data bytes, the request id counter, and the queue of
-/// accepted writes waiting for the next production (docs/protocol.md §5; issue #3). Writes are
+/// accepted writes waiting for the next production (docs/protocol.md §5). Writes are
 /// applied only between two productions, whole batches at a time, so one datagram never
 /// carries half a multi-tag write. Pure: time is passed in.
 

@@ -1,6 +1,6 @@
 #pragma once
-/// Which time a consumed exchange's tags carry, and whether the producer's clock can be trusted
-/// (issue #13). A PLC without time synchronisation stamps its datagrams with its own clock (a
+/// Which time a consumed exchange's tags carry, and whether the producer's clock can be trusted.
+/// A PLC without time synchronisation stamps its datagrams with its own clock (a
 /// real capture reads the year 2000): published as is, a historian would file live values
 /// decades in the past. Pure: the receive time is passed in.
 
@@ -9,6 +9,7 @@
 #include <optional>
 #include <string_view>
 
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 
 namespace eip2mqtt::core::exchange {
@@ -20,7 +21,9 @@ enum class ClockState : std::uint8_t {
     unsynced,  ///< beyond it
 };
 
-std::string_view to_string(ClockState state);
+inline constexpr auto clock_state_names = enum_names<ClockState>("none", "synced", "unsynced");
+
+constexpr std::string_view to_string(ClockState state) { return clock_state_names.name_of(state); }
 
 class ProducerClock {
 public:

@@ -1,5 +1,5 @@
 #pragma once
-/// The deadlines of every produced exchange in one queue (docs/protocol.md §5; issue #6), so
+/// The deadlines of every produced exchange in one queue (docs/protocol.md §5), so
 /// one timer drives all of them instead of one timer per exchange. Built on
 /// ProductionSchedule: absolute deadlines, first sends spread over the period, missed deadlines
 /// skipped and counted when a send was more than a period late.

@@ -2,8 +2,9 @@
 /// When an exchange's periodic `_status` is due: once a second, at the exchange's own phase of
 /// the second. Consumers that started together (100 exchanges in one configuration) would
 /// otherwise all report in the same tick, a burst of retained publications ahead of the tag
-/// values that arrive with it (issue #17); 1,000 producers reporting in one handler held the
-/// loop ~25 ms, so every exchange skipped deadlines (bench scenario 7).
+/// values that arrive with it; a thousand producers reporting in one handler held the loop long
+/// enough for every exchange to skip a deadline (see
+/// docs/decisions/0003-status-on-a-grid-per-exchange.md).
 ///
 /// A periodic report keeps to the grid (two of them are a second apart, less up to one tick of
 /// lateness); a report made off the grid (a state change) pushes the next periodic one to the

@@ -1,5 +1,5 @@
 #pragma once
-/// What the wire shows of one exchange nobody has configured yet (issue #13, `sniff --yaml`):
+/// What the wire shows of one exchange nobody has configured yet (`sniff --yaml`):
 /// its length, signature, period, destination and producer clock, gathered datagram by datagram
 /// into a summary that core::config::yaml_skeleton turns into configuration. Pure: receive
 /// times and destinations are passed in.
@@ -17,6 +17,7 @@
 #include <span>
 #include <string_view>
 
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/exchange/producer_clock.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
@@ -31,7 +32,12 @@ enum class DestinationKind : std::uint8_t {
     multicast,  ///< to a group, 224.0.0.0/4
 };
 
-std::string_view to_string(DestinationKind kind);
+inline constexpr auto destination_kind_names =
+    enum_names<DestinationKind>("unknown", "unicast", "broadcast", "multicast");
+
+constexpr std::string_view to_string(DestinationKind kind) {
+    return destination_kind_names.name_of(kind);
+}
 
 struct Destination {
     DestinationKind kind = DestinationKind::unknown;

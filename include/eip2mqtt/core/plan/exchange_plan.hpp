@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/plan/tag_plan.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
@@ -15,13 +16,26 @@ namespace eip2mqtt::core::plan {
 
 enum class Direction : std::uint8_t { consume, produce };
 
+inline constexpr auto direction_names = enum_names<Direction>("consume", "produce");
+
+constexpr std::string_view to_string(Direction direction) {
+    return direction_names.name_of(direction);
+}
+
 /// Which time a consumed exchange's tags carry (core::exchange::ProducerClock): `automatic`
 /// (YAML `auto`) the producer's while its clock is within the tolerance of the receive time,
 /// `producer` the producer's whenever the datagram has one, `receive` always the receive time.
 enum class TimestampSource : std::uint8_t { automatic, producer, receive };
 
-std::string_view to_string(TimestampSource source);
-std::optional<TimestampSource> parse_timestamp_source(std::string_view text);
+inline constexpr auto timestamp_source_names =
+    enum_names<TimestampSource>("auto", "producer", "receive");
+
+constexpr std::string_view to_string(TimestampSource source) {
+    return timestamp_source_names.name_of(source);
+}
+constexpr std::optional<TimestampSource> parse_timestamp_source(std::string_view text) {
+    return timestamp_source_names.parse(text);
+}
 
 /// What an exchange takes from the gateway section unless it says otherwise.
 struct ExchangeDefaults {

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string_view>
 
+#include "eip2mqtt/core/enum_names.hpp"
+
 namespace eip2mqtt::core::plan {
 
 /// The wire types. Every value is little-endian and may start at any byte offset.
@@ -30,8 +32,11 @@ enum class TypeNaming {
 /// Parses a type name; nullopt when unknown.
 std::optional<TagType> parse_tag_type(std::string_view name, TypeNaming naming);
 
-/// The canonical §3 name (`int`, `udint`...).
-std::string_view to_string(TagType type);
+/// The canonical §3 names (`int`, `udint`...).
+inline constexpr auto tag_type_names =
+    enum_names<TagType>("bit", "byte", "int", "word", "dint", "udint", "real", "lint", "lreal");
+
+constexpr std::string_view to_string(TagType type) { return tag_type_names.name_of(type); }
 
 /// Size in bytes a tag of this type occupies (1 for bit: it lives in one byte).
 std::size_t size_of(TagType type);

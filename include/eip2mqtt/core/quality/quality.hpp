@@ -6,13 +6,16 @@
 #include <optional>
 #include <string_view>
 
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
 
 namespace eip2mqtt::core::quality {
 
 enum class Quality : std::uint8_t { good, stale, bad };
 
-std::string_view to_string(Quality quality);
+inline constexpr auto quality_names = enum_names<Quality>("good", "stale", "bad");
+
+constexpr std::string_view to_string(Quality quality) { return quality_names.name_of(quality); }
 
 /// The tags' quality in an exchange state; nullopt while waiting (nothing to publish yet).
 std::optional<Quality> quality_of(exchange::ConsumeState state);

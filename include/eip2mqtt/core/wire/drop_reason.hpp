@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "eip2mqtt/core/enum_names.hpp"
+
 namespace eip2mqtt::core::wire {
 
 enum class DropReason : std::uint8_t {
@@ -30,16 +32,18 @@ enum class DropReason : std::uint8_t {
     out_of_order,
 };
 
-inline constexpr std::size_t drop_reason_count = 10;
+/// snake_case names, as used in metrics and logs.
+inline constexpr auto drop_reason_names = enum_names<DropReason>(
+    "too_short", "not_data_pdu", "too_long", "unknown_exchange", "wrong_source", "no_data",
+    "signature_mismatch", "length_mismatch", "duplicate", "out_of_order");
 
-inline constexpr std::array<DropReason, drop_reason_count> all_drop_reasons{
-    DropReason::too_short,          DropReason::not_data_pdu,    DropReason::too_long,
-    DropReason::unknown_exchange,   DropReason::wrong_source,    DropReason::no_data,
-    DropReason::signature_mismatch, DropReason::length_mismatch, DropReason::duplicate,
-    DropReason::out_of_order,
-};
+inline constexpr std::size_t drop_reason_count = drop_reason_names.size();
 
-/// snake_case name, as used in metrics and logs.
-std::string_view to_string(DropReason reason);
+inline constexpr std::array<DropReason, drop_reason_count> all_drop_reasons =
+    drop_reason_names.values();
+
+constexpr std::string_view to_string(DropReason reason) {
+    return drop_reason_names.name_of(reason);
+}
 
 }  // namespace eip2mqtt::core::wire

@@ -1,5 +1,5 @@
 #pragma once
-/// Per-tag write rate limit (issue #5): a token bucket refilled at `rate` per second holding at
+/// Per-tag write rate limit: a token bucket refilled at `rate` per second holding at
 /// most one second's worth (at least one write), so a UI may send a short burst but a runaway
 /// client cannot hammer a controller's setpoint. Pure: time is passed in.
 

@@ -1,5 +1,5 @@
 #pragma once
-/// MQTT writes to produced tags (docs/mqtt-api.md "Writes"; issue #3): what a write asks for, why
+/// MQTT writes to produced tags (docs/mqtt-api.md "Writes"): what a write asks for, why
 /// one is rejected, and the validation of a value against its tag. Pure: the JSON parsing that
 /// yields a WriteInput lives in the MQTT adapter.
 
@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/tag_plan.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
@@ -47,9 +48,14 @@ enum class WriteError : std::uint8_t {
     offline,             ///< a Sparkplug DCMD while the edge node is not born
 };
 
-inline constexpr std::size_t write_error_count = 18;
+inline constexpr auto write_error_names = enum_names<WriteError>(
+    "malformed", "unknown_tag", "read_only", "wrong_type", "not_integer", "below_min", "above_max",
+    "out_of_range", "not_finite", "retained", "expired", "queue_full", "empty", "rate_limited",
+    "bad_response_topic", "too_large", "overlapping_tags", "offline");
 
-std::string_view to_string(WriteError error);
+inline constexpr std::size_t write_error_count = write_error_names.size();
+
+constexpr std::string_view to_string(WriteError error) { return write_error_names.name_of(error); }
 
 /// A rejection with the message the client gets back: `"above max 4000"`.
 struct WriteRejection {

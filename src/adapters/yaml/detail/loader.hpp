@@ -2,7 +2,8 @@
 /// The configuration loader: walks the YAML tree section by section, records the mark of every
 /// key for diagnostics, and reports every problem of the file in one run. Its reading is in
 /// three files: loader.cpp (the run and scalars), read_sections.cpp (gateway, mqtt, eip,
-/// metrics) and read_exchanges.cpp (exchanges, tags and point lists).
+/// metrics) and read_exchanges.cpp (exchanges, tags and point lists), the last two with the
+/// tables that bind each key of a mapping to its field (key_readers.hpp).
 ///
 /// Module-private to src/adapters/yaml.
 
@@ -33,29 +34,53 @@ using core::config::Diagnostic;
 using core::config::Diagnostics;
 using core::config::ExchangeConfig;
 using core::config::FileName;
+using core::config::GatewaySection;
 using core::config::in_quotes;
 using core::config::Mark;
 using core::config::Marks;
+using core::config::MetricsSection;
+using core::config::MqttSection;
+using core::config::SparkplugSection;
+using core::config::StoreAndForwardSection;
 using core::config::TagConfig;
+using core::config::TlsSection;
 using core::plan::Direction;
 using core::plan::TagType;
 
 // The keys of each mapping are those of core/config/config_keys.hpp, where each has its reload
-// rule; the top level's are the sections.
+// rule; the top level's are the sections. The mappings read through a table of key readers
+// (key_readers.hpp) take their keys from it.
 inline constexpr std::array<std::string_view, 6> top_keys{"gateway", "mqtt",      "eip",
                                                           "metrics", "sparkplug", "exchanges"};
-inline constexpr auto gateway_keys = core::config::keys::names(core::config::keys::gateway);
-inline constexpr auto mqtt_keys = core::config::keys::names(core::config::keys::mqtt);
-inline constexpr auto tls_keys = core::config::keys::names(core::config::keys::tls);
-inline constexpr auto buffer_keys = core::config::keys::names(core::config::keys::buffer);
-inline constexpr auto store_and_forward_keys =
-    core::config::keys::names(core::config::keys::store_and_forward);
 inline constexpr auto eip_keys = core::config::keys::names(core::config::keys::eip);
 inline constexpr auto multicast_keys = core::config::keys::names(core::config::keys::multicast);
-inline constexpr auto metrics_keys = core::config::keys::names(core::config::keys::metrics);
-inline constexpr auto sparkplug_keys = core::config::keys::names(core::config::keys::sparkplug);
-inline constexpr auto exchange_keys = core::config::keys::names(core::config::keys::exchange);
-inline constexpr auto tag_keys = core::config::keys::names(core::config::keys::tag);
+
+/// An exchange while its keys are read.
+struct ExchangeDraft {
+    core::plan::ExchangeSpec& spec;
+    std::string label;    ///< how messages name it
+    bool broken = false;  ///< an identity key is missing or bad: leave it out of the model
+    std::optional<Node> tags_node;
+    std::string points;
+    bool topic_written = false;
+};
+
+/// A tag while its keys are read.
+struct TagDraft {
+    core::plan::TagSpec& spec;
+    bool broken = false;  ///< a value failed to parse: leave the tag out of the model
+    std::optional<Node> initial;
+    Mark initial_mark;
+};
+
+class KeyValue;
+template <class Into, std::size_t N>
+struct KeyReaders;
+
+/// For a walk whose keys' failures leave nothing out (a section's).
+struct IgnoreFailure {
+    void operator()(std::string_view /*key*/) const {}
+};
 
 class Loader {
 public:
@@ -65,6 +90,8 @@ public:
     core::Result<Config, Diagnostics> load(const std::string& text);
 
 private:
+    friend class KeyValue;
+
     Mark mark(const YAML::Mark& m) const {
         if (m.is_null()) return {file_, 0, 0};
         return {file_, m.line + 1, m.column + 1};
@@ -83,6 +110,15 @@ private:
     template <class Where, class Handle>
     Marks walk(const Node& node, const Mark& at, const std::string& what, const Where& where,
                Keys allowed, const Handle& handle) {
+        return walk_indexed(node, at, what, where, allowed,
+                            [&](std::size_t, const std::string& key, const Node& value,
+                                const Mark& k) { handle(key, value, k); });
+    }
+
+    /// walk(), telling `handle(index, key, value, mark)` the key's index in `allowed` too.
+    template <class Where, class Handle>
+    Marks walk_indexed(const Node& node, const Mark& at, const std::string& what,
+                       const Where& where, Keys allowed, const Handle& handle) {
         const auto where_text = [&]() -> std::string {
             if constexpr (std::is_invocable_v<const Where&>) {
                 return where();
@@ -106,7 +142,8 @@ private:
                 continue;
             }
             const std::string key(key_node.scalar());
-            if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+            const auto found = std::find(allowed.begin(), allowed.end(), key);
+            if (found == allowed.end()) {
                 std::string message = "unknown key " + in_quotes(key) + " " + where_text();
                 if (const auto close = suggestion(key, allowed)) {
                     message += " (did you mean " + in_quotes(*close) + "?)";
@@ -118,10 +155,17 @@ private:
                 error(key_mark, "duplicate key " + in_quotes(key) + " " + where_text());
                 continue;
             }
-            handle(key, node.value(i), key_mark);
+            handle(static_cast<std::size_t>(found - allowed.begin()), key, node.value(i), key_mark);
         }
         return marks;
     }
+
+    /// Walks a mapping whose keys `readers` (key_readers.hpp) read into `into`, as walk() does;
+    /// `failed(key)` is told each key whose value did not read.
+    template <class Into, std::size_t N, class Where, class Failed = IgnoreFailure>
+    Marks read_keys(const Node& node, const Mark& at, const std::string& what, const Where& where,
+                    const KeyReaders<Into, N>& readers, Into& into,
+                    const Failed& failed = Failed{});
 
     // --- scalars ------------------------------------------------------------------------------
 
@@ -178,7 +222,6 @@ private:
     void read_gateway(const Node& node, const Mark& at, Config& config);
 
     void read_mqtt(const Node& node, const Mark& at, Config& config);
-    void read_store_and_forward(const Node& node, const Mark& at, Config& config);
 
     void read_eip(const Node& node, const Mark& at, Config& config);
 
@@ -187,28 +230,9 @@ private:
 
     void read_exchanges(const Node& node, const Mark& at, Config& config);
 
-    /// An exchange while its keys are read.
-    struct ExchangeDraft {
-        core::plan::ExchangeSpec& spec;
-        std::string label;    ///< how messages name it
-        bool broken = false;  ///< an identity key is missing or bad: leave it out of the model
-        std::optional<Node> tags_node;
-        std::string points;
-        bool topic_written = false;
-    };
     void read_exchange(const Node& node, int index, Config& config);
-    void read_exchange_key(ExchangeDraft& draft, const std::string& key, const Node& value,
-                           const Mark& k);
 
-    /// A tag while its keys are read.
-    struct TagDraft {
-        core::plan::TagSpec& spec;
-        bool broken = false;  ///< a value failed to parse: leave the tag out of the model
-        std::optional<Node> initial;
-        Mark initial_mark;
-    };
     std::optional<TagConfig> read_tag(const Node& node, const std::string& exchange_label);
-    void read_tag_key(TagDraft& draft, const std::string& key, const Node& value, const Mark& k);
 
     /// `initial` as the tag's type holds it. Out-of-range values are kept (as int64 or double)
     /// for validate() to report against the type's range.

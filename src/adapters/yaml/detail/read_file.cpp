@@ -48,8 +48,8 @@ core::Result<std::string, std::string> read_file(const std::string& path, const 
     if (static_cast<std::uintmax_t>(status.st_size) > max_file_bytes) {
         return too_big(std::to_string(status.st_size));
     }
-    // Sized for one read (a 5 MB file once went through an ostringstream and was copied out
-    // of it again), and one byte more, to see the end without growing.
+    // Sized for one read, not copied through a stream (a plant's file is megabytes), and one
+    // byte more, to see the end without growing.
     std::string text(static_cast<std::size_t>(status.st_size) + 1, '\0');
     std::size_t filled = 0;
     while (true) {

@@ -1,7 +1,8 @@
 #pragma once
 /// A compact, read-only YAML document built from yaml-cpp's event API, for the configuration
-/// loader. `YAML::Load` builds a graph of shared, individually allocated nodes (about 4 KB of
-/// heap per tag of a configuration: 434 MB for 100,000 tags); this keeps one flat array of
+/// loader. `YAML::Load` builds a graph of shared, individually allocated nodes, kilobytes of
+/// heap per tag of a configuration (docs/decisions/0001-configurations-of-100000-tags.md); this
+/// keeps one flat array of
 /// nodes, one of children and one of scalar text, with each node's `YAML::Mark` so that
 /// diagnostics keep yaml-cpp's line and column. yaml-cpp still does all the parsing.
 ///

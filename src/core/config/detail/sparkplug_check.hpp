@@ -1,5 +1,5 @@
 #pragma once
-/// The `sparkplug:` section's rules (issue #15): its IDs, and every exchange's name, which is a
+/// The `sparkplug:` section's rules: its IDs, and every exchange's name, which is a
 /// device ID, are Sparkplug topic elements, and the topics they make fit MQTT's length.
 
 #include "eip2mqtt/core/config/config.hpp"

@@ -1,5 +1,6 @@
 #include "core/config/detail/topic_collisions.hpp"
 
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -8,84 +9,124 @@
 #include "core/config/detail/config_names.hpp"
 
 namespace eip2mqtt::core::config::detail {
+namespace {
+
+// An exchange on topic t claims t/_status, t/_values, t/_history, t/set and t/set/result; each
+// of its tags t/{name}, t/{name}/set and t/{name}/set/result. Every claim is t and more levels,
+// so claims of two exchanges can meet only when their topics are the same or one is an ancestor
+// of the other (at any depth: t/set/result is a tag `result`'s topic under t/set,
+// t/{name}/set/result one under t/{name}/set). An exchange whose topic is none of these cannot
+// collide through its tags, and its tags are not claimed: 100,000 tags would otherwise cost
+// 300,000 map entries. Topics refused for a reserved level (`_…`, `set`) still take part, so
+// their collisions are shown too.
+
+std::string full_topic(const std::string& base, const ExchangeConfig& exchange) {
+    return base.empty() ? exchange.spec.topic : base + "/" + exchange.spec.topic;
+}
+
+/// Whether `visit(ancestor)` holds for a proper ancestor of `topic` (a/b/c: a, then a/b).
+template <class Visit>
+bool any_ancestor(const std::string& topic, const Visit& visit) {
+    for (auto slash = topic.find('/'); slash != std::string::npos;
+         slash = topic.find('/', slash + 1)) {
+        if (visit(topic.substr(0, slash))) return true;
+    }
+    return false;
+}
+
+/// The exchanges' topics, to tell the ones whose tags may collide with another exchange's claims.
+class ExchangeTopics {
+public:
+    explicit ExchangeTopics(const Config& config) {
+        for (const auto& exchange : config.exchanges) {
+            if (!topic_problem(exchange.spec.topic).empty()) continue;
+            const auto topic = full_topic(config.mqtt.base_topic, exchange);
+            ++uses_[topic];
+            any_ancestor(topic, [&](std::string ancestor) {
+                ancestors_.insert(std::move(ancestor));
+                return false;
+            });
+        }
+    }
+
+    /// Whether another exchange's topic is `topic`, one of its ancestors or one of its
+    /// descendants.
+    bool nested(const std::string& topic) const {
+        const auto used = uses_.find(topic);
+        if ((used != uses_.end() && used->second > 1) || ancestors_.contains(topic)) return true;
+        return any_ancestor(topic,
+                            [&](const std::string& ancestor) { return uses_.contains(ancestor); });
+    }
+
+private:
+    std::unordered_map<std::string, int> uses_;
+    std::unordered_set<std::string> ancestors_;  ///< of some exchange's topic
+};
+
+/// Who claimed a topic: an exchange, or one of its tags. Described only on a collision.
+struct Owner {
+    const ExchangeConfig* exchange = nullptr;
+    const TagConfig* tag = nullptr;  ///< null: the exchange itself
+
+    std::string describe() const {
+        const std::string of = "exchange " + in_quotes(exchange->spec.name);
+        return tag ? "tag " + in_quotes(tag->spec.name) + " of " + of : of;
+    }
+};
+
+/// The topics claimed so far, each with its first owner; a second claim is an error.
+class Claims {
+public:
+    explicit Claims(Diagnostics& out) : out_(out) {}
+
+    /// Claims `topic` and each `topic`/`suffix` in turn, stopping at the first one taken.
+    void claim(const std::string& topic, std::initializer_list<std::string_view> suffixes,
+               const Owner& owner, const Mark& mark) {
+        std::string claimed;
+        for (const auto suffix : suffixes) {
+            claimed.assign(topic).append(suffix);
+            const auto [it, fresh] = owners_.try_emplace(claimed, owner);
+            if (!fresh) {
+                out_.push_back({mark, owner.describe() + " uses topic " + in_quotes(it->first) +
+                                          ", already used by " + it->second.describe()});
+                return;
+            }
+        }
+    }
+
+private:
+    Diagnostics& out_;
+    std::unordered_map<std::string, Owner> owners_;
+};
+
+void claim_tags(Claims& claims, const ExchangeConfig& exchange, const std::string& topic) {
+    std::unordered_set<std::string_view> seen;  // views of the tags' own names
+    seen.reserve(exchange.tags.size());
+    std::string tag_topic;
+    for (const auto& tag : exchange.tags) {
+        if (!tag_name_problem(tag.spec.name).empty()) continue;
+        if (!seen.insert(tag.spec.name).second) continue;  // reported as a duplicate
+        tag_topic.assign(topic).append("/").append(tag.spec.name);
+        claims.claim(tag_topic, {"", "/set", "/set/result"}, Owner{&exchange, &tag},
+                     tag.marks.of("name"));
+    }
+}
+
+}  // namespace
 
 void check_topic_collisions(const Config& config, const std::set<const ExchangeConfig*>& skip,
                             Diagnostics& out) {
-    const std::string& base = config.mqtt.base_topic;
-    // Who claimed a topic: an exchange, or one of its tags. Described only on a collision.
-    struct Owner {
-        const ExchangeConfig* exchange = nullptr;
-        const TagConfig* tag = nullptr;  ///< null: the exchange itself
-
-        std::string describe() const {
-            const std::string of = "exchange " + in_quotes(exchange->spec.name);
-            return tag ? "tag " + in_quotes(tag->spec.name) + " of " + of : of;
-        }
-    };
-    const auto full_topic = [&](const ExchangeConfig& exchange) {
-        return base.empty() ? exchange.spec.topic : base + "/" + exchange.spec.topic;
-    };
-    // An exchange on topic t claims t/_status, t/_values, t/_history, t/set and t/set/result; each
-    // of its tags t/{name}, t/{name}/set and t/{name}/set/result. Every claim is t and more levels,
-    // so claims of two exchanges can meet only when their topics are the same or one is an ancestor
-    // of the other (at any depth: t/set/result is a tag `result`'s topic under t/set,
-    // t/{name}/set/result one under t/{name}/set). An exchange whose topic is none of these cannot
-    // collide through its tags, and its tags are not claimed: 100,000 tags would otherwise cost
-    // 300,000 map entries. Topics refused for a reserved level (`_…`, `set`) still take part, so
-    // their collisions are shown too.
-    std::unordered_map<std::string, int> topic_uses;
-    std::unordered_set<std::string> ancestors;  ///< of some exchange's topic
-    for (const auto& exchange : config.exchanges) {
-        if (!topic_problem(exchange.spec.topic).empty()) continue;
-        const auto topic = full_topic(exchange);
-        ++topic_uses[topic];
-        for (auto slash = topic.find('/'); slash != std::string::npos;
-             slash = topic.find('/', slash + 1)) {
-            ancestors.insert(topic.substr(0, slash));
-        }
-    }
-    const auto nested = [&](const std::string& topic) {
-        if (topic_uses[topic] > 1 || ancestors.contains(topic)) return true;
-        for (auto slash = topic.find('/'); slash != std::string::npos;
-             slash = topic.find('/', slash + 1)) {
-            if (topic_uses.contains(topic.substr(0, slash))) return true;
-        }
-        return false;
-    };
-    std::unordered_map<std::string, Owner> owners;
-    const auto claim = [&](std::string topic, const Owner& owner, const Mark& mark) {
-        const auto [it, fresh] = owners.try_emplace(std::move(topic), owner);
-        if (!fresh) {
-            out.push_back({mark, owner.describe() + " uses topic " + in_quotes(it->first) +
-                                     ", already used by " + it->second.describe()});
-        }
-        return fresh;
-    };
+    const ExchangeTopics topics(config);
+    Claims claims(out);
     for (const auto& exchange : config.exchanges) {
         if (skip.contains(&exchange)) continue;
         if (!topic_problem(exchange.spec.topic).empty()) continue;
-        const std::string topic = full_topic(exchange);
+        const std::string topic = full_topic(config.mqtt.base_topic, exchange);
         const auto& topic_mark = exchange.marks.contains("topic") ? exchange.marks.of("topic")
                                                                   : exchange.marks.of("name");
-        const Owner owner{&exchange, nullptr};
-        (void)(claim(topic + "/_status", owner, topic_mark) &&
-               claim(topic + "/_values", owner, topic_mark) &&
-               claim(topic + "/_history", owner, topic_mark) &&
-               claim(topic + "/set", owner, topic_mark) &&
-               claim(topic + "/set/result", owner, topic_mark));
-        if (!nested(topic)) continue;
-        std::unordered_set<std::string_view> seen;  // views of the tags' own names
-        seen.reserve(exchange.tags.size());
-        std::string tag_topic;
-        for (const auto& tag : exchange.tags) {
-            if (!tag_name_problem(tag.spec.name).empty()) continue;
-            if (!seen.insert(tag.spec.name).second) continue;  // reported as a duplicate
-            tag_topic.assign(topic).append("/").append(tag.spec.name);
-            const Owner tag_owner{&exchange, &tag};
-            (void)(claim(tag_topic, tag_owner, tag.marks.of("name")) &&
-                   claim(tag_topic + "/set", tag_owner, tag.marks.of("name")) &&
-                   claim(tag_topic + "/set/result", tag_owner, tag.marks.of("name")));
-        }
+        claims.claim(topic, {"/_status", "/_values", "/_history", "/set", "/set/result"},
+                     Owner{&exchange, nullptr}, topic_mark);
+        if (topics.nested(topic)) claim_tags(claims, exchange, topic);
     }
 }
 
