@@ -57,7 +57,7 @@ Gateway::Gateway(core::config::Config config)
         northbound_.add(*sparkplug_);
         add_sparkplug_history();
     }
-    apply_exchanges(take_plans(), false, false);
+    apply_exchanges(take_plans(config_), false);
 
     adapters::udp::ReceiverOptions receiver_options;
     receiver_options.bind = config_.eip.bind;
@@ -170,12 +170,9 @@ void Gateway::schedule_watchdog() {
 void Gateway::on_connected() {
     spdlog::info("republishing retained state of {} exchange(s)",
                  consumers_.size() + producers_.size());
-    const auto now = std::chrono::steady_clock::now();
-    const auto wall = std::chrono::system_clock::now();
-    for (auto& consumer : consumers_) consumer->republish(now);
-    for (auto& producer : producers_) producer->republish(wall);
+    republish_exchanges();
     // History goes behind the current state.
-    if (history_) history_->on_connected(now);
+    if (history_) history_->on_connected(std::chrono::steady_clock::now());
 }
 
 void Gateway::schedule_tick() {

@@ -1,45 +1,43 @@
-// Building the exchanges, at start and on SIGHUP (README "Running it as a service", Reload; issue
-// #4): a valid new configuration is applied without dropping the MQTT session or unchanged
-// exchanges; added exchanges start, removed ones stop and their retained topics are cleared,
-// changed ones restart. An invalid file is refused with its errors logged, and the old one keeps
-// running.
+// Building the exchanges, at start and on SIGHUP (README "Running it as a service", Reload): a
+// valid new configuration is applied without dropping the MQTT session or unchanged exchanges;
+// added exchanges start, removed ones stop and their retained topics are cleared, changed ones
+// restart; the sections' live keys are applied (core/config/config_keys.hpp has every key's
+// rule). An invalid file, or one that changes a key only a restart applies, is refused whole
+// and the old configuration keeps running.
 
 #include <spdlog/spdlog.h>
 
 #include <stdexcept>
 #include <string>
-#include <tuple>
+#include <system_error>
 
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/gateway.hpp"
 #include "eip2mqtt/app/logging.hpp"
+#include "eip2mqtt/core/config/reload_plan.hpp"
 #include "eip2mqtt/core/plan/plan_diff.hpp"
 
 namespace eip2mqtt::app {
 namespace {
 
-/// The settings a reload cannot apply: they shape the MQTT session, the sockets or the
-/// identity of the gateway. A change to any of them needs a restart.
-auto session_settings(const core::config::Config& c) {
-    return std::make_tuple(
-        c.gateway.id, c.gateway.state_dir, c.mqtt.url, c.mqtt.version, c.mqtt.client_id,
-        c.mqtt.username, c.mqtt.password_file, c.mqtt.tls.has_value(), c.mqtt.base_topic,
-        c.mqtt.keepalive, c.mqtt.session_expiry, c.eip.bind, c.eip.port, c.eip.multicast.size(),
-        c.eip.multicast_ttl, c.eip.multicast_interface, c.metrics.listen, c.sparkplug.group_id,
-        c.sparkplug.edge_node_id, c.sparkplug.primary_host_id, c.sparkplug.uns, c.sparkplug.qos,
-        c.mqtt.store_and_forward);
+using core::config::ReloadRule;
+
+std::vector<adapters::udp::MulticastMembership> memberships(const core::config::EipSection& eip) {
+    std::vector<adapters::udp::MulticastMembership> out;
+    for (const auto& group : eip.multicast) out.push_back({group.group, group.interface});
+    return out;
 }
 
 }  // namespace
 
-std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
+std::vector<core::plan::ExchangePlan> Gateway::take_plans(core::config::Config& config) {
     // Plans are built whole before the configuration is released, not exchange by exchange:
     // the plans then sit together above the freed configuration, which malloc_trim can give
     // back (interleaving them left RSS 16 MB higher for 100,000 tags).
-    auto plans = core::config::make_plans(config_);
+    auto plans = core::config::make_plans(config);
     // Swapped with empty vectors, not assigned `{}`: that keeps the capacity.
-    std::vector<core::config::ExchangeConfig>().swap(config_.exchanges);
+    std::vector<core::config::ExchangeConfig>().swap(config.exchanges);
     for (auto& plan : plans) {
         // plan.tags holds every tag spec again: the running exchange reads only that copy.
         // Dropped on every plan, old and new alike, so that reload compares equals.
@@ -48,13 +46,16 @@ std::vector<core::plan::ExchangePlan> Gateway::take_plans() {
     return plans;
 }
 
-core::plan::PlanDiff Gateway::diff_running(const std::vector<core::plan::ExchangePlan>& plans,
-                                           bool settings_changed) const {
-    // The running exchanges, consumers first: diff_plans' indices count in that order.
+core::plan::PlanDiff Gateway::diff_running(
+    const std::vector<core::plan::ExchangePlan>& plans) const {
+    return core::plan::diff_plans(running_plans(), plans);
+}
+
+std::vector<const core::plan::ExchangePlan*> Gateway::running_plans() const {
     auto running = running_exchanges();
-    auto& running_plans = running.consumed;
-    running_plans.insert(running_plans.end(), running.produced.begin(), running.produced.end());
-    return core::plan::diff_plans(running_plans, plans, settings_changed);
+    auto& plans = running.consumed;
+    plans.insert(plans.end(), running.produced.begin(), running.produced.end());
+    return plans;
 }
 
 ExchangeSet Gateway::running_exchanges() const {
@@ -88,12 +89,11 @@ std::unique_ptr<ExchangeProducer> Gateway::make_producer(core::plan::ExchangePla
                                               *persister_, northbound_);
 }
 
-void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running,
-                              bool settings_changed) {
+void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running) {
     // Saves still under way must reach the disk before a restarted exchange reads its image.
     if (persister_) persister_->flush();
 
-    const auto diff = diff_running(plans, settings_changed);
+    const auto diff = diff_running(plans);
 
     auto old_consumers = std::move(consumers_);
     auto old_producers = std::move(producers_);
@@ -156,6 +156,35 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
         diff.cleared.size());
 }
 
+void Gateway::republish_exchanges() {
+    const auto now = std::chrono::steady_clock::now();
+    const auto wall = std::chrono::system_clock::now();
+    for (auto& consumer : consumers_) consumer->republish(now);
+    for (auto& producer : producers_) producer->republish(wall);
+}
+
+bool Gateway::apply_settings(const core::config::Config& next) {
+    if (next.eip.multicast != config_.eip.multicast) {
+        try {
+            receiver_->set_multicast(memberships(next.eip));
+        } catch (const std::system_error& e) {
+            spdlog::error("reload refused: eip.multicast: {}; the running configuration is kept",
+                          e.what());
+            return false;
+        }
+    }
+    set_log_level(next.gateway.log_level);
+    for (auto* client : {mqtt_.get(), sparkplug_mqtt_.get()}) {
+        if (client == nullptr) continue;
+        client->set_buffer_capacity(next.mqtt.buffer_max_messages);
+        client->set_batch_first(next.mqtt.batch_first);
+    }
+    // Response topics and the like take effect at once; tags are published in the new form
+    // from their next sample, and their retained state is published again (reload()).
+    uns_json_->set_options(northbound::uns_json_options(next));
+    return true;
+}
+
 void Gateway::reload() {
     notifier_.reloading();
     spdlog::info("SIGHUP: reloading {}", config_.file);
@@ -168,26 +197,41 @@ void Gateway::reload() {
         return;
     }
     auto config = std::move(loaded).value();
-    if (session_settings(config) != session_settings(config_)) {
+    auto plans = take_plans(config);
+    const auto changes = core::config::plan_reload(config_, running_plans(), config, plans);
+    if (changes.needs_restart) {
+        const auto restart = changes.describe(ReloadRule::restart);
+        const auto live = changes.describe(ReloadRule::live);
         spdlog::error(
-            "reload refused: changes to the gateway, mqtt, eip, metrics or sparkplug sections need "
-            "a restart (systemctl restart eip2mqtt); the running configuration is kept");
+            "reload refused: {} {} a restart (systemctl restart eip2mqtt); nothing is applied{}; "
+            "the running configuration is kept",
+            restart, restart.find(", ") == std::string::npos ? "needs" : "need",
+            live.empty() ? "" : " (also changed: " + live + ")");
         notifier_.ready(status_line());
         return;
     }
-    set_log_level(config.gateway.log_level);
+    const bool republish =
+        northbound::uns_json_options(config).publish != uns_json_->options().publish;
+    const bool metrics_interval = config.mqtt.metrics_interval != config_.mqtt.metrics_interval;
+    if (!apply_settings(config)) {
+        notifier_.ready(status_line());
+        return;
+    }
     config_ = std::move(config);
-    auto uns_options = northbound::uns_json_options(config_);
-    const bool settings_changed = uns_options.publish != uns_json_->options().publish;
-    uns_json_->set_options(std::move(uns_options));
-    mqtt_->set_buffer_capacity(config_.mqtt.buffer_max_messages);
+    if (metrics_interval) schedule_metrics();  // the wait under way was for the old interval
     try {
-        apply_exchanges(take_plans(), true, settings_changed);
+        apply_exchanges(std::move(plans), true);
     } catch (const std::exception& e) {
         spdlog::critical("reload failed half-way: {}; exiting for a clean restart", e.what());
         stopping_ = true;
         loop_.stop();
         return;
+    }
+    if (republish) republish_exchanges();
+    if (changes.empty()) {
+        spdlog::info("reload: no key changed");
+    } else {
+        spdlog::info("reload: applied {}", changes.describe(ReloadRule::live));
     }
     detail::release_heap();
     notifier_.ready(status_line());

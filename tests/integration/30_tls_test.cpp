@@ -1,9 +1,13 @@
 // Security: TLS with server verification, client certificates, and password authentication
 // against a real Mosquitto, with a test PKI made by the openssl command line.
 
+#include <signal.h>
 #include <sys/stat.h>
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
@@ -158,6 +162,30 @@ TEST_F(TlsTest, PasswordFileReadableByOthersIsWarnedAbout) {
           secure_broker(certs_->server_cert, certs_->server_key));
     EXPECT_TRUE(gateway_->wait_for_output("readable by others", 5s)) << gateway_->output();
     expect_values_flow();
+}
+
+TEST_F(TlsTest, AReloadThatChangesATlsFileIsRefusedAndNamesIt) {
+    // The reload compared only whether a tls section was there: a new ca_file was "applied"
+    // while the running connection kept the old one.
+    start(one_exchange, mqtt_keys(verified_tls(), password_file(password, 0600)),
+          secure_broker(certs_->server_cert, certs_->server_key));
+    expect_values_flow();
+    const auto other_ca = pki_.path() + "/other-ca.pem";
+    std::filesystem::copy_file(certs_->ca_cert, other_ca);
+
+    std::ifstream in(config_path_);
+    std::stringstream text;
+    text << in.rdbuf();
+    auto content = text.str();
+    const auto at = content.find(certs_->ca_cert);
+    ASSERT_NE(at, std::string::npos) << content;
+    std::ofstream(config_path_) << content.replace(at, certs_->ca_cert.size(), other_ca);
+    gateway_->signal(SIGHUP);
+    ASSERT_TRUE(gateway_->wait_for_output("reload refused: mqtt.tls.ca_file needs a restart", 10s))
+        << gateway_->output();
+    EXPECT_EQ(gateway_->output().find("configuration applied"), std::string::npos);
+    send(speed_datagram(2, 1451.5f));
+    expect_field(topic("area/pump/SPEED"), "value", "1451.5");
 }
 
 }  // namespace

@@ -52,7 +52,8 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
         "eip:\n"
         "  bind: 127.0.0.1\n"
         "  port: " +
-        std::to_string(udp_port_) + "\n" + options_.sections + "exchanges:\n" + exchanges_yaml;
+        std::to_string(udp_port_) + "\n" + options_.eip_extra + options_.sections + "exchanges:\n" +
+        exchanges_yaml;
     config_path_ = dir_.write("gateway.yaml", config);
     recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"#"});
     start_gateway();

@@ -39,6 +39,8 @@ struct GatewayOptions {
     std::map<std::string, std::string> env;  ///< added to the gateway's environment
     /// Top-level sections added to the configuration (`sparkplug:` ...), as YAML text.
     std::string sections;
+    /// Keys added to the `eip` section (`multicast:` ...), indented by two spaces.
+    std::string eip_extra;
     /// false: start() and start_gateway() return once the process is started, for tests
     /// where the gateway must not come online.
     bool wait_online = true;

@@ -66,23 +66,29 @@ private:
     /// Runs `event` (the node's connection, or a message for it); once the node is born by it,
     /// its replay of history starts.
     void on_sparkplug_event(bool connection, const std::function<void()>& event);
-    /// The plans of config_'s exchanges, for apply_exchanges. The exchange configs (every tag
+    /// The plans of `config`'s exchanges, for apply_exchanges. The exchange configs (every tag
     /// again, with the marks of its keys) served validation only: they are released here.
-    std::vector<core::plan::ExchangePlan> take_plans();
+    static std::vector<core::plan::ExchangePlan> take_plans(core::config::Config& config);
     /// Builds the exchanges of `plans`, keeping running ones whose plan is unchanged, stopping
     /// removed and changed ones and clearing their retained topics that no new exchange uses.
-    /// `settings_changed`: how tags are published changed, so every exchange restarts.
-    void apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running,
-                         bool settings_changed);
+    void apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running);
     /// What applying `plans` does to the running exchanges (core::plan::diff_plans).
-    core::plan::PlanDiff diff_running(const std::vector<core::plan::ExchangePlan>& plans,
-                                      bool settings_changed) const;
+    core::plan::PlanDiff diff_running(const std::vector<core::plan::ExchangePlan>& plans) const;
     /// The running exchanges, as northbounds see them.
     ExchangeSet running_exchanges() const;
+    /// Their plans, consumers first (the order diff_plans' indices count in).
+    std::vector<const core::plan::ExchangePlan*> running_plans() const;
+    /// Every exchange's retained state published again (a reconnect, new publish settings).
+    void republish_exchanges();
     /// A new producer, opening the sending socket with the first one.
     std::unique_ptr<ExchangeProducer> make_producer(core::plan::ExchangePlan plan);
-    /// SIGHUP: a valid new file is applied, an invalid one refused with its errors logged.
+    /// SIGHUP: a valid new file is applied whole, or refused whole (errors, or a change that
+    /// needs a restart: core::config::plan_reload), the log naming each changed key.
     void reload();
+    /// The live settings of the sections (`next` against config_, before it replaces it):
+    /// multicast groups, log level, publish settings, MQTT buffers. False, with nothing
+    /// changed, when the multicast groups cannot be joined.
+    bool apply_settings(const core::config::Config& next);
     void schedule_watchdog();
     void schedule_tick();
     void on_tick();

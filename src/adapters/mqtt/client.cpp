@@ -90,4 +90,9 @@ void Client::set_buffer_capacity(std::size_t max_messages) {
     impl_->outbox_.set_capacity(max_messages);
 }
 
+void Client::set_batch_first(bool batch_first) {
+    std::lock_guard lock(impl_->mutex_);
+    impl_->outbox_.set_batch_first(batch_first);
+}
+
 }  // namespace eip2mqtt::adapters::mqtt

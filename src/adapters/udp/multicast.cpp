@@ -8,13 +8,16 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <string_view>
 #include <system_error>
 
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
 
 namespace eip2mqtt::adapters::udp {
 
-void join_group(int fd, const MulticastMembership& membership) {
+namespace {
+
+ip_mreqn membership_request(const MulticastMembership& membership) {
     const auto group = parse_ipv4(membership.group);
     if (!group) {
         throw std::system_error(
@@ -35,12 +38,36 @@ void join_group(int fd, const MulticastMembership& membership) {
             request.imr_ifindex = static_cast<int>(index);
         }
     }
+    return request;
+}
+
+std::string_view interface_name(const MulticastMembership& membership) {
+    if (membership.interface.empty()) return "the default interface";
+    return membership.interface;
+}
+
+}  // namespace
+
+void join_group(int fd, const MulticastMembership& membership) {
+    const auto request = membership_request(membership);
     if (setsockopt(fd, IPPROTO_IP, IP_ADD_MEMBERSHIP, &request, sizeof request) != 0) {
         throw std::system_error(errno, std::generic_category(),
                                 "cannot join multicast group " + membership.group);
     }
-    spdlog::info("joined multicast group {} on {}", membership.group,
-                 membership.interface.empty() ? "the default interface" : membership.interface);
+    spdlog::info("joined multicast group {} on {}", membership.group, interface_name(membership));
+}
+
+void leave_group(int fd, const MulticastMembership& membership) {
+    try {
+        const auto request = membership_request(membership);
+        if (setsockopt(fd, IPPROTO_IP, IP_DROP_MEMBERSHIP, &request, sizeof request) != 0) {
+            throw std::system_error(errno, std::generic_category(), "setsockopt");
+        }
+        spdlog::info("left multicast group {} on {}", membership.group, interface_name(membership));
+    } catch (const std::system_error& e) {
+        spdlog::warn("cannot leave multicast group {} on {}: {}", membership.group,
+                     interface_name(membership), e.what());
+    }
 }
 
 GroupMemberships::GroupMemberships(const std::vector<MulticastMembership>& groups) {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <boost/asio/error.hpp>
 #include <boost/asio/ip/address_v4.hpp>
 #include <cerrno>
@@ -69,17 +70,15 @@ private:
 }  // namespace
 
 Receiver::Receiver(boost::asio::any_io_executor executor, const ReceiverOptions& options)
-    : executor_(std::move(executor)), batch_(options.batch == 0 ? 1 : options.batch) {
+    : executor_(std::move(executor)),
+      receive_buffer_bytes_(options.receive_buffer_bytes),
+      batch_(options.batch == 0 ? 1 : options.batch) {
     open_unicast(options);
-    const bool wildcard = ipv4(options.bind, "eip.bind").is_unspecified();
+    // The wildcard socket receives every group joined on it; beside it no other socket could
+    // bind the port, ours included.
+    wildcard_ = ipv4(options.bind, "eip.bind").is_unspecified();
     for (const auto& membership : options.multicast) {
-        // The wildcard socket receives every group joined on it; beside it no other socket
-        // could bind the port, ours included.
-        if (wildcard) {
-            join_group(sockets_.front().native_handle(), membership);
-        } else {
-            open_group(options, membership);
-        }
+        memberships_.emplace_back(membership, join(membership));
     }
 
     storage_.resize(batch_ * slot_size);
@@ -103,19 +102,76 @@ void Receiver::open_unicast(const ReceiverOptions& options) {
     if (ec) bind_failed(ec, options.bind, options.port);
 }
 
-void Receiver::open_group(const ReceiverOptions& options, const MulticastMembership& membership) {
+std::size_t Receiver::open_group(const MulticastMembership& membership) {
     const auto group = ipv4(membership.group, "multicast group");
-    auto& socket = sockets_.emplace_back(executor_);
-    open(socket, options.receive_buffer_bytes);
+    const auto port = local_port();
+    ip::udp::socket socket(executor_);
+    open(socket, receive_buffer_bytes_);
     // Shared on purpose: each socket bound to the group gets its own copy of every datagram.
     socket.set_option(ip::udp::socket::reuse_address(true));
     const int fd = socket.native_handle();
     const int off = 0;
     setsockopt(fd, IPPROTO_IP, IP_MULTICAST_ALL, &off, sizeof off);
     boost::system::error_code ec;
-    socket.bind(ip::udp::endpoint(group, local_port()), ec);
-    if (ec) bind_failed(ec, membership.group, local_port());
+    socket.bind(ip::udp::endpoint(group, port), ec);
+    if (ec) bind_failed(ec, membership.group, port);
     join_group(fd, membership);
+    sockets_.push_back(std::move(socket));
+    return sockets_.size() - 1;
+}
+
+std::size_t Receiver::join(const MulticastMembership& membership) {
+    if (!wildcard_) return open_group(membership);
+    join_group(sockets_.front().native_handle(), membership);
+    return wildcard_joined;
+}
+
+void Receiver::leave(const MulticastMembership& membership, std::size_t socket) {
+    if (socket == wildcard_joined) {
+        leave_group(sockets_.front().native_handle(), membership);
+        return;
+    }
+    // Closing the group's own socket leaves the group; its wait completes aborted.
+    boost::system::error_code ignored;
+    sockets_[socket].close(ignored);
+    spdlog::info("left multicast group {}", membership.group);
+}
+
+void Receiver::set_multicast(const std::vector<MulticastMembership>& memberships) {
+    const auto wanted = [&](const MulticastMembership& m) {
+        return std::find(memberships.begin(), memberships.end(), m) != memberships.end();
+    };
+    const auto held = [](const auto& list, const MulticastMembership& m) {
+        return std::any_of(list.begin(), list.end(), [&](const auto& h) { return h.first == m; });
+    };
+    // Left first: a group moved from the default interface to the one the kernel chose anyway
+    // would otherwise be joined twice on the wildcard socket (EADDRINUSE).
+    decltype(memberships_) kept, left, joined;
+    for (auto& entry : memberships_) (wanted(entry.first) ? kept : left).push_back(entry);
+    for (const auto& [membership, socket] : left) leave(membership, socket);
+    try {
+        for (const auto& membership : memberships) {
+            if (held(kept, membership) || held(joined, membership)) continue;
+            joined.emplace_back(membership, join(membership));
+            if (handler_ && joined.back().second != wildcard_joined) do_wait(joined.back().second);
+        }
+    } catch (const std::system_error&) {
+        for (const auto& [membership, socket] : joined) leave(membership, socket);
+        for (const auto& [membership, socket] : left) {
+            try {
+                const auto index = join(membership);
+                if (handler_ && index != wildcard_joined) do_wait(index);
+                kept.emplace_back(membership, index);
+            } catch (const std::system_error& e) {
+                spdlog::error("cannot join multicast group {} again: {}", membership.group,
+                              e.what());
+            }
+        }
+        memberships_ = std::move(kept);
+        throw;
+    }
+    kept.insert(kept.end(), joined.begin(), joined.end());
+    memberships_ = std::move(kept);
 }
 
 Receiver::~Receiver() { stop(); }

@@ -18,7 +18,7 @@ void collect_topics(const ExchangePlan& plan, Topics& topics) {
 }  // namespace
 
 PlanDiff diff_plans(std::span<const ExchangePlan* const> running,
-                    std::span<const ExchangePlan> next, bool restart_all) {
+                    std::span<const ExchangePlan> next) {
     std::unordered_map<std::string_view, std::size_t> by_name;
     for (std::size_t i = 0; i < running.size(); ++i) by_name.emplace(running[i]->spec.name, i);
 
@@ -27,7 +27,7 @@ PlanDiff diff_plans(std::span<const ExchangePlan* const> running,
     std::vector<bool> kept(running.size(), false);
     for (const auto& plan : next) {
         const auto it = by_name.find(plan.spec.name);
-        if (restart_all || it == by_name.end() || !(*running[it->second] == plan)) {
+        if (it == by_name.end() || !(*running[it->second] == plan)) {
             diff.kept_from.push_back(std::nullopt);
             continue;
         }

@@ -65,6 +65,25 @@ TEST(Outbox, TheBatchLaneGoesFirstWhenAskedAndTheTagLaneGetsWhatIsLeft) {
               (std::vector<std::string>{"t/_values/1", "t/_values/2", "t/1", "t/2"}));
 }
 
+TEST(Outbox, BatchFirstSetOnAQueueAlreadyWaitingAppliesFromTheNextTake) {
+    // A reload's mqtt.batch_first: set on the running client, not only at its start.
+    Outbox outbox(100, 100);
+    for (const auto* topic : {"t/1", "t/2", "t/3"}) {
+        auto m = message(topic, "1");
+        outbox.push(m);
+    }
+    for (const auto* topic : {"t/_values/1", "t/_values/2"}) {
+        auto m = message(topic, "{}", true);
+        outbox.push(m);
+    }
+    Message next;
+    ASSERT_TRUE(outbox.take_next(next));
+    EXPECT_EQ(next.topic, "t/1");
+    outbox.set_batch_first(true);
+    EXPECT_EQ(drain(outbox),
+              (std::vector<std::string>{"t/_values/1", "t/_values/2", "t/2", "t/3"}));
+}
+
 TEST(Outbox, DiscardAllEmptiesBothLanes) {
     Outbox outbox(100, 100);
     for (const bool batch : {false, true, false}) {

@@ -16,10 +16,12 @@
 #include <chrono>
 #include <cstring>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
 #include "eip2mqtt/adapters/udp/sender.hpp"
+#include "tests/support/igmp.hpp"
 
 namespace eip2mqtt::adapters::udp {
 namespace {
@@ -146,6 +148,48 @@ TEST(Receiver, AMulticastGroupIsSharedButTheUnicastAddressIsNot) {
     EXPECT_EQ(outcome.neighbour_bind_error, 0);
     EXPECT_EQ(outcome.receiver_datagrams, 2);   // the group's datagram and the unicast one
     EXPECT_EQ(outcome.neighbour_datagrams, 1);  // its own copy of the group's
+}
+
+TEST(Receiver, SetMulticastLeavesTheGroupsDroppedAndJoinsTheNewOnes) {
+    const auto kept = test::test_multicast_group(11);
+    const auto dropped = test::test_multicast_group(12);
+    const auto added = test::test_multicast_group(13);
+    boost::asio::io_context io;
+    Receiver receiver(
+        io.get_executor(),
+        ReceiverOptions{
+            .bind = "127.0.0.1", .port = 0, .multicast = {{kept, "lo"}, {dropped, "lo"}}});
+    ASSERT_TRUE(test::igmp_joined("lo", kept));
+    ASSERT_TRUE(test::igmp_joined("lo", dropped));
+
+    receiver.set_multicast({{kept, "lo"}, {added, "lo"}});
+    EXPECT_TRUE(test::igmp_joined("lo", kept));
+    EXPECT_FALSE(test::igmp_joined("lo", dropped));
+    EXPECT_TRUE(test::igmp_joined("lo", added));
+
+    receiver.stop();
+    EXPECT_FALSE(test::igmp_joined("lo", kept));
+    EXPECT_FALSE(test::igmp_joined("lo", added));
+}
+
+TEST(Receiver, SetMulticastThatCannotJoinAGroupChangesNothing) {
+    // All or nothing: a reload refused for its multicast groups leaves the running ones joined.
+    const auto first = test::test_multicast_group(14);
+    const auto second = test::test_multicast_group(15);
+    const auto third = test::test_multicast_group(16);
+    boost::asio::io_context io;
+    Receiver receiver(
+        io.get_executor(),
+        ReceiverOptions{.bind = "127.0.0.1", .port = 0, .multicast = {{first, "lo"}}});
+    EXPECT_THROW(receiver.set_multicast({{second, "lo"}, {third, "no-such-if0"}}),
+                 std::system_error);
+    EXPECT_TRUE(test::igmp_joined("lo", first));
+    EXPECT_FALSE(test::igmp_joined("lo", second));
+
+    // Still able to change: what it holds is what it had.
+    receiver.set_multicast({{second, "lo"}});
+    EXPECT_FALSE(test::igmp_joined("lo", first));
+    EXPECT_TRUE(test::igmp_joined("lo", second));
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ using Kept = std::vector<std::optional<std::size_t>>;
 TEST(PlanDiff, UnchangedExchangesAreKeptWhereverTheyNowStand) {
     const std::vector running{plan("a", {"X"}), plan("b", {"Y"})};
     const std::vector next{plan("b", {"Y"}), plan("a", {"X"})};
-    const auto diff = diff_plans(pointers(running), next, false);
+    const auto diff = diff_plans(pointers(running), next);
     EXPECT_EQ(diff.kept_from, (Kept{1, 0}));
     EXPECT_TRUE(diff.stopped.empty());
     EXPECT_TRUE(diff.cleared.empty());
@@ -49,7 +49,7 @@ TEST(PlanDiff, UnchangedExchangesAreKeptWhereverTheyNowStand) {
 TEST(PlanDiff, AChangedExchangeRestartsAndOnlyItsVanishedTopicsAreCleared) {
     const std::vector running{plan("a", {"X", "GONE"}), plan("b", {"Y"})};
     const std::vector next{plan("a", {"X"}), plan("b", {"Y"})};
-    const auto diff = diff_plans(pointers(running), next, false);
+    const auto diff = diff_plans(pointers(running), next);
     EXPECT_EQ(diff.kept_from, (Kept{std::nullopt, 1}));
     EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{0}));
     EXPECT_EQ(diff.cleared, (std::vector<std::string>{"plant/a/GONE"}));
@@ -58,7 +58,7 @@ TEST(PlanDiff, AChangedExchangeRestartsAndOnlyItsVanishedTopicsAreCleared) {
 TEST(PlanDiff, ARemovedExchangeStopsAndLosesItsStatusAndTags) {
     const std::vector running{plan("a", {"X"}), plan("b", {"Y", "Z"})};
     const std::vector next{plan("a", {"X"})};
-    const auto diff = diff_plans(pointers(running), next, false);
+    const auto diff = diff_plans(pointers(running), next);
     EXPECT_EQ(diff.kept_from, (Kept{0}));
     EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{1}));
     EXPECT_EQ(diff.cleared,
@@ -71,24 +71,15 @@ TEST(PlanDiff, ATopicAnotherExchangeNowPublishesIsNotCleared) {
     auto renamed = plan("b", {"Y"});
     renamed.spec.name = "c";
     const std::vector next{renamed};
-    const auto diff = diff_plans(pointers(running), next, false);
+    const auto diff = diff_plans(pointers(running), next);
     EXPECT_EQ(diff.kept_from, (Kept{std::nullopt}));
     EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{0}));
     EXPECT_TRUE(diff.cleared.empty());
 }
 
-TEST(PlanDiff, RestartAllKeepsNothingAndClearsNothingStillPublished) {
-    const std::vector running{plan("a", {"X"}), plan("b", {"Y"})};
-    const std::vector next{plan("a", {"X"}), plan("b", {"Y"})};
-    const auto diff = diff_plans(pointers(running), next, true);
-    EXPECT_EQ(diff.kept_from, (Kept{std::nullopt, std::nullopt}));
-    EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{0, 1}));
-    EXPECT_TRUE(diff.cleared.empty());
-}
-
 TEST(PlanDiff, AFirstStartStartsEverything) {
     const std::vector next{plan("a", {"X"})};
-    const auto diff = diff_plans({}, next, false);
+    const auto diff = diff_plans({}, next);
     EXPECT_EQ(diff.kept_from, (Kept{std::nullopt}));
     EXPECT_TRUE(diff.stopped.empty());
     EXPECT_TRUE(diff.cleared.empty());

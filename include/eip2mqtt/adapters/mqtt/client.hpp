@@ -135,6 +135,8 @@ public:
     bool connected() const;
     ClientStats stats() const;
     void set_buffer_capacity(std::size_t max_messages);
+    /// ClientOptions::batch_first, from the next publication taken on.
+    void set_batch_first(bool batch_first);
 
 private:
     struct Impl;

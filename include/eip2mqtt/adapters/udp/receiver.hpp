@@ -20,6 +20,7 @@
 #include <boost/asio/ip/udp.hpp>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <span>
 #include <string>
@@ -61,20 +62,36 @@ public:
     void start(Handler handler);
     /// Closes the sockets; pending waits complete with operation_aborted and stop quietly.
     void stop();
+    /// Leaves the groups joined that `memberships` lacks and joins those it adds (a reload): on
+    /// the wildcard socket, or each on a socket of its own. All or nothing: when a group cannot
+    /// be joined, the groups are put back as they were and std::system_error names the group.
+    void set_multicast(const std::vector<MulticastMembership>& memberships);
 
     std::uint16_t local_port() const;
     const ReceiverStats& stats() const { return stats_; }
 
 private:
     void open_unicast(const ReceiverOptions& options);
-    void open_group(const ReceiverOptions& options, const MulticastMembership& membership);
+    /// Opens, binds and joins a group's own socket (a specific `bind`); returns its index.
+    std::size_t open_group(const MulticastMembership& membership);
+    /// Joins `membership` where it belongs; the socket index it holds, or `wildcard_joined`.
+    std::size_t join(const MulticastMembership& membership);
+    /// Leaves what join() made of `membership`; never throws.
+    void leave(const MulticastMembership& membership, std::size_t socket);
     void do_wait(std::size_t socket);
     void on_readable(std::size_t socket, const boost::system::error_code& error);
     std::size_t drain(int fd);
 
     boost::asio::any_io_executor executor_;
     /// [0] the unicast socket; then one per multicast group when bound to a specific address.
-    std::vector<boost::asio::ip::udp::socket> sockets_;
+    /// A group left by a reload leaves its socket closed in place: indices never move, and a
+    /// deque never moves a socket with a wait in flight when a reload adds one.
+    std::deque<boost::asio::ip::udp::socket> sockets_;
+    static constexpr std::size_t wildcard_joined = 0;
+    bool wildcard_ = false;
+    int receive_buffer_bytes_ = 0;
+    /// Joined, in the order asked, each with the socket that holds it.
+    std::vector<std::pair<MulticastMembership, std::size_t>> memberships_;
 
     Handler handler_;
     std::size_t batch_;

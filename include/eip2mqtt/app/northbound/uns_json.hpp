@@ -41,7 +41,8 @@ public:
     /// `mqtt` and `writes` must outlive the northbound.
     UnsJson(UnsJsonOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes);
 
-    /// New settings (a reload); the exchanges it changes are restarted and republish.
+    /// New settings (a reload), used from the next publication on: a gateway whose publish
+    /// settings changed republishes its retained state.
     void set_options(UnsJsonOptions options);
     const UnsJsonOptions& options() const { return options_; }
     /// With store and forward: while `journaling` says so, `_values` is not published (the

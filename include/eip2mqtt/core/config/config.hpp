@@ -106,6 +106,8 @@ struct MqttSection {
 struct MulticastGroup {
     std::string group;
     std::string interface;  ///< interface name or IPv4 address; empty: the default
+
+    friend bool operator==(const MulticastGroup&, const MulticastGroup&) = default;
 };
 
 struct EipSection {

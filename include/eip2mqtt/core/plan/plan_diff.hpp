@@ -22,10 +22,9 @@ struct PlanDiff {
     std::vector<std::string> cleared;  ///< retained topics to clear, sorted
 };
 
-/// Exchanges are matched by name. `restart_all`: something every exchange depends on changed
-/// (the payload settings), so none is kept. The topics of `next` are gathered only when some
-/// exchange stops: a set of every tag topic costs a string per tag.
+/// Exchanges are matched by name. The topics of `next` are gathered only when some exchange
+/// stops: a set of every tag topic costs a string per tag.
 PlanDiff diff_plans(std::span<const ExchangePlan* const> running,
-                    std::span<const ExchangePlan> next, bool restart_all);
+                    std::span<const ExchangePlan> next);
 
 }  // namespace eip2mqtt::core::plan

@@ -44,6 +44,7 @@ public:
     const PublishQueue& tags() const { return queue_; }
     const PublishQueue& batch() const { return batch_queue_; }
     void set_capacity(std::size_t capacity) { queue_.set_capacity(capacity); }
+    void set_batch_first(bool batch_first) { batch_first_ = batch_first; }
 
 private:
     /// Whose turn it is: the batch lane when only it waits, or when both wait and it is its turn.
@@ -51,7 +52,7 @@ private:
 
     PublishQueue queue_;
     PublishQueue batch_queue_;
-    const bool batch_first_;
+    bool batch_first_;
     bool next_from_batch_ = false;  ///< whose turn when both lanes wait (not batch_first_)
     std::vector<Message> spares_;
     std::size_t backlog_peak_ = 0;  ///< largest queue since memory was last given back

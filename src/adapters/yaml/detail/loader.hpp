@@ -22,6 +22,7 @@
 #include "adapters/yaml/detail/scalar_text.hpp"
 #include "adapters/yaml/detail/tree.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
+#include "eip2mqtt/core/config/config_keys.hpp"
 #include "eip2mqtt/core/config/point_index.hpp"
 #include "eip2mqtt/core/config/point_list.hpp"
 
@@ -39,46 +40,22 @@ using core::config::TagConfig;
 using core::plan::Direction;
 using core::plan::TagType;
 
+// The keys of each mapping are those of core/config/config_keys.hpp, where each has its reload
+// rule; the top level's are the sections.
 inline constexpr std::array<std::string_view, 6> top_keys{"gateway", "mqtt",      "eip",
                                                           "metrics", "sparkplug", "exchanges"};
-inline constexpr std::array<std::string_view, 5> gateway_keys{"id", "state_dir", "log_level",
-                                                              "timestamp", "clock_tolerance_ms"};
-inline constexpr std::array<std::string_view, 18> mqtt_keys{"url",
-                                                            "version",
-                                                            "client_id",
-                                                            "username",
-                                                            "password_file",
-                                                            "tls",
-                                                            "base_topic",
-                                                            "qos",
-                                                            "retain",
-                                                            "payload",
-                                                            "buffer",
-                                                            "batch",
-                                                            "batch_first",
-                                                            "keepalive_s",
-                                                            "metrics_interval_s",
-                                                            "session_expiry_s",
-                                                            "allow_response_topics_under_base",
-                                                            "store_and_forward"};
-inline constexpr std::array<std::string_view, 4> tls_keys{"ca_file", "cert_file", "key_file",
-                                                          "verify"};
-inline constexpr std::array<std::string_view, 1> buffer_keys{"max_messages"};
-inline constexpr std::array<std::string_view, 4> store_and_forward_keys{
-    "enabled", "max_mb", "replay_rate", "fsync_interval_ms"};
-inline constexpr std::array<std::string_view, 5> eip_keys{"bind", "port", "multicast",
-                                                          "multicast_ttl", "multicast_interface"};
-inline constexpr std::array<std::string_view, 2> multicast_keys{"group", "interface"};
-inline constexpr std::array<std::string_view, 1> metrics_keys{"listen"};
-inline constexpr std::array<std::string_view, 5> sparkplug_keys{"group_id", "edge_node_id",
-                                                                "primary_host_id", "uns", "qos"};
-inline constexpr std::array<std::string_view, 15> exchange_keys{
-    "name",      "direction",   "producer_id", "exchange_id", "length",
-    "signature", "period_ms",   "timeout_ms",  "timestamp",   "clock_tolerance_ms",
-    "source",    "destination", "topic",       "points",      "tags"};
-inline constexpr std::array<std::string_view, 12> tag_keys{
-    "name",     "address", "type", "unit",    "deadband",    "refresh_s",
-    "writable", "min",     "max",  "initial", "description", "max_writes_per_s"};
+inline constexpr auto gateway_keys = core::config::keys::names(core::config::keys::gateway);
+inline constexpr auto mqtt_keys = core::config::keys::names(core::config::keys::mqtt);
+inline constexpr auto tls_keys = core::config::keys::names(core::config::keys::tls);
+inline constexpr auto buffer_keys = core::config::keys::names(core::config::keys::buffer);
+inline constexpr auto store_and_forward_keys =
+    core::config::keys::names(core::config::keys::store_and_forward);
+inline constexpr auto eip_keys = core::config::keys::names(core::config::keys::eip);
+inline constexpr auto multicast_keys = core::config::keys::names(core::config::keys::multicast);
+inline constexpr auto metrics_keys = core::config::keys::names(core::config::keys::metrics);
+inline constexpr auto sparkplug_keys = core::config::keys::names(core::config::keys::sparkplug);
+inline constexpr auto exchange_keys = core::config::keys::names(core::config::keys::exchange);
+inline constexpr auto tag_keys = core::config::keys::names(core::config::keys::tag);
 
 class Loader {
 public:

@@ -1,0 +1,186 @@
+#pragma once
+/// Every key of the configuration file, mapping by mapping: the keys the YAML loader accepts (its
+/// unknown-key errors and "did you mean" read these lists), what a reload does when one changes,
+/// and how to tell in the model that it changed. One entry per key, in one place: a key cannot
+/// be read without a reload rule, and plan_reload (reload_plan.hpp) compares exactly these.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string_view>
+
+#include "eip2mqtt/core/config/config.hpp"
+
+namespace eip2mqtt::core::config {
+
+/// What a reload does with a key whose value changed.
+enum class ReloadRule : std::uint8_t {
+    /// The running gateway applies it. An exchange's or a tag's key restarts that exchange
+    /// alone; a section's key is applied without restarting any exchange.
+    live,
+    /// Only a restart applies it (the MQTT session, a socket, the gateway's identity): a reload
+    /// that changes it is refused whole, and nothing of it is applied.
+    restart,
+};
+
+/// One key of a mapping whose values `Of` holds.
+template <class Of>
+struct ConfigKey {
+    std::string_view name;  ///< as written in YAML
+    ReloadRule rule;
+    /// Whether `a` and `b` differ in this key. Null for a key whose value is a mapping that its
+    /// own keys compare (`buffer`, `store_and_forward`, `tags`), and for a list entry's keys,
+    /// which their list compares (`eip.multicast`).
+    bool (*differs)(const Of& a, const Of& b);
+};
+
+namespace keys {
+
+/// Whether `a` and `b` differ in what `field` (a data member or an accessor) reads.
+template <auto field, class Of>
+constexpr bool differs(const Of& a, const Of& b) {
+    return !(std::invoke(field, a) == std::invoke(field, b));
+}
+
+inline constexpr auto live = ReloadRule::live;
+inline constexpr auto restart = ReloadRule::restart;
+
+inline constexpr std::array<ConfigKey<GatewaySection>, 5> gateway{{
+    {"id", restart, differs<&GatewaySection::id>},
+    {"state_dir", restart, differs<&GatewaySection::state_dir>},
+    {"log_level", live, differs<&GatewaySection::log_level>},
+    // The defaults of consumed exchanges: those that take them restart (plan_diff).
+    {"timestamp", live,
+     [](const GatewaySection& a, const GatewaySection& b) {
+         return a.exchange_defaults.timestamp != b.exchange_defaults.timestamp;
+     }},
+    {"clock_tolerance_ms", live,
+     [](const GatewaySection& a, const GatewaySection& b) {
+         return a.exchange_defaults.clock_tolerance != b.exchange_defaults.clock_tolerance;
+     }},
+}};
+
+/// The connection's settings need a restart (a new session); how tags are published is applied
+/// live, the retained state republished in the new form.
+inline constexpr std::array<ConfigKey<MqttSection>, 18> mqtt{{
+    {"url", restart, differs<&MqttSection::url>},
+    {"version", restart, differs<&MqttSection::version>},
+    {"client_id", restart, differs<&MqttSection::client_id>},
+    {"username", restart, differs<&MqttSection::username>},
+    {"password_file", restart, differs<&MqttSection::password_file>},
+    {"tls", restart,
+     [](const MqttSection& a, const MqttSection& b) {
+         return a.tls.has_value() != b.tls.has_value();
+     }},
+    {"base_topic", restart, differs<&MqttSection::base_topic>},
+    {"qos", live, differs<&MqttSection::qos>},
+    {"retain", live, differs<&MqttSection::retain>},
+    {"payload", live, differs<&MqttSection::payload>},
+    {"buffer", live, nullptr},
+    {"batch", live, differs<&MqttSection::batch>},
+    {"batch_first", live, differs<&MqttSection::batch_first>},
+    {"keepalive_s", restart, differs<&MqttSection::keepalive>},
+    {"metrics_interval_s", live, differs<&MqttSection::metrics_interval>},
+    {"session_expiry_s", restart, differs<&MqttSection::session_expiry>},
+    {"allow_response_topics_under_base", live,
+     differs<&MqttSection::allow_response_topics_under_base>},
+    {"store_and_forward", restart, nullptr},
+}};
+
+/// `mqtt.tls`, compared when both configurations have one (`tls` itself says when one lacks it).
+inline constexpr std::array<ConfigKey<TlsSection>, 4> tls{{
+    {"ca_file", restart, differs<&TlsSection::ca_file>},
+    {"cert_file", restart, differs<&TlsSection::cert_file>},
+    {"key_file", restart, differs<&TlsSection::key_file>},
+    {"verify", restart, differs<&TlsSection::verify>},
+}};
+
+inline constexpr std::array<ConfigKey<MqttSection>, 1> buffer{{
+    {"max_messages", live, differs<&MqttSection::buffer_max_messages>},
+}};
+
+/// The journal is opened at start, with the MQTT connection it replays on.
+inline constexpr std::array<ConfigKey<StoreAndForwardSection>, 4> store_and_forward{{
+    {"enabled", restart, differs<&StoreAndForwardSection::enabled>},
+    {"max_mb", restart, differs<&StoreAndForwardSection::max_mb>},
+    {"replay_rate", restart, differs<&StoreAndForwardSection::replay_rate>},
+    {"fsync_interval_ms", restart, differs<&StoreAndForwardSection::fsync_interval>},
+}};
+
+/// The receiving socket stays bound; its multicast groups are left and joined live. The sending
+/// socket keeps the TTL and interface it was opened with.
+inline constexpr std::array<ConfigKey<EipSection>, 5> eip{{
+    {"bind", restart, differs<&EipSection::bind>},
+    {"port", restart, differs<&EipSection::port>},
+    {"multicast", live, differs<&EipSection::multicast>},
+    {"multicast_ttl", restart, differs<&EipSection::multicast_ttl>},
+    {"multicast_interface", restart, differs<&EipSection::multicast_interface>},
+}};
+
+/// An entry of `eip.multicast`: a change to it is a change to the list.
+inline constexpr std::array<ConfigKey<MulticastGroup>, 2> multicast{{
+    {"group", live, nullptr},
+    {"interface", live, nullptr},
+}};
+
+inline constexpr std::array<ConfigKey<MetricsSection>, 1> metrics{{
+    {"listen", restart, differs<&MetricsSection::listen>},
+}};
+
+/// The edge node's identity and births are made at start.
+inline constexpr std::array<ConfigKey<SparkplugSection>, 5> sparkplug{{
+    {"group_id", restart, differs<&SparkplugSection::group_id>},
+    {"edge_node_id", restart, differs<&SparkplugSection::edge_node_id>},
+    {"primary_host_id", restart, differs<&SparkplugSection::primary_host_id>},
+    {"uns", restart, differs<&SparkplugSection::uns>},
+    {"qos", restart, differs<&SparkplugSection::qos>},
+}};
+
+/// An exchange's keys restart that exchange (its name is what matches it: a new name is another
+/// exchange, started, and the old one stopped).
+inline constexpr std::array<ConfigKey<plan::ExchangeSpec>, 15> exchange{{
+    {"name", live, differs<&plan::ExchangeSpec::name>},
+    {"direction", live, differs<&plan::ExchangeSpec::direction>},
+    {"producer_id", live, differs<&plan::ExchangeSpec::producer_id>},
+    {"exchange_id", live, differs<&plan::ExchangeSpec::exchange_id>},
+    {"length", live, differs<&plan::ExchangeSpec::length>},
+    {"signature", live, differs<&plan::ExchangeSpec::signature>},
+    {"period_ms", live, differs<&plan::ExchangeSpec::period>},
+    {"timeout_ms", live, differs<&plan::ExchangeSpec::timeout>},
+    {"timestamp", live, differs<&plan::ExchangeSpec::timestamp>},
+    {"clock_tolerance_ms", live, differs<&plan::ExchangeSpec::clock_tolerance>},
+    {"source", live, differs<&plan::ExchangeSpec::source>},
+    {"destination", live, differs<&plan::ExchangeSpec::destination>},
+    {"topic", live, differs<&plan::ExchangeSpec::topic>},
+    {"points", live, differs<&plan::ExchangeSpec::points>},
+    {"tags", live, nullptr},
+}};
+
+/// A tag's keys restart its exchange (a tag is matched by name, as exchanges are). The rows of
+/// a point list are tags too: a changed row shows as the keys it changed.
+inline constexpr std::array<ConfigKey<plan::TagSpec>, 12> tag{{
+    {"name", live, differs<&plan::TagSpec::name>},
+    {"address", live, differs<&plan::TagSpec::address>},
+    {"type", live, differs<&plan::TagSpec::type>},
+    {"unit", live, differs<&plan::TagSpec::unit>},
+    {"deadband", live, differs<&plan::TagSpec::deadband>},
+    {"refresh_s", live, differs<&plan::TagSpec::refresh>},
+    {"writable", live, differs<&plan::TagSpec::writable>},
+    {"min", live, differs<&plan::TagSpec::min>},
+    {"max", live, differs<&plan::TagSpec::max>},
+    {"initial", live, differs<&plan::TagSpec::initial>},
+    {"description", live, differs<&plan::TagSpec::description>},
+    {"max_writes_per_s", live, differs<&plan::TagSpec::max_writes_per_s>},
+}};
+
+/// The names of `table`'s keys, in its order (the loader's lists of known keys).
+template <class Of, std::size_t N>
+constexpr std::array<std::string_view, N> names(const std::array<ConfigKey<Of>, N>& table) {
+    std::array<std::string_view, N> out{};
+    for (std::size_t i = 0; i < N; ++i) out[i] = table[i].name;
+    return out;
+}
+
+}  // namespace keys
+}  // namespace eip2mqtt::core::config

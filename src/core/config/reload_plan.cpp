@@ -1,0 +1,132 @@
+#include "eip2mqtt/core/config/reload_plan.hpp"
+
+#include <string_view>
+#include <unordered_map>
+
+namespace eip2mqtt::core::config {
+namespace {
+
+using Kind = KeyChange::Kind;
+
+class Collector {
+public:
+    explicit Collector(ReloadPlan& plan) : plan_(plan) {}
+
+    void add(std::string key, ReloadRule rule, Kind kind = Kind::changed) {
+        plan_.needs_restart = plan_.needs_restart || rule == ReloadRule::restart;
+        if (plan_.changes.size() >= ReloadPlan::max_named) {
+            ++plan_.unnamed;
+            return;
+        }
+        plan_.changes.push_back({std::move(key), rule, kind});
+    }
+
+    /// Names each key of `table` whose value differs between `a` and `b`.
+    template <class Of, std::size_t N>
+    void compare(std::string_view prefix, const std::array<ConfigKey<Of>, N>& table, const Of& a,
+                 const Of& b) {
+        for (const auto& key : table) {
+            if (key.differs != nullptr && key.differs(a, b)) {
+                add(std::string(prefix).append(key.name), key.rule);
+            }
+        }
+    }
+
+    std::size_t count() const { return plan_.changes.size() + plan_.unnamed; }
+
+private:
+    ReloadPlan& plan_;
+};
+
+void compare_sections(Collector& out, const Config& a, const Config& b) {
+    out.compare("gateway.", keys::gateway, a.gateway, b.gateway);
+    out.compare("mqtt.", keys::mqtt, a.mqtt, b.mqtt);
+    if (a.mqtt.tls && b.mqtt.tls) out.compare("mqtt.tls.", keys::tls, *a.mqtt.tls, *b.mqtt.tls);
+    out.compare("mqtt.buffer.", keys::buffer, a.mqtt, b.mqtt);
+    out.compare("mqtt.store_and_forward.", keys::store_and_forward, a.mqtt.store_and_forward,
+                b.mqtt.store_and_forward);
+    out.compare("eip.", keys::eip, a.eip, b.eip);
+    out.compare("metrics.", keys::metrics, a.metrics, b.metrics);
+    out.compare("sparkplug.", keys::sparkplug, a.sparkplug, b.sparkplug);
+}
+
+/// The keys of a changed exchange, its tags matched by name.
+void compare_exchange(Collector& out, const plan::ExchangePlan& a, const plan::ExchangePlan& b) {
+    const auto before = out.count();
+    const std::string prefix = "exchanges[" + b.spec.name + "].";
+    out.compare(prefix, keys::exchange, a.spec, b.spec);
+
+    std::unordered_map<std::string_view, const plan::TagSpec*> running;
+    running.reserve(a.tags.size());
+    for (const auto& tag : a.tags) running.emplace(tag.spec.name, &tag.spec);
+    const auto tag_key = [&](const std::string& name) { return prefix + "tags[" + name + "]"; };
+    for (const auto& tag : b.tags) {
+        const auto found = running.find(tag.spec.name);
+        if (found == running.end()) {
+            out.add(tag_key(tag.spec.name), ReloadRule::live, Kind::added);
+            continue;
+        }
+        out.compare(tag_key(tag.spec.name) + ".", keys::tag, *found->second, tag.spec);
+        running.erase(found);
+    }
+    for (const auto& tag : a.tags) {
+        if (running.contains(tag.spec.name)) {
+            out.add(tag_key(tag.spec.name), ReloadRule::live, Kind::removed);
+        }
+    }
+    // The same tags in another order: the exchange's byte map reads the same, but its tag
+    // indices (and so the plan) changed. Plans that differ only by what the sections resolve
+    // (gateway.timestamp, say) were named with the sections.
+    if (out.count() == before && a.tags != b.tags) out.add(prefix + "tags", ReloadRule::live);
+}
+
+}  // namespace
+
+std::string_view to_string(ReloadRule rule) {
+    return rule == ReloadRule::live ? "live" : "restart";
+}
+
+std::string ReloadPlan::describe(ReloadRule rule) const {
+    std::string text;
+    for (const auto& change : changes) {
+        if (change.rule != rule) continue;
+        if (!text.empty()) text += ", ";
+        text += change.key;
+        if (change.kind == Kind::added) text += " (added)";
+        if (change.kind == Kind::removed) text += " (removed)";
+    }
+    if (rule == ReloadRule::live && unnamed > 0) {
+        text +=
+            (text.empty() ? "" : ", ") + std::string("and ") + std::to_string(unnamed) + " more";
+    }
+    return text;
+}
+
+ReloadPlan plan_reload(const Config& running,
+                       std::span<const plan::ExchangePlan* const> running_exchanges,
+                       const Config& next, std::span<const plan::ExchangePlan> next_exchanges) {
+    ReloadPlan plan;
+    Collector out(plan);
+    compare_sections(out, running, next);
+
+    std::unordered_map<std::string_view, const plan::ExchangePlan*> by_name;
+    by_name.reserve(running_exchanges.size());
+    for (const auto* exchange : running_exchanges) by_name.emplace(exchange->spec.name, exchange);
+    for (const auto& exchange : next_exchanges) {
+        const auto found = by_name.find(exchange.spec.name);
+        if (found == by_name.end()) {
+            out.add("exchanges[" + exchange.spec.name + "]", ReloadRule::live, Kind::added);
+            continue;
+        }
+        if (!(*found->second == exchange)) compare_exchange(out, *found->second, exchange);
+        by_name.erase(found);
+    }
+    for (const auto* exchange : running_exchanges) {
+        if (by_name.contains(exchange->spec.name)) {
+            out.add("exchanges[" + exchange->spec.name + "]", ReloadRule::live, Kind::removed);
+        }
+    }
+    return plan;
+}
+
+}  // namespace eip2mqtt::core::config
