@@ -87,6 +87,10 @@ public:
     /// True while sends fail (the status says paused).
     bool paused() const { return failing_; }
     const core::exchange::ProducedImage& image() const { return image_; }
+    /// When the last datagram left; nullopt before the first.
+    std::optional<core::WallTime> last_sent() const { return last_sent_; }
+    /// When this exchange's configuration took effect (the producer was made).
+    core::WallTime configured_at() const { return configured_at_; }
 
 private:
     /// The image save asked by on_sent() is done: reports the results of `write_ids`.
@@ -115,6 +119,8 @@ private:
     std::uint64_t next_write_id_ = 1;
     ProducerCounters counters_;
     bool failing_ = false;  ///< the last send failed: the status says paused
+    std::optional<core::WallTime> last_sent_;
+    core::WallTime configured_at_ = std::chrono::system_clock::now();
 };
 
 }  // namespace eip2mqtt::app

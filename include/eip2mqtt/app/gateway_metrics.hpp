@@ -14,10 +14,12 @@
 
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/app/command_counters.hpp"
 #include "eip2mqtt/app/datagram_router.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
+#include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
 
@@ -30,6 +32,8 @@ struct GatewayCounters {
     /// Of writes_ok, those still queued when a reload changed or removed their exchange:
     /// answered `"reloaded"`, never produced.
     std::uint64_t writes_cancelled = 0;
+    /// Of writes_ok, by the protocol they came by (WriteOrigin).
+    std::array<std::uint64_t, write_origin_count> writes_by_origin{};
 };
 
 /// Everything the metrics are made of, borrowed for one call.
@@ -38,6 +42,7 @@ struct MetricsSources {
     const GatewayCounters& gateway;
     const adapters::mqtt::ClientStats& mqtt;
     const history::HistoryStats* history = nullptr;  ///< with store and forward
+    const CommandCounters* commands = nullptr;       ///< with eip.commands enabled
 };
 
 /// Store and forward's figures for Prometheus and the metrics topic.
@@ -48,6 +53,12 @@ std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& count
 
 /// Write rejections by error name, every error listed.
 std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& counters);
+
+/// Accepted writes by origin name, every origin listed.
+std::map<std::string, std::uint64_t> writes_by_origin(const GatewayCounters& counters);
+
+/// The command responder's figures for Prometheus and the metrics topic.
+adapters::metrics::CommandMetrics command_metrics(const CommandCounters& counters);
 
 /// Gateway and per-exchange figures for Prometheus, ages taken at `now`.
 adapters::metrics::MetricsSnapshot metrics_snapshot(

@@ -100,7 +100,15 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"writes_ok", sources.gateway.writes_ok},
         {"writes_rejected", rejections_by_name(sources.gateway)},
         {"writes_cancelled", sources.gateway.writes_cancelled},
+        {"writes_by_origin", writes_by_origin(sources.gateway)},
     };
+    if (sources.commands) {
+        const auto c = command_metrics(*sources.commands);
+        metrics["commands"] = {
+            {"requests", c.requests}, {"errors", c.errors}, {"refused", c.refused},
+            {"dropped", c.dropped},   {"naks", c.naks},     {"ignored", c.ignored},
+        };
+    }
     if (sources.history) {
         const auto h = history_metrics(*sources.history);
         metrics["history_dropped"] = h.dropped;

@@ -17,7 +17,11 @@
 ///   datagrams_total, datagrams_accepted_total, datagrams_dropped_total{reason}
 ///   mqtt_connected (0/1), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total,
 ///   mqtt_publications_refused_total
-///   writes_ok_total, writes_rejected_total{reason}, writes_cancelled_total
+///   writes_ok_total, writes_rejected_total{reason}, writes_cancelled_total,
+///   writes_by_origin_total{origin}
+///   commands_requests_total{type}, commands_errors_total, commands_refused_total,
+///   commands_dropped_total, commands_naks_total{reason}, commands_ignored_total
+///                                                       with eip.commands enabled
 /// Counters are the gateway's own counts, copied as they are: a reload that restarts them
 /// shows as a counter reset, which Prometheus's rate() handles.
 
@@ -73,6 +77,16 @@ struct HistoryMetrics {
     bool replaying = false;
 };
 
+/// The command responder on UDP 7937, when enabled.
+struct CommandMetrics {
+    std::map<std::string, std::uint64_t> requests;  ///< answered, by request type
+    std::uint64_t errors = 0;                       ///< answered with an error status
+    std::uint64_t refused = 0;                      ///< sources outside `allow`
+    std::uint64_t dropped = 0;                      ///< over the rate limit
+    std::map<std::string, std::uint64_t> naks;      ///< by reason
+    std::uint64_t ignored = 0;                      ///< no header, or not a request
+};
+
 /// What the gateway as a whole reports.
 struct GatewayMetrics {
     std::uint64_t datagrams = 0;  ///< received on the EIP socket
@@ -86,7 +100,9 @@ struct GatewayMetrics {
     std::uint64_t writes_ok = 0;
     std::map<std::string, std::uint64_t> writes_rejected;  ///< by rejection reason
     std::uint64_t writes_cancelled = 0;  ///< accepted, then answered "reloaded" unproduced
+    std::map<std::string, std::uint64_t> writes_by_origin;  ///< accepted, by protocol
     std::optional<HistoryMetrics> history;
+    std::optional<CommandMetrics> commands;
 };
 
 /// Everything the endpoint serves, as plain values: the gateway loop fills one and hands it

@@ -52,6 +52,7 @@ inline constexpr auto store_and_forward_keys =
     core::config::keys::names(core::config::keys::store_and_forward);
 inline constexpr auto eip_keys = core::config::keys::names(core::config::keys::eip);
 inline constexpr auto multicast_keys = core::config::keys::names(core::config::keys::multicast);
+inline constexpr auto commands_keys = core::config::keys::names(core::config::keys::commands);
 inline constexpr auto metrics_keys = core::config::keys::names(core::config::keys::metrics);
 inline constexpr auto sparkplug_keys = core::config::keys::names(core::config::keys::sparkplug);
 inline constexpr auto exchange_keys = core::config::keys::names(core::config::keys::exchange);
@@ -181,6 +182,7 @@ private:
     void read_store_and_forward(const Node& node, const Mark& at, Config& config);
 
     void read_eip(const Node& node, const Mark& at, Config& config);
+    void read_commands(const Node& node, const Mark& at, Config& config);
 
     void read_metrics(const Node& node, const Mark& at, Config& config);
     void read_sparkplug(const Node& node, const Mark& at, Config& config);
