@@ -8,6 +8,7 @@
 #include <charconv>
 #include <chrono>
 
+#include "eip2mqtt/adapters/udp/interfaces.hpp"
 #include "eip2mqtt/core/command/command_nak.hpp"
 #include "eip2mqtt/core/command/encode.hpp"
 
@@ -37,6 +38,16 @@ std::optional<std::uint64_t> id_of(std::string_view text) {
 }
 
 }  // namespace
+
+CommandPolicy command_policy(const core::config::Config& config) {
+    const auto& commands = config.eip.commands;
+    CommandPolicy policy{commands.allow, commands.writes, commands.max_requests_per_s};
+    if (policy.allow.empty()) {
+        policy.allow =
+            adapters::udp::local_subnets(adapters::udp::parse_ipv4(config.eip.bind).value_or(0));
+    }
+    return policy;
+}
 
 CommandResponder::CommandResponder(CommandPolicy policy, core::command::NodeInfo node, Views views,
                                    Send send, WriteHandler* writes)

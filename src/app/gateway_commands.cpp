@@ -23,16 +23,6 @@ std::string describe(const std::vector<core::command::Subnet>& subnets) {
 
 }  // namespace
 
-CommandPolicy Gateway::command_policy(const core::config::Config& config) const {
-    const auto& commands = config.eip.commands;
-    CommandPolicy policy{commands.allow, commands.writes, commands.max_requests_per_s};
-    if (policy.allow.empty()) {
-        policy.allow =
-            adapters::udp::local_subnets(adapters::udp::parse_ipv4(config.eip.bind).value_or(0));
-    }
-    return policy;
-}
-
 void Gateway::make_commands() {
     const auto& commands = config_.eip.commands;
     if (!commands.enabled) return;

@@ -22,6 +22,7 @@
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/command/answer.hpp"
 #include "eip2mqtt/core/command/subnet.hpp"
+#include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/rate_limiter.hpp"
@@ -34,6 +35,10 @@ struct CommandPolicy {
     bool writes = false;
     std::uint32_t max_requests_per_s = 100;
 };
+
+/// eip.commands of `config` as a responder applies it: `allow` resolved to the subnets of
+/// eip.bind's interfaces when empty (adapters::udp::local_subnets).
+CommandPolicy command_policy(const core::config::Config& config);
 
 class CommandResponder final : public Northbound {
 public:

@@ -94,9 +94,6 @@ private:
     bool apply_settings(const core::config::Config& next);
     /// With `eip.commands.enabled`: the command port and its responder (gateway_commands.cpp).
     void make_commands();
-    /// eip.commands of `config` as the responder applies it: `allow` resolved to the subnets of
-    /// eip.bind when empty.
-    CommandPolicy command_policy(const core::config::Config& config) const;
     /// The figures the metrics are made of, borrowed for one call.
     MetricsSources metrics_sources(const adapters::mqtt::ClientStats& mqtt,
                                    const history::HistoryStats* history) const;
