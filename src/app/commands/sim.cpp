@@ -139,6 +139,78 @@ std::uint16_t commands_port(const SimOptions& options, const core::config::Confi
     return config.eip.commands.enabled ? config.eip.commands.port : 0;
 }
 
+/// The consumed exchanges of `config`, each with its timer on `loop`, ready to send.
+std::vector<SimulatedExchange> simulated_exchanges(const core::config::Config& config,
+                                                   boost::asio::io_context& loop) {
+    std::vector<SimulatedExchange> exchanges;
+    for (auto& plan : core::config::make_plans(config)) {
+        if (plan.spec.direction != core::plan::Direction::consume) continue;
+        SimulatedExchange sim;
+        sim.plan = std::move(plan);
+        sim.data.assign(sim.plan.length, std::byte{0});
+        sim.datagram.resize(core::wire::header_size + sim.plan.length);
+        sim.header.producer_id = sim.plan.spec.producer_id;
+        sim.header.exchange_id = sim.plan.spec.exchange_id;
+        sim.header.signature = sim.plan.spec.signature.to_wire();
+        sim.timer = std::make_unique<boost::asio::steady_timer>(loop);
+        exchanges.push_back(std::move(sim));
+    }
+    return exchanges;
+}
+
+/// Sends each exchange on its period, with changing values.
+class Production {
+public:
+    Production(adapters::udp::Sender& sender, adapters::udp::Endpoint target)
+        : sender_(sender), target_(target) {}
+
+    /// Spreads the first sends over each period so exchanges do not leave in one burst.
+    void start(std::vector<SimulatedExchange>& exchanges) {
+        const auto start = std::chrono::steady_clock::now();
+        for (std::size_t i = 0; i < exchanges.size(); ++i) {
+            auto& sim = exchanges[i];
+            sim.deadline = start + sim.plan.spec.period * static_cast<long>(i) /
+                                       static_cast<long>(exchanges.size());
+            schedule(sim);
+            spdlog::info(
+                "simulating exchange {} (producer {}, exchange {}, {} bytes, every {} ms) to {}",
+                sim.plan.spec.name, core::wire::to_string(sim.plan.spec.producer_id),
+                sim.plan.spec.exchange_id, sim.plan.length, sim.plan.spec.period.count(),
+                adapters::udp::to_string(target_));
+        }
+    }
+
+private:
+    void schedule(SimulatedExchange& sim) {
+        sim.timer->expires_at(sim.deadline);
+        sim.timer->async_wait([this, p = &sim](const boost::system::error_code& error) {
+            if (!error) send(*p);
+        });
+    }
+
+    void send(SimulatedExchange& sim) {
+        for (std::size_t i = 0; i < sim.plan.tags.size(); ++i) {
+            const auto& tag = sim.plan.tags[i].spec;
+            core::plan::encode_value(sim.data, tag.type, tag.address,
+                                     simulated_value(tag, sim.cycle, i));
+        }
+        const auto wall = std::chrono::system_clock::now().time_since_epoch();
+        const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(wall).count();
+        sim.header.time_s = static_cast<std::uint32_t>(ns / 1000000000);
+        sim.header.time_ns = static_cast<std::uint32_t>(ns % 1000000000);
+        const auto size = core::wire::encode_datagram(sim.header, sim.data, sim.datagram);
+        if (sender_.send_to(std::span(sim.datagram.data(), size), target_)) ++sim.sent;
+        ++sim.header.request_id;  // wraps 65535 -> 0
+        ++sim.cycle;
+        // docs/protocol.md §5: absolute deadlines, so the period never drifts.
+        sim.deadline += sim.plan.spec.period;
+        schedule(sim);
+    }
+
+    adapters::udp::Sender& sender_;
+    adapters::udp::Endpoint target_;
+};
+
 }  // namespace
 
 int run_sim(const SimOptions& options) {
@@ -159,66 +231,16 @@ int run_sim(const SimOptions& options) {
 
     boost::asio::io_context loop;
     adapters::udp::Sender sender(loop.get_executor(), {});
-    std::vector<SimulatedExchange> exchanges;
-    for (auto& plan : core::config::make_plans(config)) {
-        if (plan.spec.direction != core::plan::Direction::consume) continue;
-        SimulatedExchange sim;
-        sim.plan = std::move(plan);
-        sim.data.assign(sim.plan.length, std::byte{0});
-        sim.datagram.resize(core::wire::header_size + sim.plan.length);
-        sim.header.producer_id = sim.plan.spec.producer_id;
-        sim.header.exchange_id = sim.plan.spec.exchange_id;
-        sim.header.signature = sim.plan.spec.signature.to_wire();
-        sim.timer = std::make_unique<boost::asio::steady_timer>(loop);
-        exchanges.push_back(std::move(sim));
-    }
+    auto exchanges = simulated_exchanges(config, loop);
     if (exchanges.empty()) {
         spdlog::error("{} has no consumed exchange to simulate", options.config_path);
         return 1;
     }
-
-    std::function<void(SimulatedExchange&)> send_and_schedule = [&](SimulatedExchange& sim) {
-        for (std::size_t i = 0; i < sim.plan.tags.size(); ++i) {
-            const auto& tag = sim.plan.tags[i].spec;
-            core::plan::encode_value(sim.data, tag.type, tag.address,
-                                     simulated_value(tag, sim.cycle, i));
-        }
-        const auto wall = std::chrono::system_clock::now().time_since_epoch();
-        const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(wall).count();
-        sim.header.time_s = static_cast<std::uint32_t>(ns / 1000000000);
-        sim.header.time_ns = static_cast<std::uint32_t>(ns % 1000000000);
-        const auto size = core::wire::encode_datagram(sim.header, sim.data, sim.datagram);
-        if (sender.send_to(std::span(sim.datagram.data(), size), *target)) ++sim.sent;
-        ++sim.header.request_id;  // wraps 65535 -> 0
-        ++sim.cycle;
-        // docs/protocol.md §5: absolute deadlines, so the period never drifts.
-        sim.deadline += sim.plan.spec.period;
-        sim.timer->expires_at(sim.deadline);
-        sim.timer->async_wait([&, p = &sim](const boost::system::error_code& error) {
-            if (!error) send_and_schedule(*p);
-        });
-    };
-
-    const auto start = std::chrono::steady_clock::now();
-    for (std::size_t i = 0; i < exchanges.size(); ++i) {
-        auto& sim = exchanges[i];
-        // Spread the first sends over the period so exchanges do not leave in one burst.
-        sim.deadline = start + sim.plan.spec.period * static_cast<long>(i) /
-                                   static_cast<long>(exchanges.size());
-        sim.timer->expires_at(sim.deadline);
-        sim.timer->async_wait([&, p = &sim](const boost::system::error_code& error) {
-            if (!error) send_and_schedule(*p);
-        });
-        spdlog::info(
-            "simulating exchange {} (producer {}, exchange {}, {} bytes, every {} ms) to {}",
-            sim.plan.spec.name, core::wire::to_string(sim.plan.spec.producer_id),
-            sim.plan.spec.exchange_id, sim.plan.length, sim.plan.spec.period.count(),
-            adapters::udp::to_string(*target));
-    }
-
+    Production production(sender, *target);
+    production.start(exchanges);
     SimCommands commands;
-    if (const auto port = commands_port(options, config); port != 0) {
-        commands = start_commands(loop, config, port, exchanges, *target);
+    if (const auto commands_at = commands_port(options, config); commands_at != 0) {
+        commands = start_commands(loop, config, commands_at, exchanges, *target);
     }
 
     detail::run_until_stopped(loop, options.duration_s);
