@@ -156,21 +156,25 @@ void CommandResponder::reply(std::span<const std::byte> response,
 void CommandResponder::log(std::string_view what, const adapters::udp::Endpoint& from,
                            core::MonoTime now) {
     const auto count = log_.record(now);
-    if (count == 0) return;
     if (count == 1) {
-        spdlog::warn("commands: {} ({}); such events are logged at most once a minute", what,
+        spdlog::warn("commands: {} ({}); such events are summarised at most once a minute", what,
                      adapters::udp::to_string(from));
-    } else {
-        spdlog::warn(
-            "commands: {} refused, {} dropped, {} NAKs so far; the last: {} ({})",
-            counters_.refused, counters_.dropped,
-            [&] {
-                std::uint64_t n = 0;
-                for (const auto v : counters_.naks) n += v;
-                return n;
-            }(),
-            what, adapters::udp::to_string(from));
+    } else if (count > 1) {
+        log_summary(count);
     }
+}
+
+void CommandResponder::flush_log(core::MonoTime now) {
+    if (const auto count = log_.flush(now)) log_summary(count);
+}
+
+void CommandResponder::log_summary(std::uint64_t count) const {
+    std::uint64_t naks = 0;
+    for (const auto n : counters_.naks) naks += n;
+    spdlog::warn(
+        "commands: {} datagrams refused, dropped or NAKed in the last {} s; {} refused, "
+        "{} dropped, {} NAKs so far",
+        count, log_.interval().count(), counters_.refused, counters_.dropped, naks);
 }
 
 }  // namespace eip2mqtt::app

@@ -214,6 +214,7 @@ void Gateway::on_tick() {
     for (auto& producer : producers_) producer->on_tick(now);
     // The summary of a flood of drops that stopped, which no next drop would log.
     datagram_router_.flush_log(now);
+    if (commands_) commands_->flush_log(now);
     for (auto& consumer : consumers_) consumer->on_tick(now, wall, refresh_scan);
 }
 

@@ -12,6 +12,7 @@
 #include "tests/app/support/test_plan.hpp"
 #include "tests/core/command/command_vectors.hpp"
 #include "tests/core/vectors.hpp"
+#include "tests/support/fakes/log_capture.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -184,6 +185,26 @@ TEST_F(CommandResponderTest, AWriteRefusedWhenStagedIsRejectedAndOneLostLaterFai
     EXPECT_EQ(last().header.status, static_cast<std::uint8_t>(CommandStatus::failed));
     EXPECT_EQ(responder.counters().errors, 2u);
     EXPECT_EQ(responder.pending_writes(), 0u);
+}
+
+TEST_F(CommandResponderTest, TheFirstRefusalIsLoggedAndTheRestSummarisedByTheTick) {
+    test::LogCapture log;
+    auto responder = make(policy());
+    for (int i = 0; i < 5; ++i) ask(responder, v::c3_capabilities_request, stranger);
+    auto lines = log.lines();
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NE(lines[0].find("outside eip.commands.allow (10.21.0.7:4000)"), std::string::npos);
+    // The four others wait for the interval; the tick then writes one line for them.
+    responder.flush_log(t0 + 30s);
+    EXPECT_TRUE(log.lines().empty());
+    responder.flush_log(t0 + 61s);
+    lines = log.lines();
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NE(lines[0].find("4 datagrams refused, dropped or NAKed in the last 60 s; 5 refused"),
+              std::string::npos)
+        << lines[0];
+    responder.flush_log(t0 + 130s);  // nothing new: no line
+    EXPECT_TRUE(log.lines().empty());
 }
 
 TEST_F(CommandResponderTest, WithoutAWriteHandlerWritesAreNeverStaged) {

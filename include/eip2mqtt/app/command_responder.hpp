@@ -61,6 +61,10 @@ public:
     /// A reload's new policy; writes waiting for their result are still answered.
     void set_policy(CommandPolicy policy);
 
+    /// The summary of refusals, drops and NAKs that stopped coming, which no next one would log
+    /// (the gateway's tick).
+    void flush_log(core::MonoTime now);
+
     const CommandCounters& counters() const { return counters_; }
     std::size_t pending_writes() const { return pending_.size(); }
 
@@ -88,6 +92,7 @@ private:
                const adapters::udp::Endpoint& from);
     void reply(std::span<const std::byte> response, const adapters::udp::Endpoint& to);
     void log(std::string_view what, const adapters::udp::Endpoint& from, core::MonoTime now);
+    void log_summary(std::uint64_t count) const;
 
     CommandPolicy policy_;
     core::command::NodeInfo node_;
