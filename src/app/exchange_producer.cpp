@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "eip2mqtt/core/plan/value_codec.hpp"
@@ -11,10 +12,15 @@
 namespace eip2mqtt::app {
 namespace {
 
-std::vector<std::byte> restore(const adapters::state::ImagePersister& persister,
-                               const core::plan::ExchangePlan& plan) {
-    auto saved = persister.load(plan);
-    return saved ? std::move(*saved) : std::vector<std::byte>{};
+using namespace std::chrono_literals;
+
+// While saves fail, how often the image is saved again without a write asking for it.
+constexpr auto save_retry_interval = 1s;
+
+std::vector<std::byte> restored_data(const std::optional<ImageHandover>& handover,
+                                     const adapters::state::ImageFile& file) {
+    if (handover) return handover->data;
+    return file.loaded().value_or(std::vector<std::byte>{});
 }
 
 std::int64_t to_ms(core::WallTime wall) {
@@ -27,21 +33,31 @@ ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
                                    adapters::udp::Endpoint destination,
                                    ProducerScheduler& scheduler,
                                    adapters::state::ImagePersister& persister,
-                                   Northbound& northbound)
+                                   Northbound& northbound, ImageSaveTotals& totals,
+                                   std::optional<ImageHandover> handover)
     : plan_(std::make_shared<const core::plan::ExchangePlan>(std::move(plan))),
       destination_(destination),
       scheduler_(scheduler),
       persister_(persister),
-      persist_key_(persister.attach(
-          [this](bool ok, const std::vector<std::uint64_t>& ids) { on_saved(ok, ids); })),
+      persist_key_(
+          persister.attach([this](const std::optional<std::string>& error) { on_saved(error); })),
       northbound_(northbound),
-      image_(*plan_, restore(persister, *plan_)),
+      totals_(totals),
+      file_(handover ? handover->file : persister.open(*plan_)),
+      image_(*plan_, restored_data(handover, *file_)),
       datagram_(core::wire::header_size + plan_->length) {
     limiters_.reserve(plan_->tags.size());
     for (const auto& tag : plan_->tags) limiters_.emplace_back(tag.spec.max_writes_per_s());
     spdlog::info("exchange {}: producing to {} every {} ms, {} image", plan_->spec.name,
                  adapters::udp::to_string(destination_), plan_->spec.period.count(),
-                 image_.restored() ? "restored" : "initial");
+                 handover            ? "running"
+                 : image_.restored() ? "restored"
+                                     : "initial");
+    // Written at once unless the file holds exactly this image in the slotted format, so that
+    // the file's blocks exist before the disk fills up. A handed-over image is written all the
+    // same: the file may hold writes the reload cancelled, or have been removed.
+    saved_ = !handover && file_->in_place();
+    if (!saved_) request_save();
 }
 
 ExchangeProducer::~ExchangeProducer() {
@@ -73,6 +89,10 @@ std::size_t ExchangeProducer::cancel_queued_writes(std::string_view error) {
     }
     spdlog::warn("exchange {}: {} queued write(s) answered \"{}\": never produced",
                  plan_->spec.name, ids.size(), error);
+    // Saved ahead of a production that will not come: the file gets the produced image back.
+    if (ids.front() <= saved_through_) {
+        persister_.save(adapters::state::ImagePersister::unattended, file_, image_.data());
+    }
     return ids.size();
 }
 
@@ -93,12 +113,15 @@ std::optional<core::write::WriteRejection> ExchangeProducer::stage(
             "write queue of exchange " + plan_->spec.name + " is full; try again"};
     }
     replies_.emplace(id, std::move(reply));
+    // Until a save succeeds, a write is saved before it may be produced.
+    if (!saved_) request_save();
     return std::nullopt;
 }
 
 std::span<const std::byte> ExchangeProducer::produce(core::WallTime wall) {
     carried_.clear();
-    const auto size = image_.produce(wall, datagram_, carried_);
+    const auto through = saved_ ? core::exchange::ProducedImage::no_limit : saved_through_;
+    const auto size = image_.produce(wall, datagram_, carried_, through);
     return std::span(datagram_.data(), size);
 }
 
@@ -127,23 +150,95 @@ void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
     }
     counters_.writes_applied += carried_.size();
     // docs/mqtt-api.md "Results": a write's result is reported once the datagram carrying it was
-    // sent and the image carrying it is saved. The save runs off the loop; a write that changed
-    // nothing still waits for a save under way, which may hold the value it wrote.
-    if (changed || (saves_in_flight_ > 0 && !carried_.empty())) {
-        ++saves_in_flight_;
-        persister_.save(persist_key_, plan_, image_.data(), carried_);
+    // sent and the image carrying it is saved. Those saved ahead are answered now; the others
+    // wait for the save their change asks for, or for the one under way, which may hold the
+    // value they wrote (a write that changed nothing).
+    const auto ahead = std::find_if(carried_.begin(), carried_.end(),
+                                    [&](std::uint64_t id) { return id > saved_through_; });
+    report_results(std::span(carried_.begin(), ahead));
+    const std::span waiting(ahead, carried_.end());
+    if ((changed && saved_) || (!waiting.empty() && (save_in_flight_ || save_again_))) {
+        unsaved_.insert(unsaved_.end(), waiting.begin(), waiting.end());
+        request_save();
         return;
     }
-    report_results(carried_);
+    report_results(waiting);
 }
 
-void ExchangeProducer::on_saved(bool ok, const std::vector<std::uint64_t>& write_ids) {
-    if (saves_in_flight_ > 0) --saves_in_flight_;
-    if (!ok) ++counters_.persist_failures;
-    report_results(write_ids);
+void ExchangeProducer::request_save() {
+    if (save_in_flight_) {
+        save_again_ = true;
+        return;
+    }
+    save_again_ = false;
+    save_in_flight_ = true;
+    saving_.swap(unsaved_);
+    unsaved_.clear();
+    saving_through_ = image_.project(projection_);
+    persister_.save(persist_key_, file_, projection_);
 }
 
-void ExchangeProducer::report_results(const std::vector<std::uint64_t>& write_ids) {
+void ExchangeProducer::on_saved(const std::optional<std::string>& error) {
+    save_in_flight_ = false;
+    const auto answered = std::move(saving_);
+    saving_.clear();
+    if (error) {
+        on_save_failed(*error, answered);
+    } else {
+        saved_through_ = std::max(saved_through_, saving_through_);
+        const bool changed = !saved_;
+        saved_ = true;
+        if (!save_error_.empty()) {
+            spdlog::info("exchange {}: image saved again to {}", plan_->spec.name, file_->path());
+            save_error_.clear();
+            save_log_.reset();
+        }
+        report_results(answered);
+        if (changed) report_status();
+    }
+    if (save_again_) request_save();
+}
+
+void ExchangeProducer::on_save_failed(const std::string& error,
+                                      const std::vector<std::uint64_t>& sent) {
+    ++counters_.save_failures;
+    ++totals_.failures;
+    saved_ = false;
+    retry_at_.reset();
+    for (const auto id : sent) {
+        const auto it = replies_.find(id);
+        if (it == replies_.end()) continue;
+        northbound_.write_result_unsaved(it->second, error);
+        replies_.erase(it);
+        ++totals_.writes_sent_unsaved;
+    }
+    // Queued writes that this save held wait on no other: they are never produced.
+    std::vector<std::uint64_t> refused;
+    image_.discard_pending(saved_through_, saving_through_, refused);
+    const auto answer = "not saved: " + error;
+    for (const auto id : refused) {
+        const auto it = replies_.find(id);
+        if (it == replies_.end()) continue;
+        northbound_.write_result(it->second, answer);
+        replies_.erase(it);
+        ++totals_.writes_not_saved;
+    }
+    const bool changed = error != save_error_;
+    save_error_ = error;
+    const auto count = save_log_.record(std::chrono::steady_clock::now());
+    if (count == 1) {
+        spdlog::error(
+            "exchange {}: cannot save its image ({}): {} write(s) sent unsaved, {} queued "
+            "write(s) refused; until a save succeeds, each write is saved before it is produced",
+            plan_->spec.name, error, sent.size(), refused.size());
+    } else if (count > 1) {
+        spdlog::error("exchange {}: {} image saves failed in the last {} s, the last one: {}",
+                      plan_->spec.name, count, save_log_.interval().count(), error);
+    }
+    if (changed) report_status();
+}
+
+void ExchangeProducer::report_results(std::span<const std::uint64_t> write_ids) {
     for (const auto id : write_ids) {
         const auto it = replies_.find(id);
         if (it == replies_.end()) continue;
@@ -170,6 +265,14 @@ void ExchangeProducer::report_echo(core::WallTime wall, bool all) {
 }
 
 void ExchangeProducer::on_tick(core::MonoTime now) {
+    if (!saved_ && !save_in_flight_) {
+        if (!retry_at_) {
+            retry_at_ = now + save_retry_interval;
+        } else if (now >= *retry_at_) {
+            retry_at_.reset();
+            request_save();
+        }
+    }
     // docs/mqtt-api.md "Exchange status": at most once a second while its counters move.
     if (counters_.sent == last_status_sent_) return;
     if (!status_grid_.due(now)) return;
@@ -187,6 +290,9 @@ void ExchangeProducer::report_status() {
     status.skipped_deadlines = counters_.skipped_deadlines;
     status.writes_applied = counters_.writes_applied;
     status.writes_pending = image_.pending();
+    status.saved = saved_;
+    status.save_failures = counters_.save_failures;
+    status.save_error = save_error_;
     northbound_.produced_status(*plan_, status);
 }
 

@@ -5,6 +5,7 @@
 #include <boost/asio/post.hpp>
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/app/mqtt_settings.hpp"
@@ -27,6 +28,8 @@ constexpr auto stop_flush_timeout = 3s;
 
 Gateway::Gateway(core::config::Config config)
     : config_(std::move(config)),
+      state_dir_(config_.gateway.state_dir,
+                 {config_.gateway.id, std::filesystem::absolute(config_.file).string()}),
       availability_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/state"),
       signals_(loop_, SIGINT, SIGTERM, SIGHUP),
       tick_timer_(loop_),
@@ -95,6 +98,13 @@ int Gateway::run() {
     for (auto& producer : producers_) producer->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
     if (persister_) persister_->flush();
+    for (const auto& producer : producers_) {
+        if (producer->saved()) continue;
+        spdlog::error(
+            "exchange {}: stopping with the image it produced not saved: the next "
+            "start produces the one saved before",
+            producer->plan().spec.name);
+    }
     // The edge node's NDEATH after its last data, then the JSON tree's `offline`.
     if (sparkplug_mqtt_) sparkplug_mqtt_->stop(stop_flush_timeout);
     mqtt_->stop(stop_flush_timeout);
@@ -129,8 +139,19 @@ void Gateway::start() {
     }
     mqtt_->start();
     if (sparkplug_mqtt_) {
-        sparkplug_mqtt_->set_on_connected(
-            [this] { on_sparkplug_event(true, [this] { sparkplug_->on_connected(); }); });
+        sparkplug_mqtt_->set_on_connected([this] {
+            on_sparkplug_event(
+                true, [this] { sparkplug_->on_connected(sparkplug_mqtt_->max_packet_size()); });
+        });
+        // One handler for both owners of the tokens on the node's connection: the node's own
+        // NDEATH (whose acknowledgement may let a pending birth go), else a journal entry.
+        sparkplug_mqtt_->set_on_acknowledged([this](std::uint64_t token) {
+            on_sparkplug_event(false, [&] {
+                if (!sparkplug_->on_acknowledged(token) && history_) {
+                    history_->on_acknowledged(*sparkplug_, token);
+                }
+            });
+        });
         sparkplug_mqtt_->set_on_message([this](const adapters::mqtt::Incoming& message) {
             on_sparkplug_event(false, [&] { sparkplug_->on_message(message); });
         });
@@ -199,6 +220,8 @@ void Gateway::on_tick() {
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
     // Before the metrics: figures showing a datagram accepted then show it journaled for good.
     if (history_) history_->on_tick(now);
+    // A pending rebirth may be born here: the node's replay of history starts with it.
+    if (sparkplug_) on_sparkplug_event(false, [&] { sparkplug_->tick(now); });
     if (refresh_scan) {
         last_refresh_scan_ = now;
         if (prometheus_) {

@@ -60,7 +60,11 @@ void Gateway::make_commands() {
 
 MetricsSources Gateway::metrics_sources(const adapters::mqtt::ClientStats& mqtt,
                                         const history::HistoryStats* history) const {
-    return {datagram_router_.counters(), writes_.counters(), mqtt, history,
+    return {datagram_router_.counters(),
+            writes_.counters(),
+            mqtt,
+            history,
+            sparkplug_ ? &sparkplug_->stats() : nullptr,
             commands_ ? &commands_->counters() : nullptr};
 }
 

@@ -51,15 +51,16 @@ void Gateway::add_sparkplug_history() {
                                 const auto stats = sparkplug_mqtt_->stats();
                                 return stats.queued + stats.in_flight;
                             }};
+    // Its acknowledgements come through the node's handler (Gateway::start), which shares the
+    // connection's tokens with the node's own NDEATH.
     history_->add_sink(*sparkplug_, std::move(link));
-    sparkplug_mqtt_->set_on_acknowledged(
-        [this](std::uint64_t id) { history_->on_acknowledged(*sparkplug_, id); });
 }
 
 void Gateway::on_sparkplug_event(bool connection, const std::function<void()>& event) {
-    // Born by this event (a connection without a primary host, or the host's STATE online):
-    // the node replays on the births' heels. Every birth on a new connection comes from one of
-    // these, and the old connection's unacknowledged history goes again.
+    // Born by this event (a connection without a primary host, the host's STATE online, the
+    // PUBACK of an NDEATH a birth waited for, or a pending rebirth on a tick): the node replays
+    // on the births' heels. Every birth comes from one of these, and what the node was handed
+    // while it was born before and had not had acknowledged goes again.
     const bool was_born = !connection && sparkplug_->born();
     event();
     if (history_ && sparkplug_->born() && !was_born) {

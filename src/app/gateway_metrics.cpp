@@ -44,6 +44,8 @@ adapters::metrics::ExchangeMetrics producer_metrics(const ExchangeProducer& prod
     m.sent = producer.counters().sent;
     m.send_errors = producer.counters().send_errors;
     m.skipped_deadlines = producer.counters().skipped_deadlines;
+    m.save_failures = producer.counters().save_failures;
+    m.image_saved = producer.saved();
     return m;
 }
 
@@ -133,6 +135,9 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     g.writes_ok = sources.gateway.writes_ok;
     g.writes_cancelled = sources.gateway.writes_cancelled;
     g.writes_rejected = rejections_by_name(sources.gateway);
+    g.writes_not_saved = sources.gateway.image_saves.writes_not_saved;
+    g.writes_sent_unsaved = sources.gateway.image_saves.writes_sent_unsaved;
+    g.image_save_failures = sources.gateway.image_saves.failures;
     g.writes_by_origin = writes_by_origin(sources.gateway);
     if (sources.history) {
         g.history = history_metrics(*sources.history);

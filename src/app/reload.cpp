@@ -29,6 +29,22 @@ std::vector<adapters::udp::MulticastMembership> memberships(const core::config::
     return out;
 }
 
+/// The image of the producer that `plan` replaces, when a reload changes its exchange but not
+/// the layout of its image: the running image goes on, whatever its file holds.
+std::optional<ImageHandover> handover_for(
+    const core::plan::ExchangePlan& plan,
+    const std::vector<std::unique_ptr<ExchangeProducer>>& old_producers) {
+    for (const auto& producer : old_producers) {
+        if (!producer || producer->plan().spec.name != plan.spec.name) continue;
+        if (adapters::state::layout_fingerprint(producer->plan()) !=
+            adapters::state::layout_fingerprint(plan)) {
+            return std::nullopt;
+        }
+        return producer->hand_over();
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 std::vector<core::plan::ExchangePlan> Gateway::take_plans(core::config::Config& config) {
@@ -67,7 +83,8 @@ ExchangeSet Gateway::running_exchanges() const {
     return running;
 }
 
-std::unique_ptr<ExchangeProducer> Gateway::make_producer(core::plan::ExchangePlan plan) {
+std::unique_ptr<ExchangeProducer> Gateway::make_producer(core::plan::ExchangePlan plan,
+                                                         std::optional<ImageHandover> handover) {
     const auto destination =
         adapters::udp::resolve_endpoint(plan.spec.destination, config_.eip.port);
     if (!destination) {
@@ -86,11 +103,13 @@ std::unique_ptr<ExchangeProducer> Gateway::make_producer(core::plan::ExchangePla
             std::make_unique<adapters::state::ImagePersister>(image_store_, loop_.get_executor());
     }
     return std::make_unique<ExchangeProducer>(std::move(plan), *destination, *production_,
-                                              *persister_, northbound_);
+                                              *persister_, northbound_, writes_.image_saves(),
+                                              std::move(handover));
 }
 
 void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running) {
-    // Saves still under way must reach the disk before a restarted exchange reads its image.
+    // Saves still under way must reach the disk, and their writes their results, before an
+    // image is handed over or read.
     if (persister_) persister_->flush();
 
     const auto diff = diff_running(plans);
@@ -120,7 +139,8 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
             started_consumers.push_back(consumers_.back().get());
             continue;
         }
-        producers_.push_back(make_producer(std::move(plan)));
+        auto handover = handover_for(plan, old_producers);
+        producers_.push_back(make_producer(std::move(plan), std::move(handover)));
         started_producers.push_back(producers_.back().get());
     }
 

@@ -32,6 +32,7 @@ struct Counters {
         datagrams.dropped[static_cast<std::size_t>(DropReason::wrong_source)] = 1;
         gateway.writes_ok = 5;
         gateway.writes_cancelled = 2;
+        gateway.image_saves = {13, 14, 15};
         gateway.writes_rejected[static_cast<std::size_t>(WriteError::out_of_range)] = 4;
         mqtt.connected = true;
         mqtt.published = 100;
@@ -61,6 +62,9 @@ TEST(MetricsJson, EachCounterLandsInItsField) {
     EXPECT_EQ(metrics["writes_ok"], 5);
     EXPECT_EQ(metrics["writes_cancelled"], 2);
     EXPECT_EQ(metrics["writes_rejected"]["out_of_range"], 4);
+    EXPECT_EQ(metrics["image_save_failures"], 13);
+    EXPECT_EQ(metrics["writes_not_saved"], 14);
+    EXPECT_EQ(metrics["writes_sent_unsaved"], 15);
 }
 
 TEST(MetricsJson, EveryDropReasonAndWriteErrorIsListedEvenAtZero) {
@@ -99,6 +103,9 @@ TEST(MetricsSnapshot, CarriesTheGatewayFiguresAndEachExchange) {
     EXPECT_EQ(snapshot.gateway.published, 100u);
     EXPECT_EQ(snapshot.gateway.publications_refused, 11u);
     EXPECT_EQ(snapshot.gateway.writes_rejected.at("out_of_range"), 4u);
+    EXPECT_EQ(snapshot.gateway.image_save_failures, 13u);
+    EXPECT_EQ(snapshot.gateway.writes_not_saved, 14u);
+    EXPECT_EQ(snapshot.gateway.writes_sent_unsaved, 15u);
     ASSERT_EQ(snapshot.exchanges.size(), 1u);
     EXPECT_EQ(snapshot.exchanges[0].name, "e1");
     EXPECT_EQ(snapshot.exchanges[0].direction, "consume");

@@ -291,7 +291,7 @@ TEST(Schemas, RefusePayloadsThatBreakTheDocumentedFormat) {
         R"("restarts":0,"last_seen":1695231678000,"clock":"synced","clock_offset_ms":-3})";
     const std::string produced =
         R"({"state":"producing","request_id":1,"sent":0,"send_errors":0,"skipped_deadlines":0,)"
-        R"("writes_applied":0,"writes_pending":0})";
+        R"("writes_applied":0,"writes_pending":0,"saved":true,"save_failures":0,"save_error":null})";
     struct Case {
         std::string schema;
         std::string payload;
@@ -321,6 +321,15 @@ TEST(Schemas, RefusePayloadsThatBreakTheDocumentedFormat) {
          false},
         {"status.json", std::string(produced).replace(10, 9, "ok"), false},
         {"status.json", std::string(produced).replace(produced.find("1,"), 1, "70000"), false},
+        {"status.json",
+         std::string(produced)
+             .replace(produced.find("true"), 4, "false")
+             .replace(produced.find("null") + 1, 4, R"("write x: Input/output error")"),
+         true},
+        {"status.json",
+         std::string(produced).replace(produced.find("null"), 4, R"("write x: I/O error")"),
+         false},  // a failed save leaves the image unsaved
+        {"status.json", std::string(produced).replace(produced.find(",\"saved"), 13, ""), false},
         {"values.json", R"({"timestamp":1,"quality":"good","values":{"A":1,"B":true}})", true},
         {"values.json", R"({"timestamp":1,"quality":"good","values":{}})", false},
         {"values.json", R"({"timestamp":1,"quality":"good","values":{"A":[1]}})", false},
@@ -329,6 +338,11 @@ TEST(Schemas, RefusePayloadsThatBreakTheDocumentedFormat) {
         {"write-result.json", R"({"ok":false})", false},
         {"write-result.json", R"({"ok":true,"error":"above max 4000"})", false},
         {"write-result.json", R"({"ok":"true"})", false},
+        {"write-result.json", R"({"ok":true,"saved":false,"error":"not saved: write x: EIO"})",
+         true},
+        {"write-result.json", R"({"ok":true,"saved":true,"error":"not saved: write x: EIO"})",
+         false},
+        {"write-result.json", R"({"ok":true,"saved":false})", false},
         {"write-request.json", "42", true},
         {"write-request.json", R"({"value":true})", true},
         {"write-request.json", "\"42\"", false},

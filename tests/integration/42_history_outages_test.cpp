@@ -1,16 +1,13 @@
 // Store and forward through outages with the real binary, a real Mosquitto and real UDP: the
 // journal on a really full disk (a 2 MB tmpfs as gateway.state_dir) through two outages and a
 // restart, and the Sparkplug node's history over three outages, replayed on the node's own
-// connection once it is born again.
+// connection once it is born again, and through an NDEATH in the middle of its replay.
 
 #include <signal.h>
 
 #include <algorithm>
-#include <condition_variable>
 #include <filesystem>
-#include <functional>
 #include <map>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
@@ -18,8 +15,9 @@
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
+#include "tests/support/paced_producer.hpp"
 #include "tests/support/tahu.hpp"
-#include "tests/support/tmpfs_mount.hpp"
+#include "tests/support/tmpfs.hpp"
 
 namespace eip2mqtt::test {
 namespace {
@@ -27,56 +25,6 @@ namespace {
 using core::plan::TagType;
 using nlohmann::json;
 using namespace std::chrono_literals;
-
-/// Sends datagram `n` (1, 2, ...) every `period`; pausable, so that a test knows what it sent.
-class Producer {
-public:
-    Producer(std::function<std::vector<std::byte>(std::uint64_t)> make,
-             std::function<void(const std::vector<std::byte>&)> send,
-             std::chrono::milliseconds period)
-        : thread_([this, make = std::move(make), send = std::move(send), period] {
-              std::unique_lock lock(mutex_);
-              while (!stop_) {
-                  if (paused_) {
-                      cv_.wait(lock, [this] { return stop_ || !paused_; });
-                      continue;
-                  }
-                  const auto n = ++last_;
-                  lock.unlock();
-                  send(make(n));
-                  std::this_thread::sleep_for(period);  // pacing the traffic, not synchronising
-                  lock.lock();
-              }
-          }) {}
-    ~Producer() {
-        {
-            std::lock_guard lock(mutex_);
-            stop_ = true;
-        }
-        cv_.notify_all();
-        thread_.join();
-    }
-    std::uint64_t pause() {
-        std::lock_guard lock(mutex_);
-        paused_ = true;
-        return last_;
-    }
-    void resume() {
-        {
-            std::lock_guard lock(mutex_);
-            paused_ = false;
-        }
-        cv_.notify_all();
-    }
-
-private:
-    std::mutex mutex_;
-    std::condition_variable cv_;
-    bool paused_ = false;
-    bool stop_ = false;
-    std::uint64_t last_ = 0;
-    std::thread thread_;
-};
 
 class HistoryOutagesTest : public GatewayTest {
 protected:
@@ -186,14 +134,13 @@ protected:
     }
 
     std::map<std::string, std::size_t> expected_;
-    std::unique_ptr<TmpfsMount> disk_;
-    std::unique_ptr<Producer> producer_;
+    std::unique_ptr<Tmpfs> disk_;
+    std::unique_ptr<PacedProducer> producer_;
 };
 
 TEST_F(HistoryOutagesTest, AFullDiskKeepsTheNewestThroughTwoOutagesAndARestart) {
-    if (const auto why = TmpfsMount::unavailable(); !why.empty()) GTEST_SKIP() << why;
-    std::filesystem::create_directories(dir_.path() + "/state");
-    disk_ = std::make_unique<TmpfsMount>(2 << 20, dir_.path() + "/state");
+    disk_ = std::make_unique<Tmpfs>(2 << 20, false, dir_.path() + "/state");
+    if (!disk_->mounted()) GTEST_SKIP() << disk_->error();
     // 200 tags, every one changing in every datagram, 200 datagrams a second: about 200 KB a
     // second to journal, so the 2 MB disk is full long before a 20 s outage ends.
     constexpr int tags = 200;
@@ -212,7 +159,7 @@ TEST_F(HistoryOutagesTest, AFullDiskKeepsTheNewestThroughTwoOutagesAndARestart) 
     recorder_ = std::make_unique<MqttRecorder>(
         broker_->url(),
         std::vector<std::string>{values, history, metrics_topic(), availability_topic()});
-    producer_ = std::make_unique<Producer>(
+    producer_ = std::make_unique<PacedProducer>(
         [](std::uint64_t n) {
             DatagramBuilder datagram("10.0.0.3", 8, tags * 4);
             datagram.request_id(static_cast<std::uint16_t>(n));
@@ -257,87 +204,147 @@ TEST_F(HistoryOutagesTest, AFullDiskKeepsTheNewestThroughTwoOutagesAndARestart) 
     EXPECT_EQ(gateway_->output().find("set aside"), std::string::npos) << gateway_->output();
 }
 
-TEST_F(HistoryOutagesTest, SparkplugHistoryOfThreeOutagesHasEveryJournaledSample) {
-    // The node's births wait for its primary host, which says it is online again only once the
-    // JSON tree has replayed the outage: the node's own replay must wait for its births, and the
-    // journal keep each entry until the node has it too.
-    auto options = broker_keeping_everything();
-    options.sections = "sparkplug:\n  group_id: plant\n  qos: 1\n  primary_host_id: scada\n";
-    start(ExchangeYaml::consume("line", "10.0.0.2", 7)
-              .length(4)
-              .period_ms(10)
-              .timeout_ms(0)
-              .tag("COUNTER", "0.0", "udint")
-              .str(),
-          "  batch: true\n  store_and_forward:\n    enabled: true\n    replay_rate: 500\n",
-          std::move(options));
-    const std::string state = "spBv1.0/STATE/scada";
-    int host_timestamp = 0;
-    const auto host = [&](bool online) {
-        recorder_->publish(state,
+/// One consumed exchange (`line`, a counter) at 100 datagrams a second, Sparkplug behind a
+/// primary host, store and forward replaying at `replay_rate`.
+class HistoryOutagesSparkplugTest : public HistoryOutagesTest {
+protected:
+    void start_line(int qos, int replay_rate) {
+        auto options = broker_keeping_everything();
+        options.sections = "sparkplug:\n  group_id: plant\n  qos: " + std::to_string(qos) +
+                           "\n  primary_host_id: scada\n";
+        start(ExchangeYaml::consume("line", "10.0.0.2", 7)
+                  .length(4)
+                  .period_ms(10)
+                  .timeout_ms(0)
+                  .tag("COUNTER", "0.0", "udint")
+                  .str(),
+              "  batch: true\n  store_and_forward:\n    enabled: true\n    replay_rate: " +
+                  std::to_string(replay_rate) + "\n",
+              std::move(options));
+        host(true);
+        producer_ = std::make_unique<PacedProducer>(
+            [](std::uint64_t n) {
+                return DatagramBuilder("10.0.0.2", 7, 4)
+                    .request_id(static_cast<std::uint16_t>(n))
+                    .set("0.0", TagType::udint, std::uint64_t{n})
+                    .build();
+            },
+            [this](const auto& d) { send(d); }, 10ms);
+        ASSERT_TRUE(recorder_->wait_for_message(ddata_, nullptr, 10s));
+    }
+    /// The primary host's STATE, retained: after an outage, the node waits for it again.
+    void host(bool online) {
+        recorder_->publish(state_,
                            std::string(R"({"online":)") + (online ? "true" : "false") +
-                               R"(,"timestamp":)" + std::to_string(++host_timestamp) + "}",
+                               R"(,"timestamp":)" + std::to_string(++host_timestamp_) + "}",
                            true);
-    };
-    host(true);
-    producer_ = std::make_unique<Producer>(
-        [](std::uint64_t n) {
-            return DatagramBuilder("10.0.0.2", 7, 4)
-                .request_id(static_cast<std::uint16_t>(n))
-                .set("0.0", TagType::udint, std::uint64_t{n})
-                .build();
-        },
-        [this](const auto& d) { send(d); }, 10ms);
-    const std::string ddata = "spBv1.0/plant/DDATA/test-gw/line";
-    ASSERT_TRUE(recorder_->wait_for_message(ddata, nullptr, 10s));
-    const auto history = topic("line/_history");
-    for (int outage = 0; outage < 3; ++outage) {
-        host(false);  // retained: after the outage, the node waits for the host again
+    }
+    /// The host offline, a 5 s outage, the broker back: waits for the JSON tree's replay of
+    /// the outage, made while the node is not born.
+    void outage_with_the_host_offline() {
+        host(false);
         stop_broker();
-        std::this_thread::sleep_for(5s);  // the scenario: three outages of 5 s
+        std::this_thread::sleep_for(5s);  // the scenario: outages of 5 s
         const auto from = recorder_->count();
         start_broker();
-        // The JSON tree replays the outage while the node is not born.
         ASSERT_TRUE(recorder_->wait_for(
             [&](const std::vector<Received>& all) {
-                return std::count_if(all.begin() + static_cast<std::ptrdiff_t>(from), all.end(),
-                                     [&](const Received& m) { return m.topic == history; }) >= 300;
+                return count_after(all, history_, from) >= 300;
             },
             30s))
             << gateway_->output();
+    }
+    static std::size_t count_after(const std::vector<Received>& all, const std::string& topic_name,
+                                   std::size_t from) {
+        return static_cast<std::size_t>(
+            std::count_if(all.begin() + static_cast<std::ptrdiff_t>(from), all.end(),
+                          [&](const Received& m) { return m.topic == topic_name; }));
+    }
+    /// Read by Tahu: the node's historical samples, each a journaled one (what `_history`
+    /// got), none missing.
+    void expect_every_journaled_sample_as_sparkplug_history(std::size_t at_least) {
+        const auto all = recorder_->messages();
+        const auto json_history = values_on(history_, "COUNTER", all);
+        const std::set<std::uint64_t> journaled(json_history.begin(), json_history.end());
+        ASSERT_GT(journaled.size(), at_least);
+        std::vector<std::string> payloads;
+        for (const auto& m : all) {
+            if (m.topic == ddata_) payloads.push_back(m.payload);
+        }
+        std::vector<std::uint64_t> historical;
+        for (const auto& payload : tahu_decode_all(payloads)) {
+            for (const auto& metric : payload.at("metrics")) {
+                if (metric.value("isHistorical", false)) {
+                    historical.push_back(metric.at("value").get<std::uint64_t>());
+                }
+            }
+        }
+        const std::set<std::uint64_t> historical_set(historical.begin(), historical.end());
+        std::vector<std::uint64_t> missing;
+        std::set_difference(journaled.begin(), journaled.end(), historical_set.begin(),
+                            historical_set.end(), std::back_inserter(missing));
+        EXPECT_TRUE(missing.empty()) << missing.size() << " of " << journaled.size()
+                                     << " journaled samples never came as Sparkplug history, "
+                                     << "first " << (missing.empty() ? 0 : missing.front());
+        for (const auto v : historical_set) EXPECT_TRUE(journaled.contains(v)) << v;
+        EXPECT_LE(historical.size() - historical_set.size(), 15u) << "repeats of a lost connection";
+        std::cout << journaled.size() << " journaled samples, " << historical_set.size()
+                  << " as Sparkplug history (" << historical.size() << " deliveries)\n";
+    }
+
+    const std::string state_ = "spBv1.0/STATE/scada";
+    const std::string ddata_ = "spBv1.0/plant/DDATA/test-gw/line";
+    const std::string history_ = topic("line/_history");
+    int host_timestamp_ = 0;
+};
+
+TEST_F(HistoryOutagesSparkplugTest, ThreeOutagesHaveEveryJournaledSample) {
+    // The node's births wait for its primary host, which says it is online again only once the
+    // JSON tree has replayed the outage: the node's own replay must wait for its births, and the
+    // journal keep each entry until the node has it too.
+    start_line(1, 500);
+    for (int outage = 0; outage < 3; ++outage) {
+        outage_with_the_host_offline();
         host(true);
         EXPECT_TRUE(wait_replayed(60s)) << gateway_->output();
     }
     producer_->pause();
+    expect_every_journaled_sample_as_sparkplug_history(1000);  // 15 s at 100 a second
+}
 
+TEST_F(HistoryOutagesSparkplugTest, AnNdeathInTheMiddleOfTheReplayLosesNothing) {
+    // The node's connection carries two owners' acknowledgements: the journal's (its historical
+    // DDATA) and the node's own (the NDEATH it says when the host goes offline, whose PUBACK the
+    // next births wait for). Each must reach its owner: the births come without waiting out the
+    // NDEATH's deadline, the replay goes on after them, and the journal empties.
+    start_line(0, 200);
+    outage_with_the_host_offline();
+    producer_->pause();  // from here, every DDATA is history: 5 s of it, 2.5 s of replay
+    const auto from = recorder_->count();
+    host(true);
+    ASSERT_TRUE(recorder_->wait_for(
+        [&](const std::vector<Received>& all) { return count_after(all, ddata_, from) >= 100; },
+        30s));
+    const auto death_at = recorder_->count();
+    host(false);
+    const std::string death = "spBv1.0/plant/NDEATH/test-gw";
+    ASSERT_TRUE(recorder_->wait_for_message(death, nullptr, 10s, death_at)) << gateway_->output();
+    host(true);
+    EXPECT_TRUE(wait_replayed(60s)) << gateway_->output();
+    // The flap came in the middle of the replay, the births after the NDEATH.
     const auto all = recorder_->messages();
-    const auto json_history = values_on(topic("line/_history"), "COUNTER", all);
-    const std::set<std::uint64_t> journaled(json_history.begin(), json_history.end());
-    ASSERT_GT(journaled.size(), 1000u);  // 15 s at 100 a second went there
-    // Read by Tahu: the node's historical samples, each a journaled one, none missing.
-    std::vector<std::string> payloads;
-    for (const auto& m : all) {
-        if (m.topic == ddata) payloads.push_back(m.payload);
-    }
-    std::vector<std::uint64_t> historical;
-    for (const auto& payload : tahu_decode_all(payloads)) {
-        for (const auto& metric : payload.at("metrics")) {
-            if (metric.value("isHistorical", false)) {
-                historical.push_back(metric.at("value").get<std::uint64_t>());
-            }
+    EXPECT_GT(count_after(all, ddata_, death_at), 0u);
+    std::vector<std::string> node_messages;
+    for (auto i = death_at; i < all.size(); ++i) {
+        if (all[i].topic.find("/NDEATH/") != std::string::npos ||
+            all[i].topic.find("/NBIRTH/") != std::string::npos) {
+            node_messages.push_back(all[i].topic);
         }
     }
-    const std::set<std::uint64_t> historical_set(historical.begin(), historical.end());
-    std::vector<std::uint64_t> missing;
-    std::set_difference(journaled.begin(), journaled.end(), historical_set.begin(),
-                        historical_set.end(), std::back_inserter(missing));
-    EXPECT_TRUE(missing.empty()) << missing.size() << " of " << journaled.size()
-                                 << " journaled samples never came as Sparkplug history, first "
-                                 << (missing.empty() ? 0 : missing.front());
-    for (const auto v : historical_set) EXPECT_TRUE(journaled.contains(v)) << v;
-    EXPECT_LE(historical.size() - historical_set.size(), 15u) << "repeats of a lost connection";
-    std::cout << journaled.size() << " journaled samples, " << historical_set.size()
-              << " as Sparkplug history (" << historical.size() << " deliveries)\n";
+    EXPECT_EQ(node_messages, (std::vector<std::string>{death, "spBv1.0/plant/NBIRTH/test-gw"}));
+    EXPECT_EQ(gateway_->output().find("did not acknowledge the NDEATH"), std::string::npos)
+        << gateway_->output();
+    expect_every_journaled_sample_as_sparkplug_history(300);
 }
 
 }  // namespace

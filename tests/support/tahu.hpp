@@ -12,8 +12,10 @@ namespace eip2mqtt::test {
 /// The payload as Tahu decodes it: {"timestamp": "..", "seq": "..", "metrics": [{"name",
 /// "alias", "type", "value", "timestamp", "properties"}..]}, 64-bit integers as strings.
 nlohmann::json tahu_decode(const std::string& bytes);
-/// The same for many payloads, in one run of Node.js (a run per payload takes minutes for
-/// thousands).
+
+/// Each of `payloads` as tahu_decode() gives it, in order, with one run of Node.js: many
+/// messages decoded one by one would take a Node.js start each. Always as many as `payloads`
+/// (empty objects, the test failed, when Tahu could not decode them all).
 std::vector<nlohmann::json> tahu_decode_all(const std::vector<std::string>& payloads);
 
 /// The protobuf bytes Tahu encodes for `payload` ({"timestamp": ms, "metrics": [{"name",

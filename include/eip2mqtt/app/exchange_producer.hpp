@@ -5,6 +5,15 @@
 /// Northbound, has the ImagePersister save the image when it changes, and answers each write
 /// once the datagram carrying it has left and the image carrying it is saved.
 ///
+/// The image in memory is the truth, and what a restart produces is the image file: so nothing
+/// is produced that is not saved, bar one case. While saves succeed, a write is produced first
+/// and saved right after (its result waits for the save): the write costs no disk time on its
+/// way to the wire. Once a save has failed, and until one succeeds (retried every second), each
+/// write is saved before it may be produced, and refused (`not saved: …`) if that save fails.
+/// The one case is the save that fails first: the writes it carried were sent already; they are
+/// answered `saved: false`, and a restart before the next successful save produces the image
+/// from before them.
+///
 /// Threading: the loop only.
 
 #include <cstdint>
@@ -25,6 +34,7 @@
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
 #include "eip2mqtt/core/exchange/status_grid.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/write/rate_limiter.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
 
@@ -35,16 +45,35 @@ struct ProducerCounters {
     std::uint64_t send_errors = 0;
     std::uint64_t skipped_deadlines = 0;  ///< periods lost because the loop fell behind
     std::uint64_t writes_applied = 0;
-    std::uint64_t persist_failures = 0;
+    std::uint64_t save_failures = 0;  ///< image saves that failed
+};
+
+/// What the image saves of every produced exchange add up to, kept by the gateway: a reload
+/// replaces producers and their counters, never these.
+struct ImageSaveTotals {
+    std::uint64_t failures = 0;  ///< image saves that failed
+    /// Accepted writes refused because the save that had to precede them failed (`not saved`).
+    std::uint64_t writes_not_saved = 0;
+    /// Writes sent, whose save then failed (`"saved":false`).
+    std::uint64_t writes_sent_unsaved = 0;
+};
+
+/// A producer's image, for the one that replaces it when a reload changes its exchange but
+/// not its layout: the image in memory goes on, not what the file holds.
+struct ImageHandover {
+    std::vector<std::byte> data;
+    std::shared_ptr<adapters::state::ImageFile> file;
 };
 
 class ExchangeProducer : public Producible {
 public:
-    /// The image is restored through `persister` when a file of the same layout exists.
-    /// `scheduler`, `persister` and `northbound` must outlive the producer.
+    /// The image is `handover`'s when given, else restored through `persister` when a file of
+    /// the same layout exists. `scheduler`, `persister`, `northbound` and `totals` must outlive
+    /// the producer.
     ExchangeProducer(core::plan::ExchangePlan plan, adapters::udp::Endpoint destination,
                      ProducerScheduler& scheduler, adapters::state::ImagePersister& persister,
-                     Northbound& northbound);
+                     Northbound& northbound, ImageSaveTotals& totals,
+                     std::optional<ImageHandover> handover = std::nullopt);
     ~ExchangeProducer();
     ExchangeProducer(const ExchangeProducer&) = delete;
     ExchangeProducer& operator=(const ExchangeProducer&) = delete;
@@ -57,8 +86,13 @@ public:
     /// exchange): answers every write still queued, which no datagram will ever carry, with
     /// `error` and forgets it; returns how many. Writes already carried by
     /// a sent datagram are not touched: they wait for their save, so flush the persister
-    /// before destroying the producer, and they get `{"ok":true}`.
+    /// before destroying the producer, and they get `{"ok":true}`. A queued write saved ahead
+    /// of its production is taken out of the file again (the image is saved as produced).
     std::size_t cancel_queued_writes(std::string_view error);
+    /// The image and its file, for the producer replacing this one (same layout).
+    ImageHandover hand_over() const {
+        return {{image_.data().begin(), image_.data().end()}, file_};
+    }
 
     /// Queues a validated write; its result is reported after the datagram carrying it is
     /// sent. Fails with rate_limited when a tag is written more often than its
@@ -66,7 +100,8 @@ public:
     std::optional<core::write::WriteRejection> stage(std::vector<core::write::TagWrite> writes,
                                                      WriteReply reply, core::MonoTime now);
 
-    /// The status at most once a second while its counters move (docs/mqtt-api.md).
+    /// The status at most once a second while its counters move (docs/mqtt-api.md); while
+    /// saves fail, a save of the image once a second.
     void on_tick(core::MonoTime now);
 
     /// Reports every tag's value and the status again (after a reconnect).
@@ -86,6 +121,8 @@ public:
     const ProducerCounters& counters() const { return counters_; }
     /// True while sends fail (the status says paused).
     bool paused() const { return failing_; }
+    /// True when the file holds the image being produced, or a newer one.
+    bool saved() const { return saved_; }
     const core::exchange::ProducedImage& image() const { return image_; }
     /// When the last datagram left; nullopt before the first.
     std::optional<core::WallTime> last_sent() const { return last_sent_; }
@@ -93,22 +130,40 @@ public:
     core::WallTime configured_at() const { return configured_at_; }
 
 private:
-    /// The image save asked by on_sent() is done: reports the results of `write_ids`.
-    void on_saved(bool ok, const std::vector<std::uint64_t>& write_ids);
+    /// Saves the image with every queued write applied, now or once the save under way is done.
+    void request_save();
+    /// A save is done: the writes it answers get their results, or it failed (below).
+    void on_saved(const std::optional<std::string>& error);
+    /// Sent writes answered `saved: false`, queued ones it held refused, and the producer saves
+    /// ahead of production until a save succeeds.
+    void on_save_failed(const std::string& error, const std::vector<std::uint64_t>& sent);
     void report_echo(core::WallTime wall, bool all);
     void report_status();
-    void report_results(const std::vector<std::uint64_t>& write_ids);
+    void report_results(std::span<const std::uint64_t> write_ids);
 
-    /// Shared with the saves under way, which may outlive this producer (reload).
+    /// On the heap, at one address for the producer's life: image_ and the northbounds keep it.
     std::shared_ptr<const core::plan::ExchangePlan> plan_;
     adapters::udp::Endpoint destination_;
     ProducerScheduler& scheduler_;
     std::optional<ProducerScheduler::Id> id_;  ///< set by start(), reset by stop()
     adapters::state::ImagePersister& persister_;
     adapters::state::ImagePersister::Key persist_key_;
-    std::size_t saves_in_flight_ = 0;
     Northbound& northbound_;
+    ImageSaveTotals& totals_;
+    std::shared_ptr<adapters::state::ImageFile> file_;  ///< shared with the saves under way
     core::exchange::ProducedImage image_;
+    // The image file: at most one save under way, the next one asked for meanwhile.
+    bool saved_ = false;  ///< the file holds image_ (or a newer projection of it)
+    bool save_in_flight_ = false;
+    bool save_again_ = false;
+    std::uint64_t saved_through_ = 0;     ///< the last queued write the file holds
+    std::uint64_t saving_through_ = 0;    ///< the last queued write of the save under way
+    std::vector<std::uint64_t> saving_;   ///< sent writes the save under way answers
+    std::vector<std::uint64_t> unsaved_;  ///< sent writes waiting for the next save
+    std::vector<std::byte> projection_;   ///< what the save under way writes
+    std::string save_error_;              ///< of the last failed save; empty once one succeeds
+    std::optional<core::MonoTime> retry_at_;
+    core::ThrottledLog save_log_;
     std::vector<std::byte> datagram_;
     std::vector<std::byte> echoed_;  ///< data bytes as last reported
     std::vector<std::uint64_t> carried_;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -20,6 +21,7 @@
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 #include "eip2mqtt/adapters/state/image_persister.hpp"
 #include "eip2mqtt/adapters/state/image_store.hpp"
+#include "eip2mqtt/adapters/state/state_dir_lock.hpp"
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
 #include "eip2mqtt/adapters/udp/command_socket.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
@@ -66,8 +68,8 @@ private:
     void make_history();
     /// The Sparkplug node's history goes through store and forward too, on its own connection.
     void add_sparkplug_history();
-    /// Runs `event` (the node's connection, or a message for it); once the node is born by it,
-    /// its replay of history starts.
+    /// Runs `event` (the node's connection, a message or an acknowledgement for it, its tick);
+    /// once the node is born by it, its replay of history starts.
     void on_sparkplug_event(bool connection, const std::function<void()>& event);
     /// The plans of `config`'s exchanges, for apply_exchanges. The exchange configs (every tag
     /// again, with the marks of its keys) served validation only: they are released here.
@@ -83,8 +85,10 @@ private:
     std::vector<const core::plan::ExchangePlan*> running_plans() const;
     /// Every exchange's retained state published again (a reconnect, new publish settings).
     void republish_exchanges();
-    /// A new producer, opening the sending socket with the first one.
-    std::unique_ptr<ExchangeProducer> make_producer(core::plan::ExchangePlan plan);
+    /// A new producer, opening the sending socket with the first one; with the running image
+    /// of the one it replaces when given.
+    std::unique_ptr<ExchangeProducer> make_producer(core::plan::ExchangePlan plan,
+                                                    std::optional<ImageHandover> handover);
     /// SIGHUP: a valid new file is applied whole, or refused whole (errors, or a change that
     /// needs a restart: core::config::plan_reload), the log naming each changed key.
     void reload();
@@ -106,6 +110,9 @@ private:
     void wait_signal();
 
     core::config::Config config_;
+    /// Taken first: a second gateway on the same state directory stops here, before it has
+    /// opened a socket or a file.
+    adapters::state::StateDirLock state_dir_;
     std::string availability_topic_;
 
     boost::asio::io_context loop_;

@@ -19,6 +19,7 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
+#include "eip2mqtt/app/northbound/sparkplug_stats.hpp"
 #include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
@@ -32,6 +33,8 @@ struct GatewayCounters {
     /// Of writes_ok, those still queued when a reload changed or removed their exchange:
     /// answered `"reloaded"`, never produced.
     std::uint64_t writes_cancelled = 0;
+    /// Image saves of every produced exchange, and the writes whose save failed.
+    ImageSaveTotals image_saves;
     /// Of writes_ok, by the protocol they came by (WriteOrigin).
     std::array<std::uint64_t, write_origin_count> writes_by_origin{};
 };
@@ -41,8 +44,9 @@ struct MetricsSources {
     const DatagramCounters& datagrams;
     const GatewayCounters& gateway;
     const adapters::mqtt::ClientStats& mqtt;
-    const history::HistoryStats* history = nullptr;  ///< with store and forward
-    const CommandCounters* commands = nullptr;       ///< with eip.commands enabled
+    const history::HistoryStats* history = nullptr;         ///< with store and forward
+    const northbound::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
+    const CommandCounters* commands = nullptr;              ///< with eip.commands enabled
 };
 
 /// Store and forward's figures for Prometheus and the metrics topic.

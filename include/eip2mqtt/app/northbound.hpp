@@ -83,6 +83,10 @@ struct ProducedStatus {
     std::uint64_t skipped_deadlines = 0;
     std::uint64_t writes_applied = 0;
     std::uint64_t writes_pending = 0;
+    /// The image file holds the image being produced (or a newer one, saved ahead of it).
+    bool saved = true;
+    std::uint64_t save_failures = 0;
+    std::string_view save_error;  ///< why the last save failed; empty once one succeeds
 };
 
 /// Validated writes for one produced exchange, applied together in one datagram.
@@ -120,6 +124,10 @@ public:
     /// The result of a write that came from this northbound (`reply.origin`): nullopt when it
     /// was applied and carried by a sent datagram, else why not.
     virtual void write_result(const WriteReply& reply, std::optional<std::string_view> error) = 0;
+    /// The result of a write that was applied and carried by a sent datagram, but whose image
+    /// could not be saved (`reason`): a restart before the next successful save would produce
+    /// the image from before it. Northbounds that answer no write ignore it.
+    virtual void write_result_unsaved(const WriteReply&, std::string_view /*reason*/) {}
     /// The gateway's counters, every mqtt.metrics_interval.
     virtual void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) = 0;
 };

@@ -28,6 +28,8 @@ public:
     void on_write(WriteRequest&& request) override;
     /// Writes a reload answered `reloaded` (ExchangeProducer::cancel_queued_writes).
     void count_cancelled(std::size_t writes) { counters_.writes_cancelled += writes; }
+    /// Where the produced exchanges count their image saves (ExchangeProducer).
+    ImageSaveTotals& image_saves() { return counters_.image_saves; }
     const GatewayCounters& counters() const { return counters_; }
 
 private:

@@ -168,6 +168,12 @@ void add_exchange_counters(std::vector<MetricFamily>& out, const MetricsSnapshot
     add_exchange_family(out, snapshot, "exchange_skipped_deadlines_total",
         "Periods not produced because the loop fell more than a period behind", counter, "produce",
         [](const ExchangeMetrics& e) { return static_cast<double>(e.skipped_deadlines); });
+    add_exchange_family(out, snapshot, "exchange_save_failures_total",
+        "Image saves that failed", counter, "produce",
+        [](const ExchangeMetrics& e) { return static_cast<double>(e.save_failures); });
+    add_exchange_family(out, snapshot, "exchange_image_saved",
+        "1 while the image file holds the image produced (0 while saves fail)", gauge, "produce",
+        [](const ExchangeMetrics& e) { return e.image_saved ? 1.0 : 0.0; });
     // clang-format on
 }
 
@@ -225,6 +231,15 @@ void add_gateway_families(std::vector<MetricFamily>& out, const MetricsSnapshot&
                "Writes accepted, then cancelled unproduced: a reload changed or removed their "
                "exchange",
                counter, static_cast<double>(g.writes_cancelled));
+    add_single(out, "writes_not_saved_total",
+               "Writes accepted, then refused unproduced: the save that had to precede them failed",
+               counter, static_cast<double>(g.writes_not_saved));
+    add_single(out, "writes_sent_unsaved_total",
+               "Writes sent, whose image save then failed: a restart would undo them until the "
+               "next successful save",
+               counter, static_cast<double>(g.writes_sent_unsaved));
+    add_single(out, "image_save_failures_total", "Image saves of produced exchanges that failed",
+               counter, static_cast<double>(g.image_save_failures));
     add_labelled_family(out, "writes_by_origin_total",
                         "Writes accepted, by the protocol they came by", "origin",
                         g.writes_by_origin);

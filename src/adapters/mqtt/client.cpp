@@ -65,6 +65,8 @@ void Client::stop(std::chrono::milliseconds flush_timeout) { impl_->stop(flush_t
 
 bool Client::connected() const { return impl_->connected_; }
 
+std::size_t Client::max_packet_size() const { return impl_->max_packet_size_; }
+
 ClientStats Client::stats() const {
     const Impl& impl = *impl_;
     ClientStats s;

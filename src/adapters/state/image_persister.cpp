@@ -25,28 +25,26 @@ ImagePersister::Key ImagePersister::attach(OnSaved on_saved) {
 
 void ImagePersister::detach(Key key) { handlers_.erase(key); }
 
-void ImagePersister::save(Key key, std::shared_ptr<const core::plan::ExchangePlan> plan,
-                          std::span<const std::byte> data, std::vector<std::uint64_t> write_ids) {
+void ImagePersister::save(Key key, std::shared_ptr<ImageFile> file,
+                          std::span<const std::byte> data) {
     {
         std::lock_guard lock(mutex_);
-        for (auto& job : queue_) {
-            if (job.key != key) continue;
-            // Not started yet: the newer image supersedes it, and one fsync answers both.
-            job.data.assign(data.begin(), data.end());
-            job.write_ids.insert(job.write_ids.end(), write_ids.begin(), write_ids.end());
-            return;
-        }
-        queue_.push_back({key, std::move(plan), {data.begin(), data.end()}, std::move(write_ids)});
+        queue_.push_back({key, std::move(file), {data.begin(), data.end()}});
     }
     work_.notify_one();
 }
 
 void ImagePersister::flush() {
-    {
-        std::unique_lock lock(mutex_);
-        idle_.wait(lock, [this] { return queue_.empty() && !busy_; });
+    // A completion may queue the save it held back (one under way per exchange): until a
+    // delivery queues nothing more. Each round runs no longer than its saves.
+    for (;;) {
+        {
+            std::unique_lock lock(mutex_);
+            idle_.wait(lock, [this] { return queue_.empty() && !busy_; });
+            if (done_.empty()) return;
+        }
+        deliver();
     }
-    deliver();
 }
 
 void ImagePersister::run() {
@@ -58,10 +56,11 @@ void ImagePersister::run() {
         queue_.pop_front();
         busy_ = true;
         lock.unlock();
-        const bool ok = store_.save(*job.plan, job.data);
+        auto error = job.file->save(job.data);
+        job.file.reset();  // closed here, off the loop, when it was the last reference
         lock.lock();
         busy_ = false;
-        done_.push_back({job.key, ok, std::move(job.write_ids)});
+        done_.push_back({job.key, std::move(error)});
         if (!delivery_posted_ && !stopping_) {
             // One delivery handler for however many completions pile up before it runs.
             delivery_posted_ = true;
@@ -80,7 +79,7 @@ void ImagePersister::deliver() {
     }
     for (const auto& saved : done) {
         const auto it = handlers_.find(saved.key);
-        if (it != handlers_.end()) it->second(saved.ok, saved.write_ids);
+        if (it != handlers_.end()) it->second(saved.error);
     }
 }
 

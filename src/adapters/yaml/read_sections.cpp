@@ -246,19 +246,23 @@ void Loader::read_metrics(const Node& node, const Mark& at, Config& config) {
 
 void Loader::read_sparkplug(const Node& node, const Mark& at, Config& config) {
     auto& sparkplug = config.sparkplug;
-    sparkplug.marks = walk(node, at, "sparkplug", "in sparkplug", sparkplug_keys,
-                           [&](const std::string& key, const Node& value, const Mark& k) {
-                               if (key == "uns") {
-                                   if (const auto b = boolean(value, key, k)) sparkplug.uns = *b;
-                               } else if (key == "qos") {
-                                   if (const auto n = integer<int>(value, key, k, 0, 1))
-                                       sparkplug.qos = *n;
-                               } else if (const auto s = text(value, key, k)) {
-                                   if (key == "group_id") sparkplug.group_id = *s;
-                                   if (key == "edge_node_id") sparkplug.edge_node_id = *s;
-                                   if (key == "primary_host_id") sparkplug.primary_host_id = *s;
-                               }
-                           });
+    sparkplug.marks =
+        walk(node, at, "sparkplug", "in sparkplug", sparkplug_keys,
+             [&](const std::string& key, const Node& value, const Mark& k) {
+                 if (key == "uns") {
+                     if (const auto b = boolean(value, key, k)) sparkplug.uns = *b;
+                 } else if (key == "qos") {
+                     if (const auto n = integer<int>(value, key, k, 0, 1)) sparkplug.qos = *n;
+                 } else if (key == "max_packet_bytes") {
+                     // MQTT's own limit is 268,435,460 bytes; 0: none of ours.
+                     if (const auto n = integer<long long>(value, key, k, 0, 268435460LL))
+                         sparkplug.max_packet_bytes = static_cast<std::size_t>(*n);
+                 } else if (const auto s = text(value, key, k)) {
+                     if (key == "group_id") sparkplug.group_id = *s;
+                     if (key == "edge_node_id") sparkplug.edge_node_id = *s;
+                     if (key == "primary_host_id") sparkplug.primary_host_id = *s;
+                 }
+             });
     if (!node.is_null() && node.is_defined() && sparkplug.group_id.empty() &&
         !sparkplug.marks.contains("group_id")) {
         error(sparkplug.marks.node, "sparkplug lacks 'group_id' (required to enable Sparkplug B)");

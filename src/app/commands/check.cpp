@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cstddef>
 #include <iomanip>
+#include <optional>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/commands.hpp"
+#include "eip2mqtt/app/northbound/sparkplug_birth_size.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
@@ -122,6 +125,28 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
     out << "  " << unused_ranges(plan) << "\n";
 }
 
+/// A Sparkplug birth's largest size, and a warning when it is over `max_packet_bytes` (when
+/// set) or the 128 KiB some brokers take: a birth over the broker's limit is never published.
+void print_birth_size(std::string_view birth, std::size_t bytes, std::size_t max_packet_bytes,
+                      std::ostream& out) {
+    out << "  sparkplug " << birth << ": at most " << bytes << " bytes\n";
+    const bool set = max_packet_bytes != 0;
+    const auto limit = set ? max_packet_bytes : northbound::common_max_packet_bytes;
+    if (bytes <= limit) return;
+    const auto whom = birth == "NBIRTH" ? "the edge node" : "this device";
+    out << "  warning: the Sparkplug " << birth << " may take " << bytes << " bytes, over ";
+    if (set) {
+        out << "sparkplug.max_packet_bytes (" << limit << "): it would not be published, and "
+            << whom << " never born";
+    } else {
+        out << "the " << limit << " bytes some brokers take: one whose Maximum Packet Size is "
+            << "lower refuses it, and " << whom << " is never born (set "
+            << "sparkplug.max_packet_bytes to your broker's limit)";
+    }
+    out << "; split the exchange, shorten its names, or use a broker that takes larger "
+           "packets\n";
+}
+
 }  // namespace
 
 int run_check(const std::string& config_path, std::ostream& out, std::ostream& err) {
@@ -135,12 +160,19 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     out << config_path << ": valid, " << plans.size()
         << (plans.size() == 1 ? " exchange" : " exchanges") << ", base topic "
         << config->mqtt.base_topic << "\n";
-    for (const auto& plan : plans) {
+    const auto& sparkplug = config->sparkplug;
+    std::optional<northbound::SparkplugBirthSizes> births;
+    if (sparkplug.enabled()) {
+        births = northbound::sparkplug_birth_sizes(northbound::sparkplug_options(*config), plans);
+        print_birth_size("NBIRTH", births->node, sparkplug.max_packet_bytes, out);
+    }
+    for (std::size_t i = 0; i < plans.size(); ++i) {
         out << "\n";
-        print_exchange(plan, out);
-        for (const auto& warning : core::plan::plan_warnings(plan)) {
+        print_exchange(plans[i], out);
+        for (const auto& warning : core::plan::plan_warnings(plans[i])) {
             out << "  warning: " << warning << "\n";
         }
+        if (births) print_birth_size("DBIRTH", births->devices[i], sparkplug.max_packet_bytes, out);
     }
     return 0;
 }

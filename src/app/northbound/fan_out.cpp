@@ -30,6 +30,12 @@ void FanOut::write_result(const WriteReply& reply, std::optional<std::string_vie
     if (reply.origin != nullptr && reply.origin != this) reply.origin->write_result(reply, error);
 }
 
+void FanOut::write_result_unsaved(const WriteReply& reply, std::string_view reason) {
+    if (reply.origin != nullptr && reply.origin != this) {
+        reply.origin->write_result_unsaved(reply, reason);
+    }
+}
+
 void FanOut::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
     for (auto* northbound : northbounds_) northbound->gateway_metrics(sources, uptime);
 }

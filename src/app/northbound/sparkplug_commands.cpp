@@ -57,6 +57,12 @@ std::optional<std::size_t> find_tag(const core::plan::ExchangePlan& plan,
     return std::nullopt;
 }
 
+/// What a throttled line adds when it sums up more than one occurrence.
+std::string in_the_last_minute(std::uint64_t count, std::string_view what) {
+    if (count <= 1) return {};
+    return " (" + std::to_string(count) + " " + std::string(what) + " since the last line)";
+}
+
 }  // namespace
 
 void SparkplugNode::on_message(const adapters::mqtt::Incoming& message) {
@@ -77,7 +83,7 @@ void SparkplugNode::on_message(const adapters::mqtt::Incoming& message) {
 void SparkplugNode::on_node_command(const adapters::mqtt::Incoming& message) {
     const auto metrics = adapters::sparkplug::decode_command(message.payload);
     if (!metrics) {
-        if (const auto count = command_log_.record(std::chrono::steady_clock::now())) {
+        if (const auto count = command_log_.record(now_)) {
             spdlog::warn("Sparkplug NCMD ignored: {} ({} ignored)", metrics.error(), count);
         }
         return;
@@ -87,8 +93,15 @@ void SparkplugNode::on_node_command(const adapters::mqtt::Incoming& message) {
             metric.name == rebirth_name || (metric.name.empty() && metric.alias == rebirth_alias);
         if (rebirth && metric.value && std::holds_alternative<bool>(*metric.value) &&
             std::get<bool>(*metric.value)) {
-            spdlog::info("Sparkplug rebirth requested by NCMD");
-            birth();
+            ++stats_.rebirth_requests;
+            publish_counters();
+            if (const auto count = rebirth_log_.record(now_)) {
+                spdlog::info("Sparkplug rebirth requested by NCMD{}",
+                             in_the_last_minute(count, "requests"));
+            }
+            // A flood of requests makes one pending rebirth, not one each (rebirth_hold).
+            request_birth();
+            return;
         }
     }
 }
@@ -103,6 +116,15 @@ void SparkplugNode::on_device_command(const adapters::mqtt::Incoming& message, D
         writes_.on_write(std::move(request));
     };
     const auto device_name = message.topic.substr(dcmd_prefix_.size());
+    if (!born_) {
+        // Sparkplug B 3.0: an edge node that is offline (no NBIRTH since its connection, its
+        // primary host's STATE, or after its NDEATH) takes no command.
+        if (const auto count = refused_log_.record(now_)) {
+            spdlog::warn("Sparkplug DCMD for {} refused: the edge node is offline (not born){}",
+                         core::printable(device_name), in_the_last_minute(count, "refused"));
+        }
+        return refuse(WriteError::offline, "the Sparkplug edge node is offline (not born)");
+    }
     if (!device) return refuse(WriteError::unknown_tag, "no exchange named " + device_name);
     const auto& plan = *device->plan;
     // A retained command would fire again on every reconnect: never act on one.
@@ -154,7 +176,7 @@ void SparkplugNode::on_state(const adapters::mqtt::Incoming& message) {
     if (json.is_discarded() || !json.is_object() || !json.contains("online") ||
         !json["online"].is_boolean() || !json.contains("timestamp") ||
         !json["timestamp"].is_number_integer()) {
-        if (const auto count = command_log_.record(std::chrono::steady_clock::now())) {
+        if (const auto count = command_log_.record(now_)) {
             spdlog::warn(
                 "Sparkplug STATE of {} ignored: not {{\"online\": bool, \"timestamp\": ms}} "
                 "({} ignored)",
@@ -167,20 +189,31 @@ void SparkplugNode::on_state(const adapters::mqtt::Incoming& message) {
     host_state_timestamp_ = timestamp;
     const bool online = json["online"].get<bool>();
     if (online == host_online_) return;
+    host_online(online);
+}
+
+void SparkplugNode::host_online(bool online) {
     host_online_ = online;
+    // A host that flaps must not flood the log: the first change, then a summary a minute.
+    if (const auto count = state_log_.record(now_)) {
+        const auto changes = in_the_last_minute(count, "changes of its STATE");
+        if (online) {
+            spdlog::info("Sparkplug primary host {} is online: births{}",
+                         core::printable(options_.primary_host_id), changes);
+        } else {
+            spdlog::warn(
+                "Sparkplug primary host {} is offline: NDEATH, publishing nothing until it is "
+                "back{}",
+                core::printable(options_.primary_host_id), changes);
+        }
+    }
     if (online) {
-        spdlog::info("Sparkplug primary host {} is online: births", options_.primary_host_id);
-        birth();
+        request_birth();
         return;
     }
-    spdlog::warn(
-        "Sparkplug primary host {} is offline: NDEATH, publishing nothing until it is back",
-        options_.primary_host_id);
-    if (!born_) return;
+    rebirth_pending_ = false;
     // The will's NDEATH, said now: the host's applications see the node go.
-    mqtt_.publish(death_message());
-    born_ = false;
-    for (auto& device : devices_) device.born = false;
+    if (born_) publish_death();
 }
 
 }  // namespace eip2mqtt::app::northbound

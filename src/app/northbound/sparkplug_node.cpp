@@ -1,8 +1,10 @@
-// The edge node's lifecycle and data: births, deaths, DDATA by exception and the node's metrics
-// (NBIRTH, NDATA). Commands and the primary host's STATE are in sparkplug_commands.cpp.
+// The edge node's lifecycle and data: the connection and its will, devices, DDATA by exception
+// and the node's metrics (NDATA). Births are in sparkplug_births.cpp, commands and the primary
+// host's STATE in sparkplug_commands.cpp.
 
 #include "eip2mqtt/app/northbound/sparkplug_node.hpp"
 
+#include <algorithm>
 #include <array>
 #include <span>
 
@@ -12,17 +14,18 @@ namespace eip2mqtt::app::northbound {
 namespace {
 
 using adapters::sparkplug::DataType;
-using adapters::sparkplug::Metric;
 using adapters::sparkplug::MetricValue;
-using adapters::sparkplug::Property;
 using core::plan::Value;
 
 constexpr std::string_view namespace_prefix = "spBv1.0/";
-/// Node metrics 0 and 1, in every NBIRTH (Sparkplug B 3.0 requires both).
-constexpr std::size_t bd_seq_metric = 0;
+/// Node metric 1, in every NBIRTH (Sparkplug B 3.0 requires it, after bdSeq).
 constexpr std::size_t rebirth_metric = 1;
-/// bdSeq, Rebirth and the gateway's six counters; each exchange's metrics follow.
-constexpr std::size_t fixed_node_metrics = 8;
+/// bdSeq, Rebirth, the gateway's six counters and the node's four (SparkplugStats); each
+/// exchange's metrics follow.
+constexpr std::size_t fixed_node_metrics = 12;
+constexpr std::array<const char*, 4> node_counters{
+    "Sparkplug/births_refused", "Sparkplug/data_refused", "Sparkplug/rebirth_requests",
+    "Sparkplug/node_births"};
 
 std::uint64_t sum(std::span<const std::uint64_t> values) {
     std::uint64_t total = 0;
@@ -36,8 +39,8 @@ Value counter(std::uint64_t value) { return Value{value}; }
 
 SparkplugOptions sparkplug_options(const core::config::Config& config) {
     const auto& section = config.sparkplug;
-    return {section.group_id, section.node_id(config.gateway), section.primary_host_id,
-            section.qos};
+    return {section.group_id, section.node_id(config.gateway), section.primary_host_id, section.qos,
+            section.max_packet_bytes};
 }
 
 SparkplugNode::SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt,
@@ -62,6 +65,9 @@ SparkplugNode::SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher
                              "Gateway/dropped", "Gateway/writes_ok", "Gateway/writes_rejected"}) {
         set_node_metric(node_metric(name, DataType::uint64), counter(0));
     }
+    for (const auto* name : node_counters) {
+        set_node_metric(node_metric(name, DataType::uint64), counter(0));
+    }
 }
 
 std::string SparkplugNode::node_topic(std::string_view type) const {
@@ -70,7 +76,12 @@ std::string SparkplugNode::node_topic(std::string_view type) const {
 }
 
 adapters::mqtt::Message SparkplugNode::next_will() {
-    bd_seq_ = next_bd_seq_++;  // 255 is followed by 0
+    // A CONNECT that made no connection registered no will a host could have seen: its bdSeq
+    // goes with the next attempt, so that an outage does not move it by one per attempt.
+    if (will_connected_) {
+        bd_seq_ = next_bd_seq_++;  // 255 is followed by 0
+        will_connected_ = false;
+    }
     return death_message();
 }
 
@@ -93,9 +104,17 @@ adapters::mqtt::Message SparkplugNode::death_message() const {
     return message;
 }
 
-void SparkplugNode::on_connected() {
+void SparkplugNode::on_connected(std::size_t max_packet_bytes) {
     connected_ = true;
+    will_connected_ = true;
     born_ = false;
+    max_packet_bytes_ = options_.max_packet_bytes == 0
+                            ? max_packet_bytes
+                            : std::min(max_packet_bytes, options_.max_packet_bytes);
+    // What waited on the last connection is moot: its NDEATH was answered or went with it (the
+    // will said it then), and this connection's births come now or with the host's STATE.
+    death_unacknowledged_ = 0;
+    rebirth_pending_ = false;
     // Whatever the host said before this connection may be old: its retained STATE comes
     // again right after our SUBSCRIBE, and births wait for it.
     host_online_ = false;
@@ -120,79 +139,26 @@ void SparkplugNode::set_node_metric(std::size_t index, MetricValue value) {
     metric.changed = true;
 }
 
-void SparkplugNode::publish(const std::string& topic, adapters::sparkplug::Payload& payload,
+bool SparkplugNode::publish(const std::string& topic, adapters::sparkplug::Payload& payload,
                             std::uint64_t ack_token) {
     payload.timestamp_ms = static_cast<std::uint64_t>(wall_clock_());
     payload.seq = seq_;
-    seq_ = static_cast<std::uint8_t>(seq_ + 1);
     message_.topic = topic;
     message_.payload = adapters::sparkplug::encode(payload);
+    last_packet_bytes_ = adapters::mqtt::publish_packet_bytes(message_);
+    if (last_packet_bytes_ > max_packet_bytes_) {
+        // The client would drop it, and a host would see a gap in seq: it never leaves.
+        message_.clear();
+        return false;
+    }
+    seq_ = static_cast<std::uint8_t>(seq_ + 1);
     message_.qos = options_.qos;
     message_.retain = false;
     // Every message counts in seq: none may replace another.
     message_.coalesce = false;
     message_.ack_token = ack_token;
     mqtt_.publish(std::move(message_));
-}
-
-void SparkplugNode::birth() {
-    if (!may_publish()) return;
-    seq_ = 0;  // NBIRTH is seq 0; every message after it counts on
-    set_node_metric(bd_seq_metric, Value{std::int64_t{bd_seq_}});
-    const auto now = static_cast<std::uint64_t>(wall_clock_());
-    payload_.metrics.clear();
-    for (std::size_t i = 0; i < node_metrics_.size(); ++i) {
-        auto& metric = node_metrics_[i];
-        payload_.metrics.push_back({metric.name, i, now, metric.type, metric.value, false, {}});
-        metric.changed = false;
-    }
-    publish(node_topic("NBIRTH"), payload_);
-    born_ = true;
-    for (auto& device : devices_) {
-        device.born = false;
-        if (device.up) device_birth(device);
-    }
-}
-
-void SparkplugNode::device_birth(Device& device) {
-    const auto& plan = *device.plan;
-    const auto now = wall_clock_();
-    payload_.metrics.clear();
-    payload_.metrics.reserve(plan.tags.size());
-    for (std::size_t i = 0; i < plan.tags.size(); ++i) {
-        const auto& spec = plan.tags[i].spec;
-        Metric metric{spec.name,
-                      device.alias_base + i,
-                      static_cast<std::uint64_t>(device.values[i] ? device.timestamps[i] : now),
-                      adapters::sparkplug::datatype_of(spec.type),
-                      std::nullopt,
-                      false,
-                      {}};
-        if (device.values[i]) metric.value = *device.values[i];
-        // Ignition's names where Ignition has one (engUnit, Documentation).
-        if (!spec.unit().empty()) {
-            metric.properties.push_back({"engUnit", DataType::string, spec.unit()});
-        }
-        if (!spec.description().empty()) {
-            metric.properties.push_back({"Documentation", DataType::string, spec.description()});
-        }
-        if (device.producer) {
-            metric.properties.push_back({"writable", DataType::boolean, Value{spec.writable}});
-            if (spec.min())
-                metric.properties.push_back({"min", DataType::float64, Value{*spec.min()}});
-            if (spec.max())
-                metric.properties.push_back({"max", DataType::float64, Value{*spec.max()}});
-        }
-        payload_.metrics.push_back(std::move(metric));
-    }
-    publish(device.birth_topic, payload_);
-    device.born = true;
-}
-
-void SparkplugNode::device_death(Device& device) {
-    payload_.metrics.clear();
-    publish(device.death_topic, payload_);
-    device.born = false;
+    return true;
 }
 
 void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<const std::string>) {
@@ -271,11 +237,11 @@ bool SparkplugNode::replay(const SampleBatch& batch, std::uint64_t ack_token) {
     if (found == device_of_plan_.end()) return false;
     const auto& device = devices_[found->second];
     if (!born_ || !device.born || batch.quality != core::quality::Quality::good) return false;
-    publish_data(device, batch, true, ack_token);
-    return true;
+    // Refused for its size, it never will be published: the journal must not wait for it.
+    return publish_data(device, batch, true, ack_token);
 }
 
-void SparkplugNode::publish_data(const Device& device, const SampleBatch& batch, bool historical,
+bool SparkplugNode::publish_data(const Device& device, const SampleBatch& batch, bool historical,
                                  std::uint64_t ack_token) {
     payload_.metrics.resize(batch.samples.size());
     for (std::size_t i = 0; i < batch.samples.size(); ++i) {
@@ -290,7 +256,9 @@ void SparkplugNode::publish_data(const Device& device, const SampleBatch& batch,
         metric.historical = historical;
         metric.properties.clear();
     }
-    publish(device.data_topic, payload_, ack_token);
+    if (publish(device.data_topic, payload_, ack_token)) return true;
+    data_refused();
+    return false;
 }
 
 void SparkplugNode::exchange_state(const core::plan::ExchangePlan& exchange,
@@ -346,7 +314,20 @@ void SparkplugNode::gateway_metrics(const MetricsSources& sources, std::chrono::
         payload_.metrics.push_back({{}, i, now, node.type, node.value, false, {}});
         node.changed = false;
     }
-    if (!payload_.metrics.empty()) publish(node_topic("NDATA"), payload_);
+    if (!payload_.metrics.empty() && !publish(node_topic("NDATA"), payload_)) data_refused();
+}
+
+void SparkplugNode::data_refused() {
+    ++stats_.data_refused;
+    publish_counters();
+}
+
+void SparkplugNode::publish_counters() {
+    const auto metric = [&](std::size_t i) { return node_metric_of_name_.at(node_counters[i]); };
+    set_node_metric(metric(0), counter(stats_.births_refused));
+    set_node_metric(metric(1), counter(stats_.data_refused));
+    set_node_metric(metric(2), counter(stats_.rebirth_requests));
+    set_node_metric(metric(3), counter(stats_.node_births));
 }
 
 }  // namespace eip2mqtt::app::northbound

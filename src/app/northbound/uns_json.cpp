@@ -84,9 +84,17 @@ void UnsJson::produced_status(const core::plan::ExchangePlan& exchange,
 }
 
 void UnsJson::write_result(const WriteReply& reply, std::optional<std::string_view> error) {
+    publish_result(reply, format_write_result(error));
+}
+
+void UnsJson::write_result_unsaved(const WriteReply& reply, std::string_view reason) {
+    publish_result(reply, format_write_result_unsaved(reason));
+}
+
+void UnsJson::publish_result(const WriteReply& reply, std::string payload) {
     // Each result must be delivered: never coalesced with another on the same topic.
     if (reply.topic.empty()) return;  // nowhere a broker accepts (WriteRouter::route)
-    adapters::mqtt::Message result{reply.topic, format_write_result(error), 1, false, false};
+    adapters::mqtt::Message result{reply.topic, std::move(payload), 1, false, false};
     result.correlation_data = reply.correlation_data;
     mqtt_.publish(std::move(result));
 }

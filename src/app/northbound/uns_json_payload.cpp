@@ -71,16 +71,33 @@ void append_json_string(std::string& out, std::string_view text) {
 }
 
 std::string format_produced_status_payload(const ProducedStatus& status) {
-    return fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
-                       R"("skipped_deadlines":{},"writes_applied":{},"writes_pending":{}}})",
-                       status.paused ? "paused" : "producing", status.request_id, status.sent,
-                       status.send_errors, status.skipped_deadlines, status.writes_applied,
-                       status.writes_pending);
+    auto out = fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
+                           R"("skipped_deadlines":{},"writes_applied":{},"writes_pending":{},)"
+                           R"("saved":{},"save_failures":{},"save_error":)",
+                           status.paused ? "paused" : "producing", status.request_id, status.sent,
+                           status.send_errors, status.skipped_deadlines, status.writes_applied,
+                           status.writes_pending, status.saved, status.save_failures);
+    if (status.save_error.empty()) {
+        out += "null";
+    } else {
+        // A system's message and a path, which may hold anything: escaped, and any byte that
+        // is not UTF-8 replaced.
+        out += nlohmann::json(status.save_error)
+                   .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    }
+    out += '}';
+    return out;
 }
 
 std::string format_write_result(std::optional<std::string_view> error) {
     if (!error) return R"({"ok":true})";
     const nlohmann::json result = {{"ok", false}, {"error", *error}};
+    return result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+std::string format_write_result_unsaved(std::string_view reason) {
+    const nlohmann::json result = {
+        {"ok", true}, {"saved", false}, {"error", "not saved: " + std::string(reason)}};
     return result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
@@ -100,6 +117,9 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"writes_ok", sources.gateway.writes_ok},
         {"writes_rejected", rejections_by_name(sources.gateway)},
         {"writes_cancelled", sources.gateway.writes_cancelled},
+        {"writes_not_saved", sources.gateway.image_saves.writes_not_saved},
+        {"writes_sent_unsaved", sources.gateway.image_saves.writes_sent_unsaved},
+        {"image_save_failures", sources.gateway.image_saves.failures},
         {"writes_by_origin", writes_by_origin(sources.gateway)},
     };
     if (sources.commands) {
@@ -121,6 +141,13 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
             {"discarded", h.discarded},
             {"replaying", h.replaying},
         };
+    }
+    if (sources.sparkplug) {
+        const auto& sp = *sources.sparkplug;
+        metrics["sparkplug"] = {{"births_refused", sp.births_refused},
+                                {"data_refused", sp.data_refused},
+                                {"rebirth_requests", sp.rebirth_requests},
+                                {"node_births", sp.node_births}};
     }
     return metrics.dump();
 }

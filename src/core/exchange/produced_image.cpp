@@ -38,23 +38,45 @@ void ProducedImage::discard_pending(std::vector<std::uint64_t>& dropped) {
     pending_.clear();
 }
 
+void ProducedImage::discard_pending(std::uint64_t after, std::uint64_t through,
+                                    std::vector<std::uint64_t>& dropped) {
+    const auto first = std::find_if(pending_.begin(), pending_.end(),
+                                    [&](const auto& batch) { return batch.id > after; });
+    const auto last =
+        std::find_if(first, pending_.end(), [&](const auto& batch) { return batch.id > through; });
+    for (auto it = first; it != last; ++it) dropped.push_back(it->id);
+    pending_.erase(first, last);
+}
+
+bool ProducedImage::apply(const write::WriteBatch& batch, std::span<std::byte> data) const {
+    bool changed = false;
+    for (const auto& write : batch.writes) {
+        assert(write.tag_index < plan_->tags.size());
+        const auto& tag = plan_->tags[write.tag_index].spec;
+        const auto bytes = data.subspan(tag.address.byte, plan::size_of(tag.type));
+        std::array<std::byte, 8> before{};
+        std::copy(bytes.begin(), bytes.end(), before.begin());
+        plan::encode_value(data, tag.type, tag.address, write.value);
+        if (!std::equal(bytes.begin(), bytes.end(), before.begin())) changed = true;
+    }
+    return changed;
+}
+
+std::uint64_t ProducedImage::project(std::vector<std::byte>& out) const {
+    out.assign(data_.begin(), data_.end());
+    for (const auto& batch : pending_) apply(batch, out);
+    return pending_.empty() ? 0 : pending_.back().id;
+}
+
 std::size_t ProducedImage::produce(WallTime wall, std::span<std::byte> out,
-                                   std::vector<std::uint64_t>& carried) {
+                                   std::vector<std::uint64_t>& carried, std::uint64_t through) {
     // docs/mqtt-api.md "Several tags at once": whole batches between two productions, so one
     // datagram never carries half a multi-tag write.
-    for (const auto& batch : pending_) {
-        for (const auto& write : batch.writes) {
-            assert(write.tag_index < plan_->tags.size());
-            const auto& tag = plan_->tags[write.tag_index].spec;
-            const auto bytes = std::span(data_).subspan(tag.address.byte, plan::size_of(tag.type));
-            std::array<std::byte, 8> before{};
-            std::copy(bytes.begin(), bytes.end(), before.begin());
-            plan::encode_value(data_, tag.type, tag.address, write.value);
-            if (!std::equal(bytes.begin(), bytes.end(), before.begin())) dirty_ = true;
-        }
-        carried.push_back(batch.id);
+    while (!pending_.empty() && pending_.front().id <= through) {
+        if (apply(pending_.front(), data_)) dirty_ = true;
+        carried.push_back(pending_.front().id);
+        pending_.pop_front();
     }
-    pending_.clear();
 
     // docs/protocol.md §5: the time at which the image was sampled, as seconds + nanoseconds.
     const auto since_epoch = wall.time_since_epoch();

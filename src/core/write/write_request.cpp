@@ -185,6 +185,8 @@ std::string_view to_string(WriteError error) {
             return "too_large";
         case WriteError::overlapping_tags:
             return "overlapping_tags";
+        case WriteError::offline:
+            return "offline";
     }
     return "unknown";
 }

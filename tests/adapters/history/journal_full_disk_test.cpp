@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/history/journal.hpp"
-#include "tests/support/tmpfs_mount.hpp"
+#include "tests/support/tmpfs.hpp"
 
 namespace eip2mqtt::adapters::history {
 namespace {
 
 namespace fs = std::filesystem;
-using test::TmpfsMount;
+using test::Tmpfs;
 
 constexpr std::uint64_t tmpfs_bytes = 2 << 20;
 constexpr std::uint64_t unbounded = 256ull << 20;  // the default max_mb: the disk is the bound
@@ -56,8 +56,8 @@ void expect_newest_through(Journal& journal, std::int64_t last) {
 class JournalFullDiskTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        if (const auto why = TmpfsMount::unavailable(); !why.empty()) GTEST_SKIP() << why;
-        disk_ = std::make_unique<TmpfsMount>(tmpfs_bytes);
+        disk_ = std::make_unique<Tmpfs>(tmpfs_bytes);
+        if (!disk_->mounted()) GTEST_SKIP() << disk_->error();
     }
     std::unique_ptr<Journal> open(std::string* set_aside = nullptr) {
         std::string aside;
@@ -68,7 +68,7 @@ protected:
     }
     std::string path() const { return disk_->path() + "/history.sqlite"; }
 
-    std::unique_ptr<TmpfsMount> disk_;
+    std::unique_ptr<Tmpfs> disk_;
 };
 
 TEST_F(JournalFullDiskTest, AFullDiskKeepsTheNewestAcrossDeletionsAndARestart) {

@@ -42,6 +42,8 @@ MetricsSnapshot snapshot(std::uint64_t received) {
     setpoints.direction = "produce";
     setpoints.state = "producing";
     setpoints.sent = 17;
+    setpoints.save_failures = 2;
+    setpoints.image_saved = false;
     s.exchanges.push_back(setpoints);
 
     s.gateway.datagrams = received + 5;
@@ -53,6 +55,9 @@ MetricsSnapshot snapshot(std::uint64_t received) {
     s.gateway.writes_ok = 2;
     s.gateway.writes_rejected = {{"above_max", 1}};
     s.gateway.writes_cancelled = 3;
+    s.gateway.writes_not_saved = 4;
+    s.gateway.writes_sent_unsaved = 1;
+    s.gateway.image_save_failures = 2;
     return s;
 }
 
@@ -92,6 +97,11 @@ TEST(PrometheusEndpoint, ServesTheSnapshotInTextFormat) {
             "eip2mqtt_writes_ok_total 2",
             R"(eip2mqtt_writes_rejected_total{reason="above_max"} 1)",
             "eip2mqtt_writes_cancelled_total 3",
+            R"(eip2mqtt_exchange_save_failures_total{direction="produce",exchange="setpoints"} 2)",
+            R"(eip2mqtt_exchange_image_saved{direction="produce",exchange="setpoints"} 0)",
+            "eip2mqtt_writes_not_saved_total 4",
+            "eip2mqtt_writes_sent_unsaved_total 1",
+            "eip2mqtt_image_save_failures_total 2",
         }) {
         EXPECT_TRUE(has_line(page, line)) << "missing: " << line << "\nin:\n" << page;
     }

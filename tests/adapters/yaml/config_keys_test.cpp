@@ -83,6 +83,7 @@ sparkplug:
   primary_host_id: scada-a
   uns: true
   qos: 0
+  max_packet_bytes: 65536
 exchanges:
   - name: consumed
     direction: consume
@@ -191,6 +192,7 @@ const std::vector<Edit> edits = {
     {"sparkplug.primary_host_id", "scada-a", "scada-b"},
     {"sparkplug.uns", "uns: true", "uns: false"},
     {"sparkplug.qos", "qos: 0", "qos: 1"},
+    {"sparkplug.max_packet_bytes", "max_packet_bytes: 65536", "max_packet_bytes: 32768"},
     // A new name is another exchange: started, and the old one stopped.
     {"exchanges[].name",
      "name: produced",

@@ -607,10 +607,12 @@ TEST(LoadConfig, SparkplugSectionWithItsDefaults) {
     EXPECT_TRUE(config.sparkplug.uns);
     EXPECT_EQ(config.sparkplug.qos, 0);
     EXPECT_TRUE(config.sparkplug.primary_host_id.empty());
+    EXPECT_EQ(config.sparkplug.max_packet_bytes, 0u);
     const auto full = good(
-        "sparkplug: { group_id: g, edge_node_id: n, primary_host_id: scada, uns: false, qos: 1 "
-        "}\n" +
+        "sparkplug: { group_id: g, edge_node_id: n, primary_host_id: scada, uns: false, qos: 1, "
+        "max_packet_bytes: 131072 }\n" +
         minimal_exchange);
+    EXPECT_EQ(full.sparkplug.max_packet_bytes, 131072u);
     EXPECT_EQ(full.sparkplug.node_id(full.gateway), "n");
     EXPECT_EQ(full.sparkplug.primary_host_id, "scada");
     EXPECT_FALSE(full.sparkplug.uns);
@@ -627,6 +629,7 @@ TEST(LoadConfig, SparkplugIdsFollowTheTopicElementRules) {
                  "  qos: 2\n"
                  "  uns: maybe\n"
                  "  grop_id: x\n"
+                 "  max_packet_bytes: -1\n"
                  "exchanges:\n"
                  "  - { name: area/ex, producer_id: 10.0.0.1, exchange_id: 1, length: 8 }\n"));
     EXPECT_NE(text.find("test.yaml:2:3: sparkplug group_id 'plant/1' contains '/', '+' or '#'"),
@@ -637,6 +640,7 @@ TEST(LoadConfig, SparkplugIdsFollowTheTopicElementRules) {
         << text;
     EXPECT_NE(text.find("test.yaml:5:"), std::string::npos) << text;  // qos 0 or 1
     EXPECT_NE(text.find("test.yaml:6:"), std::string::npos) << text;  // not a boolean
+    EXPECT_NE(text.find("test.yaml:8:"), std::string::npos) << text;  // not a size
     EXPECT_NE(text.find("unknown key 'grop_id' in sparkplug (did you mean 'group_id'?)"),
               std::string::npos)
         << text;

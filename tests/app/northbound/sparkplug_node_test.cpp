@@ -10,10 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "eip2mqtt/core/plan/exchange_plan.hpp"
-#include "sparkplug_b.pb.h"
-#include "tests/app/support/test_plan.hpp"
-#include "tests/app/support/uns_json_recorder.hpp"
+#include "tests/app/support/sparkplug_node_fixture.hpp"
 
 namespace eip2mqtt::app::northbound {
 namespace {
@@ -23,87 +20,17 @@ using core::exchange::ConsumeState;
 using core::plan::Value;
 using core::quality::Quality;
 using core::write::WriteError;
-using Proto = org::eclipse::tahu::protobuf::Payload;
+using test::by_name;
+using test::command;
+using test::decoded;
+using test::now_ms;
+using test::SparkplugNodeTest;
+using test::SparkplugPrimaryHostTest;
+using Proto = test::SparkplugProto;
 
-constexpr std::int64_t now_ms = 1700000000000;
-
-/// A (dint, with a unit and a max), B (real) and C (dint, read-only).
 core::plan::ExchangePlan plan(std::string name, core::plan::Direction direction) {
-    using core::plan::TagType;
-    auto a = test::test_tag("A", 0, TagType::dint, true);
-    a.mutable_extras().unit = "rpm";
-    a.mutable_extras().max = 4000;
-    return test::test_plan(
-        name, direction, 12,
-        {a, test::test_tag("B", 4, TagType::real, true), test::test_tag("C", 8, TagType::dint)});
+    return test::sparkplug_plan(std::move(name), direction);
 }
-
-Proto decoded(const adapters::mqtt::Message& message) {
-    Proto proto;
-    EXPECT_TRUE(proto.ParseFromString(message.payload)) << message.topic;
-    return proto;
-}
-
-std::string command(std::vector<adapters::sparkplug::Metric> metrics) {
-    adapters::sparkplug::Payload payload;
-    payload.timestamp_ms = now_ms;
-    payload.metrics = std::move(metrics);
-    return adapters::sparkplug::encode(payload);
-}
-
-adapters::sparkplug::Metric by_name(std::string name, DataType type, Value value) {
-    return {std::move(name), std::nullopt, now_ms, type, value, false, {}};
-}
-
-class SparkplugNodeTest : public ::testing::Test, public WriteHandler {
-protected:
-    explicit SparkplugNodeTest(std::string primary_host = "")
-        : node_({"plant1", "gw1", std::move(primary_host), 0}, publisher_, *this,
-                [] { return now_ms; }) {
-        node_.exchanges_changed({{&consumed_}, {&produced_}}, {});
-    }
-
-    void on_write(WriteRequest&& request) override { writes_.push_back(std::move(request)); }
-
-    std::vector<std::string> topics() const {
-        std::vector<std::string> out;
-        for (const auto& m : publisher_.published) out.push_back(m.topic);
-        return out;
-    }
-    std::vector<std::uint64_t> seqs() const {
-        std::vector<std::uint64_t> out;
-        for (const auto& m : publisher_.published) out.push_back(decoded(m).seq());
-        return out;
-    }
-    /// The consumed exchange's first datagram, as the ExchangeConsumer reports it.
-    void first_datagram() {
-        const std::vector<TagSample> samples{
-            {0, Value{std::int64_t{7}}}, {1, Value{1.5f}}, {2, Value{std::int64_t{0}}}};
-        node_.tag_samples({consumed_, Quality::good, now_ms - 5, false, samples});
-        node_.exchange_state(consumed_, ConsumeState::ok);
-    }
-    /// The produced exchange's first datagram sent: every value echoed.
-    void first_production() {
-        const std::vector<TagSample> samples{
-            {0, Value{std::int64_t{0}}}, {1, Value{0.0f}}, {2, Value{std::int64_t{0}}}};
-        node_.tag_samples({produced_, Quality::good, now_ms - 2, false, samples});
-    }
-    adapters::mqtt::Incoming dcmd(std::string payload, std::string device = "out") {
-        adapters::mqtt::Incoming in;
-        in.topic = "spBv1.0/plant1/DCMD/gw1/" + device;
-        in.payload = std::move(payload);
-        return in;
-    }
-    core::write::WriteError rejection(std::size_t i) const {
-        return std::get<core::write::WriteRejection>(writes_.at(i).outcome).error;
-    }
-
-    core::plan::ExchangePlan consumed_ = plan("in", core::plan::Direction::consume);
-    core::plan::ExchangePlan produced_ = plan("out", core::plan::Direction::produce);
-    test::RecordingPublisher publisher_;
-    std::vector<WriteRequest> writes_;
-    SparkplugNode node_;
-};
 
 TEST_F(SparkplugNodeTest, SubscribesToItsCommandsBeforeAnyBirth) {
     EXPECT_EQ(publisher_.subscriptions,
@@ -289,6 +216,7 @@ TEST_F(SparkplugNodeTest, NcmdRebirthBringsEveryBirthAgainFromSeq0) {
     first_datagram();
     first_production();
     publisher_.published.clear();
+    advance(rebirth_hold);  // the connection's births are no longer in progress
     adapters::mqtt::Incoming ncmd;
     ncmd.topic = "spBv1.0/plant1/NCMD/gw1";
     ncmd.payload = command({by_name("Node Control/Rebirth", DataType::boolean, Value{true})});
@@ -324,6 +252,7 @@ TEST_F(SparkplugNodeTest, ADcmdIsOneWriteOfEveryMetricByNameOrAlias) {
 }
 
 TEST_F(SparkplugNodeTest, ARefusedDcmdSaysWhyAndWritesNothing) {
+    connect();
     const auto a = [](Value v) { return by_name("A", DataType::int32, v); };
     node_.on_message(dcmd(command({a(Value{std::int64_t{5000}})})));  // over max 4000
     node_.on_message(
@@ -364,18 +293,6 @@ TEST_F(SparkplugNodeTest, AnEmptyDcmdClearsARetainedCommandAndIsNoWriteAtAll) {
     EXPECT_TRUE(writes_.empty());
 }
 
-class SparkplugPrimaryHostTest : public SparkplugNodeTest {
-protected:
-    SparkplugPrimaryHostTest() : SparkplugNodeTest("scada") {}
-    void state(std::string payload) {
-        adapters::mqtt::Incoming in;
-        in.topic = "spBv1.0/STATE/scada";
-        in.payload = std::move(payload);
-        in.retained = true;
-        node_.on_message(in);
-    }
-};
-
 TEST_F(SparkplugPrimaryHostTest, BirthsWaitForThePrimaryHostToBeOnline) {
     EXPECT_EQ(publisher_.subscriptions.back(), "spBv1.0/STATE/scada");
     node_.next_will();
@@ -397,6 +314,9 @@ TEST_F(SparkplugPrimaryHostTest, BirthsWaitForThePrimaryHostToBeOnline) {
     node_.tag_samples({consumed_, Quality::good, now_ms, false, changed});
     EXPECT_EQ(publisher_.published.size(), 3u);  // nothing while the host is away
     state(R"({"online":true,"timestamp":400})");
+    // Once the broker has the NDEATH, and a second after the last births.
+    node_.on_acknowledged(publisher_.published[2].ack_token);
+    advance(rebirth_hold);
     EXPECT_EQ(topics().at(3), "spBv1.0/plant1/NBIRTH/gw1");
     EXPECT_EQ(decoded(publisher_.published.at(4)).metrics(0).int_value(), 9u);
 }

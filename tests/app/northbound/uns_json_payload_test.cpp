@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/schema_check.hpp"
+
 namespace eip2mqtt::app::northbound {
 namespace {
 
@@ -48,9 +50,30 @@ TEST(ProducedStatus, CarriesEveryCounterAndTheState) {
     status.writes_pending = 5;
     EXPECT_EQ(format_produced_status_payload(status),
               R"({"state":"producing","request_id":7,"sent":100,"send_errors":2,)"
-              R"("skipped_deadlines":3,"writes_applied":4,"writes_pending":5})");
+              R"("skipped_deadlines":3,"writes_applied":4,"writes_pending":5,)"
+              R"("saved":true,"save_failures":0,"save_error":null})");
     status.paused = true;
     EXPECT_EQ(format_produced_status_payload(status).substr(0, 18), R"({"state":"paused",)");
+}
+
+TEST(ProducedStatus, CarriesAFailedSaveQuotedAsJson) {
+    ProducedStatus status;
+    status.saved = false;
+    status.save_failures = 3;
+    status.save_error = "write /s/\"x\".image.tmp: No space left on device";
+    const auto payload = format_produced_status_payload(status);
+    EXPECT_NE(payload.find(R"("saved":false,"save_failures":3,)"
+                           R"("save_error":"write /s/\"x\".image.tmp: No space left on device"})"),
+              std::string::npos)
+        << payload;
+    EXPECT_EQ(test::schema_problem(test::schema_file("status.json"), payload), "") << payload;
+}
+
+TEST(WriteResult, AppliedButUnsavedSaysSo) {
+    const auto payload = format_write_result_unsaved("fdatasync /s/sp.image: Input/output error");
+    EXPECT_EQ(payload, R"({"error":"not saved: fdatasync /s/sp.image: Input/output error",)"
+                       R"("ok":true,"saved":false})");
+    EXPECT_EQ(test::schema_problem(test::schema_file("write-result.json"), payload), "") << payload;
 }
 
 }  // namespace

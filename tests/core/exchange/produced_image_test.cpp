@@ -256,5 +256,52 @@ TEST(ProducedImage, DiscardedBatchesAreNeverApplied) {
     EXPECT_EQ(data_hex(image), "00803b4501010000");  // batch 1 only
 }
 
+TEST(ProducedImage, ProjectionShowsEveryStagedBatchAndChangesNothing) {
+    const auto plan = make_plan();
+    ProducedImage image(plan, {});
+    std::vector<std::byte> projected{std::byte{0x55}};  // replaced, not appended to
+    EXPECT_EQ(image.project(projected), 0u);            // nothing staged
+    EXPECT_EQ(to_hex(projected), "00803b4501feff00");
+    ASSERT_TRUE(image.stage(batch(3, {{offset, Value{std::int64_t{1}}}})));
+    ASSERT_TRUE(image.stage(batch(4, {{mode, Value{true}}})));
+    EXPECT_EQ(image.project(projected), 4u);
+    EXPECT_EQ(to_hex(projected), "00803b4503010000");
+    EXPECT_EQ(data_hex(image), "00803b4501feff00");
+    EXPECT_EQ(image.pending(), 2u);
+    EXPECT_FALSE(image.dirty());
+}
+
+TEST(ProducedImage, ProductionThroughAnIdLeavesTheLaterBatchesQueued) {
+    const auto plan = make_plan();
+    ProducedImage image(plan, {});
+    ASSERT_TRUE(image.stage(batch(1, {{offset, Value{std::int64_t{1}}}})));
+    ASSERT_TRUE(image.stage(batch(2, {{offset, Value{std::int64_t{2}}}})));
+    std::vector<std::uint64_t> carried;
+    std::vector<std::byte> out(wire::max_datagram_size);
+    image.produce(wall, out, carried, 1);
+    EXPECT_EQ(carried, std::vector<std::uint64_t>{1});
+    EXPECT_EQ(data_hex(image), "00803b4501010000");
+    EXPECT_EQ(image.pending(), 1u);
+    image.produce(wall, out, carried, 0);  // nothing eligible
+    EXPECT_EQ(image.pending(), 1u);
+    image.produce(wall, out, carried);
+    EXPECT_EQ(carried, (std::vector<std::uint64_t>{1, 2}));
+    EXPECT_EQ(data_hex(image), "00803b4501020000");
+}
+
+TEST(ProducedImage, DiscardingARangeKeepsTheBatchesAroundIt) {
+    const auto plan = make_plan();
+    ProducedImage image(plan, {});
+    for (std::uint64_t id = 1; id <= 4; ++id) {
+        ASSERT_TRUE(image.stage(batch(id, {{offset, Value{static_cast<std::int64_t>(id)}}})));
+    }
+    std::vector<std::uint64_t> dropped;
+    image.discard_pending(1, 3, dropped);
+    EXPECT_EQ(dropped, (std::vector<std::uint64_t>{2, 3}));
+    const auto produced = produce(image);
+    EXPECT_EQ(produced.carried, (std::vector<std::uint64_t>{1, 4}));
+    EXPECT_EQ(data_hex(image), "00803b4501040000");
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::exchange

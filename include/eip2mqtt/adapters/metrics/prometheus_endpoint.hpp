@@ -8,7 +8,10 @@
 ///                                                       the other states of its direction
 ///   exchange_{received,accepted,missed,duplicates,out_of_order,restarts,signature_mismatches,
 ///             length_mismatches,wrong_source}_total{exchange,direction}   consume counters
-///   exchange_{sent,send_errors,skipped_deadlines}_total{exchange,direction}  produce counters
+///   exchange_{sent,send_errors,skipped_deadlines,save_failures}_total{exchange,direction}
+///                                                       produce counters
+///   exchange_image_saved{exchange,direction}            gauge, 1 while the image file holds
+///                                                       the image produced (or a newer one)
 ///   exchange_clock_state{exchange,direction,state}      gauge, 1 for none, synced or unsynced
 ///   exchange_clock_offset_seconds{exchange,direction}   gauge, may be negative; absent before
 ///                                                       the first stamped datagram
@@ -18,6 +21,7 @@
 ///   mqtt_connected (0/1), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total,
 ///   mqtt_publications_refused_total
 ///   writes_ok_total, writes_rejected_total{reason}, writes_cancelled_total,
+///   writes_not_saved_total, writes_sent_unsaved_total, image_save_failures_total,
 ///   writes_by_origin_total{origin}
 ///   commands_requests_total{type}, commands_errors_total, commands_refused_total,
 ///   commands_dropped_total, commands_naks_total{reason}, commands_ignored_total
@@ -63,6 +67,8 @@ struct ExchangeMetrics {
     std::uint64_t sent = 0;
     std::uint64_t send_errors = 0;
     std::uint64_t skipped_deadlines = 0;
+    std::uint64_t save_failures = 0;
+    bool image_saved = true;
 };
 
 /// Store and forward's journal, when enabled.
@@ -99,7 +105,10 @@ struct GatewayMetrics {
     std::uint64_t publications_refused = 0;  ///< ClientStats::refused
     std::uint64_t writes_ok = 0;
     std::map<std::string, std::uint64_t> writes_rejected;  ///< by rejection reason
-    std::uint64_t writes_cancelled = 0;  ///< accepted, then answered "reloaded" unproduced
+    std::uint64_t writes_cancelled = 0;     ///< accepted, then answered "reloaded" unproduced
+    std::uint64_t writes_not_saved = 0;     ///< accepted, then refused: their save failed
+    std::uint64_t writes_sent_unsaved = 0;  ///< sent, then their save failed
+    std::uint64_t image_save_failures = 0;
     std::map<std::string, std::uint64_t> writes_by_origin;  ///< accepted, by protocol
     std::optional<HistoryMetrics> history;
     std::optional<CommandMetrics> commands;

@@ -133,6 +133,10 @@ public:
     void stop(std::chrono::milliseconds flush_timeout);
 
     bool connected() const;
+    /// The largest packet the broker of the current connection takes: its CONNACK's Maximum
+    /// Packet Size (MQTT 5), else max_mqtt_packet_bytes. Read on the loop; set before the
+    /// on_connected handler runs. A publication over it is never sent (ClientStats::refused).
+    std::size_t max_packet_size() const;
     ClientStats stats() const;
     void set_buffer_capacity(std::size_t max_messages);
     /// ClientOptions::batch_first, from the next publication taken on.

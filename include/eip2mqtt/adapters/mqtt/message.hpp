@@ -1,6 +1,7 @@
 #pragma once
 /// An MQTT publication as the gateway hands it to the client adapter.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -44,6 +45,21 @@ struct Message {
 // The four flags share the int's 8 bytes: 112 bytes a message, not 128 with a flag between
 // strings, and a queue holds one per topic (#6's memory under overload).
 static_assert(sizeof(Message) <= 3 * sizeof(std::string) + 16);
+
+/// MQTT's own limit on a packet's size: a remaining length of at most 268,435,455 bytes after a
+/// fixed header of at most 5. A broker may announce a lower one (MQTT 5 CONNACK's Maximum Packet
+/// Size) and closes the connection on a packet over it.
+inline constexpr std::size_t max_mqtt_packet_bytes = 268435455 + 5;
+
+/// The most bytes the PUBLISH packet of `message` can take: its topic, payload and correlation
+/// data, plus a fixed header (5), the topic's length (2), a packet id (2), the properties'
+/// length (4) and the correlation data's identifier and length (3). What a broker's Maximum
+/// Packet Size is held against.
+inline std::size_t publish_packet_bytes(const Message& message) {
+    constexpr std::size_t overhead = 5 + 2 + 2 + 4 + 3;
+    return overhead + message.topic.size() + message.payload.size() +
+           message.correlation_data.size();
+}
 
 /// A message received on a subscription, copied off Paho's thread.
 struct Incoming {

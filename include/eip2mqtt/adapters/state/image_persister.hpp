@@ -1,14 +1,12 @@
 #pragma once
-/// Saves produced images off the loop (issue #6). ImageStore::save fsyncs the file and its
-/// directory, which takes milliseconds on a disk: done on the loop, it would delay the
-/// datagrams of every other exchange by as much. One worker thread saves instead, and each
-/// completion comes back to the loop, where the write results waiting for it are published
-/// (docs/mqtt-api.md "Results": a result only once the image is durably saved).
+/// Saves produced images off the loop (issue #6). ImageFile::save syncs the file to the disk,
+/// which takes milliseconds: done on the loop, it would delay the datagrams of every other
+/// exchange by as much. One worker thread saves instead, and each completion comes back to the
+/// loop, where the write results waiting for it are published (docs/mqtt-api.md "Results": a
+/// result only once the image is durably saved, or saying that it is not).
 ///
 /// Each produced exchange attaches with the handler its completions go to, and saves under
-/// the key it was given. Saves of one exchange run in order; a save queued while an older one
-/// of the same exchange still waits replaces its data and adds its write ids (one fsync for
-/// both).
+/// the key it was given. Saves run in the order they were queued, one at a time.
 ///
 /// Threading: every member on the loop only; handlers are called on the loop.
 
@@ -22,6 +20,7 @@
 #include <mutex>
 #include <optional>
 #include <span>
+#include <string>
 #include <thread>
 #include <unordered_map>
 #include <vector>
@@ -34,9 +33,10 @@ namespace eip2mqtt::adapters::state {
 class ImagePersister {
 public:
     using Key = std::uint64_t;
-    /// A finished save: whether the file was written, and the ids given with the save (and
-    /// with every save it absorbed), in order.
-    using OnSaved = std::function<void(bool ok, const std::vector<std::uint64_t>& write_ids)>;
+    /// The key of a save whose completion nobody hears (attach() never returns it).
+    static constexpr Key unattended = 0;
+    /// A finished save: nullopt when the image is on disk, else why not (ImageFile::save).
+    using OnSaved = std::function<void(const std::optional<std::string>& error)>;
 
     /// Starts the worker. `store` must outlive this object.
     ImagePersister(const ImageStore& store, boost::asio::any_io_executor loop);
@@ -46,9 +46,9 @@ public:
     ImagePersister(const ImagePersister&) = delete;
     ImagePersister& operator=(const ImagePersister&) = delete;
 
-    /// The image saved for `plan`, read now (ImageStore::load): at an exchange's start.
-    std::optional<std::vector<std::byte>> load(const core::plan::ExchangePlan& plan) const {
-        return store_.load(plan);
+    /// The file of `plan`'s image, read now (ImageStore::open): at an exchange's start.
+    std::shared_ptr<ImageFile> open(const core::plan::ExchangePlan& plan) const {
+        return store_.open(plan);
     }
 
     /// Registers the handler of one exchange's completions; returns the key it saves under.
@@ -57,26 +57,24 @@ public:
     /// Nothing more reaches the handler of `key`; its saves under way still reach the disk.
     void detach(Key key);
 
-    /// Queues a save of `data` (copied) under `key`. `plan` is kept alive by the job, so the
-    /// exchange may be removed before its save is done.
-    void save(Key key, std::shared_ptr<const core::plan::ExchangePlan> plan,
-              std::span<const std::byte> data, std::vector<std::uint64_t> write_ids);
+    /// Queues a save of `data` (copied) to `file` under `key`. `file` is kept alive by the job,
+    /// so the exchange may be removed before its save is done.
+    void save(Key key, std::shared_ptr<ImageFile> file, std::span<const std::byte> data);
 
-    /// Blocks until every queued save is done, then delivers their completions at once (on
-    /// stop, before the last publications are flushed; on reload, before images are read).
+    /// Blocks until every queued save is done, then delivers their completions at once, and
+    /// again for the saves those handlers queued, until none is left (on stop, before the last
+    /// publications are flushed; on reload, before images are handed over or read).
     void flush();
 
 private:
     struct Saved {
         Key key;
-        bool ok;
-        std::vector<std::uint64_t> write_ids;
+        std::optional<std::string> error;
     };
     struct Job {
         Key key;
-        std::shared_ptr<const core::plan::ExchangePlan> plan;
+        std::shared_ptr<ImageFile> file;
         std::vector<std::byte> data;
-        std::vector<std::uint64_t> write_ids;
     };
     void run();
     void deliver();

@@ -1,17 +1,17 @@
 #pragma once
-/// Persisted produced images (issue #3): one file per produced exchange in `state_dir`, so a
-/// restart keeps producing the last written values rather than zeros. A file is replaced
-/// atomically (write a temporary, fsync, rename, fsync the directory), and carries a layout
-/// fingerprint: a file written for another layout (length, tag addresses or types) is ignored,
-/// so `initial` values apply instead.
+/// Persisted produced images (issue #3): one file per produced exchange in `state_dir`
+/// (ImageFile), so a restart keeps producing the last written values rather than zeros. A file
+/// carries a layout fingerprint: a file written for another layout (length, tag addresses or
+/// types) is ignored, so `initial` values apply instead.
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
-#include <span>
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/adapters/state/image_file.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 
 namespace eip2mqtt::adapters::state {
@@ -21,18 +21,15 @@ std::uint64_t layout_fingerprint(const core::plan::ExchangePlan& plan);
 
 class ImageStore {
 public:
-    /// `directory` is created when missing (one level). Nothing is read or written until asked.
+    /// Nothing is read or written until asked; the gateway made `directory` (StateDirLock).
     explicit ImageStore(std::string directory);
 
-    /// The image saved for this exchange, when there is one for the same layout; nullopt when
-    /// missing, unreadable, corrupt or of another layout (logged once at info or warn).
+    /// The exchange's file, read now (ImageFile).
+    std::shared_ptr<ImageFile> open(const core::plan::ExchangePlan& plan) const;
+
+    /// The image saved for this exchange, read now: nullopt when missing, unreadable, corrupt
+    /// or of another layout (logged once at info or warn).
     std::optional<std::vector<std::byte>> load(const core::plan::ExchangePlan& plan) const;
-
-    /// Saves the image atomically; false (and logged) on failure, the old file kept.
-    bool save(const core::plan::ExchangePlan& plan, std::span<const std::byte> data) const;
-
-    /// Removes the exchange's file (exchange removed from the configuration).
-    void remove(const core::plan::ExchangePlan& plan) const;
 
     /// Path of the exchange's file.
     std::string path_of(const core::plan::ExchangePlan& plan) const;

@@ -25,6 +25,7 @@ public:
     void exchange_state(const core::plan::ExchangePlan& exchange,
                         core::exchange::ConsumeState state) override;
     void write_result(const WriteReply& reply, std::optional<std::string_view> error) override;
+    void write_result_unsaved(const WriteReply& reply, std::string_view reason) override;
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
 
 private:

@@ -63,12 +63,16 @@ public:
     /// Nothing of its own: `_status` says it.
     void exchange_state(const core::plan::ExchangePlan&, core::exchange::ConsumeState) override {}
     void write_result(const WriteReply& reply, std::optional<std::string_view> error) override;
+    void write_result_unsaved(const WriteReply& reply, std::string_view reason) override;
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
     /// `{exchange}/_history`: the `_values` shape, QoS 1, not retained, MQTT 5 user property
     /// `historical=true`.
     bool replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
 private:
+    /// A write result on the reply's topic, with its correlation data.
+    void publish_result(const WriteReply& reply, std::string payload);
+
     UnsJsonOptions options_;
     adapters::mqtt::Publisher& mqtt_;
     WriteHandler& writes_;

@@ -34,13 +34,19 @@ void format_values_payload(std::string& out, const SampleBatch& batch);
 std::string format_status_payload(const ConsumedStatus& status);
 
 /// `{"state":"producing","request_id":…,"sent":…,"send_errors":…,"skipped_deadlines":…,
-/// "writes_applied":…,"writes_pending":…}`; state "paused" while sends fail.
+/// "writes_applied":…,"writes_pending":…,"saved":true,"save_failures":…,"save_error":null}`;
+/// state "paused" while sends fail, save_error the text of the last failed save until one
+/// succeeds.
 std::string format_produced_status_payload(const ProducedStatus& status);
 
 /// A write's result (docs/mqtt-api.md "Results"): `{"ok":true}` without `error`, else
 /// `{"error":…,"ok":false}` (keys in order). Bytes of `error` that are not UTF-8 become U+FFFD, so
 /// that the result stays JSON whatever a client put in the names the message quotes.
 std::string format_write_result(std::optional<std::string_view> error = std::nullopt);
+
+/// The result of a write applied and sent, whose image could not be saved:
+/// `{"error":"not saved: …","ok":true,"saved":false}` (keys in order; UTF-8 as above).
+std::string format_write_result_unsaved(std::string_view reason);
 
 /// The payload of `_gateway/{id}/metrics` (docs/schema/metrics.json).
 std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime);

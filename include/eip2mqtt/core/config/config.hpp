@@ -152,6 +152,10 @@ struct SparkplugSection {
     bool uns = true;  ///< keep the JSON topic tree as well
     /// QoS of births and data; the specification says 0 (the NDEATH will is always 1).
     int qos = 0;
+    /// The largest message the broker takes, for one that does not say (MQTT 5 CONNACK's Maximum
+    /// Packet Size); 0: the broker's alone. `check` warns of a birth larger than this (or
+    /// than 128 KiB when 0).
+    std::size_t max_packet_bytes = 0;
     Marks marks;
 
     bool enabled() const { return !group_id.empty(); }

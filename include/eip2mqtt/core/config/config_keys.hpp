@@ -140,12 +140,14 @@ inline constexpr std::array<ConfigKey<MetricsSection>, 1> metrics{{
 }};
 
 /// The edge node's identity and births are made at start.
-inline constexpr std::array<ConfigKey<SparkplugSection>, 5> sparkplug{{
+inline constexpr std::array<ConfigKey<SparkplugSection>, 6> sparkplug{{
     {"group_id", restart, differs<&SparkplugSection::group_id>},
     {"edge_node_id", restart, differs<&SparkplugSection::edge_node_id>},
     {"primary_host_id", restart, differs<&SparkplugSection::primary_host_id>},
     {"uns", restart, differs<&SparkplugSection::uns>},
     {"qos", restart, differs<&SparkplugSection::qos>},
+    // The node takes its packet limit when it connects, with the broker's.
+    {"max_packet_bytes", restart, differs<&SparkplugSection::max_packet_bytes>},
 }};
 
 /// An exchange's keys restart that exchange (its name is what matches it: a new name is another

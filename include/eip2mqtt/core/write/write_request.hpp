@@ -44,9 +44,10 @@ enum class WriteError : std::uint8_t {
     bad_response_topic,  ///< the MQTT 5 response topic is not one the gateway may publish to
     too_large,           ///< the payload is over the size limit
     overlapping_tags,    ///< a multi-tag write sets two tags that share bits
+    offline,             ///< a Sparkplug DCMD while the edge node is not born
 };
 
-inline constexpr std::size_t write_error_count = 17;
+inline constexpr std::size_t write_error_count = 18;
 
 std::string_view to_string(WriteError error);
 

@@ -5,10 +5,6 @@
 namespace eip2mqtt::adapters::mqtt::detail {
 namespace {
 
-/// The most a PUBLISH can take beyond its topic, payload and correlation data: a fixed header
-/// (5), the topic's length (2), a packet id (2), the properties' length (4) and the
-/// correlation data's identifier and length (3).
-constexpr std::size_t publish_overhead = 5 + 2 + 2 + 4 + 3;
 constexpr std::size_t max_correlation_data = 65535;
 
 }  // namespace
@@ -21,8 +17,7 @@ std::string publication_problem(const Message& message, std::size_t max_packet_s
         return "correlation data of " + std::to_string(message.correlation_data.size()) +
                " bytes (MQTT allows 65535)";
     }
-    const std::size_t size = publish_overhead + message.topic.size() + message.payload.size() +
-                             message.correlation_data.size();
+    const std::size_t size = publish_packet_bytes(message);
     if (size > max_packet_size) {
         return "a packet of up to " + std::to_string(size) + " bytes (the broker takes " +
                std::to_string(max_packet_size) + ")";

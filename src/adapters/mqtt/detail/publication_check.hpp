@@ -12,9 +12,7 @@
 
 namespace eip2mqtt::adapters::mqtt::detail {
 
-/// MQTT's own limit on a packet's size: a remaining length of at most 268,435,455 bytes
-/// after a fixed header of at most 5.
-inline constexpr std::size_t max_mqtt_packet_size = 268435455 + 5;
+inline constexpr std::size_t max_mqtt_packet_size = max_mqtt_packet_bytes;
 
 /// Why `message` cannot be published to a broker that takes packets of at most
 /// `max_packet_size` bytes (its CONNACK's Maximum Packet Size, else max_mqtt_packet_size),

@@ -1,6 +1,6 @@
 #pragma once
 /// The `sparkplug:` section's rules (issue #15): its IDs, and every exchange's name, which is a
-/// device ID, are Sparkplug topic elements.
+/// device ID, are Sparkplug topic elements, and the topics they make fit MQTT's length.
 
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/config/diagnostic.hpp"

@@ -1,0 +1,281 @@
+// Sparkplug hosts that misbehave, against the real binary and a real Mosquitto: a flood of
+// `Node Control/Rebirth` must not hold up the datagrams (no exchange goes stale, none is
+// missed, and the rebirths are coalesced), and a primary host whose STATE flaps must see each
+// NDEATH before the next NBIRTH, as a host subscribed at QoS 1 over MQTT 3.1.1 receives them
+// (mosquitto_sub), read by Eclipse Tahu's decoder.
+
+#include <signal.h>
+
+#include <algorithm>
+#include <atomic>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/support/child_process.hpp"
+#include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
+#include "tests/support/gateway_fixture.hpp"
+#include "tests/support/tahu.hpp"
+#include "tests/support/udp_client.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using core::plan::TagType;
+using core::plan::Value;
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+constexpr std::uint32_t exchanges = 20;
+constexpr std::size_t tags = 200;
+constexpr auto period = 100ms;
+
+std::string node_topic(const std::string& type) { return "spBv1.0/plant1/" + type + "/test-gw"; }
+
+std::string storm_exchanges() {
+    std::string yaml;
+    for (std::uint32_t e = 1; e <= exchanges; ++e) {
+        // A timeout of ten periods: a test machine that is merely busy does not reach it.
+        auto exchange = ExchangeYaml::consume("ex" + std::to_string(e), "10.9.9.9", e)
+                            .length(2 * tags)
+                            .period_ms(100)
+                            .timeout_ms(1000);
+        for (std::size_t t = 0; t < tags; ++t) {
+            exchange.tag("TAG_" + std::to_string(t), std::to_string(2 * t) + ".0", "int",
+                         "unit: kPa");
+        }
+        yaml += exchange.str();
+    }
+    return yaml;
+}
+
+/// Every exchange's datagram each period, their request ids one apart, until stopped: a
+/// producer, not a synchronisation.
+class Producer {
+public:
+    explicit Producer(std::function<void(const std::vector<std::byte>&)> send)
+        : send_(std::move(send)), thread_([this] { run(); }) {}
+    ~Producer() { stop(); }
+    void stop() {
+        stop_ = true;
+        if (thread_.joinable()) thread_.join();
+    }
+    std::uint16_t rounds() const { return rounds_; }
+
+private:
+    void run() {
+        auto next = std::chrono::steady_clock::now();
+        while (!stop_) {
+            ++rounds_;
+            for (std::uint32_t e = 1; e <= exchanges; ++e) {
+                DatagramBuilder datagram("10.9.9.9", e, 2 * tags);
+                datagram.request_id(rounds_).set("0.0", TagType::int_, Value{std::int64_t{1}});
+                send_(datagram.build());
+            }
+            next += period;
+            std::this_thread::sleep_until(next);
+        }
+    }
+    std::function<void(const std::vector<std::byte>&)> send_;
+    std::atomic<bool> stop_{false};
+    std::atomic<std::uint16_t> rounds_{0};
+    std::thread thread_;
+};
+
+using SparkplugStormTest = GatewayTest;
+
+TEST_F(SparkplugStormTest, AFloodOfRebirthRequestsNeitherStalesNorMissesADatagram) {
+    GatewayOptions options;
+    options.sections = "sparkplug:\n  group_id: plant1\n";
+    start(storm_exchanges(), "", options);
+    Producer producer([this](const std::vector<std::byte>& d) { send(d); });
+    for (std::uint32_t e = 1; e <= exchanges; ++e) {
+        expect_field(topic("ex" + std::to_string(e) + "/_status"), "state", "\"ok\"");
+    }
+    const auto rebirth = tahu_encode({{"timestamp", 1700000000000},
+                                      {"metrics", json::array({{{"name", "Node Control/Rebirth"},
+                                                                {"type", "Boolean"},
+                                                                {"value", true}}})}});
+    // 1,000 requests over 5 s or more (each waits for the broker's PUBACK), some 30 bytes each
+    // asking for ~90 kB of births.
+    constexpr int requests = 1000;
+    const auto storm_start = std::chrono::steady_clock::now();
+    for (int i = 0; i < requests; ++i) {
+        recorder_->publish(node_topic("NCMD"), rebirth);
+        std::this_thread::sleep_until(storm_start + i * 5ms);
+    }
+    const auto storm = std::chrono::duration_cast<std::chrono::milliseconds>(
+        std::chrono::steady_clock::now() - storm_start);
+    // Every exchange reports at least two seconds of datagrams after the storm.
+    const auto after = producer.rounds() + 20;
+    const auto deadline = std::chrono::steady_clock::now() + 60s;
+    for (std::uint32_t e = 1; e <= exchanges; ++e) {
+        const auto status = topic("ex" + std::to_string(e) + "/_status");
+        EXPECT_TRUE(recorder_
+                        ->wait_for_message(
+                            status,
+                            [&](const std::string& payload) {
+                                const auto s = json::parse(payload, nullptr, false);
+                                return s.is_object() && s.contains("request_id") &&
+                                       s["request_id"].is_number_integer() &&
+                                       s["request_id"].get<int>() >= after;
+                            },
+                            std::chrono::duration_cast<std::chrono::milliseconds>(
+                                deadline - std::chrono::steady_clock::now()))
+                        .has_value())
+            << status;
+    }
+    producer.stop();
+    // No exchange went stale, none missed a datagram: nothing waited unread.
+    for (const auto& m : recorder_->messages()) {
+        if (!m.topic.ends_with("/_status")) continue;
+        const auto s = json::parse(m.payload, nullptr, false);
+        ASSERT_TRUE(s.is_object()) << m.payload;
+        EXPECT_NE(s.value("state", ""), "stale") << m.topic;
+        EXPECT_EQ(s.value("timeouts", -1), 0) << m.topic << " " << m.payload;
+        EXPECT_EQ(s.value("missed", -1), 0) << m.topic << " " << m.payload;
+    }
+    for (const auto& m : recorder_->messages()) {
+        EXPECT_EQ(m.topic.find("/DDEATH/"), std::string::npos) << m.topic;
+    }
+    // One rebirth in progress and one pending: a rebirth a second, not one a request.
+    const auto nbirths = recorder_->messages_on(node_topic("NBIRTH")).size();
+    std::cout << requests << " rebirth requests in " << storm.count() << " ms: " << nbirths
+              << " NBIRTHs, the connection's included\n";
+    // The connection's, one a second of the storm (a part started counts), and the one pending
+    // at its end.
+    EXPECT_GE(nbirths, 2u);
+    EXPECT_LE(nbirths, static_cast<std::size_t>(storm / 1s) + 4) << storm.count() << " ms";
+    // And the gateway took every request.
+    EXPECT_TRUE(recorder_->wait_for_message(
+        metrics_topic(),
+        [](const std::string& payload) {
+            const auto m = json::parse(payload, nullptr, false);
+            return m.is_object() && m.contains("sparkplug") &&
+                   m["sparkplug"].value("rebirth_requests", 0) == requests;
+        },
+        30s));
+}
+
+/// What a host subscribed at QoS 1 over MQTT 3.1.1 received, in order: (topic, payload).
+std::vector<std::pair<std::string, std::string>> host_messages(const std::string& output) {
+    std::vector<std::pair<std::string, std::string>> messages;
+    std::istringstream lines(output);
+    std::string line;
+    while (std::getline(lines, line)) {
+        const auto space = line.find(' ');
+        if (!line.starts_with("spBv1.0/") || space == std::string::npos) continue;
+        std::string bytes;
+        for (std::size_t i = space + 1; i + 1 < line.size(); i += 2) {
+            bytes.push_back(static_cast<char>(std::stoi(line.substr(i, 2), nullptr, 16)));
+        }
+        messages.emplace_back(line.substr(0, space), std::move(bytes));
+    }
+    return messages;
+}
+
+TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth) {
+    UdpClient capture;
+    GatewayOptions options;
+    options.sections = "sparkplug:\n  group_id: plant1\n  primary_host_id: scada\n  qos: 0\n";
+    start(ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture.port()))
+              .period_ms(100)
+              .tag("SPEED_SP", "0.0", "real", "writable: true")
+              .str(),
+          "", options);
+    // The host: MQTT 3.1.1 at QoS 1, so the broker holds at most 20 of its QoS 1 messages in
+    // flight and queues the rest, where a QoS 0 one could pass them.
+    // Its lines as they come (stdbuf): the test reads them while it runs.
+    ChildProcess host({"/usr/bin/stdbuf", "-oL", "/usr/bin/mosquitto_sub", "-d", "-h", "127.0.0.1",
+                       "-p", std::to_string(broker_->port()), "-q", "1", "-t", "spBv1.0/plant1/#",
+                       "-F", "%t %x"});
+    ASSERT_TRUE(host.wait_for_output("SUBACK", 20s)) << host.output();
+    recorder_->publish("spBv1.0/STATE/scada", R"({"online":true,"timestamp":1})", true);
+    ASSERT_TRUE(recorder_->wait_for_message(node_topic("NBIRTH"), nullptr, 20s).has_value());
+
+    // 4,000 changes of its STATE as fast as the broker takes them, ending online.
+    constexpr int flaps = 4000;
+    std::string lines;
+    for (int i = 0; i <= flaps; ++i) {
+        lines += std::string(R"({"online":)") + (i % 2 == 0 ? "true" : "false") +
+                 R"(,"timestamp":)" + std::to_string(2 + i) + "}\n";
+    }
+    const auto file = dir_.write("flaps.txt", lines);
+    const auto pub =
+        run_command({"/bin/sh", "-c",
+                     "/usr/bin/mosquitto_pub -h 127.0.0.1 -p " + std::to_string(broker_->port()) +
+                         " -t spBv1.0/STATE/scada -q 1 -r -l < " + file},
+                    120s);
+    ASSERT_EQ(pub.status, 0) << pub.output;
+    // The broker hands the node its messages in order: once it has read an NCMD sent after
+    // them (one it logs and ignores: a rebirth would add births of its own), it has taken every
+    // STATE.
+    recorder_->publish(node_topic("NCMD"), std::string("\xff\xff\xff", 3));
+    ASSERT_TRUE(gateway_->wait_for_output("Sparkplug NCMD ignored", 120s));
+    // A clean stop ends with an NDEATH. A QoS 1 message after it reaches the host after
+    // everything the node said (QoS 0 messages are never queued behind QoS 1 ones).
+    gateway_->signal(SIGTERM);
+    ASSERT_EQ(gateway_->wait(20s), 0);
+    recorder_->publish("spBv1.0/plant1/end", "end");
+    ASSERT_TRUE(host.wait_for_output("spBv1.0/plant1/end", 60s));
+    auto received = host_messages(host.output());
+    // What the node said: not the test's own rebirth request.
+    std::erase_if(received, [](const auto& m) { return m.first == node_topic("NCMD"); });
+    const auto end = std::find_if(received.begin(), received.end(),
+                                  [](const auto& m) { return m.first == "spBv1.0/plant1/end"; });
+    received.erase(end, received.end());
+    std::cout << flaps << " STATE changes: the host received " << received.size()
+              << " messages of the node\n";
+
+    // Births and deaths alternate (the clean stop's NDEATH may follow another), each death with
+    // the bdSeq of the birth before it, and seq counts on from each NBIRTH.
+    std::vector<std::string> payloads;
+    for (const auto& [topic, payload] : received) payloads.push_back(payload);
+    const auto decoded = tahu_decode_all(payloads);
+    ASSERT_EQ(decoded.size(), received.size());
+    std::vector<std::string> problems;
+    bool born = false;
+    std::string bd_seq;
+    int seq = 0;
+    for (std::size_t i = 0; i < received.size(); ++i) {
+        const auto& topic = received[i].first;
+        const auto& payload = decoded[i];
+        const auto problem = [&](const std::string& what) {
+            problems.push_back(std::to_string(i) + ": " + topic + ": " + what);
+        };
+        if (!payload.contains("metrics") || !payload["metrics"].is_array()) {
+            problem("no metrics");
+            continue;
+        }
+        const bool birth = topic == node_topic("NBIRTH");
+        if (birth || topic == node_topic("NDEATH")) {
+            if (birth == born && !(i + 1 == received.size() && !birth)) {
+                problem(born ? "a second NBIRTH without an NDEATH" : "an NDEATH after an NDEATH");
+            }
+            born = birth;
+            const auto value = payload["metrics"].empty()
+                                   ? std::string("none")
+                                   : payload["metrics"][0].value("value", json()).dump();
+            if (birth) bd_seq = value;
+            if (value != bd_seq) problem("bdSeq " + value + " after a birth with " + bd_seq);
+            if (birth) seq = 0;
+            if (!birth) continue;
+        }
+        const auto expected = std::to_string(seq++);
+        if (!born) problem("after the NDEATH");
+        if (payload.value("seq", json()) != expected) {
+            problem("seq " + payload.value("seq", json()).dump() + ", not " + expected);
+        }
+    }
+    EXPECT_GE(received.size(), 4u);
+    EXPECT_TRUE(problems.empty()) << problems.size() << " problems, the first: " << problems.front()
+                                  << (problems.size() > 1 ? "; " + problems[1] : "");
+    EXPECT_FALSE(born);  // the clean stop's NDEATH is the last
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test
