@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
     sim_cmd->add_option("-c,--config", sim.config_path, "Configuration file")->required();
     sim_cmd->add_option("--target", sim.target, "Destination address")->capture_default_str();
     sim_cmd->add_option("--port", sim.port, "Destination port (default: eip.port)");
+    sim_cmd->add_option("--commands-port", sim.commands_port,
+                        "Answer the command protocol on this port (0: not at all; default: "
+                        "eip.commands.port when eip.commands.enabled)");
     sim_cmd->add_option("--duration", sim.duration_s, "Seconds to run (default: until stopped)");
     sim_cmd->add_option("--log-level", sim.log_level, "Log level")->capture_default_str();
 
@@ -59,6 +62,22 @@ int main(int argc, char** argv) {
     sniff_cmd->add_flag("--yaml", sniff.yaml,
                         "End with YAML for the exchanges seen that the configuration lacks");
 
+    DiscoverOptions discover;
+    auto* discover_cmd = cli.add_subcommand(
+        "discover", "Ask nodes for their exchanges on the command port (UDP 7937)");
+    discover_cmd->add_option("HOST", discover.hosts, "Nodes to ask: host or host:port")->required();
+    discover_cmd->add_option("--port", discover.port, "Command port of hosts given without one")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 65535));
+    discover_cmd->add_option("--timeout-ms", discover.timeout_ms, "Wait per attempt")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 60000));
+    discover_cmd->add_option("--attempts", discover.attempts, "Attempts per request")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 10));
+    discover_cmd->add_flag("--yaml", discover.yaml,
+                           "Print YAML skeletons of the exchanges the nodes produce");
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -74,6 +93,7 @@ int main(int argc, char** argv) {
         if (*sim_cmd) return run_sim(sim);
         if (*import_cmd) return run_import_points(points_path, std::cout, std::cerr);
         if (*sniff_cmd) return run_sniff(sniff, std::cout);
+        if (*discover_cmd) return run_discover(discover, std::cout, std::cerr);
         if (run.config_path.empty()) {
             std::cerr << "eip2mqtt: no configuration given (use -c FILE); see --help\n";
             return 2;

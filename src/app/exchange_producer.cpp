@@ -128,6 +128,7 @@ std::span<const std::byte> ExchangeProducer::produce(core::WallTime wall) {
 void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
     if (sent) {
         ++counters_.sent;
+        last_sent_ = wall;
     } else {
         ++counters_.send_errors;
     }

@@ -69,6 +69,7 @@ Gateway::Gateway(core::config::Config config)
         receiver_options.multicast.push_back({group.group, group.interface});
     }
     receiver_ = std::make_unique<adapters::udp::Receiver>(loop_.get_executor(), receiver_options);
+    make_commands();
     if (!config_.metrics.listen.empty()) {
         prometheus_ =
             std::make_unique<adapters::metrics::PrometheusEndpoint>(config_.metrics.listen);
@@ -93,6 +94,7 @@ int Gateway::run() {
     notifier_.stopping();
     spdlog::info("stopping: flushing publications and publishing offline");
     receiver_->stop();
+    if (command_socket_) command_socket_->stop();
     for (auto& producer : producers_) producer->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
     if (persister_) persister_->flush();
@@ -128,6 +130,13 @@ void Gateway::start() {
                             bool truncated) {
         datagram_router_.route(bytes, from, truncated, std::chrono::steady_clock::now());
     });
+    if (command_socket_) {
+        command_socket_->start(
+            [this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from) {
+                commands_->on_datagram(bytes, from, std::chrono::steady_clock::now(),
+                                       std::chrono::system_clock::now());
+            });
+    }
     mqtt_->start();
     if (sparkplug_mqtt_) {
         sparkplug_mqtt_->set_on_connected([this] {
@@ -218,9 +227,9 @@ void Gateway::on_tick() {
         if (prometheus_) {
             const auto stats = mqtt_->stats();
             const auto history = history_ ? std::optional(history_->stats()) : std::nullopt;
-            prometheus_->update(metrics_snapshot({datagram_router_.counters(), writes_.counters(),
-                                                  stats, history ? &*history : nullptr},
-                                                 consumers_, producers_, now));
+            prometheus_->update(
+                metrics_snapshot(metrics_sources(stats, history ? &*history : nullptr), consumers_,
+                                 producers_, now));
         }
     }
     // Every tick: each producer publishes its `_status` at its own phase of the second, so
@@ -228,6 +237,7 @@ void Gateway::on_tick() {
     for (auto& producer : producers_) producer->on_tick(now);
     // The summary of a flood of drops that stopped, which no next drop would log.
     datagram_router_.flush_log(now);
+    if (commands_) commands_->flush_log(now);
     for (auto& consumer : consumers_) consumer->on_tick(now, wall, refresh_scan);
 }
 
@@ -245,10 +255,7 @@ void Gateway::publish_metrics() {
     const auto uptime = std::chrono::duration_cast<std::chrono::seconds>(
         std::chrono::steady_clock::now() - started_at_);
     const auto history = history_ ? std::optional(history_->stats()) : std::nullopt;
-    northbound_.gateway_metrics(
-        {datagram_router_.counters(), writes_.counters(), stats, history ? &*history : nullptr,
-         sparkplug_ ? &sparkplug_->stats() : nullptr},
-        uptime);
+    northbound_.gateway_metrics(metrics_sources(stats, history ? &*history : nullptr), uptime);
     notifier_.status(status_line());
 }
 

@@ -68,6 +68,34 @@ std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& c
     return out;
 }
 
+std::map<std::string, std::uint64_t> writes_by_origin(const GatewayCounters& counters) {
+    std::map<std::string, std::uint64_t> out;
+    for (const auto origin : all_write_origins) {
+        out[std::string(to_string(origin))] =
+            counters.writes_by_origin[static_cast<std::size_t>(origin)];
+    }
+    return out;
+}
+
+adapters::metrics::CommandMetrics command_metrics(const CommandCounters& counters) {
+    adapters::metrics::CommandMetrics c;
+    for (std::size_t i = 0; i < command_request_types.size(); ++i) {
+        auto name = std::string(core::command::to_string(command_request_types[i]));
+        name.resize(name.size() - std::string_view("_request").size());
+        c.requests[name] = counters.requests[i];
+    }
+    c.errors = counters.errors;
+    c.refused = counters.refused;
+    c.dropped = counters.dropped;
+    for (const auto error : core::command::all_decode_errors) {
+        if (!core::command::nak_code(error)) continue;
+        c.naks[std::string(core::command::to_string(error))] =
+            counters.naks[static_cast<std::size_t>(error)];
+    }
+    c.ignored = counters.ignored;
+    return c;
+}
+
 adapters::metrics::HistoryMetrics history_metrics(const history::HistoryStats& stats) {
     adapters::metrics::HistoryMetrics h;
     h.entries = stats.journal.entries;
@@ -110,9 +138,11 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     g.writes_not_saved = sources.gateway.image_saves.writes_not_saved;
     g.writes_sent_unsaved = sources.gateway.image_saves.writes_sent_unsaved;
     g.image_save_failures = sources.gateway.image_saves.failures;
+    g.writes_by_origin = writes_by_origin(sources.gateway);
     if (sources.history) {
         g.history = history_metrics(*sources.history);
     }
+    if (sources.commands) g.commands = command_metrics(*sources.commands);
     return snapshot;
 }
 

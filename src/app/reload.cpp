@@ -202,6 +202,7 @@ bool Gateway::apply_settings(const core::config::Config& next) {
     // Response topics and the like take effect at once; tags are published in the new form
     // from their next sample, and their retained state is published again (reload()).
     uns_json_->set_options(northbound::uns_json_options(next));
+    if (commands_) commands_->set_policy(command_policy(next));
     return true;
 }
 

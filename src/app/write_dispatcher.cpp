@@ -25,6 +25,7 @@ void WriteDispatcher::on_write(WriteRequest&& request) {
         return reject(request, *rejection);
     }
     ++counters_.writes_ok;
+    ++counters_.writes_by_origin[static_cast<std::size_t>(request.reply.via)];
 }
 
 void WriteDispatcher::reject(const WriteRequest& request,

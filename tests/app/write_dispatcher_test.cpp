@@ -49,6 +49,20 @@ TEST_F(WriteDispatcherTest, AnAcceptedWriteIsStagedOnItsExchangeAndCountedNotAns
     EXPECT_TRUE(origin_.results.empty());  // answered once its datagram is sent
 }
 
+TEST_F(WriteDispatcherTest, AcceptedWritesAreCountedByTheProtocolTheyCameBy) {
+    auto by_command = request(ExchangeWrite{1, {{0, core::plan::Value{true}}}});
+    by_command.reply.via = WriteOrigin::commands;
+    dispatcher_.on_write(std::move(by_command));
+    dispatcher_.on_write(request(ExchangeWrite{1, {{0, core::plan::Value{true}}}}));
+    auto refused = request(WriteRejection{WriteError::read_only, "read-only"});
+    refused.reply.via = WriteOrigin::commands;
+    dispatcher_.on_write(std::move(refused));
+    const auto& by_origin = dispatcher_.counters().writes_by_origin;
+    EXPECT_EQ(by_origin[static_cast<std::size_t>(WriteOrigin::commands)], 1u);
+    EXPECT_EQ(by_origin[static_cast<std::size_t>(WriteOrigin::mqtt)], 1u);
+    EXPECT_EQ(by_origin[static_cast<std::size_t>(WriteOrigin::sparkplug)], 0u);
+}
+
 TEST_F(WriteDispatcherTest, ARefusalIsCountedUnderItsErrorAndAnsweredByItsOrigin) {
     dispatcher_.on_write(request(WriteRejection{WriteError::read_only, "read-only"}));
     EXPECT_TRUE(staged_.empty());

@@ -10,12 +10,12 @@
 
 namespace eip2mqtt::test {
 
-UdpClient::UdpClient(std::uint16_t port) {
+UdpClient::UdpClient(std::uint16_t port, std::uint32_t bind_address) {
     fd_ = ::socket(AF_INET, SOCK_DGRAM, 0);
     if (fd_ < 0) throw std::runtime_error("socket failed");
     sockaddr_in address{};
     address.sin_family = AF_INET;
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    address.sin_addr.s_addr = htonl(bind_address);
     address.sin_port = htons(port);
     if (::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
         throw std::runtime_error("bind failed");

@@ -12,8 +12,9 @@ namespace eip2mqtt::test {
 
 class UdpClient {
 public:
-    /// Binds 127.0.0.1:`port` (0: ephemeral).
-    explicit UdpClient(std::uint16_t port = 0);
+    /// Binds `address`:`port` (0: ephemeral); `address` is IPv4 in host order, on loopback
+    /// (127.0.0.2 is another source on the same host).
+    explicit UdpClient(std::uint16_t port = 0, std::uint32_t address = 0x7F000001);
     ~UdpClient();
     UdpClient(const UdpClient&) = delete;
     UdpClient& operator=(const UdpClient&) = delete;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace eip2mqtt::app {
 
@@ -23,11 +24,32 @@ struct SimOptions {
     std::string config_path;
     std::string target = "127.0.0.1";  ///< where the consumed exchanges are sent
     int port = 0;                      ///< 0: eip.port of the configuration
-    double duration_s = 0;             ///< 0: until SIGINT/SIGTERM
+    /// Where it answers the command protocol, on eip.bind: -1, eip.commands.port when
+    /// eip.commands.enabled, else nowhere; 0: nowhere; otherwise this port.
+    int commands_port = -1;
+    double duration_s = 0;  ///< 0: until SIGINT/SIGTERM
     std::string log_level = "info";
 };
-/// `sim -c FILE`: sends every consumed exchange of the configuration with changing values.
+/// `sim -c FILE`: sends every consumed exchange of the configuration with changing values, and
+/// answers the command protocol (docs/protocol.md §9) as a PLC would, describing them (produced,
+/// from its point of view; never written: writes are answered `not_permitted`).
 int run_sim(const SimOptions& options);
+
+struct DiscoverOptions {
+    std::vector<std::string> hosts;  ///< `host` or `host:port`
+    int port = 7937;                 ///< for hosts without a port
+    int timeout_ms = 500;            ///< per attempt
+    int attempts = 3;                ///< per request
+    bool yaml = false;
+};
+/// `discover HOST...`: asks each node on the command port for its Capabilities, every page of its
+/// Summary and the Retrieve Configuration of each exchange (docs/protocol.md §9). Prints to `out`
+/// a table per node (producer id, exchange id, mode, period, length, destination, port,
+/// signature, state), saying which exchanges it could not retrieve and why, and a node that does
+/// not answer as such; with `yaml` instead the skeletons of the exchanges the nodes produce
+/// (core::config::discovered_skeleton), ready for `check`. Returns 0 when every node answered
+/// and every exchange was retrieved, 1 otherwise, 2 when a host does not resolve.
+int run_discover(const DiscoverOptions& options, std::ostream& out, std::ostream& err);
 
 /// `import-points FILE.csv`: prints to `out` a complete configuration with one exchange per Node
 /// of the point list (consumed for Read rows, produced for Write rows), its producer ids,

@@ -52,6 +52,8 @@ public:
     /// ConsumedExchange::accepts_source: false (and counted) for a datagram to drop.
     bool accepts_source(std::uint32_t address) { return exchange_.accepts_source(address); }
     std::uint64_t wrong_source() const { return exchange_.counters().wrong_source; }
+    /// When this exchange's configuration took effect (the consumer was made).
+    core::WallTime configured_at() const { return configured_at_; }
 
 private:
     void report_tags(core::MonoTime now, bool all);
@@ -77,6 +79,7 @@ private:
     std::uint64_t last_status_received_ = 0;
     bool status_dirty_ = true;
     core::MonoTime down_since_{};  ///< when the exchange last left `ok`
+    core::WallTime configured_at_ = std::chrono::system_clock::now();
 };
 
 }  // namespace eip2mqtt::app

@@ -124,6 +124,10 @@ public:
     /// True when the file holds the image being produced, or a newer one.
     bool saved() const { return saved_; }
     const core::exchange::ProducedImage& image() const { return image_; }
+    /// When the last datagram left; nullopt before the first.
+    std::optional<core::WallTime> last_sent() const { return last_sent_; }
+    /// When this exchange's configuration took effect (the producer was made).
+    core::WallTime configured_at() const { return configured_at_; }
 
 private:
     /// Saves the image with every queued write applied, now or once the save under way is done.
@@ -170,6 +174,8 @@ private:
     std::uint64_t next_write_id_ = 1;
     ProducerCounters counters_;
     bool failing_ = false;  ///< the last send failed: the status says paused
+    std::optional<core::WallTime> last_sent_;
+    core::WallTime configured_at_ = std::chrono::system_clock::now();
 };
 
 }  // namespace eip2mqtt::app

@@ -23,9 +23,12 @@
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/adapters/state/state_dir_lock.hpp"
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
+#include "eip2mqtt/adapters/udp/command_socket.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
 #include "eip2mqtt/adapters/udp/sender.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
+#include "eip2mqtt/app/command_responder.hpp"
+#include "eip2mqtt/app/command_views.hpp"
 #include "eip2mqtt/app/datagram_router.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
@@ -93,6 +96,11 @@ private:
     /// multicast groups, log level, publish settings, MQTT buffers. False, with nothing
     /// changed, when the multicast groups cannot be joined.
     bool apply_settings(const core::config::Config& next);
+    /// With `eip.commands.enabled`: the command port and its responder (gateway_commands.cpp).
+    void make_commands();
+    /// The figures the metrics are made of, borrowed for one call.
+    MetricsSources metrics_sources(const adapters::mqtt::ClientStats& mqtt,
+                                   const history::HistoryStats* history) const;
     void schedule_watchdog();
     void schedule_tick();
     void on_tick();
@@ -129,6 +137,9 @@ private:
     std::unique_ptr<ProducerScheduler> production_;  ///< with sender_; drives producers_
     std::unique_ptr<adapters::state::ImagePersister> persister_;  ///< with sender_
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
+    CommandViewContext command_context_;
+    std::unique_ptr<CommandResponder> commands_;                    ///< with eip.commands.enabled
+    std::unique_ptr<adapters::udp::CommandSocket> command_socket_;  ///< with commands_
     std::unique_ptr<adapters::metrics::PrometheusEndpoint> prometheus_;
 
     core::MonoTime started_at_;

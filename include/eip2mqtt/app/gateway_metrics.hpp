@@ -14,11 +14,13 @@
 
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/app/command_counters.hpp"
 #include "eip2mqtt/app/datagram_router.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/app/northbound/sparkplug_stats.hpp"
+#include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
 
@@ -33,6 +35,8 @@ struct GatewayCounters {
     std::uint64_t writes_cancelled = 0;
     /// Image saves of every produced exchange, and the writes whose save failed.
     ImageSaveTotals image_saves;
+    /// Of writes_ok, by the protocol they came by (WriteOrigin).
+    std::array<std::uint64_t, write_origin_count> writes_by_origin{};
 };
 
 /// Everything the metrics are made of, borrowed for one call.
@@ -42,6 +46,7 @@ struct MetricsSources {
     const adapters::mqtt::ClientStats& mqtt;
     const history::HistoryStats* history = nullptr;         ///< with store and forward
     const northbound::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
+    const CommandCounters* commands = nullptr;              ///< with eip.commands enabled
 };
 
 /// Store and forward's figures for Prometheus and the metrics topic.
@@ -52,6 +57,12 @@ std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& count
 
 /// Write rejections by error name, every error listed.
 std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& counters);
+
+/// Accepted writes by origin name, every origin listed.
+std::map<std::string, std::uint64_t> writes_by_origin(const GatewayCounters& counters);
+
+/// The command responder's figures for Prometheus and the metrics topic.
+adapters::metrics::CommandMetrics command_metrics(const CommandCounters& counters);
 
 /// Gateway and per-exchange figures for Prometheus, ages taken at `now`.
 adapters::metrics::MetricsSnapshot metrics_snapshot(

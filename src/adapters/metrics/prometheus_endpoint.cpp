@@ -66,14 +66,20 @@ void add_exchange_family(std::vector<MetricFamily>& out, const MetricsSnapshot& 
     if (!result.metric.empty()) out.push_back(std::move(result));
 }
 
-void add_reason_family(std::vector<MetricFamily>& out, std::string name, std::string help,
-                       const std::map<std::string, std::uint64_t>& counts) {
+void add_labelled_family(std::vector<MetricFamily>& out, std::string name, std::string help,
+                         const std::string& label,
+                         const std::map<std::string, std::uint64_t>& counts) {
     auto result = family(std::move(name), std::move(help), MetricType::Counter);
-    for (const auto& [reason, count] : counts) {
+    for (const auto& [value, count] : counts) {
         result.metric.push_back(
-            sample(MetricType::Counter, static_cast<double>(count), {{"reason", reason}}));
+            sample(MetricType::Counter, static_cast<double>(count), {{label, value}}));
     }
     if (!result.metric.empty()) out.push_back(std::move(result));
+}
+
+void add_reason_family(std::vector<MetricFamily>& out, std::string name, std::string help,
+                       const std::map<std::string, std::uint64_t>& counts) {
+    add_labelled_family(out, std::move(name), std::move(help), "reason", counts);
 }
 
 void add_single(std::vector<MetricFamily>& out, std::string name, std::string help, MetricType type,
@@ -234,6 +240,28 @@ void add_gateway_families(std::vector<MetricFamily>& out, const MetricsSnapshot&
                counter, static_cast<double>(g.writes_sent_unsaved));
     add_single(out, "image_save_failures_total", "Image saves of produced exchanges that failed",
                counter, static_cast<double>(g.image_save_failures));
+    add_labelled_family(out, "writes_by_origin_total",
+                        "Writes accepted, by the protocol they came by", "origin",
+                        g.writes_by_origin);
+}
+
+/// The command responder on UDP 7937, when enabled.
+void add_command_families(std::vector<MetricFamily>& out, const CommandMetrics& c) {
+    add_labelled_family(out, "commands_requests_total", "Command requests answered, by type",
+                        "type", c.requests);
+    add_single(out, "commands_errors_total", "Command requests answered with an error status",
+               counter, static_cast<double>(c.errors));
+    add_single(out, "commands_refused_total",
+               "Command datagrams from sources outside eip.commands.allow, unanswered", counter,
+               static_cast<double>(c.refused));
+    add_single(out, "commands_dropped_total",
+               "Command datagrams over eip.commands.max_requests_per_s, unanswered", counter,
+               static_cast<double>(c.dropped));
+    add_reason_family(out, "commands_naks_total", "Command requests answered with a NAK, by reason",
+                      c.naks);
+    add_single(out, "commands_ignored_total",
+               "Command datagrams without a header, or not requests, unanswered", counter,
+               static_cast<double>(c.ignored));
 }
 
 /// Store and forward's journal, when enabled.
@@ -265,6 +293,7 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
     add_clock_families(out, snapshot);
     add_gateway_families(out, snapshot);
     if (snapshot.gateway.history) add_history_families(out, *snapshot.gateway.history);
+    if (snapshot.gateway.commands) add_command_families(out, *snapshot.gateway.commands);
     return out;
 }
 

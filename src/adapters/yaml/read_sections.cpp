@@ -201,6 +201,8 @@ void Loader::read_eip(const Node& node, const Mark& at, Config& config) {
                 } else if (s) {
                     eip.multicast_interface = *s;
                 }
+            } else if (key == "commands") {
+                read_commands(value, k, config);
             } else if (key == "multicast") {
                 if (value.is_null()) return;
                 if (!value.is_sequence()) {
@@ -232,6 +234,42 @@ void Loader::read_eip(const Node& node, const Mark& at, Config& config) {
                 }
             }
         });
+}
+
+void Loader::read_commands(const Node& node, const Mark& at, Config& config) {
+    auto& commands = config.eip.commands;
+    commands.marks =
+        walk(node, at, "commands", "in eip.commands", commands_keys,
+             [&](const std::string& key, const Node& value, const Mark& k) {
+                 if (key == "enabled") {
+                     if (const auto b = boolean(value, key, k)) commands.enabled = *b;
+                 } else if (key == "writes") {
+                     if (const auto b = boolean(value, key, k)) commands.writes = *b;
+                 } else if (key == "port") {
+                     if (const auto n = integer<std::uint16_t>(value, key, k, 1))
+                         commands.port = *n;
+                 } else if (key == "max_requests_per_s") {
+                     if (const auto n = integer<std::uint32_t>(value, key, k, 1, 100000)) {
+                         commands.max_requests_per_s = *n;
+                     }
+                 } else if (key == "allow") {
+                     if (!value.is_sequence()) {
+                         error(k, "expected a list of subnets for 'allow' (10.20.0.0/24)");
+                         return;
+                     }
+                     for (std::size_t i = 0; i < value.size(); ++i) {
+                         const Node item = value.item(i);
+                         const auto s = text(item, key, mark(item));
+                         if (!s) continue;
+                         if (const auto subnet = core::command::parse_subnet(*s)) {
+                             commands.allow.push_back(*subnet);
+                         } else {
+                             error(mark(item), "allow " + in_quotes(*s) +
+                                                   " is not an IPv4 subnet (10.20.0.0/24)");
+                         }
+                     }
+                 }
+             });
 }
 
 void Loader::read_metrics(const Node& node, const Mark& at, Config& config) {

@@ -109,6 +109,7 @@ void SparkplugNode::on_node_command(const adapters::mqtt::Incoming& message) {
 void SparkplugNode::on_device_command(const adapters::mqtt::Incoming& message, Device* device) {
     WriteRequest request;
     request.reply.origin = this;
+    request.reply.via = WriteOrigin::sparkplug;
     request.target = message.topic;
     const auto refuse = [&](WriteError error, std::string text) {
         request.outcome = WriteRejection{error, std::move(text)};

@@ -120,7 +120,15 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"writes_not_saved", sources.gateway.image_saves.writes_not_saved},
         {"writes_sent_unsaved", sources.gateway.image_saves.writes_sent_unsaved},
         {"image_save_failures", sources.gateway.image_saves.failures},
+        {"writes_by_origin", writes_by_origin(sources.gateway)},
     };
+    if (sources.commands) {
+        const auto c = command_metrics(*sources.commands);
+        metrics["commands"] = {
+            {"requests", c.requests}, {"errors", c.errors}, {"refused", c.refused},
+            {"dropped", c.dropped},   {"naks", c.naks},     {"ignored", c.ignored},
+        };
+    }
     if (sources.history) {
         const auto h = history_metrics(*sources.history);
         metrics["history_dropped"] = h.dropped;

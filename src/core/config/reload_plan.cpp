@@ -46,6 +46,7 @@ void compare_sections(Collector& out, const Config& a, const Config& b) {
     out.compare("mqtt.store_and_forward.", keys::store_and_forward, a.mqtt.store_and_forward,
                 b.mqtt.store_and_forward);
     out.compare("eip.", keys::eip, a.eip, b.eip);
+    out.compare("eip.commands.", keys::commands, a.eip.commands, b.eip.commands);
     out.compare("metrics.", keys::metrics, a.metrics, b.metrics);
     out.compare("sparkplug.", keys::sparkplug, a.sparkplug, b.sparkplug);
 }

@@ -69,6 +69,12 @@ eip:
       interface: eth0
   multicast_ttl: 1
   multicast_interface: 10.0.0.9
+  commands:
+    enabled: true
+    port: 7937
+    allow: [ 10.20.0.0/24 ]
+    writes: false
+    max_requests_per_s: 100
 metrics:
   listen: 127.0.0.1:9108
 sparkplug:
@@ -175,6 +181,11 @@ const std::vector<Edit> edits = {
      {{"eip.multicast", Kind::changed}}},
     {"eip.multicast_ttl", "multicast_ttl: 1", "multicast_ttl: 2"},
     {"eip.multicast_interface", "10.0.0.9", "10.0.0.8"},
+    {"eip.commands.enabled", "    enabled: true\n", "    enabled: false\n"},
+    {"eip.commands.port", "port: 7937", "port: 7938"},
+    {"eip.commands.allow", "10.20.0.0/24", "10.20.1.0/24"},
+    {"eip.commands.writes", "writes: false", "writes: true"},
+    {"eip.commands.max_requests_per_s", "max_requests_per_s: 100", "max_requests_per_s: 200"},
     {"metrics.listen", "127.0.0.1:9108", "127.0.0.1:9109"},
     {"sparkplug.group_id", "group_id: plant", "group_id: plant-b"},
     {"sparkplug.edge_node_id", "node-a", "node-b"},
@@ -276,7 +287,7 @@ std::vector<Edit> every_edit() {
 }
 
 /// The keys whose value is a mapping or a list of mappings: edited through their own keys.
-const std::set<std::string> mapping_keys = {"mqtt.buffer", "mqtt.store_and_forward",
+const std::set<std::string> mapping_keys = {"mqtt.buffer", "mqtt.store_and_forward", "eip.commands",
                                             "exchanges[].tags"};
 
 /// Every other key of the table, with its rule, by the table's name.
@@ -295,6 +306,7 @@ std::map<std::string, ReloadRule> table_keys() {
     add("mqtt.store_and_forward.", keys::store_and_forward);
     add("eip.", keys::eip);
     add("eip.multicast.", keys::multicast);
+    add("eip.commands.", keys::commands);
     add("metrics.", keys::metrics);
     add("sparkplug.", keys::sparkplug);
     add("exchanges[].", keys::exchange);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
+#include "eip2mqtt/core/config/discovered_skeleton.hpp"
 #include "eip2mqtt/core/config/skeleton.hpp"
 
 namespace eip2mqtt::adapters::yaml {
@@ -76,6 +77,33 @@ TEST(SkeletonLoad, AnExchangeWithALengthAndNoTagsIsValidWhateverItsTagsKey) {
         ASSERT_TRUE(loaded.ok()) << dump(loaded.error()) << text;
         EXPECT_TRUE(loaded.value().exchanges.at(0).tags.empty()) << text;
     }
+}
+
+TEST(SkeletonLoad, TheSkeletonOfDiscoveredExchangesIsAValidConfiguration) {
+    core::config::DiscoveredNode node;
+    node.address = "10.20.0.7:7937";
+    node.total = 2;
+    for (const std::uint32_t id : {3u, 4u}) {
+        core::command::ExchangeConfig config;
+        config.key = {core::wire::ProducerId{0x0A000009}, id};
+        config.length = static_cast<std::uint16_t>(id == 3 ? 40 : 0);
+        config.period_ms = id == 3 ? 20 : 0;
+        config.signature = 0x0102;
+        config.destination_type = core::command::DestinationType::unicast;
+        config.destination = 0x0A140001;
+        node.exchanges.push_back({{config.key}, config, {}});
+    }
+    const auto text = sections + core::config::discovered_skeleton(std::vector{node});
+    const auto loaded = load_config_text(text, "discovered.yaml");
+    ASSERT_TRUE(loaded.ok()) << dump(loaded.error()) << text;
+    const auto& exchanges = loaded.value().exchanges;
+    ASSERT_EQ(exchanges.size(), 2u);
+    EXPECT_EQ(exchanges[0].spec.length, 40);
+    EXPECT_EQ(exchanges[0].spec.period, 20ms);
+    EXPECT_EQ(core::wire::to_string(exchanges[0].spec.signature), "1.2");
+    EXPECT_EQ(exchanges[1].spec.length, 1);
+    EXPECT_EQ(exchanges[1].spec.period, 1000ms);
+    EXPECT_TRUE(core::config::validate(loaded.value()).empty());
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "eip2mqtt/core/command/subnet.hpp"
 #include "eip2mqtt/core/config/diagnostic.hpp"
 #include "eip2mqtt/core/enum_names.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
@@ -114,6 +115,23 @@ struct MulticastGroup {
     friend bool operator==(const MulticastGroup&, const MulticastGroup&) = default;
 };
 
+/// `eip.commands`: the responder of the command protocol on UDP 7937 (docs/protocol.md §9).
+struct CommandsSection {
+    bool enabled = false;  ///< nothing listens on the port unless asked
+    std::uint16_t port = 7937;
+    /// The requesters answered; empty: the subnets of `eip.bind`'s interfaces (resolved at
+    /// start, when the interfaces are known).
+    std::vector<command::Subnet> allow;
+    bool writes = false;  ///< Write and Masked Write; off: answered `not_permitted`
+    std::uint32_t max_requests_per_s = 100;  ///< beyond: dropped unanswered, and counted
+    Marks marks;
+
+    friend bool operator==(const CommandsSection& a, const CommandsSection& b) {
+        return a.enabled == b.enabled && a.port == b.port && a.allow == b.allow &&
+               a.writes == b.writes && a.max_requests_per_s == b.max_requests_per_s;
+    }
+};
+
 struct EipSection {
     std::string bind = "0.0.0.0";
     std::uint16_t port = 18246;
@@ -121,6 +139,7 @@ struct EipSection {
     int multicast_ttl = 1;  ///< TTL of produced multicast datagrams
     std::string
         multicast_interface;  ///< IPv4 address of the interface produced multicast leaves by
+    CommandsSection commands;
     Marks marks;
 };
 

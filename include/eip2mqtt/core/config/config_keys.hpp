@@ -115,12 +115,23 @@ inline constexpr std::array<ConfigKey<StoreAndForwardSection>, 4> store_and_forw
 
 /// The receiving socket stays bound; its multicast groups are left and joined live. The sending
 /// socket keeps the TTL and interface it was opened with.
-inline constexpr std::array<ConfigKey<EipSection>, 5> eip{{
+inline constexpr std::array<ConfigKey<EipSection>, 6> eip{{
     {"bind", restart, differs<&EipSection::bind>},
     {"port", restart, differs<&EipSection::port>},
     {"multicast", live, differs<&EipSection::multicast>},
     {"multicast_ttl", restart, differs<&EipSection::multicast_ttl>},
     {"multicast_interface", restart, differs<&EipSection::multicast_interface>},
+    {"commands", live, nullptr},
+}};
+
+/// `eip.commands`: the responder's socket is opened at start; who it answers, how often, and
+/// whether it writes are applied live.
+inline constexpr std::array<ConfigKey<CommandsSection>, 5> commands{{
+    {"enabled", restart, differs<&CommandsSection::enabled>},
+    {"port", restart, differs<&CommandsSection::port>},
+    {"allow", live, differs<&CommandsSection::allow>},
+    {"writes", live, differs<&CommandsSection::writes>},
+    {"max_requests_per_s", live, differs<&CommandsSection::max_requests_per_s>},
 }};
 
 /// An entry of `eip.multicast`: a change to it is a change to the list.

@@ -54,6 +54,7 @@ inline constexpr std::array<std::string_view, 6> top_keys{"gateway", "mqtt",    
                                                           "metrics", "sparkplug", "exchanges"};
 inline constexpr auto eip_keys = core::config::keys::names(core::config::keys::eip);
 inline constexpr auto multicast_keys = core::config::keys::names(core::config::keys::multicast);
+inline constexpr auto commands_keys = core::config::keys::names(core::config::keys::commands);
 
 /// An exchange while its keys are read.
 struct ExchangeDraft {
@@ -224,6 +225,7 @@ private:
     void read_mqtt(const Node& node, const Mark& at, Config& config);
 
     void read_eip(const Node& node, const Mark& at, Config& config);
+    void read_commands(const Node& node, const Mark& at, Config& config);
 
     void read_metrics(const Node& node, const Mark& at, Config& config);
     void read_sparkplug(const Node& node, const Mark& at, Config& config);

@@ -1,0 +1,82 @@
+#include "eip2mqtt/core/command/write_plan.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "eip2mqtt/core/plan/value_codec.hpp"
+
+namespace eip2mqtt::core::command {
+namespace {
+
+using Bits = std::vector<std::uint8_t>;  // one byte of bits per data byte
+
+// The bits a tag occupies, OR-ed into `bits`.
+void mark_tag(Bits& bits, const plan::TagSpec& tag) {
+    if (tag.type == plan::TagType::bit) {
+        bits[tag.address.byte] |= static_cast<std::uint8_t>(1u << tag.address.bit);
+        return;
+    }
+    const auto end = std::min<std::size_t>(tag.address.byte + plan::size_of(tag.type), bits.size());
+    for (std::size_t i = tag.address.byte; i < end; ++i) bits[i] = 0xFF;
+}
+
+bool intersects(const Bits& written, const plan::TagSpec& tag) {
+    Bits mine(written.size(), 0);
+    mark_tag(mine, tag);
+    for (std::size_t i = 0; i < written.size(); ++i) {
+        if ((mine[i] & written[i]) != 0) return true;
+    }
+    return false;
+}
+
+write::WriteInput input_of(const plan::Value& value) {
+    return std::visit(
+        [](auto v) -> write::WriteInput {
+            if constexpr (std::is_same_v<decltype(v), float>) {
+                return static_cast<double>(v);
+            } else {
+                return v;
+            }
+        },
+        value);
+}
+
+}  // namespace
+
+Result<std::vector<write::TagWrite>, CommandStatus> plan_write(const plan::ExchangePlan& plan,
+                                                               std::span<const std::byte> image,
+                                                               const DataPdu& pdu, bool masked) {
+    std::vector<std::byte> next(image.begin(), image.end());
+    next.resize(plan.length);
+    Bits written(plan.length, 0);
+    for (const auto& cell : pdu.cells) {
+        for (std::size_t i = 0; i < cell.length; ++i) {
+            const auto at = cell.offset + i;
+            const auto mask = masked ? std::to_integer<std::uint8_t>(cell.mask[i]) : 0xFF;
+            const auto old = std::to_integer<std::uint8_t>(next[at]);
+            const auto data = std::to_integer<std::uint8_t>(cell.data[i]);
+            next[at] = static_cast<std::byte>((old & ~mask) | (data & mask));
+            written[at] |= static_cast<std::uint8_t>(mask);
+        }
+    }
+    Bits writable(plan.length, 0);
+    for (const auto& tag : plan.tags) {
+        if (tag.spec.writable) mark_tag(writable, tag.spec);
+    }
+    for (std::size_t i = 0; i < written.size(); ++i) {
+        if ((written[i] & ~writable[i]) != 0) return fail(CommandStatus::not_permitted);
+    }
+    std::vector<write::TagWrite> writes;
+    for (std::size_t index = 0; index < plan.tags.size(); ++index) {
+        const auto& tag = plan.tags[index].spec;
+        if (!tag.writable || !intersects(written, tag)) continue;
+        const auto value = plan::decode_value(next, tag.type, tag.address);
+        auto checked = write::validate_write(tag, input_of(value));
+        if (!checked) return fail(CommandStatus::rejected);
+        writes.push_back({index, std::move(checked).value()});
+    }
+    if (write::overlap_rejection(plan, writes)) return fail(CommandStatus::rejected);
+    return writes;
+}
+
+}  // namespace eip2mqtt::core::command

@@ -1,0 +1,149 @@
+#include "eip2mqtt/core/config/discovered_skeleton.hpp"
+
+#include <algorithm>
+#include <set>
+#include <string_view>
+
+#include "eip2mqtt/core/wire/header.hpp"
+
+namespace eip2mqtt::core::config {
+namespace {
+
+using command::DestinationType;
+using command::ExchangeConfig;
+using command::ExchangeMode;
+
+// The period_ms and length the validation accepts (config.cpp).
+constexpr std::uint32_t min_period_ms = 2;
+constexpr std::uint32_t max_period_ms = 3600000;
+constexpr std::uint16_t max_length = 1400;
+
+std::string ipv4(std::uint32_t address) { return wire::to_string(wire::ProducerId{address}); }
+
+std::string key_text(const wire::ExchangeKey& key) {
+    return wire::to_string(key.producer_id) + "/" + std::to_string(key.exchange_id);
+}
+
+void length_line(const ExchangeConfig& c, std::string& out) {
+    if (c.length == 0 || c.length > max_length) {
+        out += "    length: " + std::string(c.length == 0 ? "1" : "1400") + "  # TODO: the node " +
+               "told " + std::to_string(c.length) + " bytes; a length is 1 to 1400\n";
+        return;
+    }
+    out += "    length: " + std::to_string(c.length) + "  # data bytes, as the node told\n";
+}
+
+void signature_line(const ExchangeConfig& c, std::string& out) {
+    const auto signature = wire::Signature::from_wire(c.signature);
+    if (signature.is_set()) {
+        out += "    signature: \"" + wire::to_string(signature) + "\"\n";
+    } else {
+        out += "    # signature: none (the node has 0.0)\n";
+    }
+}
+
+void period_line(const ExchangeConfig& c, std::string& out) {
+    if (c.period_ms == 0) {
+        out +=
+            "    period_ms: 1000  # TODO: the node told 0 (an exchange only for commands, "
+            "never produced); the default\n";
+        return;
+    }
+    const auto period = std::clamp(c.period_ms, min_period_ms, max_period_ms);
+    out += "    period_ms: " + std::to_string(period) + "  # as the node told";
+    if (period != c.period_ms) out += " (" + std::to_string(c.period_ms) + "; 2 to 3600000)";
+    out += "\n";
+}
+
+void destination_line(const ExchangeConfig& c, std::string& out) {
+    out += "    # destination: ";
+    switch (c.destination_type) {
+        case DestinationType::unicast:
+            out += "unicast to " + ipv4(c.destination);
+            break;
+        case DestinationType::broadcast:
+            out += "broadcast to " + ipv4(c.destination);
+            break;
+        case DestinationType::multicast:
+            out += "multicast group " + ipv4(c.destination) +
+                   " (the gateway joins it with eip.multicast: [ { group: " + ipv4(c.destination) +
+                   " } ])";
+            break;
+        default:
+            out += "none told";
+            break;
+    }
+    out += ", port " + std::to_string(c.port);
+    if (c.port != wire::default_port) out += " (the gateway receives on eip.port)";
+    out += "\n";
+}
+
+void exchange_item(const DiscoveredNode& node, const ExchangeConfig& c, std::string& out) {
+    const auto producer = wire::to_string(c.key.producer_id);
+    const auto id = std::to_string(c.key.exchange_id);
+    out += "  - name: \"" + producer + "-" + id + "\"\n";
+    out += "    direction: consume\n";
+    out += "    producer_id: " + producer + "\n";
+    out += "    exchange_id: " + id + "\n";
+    length_line(c, out);
+    signature_line(c, out);
+    period_line(c, out);
+    out += "    topic: \"" + producer + "/" + id + "\"  # under base_topic\n";
+    destination_line(c, out);
+    out += "    # told by " + node.address + ": state " +
+           (c.state == command::ExchangeState::active ? "active" : "idle") + "\n";
+    out += "    tags: []  # TODO: the byte map; until then only {topic}/_status is published\n";
+}
+
+// What gets no skeleton, as comment lines.
+std::string notes(std::span<const DiscoveredNode> nodes) {
+    std::string out;
+    for (const auto& node : nodes) {
+        if (!node.problem.empty()) {
+            out += "# " + node.address + ": " + node.problem + "\n";
+            continue;
+        }
+        for (const auto& e : node.exchanges) {
+            if (!e.config) {
+                out += "# " + key_text(e.cell.key) + " (" + node.address +
+                       "): not retrieved: " + e.problem + "\n";
+            } else if (e.config->mode == ExchangeMode::consumed) {
+                out += "# " + key_text(e.cell.key) + ": consumed by " + node.address + " (" +
+                       std::to_string(e.config->length) + " bytes every " +
+                       std::to_string(e.config->period_ms) +
+                       " ms): no skeleton; producing it "
+                       "would overwrite what the node reads\n";
+            }
+        }
+        if (node.exchanges.size() < node.total) {
+            out += "# " + node.address + ": " + std::to_string(node.total - node.exchanges.size()) +
+                   " of its " + std::to_string(node.total) +
+                   " exchanges could not be listed (the Summary index is one byte)\n";
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string discovered_skeleton(std::span<const DiscoveredNode> nodes) {
+    std::string items;
+    std::set<wire::ExchangeKey> seen;
+    std::size_t count = 0;
+    for (const auto& node : nodes) {
+        for (const auto& e : node.exchanges) {
+            if (!e.config || e.config->mode == ExchangeMode::consumed) continue;
+            if (!seen.insert(e.config->key).second) continue;
+            exchange_item(node, *e.config, items);
+            ++count;
+        }
+    }
+    std::string out = "# discover --yaml: " + std::to_string(count) +
+                      (count == 1 ? " exchange" : " exchanges") +
+                      " the nodes produce. Rename at will; add tags where the byte map is known.\n";
+    out += notes(nodes);
+    if (count > 0) out += "exchanges:\n" + items;
+    return out;
+}
+
+}  // namespace eip2mqtt::core::config
