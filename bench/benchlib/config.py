@@ -18,7 +18,7 @@ def tag_lines(tags, writable):
 
 
 def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
-               store_and_forward, log_level):
+               store_and_forward, log_level, commands=None):
     """Everything above `exchanges:`."""
     lines = [
         f"gateway: {{ id: {name}, state_dir: {state}, log_level: {log_level} }}",
@@ -37,7 +37,10 @@ def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, promet
     if store_and_forward:
         lines.append("  store_and_forward: { " +
                      ", ".join(f"{k}: {v}" for k, v in store_and_forward.items()) + " }")
-    lines.append(f"eip: {{ bind: {HOST}, port: {udp_port} }}")
+    eip = f"bind: {HOST}, port: {udp_port}"
+    if commands:  # the command responder's keys, as {key: YAML text}
+        eip += ", commands: { " + ", ".join(f"{k}: {v}" for k, v in commands.items()) + " }"
+    lines.append(f"eip: {{ {eip} }}")
     if prometheus:
         lines.append(f"metrics: {{ listen: {HOST}:{prometheus} }}")
     if sparkplug:
@@ -88,17 +91,18 @@ def produced_lines(produced):
 
 def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=False,
                  udp_port=0, point_list=False, sparkplug=False, prometheus=0,
-                 store_and_forward=None, log_level="warn", state_suffix=""):
+                 store_and_forward=None, log_level="warn", state_suffix="", commands=None):
     """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
     destination). With point_list, the consumed tags are rows of one CSV ({name}.csv, a SCADA
     point list whose Node column names the exchange) that every consumed exchange names in
     `points:`. batch: True for `_values`, "first" for `_values` first (batch_first).
-    state_suffix: the state directory's, so that each build keeps its own."""
+    state_suffix: the state directory's, so that each build keeps its own. commands: the
+    `eip.commands` keys ({key: YAML text}), for the command responder."""
     path = os.path.join(tmp, name + ".yaml")
     state = os.path.join(tmp, name + "-state" + state_suffix)
     os.makedirs(state, exist_ok=True)
     lines = head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
-                       store_and_forward, log_level)
+                       store_and_forward, log_level, commands)
     lines.append("exchanges:")
     consumed_yaml, rows = consumed_lines(name, consumed, point_list)
     lines += consumed_yaml + produced_lines(produced)

@@ -17,19 +17,6 @@ namespace {
 
 using core::command::CommandStatus;
 
-std::uint32_t seconds_of(core::WallTime wall) {
-    return static_cast<std::uint32_t>(
-        std::chrono::duration_cast<std::chrono::seconds>(wall.time_since_epoch()).count());
-}
-
-std::uint32_t nanoseconds_of(core::WallTime wall) {
-    const auto since = wall.time_since_epoch();
-    return static_cast<std::uint32_t>(
-        std::chrono::duration_cast<std::chrono::nanoseconds>(
-            since - std::chrono::duration_cast<std::chrono::seconds>(since))
-            .count());
-}
-
 std::optional<std::uint64_t> id_of(std::string_view text) {
     std::uint64_t id = 0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
@@ -141,9 +128,10 @@ void CommandResponder::write_result(const WriteReply& reply_to,
                                    : CommandStatus::failed;
     if (status != CommandStatus::success) ++counters_.errors;
     const auto wall = std::chrono::system_clock::now();
-    reply(core::command::write_response(found->second.request, status, seconds_of(wall),
-                                        nanoseconds_of(wall)),
-          found->second.to);
+    reply(
+        core::command::write_response(found->second.request, status, core::wire_time(wall).seconds,
+                                      core::wire_time(wall).nanoseconds),
+        found->second.to);
     pending_.erase(found);
 }
 

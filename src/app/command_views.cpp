@@ -11,19 +11,6 @@ using core::command::ExchangeState;
 using core::command::ExchangeView;
 using core::command::wrap32;
 
-std::uint32_t seconds_of(core::WallTime wall) {
-    return static_cast<std::uint32_t>(
-        std::chrono::duration_cast<std::chrono::seconds>(wall.time_since_epoch()).count());
-}
-
-std::uint32_t nanoseconds_of(core::WallTime wall) {
-    const auto since = wall.time_since_epoch();
-    return static_cast<std::uint32_t>(
-        std::chrono::duration_cast<std::chrono::nanoseconds>(
-            since - std::chrono::duration_cast<std::chrono::seconds>(since))
-            .count());
-}
-
 template <class Duration>
 std::uint32_t milliseconds_left(Duration left) {
     const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(left).count();
@@ -42,7 +29,7 @@ ExchangeView consumed_view(const ExchangeConsumer& consumer, const CommandViewCo
     // Where its data comes from, as the manual's worked example describes a consumed exchange.
     view.destination = plan.spec.source.value_or(plan.spec.producer_id.value);
     view.port = context.data_port;
-    view.config_time_s = seconds_of(consumer.configured_at());
+    view.config_time_s = core::wire_time(consumer.configured_at()).seconds;
     if (const auto deadline = state.next_deadline())
         view.due_time_ms = milliseconds_left(*deadline - now);
     view.messages = wrap32(state.counters().accepted);
@@ -66,15 +53,16 @@ ExchangeView produced_view(const ExchangeProducer& producer, std::size_t index,
     view.destination = producer.destination().address;
     view.destination_type = destination_type(view.destination, context.broadcasts);
     view.port = producer.destination().port;
-    view.config_time_s = seconds_of(producer.configured_at());
+    view.config_time_s = core::wire_time(producer.configured_at()).seconds;
     const auto& counters = producer.counters();
     view.messages = wrap32(counters.sent);
     view.missed = wrap32(counters.skipped_deadlines);
     view.refresh_errors = wrap32(counters.send_errors);
     view.image = producer.image().data();
     if (const auto sent = producer.last_sent()) {
-        view.time_s = seconds_of(*sent);
-        view.time_ns = nanoseconds_of(*sent);
+        const auto sent_at = core::wire_time(*sent);
+        view.time_s = sent_at.seconds;
+        view.time_ns = sent_at.nanoseconds;
         view.due_time_ms = milliseconds_left(*sent + plan.spec.period - wall);
     }
     view.writer = index;

@@ -79,10 +79,7 @@ std::size_t ProducedImage::produce(WallTime wall, std::span<std::byte> out,
     }
 
     // docs/protocol.md §5: the time at which the image was sampled, as seconds + nanoseconds.
-    const auto since_epoch = wall.time_since_epoch();
-    const auto seconds = std::chrono::floor<std::chrono::seconds>(since_epoch);
-    const auto nanoseconds =
-        std::chrono::duration_cast<std::chrono::nanoseconds>(since_epoch - seconds);
+    const auto sampled = wire_time(wall);
 
     wire::Header header;
     header.pdu_type = wire::pdu_type_data;
@@ -90,8 +87,8 @@ std::size_t ProducedImage::produce(WallTime wall, std::span<std::byte> out,
     header.request_id = request_id_;
     header.producer_id = plan_->spec.producer_id;
     header.exchange_id = plan_->spec.exchange_id;
-    header.time_s = static_cast<std::uint32_t>(seconds.count());
-    header.time_ns = static_cast<std::uint32_t>(nanoseconds.count());
+    header.time_s = sampled.seconds;
+    header.time_ns = sampled.nanoseconds;
     header.status = 0;
     header.signature = plan_->spec.signature.to_wire();
     header.reserved = 0;
