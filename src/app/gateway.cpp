@@ -73,7 +73,10 @@ Gateway::Gateway(core::config::Config config)
     if (!config_.metrics.listen.empty()) {
         prometheus_ =
             std::make_unique<adapters::metrics::PrometheusEndpoint>(config_.metrics.listen);
-        spdlog::info("Prometheus metrics on http://{}/metrics", config_.metrics.listen);
+        spdlog::info(
+            "Prometheus metrics on http://{0}/metrics, health on http://{0}/healthz and "
+            "/readyz",
+            config_.metrics.listen);
     }
     detail::release_heap();
 }

@@ -30,6 +30,7 @@ class MqttSettingsTest : public ::testing::Test {
 protected:
     void SetUp() override {
         ::unsetenv("EIP2MQTT_MQTT_PASSWORD");
+        ::unsetenv("CREDENTIALS_DIRECTORY");
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         dir_ = fs::temp_directory_path() / ("eip2mqtt_mqtt_settings_" + std::string(info->name()) +
                                             "_" + std::to_string(::getpid()));
@@ -37,9 +38,19 @@ protected:
     }
     void TearDown() override {
         ::unsetenv("EIP2MQTT_MQTT_PASSWORD");
+        ::unsetenv("CREDENTIALS_DIRECTORY");
         std::error_code ignored;
         fs::remove_all(dir_, ignored);
     }
+    /// A credentials directory as systemd makes one for LoadCredential=, set in the environment.
+    fs::path credentials(const std::string& name, const std::string& content) {
+        const auto directory = dir_ / "credentials";
+        fs::create_directories(directory);
+        std::ofstream(directory / name) << content;
+        ::setenv("CREDENTIALS_DIRECTORY", directory.c_str(), 1);
+        return directory;
+    }
+
     fs::path dir_;
 };
 
@@ -98,6 +109,47 @@ TEST_F(MqttSettingsTest, AnUnreadablePasswordFileIsAnErrorThatNamesIt) {
         FAIL() << "no error for a missing password file";
     } catch (const std::runtime_error& e) {
         EXPECT_EQ(std::string(e.what()), "cannot read mqtt.password_file " + c.mqtt.password_file);
+    }
+}
+
+// The packaged unit's LoadCredential=mqtt-password: read without any key in the YAML.
+TEST_F(MqttSettingsTest, WithoutPasswordFileTheMqttPasswordCredentialWinsOverTheEnvironment) {
+    ::setenv("EIP2MQTT_MQTT_PASSWORD", "from-env", 1);
+    const auto directory = credentials("mqtt-password", "from-credential\nsecond line\n");
+    EXPECT_EQ(mqtt_client_options(config(), "a").password, "from-credential");
+    // A unit with other credentials but not this one: the environment is the alternative.
+    fs::remove(directory / "mqtt-password");
+    EXPECT_EQ(mqtt_client_options(config(), "a").password, "from-env");
+}
+
+TEST_F(MqttSettingsTest, APasswordFileWithoutASlashNamesACredential) {
+    credentials("broker-b", "b-secret\n");
+    auto c = config();
+    c.mqtt.password_file = "broker-b";
+    EXPECT_EQ(read_mqtt_password(c.mqtt), "b-secret");
+}
+
+TEST_F(MqttSettingsTest, APasswordFileWithASlashIsAPathUnderSystemdToo) {
+    credentials("mqtt-password", "from-credential\n");
+    const auto file = dir_ / "password";
+    std::ofstream(file) << "from-file\n";
+    auto c = config();
+    c.mqtt.password_file = file.string();
+    EXPECT_EQ(read_mqtt_password(c.mqtt), "from-file");
+}
+
+TEST_F(MqttSettingsTest, AMissingCredentialIsAnErrorThatNamesTheUnitSetting) {
+    const auto directory = credentials("mqtt-password", "unused\n");
+    auto c = config();
+    c.mqtt.password_file = "broker-b";
+    try {
+        (void)read_mqtt_password(c.mqtt);
+        FAIL() << "no error for a missing credential";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "cannot read mqtt.password_file: the systemd credential broker-b (" +
+                      (directory / "broker-b").string() +
+                      "); the unit needs LoadCredential=broker-b");
     }
 }
 

@@ -5,15 +5,27 @@
 
 #include <functional>
 #include <string>
+#include <string_view>
 
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 
 namespace eip2mqtt::app {
 
-/// The first line of mqtt.password_file (warned about when others may read it), else the
-/// environment variable EIP2MQTT_MQTT_PASSWORD, else empty. Throws std::runtime_error when the
-/// file cannot be read.
+/// The systemd credential the packaged unit loads (LoadCredential=mqtt-password), read when
+/// mqtt.password_file is not set.
+inline constexpr std::string_view default_password_credential = "mqtt-password";
+
+/// The MQTT password, from the first of these that gives one:
+/// - mqtt.password_file, a name without a slash while $CREDENTIALS_DIRECTORY is set (a unit
+///   with LoadCredential=): the first line of the credential of that name;
+/// - mqtt.password_file, otherwise a path: the first line of that file (warned about when
+///   others may read it);
+/// - mqtt.password_file not set: the first line of the credential `mqtt-password`, if the unit
+///   passed one;
+/// - the environment variable EIP2MQTT_MQTT_PASSWORD;
+/// else empty. Throws std::runtime_error naming what could not be read when the file, or the
+/// credential password_file names, cannot be read.
 std::string read_mqtt_password(const core::config::MqttSection& mqtt);
 
 /// Options of the gateway's MQTT client; `availability_topic` carries its will.

@@ -13,6 +13,8 @@
 #include <string_view>
 #include <utility>
 
+#include "adapters/metrics/detail/health_pages.hpp"
+
 namespace eip2mqtt::adapters::metrics {
 namespace {
 
@@ -319,24 +321,34 @@ private:
 
 struct PrometheusEndpoint::Impl {
     std::shared_ptr<SnapshotCollectable> collectable = std::make_shared<SnapshotCollectable>();
+    std::shared_ptr<HealthState> health;
     std::unique_ptr<prometheus::Exposer> exposer;
+    std::vector<int> ports;
 };
 
-PrometheusEndpoint::PrometheusEndpoint(const std::string& listen)
+PrometheusEndpoint::PrometheusEndpoint(const std::string& listen,
+                                       std::chrono::milliseconds liveness_timeout)
     : impl_(std::make_unique<Impl>()) {
+    impl_->health = std::make_shared<HealthState>(liveness_timeout);
     try {
-        impl_->exposer = std::make_unique<prometheus::Exposer>(listen, 2);
+        impl_->exposer =
+            std::make_unique<prometheus::Exposer>(listen, 2, &detail::health_callbacks());
     } catch (const std::exception& e) {
         // civetweb's CivetException: typically the port is taken or the address is not ours.
         throw std::runtime_error("cannot listen for metrics on " + listen + ": " + e.what());
     }
     impl_->exposer->RegisterCollectable(impl_->collectable);
+    impl_->ports = impl_->exposer->GetListeningPorts();
+    for (const int port : impl_->ports) detail::register_health(port, impl_->health);
 }
 
-PrometheusEndpoint::~PrometheusEndpoint() = default;
+PrometheusEndpoint::~PrometheusEndpoint() {
+    for (const int port : impl_->ports) detail::unregister_health(port);
+}
 
 void PrometheusEndpoint::update(const MetricsSnapshot& snapshot) {
     impl_->collectable->set(to_families(snapshot));
+    impl_->health->update(snapshot, HealthState::Clock::now());
 }
 
 std::uint16_t PrometheusEndpoint::port() const {

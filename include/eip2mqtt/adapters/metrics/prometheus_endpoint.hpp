@@ -1,7 +1,7 @@
 #pragma once
 /// The optional Prometheus endpoint (`metrics.listen`): serves GET /metrics in the text
 /// exposition format from the last MetricsSnapshot it was given (prometheus-cpp's civetweb
-/// server, on threads of its own).
+/// server, on threads of its own), and beside it /healthz and /readyz (health.hpp).
 ///
 /// Metrics, all prefixed `eip2mqtt_` (counters end in `_total`):
 ///   exchange_state{exchange,direction,state}            gauge, 1 for the current state, 0 for
@@ -29,6 +29,7 @@
 /// Counters are the gateway's own counts, copied as they are: a reload that restarts them
 /// shows as a counter reset, which Prometheus's rate() handles.
 
+#include <chrono>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -123,17 +124,24 @@ struct MetricsSnapshot {
 
 class PrometheusEndpoint {
 public:
+    /// The loop updates about once a second; ten seconds without one is a loop that no longer
+    /// turns (the unit's WatchdogSec, for the same reason).
+    static constexpr std::chrono::milliseconds default_liveness_timeout{10'000};
+
     /// Listens on `listen` (`host:port`; port 0 picks a free one). Throws std::runtime_error
-    /// naming the address when it cannot listen (a start-up error). Serves an empty page until
-    /// the first update().
-    explicit PrometheusEndpoint(const std::string& listen);
+    /// naming the address when it cannot listen (a start-up error). Serves an empty page, and
+    /// 503 on /healthz and /readyz, until the first update(); /healthz turns 503 again once no
+    /// update() came for `liveness_timeout`.
+    explicit PrometheusEndpoint(
+        const std::string& listen,
+        std::chrono::milliseconds liveness_timeout = default_liveness_timeout);
     /// Stops the server; civetweb's listener polls, so this can take up to about 2 s.
     ~PrometheusEndpoint();
     PrometheusEndpoint(const PrometheusEndpoint&) = delete;
     PrometheusEndpoint& operator=(const PrometheusEndpoint&) = delete;
 
-    /// Replaces what scrapes see. Called from the loop, about once a second; safe against
-    /// concurrent scrapes (one short lock).
+    /// Replaces what scrapes and health checks see. Called from the loop, about once a second;
+    /// safe against concurrent scrapes (one short lock).
     void update(const MetricsSnapshot& snapshot);
 
     /// The port actually listened on.
