@@ -78,6 +78,14 @@ int main(int argc, char** argv) {
     discover_cmd->add_flag("--yaml", discover.yaml,
                            "Print YAML skeletons of the exchanges the nodes produce");
 
+    DissectorOptions dissector;
+    auto* dissector_cmd = cli.add_subcommand(
+        "dissector", "Write a Wireshark plugin that decodes the configured exchanges' tags");
+    dissector_cmd->add_option("-c,--config", dissector.config_path, "Configuration file")
+        ->required();
+    dissector_cmd->add_option("-o,--output", dissector.output, "Plugin file to write")
+        ->capture_default_str();
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -94,6 +102,10 @@ int main(int argc, char** argv) {
         if (*import_cmd) return run_import_points(points_path, std::cout, std::cerr);
         if (*sniff_cmd) return run_sniff(sniff, std::cout);
         if (*discover_cmd) return run_discover(discover, std::cout, std::cerr);
+        if (*dissector_cmd) {
+            setup_logging("warn");
+            return run_dissector(dissector, std::cout, std::cerr);
+        }
         if (run.config_path.empty()) {
             std::cerr << "eip2mqtt: no configuration given (use -c FILE); see --help\n";
             return 2;

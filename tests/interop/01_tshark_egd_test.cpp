@@ -1,8 +1,6 @@
 // Interop: Wireshark's EGD dissector (tshark) decodes a datagram the gateway produced into
 // exactly the header fields its configuration says.
 
-#include <arpa/inet.h>
-
 #include <cstdio>
 #include <ctime>
 #include <fstream>
@@ -12,61 +10,12 @@
 #include "tests/support/child_process.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
+#include "tests/support/pcap_writer.hpp"
 
 namespace eip2mqtt::test {
 namespace {
 
 using namespace std::chrono_literals;
-
-template <class T>
-void put(std::ofstream& out, T value) {
-    out.write(reinterpret_cast<const char*>(&value), sizeof value);
-}
-
-/// Writes one UDP datagram (to port 18246) in a pcap file of raw IPv4 (LINKTYPE_RAW).
-void write_pcap(const std::string& path, const std::vector<std::byte>& payload) {
-    std::ofstream out(path, std::ios::binary);
-    put<std::uint32_t>(out, 0xa1b2c3d4);  // magic, microseconds
-    put<std::uint16_t>(out, 2);
-    put<std::uint16_t>(out, 4);
-    put<std::int32_t>(out, 0);
-    put<std::uint32_t>(out, 0);
-    put<std::uint32_t>(out, 65535);
-    put<std::uint32_t>(out, 101);  // LINKTYPE_RAW
-    const std::uint16_t udp_length = static_cast<std::uint16_t>(8 + payload.size());
-    const std::uint16_t ip_length = static_cast<std::uint16_t>(20 + udp_length);
-    put<std::uint32_t>(out, 1700000000);
-    put<std::uint32_t>(out, 0);
-    put<std::uint32_t>(out, ip_length);
-    put<std::uint32_t>(out, ip_length);
-    const std::uint8_t ip[20] = {0x45,
-                                 0,
-                                 static_cast<std::uint8_t>(ip_length >> 8),
-                                 static_cast<std::uint8_t>(ip_length & 0xFF),
-                                 0,
-                                 0,
-                                 0x40,
-                                 0,
-                                 64,
-                                 17,
-                                 0,
-                                 0,
-                                 127,
-                                 0,
-                                 0,
-                                 1,
-                                 127,
-                                 0,
-                                 0,
-                                 1};
-    out.write(reinterpret_cast<const char*>(ip), sizeof ip);
-    put<std::uint16_t>(out, htons(18246));
-    put<std::uint16_t>(out, htons(18246));
-    put<std::uint16_t>(out, htons(udp_length));
-    put<std::uint16_t>(out, 0);  // no UDP checksum
-    out.write(reinterpret_cast<const char*>(payload.data()),
-              static_cast<std::streamsize>(payload.size()));
-}
 
 /// The header time as tshark prints an absolute time in UTC: `Aug  8, 2023 22:52:10.567000680 UTC`.
 std::string utc_text(std::uint32_t seconds, std::uint32_t nanoseconds) {

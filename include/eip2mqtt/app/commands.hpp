@@ -82,4 +82,13 @@ struct SniffOptions {
 /// destinations read from the captured IP headers.
 int run_sniff(const SniffOptions& options, std::ostream& out);
 
+struct DissectorOptions {
+    std::string config_path;
+    std::string output = "eip2mqtt.lua";
+};
+/// `dissector -c FILE`: writes the Wireshark plugin of the configuration (dissector::lua_dissector)
+/// to `output` and says so on `out`, with how many exchanges and tags it decodes. A configuration
+/// error goes to `err` as with `check` (exit 1), as does a file it cannot write.
+int run_dissector(const DissectorOptions& options, std::ostream& out, std::ostream& err);
+
 }  // namespace eip2mqtt::app

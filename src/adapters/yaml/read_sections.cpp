@@ -201,6 +201,14 @@ void Loader::read_eip(const Node& node, const Mark& at, Config& config) {
                 } else if (s) {
                     eip.multicast_interface = *s;
                 }
+            } else if (key == "link_mbps") {
+                const auto mbps = number(value, key, k);
+                if (mbps && !(*mbps > 0 && *mbps <= core::config::max_link_mbps)) {
+                    error(k, "link_mbps must be more than 0 and at most " +
+                                 std::to_string(static_cast<int>(core::config::max_link_mbps)));
+                } else if (mbps) {
+                    eip.link_mbps = *mbps;
+                }
             } else if (key == "commands") {
                 read_commands(value, k, config);
             } else if (key == "multicast") {

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "app/commands/detail/network_load_report.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/commands.hpp"
 #include "eip2mqtt/app/northbound/sparkplug_birth_size.hpp"
@@ -174,7 +175,7 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
         }
         if (births) print_birth_size("DBIRTH", births->devices[i], sparkplug.max_packet_bytes, out);
     }
-    return 0;
+    return detail::report_network_load(plans, config->eip.link_mbps, out, err) ? 0 : 1;
 }
 
 }  // namespace eip2mqtt::app

@@ -69,6 +69,7 @@ eip:
       interface: eth0
   multicast_ttl: 1
   multicast_interface: 10.0.0.9
+  link_mbps: 100
   commands:
     enabled: true
     port: 7937
@@ -181,6 +182,7 @@ const std::vector<Edit> edits = {
      {{"eip.multicast", Kind::changed}}},
     {"eip.multicast_ttl", "multicast_ttl: 1", "multicast_ttl: 2"},
     {"eip.multicast_interface", "10.0.0.9", "10.0.0.8"},
+    {"eip.link_mbps", "link_mbps: 100", "link_mbps: 1000"},
     {"eip.commands.enabled", "    enabled: true\n", "    enabled: false\n"},
     {"eip.commands.port", "port: 7937", "port: 7938"},
     {"eip.commands.allow", "10.20.0.0/24", "10.20.1.0/24"},

@@ -139,9 +139,15 @@ struct EipSection {
     int multicast_ttl = 1;  ///< TTL of produced multicast datagrams
     std::string
         multicast_interface;  ///< IPv4 address of the interface produced multicast leaves by
+    /// The link's capacity in Mbit/s: `check` warns of produced traffic over half of it, and
+    /// refuses more than all of it.
+    double link_mbps = 100;
     CommandsSection commands;
     Marks marks;
 };
+
+/// The largest `eip.link_mbps` accepted: 400 Gbit/s, the fastest Ethernet sold.
+inline constexpr double max_link_mbps = 400000;
 
 struct MetricsSection {
     std::string listen;  ///< host:port of the Prometheus endpoint; empty: off

@@ -115,12 +115,14 @@ inline constexpr std::array<ConfigKey<StoreAndForwardSection>, 4> store_and_forw
 
 /// The receiving socket stays bound; its multicast groups are left and joined live. The sending
 /// socket keeps the TTL and interface it was opened with.
-inline constexpr std::array<ConfigKey<EipSection>, 6> eip{{
+/// `link_mbps` only bounds what `check` accepts: nothing runs on it.
+inline constexpr std::array<ConfigKey<EipSection>, 7> eip{{
     {"bind", restart, differs<&EipSection::bind>},
     {"port", restart, differs<&EipSection::port>},
     {"multicast", live, differs<&EipSection::multicast>},
     {"multicast_ttl", restart, differs<&EipSection::multicast_ttl>},
     {"multicast_interface", restart, differs<&EipSection::multicast_interface>},
+    {"link_mbps", live, differs<&EipSection::link_mbps>},
     {"commands", live, nullptr},
 }};
 

@@ -1,0 +1,20 @@
+#pragma once
+/// `check`'s account of the network load of the produced exchanges (core::plan::network_load).
+
+#include <iosfwd>
+#include <vector>
+
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+
+namespace eip2mqtt::app::detail {
+
+/// Load warns past this share of eip.link_mbps, and is refused past the whole link.
+inline constexpr double link_share_warning = 0.5;
+
+/// Prints, when `plans` produce anything, the total load on the wire, the load per destination,
+/// and each exchange's rate, load and phase, with a warning past half of `link_mbps`. Past the
+/// whole link, says so on `err` and returns false: `check` then refuses the configuration.
+bool report_network_load(const std::vector<core::plan::ExchangePlan>& plans, double link_mbps,
+                         std::ostream& out, std::ostream& err);
+
+}  // namespace eip2mqtt::app::detail
