@@ -29,6 +29,9 @@ constexpr const char* kMosquitto = "/usr/sbin/mosquitto";
 constexpr const char* kMosquittoPasswd = "/usr/bin/mosquitto_passwd";
 constexpr auto kStartDeadline = std::chrono::seconds(10);
 constexpr auto kPollInterval = std::chrono::milliseconds(10);
+// How long a broker told to stop has before it is told again, and before it is killed.
+constexpr auto kTermResendInterval = std::chrono::seconds(2);
+constexpr auto kStopDeadline = std::chrono::seconds(30);
 
 bool accepts_connections(std::uint16_t port) {
     const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
@@ -207,10 +210,26 @@ void Mosquitto::stop() {
     if (pid_ <= 0) {
         return;
     }
-    ::kill(pid_, SIGTERM);
-    ::kill(pid_, SIGCONT);  // a test may have stopped it with SIGSTOP
+    // Mosquitto sets its loop running after its listeners accept: a SIGTERM that falls between
+    // the two is lost, and the broker runs on. So the signal is sent again until it ends, and
+    // after a bound it is killed.
+    const auto give_up = std::chrono::steady_clock::now() + kStopDeadline;
+    auto resend = std::chrono::steady_clock::time_point{};
     int status = 0;
-    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    while (::waitpid(pid_, &status, WNOHANG) == 0) {
+        const auto now = std::chrono::steady_clock::now();
+        if (now > give_up) {
+            ::kill(pid_, SIGKILL);
+            while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+            }
+            break;
+        }
+        if (now >= resend) {
+            ::kill(pid_, SIGTERM);
+            ::kill(pid_, SIGCONT);  // a test may have stopped it with SIGSTOP
+            resend = now + kTermResendInterval;
+        }
+        std::this_thread::sleep_for(kPollInterval);
     }
     pid_ = -1;
 }
