@@ -5,6 +5,7 @@ to round, and a build that cannot run a scenario's configuration is reported as 
 import hashlib
 import os
 import subprocess
+import tempfile
 
 from benchlib.util import stop
 
@@ -25,6 +26,7 @@ class Build:
         self.gateway = gateway
         self.new = new  # the build under test (its failures fail the run)
         self.checked = {}  # digest of a configuration -> refusal, or "" when accepted
+        self.keys = {}  # a YAML `eip:` key -> whether this build reads it
 
     def require(self, config_path):
         """Raises NotInBuild unless `check -c config_path` accepts the configuration. The
@@ -41,6 +43,22 @@ class Build:
                 (text[0] if text else f"check exited {out.returncode}")
         if self.checked[digest]:
             raise NotInBuild(self, self.checked[digest])
+
+    def reads_eip_key(self, key, value):
+        """Whether `check -c` accepts `eip.{key}: {value}` (an earlier build may not know the
+        key), asked once per key."""
+        if key not in self.keys:
+            with tempfile.NamedTemporaryFile("w", suffix=".yaml") as f:
+                f.write(f"eip: {{ {key}: {value} }}\n"
+                        "exchanges:\n"
+                        "  - { name: k, direction: produce, producer_id: 10.0.0.2, exchange_id: 1,\n"
+                        "      destination: 127.0.0.1, period_ms: 100,\n"
+                        "      tags: [ { name: t, address: '0.0', type: dint } ] }\n")
+                f.flush()
+                out = subprocess.run([self.gateway, "check", "-c", f.name],
+                                     capture_output=True, text=True, timeout=60)
+            self.keys[key] = out.returncode == 0
+        return self.keys[key]
 
     def start_failed(self, proc, log_path):
         """Raises NotInBuild for this earlier build's gateway `proc` that did not come online

@@ -7,6 +7,10 @@ import os
 
 from benchlib.util import HOST
 
+# `eip.link_mbps` for loopback (the most the key takes): 1,000 produced exchanges at 10 ms
+# would be refused on the default 100 Mbit/s link.
+LOOPBACK_MBPS = 400000
+
 
 def tag_lines(tags, writable):
     """Tag 0 is the lint "ts", tags 1.. dints (load_generator's layout)."""
@@ -18,7 +22,7 @@ def tag_lines(tags, writable):
 
 
 def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
-               store_and_forward, log_level, commands=None):
+               store_and_forward, log_level, commands=None, link_mbps=None):
     """Everything above `exchanges:`."""
     lines = [
         f"gateway: {{ id: {name}, state_dir: {state}, log_level: {log_level} }}",
@@ -38,6 +42,8 @@ def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, promet
         lines.append("  store_and_forward: { " +
                      ", ".join(f"{k}: {v}" for k, v in store_and_forward.items()) + " }")
     eip = f"bind: {HOST}, port: {udp_port}"
+    if link_mbps:
+        eip += f", link_mbps: {link_mbps}"
     if commands:  # the command responder's keys, as {key: YAML text}
         eip += ", commands: { " + ", ".join(f"{k}: {v}" for k, v in commands.items()) + " }"
     lines.append(f"eip: {{ {eip} }}")
@@ -91,18 +97,20 @@ def produced_lines(produced):
 
 def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=False,
                  udp_port=0, point_list=False, sparkplug=False, prometheus=0,
-                 store_and_forward=None, log_level="warn", state_suffix="", commands=None):
+                 store_and_forward=None, log_level="warn", state_suffix="", commands=None,
+                 link_mbps=None):
     """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
     destination). With point_list, the consumed tags are rows of one CSV ({name}.csv, a SCADA
     point list whose Node column names the exchange) that every consumed exchange names in
     `points:`. batch: True for `_values`, "first" for `_values` first (batch_first).
     state_suffix: the state directory's, so that each build keeps its own. commands: the
-    `eip.commands` keys ({key: YAML text}), for the command responder."""
+    `eip.commands` keys ({key: YAML text}), for the command responder. link_mbps: the
+    `eip.link_mbps` to write (None: none)."""
     path = os.path.join(tmp, name + ".yaml")
     state = os.path.join(tmp, name + "-state" + state_suffix)
     os.makedirs(state, exist_ok=True)
     lines = head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
-                       store_and_forward, log_level, commands)
+                       store_and_forward, log_level, commands, link_mbps)
     lines.append("exchanges:")
     consumed_yaml, rows = consumed_lines(name, consumed, point_list)
     lines += consumed_yaml + produced_lines(produced)

@@ -16,8 +16,12 @@ class Gateways:
         """config.write_config in this run's directory, on the broker in use by default, with a
         state directory of `build`'s own (the build under test's by default)."""
         suffix = "" if build is None or build.new else "-against"
+        # Loopback is no Ethernet link: a build that checks a schedule's load against
+        # `eip.link_mbps` is told that the link is as fast as it allows.
+        link = config.LOOPBACK_MBPS if (build or self.build).reads_eip_key(
+            "link_mbps", config.LOOPBACK_MBPS) else None
         return config.write_config(self.tmp, name, broker_port or self.broker_port,
-                                   state_suffix=suffix, **kwargs)
+                                   state_suffix=suffix, link_mbps=link, **kwargs)
 
     def start_gateway(self, name, config_path, notify_socket=None, args=(), build=None):
         """`build` (the build under test by default) running `config_path`; NotInBuild when an
