@@ -1,5 +1,5 @@
 #pragma once
-/// One produced exchange at run time (issue #3): produces its datagram when the
+/// One produced exchange at run time: produces its datagram when the
 /// ProducerScheduler says it is due (every period, against absolute deadlines), applies queued
 /// writes between two productions, reports the produced values that changed (the echo) to the
 /// Northbound, has the ImagePersister save the image when it changes, and answers each write

@@ -1,5 +1,5 @@
 #pragma once
-/// The seam between the exchanges and the protocols that carry their data north (issue #14).
+/// The seam between the exchanges and the protocols that carry their data north.
 /// Consumers and producers report domain events here (tag samples, exchange status, an exchange
 /// going up or down, write results) and know neither MQTT nor JSON; each protocol implements
 /// Northbound: today's JSON topic tree is app/northbound/uns_json. NorthboundFanOut hands every
@@ -47,7 +47,7 @@ struct TagSample {
 /// buffer per thread, shared by every consumed and produced exchange of the loop, since the
 /// Northbound reads a batch before tag_samples returns. Its capacity follows the largest
 /// exchange, so the data path does not allocate. A buffer per exchange, sized for every tag,
-/// was 2.4 MB of resident memory with 100,000 consumed tags (#6's memory target).
+/// was 2.4 MB of resident memory with 100,000 consumed tags, against the gateway's memory target.
 inline std::vector<TagSample>& sample_buffer() {
     thread_local std::vector<TagSample> samples;
     samples.clear();

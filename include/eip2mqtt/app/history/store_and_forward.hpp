@@ -1,5 +1,5 @@
 #pragma once
-/// Store and forward (issue #16): while the MQTT connection is down, every accepted datagram's
+/// Store and forward: while the MQTT connection is down, every accepted datagram's
 /// changes (and every quality change) go to the journal on disk, in arrival order; once the
 /// broker is back and the current state republished, they are replayed oldest first, at most
 /// `replay_rate` a second and only while live publications are not waiting, to a HistorySink
