@@ -28,7 +28,7 @@ struct Message {
     std::uint64_t ack_token = 0;
 
     /// Blank again, as a default Message, but the strings keep their buffers: a message is
-    /// filled again instead of allocated anew for every publication (#6).
+    /// filled again instead of allocated anew for every publication.
     void clear() {
         topic.clear();
         payload.clear();
@@ -43,7 +43,7 @@ struct Message {
 };
 
 // The four flags share the int's 8 bytes: 112 bytes a message, not 128 with a flag between
-// strings, and a queue holds one per topic (#6's memory under overload).
+// strings, and a queue holds one per topic (its memory under overload).
 static_assert(sizeof(Message) <= 3 * sizeof(std::string) + 16);
 
 /// MQTT's own limit on a packet's size: a remaining length of at most 268,435,455 bytes after a

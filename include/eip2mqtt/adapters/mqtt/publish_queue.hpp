@@ -23,7 +23,7 @@ public:
     /// Queues `message`, replacing a queued one of the same topic when both coalesce. Leaves in
     /// `message` what the queue did not keep, blank (Message::clear()): the replaced payload's
     /// buffer and the topic's when it coalesced, nothing when it was queued anew. A caller that
-    /// publishes in a loop fills it again without allocating (#6).
+    /// publishes in a loop fills it again without allocating.
     void push(Message&& message);
 
     /// Takes the oldest message; nullopt when empty.
