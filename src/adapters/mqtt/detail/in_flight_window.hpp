@@ -9,7 +9,7 @@
 /// It also counts the pending items that await the broker's acknowledgement (QoS >= 1): the
 /// broker's Receive Maximum bounds those alone (MQTT 5 §3.3.4), QoS 0 are done once written.
 ///
-/// Module-private (src/adapters/mqtt/detail); not thread-safe: the client guards it.
+/// Module-private (src/adapters/mqtt/detail); not thread-safe: the Sender guards it.
 
 #include <cstddef>
 #include <cstdint>

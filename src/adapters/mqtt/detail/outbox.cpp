@@ -38,7 +38,7 @@ const Message* Outbox::peek_next() const {
 }
 
 void Outbox::recycle(Message&& message, std::size_t keep) {
-    // Bench scenario 8 peaked 0.3 MB higher keeping 1,024 after an overload; a drained
+    // More spares than a window's worth only hold memory after an overload; a drained
     // backlog's others are freed.
     if (spares_.size() >= keep) return;
     message.clear();

@@ -2,11 +2,11 @@
 /// What waits to be sent, and the buffers that come back: the per-tag lane and batch mode's
 /// `_values` lane (each a PublishQueue, served in turn when both wait, so that neither starves
 /// the other, unless the batch lane is to go first), and the spare messages of completed
-/// publications, handed back to publish()'s callers to fill again: the loop allocated two strings
-/// per publication that Paho's thread then freed, and malloc's cross-thread traffic was 40 % of the
-/// loop's time (#6).
+/// publications, handed back to publish()'s callers to fill again: otherwise the loop allocates two
+/// strings per publication that Paho's thread then frees, and malloc's cross-thread traffic takes
+/// much of the loop's time.
 ///
-/// Threading: none of its own; the client guards it with its mutex.
+/// Threading: none of its own; the Sender guards it, in its SendLedger, with its mutex.
 
 #include <cstddef>
 #include <vector>

@@ -2,8 +2,8 @@
 /// Finds this process's TCP connections to the broker and switches TCP_NODELAY on them.
 ///
 /// Why: Debian 12's Paho MQTT C (1.3.12) never sets TCP_NODELAY, so Nagle's algorithm holds a
-/// small QoS 0 publication back until the broker's delayed ACK of the previous one (p99 about
-/// 12 ms on loopback). Yet Nagle is what packs a backlog of small publications into few TCP
+/// small QoS 0 publication back until the broker's delayed ACK of the previous one, which sets
+/// the latency's tail. Yet Nagle is what packs a backlog of small publications into few TCP
 /// segments, which the broker reads far more cheaply than one segment per publication. So the
 /// client keeps TCP_NODELAY on while it keeps up (no publication waits) and turns it off only
 /// while a backlog is being sent; turning it back on pushes out what Nagle held (Linux calls

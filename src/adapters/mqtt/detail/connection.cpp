@@ -1,0 +1,254 @@
+// The Connection's way up: Paho's callbacks, connect, the CONNACK, subscriptions, `online`.
+
+#include "adapters/mqtt/detail/connection.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <iterator>
+#include <set>
+
+#include "adapters/mqtt/detail/connect_options.hpp"
+#include "adapters/mqtt/detail/paho_tokens.hpp"
+#include "adapters/mqtt/detail/publication_check.hpp"
+
+namespace eip2mqtt::adapters::mqtt::detail {
+
+namespace paho = ::mqtt;
+
+namespace {
+
+constexpr auto kConnectTimeout = std::chrono::seconds(10);
+
+Incoming to_incoming(const paho::const_message_ptr& msg) {
+    Incoming in;
+    in.topic = msg->get_topic();
+    in.payload = msg->get_payload_str();
+    in.retained = msg->is_retained();
+    const paho::properties& props = msg->get_properties();
+    if (props.contains(paho::property::RESPONSE_TOPIC)) {
+        in.response_topic = paho::get<std::string>(props, paho::property::RESPONSE_TOPIC);
+    }
+    if (props.contains(paho::property::CORRELATION_DATA)) {
+        in.correlation_data = paho::get<std::string>(props, paho::property::CORRELATION_DATA);
+    }
+    if (props.contains(paho::property::MESSAGE_EXPIRY_INTERVAL)) {
+        in.message_expiry_s =
+            paho::get<std::uint32_t>(props, paho::property::MESSAGE_EXPIRY_INTERVAL);
+    }
+    return in;
+}
+
+}  // namespace
+
+void Connection::ConnectListener::on_success(const paho::token&) {
+    connection_.loop_.post([&c = connection_] { c.on_connect(true, {}); });
+}
+
+void Connection::ConnectListener::on_failure(const paho::token& tok) {
+    connection_.loop_.post(
+        [&c = connection_, reason = describe_failure(tok), rc = tok.get_return_code()]() mutable {
+            c.on_connect(false, std::move(reason), rc);
+        });
+}
+
+void Connection::SubscribeListener::on_failure(const paho::token& tok) {
+    connection_.loop_.post([&c = connection_, reason = describe_failure(tok)] {
+        spdlog::warn("{} subscribe failed on {}: {}", c.options_.log_name, c.options_.url, reason);
+    });
+}
+
+Connection::Connection(const ClientOptions& options, paho::async_client& paho, const LoopPost& loop,
+                       Sender& sender, NagleSwitch& nagle)
+    : options_(options),
+      paho_(paho),
+      loop_(loop),
+      sender_(sender),
+      nagle_(nagle),
+      endpoint_(parse_broker_url(options.url)),
+      reconnect_timer_(loop.executor()),
+      backoff_(options.min_backoff, options.max_backoff) {
+    configure_connect_options(connect_options_, options_, endpoint_, kConnectTimeout);
+    if (options_.tls && endpoint_ && !endpoint_->tls) {
+        spdlog::warn("{} url {} is not ssl:// or wss://: mqtt.tls is ignored", options_.log_name,
+                     options_.url);
+    }
+    install_callbacks();
+}
+
+void Connection::install_callbacks() {
+    // Paho's threads: copy, count, post; nothing else.
+    paho_.set_connection_lost_handler([this](const std::string& cause) {
+        sender_.set_link_up(false);
+        loop_.post([this, cause] { on_connection_lost(cause, cause.empty()); });
+    });
+    paho_.set_disconnected_handler([this](const paho::properties&, paho::ReasonCode reason) {
+        sender_.set_link_up(false);
+        loop_.post([this, reason] {
+            on_connection_lost(describe_disconnect(static_cast<int>(reason),
+                                                   paho::exception::reason_code_str(reason),
+                                                   options_.client_id));
+        });
+    });
+    paho_.set_message_callback([this](paho::const_message_ptr msg) { on_message_arrived(msg); });
+}
+
+void Connection::on_message_arrived(const paho::const_message_ptr& msg) {
+    received_.fetch_add(1, std::memory_order_relaxed);
+    loop_.post([this, in = to_incoming(msg)]() mutable {
+        if (on_message_ && state_ != State::stopped) {
+            on_message_(std::move(in));
+        }
+    });
+}
+
+void Connection::start() {
+    if (state_ == State::idle) {
+        do_connect();
+    }
+}
+
+void Connection::do_connect() {
+    if (state_ == State::stopped) {
+        return;
+    }
+    state_ = State::connecting;
+    try {
+        if (options_.will) {
+            Message will = options_.will();
+            connect_options_.set_will(
+                paho::will_options(will.topic, will.payload, will.qos, will.retain));
+            std::lock_guard lock(will_mutex_);
+            last_will_ = std::move(will);
+        }
+        connect_token_ = paho_.connect(connect_options_, nullptr, connect_listener_);
+    } catch (const paho::exception& e) {
+        on_connect(false, e.what());
+    }
+}
+
+void Connection::on_connect(bool ok, std::string reason, int return_code) {
+    if (state_ != State::connecting) {
+        return;  // stopped meanwhile
+    }
+    if (ok && !paho_.is_connected()) {
+        ok = false;  // lost again before this ran
+        reason = "connection lost right after connect";
+    }
+    if (!ok) {
+        on_connect_failed(std::move(reason), return_code);
+        return;
+    }
+    on_connected();
+}
+
+void Connection::on_connected() {
+    state_ = State::connected;
+    connected_at_ = Clock::now();
+    sender_.set_link_up(true);
+    connected_ = true;
+    connects_.fetch_add(1, std::memory_order_relaxed);
+    backoff_.reset();
+    apply_broker_limits();
+    connect_failure_log_.reset();
+    spdlog::info("{} connected to {}", options_.log_name, options_.url);
+
+    if (endpoint_) {
+        nagle_.attach(sockets_connected_to(endpoint_->host, endpoint_->port));
+    }
+    // Subscribe before announcing `online`: the broker handles one connection's packets in
+    // order, so whoever sees `online` can already write to us.
+    renew_subscriptions(subscriptions_);
+    announce_online();
+    if (on_connected_) {
+        on_connected_();
+    }
+    sender_.set_sending(true);
+}
+
+void Connection::apply_broker_limits() {
+    // MQTT 5 §3.2.2.3.3: the broker's Receive Maximum, 65535 when absent (Mosquitto sends 20).
+    // Paho C sends no more QoS >= 1 publications than that and queues the rest until its next
+    // one-second cycle rather than on PUBACK: the sender must not hand it more of them
+    // (detail/send_room.hpp). (The token the listener sees lacks the CONNACK properties in
+    // Paho C++ 1.2; the one connect() returned has them.)
+    std::size_t receive_maximum = 65535;
+    std::optional<std::size_t> max_packet_size;  // kept from the last connection when unread
+    try {
+        // The listener posted on_connect just before Paho marks the token complete and
+        // stores the response: wait for that (microseconds; bounded).
+        if (connect_token_ && connect_token_->wait_for(std::chrono::seconds(1))) {
+            const paho::connect_response response = connect_token_->get_connect_response();
+            const paho::properties& props = response.get_properties();
+            if (props.contains(paho::property::RECEIVE_MAXIMUM)) {
+                receive_maximum = paho::get<std::uint16_t>(props, paho::property::RECEIVE_MAXIMUM);
+            }
+            max_packet_size =
+                props.contains(paho::property::MAXIMUM_PACKET_SIZE)
+                    ? paho::get<std::uint32_t>(props, paho::property::MAXIMUM_PACKET_SIZE)
+                    : max_mqtt_packet_size;
+        }
+    } catch (const std::exception&) {
+        // No CONNACK properties (MQTT 3.1.1): no limit beyond ours.
+    }
+    sender_.on_connected(receive_maximum, max_packet_size);
+}
+
+void Connection::announce_online() {
+    try {
+        if (!options_.availability_topic.empty()) {
+            const int qos = options_.availability_qos;
+            sender_.publish_own(
+                paho::make_message(options_.availability_topic, "online", qos, true),
+                qos > 0 ? sender_.reserve_own_slot() : 0);
+        }
+    } catch (const paho::exception& e) {
+        spdlog::warn("{} cannot publish availability: {}", options_.log_name, e.what());
+    }
+}
+
+void Connection::set_subscriptions(std::vector<std::string> filters) {
+    std::set<std::string> old(subscriptions_.begin(), subscriptions_.end());
+    std::set<std::string> now(filters.begin(), filters.end());
+    std::vector<std::string> added;
+    std::vector<std::string> removed;
+    std::set_difference(now.begin(), now.end(), old.begin(), old.end(), std::back_inserter(added));
+    std::set_difference(old.begin(), old.end(), now.begin(), now.end(),
+                        std::back_inserter(removed));
+    subscriptions_ = std::move(filters);
+    if (state_ != State::connected) {
+        return;  // subscribed on the next connect
+    }
+    renew_subscriptions(added);
+    if (!removed.empty()) {
+        try {
+            paho_.unsubscribe(paho::string_collection::create(removed));
+        } catch (const paho::exception& e) {
+            spdlog::warn("{} unsubscribe failed on {}: {}", options_.log_name, options_.url,
+                         e.what());
+        }
+    }
+}
+
+void Connection::renew_subscriptions(const std::vector<std::string>& filters) {
+    if (filters.empty() || state_ != State::connected) {
+        return;
+    }
+    const bool v5 = options_.version == 5;
+    // no_local: never hear our own publications. retain-as-published: a write published
+    // with retain keeps its flag when forwarded live, as it has when a new subscription
+    // fetches it later, so the gateway can refuse retained writes either way.
+    const paho::subscribe_options opt(v5, v5);
+    try {
+        // One SUBSCRIBE per filter: Paho C++ 1.2's many-topic overload crashes inside
+        // MQTTAsync_subscribeMany when given subscribe options, and its one-topic overload is
+        // the only one that passes them on.
+        for (const auto& filter : filters) {
+            paho_.subscribe(filter, 1, nullptr, subscribe_listener_, opt);
+        }
+    } catch (const paho::exception& e) {
+        spdlog::warn("{} subscribe failed on {}: {}", options_.log_name, options_.url, e.what());
+    }
+}
+
+}  // namespace eip2mqtt::adapters::mqtt::detail

@@ -1,0 +1,155 @@
+#pragma once
+/// The connection to the broker, on the loop: the state machine (idle, connecting, connected,
+/// waiting to reconnect, stopped), the reconnect backoff, the subscriptions renewed on every
+/// connect, the will made anew before each, and `online` on the availability topic. It tells
+/// the Sender when it may send and when what was in flight is lost.
+///
+/// Threading: every member runs on the loop, but connected() and add_stats() (any thread), and
+/// the stop steps (the stopping thread: the loop may no longer run). Paho's callbacks copy what
+/// they learn and post it to the loop. The last will is kept under will_mutex_, since stop()
+/// reads it off the loop.
+///
+/// Module-private (src/adapters/mqtt/detail).
+
+#include <mqtt/async_client.h>
+
+#include <atomic>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "adapters/mqtt/detail/broker_url.hpp"
+#include "adapters/mqtt/detail/connection_reasons.hpp"
+#include "adapters/mqtt/detail/loop_post.hpp"
+#include "adapters/mqtt/detail/reconnect_backoff.hpp"
+#include "adapters/mqtt/detail/sender.hpp"
+#include "adapters/mqtt/detail/tcp_nodelay.hpp"
+#include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
+
+namespace eip2mqtt::adapters::mqtt::detail {
+
+class Connection {
+public:
+    using Clock = std::chrono::steady_clock;
+    using ConnectedHandler = std::function<void()>;
+    using MessageHandler = std::function<void(Incoming)>;
+
+    /// `paho`, `loop`, `sender` and `nagle` outlive it. Installs Paho's callbacks.
+    Connection(const ClientOptions& options, ::mqtt::async_client& paho, const LoopPost& loop,
+               Sender& sender, NagleSwitch& nagle);
+    Connection(const Connection&) = delete;
+    Connection& operator=(const Connection&) = delete;
+
+    // --- the loop --------------------------------------------------------------------------
+    void set_on_connected(ConnectedHandler handler) { on_connected_ = std::move(handler); }
+    void set_on_message(MessageHandler handler) { on_message_ = std::move(handler); }
+    /// Subscribes what is new and unsubscribes what is gone when connected; kept for every
+    /// connect after.
+    void set_subscriptions(std::vector<std::string> filters);
+    /// Starts connecting, once.
+    void start();
+    /// Whether a publication made now is queued: a session-bound client's belongs to the
+    /// connection it is made on, so none is while there is none.
+    bool accepts_publications() const {
+        return !options_.session_bound || state_ == State::connected;
+    }
+    /// stop() began: no more connects, timers cancelled.
+    void on_stopped();
+
+    // --- any thread ------------------------------------------------------------------------
+    bool connected() const { return connected_; }
+    /// Fills the connection fields of `stats`.
+    void add_stats(ClientStats& stats) const;
+
+    // --- stop()'s steps, on the stopping thread --------------------------------------------
+    /// Whether Paho still has a link to the broker.
+    bool link_alive() const;
+    /// Publishes the will made for the current connection, if any, ourselves: stop() says it
+    /// last, after the flush (Sparkplug's NDEATH must come after everything else). The token
+    /// to wait for; none without a will or when Paho refused it.
+    ::mqtt::delivery_token_ptr publish_last_will();
+    /// Publishes the `offline` availability, if there is one; the token to wait for, if any.
+    ::mqtt::delivery_token_ptr publish_offline(Clock::time_point deadline);
+    /// A clean DISCONNECT (the broker then publishes no will).
+    void disconnect();
+    void mark_disconnected() { connected_ = false; }
+
+private:
+    enum class State { idle, connecting, connected, waiting, stopped };
+
+    struct ConnectListener final : ::mqtt::iaction_listener {
+        explicit ConnectListener(Connection& connection) : connection_(connection) {}
+        void on_success(const ::mqtt::token& tok) override;
+        void on_failure(const ::mqtt::token& tok) override;
+        Connection& connection_;
+    };
+    struct SubscribeListener final : ::mqtt::iaction_listener {
+        explicit SubscribeListener(Connection& connection) : connection_(connection) {}
+        void on_success(const ::mqtt::token&) override {}
+        void on_failure(const ::mqtt::token& tok) override;
+        Connection& connection_;
+    };
+
+    // connection.cpp: connecting
+    void install_callbacks();
+    void on_message_arrived(const ::mqtt::const_message_ptr& msg);
+    void do_connect();
+    /// `return_code`: Paho's, on a failure (a CONNACK's code or reason code, or an error < 0).
+    void on_connect(bool ok, std::string reason, int return_code = 0);
+    /// The connection is up: counts, limits, subscriptions, `online`, the handler, sending.
+    void on_connected();
+    /// Reads the CONNACK's Receive Maximum and Maximum Packet Size into the Sender.
+    void apply_broker_limits();
+    void announce_online();
+    void renew_subscriptions(const std::vector<std::string>& filters);
+
+    // connection_failures.cpp: failing and losing
+    /// Logs a failed attempt (throttled), with what the broker's refusal means, and retries.
+    void on_connect_failed(std::string reason, int return_code);
+    /// Adds what connect_token_ knows and, over TLS, what to check, to a generic reason.
+    std::string explain_connect_failure(std::string reason) const;
+    /// `silent`: Paho gave no cause (no DISCONNECT came; the socket closed or failed).
+    void on_connection_lost(std::string cause, bool silent = false);
+    /// Arms the backoff timer; returns the delay.
+    std::chrono::milliseconds schedule_reconnect();
+
+    const ClientOptions& options_;
+    ::mqtt::async_client& paho_;
+    const LoopPost& loop_;
+    Sender& sender_;
+    NagleSwitch& nagle_;
+    const std::optional<BrokerEndpoint> endpoint_;
+
+    // The loop's.
+    State state_ = State::idle;
+    boost::asio::steady_timer reconnect_timer_;
+    ReconnectBackoff backoff_;
+    ConnectedHandler on_connected_;
+    MessageHandler on_message_;
+    std::vector<std::string> subscriptions_;
+    core::ThrottledLog connect_failure_log_;
+    Clock::time_point connected_at_{};
+    SilentLossPattern silent_losses_;
+    ::mqtt::connect_options connect_options_;
+    ::mqtt::token_ptr connect_token_;  ///< read for the CONNACK's properties
+
+    mutable std::mutex will_mutex_;
+    std::optional<Message> last_will_;  ///< options_.will's for the current connection
+
+    std::atomic<bool> connected_{false};  ///< the loop's view, for connected() and stats()
+    std::atomic<std::uint64_t> connects_{0};
+    std::atomic<std::uint64_t> connection_losses_{0};
+    std::atomic<std::uint64_t> received_{0};
+
+    ConnectListener connect_listener_{*this};
+    SubscribeListener subscribe_listener_{*this};
+};
+
+}  // namespace eip2mqtt::adapters::mqtt::detail

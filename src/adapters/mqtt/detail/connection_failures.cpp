@@ -1,0 +1,91 @@
+// The Connection's way down: failed attempts, lost connections, the reconnect backoff.
+
+#include <spdlog/spdlog.h>
+
+#include "adapters/mqtt/detail/connection.hpp"
+
+namespace eip2mqtt::adapters::mqtt::detail {
+
+namespace paho = ::mqtt;
+
+void Connection::on_connect_failed(std::string reason, int return_code) {
+    reason = explain_connect_failure(std::move(reason));
+    if (options_.version == 5) {
+        if (auto refusal = mqtt5_refusal(return_code, reason, endpoint_ && endpoint_->tls)) {
+            // Paho has no words for the 3.1.1 return code 1 ("Unknown error code 1").
+            reason = return_code == 1 ? std::move(*refusal) : reason + ": " + *refusal;
+        }
+    }
+    if (const auto count = connect_failure_log_.record(Clock::now())) {
+        if (count == 1) {
+            spdlog::warn("{} cannot connect to {}: {}", options_.log_name, options_.url, reason);
+        } else {
+            spdlog::warn("{} cannot connect to {}: {} ({} failed attempts)", options_.log_name,
+                         options_.url, reason, count);
+        }
+        spdlog::info("{} reconnecting in {} ms", options_.log_name, schedule_reconnect().count());
+    } else {
+        schedule_reconnect();
+    }
+}
+
+std::string Connection::explain_connect_failure(std::string reason) const {
+    if (reason != paho::exception::error_str(MQTTASYNC_FAILURE)) {
+        return reason;  // the broker gave a reason code, or Paho a specific error
+    }
+    try {
+        // Completed (or about to be, see apply_broker_limits): throws its error, which
+        // carries Paho's message.
+        if (connect_token_) {
+            connect_token_->wait_for(std::chrono::seconds(1));
+        }
+    } catch (const paho::exception& e) {
+        if (!e.get_message().empty() && e.get_message() != reason) {
+            reason += ": " + e.get_message();
+        }
+    }
+    if (endpoint_ && endpoint_->tls) {
+        // Paho C++ 1.2 cannot safely report OpenSSL's reason.
+        reason +=
+            " (TLS handshake failed or the broker closed the connection: check that "
+            "mqtt.tls.ca_file signed the broker's certificate, that the certificate names " +
+            endpoint_->host + ", and whether the broker requires a client certificate)";
+    }
+    return reason;
+}
+
+void Connection::on_connection_lost(std::string cause, bool silent) {
+    if (state_ != State::connected) {
+        return;
+    }
+    if (silent_losses_.on_loss(silent, Clock::now() - connected_at_)) {
+        cause = "no reason given: " + SilentLossPattern::explain(options_.client_id);
+    } else if (silent) {
+        cause = "no reason given (no DISCONNECT from the broker)";
+    }
+    connected_ = false;
+    connection_losses_.fetch_add(1, std::memory_order_relaxed);
+    spdlog::warn("{} connection to {} lost: {}", options_.log_name, options_.url, cause);
+    nagle_.detach();
+    sender_.on_connection_lost();
+    spdlog::info("{} reconnecting in {} ms", options_.log_name, schedule_reconnect().count());
+}
+
+std::chrono::milliseconds Connection::schedule_reconnect() {
+    state_ = State::waiting;
+    // Doubling, but never more than a quarter of the outage's age: a short outage is noticed
+    // soon after the broker is back (detail/reconnect_backoff.hpp).
+    const auto delay = backoff_.next(Clock::now());
+    reconnect_timer_.expires_after(delay);
+    reconnect_timer_.async_wait(loop_.guarded([this](boost::system::error_code ec) {
+        if (ec == boost::asio::error::operation_aborted) {
+            return;
+        }
+        if (state_ == State::waiting) {
+            do_connect();
+        }
+    }));
+    return delay;
+}
+
+}  // namespace eip2mqtt::adapters::mqtt::detail

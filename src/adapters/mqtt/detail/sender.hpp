@@ -1,0 +1,197 @@
+#pragma once
+/// The sender: a thread of the client's own that hands queued publications to Paho, and what
+/// Paho tells of them afterwards (completed, failed, refused), kept in a SendLedger: the
+/// outbox, the in-flight window, retries and suspects, the client's own publications' slots.
+///
+/// Why a thread: Paho C writes to its socket under one global mutex, and a loop waiting on it
+/// would neither drain UDP nor keep production deadlines. enqueue() only queues (a short lock)
+/// and wakes the thread when it sleeps.
+///
+/// Threading: the ledger and the thread's flags are guarded by mutex_, held for the ledger only,
+/// never across a Paho call. enqueue() and the stop steps run on any thread; the thread runs
+/// sender_main; Paho's threads run the listeners (completions, under mutex_); the connection's
+/// events (set_sending, on_connected, on_connection_lost) and the handler and timer run on the
+/// loop, except set_link_up(false), which Paho's thread calls when it sees the link go.
+///
+/// Module-private (src/adapters/mqtt/detail).
+
+#include <mqtt/async_client.h>
+
+#include <atomic>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "adapters/mqtt/detail/loop_post.hpp"
+#include "adapters/mqtt/detail/paho_tokens.hpp"
+#include "adapters/mqtt/detail/send_ledger.hpp"
+#include "adapters/mqtt/detail/tcp_nodelay.hpp"
+#include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
+
+namespace eip2mqtt::adapters::mqtt::detail {
+
+class Sender {
+public:
+    using Clock = std::chrono::steady_clock;
+    using AcknowledgedHandler = std::function<void(std::uint64_t ack_token)>;
+
+    /// `paho`, `loop` and `nagle` outlive it; the thread starts with start_thread().
+    Sender(const ClientOptions& options, ::mqtt::async_client& paho, const LoopPost& loop,
+           NagleSwitch& nagle);
+    ~Sender();
+    Sender(const Sender&) = delete;
+    Sender& operator=(const Sender&) = delete;
+
+    void start_thread();
+
+    // --- any thread ------------------------------------------------------------------------
+    /// Queues `message` in its lane and wakes the thread if it sleeps.
+    void enqueue(Message& message);
+    /// A publication dropped before it was queued (session-bound, while disconnected).
+    void count_discarded() { discarded_.fetch_add(1, std::memory_order_relaxed); }
+    void set_buffer_capacity(std::size_t max_messages);
+    void set_batch_first(bool batch_first);
+    /// The broker's Maximum Packet Size for the current connection (see Client).
+    std::size_t max_packet_size() const { return max_packet_size_; }
+    /// Fills the publication fields of `stats`.
+    void add_stats(ClientStats& stats) const;
+    /// Paho's view: false once Paho reported the link gone (any thread), true on a connect.
+    void set_link_up(bool up) { link_up_ = up; }
+    bool link_up() const { return link_up_; }
+
+    // --- the connection's events, on the loop ----------------------------------------------
+    void set_on_acknowledged(AcknowledgedHandler handler) { on_acknowledged_ = std::move(handler); }
+    /// A connect: the broker's Receive Maximum and Maximum Packet Size (unchanged when the
+    /// CONNACK could not be read), and a fresh count of the own publications' slots.
+    void on_connected(std::size_t receive_maximum, std::optional<std::size_t> max_packet_size);
+    /// Lets the thread hand publications to Paho (once announced), or stops it.
+    void set_sending(bool enabled);
+    /// What was in flight is sent again (QoS >= 1, a clean session) or counted as failed; a
+    /// session-bound client drops what waits.
+    void on_connection_lost();
+
+    // --- the client's own publications (online, offline) -----------------------------------
+    /// Takes a slot of the acknowledged window; returns the connection's generation.
+    std::uint64_t reserve_own_slot();
+    /// Publishes outside the queues; at QoS >= 1 in the slot reserved for `generation`, given
+    /// back when the broker answers. Throws what Paho throws.
+    ::mqtt::delivery_token_ptr publish_own(::mqtt::message_ptr message, std::uint64_t generation);
+
+    // --- stop()'s steps, on the stopping thread --------------------------------------------
+    /// From now on completions wake stop(); false when stopping began before.
+    bool begin_stop() { return !stopping_.exchange(true); }
+    /// On the loop: no more hold timer.
+    void cancel_hold() { hold_timer_.cancel(); }
+    /// Waits until the own publications' reserved slots fit in the window, or `deadline`.
+    void wait_for_own_slots(Clock::time_point deadline);
+    /// Waits until nothing waits or is in flight, or `deadline`; returns how many are left.
+    std::size_t flush(Clock::time_point deadline);
+    /// Publications waiting (dropped by a stop while disconnected).
+    std::size_t queued() const;
+    /// Ends the thread (idempotent).
+    void end_thread();
+
+private:
+    /// A publication taken for a burst, with Paho's message built outside mutex_.
+    struct Taken {
+        Message message;
+        bool probe = false;
+        ::mqtt::message_ptr out;  ///< none when a broker would refuse it
+    };
+    struct Outgoing {
+        std::uint64_t id;
+        ::mqtt::message_ptr message;
+    };
+
+    struct PublishListener final : ::mqtt::iaction_listener {
+        explicit PublishListener(Sender& sender) : sender_(sender) {}
+        void on_success(const ::mqtt::token& tok) override;
+        void on_failure(const ::mqtt::token& tok) override;
+        Sender& sender_;
+    };
+    /// For the own publications: the context is the connection's generation.
+    struct OwnPublicationListener final : ::mqtt::iaction_listener {
+        explicit OwnPublicationListener(Sender& sender) : sender_(sender) {}
+        void on_success(const ::mqtt::token& tok) override;
+        void on_failure(const ::mqtt::token& tok) override;
+        Sender& sender_;
+    };
+
+    // sender_thread.cpp: the thread
+    bool ready_to_send() const;  ///< under mutex_
+    void sender_main();
+    void take_burst(std::vector<Taken>& taken);     ///< under mutex_
+    void prepare_burst(std::vector<Taken>& taken);  ///< without mutex_: the costly part
+    /// Under mutex_: into the window, in order; returns whether the window stopped a backlog.
+    bool admit_burst(std::vector<Taken>& taken, std::vector<Outgoing>& burst);
+    void send(std::uint64_t id, const ::mqtt::message_ptr& message);
+    /// A synchronous refusal of Paho's (send()).
+    void on_send_refused(std::uint64_t id, const ::mqtt::message_ptr& message,
+                         const ::mqtt::exception& e);
+    ::mqtt::message_ptr to_paho(const Message& message) const;
+
+    // sender_completions.cpp: what Paho tells
+    /// Publication `id` completed with Paho return code `rc` and, when the broker refused it
+    /// (MQTT 5), its reason code (>= 0x80).
+    void on_publish_done(std::uint64_t id, int rc, int reason_code, const std::string& reason);
+    void release_own_slot(std::uint64_t generation);
+    /// Under mutex_: the hold (SendLedger::hold) and a requeued suspect; returns the topic of a
+    /// dropped one.
+    std::string requeue_after_loss(std::uint64_t id, Message&& message);
+    /// Under mutex_: Paho reports a loss's failures before its connection-lost handler runs, so
+    /// the thread holds everything until the next connect, lest a suspect be sent "alone" on
+    /// the dying connection and be blamed for a loss it did not cause. Should the connection
+    /// survive, the hold ends after kLossHold.
+    void hold_for_reconnect();
+    /// Whether a failure is the broker's own verdict: an MQTT 5 PUBACK with a failure reason
+    /// code on a live connection. MQTT 3.1.1 has none; Paho's own failures carry other codes.
+    bool broker_refused(int rc, int reason_code) const;
+    void log_refused(const std::string& topic, const std::string& problem);
+    void log_dropped_suspect(const std::string& topic);
+    void log_publish_failure(const std::string& topic, const std::string& reason);
+
+    const ClientOptions& options_;
+    ::mqtt::async_client& paho_;
+    const LoopPost& loop_;
+    NagleSwitch& nagle_;
+    /// With a clean session Paho discards unacknowledged publications on reconnect, so we send
+    /// them again; with a kept session Paho does, and we must not duplicate.
+    const bool requeue_in_flight_;
+
+    // The loop's.
+    AcknowledgedHandler on_acknowledged_;
+    boost::asio::steady_timer hold_timer_;
+
+    // Guarded by mutex_.
+    mutable std::mutex mutex_;
+    std::condition_variable wake_sender_;  ///< work and room, or quit
+    std::condition_variable completed_;    ///< a pending publication finished (for stop())
+    SendLedger ledger_;
+    bool sending_ = false;      ///< connected and announced
+    bool sender_idle_ = false;  ///< the thread waits on wake_sender_
+    bool quit_ = false;
+    core::ThrottledLog publish_failure_log_;
+    core::ThrottledLog refused_log_;
+
+    std::atomic<bool> link_up_{false};
+    std::atomic<bool> stopping_{false};
+    std::atomic<std::size_t> max_packet_size_;
+    std::atomic<std::uint64_t> published_{0};
+    std::atomic<std::uint64_t> publish_failures_{0};
+    std::atomic<std::uint64_t> refused_{0};
+    std::atomic<std::uint64_t> discarded_{0};
+
+    PublishListener publish_listener_{*this};
+    OwnPublicationListener own_publication_listener_{*this};
+    std::thread thread_;
+};
+
+}  // namespace eip2mqtt::adapters::mqtt::detail
