@@ -31,7 +31,7 @@ namespace eip2mqtt::app {
 
 struct MetricsSources;
 
-/// The running exchanges. A produced exchange's index here is the one a WriteRequest names.
+/// The running exchanges.
 struct ExchangeSet {
     std::vector<const core::plan::ExchangePlan*> consumed;
     std::vector<const core::plan::ExchangePlan*> produced;
@@ -89,9 +89,13 @@ struct ProducedStatus {
     std::string_view save_error;  ///< why the last save failed; empty once one succeeds
 };
 
+/// Names a running produced exchange: its plan, which stays at one address for the producer's
+/// life (ExchangeSet::produced lists them). A reload that changes the exchange makes a new one.
+using ProducerHandle = const core::plan::ExchangePlan*;
+
 /// Validated writes for one produced exchange, applied together in one datagram.
 struct ExchangeWrite {
-    std::size_t producer = 0;  ///< index in ExchangeSet::produced
+    ProducerHandle producer = nullptr;
     std::vector<core::write::TagWrite> writes;
 };
 

@@ -169,8 +169,7 @@ void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<cons
     node_metrics_.resize(fixed_node_metrics);
     std::erase_if(node_metric_of_name_,
                   [](const auto& entry) { return entry.second >= fixed_node_metrics; });
-    const auto add = [&](const core::plan::ExchangePlan* plan,
-                         std::optional<std::size_t> producer) {
+    const auto add = [&](const core::plan::ExchangePlan* plan, bool produced) {
         Device device;
         // A kept exchange keeps its plan object, and with it its values. The address cannot be
         // a removed exchange's: the gateway destroys those only after this call.
@@ -181,7 +180,7 @@ void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<cons
             device.timestamps.resize(plan->tags.size(), 0);
         }
         device.plan = plan;
-        device.producer = producer;
+        device.produced = produced;
         device.alias_base = static_cast<std::uint64_t>(devices.size() + 1) << 32;
         device.born = false;
         const auto prefix = std::string(namespace_prefix) + options_.group_id + "/";
@@ -195,15 +194,15 @@ void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<cons
                                                                       "writes_applied"};
         static constexpr std::array<const char*, 5> consumed_counters{
             "received", "accepted", "missed", "timeouts", "restarts"};
-        const auto counters = producer ? std::span<const char* const>(produced_counters)
+        const auto counters = produced ? std::span<const char* const>(produced_counters)
                                        : std::span<const char* const>(consumed_counters);
         for (const auto* name : counters) node_metric(base + name, DataType::uint64);
         of_plan.emplace(plan, devices.size());
         of_name.emplace(plan->spec.name, devices.size());
         devices.push_back(std::move(device));
     };
-    for (const auto* plan : running.consumed) add(plan, std::nullopt);
-    for (std::size_t i = 0; i < running.produced.size(); ++i) add(running.produced[i], i);
+    for (const auto* plan : running.consumed) add(plan, false);
+    for (const auto* plan : running.produced) add(plan, true);
     devices_ = std::move(devices);
     device_of_plan_ = std::move(of_plan);
     device_of_name_ = std::move(of_name);
@@ -219,7 +218,7 @@ void SparkplugNode::tag_samples(const SampleBatch& batch) {
         device.values[sample.tag] = sample.value;
         device.timestamps[sample.tag] = batch.timestamp_ms;
     }
-    if (device.producer && !device.up && device.known == device.values.size()) {
+    if (device.produced && !device.up && device.known == device.values.size()) {
         device.up = true;  // its first datagram: every value is known now
         if (born_) device_birth(device);
         return;
@@ -266,7 +265,7 @@ void SparkplugNode::exchange_state(const core::plan::ExchangePlan& exchange,
     const auto found = device_of_plan_.find(&exchange);
     if (found == device_of_plan_.end()) return;
     auto& device = devices_[found->second];
-    if (device.producer) return;
+    if (device.produced) return;
     device.up = state == core::exchange::ConsumeState::ok;
     if (!born_) return;
     if (device.up && !device.born) device_birth(device);

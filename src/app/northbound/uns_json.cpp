@@ -28,10 +28,8 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
         mqtt_.publish({topic, "", options_.publish.qos, true, true});
     }
     router_.clear();
-    for (const auto* plan : running.consumed) router_.add(*plan, std::nullopt);
-    for (std::size_t i = 0; i < running.produced.size(); ++i) {
-        router_.add(*running.produced[i], i);
-    }
+    for (const auto* plan : running.consumed) router_.add(*plan);
+    for (const auto* plan : running.produced) router_.add(*plan);
     mqtt_.set_subscriptions(router_.subscriptions());
 }
 

@@ -115,8 +115,8 @@ public:
 private:
     struct Device {
         const core::plan::ExchangePlan* plan = nullptr;
-        std::optional<std::size_t> producer;  ///< index in ExchangeSet::produced
-        std::uint64_t alias_base = 0;         ///< a tag's alias is alias_base + its index
+        bool produced = false;         ///< writable by DCMD, its plan the ExchangeWrite's handle
+        std::uint64_t alias_base = 0;  ///< a tag's alias is alias_base + its index
         std::vector<std::optional<core::plan::Value>> values;
         std::vector<std::int64_t> timestamps;
         std::size_t known = 0;              ///< values that are set
