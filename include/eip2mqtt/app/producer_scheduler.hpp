@@ -1,7 +1,7 @@
 #pragma once
 /// Drives every produced exchange from one timer on the loop: a timer per exchange cost one
 /// wake-up and one sendto per datagram, more than the loop could keep up with at a thousand
-/// exchanges of 100 Hz. At each wake-up the exchanges due (in the current slot, see
+/// exchanges of 100 Hz (docs/decisions/0005). At each wake-up the exchanges due (in the current slot, see
 /// ProductionQueue) produce their datagrams, and all of them leave with one sendmmsg. Then
 /// each exchange does its bookkeeping (counters, `_status`, echo, persistence, write results).
 /// The scheduler knows an exchange only as a Producible: what it needs to send it.
@@ -50,9 +50,8 @@ public:
                                          std::vector<bool>& sent)>;
 
     /// The batching slot (ProductionQueue): a datagram leaves less than this early. 250 us
-    /// divides every whole-millisecond period, so batching adds no jitter; measured against
-    /// 50 us (bench scenario 7, 100 exchanges), it cut the loop's CPU from ~29 % to ~12 %
-    /// (timerfd and epoll per wake-up), which is what keeps the loop on time on a busy machine.
+    /// divides every whole-millisecond period, so batching adds no jitter, and fewer wake-ups
+    /// keep the loop on time on a busy machine (docs/decisions/0005).
     static constexpr std::chrono::microseconds batch_slot{250};
 
     /// `sender` must outlive the scheduler.

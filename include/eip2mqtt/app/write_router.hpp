@@ -1,5 +1,5 @@
 #pragma once
-/// Where a message on a `…/set` topic goes and what it asks (docs/mqtt-api.md "Writes"; issue #3):
+/// Where a message on a `…/set` topic goes and what it asks (docs/mqtt-api.md "Writes"):
 /// the exchange and tag its topic names, where its result goes, and either the validated writes to
 /// stage or the reason it is refused. Pure: no sockets, no clock, no logging, so hostile input
 /// can be driven through it in a unit test or a fuzzer. The gateway stages what it returns.

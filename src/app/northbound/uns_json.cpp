@@ -49,7 +49,7 @@ void UnsJson::tag_samples(const SampleBatch& batch) {
     // `_values` carries what consumed datagrams bring, not the echo of produced ones.
     if (settings.batch && !batch.samples.empty() &&
         plan.spec.direction == core::plan::Direction::consume &&
-        !(journaling_ && (batch.all_tags || journaling_()))) {
+        !(connected_ && (batch.all_tags || !connected_()))) {
         message_.topic = plan.values_topic;
         format_values_payload(message_.payload, batch);
         message_.qos = settings.qos;
