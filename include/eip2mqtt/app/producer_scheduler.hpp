@@ -1,8 +1,9 @@
 #pragma once
 /// Drives every produced exchange from one timer on the loop: a timer per exchange cost one
 /// wake-up and one sendto per datagram, more than the loop could keep up with at a thousand
-/// exchanges of 100 Hz (docs/decisions/0005). At each wake-up the exchanges due (in the current slot, see
-/// ProductionQueue) produce their datagrams, and all of them leave with one sendmmsg. Then
+/// exchanges of 100 Hz (docs/decisions/0005). At each wake-up the exchanges due (in the
+/// current slot, see ProductionQueue) produce their datagrams, and all of them leave with one
+/// sendmmsg. Then
 /// each exchange does its bookkeeping (counters, `_status`, echo, persistence, write results).
 /// The scheduler knows an exchange only as a Producible: what it needs to send it.
 ///
