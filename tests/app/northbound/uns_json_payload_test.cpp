@@ -62,7 +62,7 @@ TEST(ProducedStatus, CarriesAFailedSaveQuotedAsJson) {
     status.counters.save_failures = 3;
     status.save_error = "write /s/\"x\".image.tmp: No space left on device";
     const auto payload = format_produced_status_payload(status);
-    EXPECT_NE(payload.find(R"("saved":false,"save_failures":3,)"
+    EXPECT_NE(payload.find(R"("save_failures":3,"writes_pending":0,"saved":false,)"
                            R"("save_error":"write /s/\"x\".image.tmp: No space left on device"})"),
               std::string::npos)
         << payload;
