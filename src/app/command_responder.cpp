@@ -109,7 +109,7 @@ void CommandResponder::stage(core::command::Request request, core::command::Stag
     write.reply.via = WriteOrigin::commands;
     write.reply.correlation_data = std::to_string(id);
     write.target = "UDP " + adapters::udp::to_string(from);
-    write.outcome = ExchangeWrite{writes.writer, std::move(writes.writes)};
+    write.outcome = ExchangeWrite{writes.exchange, std::move(writes.writes)};
     pending_.emplace(id, PendingWrite{std::move(request), from});
     staging_ = true;
     writes_->on_write(std::move(write));

@@ -43,8 +43,8 @@ ExchangeView consumed_view(const ExchangeConsumer& consumer, const CommandViewCo
     return view;
 }
 
-ExchangeView produced_view(const ExchangeProducer& producer, std::size_t index,
-                           const CommandViewContext& context, core::WallTime wall) {
+ExchangeView produced_view(const ExchangeProducer& producer, const CommandViewContext& context,
+                           core::WallTime wall) {
     const auto& plan = producer.plan();
     ExchangeView view;
     view.plan = &plan;
@@ -65,7 +65,7 @@ ExchangeView produced_view(const ExchangeProducer& producer, std::size_t index,
         view.time_ns = sent_at.nanoseconds;
         view.due_time_ms = milliseconds_left(*sent + plan.spec.period - wall);
     }
-    view.writer = index;
+    view.writable = true;
     return view;
 }
 
@@ -88,9 +88,7 @@ std::vector<ExchangeView> command_views(
     std::vector<ExchangeView> views;
     views.reserve(consumers.size() + producers.size());
     for (const auto& consumer : consumers) views.push_back(consumed_view(*consumer, context, now));
-    for (std::size_t i = 0; i < producers.size(); ++i) {
-        views.push_back(produced_view(*producers[i], i, context, wall));
-    }
+    for (const auto& producer : producers) views.push_back(produced_view(*producer, context, wall));
     return views;
 }
 

@@ -285,13 +285,9 @@ void ExchangeProducer::report_status() {
     ProducedStatus status;
     status.paused = failing_;
     status.request_id = image_.next_request_id();
-    status.sent = counters_.sent;
-    status.send_errors = counters_.send_errors;
-    status.skipped_deadlines = counters_.skipped_deadlines;
-    status.writes_applied = counters_.writes_applied;
+    status.counters = counters_;
     status.writes_pending = image_.pending();
     status.saved = saved_;
-    status.save_failures = counters_.save_failures;
     status.save_error = save_error_;
     northbound_.produced_status(*plan_, status);
 }

@@ -24,6 +24,16 @@ constexpr auto refresh_scan_interval = 1s;
 // How long a clean stop waits for queued publications before giving up.
 constexpr auto stop_flush_timeout = 3s;
 
+ExchangesOptions exchanges_options(const core::config::Config& config) {
+    ExchangesOptions options;
+    options.sender.bind = config.eip.bind;
+    options.sender.multicast_ttl = config.eip.multicast_ttl;
+    options.sender.multicast_interface = config.eip.multicast_interface;
+    options.port = config.eip.port;
+    options.state_dir = config.gateway.state_dir;
+    return options;
+}
+
 }  // namespace
 
 Gateway::Gateway(core::config::Config config)
@@ -35,12 +45,11 @@ Gateway::Gateway(core::config::Config config)
       tick_timer_(loop_),
       metrics_timer_(loop_),
       watchdog_timer_(loop_),
-      writes_(
-          [this](ExchangeWrite&& write, const WriteReply& reply, core::MonoTime now) {
-              return producers_.at(write.producer)->stage(std::move(write.writes), reply, now);
-          },
-          [] { return std::chrono::steady_clock::now(); }),
-      image_store_(config_.gateway.state_dir) {
+      writes_([this](ExchangeWrite&& write, const WriteReply& reply,
+                     core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
+              [] { return std::chrono::steady_clock::now(); }),
+      exchanges_(loop_.get_executor(), exchanges_options(config_), northbound_,
+                 writes_.image_saves()) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(
         loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
     uns_json_ = std::make_unique<northbound::UnsJson>(northbound::uns_json_options(config_), *mqtt_,
@@ -60,7 +69,8 @@ Gateway::Gateway(core::config::Config config)
         northbound_.add(*sparkplug_);
         add_sparkplug_history();
     }
-    apply_exchanges(take_plans(config_), false);
+    exchanges_.apply(take_plans(config_), std::chrono::steady_clock::now(),
+                     std::chrono::system_clock::now());
 
     adapters::udp::ReceiverOptions receiver_options;
     receiver_options.bind = config_.eip.bind;
@@ -98,22 +108,14 @@ int Gateway::run() {
     spdlog::info("stopping: flushing publications and publishing offline");
     receiver_->stop();
     if (command_socket_) command_socket_->stop();
-    for (auto& producer : producers_) producer->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
-    if (persister_) persister_->flush();
-    for (const auto& producer : producers_) {
-        if (producer->saved()) continue;
-        spdlog::error(
-            "exchange {}: stopping with the image it produced not saved: the next "
-            "start produces the one saved before",
-            producer->plan().spec.name);
-    }
+    exchanges_.stop();
     // The edge node's NDEATH after its last data, then the JSON tree's `offline`.
     if (sparkplug_mqtt_) sparkplug_mqtt_->stop(stop_flush_timeout);
     mqtt_->stop(stop_flush_timeout);
     const auto stats = mqtt_->stats();
     spdlog::info("stopped: {} datagrams received, {} publications made, {} still queued",
-                 datagram_router_.counters().datagrams, stats.published, stats.queued);
+                 exchanges_.datagram_counters().datagrams, stats.published, stats.queued);
     return 0;
 }
 
@@ -126,12 +128,10 @@ void Gateway::start() {
     }
     mqtt_->set_on_message(
         [this](const adapters::mqtt::Incoming& message) { uns_json_->on_message(message); });
-    for (std::size_t i = 0; i < producers_.size(); ++i) {
-        producers_[i]->start(started_at_, i, producers_.size());
-    }
+    exchanges_.start(started_at_);
     receiver_->start([this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
                             bool truncated) {
-        datagram_router_.route(bytes, from, truncated, std::chrono::steady_clock::now());
+        exchanges_.route(bytes, from, truncated, std::chrono::steady_clock::now());
     });
     if (command_socket_) {
         command_socket_->start(
@@ -166,8 +166,8 @@ void Gateway::start() {
     schedule_watchdog();
     spdlog::info(
         "eip2mqtt {} listening on UDP {}:{}: {} consumed and {} produced exchange(s); MQTT {}",
-        config_.gateway.id, config_.eip.bind, receiver_->local_port(), consumers_.size(),
-        producers_.size(), config_.mqtt.url);
+        config_.gateway.id, config_.eip.bind, receiver_->local_port(),
+        exchanges_.consumers().size(), exchanges_.producers().size(), config_.mqtt.url);
     // Sockets are bound and the first connection attempt is under way.
     notifier_.ready(status_line());
 }
@@ -202,8 +202,8 @@ void Gateway::schedule_watchdog() {
 
 void Gateway::on_connected() {
     spdlog::info("republishing retained state of {} exchange(s)",
-                 consumers_.size() + producers_.size());
-    republish_exchanges();
+                 exchanges_.consumers().size() + exchanges_.producers().size());
+    exchanges_.republish(std::chrono::steady_clock::now(), std::chrono::system_clock::now());
     // History goes behind the current state.
     if (history_) history_->on_connected(std::chrono::steady_clock::now());
 }
@@ -231,17 +231,12 @@ void Gateway::on_tick() {
             const auto stats = mqtt_->stats();
             const auto history = history_ ? std::optional(history_->stats()) : std::nullopt;
             prometheus_->update(
-                metrics_snapshot(metrics_sources(stats, history ? &*history : nullptr), consumers_,
-                                 producers_, now));
+                metrics_snapshot(metrics_sources(stats, history ? &*history : nullptr),
+                                 exchanges_.consumers(), exchanges_.producers(), now));
         }
     }
-    // Every tick: each producer publishes its `_status` at its own phase of the second, so
-    // 1,000 of them never publish in one handler (a 25 ms stall of the loop, issue #6).
-    for (auto& producer : producers_) producer->on_tick(now);
-    // The summary of a flood of drops that stopped, which no next drop would log.
-    datagram_router_.flush_log(now);
+    exchanges_.tick(now, wall, refresh_scan);
     if (commands_) commands_->flush_log(now);
-    for (auto& consumer : consumers_) consumer->on_tick(now, wall, refresh_scan);
 }
 
 void Gateway::schedule_metrics() {
@@ -264,10 +259,10 @@ void Gateway::publish_metrics() {
 
 std::string Gateway::status_line() const {
     const auto stats = mqtt_->stats();
-    return std::to_string(datagram_router_.counters().datagrams) + " datagrams, " +
-           std::to_string(datagram_router_.counters().accepted) + " accepted, " +
-           std::to_string(stats.published) + " published, MQTT " +
-           (stats.connected ? "connected" : "disconnected");
+    const auto& datagrams = exchanges_.datagram_counters();
+    return std::to_string(datagrams.datagrams) + " datagrams, " +
+           std::to_string(datagrams.accepted) + " accepted, " + std::to_string(stats.published) +
+           " published, MQTT " + (stats.connected ? "connected" : "disconnected");
 }
 
 }  // namespace eip2mqtt::app

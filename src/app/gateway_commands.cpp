@@ -32,9 +32,9 @@ void Gateway::make_commands() {
     node.identification = "eip2mqtt " EIP2MQTT_VERSION;
     // The node's producer id: that of its first produced exchange, else its bind address.
     node.producer_id =
-        producers_.empty()
+        exchanges_.producers().empty()
             ? core::wire::ProducerId{adapters::udp::parse_ipv4(config_.eip.bind).value_or(0)}
-            : producers_.front()->plan().spec.producer_id;
+            : exchanges_.producers().front()->plan().spec.producer_id;
     command_socket_ = std::make_unique<adapters::udp::CommandSocket>(
         loop_.get_executor(), config_.eip.bind, commands.port);
     auto policy = command_policy(config_);
@@ -50,7 +50,8 @@ void Gateway::make_commands() {
     commands_ = std::make_unique<CommandResponder>(
         std::move(policy), std::move(node),
         [this](core::MonoTime now, core::WallTime wall) {
-            return command_views(consumers_, producers_, command_context_, now, wall);
+            return command_views(exchanges_.consumers(), exchanges_.producers(), command_context_,
+                                 now, wall);
         },
         [this](std::span<const std::byte> datagram, const adapters::udp::Endpoint& to) {
             return command_socket_->send_to(datagram, to);
@@ -60,7 +61,7 @@ void Gateway::make_commands() {
 
 MetricsSources Gateway::metrics_sources(const adapters::mqtt::ClientStats& mqtt,
                                         const history::HistoryStats* history) const {
-    return {datagram_router_.counters(),
+    return {exchanges_.datagram_counters(),
             writes_.counters(),
             mqtt,
             history,

@@ -1,4 +1,4 @@
-// Store and forward in the gateway (issue #16): the journal under gateway.state_dir, fed by the
+// Store and forward in the gateway: the journal under gateway.state_dir, fed by the
 // exchanges through the fan-out while MQTT is down, replayed on the JSON tree's `_history`.
 
 #include <spdlog/spdlog.h>
@@ -28,8 +28,10 @@ void Gateway::make_history() {
             options.path, error.what());
         return;
     }
-    history::LinkProbe link{[this] { return mqtt_->connected(); },
-                            [this] {
+    // The journal and the JSON tree ask the same connection whether it is up, at the same
+    // moment on the same loop: every sample goes either live or to the journal.
+    const auto connected = [this] { return mqtt_->connected(); };
+    history::LinkProbe link{connected, [this] {
                                 const auto stats = mqtt_->stats();
                                 return stats.queued + stats.in_flight;
                             }};
@@ -37,7 +39,7 @@ void Gateway::make_history() {
         std::move(journal),
         history::StoreAndForwardOptions{settings.replay_rate, settings.fsync_interval},
         std::move(link), *uns_json_);
-    uns_json_->set_journal_gate([this] { return history_->journaling(); });
+    uns_json_->set_store_and_forward(connected);
     northbound_.add(*history_);
     const auto stats = history_->stats();
     spdlog::info("store and forward: journal {} ({} entries, bound {} MB)", options.path,

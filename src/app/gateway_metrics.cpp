@@ -7,24 +7,15 @@ namespace {
 
 adapters::metrics::ExchangeMetrics consumer_metrics(const ExchangeConsumer& consumer,
                                                     core::MonoTime now) {
-    const auto& c = consumer.exchange().counters();
     adapters::metrics::ExchangeMetrics m;
     m.name = consumer.plan().spec.name;
     m.direction = "consume";
     m.state = std::string(core::exchange::to_string(consumer.exchange().state()));
-    m.received = c.received;
-    m.accepted = c.accepted;
-    m.missed = c.missed;
-    m.duplicates = c.duplicates;
-    m.out_of_order = c.out_of_order;
-    m.restarts = c.restarts;
+    m.consumed = consumer.exchange().counters();
     m.clock = std::string(core::exchange::to_string(consumer.clock().state()));
     if (const auto offset = consumer.clock().offset_ms()) {
         m.clock_offset_seconds = static_cast<double>(*offset) / 1000.0;
     }
-    m.signature_mismatches = c.signature_mismatches;
-    m.length_mismatches = c.length_mismatches;
-    m.wrong_source = consumer.wrong_source();
     if (const auto last = consumer.exchange().last_accepted()) {
         m.last_seen_age_seconds = std::chrono::duration<double>(now - *last).count();
     }
@@ -41,10 +32,7 @@ adapters::metrics::ExchangeMetrics producer_metrics(const ExchangeProducer& prod
     m.name = producer.plan().spec.name;
     m.direction = "produce";
     m.state = producer.paused() ? "paused" : "producing";
-    m.sent = producer.counters().sent;
-    m.send_errors = producer.counters().send_errors;
-    m.skipped_deadlines = producer.counters().skipped_deadlines;
-    m.save_failures = producer.counters().save_failures;
+    m.produced = producer.counters();
     m.image_saved = producer.saved();
     return m;
 }

@@ -6,7 +6,12 @@ namespace eip2mqtt::app {
 
 ProducerScheduler::ProducerScheduler(boost::asio::any_io_executor loop,
                                      adapters::udp::Sender& sender)
-    : timer_(std::move(loop)), sender_(sender) {}
+    : ProducerScheduler(std::move(loop),
+                        [&sender](std::span<const adapters::udp::OutgoingDatagram> batch,
+                                  std::vector<bool>& sent) { sender.send_batch(batch, sent); }) {}
+
+ProducerScheduler::ProducerScheduler(boost::asio::any_io_executor loop, SendBatch send)
+    : timer_(std::move(loop)), send_(std::move(send)) {}
 
 ProducerScheduler::~ProducerScheduler() = default;
 
@@ -55,7 +60,7 @@ void ProducerScheduler::on_wake() {
         batch_.push_back(
             {producer->produce(sampling_clock_.to_wall(due.deadline)), producer->destination()});
     }
-    if (!batch_.empty()) sender_.send_batch(batch_, sent_);
+    if (!batch_.empty()) send_(batch_, sent_);
     // Bookkeeping only once every datagram has left, so that MQTT publications, echo and
     // persistence never delay a datagram of the same batch.
     for (std::size_t i = 0; i < batch_producers_.size(); ++i) {

@@ -1,4 +1,4 @@
-// Writes (docs/mqtt-api.md "Writes"; issue #3): a northbound decodes a write whole (the JSON tree's
+// Writes (docs/mqtt-api.md "Writes"): a northbound decodes a write whole (the JSON tree's
 // WriteRouter checks a message on a `…/set` topic); what it accepts is staged on its produced
 // exchange, whose result is reported once the datagram carrying it has left, and what it or the
 // exchange refuses is answered at once with a reason. Nothing is changed by a rejected write,

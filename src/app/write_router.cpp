@@ -86,8 +86,8 @@ WriteRouter::WriteRouter(WriteRouterOptions options) : options_(std::move(option
 
 void WriteRouter::clear() { exchanges_.clear(); }
 
-void WriteRouter::add(const core::plan::ExchangePlan& plan, std::optional<std::size_t> producer) {
-    exchanges_[plan.topic] = Route{&plan, producer};
+void WriteRouter::add(const core::plan::ExchangePlan& plan) {
+    exchanges_[plan.topic] = Route{&plan};
 }
 
 std::vector<std::string> WriteRouter::subscriptions() const {
@@ -179,11 +179,11 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
     if (message.retained) {
         return refuse(WriteError::retained, "retained writes are refused; publish without retain");
     }
-    if (!route.producer) {
+    if (plan.spec.direction != core::plan::Direction::produce) {
         return refuse(WriteError::read_only,
                       "exchange " + plan.spec.name + " is consumed: its tags are read-only");
     }
-    ExchangeWrite routed{*route.producer, {}};
+    ExchangeWrite routed{&plan, {}};
     auto rejection = collect_writes(plan, target->tag_index, message.payload, routed.writes);
     if (!rejection) rejection = core::write::overlap_rejection(plan, routed.writes);
     if (rejection) return refuse(rejection->error, std::move(rejection->message));

@@ -45,7 +45,7 @@ protected:
         views_.push_back(
             {&plan_, core::command::ExchangeMode::produced, core::command::ExchangeState::active});
         views_[0].image = image_;
-        views_[0].writer = 0;
+        views_[0].writable = true;
     }
 
     CommandPolicy policy(bool writes = false, std::uint32_t rate = 100) const {
@@ -155,7 +155,7 @@ TEST_F(CommandResponderTest, AWriteIsAnsweredOnlyWhenItsResultComes) {
     const auto& request = writes_.requests[0];
     EXPECT_EQ(request.reply.via, WriteOrigin::commands);
     const auto& write = std::get<ExchangeWrite>(request.outcome);
-    EXPECT_EQ(write.producer, 0u);
+    EXPECT_EQ(write.producer, &plan_);
     ASSERT_EQ(write.writes.size(), 1u);
     EXPECT_EQ(std::get<std::uint64_t>(write.writes[0].value), 1000u);
     EXPECT_EQ(responder.pending_writes(), 1u);

@@ -29,7 +29,8 @@ protected:
     }
 
     test::RecordingNorthbound origin_;
-    std::vector<std::size_t> staged_;  ///< the producer of each staged write
+    core::plan::ExchangePlan plan_;       ///< the produced exchange written to
+    std::vector<ProducerHandle> staged_;  ///< the producer of each staged write
     std::optional<WriteRejection> exchange_refuses_;
     WriteDispatcher dispatcher_{[this](ExchangeWrite&& write, const WriteReply& reply,
                                        core::MonoTime now) -> std::optional<WriteRejection> {
@@ -43,17 +44,17 @@ protected:
 };
 
 TEST_F(WriteDispatcherTest, AnAcceptedWriteIsStagedOnItsExchangeAndCountedNotAnswered) {
-    dispatcher_.on_write(request(ExchangeWrite{3, {{0, core::plan::Value{true}}}}));
-    EXPECT_EQ(staged_, std::vector<std::size_t>{3});
+    dispatcher_.on_write(request(ExchangeWrite{&plan_, {{0, core::plan::Value{true}}}}));
+    EXPECT_EQ(staged_, std::vector<ProducerHandle>{&plan_});
     EXPECT_EQ(dispatcher_.counters().writes_ok, 1u);
     EXPECT_TRUE(origin_.results.empty());  // answered once its datagram is sent
 }
 
 TEST_F(WriteDispatcherTest, AcceptedWritesAreCountedByTheProtocolTheyCameBy) {
-    auto by_command = request(ExchangeWrite{1, {{0, core::plan::Value{true}}}});
+    auto by_command = request(ExchangeWrite{&plan_, {{0, core::plan::Value{true}}}});
     by_command.reply.via = WriteOrigin::commands;
     dispatcher_.on_write(std::move(by_command));
-    dispatcher_.on_write(request(ExchangeWrite{1, {{0, core::plan::Value{true}}}}));
+    dispatcher_.on_write(request(ExchangeWrite{&plan_, {{0, core::plan::Value{true}}}}));
     auto refused = request(WriteRejection{WriteError::read_only, "read-only"});
     refused.reply.via = WriteOrigin::commands;
     dispatcher_.on_write(std::move(refused));
@@ -74,7 +75,7 @@ TEST_F(WriteDispatcherTest, ARefusalIsCountedUnderItsErrorAndAnsweredByItsOrigin
 
 TEST_F(WriteDispatcherTest, WhatTheExchangeRefusesIsCountedAndAnsweredTheSameWay) {
     exchange_refuses_ = WriteRejection{WriteError::queue_full, "full"};
-    dispatcher_.on_write(request(ExchangeWrite{0, {}}));
+    dispatcher_.on_write(request(ExchangeWrite{&plan_, {}}));
     EXPECT_EQ(dispatcher_.counters().writes_ok, 0u);
     EXPECT_EQ(rejected(WriteError::queue_full), 1u);
     ASSERT_EQ(origin_.results.size(), 1u);

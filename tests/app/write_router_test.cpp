@@ -45,8 +45,8 @@ core::plan::ExchangePlan plan(std::string name, core::plan::Direction direction,
 class WriteRouterTest : public ::testing::Test {
 protected:
     WriteRouterTest() {
-        router_.add(produced_, 7);
-        router_.add(consumed_, std::nullopt);
+        router_.add(produced_);
+        router_.add(consumed_);
     }
 
     WriteDecision route(std::string topic, std::string payload, std::string response_topic = {},
@@ -94,7 +94,7 @@ TEST_F(WriteRouterTest, AnEmptyMessageClearsARetainedWriteAndIsNoWriteAtAll) {
 TEST_F(WriteRouterTest, ATagWriteGoesToItsProducerAndAnswersOnItsResultTopic) {
     const auto decision = route("acme/t1/sp/SPEED/set", "12.5");
     const auto routed = accepted(decision);
-    EXPECT_EQ(routed.producer, 7u);
+    EXPECT_EQ(routed.producer, &produced_);
     ASSERT_EQ(routed.writes.size(), 1u);
     EXPECT_EQ(routed.writes[0].tag_index, 0u);
     EXPECT_EQ(routed.writes[0].value, core::plan::Value{12.5F});

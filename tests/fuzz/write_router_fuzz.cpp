@@ -61,8 +61,8 @@ const core::plan::ExchangePlan consumed = make_plan("in", core::plan::Direction:
 
 app::WriteRouter make_router() {
     app::WriteRouter router({"acme", false});
-    router.add(produced, 0);
-    router.add(consumed, std::nullopt);
+    router.add(produced);
+    router.add(consumed);
     return router;
 }
 

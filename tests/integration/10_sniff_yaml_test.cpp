@@ -1,4 +1,4 @@
-// From the wire to a configuration (issue #13): `sniff --yaml` ends with the YAML of every
+// From the wire to a configuration: `sniff --yaml` ends with the YAML of every
 // exchange it saw that the configuration lacks; `check` accepts it as it is, and a gateway run
 // on it publishes each exchange's `_status` before any tag is known.
 

@@ -1,4 +1,4 @@
-// Writes from a client that means harm or is careless (issue #12): none may disconnect the
+// Writes from a client that means harm or is careless: none may disconnect the
 // gateway, make it publish on its own topics, or slip a wrong value into a datagram.
 
 #include <nlohmann/json.hpp>

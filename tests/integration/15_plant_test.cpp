@@ -1,4 +1,4 @@
-// What real GE producers send (issue #13): a PLC whose clock was never set, and one that
+// What real GE producers send: a PLC whose clock was never set, and one that
 // restarts: its request ids start again while its clock goes on.
 
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-// Overlapping tags as point lists name them (issue #13): a status word and its bits, a dint and
+// Overlapping tags as point lists name them: a status word and its bits, a dint and
 // its two halves, at the same bytes. Consumed, each reads its own bits; produced, a write to one
 // republishes every tag whose bytes it changed, and one message never sets two of them.
 

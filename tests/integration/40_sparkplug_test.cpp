@@ -1,4 +1,4 @@
-// The gateway as a Sparkplug B edge node (issue #15), run as the real binary against a real
+// The gateway as a Sparkplug B edge node, run as the real binary against a real
 // Mosquitto and real UDP, every payload read (and every command written) by Eclipse Tahu's
 // JavaScript library: births with bdSeq and seq, DDATA by alias, DDEATH of a stale exchange
 // and its rebirth, NCMD rebirth, DCMD writes accepted and refused, the primary host's STATE, a

@@ -1,4 +1,4 @@
-// Store and forward (issue #16) with the real binary, a real Mosquitto and real UDP: a counter
+// Store and forward with the real binary, a real Mosquitto and real UDP: a counter
 // at 100 datagrams a second through broker outages, a gateway killed in the middle of one, a
 // reconnect during the replay, the journal's bound and a damaged journal file. A subscriber of
 // `_values` and `_history` together sees every counter value exactly once.

@@ -69,13 +69,7 @@ public:
     std::size_t pending_writes() const { return pending_.size(); }
 
     // --- Northbound: only write results concern the responder ----------------------------
-    void exchanges_changed(const ExchangeSet&, std::span<const std::string>) override {}
-    void tag_samples(const SampleBatch&) override {}
-    void consumed_status(const ConsumedStatus&) override {}
-    void produced_status(const core::plan::ExchangePlan&, const ProducedStatus&) override {}
-    void exchange_state(const core::plan::ExchangePlan&, core::exchange::ConsumeState) override {}
     void write_result(const WriteReply& reply, std::optional<std::string_view> error) override;
-    void gateway_metrics(const MetricsSources&, std::chrono::seconds) override {}
 
 private:
     struct PendingWrite {

@@ -1,7 +1,7 @@
 #pragma once
 /// The gateway's running exchanges as the command responder sees them (core::command::
 /// ExchangeView): configuration, state, counters and image, consumers first, then producers,
-/// each producer's writer being its index among the producers (ExchangeWrite::producer).
+/// whose plans are the handles their writes are staged by (ExchangeWrite::producer).
 
 #include <cstdint>
 #include <memory>

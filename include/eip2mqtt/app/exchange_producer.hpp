@@ -40,14 +40,6 @@
 
 namespace eip2mqtt::app {
 
-struct ProducerCounters {
-    std::uint64_t sent = 0;
-    std::uint64_t send_errors = 0;
-    std::uint64_t skipped_deadlines = 0;  ///< periods lost because the loop fell behind
-    std::uint64_t writes_applied = 0;
-    std::uint64_t save_failures = 0;  ///< image saves that failed
-};
-
 /// What the image saves of every produced exchange add up to, kept by the gateway: a reload
 /// replaces producers and their counters, never these.
 struct ImageSaveTotals {
@@ -118,7 +110,7 @@ public:
     void on_sent(bool sent, core::WallTime wall) override;
 
     const core::plan::ExchangePlan& plan() const { return *plan_; }
-    const ProducerCounters& counters() const { return counters_; }
+    const core::exchange::ProduceCounters& counters() const { return counters_; }
     /// True while sends fail (the status says paused).
     bool paused() const { return failing_; }
     /// True when the file holds the image being produced, or a newer one.
@@ -172,7 +164,7 @@ private:
     core::exchange::StatusGrid status_grid_;          ///< `_status`: phase set by start()
     std::uint64_t last_status_sent_ = 0;
     std::uint64_t next_write_id_ = 1;
-    ProducerCounters counters_;
+    core::exchange::ProduceCounters counters_;
     bool failing_ = false;  ///< the last send failed: the status says paused
     std::optional<core::WallTime> last_sent_;
     core::WallTime configured_at_ = std::chrono::system_clock::now();

@@ -19,29 +19,22 @@
 
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
-#include "eip2mqtt/adapters/state/image_persister.hpp"
-#include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/adapters/state/state_dir_lock.hpp"
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
 #include "eip2mqtt/adapters/udp/command_socket.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
-#include "eip2mqtt/adapters/udp/sender.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/command_responder.hpp"
 #include "eip2mqtt/app/command_views.hpp"
-#include "eip2mqtt/app/datagram_router.hpp"
-#include "eip2mqtt/app/exchange_consumer.hpp"
-#include "eip2mqtt/app/exchange_producer.hpp"
+#include "eip2mqtt/app/exchanges.hpp"
 #include "eip2mqtt/app/gateway_metrics.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "eip2mqtt/app/northbound/sparkplug_node.hpp"
 #include "eip2mqtt/app/northbound/uns_json.hpp"
-#include "eip2mqtt/app/producer_scheduler.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
 #include "eip2mqtt/core/config/config.hpp"
-#include "eip2mqtt/core/plan/plan_diff.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::app {
@@ -71,24 +64,11 @@ private:
     /// Runs `event` (the node's connection, a message or an acknowledgement for it, its tick);
     /// once the node is born by it, its replay of history starts.
     void on_sparkplug_event(bool connection, const std::function<void()>& event);
-    /// The plans of `config`'s exchanges, for apply_exchanges. The exchange configs (every tag
+    /// The plans of `config`'s exchanges, for Exchanges::apply. The exchange configs (every tag
     /// again, with the marks of its keys) served validation only: they are released here.
     static std::vector<core::plan::ExchangePlan> take_plans(core::config::Config& config);
-    /// Builds the exchanges of `plans`, keeping running ones whose plan is unchanged, stopping
-    /// removed and changed ones and clearing their retained topics that no new exchange uses.
-    void apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool running);
-    /// What applying `plans` does to the running exchanges (core::plan::diff_plans).
-    core::plan::PlanDiff diff_running(const std::vector<core::plan::ExchangePlan>& plans) const;
-    /// The running exchanges, as northbounds see them.
-    ExchangeSet running_exchanges() const;
-    /// Their plans, consumers first (the order diff_plans' indices count in).
-    std::vector<const core::plan::ExchangePlan*> running_plans() const;
-    /// Every exchange's retained state published again (a reconnect, new publish settings).
-    void republish_exchanges();
-    /// A new producer, opening the sending socket with the first one; with the running image
-    /// of the one it replaces when given.
-    std::unique_ptr<ExchangeProducer> make_producer(core::plan::ExchangePlan plan,
-                                                    std::optional<ImageHandover> handover);
+    /// The new exchanges of a reload applied, the outcome counted and logged.
+    void apply_plans(std::vector<core::plan::ExchangePlan> plans);
     /// SIGHUP: a valid new file is applied whole, or refused whole (errors, or a change that
     /// needs a restart: core::config::plan_reload), the log naming each changed key.
     void reload();
@@ -129,14 +109,8 @@ private:
     std::unique_ptr<northbound::SparkplugNode> sparkplug_;
     std::unique_ptr<history::StoreAndForward> history_;  ///< with mqtt.store_and_forward
     northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to
-    std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
-    DatagramRouter datagram_router_;
+    Exchanges exchanges_;
     std::unique_ptr<adapters::udp::Receiver> receiver_;
-    adapters::state::ImageStore image_store_;
-    std::unique_ptr<adapters::udp::Sender> sender_;
-    std::unique_ptr<ProducerScheduler> production_;  ///< with sender_; drives producers_
-    std::unique_ptr<adapters::state::ImagePersister> persister_;  ///< with sender_
-    std::vector<std::unique_ptr<ExchangeProducer>> producers_;
     CommandViewContext command_context_;
     std::unique_ptr<CommandResponder> commands_;                    ///< with eip.commands.enabled
     std::unique_ptr<adapters::udp::CommandSocket> command_socket_;  ///< with commands_

@@ -21,6 +21,7 @@
 
 #include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
+#include "eip2mqtt/core/exchange/produce_counters.hpp"
 #include "eip2mqtt/core/exchange/producer_clock.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
@@ -31,7 +32,7 @@ namespace eip2mqtt::app {
 
 struct MetricsSources;
 
-/// The running exchanges. A produced exchange's index here is the one a WriteRequest names.
+/// The running exchanges.
 struct ExchangeSet {
     std::vector<const core::plan::ExchangePlan*> consumed;
     std::vector<const core::plan::ExchangePlan*> produced;
@@ -47,7 +48,7 @@ struct TagSample {
 /// buffer per thread, shared by every consumed and produced exchange of the loop, since the
 /// Northbound reads a batch before tag_samples returns. Its capacity follows the largest
 /// exchange, so the data path does not allocate. A buffer per exchange, sized for every tag,
-/// was 2.4 MB of resident memory with 100,000 consumed tags, against the gateway's memory target.
+/// cost resident memory in proportion to the tags configured (docs/decisions/0001).
 inline std::vector<TagSample>& sample_buffer() {
     thread_local std::vector<TagSample> samples;
     samples.clear();
@@ -74,24 +75,24 @@ struct ConsumedStatus {
     const core::exchange::ProducerClock& clock;
 };
 
-/// A produced exchange's counters.
+/// A produced exchange's counters and state.
 struct ProducedStatus {
     bool paused = false;           ///< sends fail
     std::uint16_t request_id = 0;  ///< of the next datagram
-    std::uint64_t sent = 0;
-    std::uint64_t send_errors = 0;
-    std::uint64_t skipped_deadlines = 0;
-    std::uint64_t writes_applied = 0;
+    core::exchange::ProduceCounters counters;
     std::uint64_t writes_pending = 0;
     /// The image file holds the image being produced (or a newer one, saved ahead of it).
     bool saved = true;
-    std::uint64_t save_failures = 0;
     std::string_view save_error;  ///< why the last save failed; empty once one succeeds
 };
 
+/// Names a running produced exchange: its plan, which stays at one address for the producer's
+/// life (ExchangeSet::produced lists them). A reload that changes the exchange makes a new one.
+using ProducerHandle = const core::plan::ExchangePlan*;
+
 /// Validated writes for one produced exchange, applied together in one datagram.
 struct ExchangeWrite {
-    std::size_t producer = 0;  ///< index in ExchangeSet::produced
+    ProducerHandle producer = nullptr;
     std::vector<core::write::TagWrite> writes;
 };
 
@@ -104,6 +105,8 @@ struct WriteRequest {
     std::string log_detail;  ///< appended to the log line of a refusal
 };
 
+/// Every event has a default that ignores it: a northbound overrides the ones it has a use for
+/// (the journal only samples, the command responder only write results).
 class Northbound {
 public:
     virtual ~Northbound() = default;
@@ -112,24 +115,26 @@ public:
     /// topics of the JSON tree that no running exchange uses any more (core::plan::diff_plans).
     /// A kept exchange has the same plan object as before; the exchanges a reload stops are
     /// destroyed only after this call, so no new plan has the address of one of them.
-    virtual void exchanges_changed(const ExchangeSet& running,
-                                   std::span<const std::string> retired_topics) = 0;
-    virtual void tag_samples(const SampleBatch& batch) = 0;
-    virtual void consumed_status(const ConsumedStatus& status) = 0;
-    virtual void produced_status(const core::plan::ExchangePlan& exchange,
-                                 const ProducedStatus& status) = 0;
+    virtual void exchanges_changed(const ExchangeSet& /*running*/,
+                                   std::span<const std::string> /*retired_topics*/) {}
+    virtual void tag_samples(const SampleBatch& /*batch*/) {}
+    virtual void consumed_status(const ConsumedStatus& /*status*/) {}
+    virtual void produced_status(const core::plan::ExchangePlan& /*exchange*/,
+                                 const ProducedStatus& /*status*/) {}
     /// A consumed exchange changed state: up is `ok`, every other state is down.
-    virtual void exchange_state(const core::plan::ExchangePlan& exchange,
-                                core::exchange::ConsumeState state) = 0;
+    virtual void exchange_state(const core::plan::ExchangePlan& /*exchange*/,
+                                core::exchange::ConsumeState /*state*/) {}
     /// The result of a write that came from this northbound (`reply.origin`): nullopt when it
     /// was applied and carried by a sent datagram, else why not.
-    virtual void write_result(const WriteReply& reply, std::optional<std::string_view> error) = 0;
+    virtual void write_result(const WriteReply& /*reply*/,
+                              std::optional<std::string_view> /*error*/) {}
     /// The result of a write that was applied and carried by a sent datagram, but whose image
     /// could not be saved (`reason`): a restart before the next successful save would produce
-    /// the image from before it. Northbounds that answer no write ignore it.
-    virtual void write_result_unsaved(const WriteReply&, std::string_view /*reason*/) {}
+    /// the image from before it.
+    virtual void write_result_unsaved(const WriteReply& /*reply*/, std::string_view /*reason*/) {}
     /// The gateway's counters, every mqtt.metrics_interval.
-    virtual void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) = 0;
+    virtual void gateway_metrics(const MetricsSources& /*sources*/,
+                                 std::chrono::seconds /*uptime*/) {}
 };
 
 /// Where northbounds hand the writes they decode.

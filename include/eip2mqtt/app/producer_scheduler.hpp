@@ -1,8 +1,9 @@
 #pragma once
-/// Drives every produced exchange from one timer on the loop (issue #6): a timer per exchange
-/// cost one wake-up and one sendto per datagram, which at 1,000 exchanges x 100 Hz the loop
-/// could not keep up with. At each wake-up the exchanges due (in the current slot, see
-/// ProductionQueue) produce their datagrams, and all of them leave with one sendmmsg. Then
+/// Drives every produced exchange from one timer on the loop: a timer per exchange cost one
+/// wake-up and one sendto per datagram, more than the loop could keep up with at a thousand
+/// exchanges of 100 Hz (docs/decisions/0005). At each wake-up the exchanges due (in the
+/// current slot, see ProductionQueue) produce their datagrams, and all of them leave with one
+/// sendmmsg. Then
 /// each exchange does its bookkeeping (counters, `_status`, echo, persistence, write results).
 /// The scheduler knows an exchange only as a Producible: what it needs to send it.
 ///
@@ -12,6 +13,7 @@
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -43,15 +45,20 @@ protected:
 class ProducerScheduler {
 public:
     using Id = core::exchange::ProductionQueue::Id;
+    /// Sends every datagram of a batch; `sent[i]` (resized to the batch) says whether datagram
+    /// i left (adapters::udp::Sender::send_batch). Called once per wake-up, not per datagram.
+    using SendBatch = std::function<void(std::span<const adapters::udp::OutgoingDatagram> batch,
+                                         std::vector<bool>& sent)>;
 
     /// The batching slot (ProductionQueue): a datagram leaves less than this early. 250 us
-    /// divides every whole-millisecond period, so batching adds no jitter; measured against
-    /// 50 us (bench scenario 7, 100 exchanges), it cut the loop's CPU from ~29 % to ~12 %
-    /// (timerfd and epoll per wake-up), which is what keeps the loop on time on a busy machine.
+    /// divides every whole-millisecond period, so batching adds no jitter, and fewer wake-ups
+    /// keep the loop on time on a busy machine (docs/decisions/0005).
     static constexpr std::chrono::microseconds batch_slot{250};
 
     /// `sender` must outlive the scheduler.
     ProducerScheduler(boost::asio::any_io_executor loop, adapters::udp::Sender& sender);
+    /// Batches go to `send` (a test's recording fake).
+    ProducerScheduler(boost::asio::any_io_executor loop, SendBatch send);
     ~ProducerScheduler();
     ProducerScheduler(const ProducerScheduler&) = delete;
     ProducerScheduler& operator=(const ProducerScheduler&) = delete;
@@ -67,7 +74,7 @@ private:
     void on_wake();
 
     boost::asio::steady_timer timer_;
-    adapters::udp::Sender& sender_;
+    SendBatch send_;
     core::exchange::ProductionQueue queue_{batch_slot};
     std::unordered_map<Id, Producible*> producers_;
     std::optional<core::MonoTime> armed_for_;

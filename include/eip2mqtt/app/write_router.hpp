@@ -1,5 +1,5 @@
 #pragma once
-/// Where a message on a `…/set` topic goes and what it asks (docs/mqtt-api.md "Writes"; issue #3):
+/// Where a message on a `…/set` topic goes and what it asks (docs/mqtt-api.md "Writes"):
 /// the exchange and tag its topic names, where its result goes, and either the validated writes to
 /// stage or the reason it is refused. Pure: no sockets, no clock, no logging, so hostile input
 /// can be driven through it in a unit test or a fuzzer. The gateway stages what it returns.
@@ -28,7 +28,7 @@ struct WriteRouterOptions {
 };
 
 /// What a message on one of our `…/set` topics asks: the validated writes (ExchangeWrite, whose
-/// `producer` is the index given to add()) or why it is refused.
+/// `producer` is the plan given to add()) or why it is refused.
 struct WriteDecision {
     WriteReply reply;  ///< where the result goes; an empty topic: nowhere a broker accepts
     std::variant<ExchangeWrite, core::write::WriteRejection> outcome;
@@ -42,10 +42,10 @@ public:
 
     /// Forgets every exchange (before a reload adds them again).
     void clear();
-    /// Routes writes to `plan`'s `set` topics; `producer` is its index among the produced
-    /// exchanges, or nullopt for a consumed exchange (its writes are refused as read-only).
-    /// `plan` must outlive the router's use of it (until clear()).
-    void add(const core::plan::ExchangePlan& plan, std::optional<std::size_t> producer);
+    /// Routes writes to `plan`'s `set` topics; those of a consumed exchange are refused as
+    /// read-only. `plan` must outlive the router's use of it (until clear()): it is the handle
+    /// of a produced exchange's writes.
+    void add(const core::plan::ExchangePlan& plan);
     void set_options(WriteRouterOptions options) { options_ = std::move(options); }
 
     /// The topic filters to subscribe to: one per depth of `…/set` topic (`{base}/+/+/set`...)
@@ -64,7 +64,6 @@ public:
 private:
     struct Route {
         const core::plan::ExchangePlan* plan = nullptr;
-        std::optional<std::size_t> producer;
     };
     /// The exchange a `set` topic's stem names and, for `{exchange topic}/{tag}`, the tag.
     struct Target {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <span>
 #include <stdexcept>
@@ -57,7 +58,8 @@ bool known(double value) { return !std::isnan(value) && value >= 0; }
 /// `direction` is empty).
 void add_exchange_family(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot,
                          std::string name, std::string help, MetricType type,
-                         std::string_view direction, double (*value)(const ExchangeMetrics&)) {
+                         std::string_view direction,
+                         const std::function<double(const ExchangeMetrics&)>& value) {
     auto result = family(std::move(name), std::move(help), type);
     for (const auto& exchange : snapshot.exchanges) {
         if (!direction.empty() && exchange.direction != direction) continue;
@@ -123,35 +125,15 @@ void add_state_families(std::vector<MetricFamily>& out, const MetricsSnapshot& s
 
 /// The per-exchange counters and gauges, each for the direction it applies to.
 void add_exchange_counters(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
+    for (const auto& field : core::exchange::consume_counter_fields) {
+        if (!field.in(core::in_prometheus)) continue;
+        add_exchange_family(out, snapshot, "exchange_" + std::string(field.name) + "_total",
+                            std::string(field.help), counter, "consume",
+                            [&field](const ExchangeMetrics& e) {
+                                return static_cast<double>(e.consumed.*field.member);
+                            });
+    }
     // clang-format off
-    add_exchange_family(out, snapshot, "exchange_received_total",
-        "Datagrams received for the exchange", counter, "consume",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.received); });
-    add_exchange_family(out, snapshot, "exchange_accepted_total",
-        "Datagrams accepted as new samples", counter, "consume",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.accepted); });
-    add_exchange_family(out, snapshot, "exchange_missed_total",
-        "Request ids skipped between accepted samples", counter, "consume",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.missed); });
-    add_exchange_family(out, snapshot, "exchange_duplicates_total",
-        "Datagrams repeating the last request id", counter, "consume",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.duplicates); });
-    add_exchange_family(out, snapshot, "exchange_out_of_order_total",
-        "Datagrams behind the last request id", counter, "consume",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.out_of_order); });
-    add_exchange_family(out, snapshot, "exchange_restarts_total",
-        "Producer restarts (request ids started again while the producer's time went on)",
-        counter, "consume",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.restarts); });
-    add_exchange_family(out, snapshot, "exchange_signature_mismatches_total",
-        "Datagrams with an incompatible signature", counter, "consume",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.signature_mismatches); });
-    add_exchange_family(out, snapshot, "exchange_length_mismatches_total",
-        "Datagrams with another data length than configured", counter, "consume",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.length_mismatches); });
-    add_exchange_family(out, snapshot, "exchange_wrong_source_total",
-        "Datagrams from another address than the configured source", counter, "consume",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.wrong_source); });
     add_exchange_family(out, snapshot, "exchange_last_seen_age_seconds",
         "Seconds since the last accepted datagram", gauge, "consume",
         [](const ExchangeMetrics& e) { return e.last_seen_age_seconds; });
@@ -161,18 +143,16 @@ void add_exchange_counters(std::vector<MetricFamily>& out, const MetricsSnapshot
     add_exchange_family(out, snapshot, "exchange_mean_period_seconds",
         "Mean inter-arrival period", gauge, "",
         [](const ExchangeMetrics& e) { return e.mean_period_seconds; });
-    add_exchange_family(out, snapshot, "exchange_sent_total",
-        "Datagrams produced", counter, "produce",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.sent); });
-    add_exchange_family(out, snapshot, "exchange_send_errors_total",
-        "Productions the socket refused", counter, "produce",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.send_errors); });
-    add_exchange_family(out, snapshot, "exchange_skipped_deadlines_total",
-        "Periods not produced because the loop fell more than a period behind", counter, "produce",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.skipped_deadlines); });
-    add_exchange_family(out, snapshot, "exchange_save_failures_total",
-        "Image saves that failed", counter, "produce",
-        [](const ExchangeMetrics& e) { return static_cast<double>(e.save_failures); });
+    // clang-format on
+    for (const auto& field : core::exchange::produce_counter_fields) {
+        if (!field.in(core::in_prometheus)) continue;
+        add_exchange_family(out, snapshot, "exchange_" + std::string(field.name) + "_total",
+                            std::string(field.help), counter, "produce",
+                            [&field](const ExchangeMetrics& e) {
+                                return static_cast<double>(e.produced.*field.member);
+                            });
+    }
+    // clang-format off
     add_exchange_family(out, snapshot, "exchange_image_saved",
         "1 while the image file holds the image produced (0 while saves fail)", gauge, "produce",
         [](const ExchangeMetrics& e) { return e.image_saved ? 1.0 : 0.0; });

@@ -124,7 +124,7 @@ void SparkplugNode::device_birth(Device& device) {
         if (!spec.description().empty()) {
             metric.properties.push_back({"Documentation", DataType::string, spec.description()});
         }
-        if (device.producer) {
+        if (device.produced) {
             metric.properties.push_back({"writable", DataType::boolean, Value{spec.writable}});
             if (spec.min())
                 metric.properties.push_back({"min", DataType::float64, Value{*spec.min()}});

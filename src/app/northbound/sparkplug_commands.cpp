@@ -132,14 +132,14 @@ void SparkplugNode::on_device_command(const adapters::mqtt::Incoming& message, D
         return refuse(WriteError::retained,
                       "retained commands are refused; publish without retain");
     }
-    if (!device->producer) {
+    if (!device->produced) {
         return refuse(WriteError::read_only,
                       "exchange " + plan.spec.name + " is consumed: its tags are read-only");
     }
     const auto metrics = adapters::sparkplug::decode_command(message.payload);
     if (!metrics) return refuse(WriteError::malformed, "DCMD: " + metrics.error());
     if (metrics.value().empty()) return refuse(WriteError::empty, "a DCMD with no metric");
-    ExchangeWrite write{*device->producer, {}};
+    ExchangeWrite write{device->plan, {}};
     write.writes.reserve(metrics.value().size());
     for (const auto& metric : metrics.value()) {
         const auto tag = find_tag(plan, metric, device->alias_base);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <span>
+#include <string_view>
 
 #include "eip2mqtt/app/gateway_metrics.hpp"
 
@@ -169,8 +170,7 @@ void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<cons
     node_metrics_.resize(fixed_node_metrics);
     std::erase_if(node_metric_of_name_,
                   [](const auto& entry) { return entry.second >= fixed_node_metrics; });
-    const auto add = [&](const core::plan::ExchangePlan* plan,
-                         std::optional<std::size_t> producer) {
+    const auto add = [&](const core::plan::ExchangePlan* plan, bool produced) {
         Device device;
         // A kept exchange keeps its plan object, and with it its values. The address cannot be
         // a removed exchange's: the gateway destroys those only after this call.
@@ -181,7 +181,7 @@ void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<cons
             device.timestamps.resize(plan->tags.size(), 0);
         }
         device.plan = plan;
-        device.producer = producer;
+        device.produced = produced;
         device.alias_base = static_cast<std::uint64_t>(devices.size() + 1) << 32;
         device.born = false;
         const auto prefix = std::string(namespace_prefix) + options_.group_id + "/";
@@ -191,19 +191,24 @@ void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<cons
         device.death_topic = prefix + "DDEATH" + suffix;
         const auto base = "Exchanges/" + plan->spec.name + "/";
         node_metric(base + "state", DataType::string);
-        static constexpr std::array<const char*, 3> produced_counters{"sent", "send_errors",
-                                                                      "writes_applied"};
-        static constexpr std::array<const char*, 5> consumed_counters{
-            "received", "accepted", "missed", "timeouts", "restarts"};
-        const auto counters = producer ? std::span<const char* const>(produced_counters)
-                                       : std::span<const char* const>(consumed_counters);
-        for (const auto* name : counters) node_metric(base + name, DataType::uint64);
+        const auto add_counters = [&](const auto& fields) {
+            for (const auto& field : fields) {
+                if (field.in(core::in_sparkplug)) {
+                    node_metric(base + std::string(field.name), DataType::uint64);
+                }
+            }
+        };
+        if (produced) {
+            add_counters(core::exchange::produce_counter_fields);
+        } else {
+            add_counters(core::exchange::consume_counter_fields);
+        }
         of_plan.emplace(plan, devices.size());
         of_name.emplace(plan->spec.name, devices.size());
         devices.push_back(std::move(device));
     };
-    for (const auto* plan : running.consumed) add(plan, std::nullopt);
-    for (std::size_t i = 0; i < running.produced.size(); ++i) add(running.produced[i], i);
+    for (const auto* plan : running.consumed) add(plan, false);
+    for (const auto* plan : running.produced) add(plan, true);
     devices_ = std::move(devices);
     device_of_plan_ = std::move(of_plan);
     device_of_name_ = std::move(of_name);
@@ -219,7 +224,7 @@ void SparkplugNode::tag_samples(const SampleBatch& batch) {
         device.values[sample.tag] = sample.value;
         device.timestamps[sample.tag] = batch.timestamp_ms;
     }
-    if (device.producer && !device.up && device.known == device.values.size()) {
+    if (device.produced && !device.up && device.known == device.values.size()) {
         device.up = true;  // its first datagram: every value is known now
         if (born_) device_birth(device);
         return;
@@ -266,7 +271,7 @@ void SparkplugNode::exchange_state(const core::plan::ExchangePlan& exchange,
     const auto found = device_of_plan_.find(&exchange);
     if (found == device_of_plan_.end()) return;
     auto& device = devices_[found->second];
-    if (device.producer) return;
+    if (device.produced) return;
     device.up = state == core::exchange::ConsumeState::ok;
     if (!born_) return;
     if (device.up && !device.born) device_birth(device);
@@ -275,24 +280,30 @@ void SparkplugNode::exchange_state(const core::plan::ExchangePlan& exchange,
 
 void SparkplugNode::consumed_status(const ConsumedStatus& status) {
     const auto base = "Exchanges/" + status.exchange.spec.name + "/";
-    const auto metric = [&](const char* name) { return node_metric_of_name_.at(base + name); };
+    const auto metric = [&](std::string_view name) {
+        return node_metric_of_name_.at(base + std::string(name));
+    };
     const auto& counters = status.state.counters();
     set_node_metric(metric("state"), std::string(core::exchange::to_string(status.state.state())));
-    set_node_metric(metric("received"), counter(counters.received));
-    set_node_metric(metric("accepted"), counter(counters.accepted));
-    set_node_metric(metric("missed"), counter(counters.missed));
-    set_node_metric(metric("timeouts"), counter(counters.timeouts));
-    set_node_metric(metric("restarts"), counter(counters.restarts));
+    for (const auto& field : core::exchange::consume_counter_fields) {
+        if (field.in(core::in_sparkplug)) {
+            set_node_metric(metric(field.name), counter(counters.*field.member));
+        }
+    }
 }
 
 void SparkplugNode::produced_status(const core::plan::ExchangePlan& exchange,
                                     const ProducedStatus& status) {
     const auto base = "Exchanges/" + exchange.spec.name + "/";
-    const auto metric = [&](const char* name) { return node_metric_of_name_.at(base + name); };
+    const auto metric = [&](std::string_view name) {
+        return node_metric_of_name_.at(base + std::string(name));
+    };
     set_node_metric(metric("state"), std::string(status.paused ? "paused" : "producing"));
-    set_node_metric(metric("sent"), counter(status.sent));
-    set_node_metric(metric("send_errors"), counter(status.send_errors));
-    set_node_metric(metric("writes_applied"), counter(status.writes_applied));
+    for (const auto& field : core::exchange::produce_counter_fields) {
+        if (field.in(core::in_sparkplug)) {
+            set_node_metric(metric(field.name), counter(status.counters.*field.member));
+        }
+    }
 }
 
 void SparkplugNode::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {

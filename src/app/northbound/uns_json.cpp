@@ -28,10 +28,8 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
         mqtt_.publish({topic, "", options_.publish.qos, true, true});
     }
     router_.clear();
-    for (const auto* plan : running.consumed) router_.add(*plan, std::nullopt);
-    for (std::size_t i = 0; i < running.produced.size(); ++i) {
-        router_.add(*running.produced[i], i);
-    }
+    for (const auto* plan : running.consumed) router_.add(*plan);
+    for (const auto* plan : running.produced) router_.add(*plan);
     mqtt_.set_subscriptions(router_.subscriptions());
 }
 
@@ -51,7 +49,7 @@ void UnsJson::tag_samples(const SampleBatch& batch) {
     // `_values` carries what consumed datagrams bring, not the echo of produced ones.
     if (settings.batch && !batch.samples.empty() &&
         plan.spec.direction == core::plan::Direction::consume &&
-        !(journaling_ && (batch.all_tags || journaling_()))) {
+        !(connected_ && (batch.all_tags || !connected_()))) {
         message_.topic = plan.values_topic;
         format_values_payload(message_.payload, batch);
         message_.qos = settings.qos;

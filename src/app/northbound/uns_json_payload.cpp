@@ -41,17 +41,26 @@ std::string format_status_payload(const ConsumedStatus& status) {
     const auto& clock = status.clock;
     const auto& last_seen_ms = status.last_seen_ms;
     const auto& c = exchange.counters();
-    const std::string last_seen = last_seen_ms ? std::to_string(*last_seen_ms) : "null";
-    const std::string request_id =
-        exchange.has_image() ? std::to_string(exchange.last_header().request_id) : "null";
-    return fmt::format(
-        R"({{"state":"{}","request_id":{},"received":{},"accepted":{},"missed":{},"duplicates":{},)"
-        R"("out_of_order":{},"signature_mismatches":{},"length_mismatches":{},"timeouts":{},)"
-        R"("restarts":{},"last_seen":{},"clock":"{}","clock_offset_ms":{}}})",
-        core::exchange::to_string(exchange.state()), request_id, c.received, c.accepted, c.missed,
-        c.duplicates, c.out_of_order, c.signature_mismatches, c.length_mismatches, c.timeouts,
-        c.restarts, last_seen, core::exchange::to_string(clock.state()),
-        clock.offset_ms() ? std::to_string(*clock.offset_ms()) : "null");
+    std::string out;
+    auto to = std::back_inserter(out);
+    fmt::format_to(to, R"({{"state":"{}","request_id":)",
+                   core::exchange::to_string(exchange.state()));
+    if (exchange.has_image()) {
+        fmt::format_to(to, "{}", exchange.last_header().request_id);
+    } else {
+        out += "null";
+    }
+    for (const auto& field : core::exchange::consume_counter_fields) {
+        if (field.in(core::in_status))
+            fmt::format_to(to, R"(,"{}":{})", field.name, c.*field.member);
+    }
+    out += R"(,"last_seen":)";
+    out += last_seen_ms ? std::to_string(*last_seen_ms) : "null";
+    fmt::format_to(to, R"(,"clock":"{}","clock_offset_ms":)",
+                   core::exchange::to_string(clock.state()));
+    out += clock.offset_ms() ? std::to_string(*clock.offset_ms()) : "null";
+    out += '}';
+    return out;
 }
 
 void append_json_string(std::string& out, std::string_view text) {
@@ -71,12 +80,17 @@ void append_json_string(std::string& out, std::string_view text) {
 }
 
 std::string format_produced_status_payload(const ProducedStatus& status) {
-    auto out = fmt::format(R"({{"state":"{}","request_id":{},"sent":{},"send_errors":{},)"
-                           R"("skipped_deadlines":{},"writes_applied":{},"writes_pending":{},)"
-                           R"("saved":{},"save_failures":{},"save_error":)",
-                           status.paused ? "paused" : "producing", status.request_id, status.sent,
-                           status.send_errors, status.skipped_deadlines, status.writes_applied,
-                           status.writes_pending, status.saved, status.save_failures);
+    std::string out;
+    auto to = std::back_inserter(out);
+    fmt::format_to(to, R"({{"state":"{}","request_id":{})", status.paused ? "paused" : "producing",
+                   status.request_id);
+    for (const auto& field : core::exchange::produce_counter_fields) {
+        if (field.in(core::in_status)) {
+            fmt::format_to(to, R"(,"{}":{})", field.name, status.counters.*field.member);
+        }
+    }
+    fmt::format_to(to, R"(,"writes_pending":{},"saved":{},"save_error":)", status.writes_pending,
+                   status.saved);
     if (status.save_error.empty()) {
         out += "null";
     } else {

@@ -59,7 +59,7 @@ Answer answer_data(const PduHeader& header, const DataPdu& pdu, const NodeInfo& 
     if (view == nullptr) return refuse(header, pdu, CommandStatus::unknown_exchange);
     const bool reading = header.type == PduType::read_request;
     // Writes off, or a consumed exchange: refused before anything else is looked at.
-    if (!reading && (!node.writes || !view->writer)) {
+    if (!reading && (!node.writes || !view->writable)) {
         return refuse(header, pdu, CommandStatus::not_permitted);
     }
     if (const auto problem = cells_problem(pdu, *view)) return refuse(header, pdu, *problem);
@@ -68,7 +68,7 @@ Answer answer_data(const PduHeader& header, const DataPdu& pdu, const NodeInfo& 
         plan_write(*view->plan, view->image, pdu, header.type == PduType::masked_write_request);
     if (!writes) return refuse(header, pdu, writes.error());
     if (writes->empty()) return refuse(header, pdu, CommandStatus::success);
-    return StageWrites{*view->writer, std::move(writes).value()};
+    return StageWrites{view->plan, std::move(writes).value()};
 }
 
 }  // namespace eip2mqtt::core::command

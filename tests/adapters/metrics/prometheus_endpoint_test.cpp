@@ -22,10 +22,10 @@ MetricsSnapshot snapshot(std::uint64_t received) {
     turbine.name = "turbine1";
     turbine.direction = "consume";
     turbine.state = "ok";
-    turbine.received = received;
-    turbine.accepted = received - 2;
-    turbine.missed = 3;
-    turbine.duplicates = 1;
+    turbine.consumed.received = received;
+    turbine.consumed.accepted = received - 2;
+    turbine.consumed.missed = 3;
+    turbine.consumed.duplicates = 1;
     turbine.last_seen_age_seconds = 0.25;
     turbine.jitter_seconds = 0.002;
     turbine.mean_period_seconds = 0.1;
@@ -41,8 +41,8 @@ MetricsSnapshot snapshot(std::uint64_t received) {
     setpoints.name = "setpoints";
     setpoints.direction = "produce";
     setpoints.state = "producing";
-    setpoints.sent = 17;
-    setpoints.save_failures = 2;
+    setpoints.produced.sent = 17;
+    setpoints.produced.save_failures = 2;
     setpoints.image_saved = false;
     s.exchanges.push_back(setpoints);
 

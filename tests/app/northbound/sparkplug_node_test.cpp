@@ -243,7 +243,7 @@ TEST_F(SparkplugNodeTest, ADcmdIsOneWriteOfEveryMetricByNameOrAlias) {
     ASSERT_EQ(writes_.size(), 1u);
     EXPECT_EQ(writes_[0].reply.origin, &node_);
     const auto& write = std::get<ExchangeWrite>(writes_[0].outcome);
-    EXPECT_EQ(write.producer, 0u);
+    EXPECT_EQ(write.producer, &produced_);
     ASSERT_EQ(write.writes.size(), 2u);
     EXPECT_EQ(write.writes[0].tag_index, 0u);
     EXPECT_TRUE(core::plan::same_value(write.writes[0].value, Value{std::int64_t{1200}}));

@@ -43,15 +43,15 @@ TEST(WriteResult, BytesThatAreNotUtf8AreReplacedSoTheResultStaysJson) {
 TEST(ProducedStatus, CarriesEveryCounterAndTheState) {
     ProducedStatus status;
     status.request_id = 7;
-    status.sent = 100;
-    status.send_errors = 2;
-    status.skipped_deadlines = 3;
-    status.writes_applied = 4;
+    status.counters.sent = 100;
+    status.counters.send_errors = 2;
+    status.counters.skipped_deadlines = 3;
+    status.counters.writes_applied = 4;
     status.writes_pending = 5;
     EXPECT_EQ(format_produced_status_payload(status),
               R"({"state":"producing","request_id":7,"sent":100,"send_errors":2,)"
-              R"("skipped_deadlines":3,"writes_applied":4,"writes_pending":5,)"
-              R"("saved":true,"save_failures":0,"save_error":null})");
+              R"("skipped_deadlines":3,"writes_applied":4,"save_failures":0,)"
+              R"("writes_pending":5,"saved":true,"save_error":null})");
     status.paused = true;
     EXPECT_EQ(format_produced_status_payload(status).substr(0, 18), R"({"state":"paused",)");
 }
@@ -59,10 +59,10 @@ TEST(ProducedStatus, CarriesEveryCounterAndTheState) {
 TEST(ProducedStatus, CarriesAFailedSaveQuotedAsJson) {
     ProducedStatus status;
     status.saved = false;
-    status.save_failures = 3;
+    status.counters.save_failures = 3;
     status.save_error = "write /s/\"x\".image.tmp: No space left on device";
     const auto payload = format_produced_status_payload(status);
-    EXPECT_NE(payload.find(R"("saved":false,"save_failures":3,)"
+    EXPECT_NE(payload.find(R"("save_failures":3,"writes_pending":0,"saved":false,)"
                            R"("save_error":"write /s/\"x\".image.tmp: No space left on device"})"),
               std::string::npos)
         << payload;

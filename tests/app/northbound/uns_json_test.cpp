@@ -117,7 +117,7 @@ TEST_F(UnsJsonTest, ASetMessageBecomesOneWriteRequestAnsweredByThisNorthbound) {
     EXPECT_EQ(request.target, "acme/t1/out/set");
     const auto* write = std::get_if<ExchangeWrite>(&request.outcome);
     ASSERT_NE(write, nullptr);
-    EXPECT_EQ(write->producer, 0u);  // its index among the produced exchanges
+    EXPECT_EQ(write->producer, &produced_);  // its handle: the running exchange's plan
     ASSERT_EQ(write->writes.size(), 2u);
     EXPECT_EQ(write->writes[1].tag_index, 1u);
 }

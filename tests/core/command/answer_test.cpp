@@ -60,7 +60,7 @@ protected:
         views_[0] = {&produced_, ExchangeMode::produced, ExchangeState::active};
         views_[0].image = image_;
         views_[0].time_s = 1700000000;
-        views_[0].writer = 0;
+        views_[0].writable = true;
         views_[0].messages = 1234;
         views_[1] = {&consumed_, ExchangeMode::consumed, ExchangeState::idle};
         node_.producer_id = producer("10.0.0.5");
@@ -225,7 +225,7 @@ TEST_F(Answers, WritesAreRefusedWhenOffOrToAConsumedExchange) {
 TEST_F(Answers, AWriteToAWritableWordIsStagedWithItsValue) {
     node_.writes = true;
     const auto stage = staged(PduType::write_request, cells(out_, {{4, 2, bytes("d007")}}));
-    EXPECT_EQ(stage.writer, 0u);
+    EXPECT_EQ(stage.exchange, &produced_);
     ASSERT_EQ(stage.writes.size(), 1u);
     EXPECT_EQ(produced_.tags[stage.writes[0].tag_index].spec.name, "SPEED");
     EXPECT_EQ(std::get<std::uint64_t>(stage.writes[0].value), 2000u);

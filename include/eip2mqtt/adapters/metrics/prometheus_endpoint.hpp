@@ -6,10 +6,12 @@
 /// Metrics, all prefixed `eip2mqtt_` (counters end in `_total`):
 ///   exchange_state{exchange,direction,state}            gauge, 1 for the current state, 0 for
 ///                                                       the other states of its direction
-///   exchange_{received,accepted,missed,duplicates,out_of_order,restarts,signature_mismatches,
-///             length_mismatches,wrong_source}_total{exchange,direction}   consume counters
-///   exchange_{sent,send_errors,skipped_deadlines,save_failures}_total{exchange,direction}
-///                                                       produce counters
+///   exchange_{name}_total{exchange,direction}          consume counters: each of
+///                                                       core::exchange::consume_counter_fields
+///                                                       marked in_prometheus
+///   exchange_{name}_total{exchange,direction}          produce counters: each of
+///                                                       core::exchange::produce_counter_fields
+///                                                       marked in_prometheus
 ///   exchange_image_saved{exchange,direction}            gauge, 1 while the image file holds
 ///                                                       the image produced (or a newer one)
 ///   exchange_clock_state{exchange,direction,state}      gauge, 1 for none, synced or unsynced
@@ -38,6 +40,9 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/core/exchange/consume_counters.hpp"
+#include "eip2mqtt/core/exchange/produce_counters.hpp"
+
 namespace eip2mqtt::adapters::metrics {
 
 /// What one exchange reports.
@@ -46,15 +51,7 @@ struct ExchangeMetrics {
     std::string direction;  ///< "consume" or "produce"
     std::string state;      ///< core::exchange::ConsumeState names, or "producing"/"paused"
     // consume
-    std::uint64_t received = 0;
-    std::uint64_t accepted = 0;
-    std::uint64_t missed = 0;
-    std::uint64_t duplicates = 0;
-    std::uint64_t out_of_order = 0;
-    std::uint64_t restarts = 0;
-    std::uint64_t signature_mismatches = 0;
-    std::uint64_t length_mismatches = 0;
-    std::uint64_t wrong_source = 0;
+    core::exchange::ConsumeCounters consumed;
     /// Seconds since the last accepted datagram; negative or NaN: never (the gauge is omitted).
     double last_seen_age_seconds = -1;
     /// Inter-arrival jitter and mean period (core::exchange::ArrivalStats); negative or NaN:
@@ -65,10 +62,7 @@ struct ExchangeMetrics {
     /// Producer time minus receive time of the last stamped datagram; NaN: none yet (omitted).
     double clock_offset_seconds = std::numeric_limits<double>::quiet_NaN();
     // produce
-    std::uint64_t sent = 0;
-    std::uint64_t send_errors = 0;
-    std::uint64_t skipped_deadlines = 0;
-    std::uint64_t save_failures = 0;
+    core::exchange::ProduceCounters produced;
     bool image_saved = true;
 };
 

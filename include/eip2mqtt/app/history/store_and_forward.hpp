@@ -7,9 +7,10 @@
 /// connection is up: each has its own SinkReplay. An entry leaves the journal only when the
 /// broker acknowledged its replay to every sink that has a use for it.
 ///
-/// The cut between live and journaled is journaling(): the JSON tree asks the same question
-/// before it publishes `_values`, at the same moment on the same loop, so every sample goes
-/// either live or to the journal, never both and never neither.
+/// The cut between live and journaled is journaling(), whether the first sink's link is up: the
+/// JSON tree asks its connection the same question before it publishes `_values`, at the same
+/// moment on the same loop, so every sample goes either live or to the journal, never both and
+/// never neither.
 ///
 /// Threading: the loop only. The journal's appends and commits run on the JournalWriter's
 /// thread, handed over once a tick; reads and deletions on the loop, under its lock.
@@ -87,11 +88,6 @@ public:
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
     void tag_samples(const SampleBatch& batch) override;
-    void consumed_status(const ConsumedStatus&) override {}
-    void produced_status(const core::plan::ExchangePlan&, const ProducedStatus&) override {}
-    void exchange_state(const core::plan::ExchangePlan&, core::exchange::ConsumeState) override {}
-    void write_result(const WriteReply&, std::optional<std::string_view>) override {}
-    void gateway_metrics(const MetricsSources&, std::chrono::seconds) override {}
 
 private:
     struct Known {

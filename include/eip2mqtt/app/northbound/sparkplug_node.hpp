@@ -1,5 +1,5 @@
 #pragma once
-/// The gateway as a Sparkplug B 3.0 edge node (issue #15; docs/sparkplug.md): every exchange a
+/// The gateway as a Sparkplug B 3.0 edge node (docs/sparkplug.md): every exchange a
 /// device named after it, its tags the device's metrics. NBIRTH with the node's counters and
 /// `Node Control/Rebirth`, DBIRTH per device with every tag (name, alias, datatype, value,
 /// properties), DDATA by exception with the changed tags by alias, DDEATH when a consumed
@@ -96,9 +96,8 @@ public:
                          const ProducedStatus& status) override;
     void exchange_state(const core::plan::ExchangePlan& exchange,
                         core::exchange::ConsumeState state) override;
-    /// Sparkplug has no answer to a command: an accepted write shows as its echo, a refused one
-    /// in the log and the counters (the WriteDispatcher's).
-    void write_result(const WriteReply&, std::optional<std::string_view>) override {}
+    // write_result: Sparkplug has no answer to a command; an accepted write shows as its
+    // echo, a refused one in the log and the counters (the WriteDispatcher's).
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
     /// Store and forward's history as DDATA with `is_historical` on every metric, by alias: for
     /// a device born now, and good samples only (bad data is a DDEATH in this convention); the
@@ -115,8 +114,8 @@ public:
 private:
     struct Device {
         const core::plan::ExchangePlan* plan = nullptr;
-        std::optional<std::size_t> producer;  ///< index in ExchangeSet::produced
-        std::uint64_t alias_base = 0;         ///< a tag's alias is alias_base + its index
+        bool produced = false;         ///< writable by DCMD, its plan the ExchangeWrite's handle
+        std::uint64_t alias_base = 0;  ///< a tag's alias is alias_base + its index
         std::vector<std::optional<core::plan::Value>> values;
         std::vector<std::int64_t> timestamps;
         std::size_t known = 0;              ///< values that are set

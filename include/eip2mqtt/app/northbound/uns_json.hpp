@@ -45,10 +45,15 @@ public:
     /// settings changed republishes its retained state.
     void set_options(UnsJsonOptions options);
     const UnsJsonOptions& options() const { return options_; }
-    /// With store and forward: while `journaling` says so, `_values` is not published (the
+    /// With store and forward, given the probe of its connection (the one the journal's
+    /// LinkProbe asks): while the link is down, `_values` is not published (the
     /// journal has the samples and replays them on `_history`), and a reconnect's republish
     /// does not repeat `_values`, so that `_values` and `_history` carry each sample once.
-    void set_journal_gate(std::function<bool()> journaling) { journaling_ = std::move(journaling); }
+    /// The tree asks its connection, never the journal, so the journal is the only one of the
+    /// two that calls the other (it replays on the tree, its HistorySink).
+    void set_store_and_forward(std::function<bool()> connected) {
+        connected_ = std::move(connected);
+    }
 
     /// A message on one of our subscriptions: a write on a `…/set` topic is decoded and handed
     /// to the WriteHandler, refused or not; anything else is ignored.
@@ -60,8 +65,7 @@ public:
     void consumed_status(const ConsumedStatus& status) override;
     void produced_status(const core::plan::ExchangePlan& exchange,
                          const ProducedStatus& status) override;
-    /// Nothing of its own: `_status` says it.
-    void exchange_state(const core::plan::ExchangePlan&, core::exchange::ConsumeState) override {}
+    // exchange_state: nothing of its own, `_status` says it.
     void write_result(const WriteReply& reply, std::optional<std::string_view> error) override;
     void write_result_unsaved(const WriteReply& reply, std::string_view reason) override;
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
@@ -77,7 +81,8 @@ private:
     adapters::mqtt::Publisher& mqtt_;
     WriteHandler& writes_;
     WriteRouter router_;
-    std::function<bool()> journaling_;
+    /// With store and forward: whether the link is up (samples go live, not to the journal).
+    std::function<bool()> connected_;
     /// Every tag publication is filled in here; the publisher takes its content and leaves
     /// spare buffers (Client::publish), so the data path does not allocate.
     adapters::mqtt::Message message_;

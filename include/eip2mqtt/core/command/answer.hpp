@@ -15,11 +15,11 @@
 
 namespace eip2mqtt::core::command {
 
-/// The validated tag writes of a Write or Masked Write, for the exchange whose
-/// ExchangeView::writer is `writer`, applied whole in one datagram. The response goes once they
-/// are (write_response).
+/// The validated tag writes of a Write or Masked Write, for the exchange of `exchange` (the
+/// ExchangeView's plan), applied whole in one datagram. The response goes once they are
+/// (write_response).
 struct StageWrites {
-    std::size_t writer = 0;
+    const plan::ExchangePlan* exchange = nullptr;
     std::vector<write::TagWrite> writes;
 };
 

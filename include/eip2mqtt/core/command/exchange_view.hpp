@@ -30,9 +30,9 @@ struct ExchangeView {
     std::span<const std::byte> image;
     std::uint32_t time_s = 0;  ///< when the image was sampled
     std::uint32_t time_ns = 0;
-    /// Where a write to this exchange goes (the gateway's index of its producer); nullopt for
-    /// an exchange that cannot be written.
-    std::optional<std::size_t> writer;
+    /// Whether a write to this exchange is staged (on the exchange of `plan`): false for one
+    /// that cannot be written.
+    bool writable = false;
 };
 
 /// The responding node itself.

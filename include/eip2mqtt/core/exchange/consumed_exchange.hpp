@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "eip2mqtt/core/enum_names.hpp"
+#include "eip2mqtt/core/exchange/consume_counters.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
@@ -31,23 +32,6 @@ inline constexpr auto consume_state_names =
 constexpr std::string_view to_string(ConsumeState state) {
     return consume_state_names.name_of(state);
 }
-
-struct ConsumeCounters {
-    std::uint64_t received = 0;  ///< datagrams for this exchange, whatever became of them
-    std::uint64_t accepted = 0;
-    std::uint64_t missed = 0;  ///< request ids skipped between two accepted samples
-    std::uint64_t duplicates = 0;
-    std::uint64_t out_of_order = 0;
-    std::uint64_t signature_mismatches = 0;
-    std::uint64_t length_mismatches = 0;
-    std::uint64_t no_data = 0;
-    std::uint64_t timeouts = 0;  ///< times the exchange went stale
-    /// Producer restarts: a request id that looks old with a producer time that moved forward.
-    std::uint64_t restarts = 0;
-    /// Datagrams refused because they came from another address than `source` (not counted
-    /// in `received`: the exchange never saw them).
-    std::uint64_t wrong_source = 0;
-};
 
 /// What became of one datagram.
 struct ConsumeOutcome {

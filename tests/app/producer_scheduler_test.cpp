@@ -1,0 +1,147 @@
+// ProducerScheduler without a socket: the batches go to a recording fake. Every deadline is set
+// hours in the past or the future, so what is due at a wake-up does not depend on how fast the
+// machine is; the loop runs one handler at a time, bounded.
+
+#include "eip2mqtt/app/producer_scheduler.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/asio/io_context.hpp>
+#include <chrono>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace eip2mqtt::app {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// A Producible that records each call, in one log shared by every producer of a test.
+class RecordingProducible final : public Producible {
+public:
+    RecordingProducible(std::string name, std::uint16_t port, std::vector<std::string>& log)
+        : name_(std::move(name)), destination_{0x7F000001, port}, log_(log) {}
+
+    std::span<const std::byte> produce(core::WallTime) override {
+        log_.push_back("produce " + name_);
+        datagram_.assign(4, std::byte{static_cast<unsigned char>(destination_.port)});
+        return datagram_;
+    }
+    const adapters::udp::Endpoint& destination() const override { return destination_; }
+    void count_skipped(std::size_t skipped) override { skipped_ += skipped; }
+    void on_sent(bool sent, core::WallTime) override {
+        log_.push_back((sent ? "sent " : "refused ") + name_);
+    }
+
+    std::size_t skipped_ = 0;
+
+private:
+    std::string name_;
+    adapters::udp::Endpoint destination_;
+    std::vector<std::string>& log_;
+    std::vector<std::byte> datagram_;
+};
+
+class ProducerSchedulerTest : public ::testing::Test {
+protected:
+    /// Runs the loop until the next batch has left (a wait the scheduler cancelled by arming
+    /// again runs first, and sends nothing); false if none left within the bound.
+    bool wake() {
+        const auto before = batches_.size();
+        const auto give_up = std::chrono::steady_clock::now() + 10s;
+        while (batches_.size() == before && std::chrono::steady_clock::now() < give_up) {
+            loop_.restart();
+            loop_.run_one_for(1s);
+        }
+        return batches_.size() > before;
+    }
+    core::exchange::ProductionSchedule due_now(std::chrono::nanoseconds period = 1h) const {
+        return {std::chrono::steady_clock::now() - 10ms, period, 0, 1};
+    }
+    core::exchange::ProductionSchedule due_later() const {
+        return {std::chrono::steady_clock::now() + 1h, 1h, 0, 1};
+    }
+
+    boost::asio::io_context loop_;
+    std::vector<std::string> log_;
+    std::vector<std::vector<std::uint16_t>> batches_;  ///< destination ports, per batch
+    std::vector<bool> refuse_;                         ///< by position in the batch
+    ProducerScheduler scheduler_{
+        loop_.get_executor(),
+        [this](std::span<const adapters::udp::OutgoingDatagram> batch, std::vector<bool>& sent) {
+            log_.push_back("send_batch");
+            batches_.emplace_back();
+            sent.assign(batch.size(), true);
+            for (std::size_t i = 0; i < batch.size(); ++i) {
+                batches_.back().push_back(batch[i].to.port);
+                EXPECT_EQ(batch[i].bytes.size(), 4u);
+                if (i < refuse_.size() && refuse_[i]) sent[i] = false;
+            }
+        }};
+};
+
+TEST_F(ProducerSchedulerTest, TheExchangesDueLeaveInOneBatchAndBookkeepingComesAfterIt) {
+    RecordingProducible a("a", 1001, log_);
+    RecordingProducible b("b", 1002, log_);
+    RecordingProducible later("later", 1003, log_);
+    const auto id_a = scheduler_.add(a, due_now());
+    const auto id_b = scheduler_.add(b, due_now());
+    const auto id_later = scheduler_.add(later, due_later());
+    ASSERT_TRUE(wake());
+    ASSERT_EQ(batches_.size(), 1u);
+    EXPECT_EQ(batches_[0], (std::vector<std::uint16_t>{1001, 1002}));
+    EXPECT_EQ(log_, (std::vector<std::string>{"produce a", "produce b", "send_batch", "sent a",
+                                              "sent b"}));
+    scheduler_.remove(id_a);
+    scheduler_.remove(id_b);
+    scheduler_.remove(id_later);
+}
+
+TEST_F(ProducerSchedulerTest, ADatagramTheSenderRefusesIsReportedToItsOwnExchangeOnly) {
+    RecordingProducible a("a", 1001, log_);
+    RecordingProducible b("b", 1002, log_);
+    const auto id_a = scheduler_.add(a, due_now());
+    const auto id_b = scheduler_.add(b, due_now());
+    refuse_ = {true, false};
+    ASSERT_TRUE(wake());
+    EXPECT_EQ(log_, (std::vector<std::string>{"produce a", "produce b", "send_batch", "refused a",
+                                              "sent b"}));
+    scheduler_.remove(id_a);
+    scheduler_.remove(id_b);
+}
+
+TEST_F(ProducerSchedulerTest, ARemovedExchangeIsNeverReachedAgain) {
+    RecordingProducible a("a", 1001, log_);
+    RecordingProducible b("b", 1002, log_);
+    const auto id_a = scheduler_.add(a, due_now());
+    const auto id_b = scheduler_.add(b, due_now());
+    scheduler_.remove(id_b);
+    ASSERT_TRUE(wake());
+    EXPECT_EQ(log_, (std::vector<std::string>{"produce a", "send_batch", "sent a"}));
+    scheduler_.remove(id_a);
+}
+
+TEST_F(ProducerSchedulerTest, DeadlinesTheLoopFellBehindOnAreCountedNotSentInABurst) {
+    RecordingProducible a("a", 1001, log_);
+    // First deadline two and a half periods ago: one datagram now, two deadlines skipped.
+    const auto id = scheduler_.add(a, {std::chrono::steady_clock::now() - 150min, 1h, 0, 1});
+    ASSERT_TRUE(wake());
+    EXPECT_EQ(log_, (std::vector<std::string>{"produce a", "send_batch", "sent a"}));
+    EXPECT_EQ(a.skipped_, 2u);
+    scheduler_.remove(id);
+}
+
+TEST_F(ProducerSchedulerTest, AnExchangeAddedWithAnEarlierDeadlineRearmsTheTimer) {
+    RecordingProducible later("later", 1003, log_);
+    RecordingProducible a("a", 1001, log_);
+    const auto id_later = scheduler_.add(later, due_later());
+    const auto id_a = scheduler_.add(a, due_now());
+    ASSERT_TRUE(wake());
+    EXPECT_EQ(log_, (std::vector<std::string>{"produce a", "send_batch", "sent a"}));
+    scheduler_.remove(id_a);
+    scheduler_.remove(id_later);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app
