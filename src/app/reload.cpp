@@ -113,6 +113,9 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
     if (persister_) persister_->flush();
 
     const auto diff = diff_running(plans);
+    // Named for the log before the plans move into the exchanges.
+    const auto changes =
+        running ? core::plan::describe_diff(diff, running_plans(), plans) : std::string();
 
     auto old_consumers = std::move(consumers_);
     auto old_producers = std::move(producers_);
@@ -170,9 +173,9 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
     }
     for (auto* consumer : started_consumers) consumer->republish(now);
     spdlog::info(
-        "configuration applied: {} exchange(s) kept, {} started, {} stopped; {} retained "
+        "configuration applied: {} exchange(s) kept, {} started, {} stopped ({}); {} retained "
         "topic(s) cleared",
-        kept, started_consumers.size() + started_producers.size(), diff.stopped.size(),
+        kept, started_consumers.size() + started_producers.size(), diff.stopped.size(), changes,
         diff.cleared.size());
 }
 

@@ -85,5 +85,21 @@ TEST(PlanDiff, AFirstStartStartsEverything) {
     EXPECT_TRUE(diff.cleared.empty());
 }
 
+TEST(PlanDiff, TheDescriptionNamesTheExchangesKeptChangedStartedAndStopped) {
+    const std::vector<ExchangePlan> running{plan("a", {"X"}), plan("b", {"X"}), plan("c", {"X"})};
+    const std::vector<ExchangePlan> next{plan("a", {"X"}), plan("c", {"Y"}), plan("d", {"X"})};
+    const auto diff = diff_plans(pointers(running), next);
+    EXPECT_EQ(describe_diff(diff, pointers(running), next),
+              "kept a; changed c; started d; stopped b");
+}
+
+TEST(PlanDiff, TheDescriptionIsBoundedAndSaysNothingForNothing) {
+    std::vector<ExchangePlan> next;
+    for (const auto* name : {"a", "b", "c", "d"}) next.push_back(plan(name, {"X"}));
+    const auto diff = diff_plans({}, next);
+    EXPECT_EQ(describe_diff(diff, {}, next, 2), "started a, b and 2 more");
+    EXPECT_EQ(describe_diff(diff_plans({}, {}), {}, {}), "nothing");
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::plan
