@@ -182,6 +182,7 @@ void Gateway::apply_exchanges(std::vector<core::plan::ExchangePlan> plans, bool 
 void Gateway::republish_exchanges() {
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
+    uns_json_->republish_meta();  // nothing when the JSON tree is off (sparkplug.uns: false)
     for (auto& consumer : consumers_) consumer->republish(now);
     for (auto& producer : producers_) producer->republish(wall);
 }

@@ -119,10 +119,11 @@ TEST_F(SniffYamlTest, TheSkeletonPassesCheckAndTheGatewayPublishesItsStatus) {
             15s, recorder_->count());
         EXPECT_TRUE(later.has_value()) << status;
     }
-    // No tag topics: only the exchanges' _status under their topics.
+    // No tag topics: only the exchanges' _status and _meta under their topics.
     for (const auto& message : recorder_->messages()) {
         if (message.topic.rfind(topic("10-0-0-9/"), 0) == 0) {
-            EXPECT_TRUE(message.topic.ends_with("/_status")) << message.topic;
+            EXPECT_TRUE(message.topic.ends_with("/_status") || message.topic.ends_with("/_meta"))
+                << message.topic;
         }
     }
     sim.signal(SIGTERM);

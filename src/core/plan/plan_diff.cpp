@@ -9,10 +9,11 @@
 namespace eip2mqtt::core::plan {
 namespace {
 
-/// The retained topics of an exchange: its `_status` and its tags'.
+/// The retained topics of an exchange: its `_status`, its `_meta` and its tags'.
 template <class Topics>
 void collect_topics(const ExchangePlan& plan, Topics& topics) {
     topics.insert(plan.status_topic);
+    topics.insert(plan.meta_topic);
     for (const auto& tag : plan.tags) topics.insert(plan.tag_topic(tag));
 }
 

@@ -61,8 +61,8 @@ TEST(PlanDiff, ARemovedExchangeStopsAndLosesItsStatusAndTags) {
     const auto diff = diff_plans(pointers(running), next);
     EXPECT_EQ(diff.kept_from, (Kept{0}));
     EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{1}));
-    EXPECT_EQ(diff.cleared,
-              (std::vector<std::string>{"plant/b/Y", "plant/b/Z", "plant/b/_status"}));
+    EXPECT_EQ(diff.cleared, (std::vector<std::string>{"plant/b/Y", "plant/b/Z", "plant/b/_meta",
+                                                      "plant/b/_status"}));
 }
 
 TEST(PlanDiff, ATopicAnotherExchangeNowPublishesIsNotCleared) {
