@@ -144,5 +144,57 @@ TEST_F(MetaTest, DescribesEachExchangeAtStartAndAfterAReloadThatChangesItMatchin
         "rad/s");
 }
 
+/// The JSON examples of a page of docs/ marked `<!-- schema: NAME -->` on the line before their
+/// ```json fence, with the schema each names.
+std::vector<SchemaCheck> marked_examples(const std::string& page) {
+    std::ifstream in(std::string(EIP2MQTT_SOURCE_DIR) + "/docs/" + page);
+    std::vector<SchemaCheck> checks;
+    std::string line;
+    std::string schema;
+    const std::string marker = "<!-- schema: ";
+    while (std::getline(in, line)) {
+        if (line.starts_with(marker)) {
+            schema = line.substr(marker.size(), line.find(' ', marker.size()) - marker.size());
+        } else if (line == "```json" && !schema.empty()) {
+            std::string text;
+            while (std::getline(in, line) && line != "```") text += line + "\n";
+            checks.push_back({schema_file(schema), text});
+            schema.clear();
+        }
+    }
+    return checks;
+}
+
+TEST(Schemas, TheHistorianGuideAndTheApiExamplesMatchTheirSchemas) {
+    auto checks = marked_examples("historians.md");
+    ASSERT_EQ(checks.size(), 2u) << "a values.json and a meta.json example";
+    const auto api = marked_examples("mqtt-api.md");
+    ASSERT_EQ(api.size(), 1u) << "the _meta example";
+    checks.insert(checks.end(), api.begin(), api.end());
+    const auto problems = schema_problems(checks);
+    for (std::size_t i = 0; i < checks.size(); ++i) {
+        EXPECT_EQ(problems[i], "") << checks[i].schema_path << "\n" << checks[i].json_text;
+    }
+    // And the schema refuses what a historian could not use.
+    const std::string meta = checks[1].json_text;
+    const std::vector<std::pair<std::string, std::string>> broken{
+        {"\"type\":\"real\"", "\"type\":\"float\""},
+        {"\"address\":\"4.0\"", "\"address\":\"4\""},
+        {"\"writable\":false,", ""},
+        {"\"timeout_ms\":300", "\"timeout_ms\":null"},  // a consumed exchange has a timeout
+    };
+    std::vector<SchemaCheck> wrong;
+    for (const auto& [from, to] : broken) {
+        auto text = meta;
+        const auto at = text.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        wrong.push_back({schema_file("meta.json"), text.replace(at, from.size(), to)});
+    }
+    const auto refused = schema_problems(wrong);
+    for (std::size_t i = 0; i < wrong.size(); ++i) {
+        EXPECT_NE(refused[i], "") << wrong[i].json_text;
+    }
+}
+
 }  // namespace
 }  // namespace eip2mqtt::test
