@@ -48,6 +48,9 @@ ApplyReport Exchanges::apply(std::vector<core::plan::ExchangePlan> plans, core::
     // image is handed over or read.
     if (persister_) persister_->flush();
     const auto diff = core::plan::diff_plans(running_plans(), plans);
+    ApplyReport report;
+    // Named for the log before the plans move into the exchanges.
+    report.changes = core::plan::describe_diff(diff, running_plans(), plans);
 
     auto old_consumers = std::move(consumers_);
     auto old_producers = std::move(producers_);
@@ -60,7 +63,6 @@ ApplyReport Exchanges::apply(std::vector<core::plan::ExchangePlan> plans, core::
                    : old_producers[index - old_consumer_count]->plan().spec.name;
     };
 
-    ApplyReport report;
     for (const auto index : diff.stopped) report.stopped.push_back(old_plans_name(index));
     Built built;
     for (std::size_t i = 0; i < plans.size(); ++i) {

@@ -203,7 +203,7 @@ void Gateway::schedule_watchdog() {
 void Gateway::on_connected() {
     spdlog::info("republishing retained state of {} exchange(s)",
                  exchanges_.consumers().size() + exchanges_.producers().size());
-    exchanges_.republish(std::chrono::steady_clock::now(), std::chrono::system_clock::now());
+    republish_exchanges();
     // History goes behind the current state.
     if (history_) history_->on_connected(std::chrono::steady_clock::now());
 }

@@ -51,9 +51,15 @@ void Gateway::apply_plans(std::vector<core::plan::ExchangePlan> plans) {
                                          std::chrono::system_clock::now());
     writes_.count_cancelled(report.cancelled_writes);
     spdlog::info(
-        "configuration applied: {} exchange(s) kept, {} started, {} stopped; {} retained "
+        "configuration applied: {} exchange(s) kept, {} started, {} stopped ({}); {} retained "
         "topic(s) cleared",
-        report.kept.size(), report.started.size(), report.stopped.size(), report.cleared_topics);
+        report.kept.size(), report.started.size(), report.stopped.size(), report.changes,
+        report.cleared_topics);
+}
+
+void Gateway::republish_exchanges() {
+    uns_json_->republish_meta();  // nothing when the JSON tree is off (sparkplug.uns: false)
+    exchanges_.republish(std::chrono::steady_clock::now(), std::chrono::system_clock::now());
 }
 
 bool Gateway::apply_settings(const core::config::Config& next) {
@@ -122,9 +128,7 @@ void Gateway::reload() {
         loop_.stop();
         return;
     }
-    if (republish) {
-        exchanges_.republish(std::chrono::steady_clock::now(), std::chrono::system_clock::now());
-    }
+    if (republish) republish_exchanges();
     if (changes.empty()) {
         spdlog::info("reload: no key changed");
     } else {

@@ -175,9 +175,13 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
         return refuse(WriteError::unknown_tag,
                       "unknown tag " + target->unknown_tag + " in exchange " + plan.spec.name);
     }
-    // A retained command would fire again on every reconnect: never act on one.
+    // A retained command would fire again on every reconnect: never act on one. It stays on
+    // the broker, refused again at each reconnect, until cleared: say how.
     if (message.retained) {
-        return refuse(WriteError::retained, "retained writes are refused; publish without retain");
+        return refuse(WriteError::retained,
+                      "retained writes are refused; publish without retain, and clear the "
+                      "retained one with `mosquitto_pub -r -n -t '" +
+                          std::string(topic) + "'`");
     }
     if (plan.spec.direction != core::plan::Direction::produce) {
         return refuse(WriteError::read_only,

@@ -139,6 +139,13 @@ TEST_F(WriteRouterTest, UnknownReadOnlyConsumedAndRetainedWritesAreRefused) {
     EXPECT_EQ(refused(route("acme/t1/sp/SPEED/set", "1", {}, true)).error, WriteError::retained);
 }
 
+TEST_F(WriteRouterTest, ARetainedWriteIsToldHowToClearIt) {
+    // Left on the broker, it is refused again at every reconnect until someone clears it.
+    const auto message = refused(route("acme/t1/sp/SPEED/set", "1", {}, true)).message;
+    EXPECT_NE(message.find("mosquitto_pub -r -n -t 'acme/t1/sp/SPEED/set'"), std::string::npos)
+        << message;
+}
+
 TEST_F(WriteRouterTest, AnUnknownTagWhoseResultTopicNoBrokerAcceptsIsRefusedUnanswered) {
     // `acme/t1/sp/{name}/set` fits in 65,535 bytes; with `/result` it would not. The fuzzer also
     // found a name that is not UTF-8 (which no conforming broker delivers).

@@ -174,6 +174,39 @@ exchanges:
                                                             << result.output;
 }
 
+TEST(CheckCommand, WarnsAboutPlaceholdersAssumedLengthsCaseTwinsAndDotsFor311) {
+    TempDir dir;
+    const auto path = dir.write("imported.yaml", R"(gateway:
+  id: gw
+mqtt:
+  url: tcp://127.0.0.1:1
+  version: 3
+  base_topic: acme/site.1
+exchanges:
+  - name: plc
+    direction: consume
+    producer_id: 0.0.0.0         # PLACEHOLDER: the producer's id, e.g. its IP
+    exchange_id: 2
+    period_ms: 100               # PLACEHOLDER: the producer's period
+    tags:
+      - { name: SPEED, address: "0.0", type: int }
+      - { name: speed, address: "2.0", type: int }
+)");
+    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(result.status, 0) << result.output;
+    const auto& out = result.output;
+    EXPECT_NE(out.find(path + ":10:5: warning: producer_id is still a placeholder"),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find(path + ":12:5: warning: period_ms is still a placeholder"),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find("warning: length is not set: assumed 4 bytes"), std::string::npos) << out;
+    EXPECT_NE(out.find("warning: tags SPEED and speed differ only in case"), std::string::npos)
+        << out;
+    EXPECT_NE(out.find("warning: topic acme/site.1/plc has dots"), std::string::npos) << out;
+}
+
 TEST(RunCommand, RefusesToStartOnAnInvalidConfiguration) {
     TempDir dir;
     const auto path = dir.write("bad.yaml", bad_config);

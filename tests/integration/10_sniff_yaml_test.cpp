@@ -89,7 +89,7 @@ TEST_F(SniffYamlTest, TheSkeletonPassesCheckAndTheGatewayPublishesItsStatus) {
           "    exchange_id: 3\n    length: 8  # data bytes\n    signature: \"1.0\"\n",
           "  - name: \"10.0.0.9-4\"\n    direction: consume\n    producer_id: 10.0.0.9\n"
           "    exchange_id: 4\n    length: 12  # data bytes\n    # signature: none",
-          "    topic: \"10.0.0.9/3\"", "    # destination: unicast to 127.0.0.1\n",
+          "    topic: \"10-0-0-9/3\"", "    # destination: unicast to 127.0.0.1\n",
           "    # clock: synced (the producer's time is ",
           " ms: time between receive times per request-id step, over "}) {
         EXPECT_TRUE(contains(skeleton, part)) << part << "\nin:\n" << skeleton;
@@ -100,14 +100,14 @@ TEST_F(SniffYamlTest, TheSkeletonPassesCheckAndTheGatewayPublishesItsStatus) {
     const auto checked = dir_.write("skeleton.yaml", offline_config(port, items_of(skeleton)));
     const auto check = run_command({EIP2MQTT_BINARY, "check", "-c", checked}, 30s);
     EXPECT_EQ(check.status, 0) << check.output;
-    EXPECT_TRUE(contains(check.output, "no tags yet: only test/10.0.0.9/3/_status is published"))
+    EXPECT_TRUE(contains(check.output, "no tags yet: only test/10-0-0-9/3/_status is published"))
         << check.output;
 
     // A gateway on it, fed by the same simulator: each exchange's _status says ok, and its
     // accepted count grows.
     udp_port_ = port;
     start(items_of(skeleton));
-    for (const auto* status : {"10.0.0.9/3/_status", "10.0.0.9/4/_status"}) {
+    for (const auto* status : {"10-0-0-9/3/_status", "10-0-0-9/4/_status"}) {
         const auto ok = expect_field(topic(status), "state", "\"ok\"");
         const auto first = nlohmann::json::parse(ok.payload)["accepted"].get<std::uint64_t>();
         const auto later = recorder_->wait_for_message(
@@ -119,10 +119,11 @@ TEST_F(SniffYamlTest, TheSkeletonPassesCheckAndTheGatewayPublishesItsStatus) {
             15s, recorder_->count());
         EXPECT_TRUE(later.has_value()) << status;
     }
-    // No tag topics: only the exchanges' _status under their topics.
+    // No tag topics: only the exchanges' _status and _meta under their topics.
     for (const auto& message : recorder_->messages()) {
-        if (message.topic.rfind(topic("10.0.0.9/"), 0) == 0) {
-            EXPECT_TRUE(message.topic.ends_with("/_status")) << message.topic;
+        if (message.topic.rfind(topic("10-0-0-9/"), 0) == 0) {
+            EXPECT_TRUE(message.topic.ends_with("/_status") || message.topic.ends_with("/_meta"))
+                << message.topic;
         }
     }
     sim.signal(SIGTERM);

@@ -103,6 +103,7 @@ protected:
         if (topic == metrics_topic()) return "metrics.json";
         if (ends_with("/_status")) return "status.json";
         if (ends_with("/_values")) return "values.json";
+        if (ends_with("/_meta")) return "meta.json";
         if (ends_with("/set/result") || topic.starts_with("replies/")) return "write-result.json";
         if (ends_with("/set") || topic == availability_topic()) return "";
         return raw ? "tag-value-raw.json" : "tag-value.json";

@@ -45,6 +45,8 @@ struct ApplyReport {
     std::size_t cleared_topics = 0;  ///< retained topics no running exchange uses any more
     /// Writes queued on stopped producers, answered `reloaded`: no datagram will carry them.
     std::size_t cancelled_writes = 0;
+    /// The names of what was kept, changed, started and stopped, for the log (describe_diff).
+    std::string changes;
 };
 
 class Exchanges {

@@ -69,6 +69,8 @@ private:
     static std::vector<core::plan::ExchangePlan> take_plans(core::config::Config& config);
     /// The new exchanges of a reload applied, the outcome counted and logged.
     void apply_plans(std::vector<core::plan::ExchangePlan> plans);
+    /// Every running exchange's retained state again, and the JSON tree's `_meta` topics.
+    void republish_exchanges();
     /// SIGHUP: a valid new file is applied whole, or refused whole (errors, or a change that
     /// needs a restart: core::config::plan_reload), the log naming each changed key.
     void reload();

@@ -2,9 +2,32 @@
 
 #include "adapters/yaml/detail/loader.hpp"
 
+#include <algorithm>
+#include <optional>
+#include <string_view>
 #include <tuple>
+#include <utility>
 
 namespace eip2mqtt::adapters::yaml::detail {
+namespace {
+
+/// The 1-based line and column of the first tab in a line's indentation, up to line `last`
+/// (0-based, where the parser stopped) and the line after it; blank lines do not count.
+std::optional<std::pair<int, int>> first_indenting_tab(std::string_view text, int last) {
+    int line = 0;
+    for (std::size_t start = 0; start <= text.size() && line <= last + 1; ++line) {
+        const auto end = std::min(text.find('\n', start), text.size());
+        const auto indent = text.find_first_not_of(" \t", start);
+        const auto tab = text.find('\t', start);
+        if (indent < end && tab < indent) {
+            return std::pair{line + 1, static_cast<int>(tab - start) + 1};
+        }
+        start = end + 1;
+    }
+    return std::nullopt;
+}
+
+}  // namespace
 
 core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
     Config config;
@@ -22,7 +45,16 @@ core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
             read_root(root, config);
         }
     } catch (const YAML::Exception& e) {
-        error(mark(e.mark), "YAML syntax error: " + e.msg);
+        // yaml-cpp's words for a tab ("illegal map value", "end of map not found") never say
+        // tab, and a tab looks like spaces in most editors: name it.
+        if (const auto tab = first_indenting_tab(text, e.mark.line + 1)) {
+            error({file_, tab->first, tab->second},
+                  "YAML syntax error: this line is indented with a tab; YAML indents with spaces "
+                  "only (the parser said: " +
+                      e.msg + ")");
+        } else {
+            error(mark(e.mark), "YAML syntax error: " + e.msg);
+        }
         return core::fail(std::move(diagnostics_));
     }
     if (config.mqtt.client_id.empty()) config.mqtt.client_id = "eip2mqtt-" + config.gateway.id;

@@ -110,8 +110,12 @@ bool read_type(KeyValue& v, TagDraft& d) {
     if (type) {
         d.spec.type = *type;
     } else if (s) {
-        v.error("unknown type " + in_quotes(*s) +
-                " (expected bit, byte, int, word, dint, udint, real, lint or lreal)");
+        std::string message = "unknown type " + in_quotes(*s);
+        if (const auto hint = core::plan::tag_type_hint(*s)) {
+            message += " (did you mean " + in_quotes(*hint) + "?)";
+        }
+        v.error(message + "; expected bit, byte, int, word, dint, udint, real, lint or lreal, " +
+                "or the aliases " + std::string(core::plan::tag_type_aliases));
     }
     return type.has_value();
 }

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <fstream>
 #include <iomanip>
 #include <optional>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "eip2mqtt/app/commands.hpp"
 #include "eip2mqtt/app/northbound/sparkplug_birth_size.hpp"
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/config/placeholders.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/overlap.hpp"
@@ -148,6 +151,21 @@ void print_birth_size(std::string_view birth, std::size_t bytes, std::size_t max
            "packets\n";
 }
 
+/// One warning per placeholder `import-points` left (core/config/placeholders.hpp). The file
+/// was just read whole by the loader; reading it again keeps the loader unaware of comments.
+void print_placeholders(const std::string& config_path, std::ostream& out) {
+    std::ifstream file(config_path, std::ios::binary);
+    std::ostringstream text;
+    text << file.rdbuf();
+    for (const auto& placeholder : core::config::find_placeholders(text.str(), config_path)) {
+        const auto& at = placeholder.mark;
+        out << at.file.str() << ":" << at.line << ":" << at.column
+            << ": warning: " << (placeholder.key.empty() ? "a value" : placeholder.key)
+            << " is still a placeholder: set it, then remove the "
+            << core::config::placeholder_marker << " comment\n";
+    }
+}
+
 }  // namespace
 
 int run_check(const std::string& config_path, std::ostream& out, std::ostream& err) {
@@ -161,6 +179,8 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     out << config_path << ": valid, " << plans.size()
         << (plans.size() == 1 ? " exchange" : " exchanges") << ", base topic "
         << config->mqtt.base_topic << "\n";
+    print_placeholders(config_path, out);
+    const core::plan::WarningContext context{config->mqtt.version == 3};
     const auto& sparkplug = config->sparkplug;
     std::optional<northbound::SparkplugBirthSizes> births;
     if (sparkplug.enabled()) {
@@ -170,7 +190,7 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     for (std::size_t i = 0; i < plans.size(); ++i) {
         out << "\n";
         print_exchange(plans[i], out);
-        for (const auto& warning : core::plan::plan_warnings(plans[i])) {
+        for (const auto& warning : core::plan::plan_warnings(plans[i], context)) {
             out << "  warning: " << warning << "\n";
         }
         if (births) print_birth_size("DBIRTH", births->devices[i], sparkplug.max_packet_bytes, out);

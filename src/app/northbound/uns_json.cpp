@@ -1,6 +1,7 @@
 #include "eip2mqtt/app/northbound/uns_json.hpp"
 
 #include "eip2mqtt/app/gateway_metrics.hpp"
+#include "eip2mqtt/app/northbound/uns_json_meta.hpp"
 #include "eip2mqtt/app/northbound/uns_json_payload.hpp"
 #include "eip2mqtt/core/printable.hpp"
 
@@ -27,10 +28,30 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
     for (const auto& topic : retired_topics) {
         mqtt_.publish({topic, "", options_.publish.qos, true, true});
     }
+    // A kept or unchanged exchange's `_meta` stays as the broker has it.
+    std::unordered_map<std::string, std::string> meta;
+    for (const auto* plans : {&running.consumed, &running.produced}) {
+        for (const auto* plan : *plans) {
+            auto topic = plan->meta_topic;
+            auto payload = format_meta_payload(*plan);
+            const auto old = meta_.find(topic);
+            if (old == meta_.end() || old->second != payload) {
+                mqtt_.publish({topic, payload, options_.publish.qos, true, true});
+            }
+            meta.emplace(std::move(topic), std::move(payload));
+        }
+    }
+    meta_ = std::move(meta);
     router_.clear();
     for (const auto* plan : running.consumed) router_.add(*plan);
     for (const auto* plan : running.produced) router_.add(*plan);
     mqtt_.set_subscriptions(router_.subscriptions());
+}
+
+void UnsJson::republish_meta() {
+    for (const auto& [topic, payload] : meta_) {
+        mqtt_.publish({topic, payload, options_.publish.qos, true, true});
+    }
 }
 
 void UnsJson::tag_samples(const SampleBatch& batch) {

@@ -4,6 +4,7 @@
 #include <set>
 #include <string_view>
 
+#include "eip2mqtt/core/config/skeleton.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::core::config {
@@ -88,7 +89,7 @@ void exchange_item(const DiscoveredNode& node, const ExchangeConfig& c, std::str
     length_line(c, out);
     signature_line(c, out);
     period_line(c, out);
-    out += "    topic: \"" + producer + "/" + id + "\"  # under base_topic\n";
+    out += "    topic: \"" + skeleton_topic(c.key) + "\"  # under base_topic\n";
     destination_line(c, out);
     out += "    # told by " + node.address + ": state " +
            (c.state == command::ExchangeState::active ? "active" : "idle") + "\n";

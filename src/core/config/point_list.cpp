@@ -124,6 +124,19 @@ Continuation follow_quote(std::string_view text, std::size_t pos) {
     return out;
 }
 
+/// Whether an AccessType makes the tag writable; nullopt when it is none we know. Point lists
+/// spell the same two kinds many ways; a tag the gateway may write is one it produces.
+std::optional<bool> is_write_access(std::string_view access) {
+    for (const std::string_view read : {"read", "r", "ro", "read only", "readonly"}) {
+        if (equals_lower(access, read)) return false;
+    }
+    for (const std::string_view write :
+         {"write", "w", "readwrite", "read/write", "read-write", "read write", "rw", "r/w"}) {
+        if (equals_lower(access, write)) return true;
+    }
+    return std::nullopt;
+}
+
 constexpr std::array<std::string_view, 5> column_names{"tagname", "node", "address", "datatype",
                                                        "accesstype"};
 enum Column : std::size_t { tag_name, node, address, data_type, access_type };
@@ -176,19 +189,24 @@ std::optional<PointRow> read_row(const std::vector<Field>& fields, const ColumnI
             plan::parse_tag_type(field(data_type).text, plan::TypeNaming::point_list)) {
         row.tag.type = *type;
     } else {
+        std::string hint;
+        if (const auto close = plan::tag_type_hint(field(data_type).text)) {
+            hint = " (did you mean " + in_quotes(*close) + "?)";
+        }
         errors.push_back(
-            {at(data_type), "unknown DataType " + in_quotes(field(data_type).text) +
+            {at(data_type), "unknown DataType " + in_quotes(field(data_type).text) + hint +
                                 " (expected Bit, Word, Real, Long or a "
                                 "type of docs/protocol.md section 3, \"Data types\")"});
         ok = false;
     }
     const auto access = field(access_type).text;
-    if (equals_lower(access, "write")) {
-        row.write = true;
-        row.tag.writable = true;
-    } else if (!equals_lower(access, "read")) {
-        errors.push_back({at(access_type),
-                          "unknown AccessType " + in_quotes(access) + " (expected Read or Write)"});
+    if (const auto write = is_write_access(access)) {
+        row.write = *write;
+        row.tag.writable = *write;
+    } else {
+        errors.push_back({at(access_type), "unknown AccessType " + in_quotes(access) +
+                                               " (expected Read or R, or Write, W, ReadWrite, "
+                                               "Read/Write or RW)"});
         ok = false;
     }
     if (!ok) return std::nullopt;

@@ -1,5 +1,6 @@
 #include "eip2mqtt/core/config/skeleton.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -120,6 +121,12 @@ void clock_line(const WireSummary& s, std::string& out) {
 
 }  // namespace
 
+std::string skeleton_topic(const wire::ExchangeKey& key) {
+    auto producer = wire::to_string(key.producer_id);
+    std::replace(producer.begin(), producer.end(), '.', '-');
+    return producer + "/" + std::to_string(key.exchange_id);
+}
+
 std::string yaml_skeleton(std::span<const WireSummary> exchanges) {
     if (exchanges.empty()) {
         return "# sniff --yaml: no exchange seen on the wire that the configuration lacks\n";
@@ -138,7 +145,7 @@ std::string yaml_skeleton(std::span<const WireSummary> exchanges) {
         length_line(s, out);
         signature_line(s, out);
         period_line(s, out);
-        out += "    topic: \"" + producer + "/" + id + "\"  # under base_topic\n";
+        out += "    topic: \"" + skeleton_topic(s.key) + "\"  # under base_topic\n";
         destination_line(s, out);
         clock_line(s, out);
         out += "    # seen: " + plural(s.datagrams, "datagram", "datagrams") + "\n";

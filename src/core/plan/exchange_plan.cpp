@@ -39,6 +39,7 @@ ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic
     plan.topic = join(base_topic, spec.topic);
     plan.status_topic = plan.topic + "/_status";
     plan.values_topic = plan.topic + "/_values";
+    plan.meta_topic = plan.topic + "/_meta";
     plan.set_topic = plan.topic + "/set";
     plan.tags.reserve(spec.tags.size());
     for (const auto& tag : spec.tags) plan.tags.push_back({tag});

@@ -1,6 +1,7 @@
 #include "eip2mqtt/core/plan/plan_diff.hpp"
 
 #include <set>
+#include <string>
 #include <string_view>
 #include <unordered_map>
 #include <unordered_set>
@@ -8,11 +9,27 @@
 namespace eip2mqtt::core::plan {
 namespace {
 
-/// The retained topics of an exchange: its `_status` and its tags'.
+/// The retained topics of an exchange: its `_status`, its `_meta` and its tags'.
 template <class Topics>
 void collect_topics(const ExchangePlan& plan, Topics& topics) {
     topics.insert(plan.status_topic);
+    topics.insert(plan.meta_topic);
     for (const auto& tag : plan.tags) topics.insert(plan.tag_topic(tag));
+}
+
+/// `label a, b, c` bounded to `max_names`, appended with "; " before it when `out` has text.
+void append_part(std::string& out, std::string_view label,
+                 const std::vector<std::string_view>& names, std::size_t max_names) {
+    if (names.empty()) return;
+    if (!out.empty()) out += "; ";
+    out += label;
+    for (std::size_t i = 0; i < names.size() && i < max_names; ++i) {
+        out += i == 0 ? " " : ", ";
+        out += names[i];
+    }
+    if (names.size() > max_names) {
+        out += " and " + std::to_string(names.size() - max_names) + " more";
+    }
 }
 
 }  // namespace
@@ -48,6 +65,36 @@ PlanDiff diff_plans(std::span<const ExchangePlan* const> running,
         if (!next_topics.contains(topic)) diff.cleared.push_back(topic);
     }
     return diff;
+}
+
+std::string describe_diff(const PlanDiff& diff, std::span<const ExchangePlan* const> running,
+                          std::span<const ExchangePlan> next, std::size_t max_names) {
+    std::unordered_set<std::string_view> next_names;
+    for (const auto& plan : next) next_names.insert(plan.spec.name);
+    std::unordered_set<std::string_view> stopped_names;
+    std::vector<std::string_view> kept;
+    std::vector<std::string_view> changed;
+    std::vector<std::string_view> started;
+    std::vector<std::string_view> stopped;
+    for (const auto index : diff.stopped) {
+        const std::string_view name = running[index]->spec.name;
+        stopped_names.insert(name);
+        if (!next_names.contains(name)) stopped.push_back(name);
+    }
+    for (std::size_t i = 0; i < next.size() && i < diff.kept_from.size(); ++i) {
+        const std::string_view name = next[i].spec.name;
+        if (diff.kept_from[i]) {
+            kept.push_back(name);
+        } else {
+            (stopped_names.contains(name) ? changed : started).push_back(name);
+        }
+    }
+    std::string out;
+    append_part(out, "kept", kept, max_names);
+    append_part(out, "changed", changed, max_names);
+    append_part(out, "started", started, max_names);
+    append_part(out, "stopped", stopped, max_names);
+    return out.empty() ? "nothing" : out;
 }
 
 }  // namespace eip2mqtt::core::plan

@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace eip2mqtt::core::plan {
 namespace {
@@ -34,7 +35,57 @@ constexpr std::array<std::pair<std::string_view, TagType>, 14> yaml_names{{
     {"lreal", TagType::lreal},
 }};
 
+/// Names other languages and vendors give the §3 types, all lower case.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 16> foreign_names{{
+    {"float", "real"},
+    {"float32", "real"},
+    {"single", "real"},
+    {"double", "lreal"},
+    {"float64", "lreal"},
+    {"boolean", "bit"},
+    {"int16", "int"},
+    {"short", "int"},
+    {"uint16", "word"},
+    {"ushort", "word"},
+    {"int32", "dint"},
+    {"integer", "dint"},
+    {"uint32", "udint"},
+    {"int64", "lint"},
+    {"longlong", "lint"},
+    {"uint8", "byte"},
+}};
+
+/// Levenshtein distance, for typos of the short type names.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            const std::size_t replace = diagonal + (a[i - 1] == b[j - 1] ? 0U : 1U);
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, replace});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
 }  // namespace
+
+std::optional<std::string_view> tag_type_hint(std::string_view unknown) {
+    const std::string key = lower(unknown);
+    for (const auto& [foreign, ours] : foreign_names) {
+        if (foreign == key) return ours;
+    }
+    // One edit from a name of at least 4 letters: `reel`, `dintt`; a 3-letter name is one edit
+    // from too many others to guess.
+    for (const auto& [text, type] : yaml_names) {
+        if (text.size() >= 4 && edit_distance(key, text) == 1) return text;
+    }
+    return std::nullopt;
+}
 
 std::optional<TagType> parse_tag_type(std::string_view name, TypeNaming naming) {
     const std::string key = lower(name);

@@ -240,5 +240,17 @@ TEST(LoadConfig, AConfigurationThatIsNotARegularFileOrTooBigIsADiagnosticWithout
     }
 }
 
+TEST(LoadConfig, ATabInTheIndentationIsNamed) {
+    const auto d =
+        bad("gateway:\n"
+            "  id: gw\n"
+            "mqtt:\n"
+            "\turl: tcp://127.0.0.1:1\n");
+    ASSERT_EQ(d.size(), 1u) << dump(d);
+    EXPECT_NE(d[0].message.find("tab"), std::string::npos) << d[0].message;
+    EXPECT_EQ(d[0].mark.line, 4) << d[0].message;
+    EXPECT_EQ(d[0].mark.column, 1) << d[0].message;
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::yaml

@@ -210,5 +210,23 @@ TEST(LoadConfig, MissingIdentityKeysDropTheExchangeWithoutEchoes) {
     EXPECT_NE(d[0].message.find("lacks 'exchange_id'"), std::string::npos);
 }
 
+TEST(LoadConfig, AnUnknownTypeSuggestsOursAndListsTheAliases) {
+    const auto d =
+        bad("exchanges:\n"
+            "  - name: ex\n"
+            "    producer_id: 10.0.0.1\n"
+            "    exchange_id: 1\n"
+            "    length: 8\n"
+            "    tags:\n"
+            "      - { name: T, address: 0, type: float }\n");
+    ASSERT_EQ(d.size(), 1u) << dump(d);
+    EXPECT_EQ(d[0].mark.line, 7);
+    EXPECT_NE(d[0].message.find("unknown type 'float' (did you mean 'real'?)"), std::string::npos)
+        << d[0].message;
+    for (const char* alias : {"bool", "uint", "dword", "long"}) {
+        EXPECT_NE(d[0].message.find(alias), std::string::npos) << alias << ": " << d[0].message;
+    }
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::yaml

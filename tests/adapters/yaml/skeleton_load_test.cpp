@@ -56,7 +56,7 @@ TEST(SkeletonLoad, TheSkeletonOfSniffedExchangesIsAValidConfiguration) {
     EXPECT_EQ(plans[0].length, 40);
     EXPECT_EQ(spec.signature, (core::wire::Signature{1, 2}));
     EXPECT_EQ(spec.period, 20ms);
-    EXPECT_EQ(plans[0].topic, "acme/site/10.0.0.9/3");
+    EXPECT_EQ(plans[0].topic, "acme/site/10-0-0-9/3");
     EXPECT_TRUE(plans[0].tags.empty());
     EXPECT_EQ(plans[1].spec.name, "10.0.0.9-4");
     EXPECT_EQ(plans[1].length, 1);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,9 @@ class UnsJsonTest : public ::testing::Test {
 protected:
     explicit UnsJsonTest(PublishSettings settings = {}) : uns_(settings, {}, "acme") {
         uns_.northbound().exchanges_changed({{&consumed_}, {&produced_}}, {});
+        // Each exchange's `_meta` (UnsJsonMetaTest); the tests below start after them.
+        EXPECT_EQ(published().size(), 2u);
+        uns_.publisher.published.clear();
     }
     const std::vector<adapters::mqtt::Message>& published() const {
         return uns_.publisher.published;
@@ -137,6 +141,39 @@ TEST_F(UnsJsonTest, ARefusedSetMessageIsHandedOnAsARejectionWithTheReasonForTheL
     ASSERT_NE(read_only, nullptr);
     EXPECT_EQ(read_only->error, core::write::WriteError::read_only);
     EXPECT_TRUE(published().empty());  // answering is the WriteHandler's call
+}
+
+TEST(UnsJsonMetaTest, PublishedAtStartThenOnlyWhenAReloadChangesItAndAgainOnReconnect) {
+    test::UnsJsonRecorder uns;
+    auto in = plan("in", core::plan::Direction::consume);
+    const auto out = plan("out", core::plan::Direction::produce);
+    uns.northbound().exchanges_changed({{&in}, {&out}}, {});
+    const auto& published = uns.publisher.published;
+    ASSERT_EQ(published.size(), 2u);
+    EXPECT_EQ(published[0].topic, "acme/t1/in/_meta");
+    EXPECT_EQ(published[1].topic, "acme/t1/out/_meta");
+    for (const auto& m : published) {
+        EXPECT_TRUE(m.retain) << m.topic;
+        EXPECT_NE(m.payload.find(R"("tags":{"A":)"), std::string::npos) << m.payload;
+    }
+
+    uns.northbound().exchanges_changed({{&in}, {&out}}, {});  // a reload that kept both
+    EXPECT_EQ(published.size(), 2u);
+
+    in.spec.period = std::chrono::milliseconds(250);  // a reload that changed one
+    uns.northbound().exchanges_changed({{&in}, {&out}}, {});
+    ASSERT_EQ(published.size(), 3u);
+    EXPECT_EQ(published[2].topic, "acme/t1/in/_meta");
+    EXPECT_NE(published[2].payload.find(R"("period_ms":250)"), std::string::npos);
+
+    // Removed (diff_plans clears its topic), then back: published again.
+    uns.northbound().exchanges_changed({{}, {&out}}, {});
+    uns.northbound().exchanges_changed({{&in}, {&out}}, {});
+    ASSERT_EQ(published.size(), 4u);
+    EXPECT_EQ(published[3].topic, "acme/t1/in/_meta");
+
+    uns.northbound().republish_meta();
+    EXPECT_EQ(published.size(), 6u);
 }
 
 }  // namespace

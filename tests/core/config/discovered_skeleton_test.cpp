@@ -41,6 +41,8 @@ TEST(DiscoveredSkeleton, ProducedExchangesGetAnItemWithWhatTheNodeTold) {
     EXPECT_TRUE(has(text, "    length: 40  # data bytes, as the node told\n"));
     EXPECT_TRUE(has(text, "    signature: \"1.2\"\n"));
     EXPECT_TRUE(has(text, "    period_ms: 20  # as the node told\n"));
+    // Without dots: RabbitMQ would turn each into a level (docs/brokers.md).
+    EXPECT_TRUE(has(text, "    topic: \"10-0-0-9/3\"  # under base_topic\n"));
     EXPECT_TRUE(has(text, "multicast group 224.0.7.1 (the gateway joins it with eip.multicast"));
     EXPECT_TRUE(has(text, "# told by 10.20.0.7:7937: state idle"));
 }

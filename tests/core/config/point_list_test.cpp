@@ -190,5 +190,48 @@ TEST(PointLists, MessagesShowControlCharactersEscaped) {
     EXPECT_EQ(list.errors[0].message, "bad address '\\x1B[2J' (expected byte.bit)");
 }
 
+TEST(PointLists, AccessTypesAsPointListsSpellThem) {
+    const auto list = parse_point_list(
+        "TagName,Node,Address,DataType,AccessType\n"
+        "A,N,0.0,Bit,R\n"
+        "B,N,1.0,Bit,read\n"
+        "C,M,2.0,Bit,ReadWrite\n"
+        "D,M,3.0,Bit,Read/Write\n"
+        "E,M,4.0,Bit,RW\n"
+        "F,M,5.0,Bit,W\n"
+        "G,M,6.0,Bit,rw\n",
+        "p.csv");
+    ASSERT_TRUE(list.errors.empty()) << list.errors[0].message;
+    ASSERT_EQ(list.rows.size(), 7u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        EXPECT_FALSE(list.rows[i].write) << list.rows[i].tag.name;
+        EXPECT_FALSE(list.rows[i].tag.writable) << list.rows[i].tag.name;
+    }
+    for (std::size_t i = 2; i < 7; ++i) {
+        EXPECT_TRUE(list.rows[i].write) << list.rows[i].tag.name;
+        EXPECT_TRUE(list.rows[i].tag.writable) << list.rows[i].tag.name;
+    }
+}
+
+TEST(PointLists, AnUnknownAccessTypeListsTheSpellingsTaken) {
+    const auto list = parse_point_list(
+        "TagName,Node,Address,DataType,AccessType\n"
+        "A,N,0.0,Bit,Maybe\n",
+        "p.csv");
+    ASSERT_EQ(list.errors.size(), 1u);
+    EXPECT_NE(list.errors[0].message.find("ReadWrite"), std::string::npos)
+        << list.errors[0].message;
+}
+
+TEST(PointLists, AFloatDataTypeSuggestsReal) {
+    const auto list = parse_point_list(
+        "TagName,Node,Address,DataType,AccessType\n"
+        "A,N,0.0,Float,Read\n",
+        "p.csv");
+    ASSERT_EQ(list.errors.size(), 1u);
+    EXPECT_NE(list.errors[0].message.find("did you mean 'real'?"), std::string::npos)
+        << list.errors[0].message;
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::config

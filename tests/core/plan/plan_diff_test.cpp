@@ -61,8 +61,8 @@ TEST(PlanDiff, ARemovedExchangeStopsAndLosesItsStatusAndTags) {
     const auto diff = diff_plans(pointers(running), next);
     EXPECT_EQ(diff.kept_from, (Kept{0}));
     EXPECT_EQ(diff.stopped, (std::vector<std::size_t>{1}));
-    EXPECT_EQ(diff.cleared,
-              (std::vector<std::string>{"plant/b/Y", "plant/b/Z", "plant/b/_status"}));
+    EXPECT_EQ(diff.cleared, (std::vector<std::string>{"plant/b/Y", "plant/b/Z", "plant/b/_meta",
+                                                      "plant/b/_status"}));
 }
 
 TEST(PlanDiff, ATopicAnotherExchangeNowPublishesIsNotCleared) {
@@ -83,6 +83,22 @@ TEST(PlanDiff, AFirstStartStartsEverything) {
     EXPECT_EQ(diff.kept_from, (Kept{std::nullopt}));
     EXPECT_TRUE(diff.stopped.empty());
     EXPECT_TRUE(diff.cleared.empty());
+}
+
+TEST(PlanDiff, TheDescriptionNamesTheExchangesKeptChangedStartedAndStopped) {
+    const std::vector<ExchangePlan> running{plan("a", {"X"}), plan("b", {"X"}), plan("c", {"X"})};
+    const std::vector<ExchangePlan> next{plan("a", {"X"}), plan("c", {"Y"}), plan("d", {"X"})};
+    const auto diff = diff_plans(pointers(running), next);
+    EXPECT_EQ(describe_diff(diff, pointers(running), next),
+              "kept a; changed c; started d; stopped b");
+}
+
+TEST(PlanDiff, TheDescriptionIsBoundedAndSaysNothingForNothing) {
+    std::vector<ExchangePlan> next;
+    for (const auto* name : {"a", "b", "c", "d"}) next.push_back(plan(name, {"X"}));
+    const auto diff = diff_plans({}, next);
+    EXPECT_EQ(describe_diff(diff, {}, next, 2), "started a, b and 2 more");
+    EXPECT_EQ(describe_diff(diff_plans({}, {}), {}, {}), "nothing");
 }
 
 }  // namespace

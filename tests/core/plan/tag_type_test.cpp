@@ -110,5 +110,18 @@ TEST(DataTypes, Ranges) {
     EXPECT_EQ(type_max(TagType::lreal), 1.7976931348623157e308);
 }
 
+TEST(DataTypes, HintsNameOurTypeForOtherLanguagesNamesAndTypos) {
+    EXPECT_EQ(tag_type_hint("float"), "real");
+    EXPECT_EQ(tag_type_hint("Float"), "real");
+    EXPECT_EQ(tag_type_hint("double"), "lreal");
+    EXPECT_EQ(tag_type_hint("int32"), "dint");
+    EXPECT_EQ(tag_type_hint("uint16"), "word");
+    EXPECT_EQ(tag_type_hint("boolean"), "bit");
+    EXPECT_EQ(tag_type_hint("reel"), "real");
+    EXPECT_EQ(tag_type_hint("dintt"), "dint");
+    EXPECT_EQ(tag_type_hint("string"), std::nullopt);  // no type of ours holds text
+    EXPECT_EQ(tag_type_hint("xyz"), std::nullopt);
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::plan

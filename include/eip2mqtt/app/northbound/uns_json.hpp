@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <string>
+#include <unordered_map>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
@@ -59,8 +60,13 @@ public:
     /// to the WriteHandler, refused or not; anything else is ignored.
     void on_message(const adapters::mqtt::Incoming& message);
 
+    /// Also publishes each running exchange's `_meta` (uns_json_meta.hpp) that is new or
+    /// changed; a retired exchange's is among `retired_topics` (core::plan::diff_plans).
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
+    /// Publishes every running exchange's `_meta` again (a reconnect: the broker may have lost
+    /// its retained messages).
+    void republish_meta();
     void tag_samples(const SampleBatch& batch) override;
     void consumed_status(const ConsumedStatus& status) override;
     void produced_status(const core::plan::ExchangePlan& exchange,
@@ -83,6 +89,8 @@ private:
     WriteRouter router_;
     /// With store and forward: whether the link is up (samples go live, not to the journal).
     std::function<bool()> connected_;
+    /// Each running exchange's `_meta` topic and payload, as last published.
+    std::unordered_map<std::string, std::string> meta_;
     /// Every tag publication is filled in here; the publisher takes its content and leaves
     /// spare buffers (Client::publish), so the data path does not allocate.
     adapters::mqtt::Message message_;

@@ -15,10 +15,11 @@
 namespace eip2mqtt::core::config {
 
 struct PointRow {
-    plan::TagSpec tag;   ///< name, address, type; writable when AccessType is Write
-    std::string node;    ///< the exchange it belongs to
-    bool write = false;  ///< AccessType Write (produced) rather than Read (consumed)
-    Mark mark;           ///< file and line of the row (column 1)
+    plan::TagSpec tag;  ///< name, address, type; writable when AccessType allows writes
+    std::string node;   ///< the exchange it belongs to
+    /// AccessType Write, W, ReadWrite, Read/Write, RW (produced) rather than Read or R (consumed).
+    bool write = false;
+    Mark mark;  ///< file and line of the row (column 1)
 };
 
 struct PointList {

@@ -19,4 +19,8 @@ namespace eip2mqtt::core::config {
 /// saying so.
 std::string yaml_skeleton(std::span<const exchange::WireSummary> exchanges);
 
+/// The topic a skeleton proposes for an exchange: `10-20-0-100/50`, the producer's id with
+/// dashes, since some brokers turn a dot into a topic level (RabbitMQ: docs/brokers.md).
+std::string skeleton_topic(const wire::ExchangeKey& key);
+
 }  // namespace eip2mqtt::core::config

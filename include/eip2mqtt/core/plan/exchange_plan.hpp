@@ -75,6 +75,7 @@ struct ExchangePlan {
     std::string topic;                                       ///< {base}/{exchange.topic}
     std::string status_topic;                                ///< topic + "/_status"
     std::string values_topic;                                ///< topic + "/_values" (batch mode)
+    std::string meta_topic;     ///< topic + "/_meta": the exchange and its tags described, retained
     std::string set_topic;      ///< topic + "/set" (atomic multi-tag writes)
     std::vector<TagPlan> tags;  ///< in configuration order
 

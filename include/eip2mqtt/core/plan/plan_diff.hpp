@@ -27,4 +27,11 @@ struct PlanDiff {
 PlanDiff diff_plans(std::span<const ExchangePlan* const> running,
                     std::span<const ExchangePlan> next);
 
+/// The exchanges a diff names, for the reload's log: `kept a, b; changed c; started d; stopped
+/// e` (parts with no exchange left out, `nothing` when all are empty). A changed exchange is
+/// one stopped and started again under its name. Each part lists at most `max_names`, then
+/// `and N more`.
+std::string describe_diff(const PlanDiff& diff, std::span<const ExchangePlan* const> running,
+                          std::span<const ExchangePlan> next, std::size_t max_names = 20);
+
 }  // namespace eip2mqtt::core::plan

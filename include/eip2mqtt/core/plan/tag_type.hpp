@@ -32,6 +32,14 @@ enum class TypeNaming {
 /// Parses a type name; nullopt when unknown.
 std::optional<TagType> parse_tag_type(std::string_view name, TypeNaming naming);
 
+/// What a name that is no type most likely means, for a message: the type other languages
+/// and PLC vendors call it (`float` is `real`, `double` is `lreal`, `int32` is `dint`...), or
+/// the YAML name it is a typo of; nullopt when nothing is close.
+std::optional<std::string_view> tag_type_hint(std::string_view unknown);
+
+/// The aliases YAML takes beside the canonical names, for a message: "bool, usint, uint...".
+inline constexpr std::string_view tag_type_aliases = "bool, usint, uint, dword, long";
+
 /// The canonical §3 names (`int`, `udint`...).
 inline constexpr auto tag_type_names =
     enum_names<TagType>("bit", "byte", "int", "word", "dint", "udint", "real", "lint", "lreal");

@@ -1,0 +1,20 @@
+#pragma once
+/// `{exchange}/_meta` (docs/mqtt-api.md, docs/schema/meta.json): what a consumer of the JSON
+/// tree needs to know of an exchange and its tags without reading the configuration (a
+/// dashboard, a historian, an MES): each tag's type, address, unit, description, writability,
+/// limits and deadband, and the exchange's direction, ids, length and period. Sparkplug
+/// consumers learn the same from the births. Retained; published when the exchange starts and
+/// whenever a reload changes it, cleared when the exchange goes.
+///
+/// Threading: any; pure functions of the plan.
+
+#include <string>
+
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+
+namespace eip2mqtt::app::northbound {
+
+/// The payload of `plan.meta_topic`: one JSON object, tags in configuration order, keyed by name.
+std::string format_meta_payload(const core::plan::ExchangePlan& plan);
+
+}  // namespace eip2mqtt::app::northbound

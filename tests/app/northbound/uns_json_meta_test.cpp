@@ -1,0 +1,75 @@
+// `{exchange}/_meta`: what a consumer of the JSON tree learns of an exchange and its tags.
+
+#include "eip2mqtt/app/northbound/uns_json_meta.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/app/support/test_plan.hpp"
+
+namespace eip2mqtt::app::northbound {
+namespace {
+
+using core::plan::Direction;
+using core::plan::TagType;
+using json = nlohmann::ordered_json;  // keeps the payload's order
+
+TEST(UnsJsonMeta, EveryTagWithItsTypeAddressUnitLimitsAndDeadbandInConfigurationOrder) {
+    auto speed = test::test_tag("SPEED", 0, TagType::real);
+    speed.deadband = 0.5;
+    auto& extras = speed.mutable_extras();
+    extras.unit = "rpm";
+    extras.description = "shaft speed";
+    extras.min = 0;
+    extras.max = 4000;
+    auto run = test::test_tag("RUN", 4, TagType::bit);
+    run.address.bit = 3;
+    auto plan = test::test_plan("turbine", Direction::consume, 8, {speed, run}, "t1/turbine");
+    plan.spec.signature = {1, 2};
+
+    const auto meta = json::parse(format_meta_payload(plan));
+    EXPECT_EQ(plan.meta_topic, "acme/t1/turbine/_meta");
+    EXPECT_EQ(meta["exchange"], "turbine");
+    EXPECT_EQ(meta["direction"], "consume");
+    EXPECT_EQ(meta["producer_id"], "10.0.0.1");
+    EXPECT_EQ(meta["exchange_id"], 1);
+    EXPECT_EQ(meta["length"], 8);
+    EXPECT_EQ(meta["period_ms"], 1000);
+    EXPECT_EQ(meta["signature"], "1.2");
+    EXPECT_EQ(meta["timeout_ms"], 3000);  // 3 periods
+    EXPECT_TRUE(meta["destination"].is_null());
+
+    const auto& tags = meta["tags"];
+    ASSERT_EQ(tags.size(), 2u);
+    EXPECT_EQ(tags.begin().key(), "SPEED");  // configuration order, not sorted
+    const auto& s = tags["SPEED"];
+    EXPECT_EQ(s["type"], "real");
+    EXPECT_EQ(s["address"], "0.0");
+    EXPECT_EQ(s["unit"], "rpm");
+    EXPECT_EQ(s["description"], "shaft speed");
+    EXPECT_EQ(s["writable"], false);
+    EXPECT_EQ(s["min"], 0);
+    EXPECT_EQ(s["max"], 4000);
+    EXPECT_EQ(s["deadband"], 0.5);
+    const auto& r = tags["RUN"];
+    EXPECT_EQ(r["type"], "bit");
+    EXPECT_EQ(r["address"], "4.3");
+    for (const auto* absent : {"unit", "description", "min", "max"}) {
+        EXPECT_TRUE(r[absent].is_null()) << absent;
+    }
+}
+
+TEST(UnsJsonMeta, AProducedExchangeSaysWhereItGoesAndWhichTagsAreWritable) {
+    const auto plan = test::test_plan("sp", Direction::produce, 4,
+                                      {test::test_tag("SETPOINT", 0, TagType::dint, true)});
+    const auto meta = json::parse(format_meta_payload(plan));
+    EXPECT_EQ(meta["direction"], "produce");
+    EXPECT_EQ(meta["destination"], "127.0.0.1");
+    EXPECT_TRUE(meta["timeout_ms"].is_null());
+    EXPECT_TRUE(meta["signature"].is_null());
+    EXPECT_EQ(meta["tags"]["SETPOINT"]["writable"], true);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app::northbound
