@@ -116,8 +116,9 @@ TEST_F(ExchangesTest, AReloadKeepsTheUnchangedStartsTheNewAndStopsTheRemovedByNa
     EXPECT_EQ(report.started, (Names{"c", "d"}));  // c changed: restarted
     EXPECT_EQ(report.stopped, (Names{"b", "c"}));
     // b's topics and c's old tag topic are used by no running exchange: cleared.
-    EXPECT_EQ(northbound_.retired, (Names{"acme/b/A", "acme/b/_status", "acme/c/A"}));
-    EXPECT_EQ(report.cleared_topics, 3u);
+    EXPECT_EQ(northbound_.retired,
+              (Names{"acme/b/A", "acme/b/_meta", "acme/b/_status", "acme/c/A"}));
+    EXPECT_EQ(report.cleared_topics, 4u);
     EXPECT_EQ(&exchanges_->consumers()[0]->plan(), kept);
 }
 

@@ -28,7 +28,7 @@ public:
         if (request.reply.origin == nullptr) __builtin_trap();
         const auto* write = std::get_if<app::ExchangeWrite>(&request.outcome);
         if (write == nullptr) return;
-        if (write->producer != 0 || write->writes.empty()) __builtin_trap();
+        if (write->producer != &produced_ || write->writes.empty()) __builtin_trap();
         for (const auto& tag : write->writes) {
             if (tag.tag_index >= produced_.tags.size()) __builtin_trap();
         }

@@ -126,7 +126,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return 0;
     }
     const auto& routed = std::get<app::ExchangeWrite>(decision->outcome);
-    if (message.retained || routed.writes.empty() || routed.producer != 0) __builtin_trap();
+    if (message.retained || routed.writes.empty() || routed.producer != &produced) __builtin_trap();
     for (const auto& write : routed.writes) {
         if (write.tag_index >= produced.tags.size()) __builtin_trap();
         const auto& spec = produced.tags[write.tag_index].spec;
