@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "app/commands/detail/network_load_report.hpp"
 #include "app/commands/detail/run_until_stopped.hpp"
 #include "app/commands/detail/sniff_capture.hpp"
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
@@ -32,6 +33,7 @@
 #include "eip2mqtt/core/exchange/arrival_stats.hpp"
 #include "eip2mqtt/core/exchange/wire_survey.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/network_load.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 #include "eip2mqtt/core/wire/drop_reason.hpp"
@@ -128,13 +130,19 @@ public:
     /// `yaml`: gather the skeletons of unconfigured exchanges (print_skeleton).
     Sniffer(std::ostream& out, std::vector<core::plan::ExchangePlan> plans,
             std::chrono::nanoseconds interval, std::optional<YamlSettings> yaml)
-        : out_(out), plans_(std::move(plans)), interval_(interval), yaml_(std::move(yaml)) {}
+        : out_(out),
+          plans_(std::move(plans)),
+          configured_(core::plan::configured_rate(plans_)),
+          interval_(interval),
+          yaml_(std::move(yaml)) {}
 
     /// `destination`: the address the datagram was sent to (0: unknown).
     void on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
                      std::uint32_t destination) {
         const auto now = Clock::now();
         const auto wall = std::chrono::system_clock::now();
+        ++wire_.datagrams;
+        wire_.bytes += core::plan::wire_bytes_of_datagram(bytes.size());
         std::string line = fmt::format("{} {}", local_time(wall), adapters::udp::to_string(from));
         auto decoded = core::wire::decode_datagram(bytes);
         if (!decoded) {
@@ -224,6 +232,7 @@ public:
             // The capture's own loss, not the network's: the gateway may well have them all.
             out_ << fmt::format("capture dropped: {} (sniff could not keep up)\n", kernel_drops);
         }
+        print_load(now);
         out_ << std::flush;
     }
 
@@ -238,6 +247,32 @@ public:
     }
 
 private:
+    /// Datagrams seen, and the bytes they take on an Ethernet link.
+    struct WireTotals {
+        std::uint64_t datagrams = 0;
+        std::uint64_t bytes = 0;
+    };
+
+    /// With a configuration: the load measured since the last table beside the one the
+    /// configuration puts on the link, every datagram counted as Ethernet carries it.
+    void print_load(Clock::time_point now) {
+        if (plans_.empty()) return;
+        const std::chrono::duration<double> window = now - window_start_;
+        std::string measured = "-";
+        if (window.count() > 0) {
+            const auto datagrams = static_cast<double>(wire_.datagrams - window_.datagrams);
+            const auto bits = static_cast<double>(wire_.bytes - window_.bytes) * 8;
+            measured = detail::rate(datagrams / window.count(), bits / window.count());
+        }
+        out_ << fmt::format(
+            "load: measured {} ({} datagrams, {} bytes on the wire since start); configured {} "
+            "(every configured exchange at its period)\n",
+            measured, wire_.datagrams, wire_.bytes,
+            detail::rate(configured_.datagrams_per_s, configured_.bits_per_s));
+        window_ = wire_;
+        window_start_ = now;
+    }
+
     SniffedExchange& find_or_add(const ExchangeKey& key) {
         const auto found = index_.find(key);
         if (found != index_.end()) return exchanges_[found->second];
@@ -264,6 +299,10 @@ private:
 
     std::ostream& out_;
     std::vector<core::plan::ExchangePlan> plans_;  ///< never resized: exchanges_ points into it
+    core::plan::Rate configured_;
+    WireTotals wire_;
+    WireTotals window_;  ///< wire_ at the last table
+    Clock::time_point window_start_ = Clock::now();
     std::chrono::nanoseconds interval_;
     std::optional<YamlSettings> yaml_;
     std::vector<SniffedExchange> exchanges_;  ///< in order of first sight

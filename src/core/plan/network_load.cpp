@@ -6,6 +6,17 @@
 
 namespace eip2mqtt::core::plan {
 
+namespace {
+
+Rate rate_of(const ExchangePlan& plan) {
+    const std::chrono::nanoseconds period = plan.spec.period;
+    if (period.count() <= 0) return {};
+    const double datagrams_per_s = 1e9 / static_cast<double>(period.count());
+    return {datagrams_per_s, datagrams_per_s * static_cast<double>(wire_bytes(plan.length) * 8)};
+}
+
+}  // namespace
+
 NetworkLoad network_load(const std::vector<ExchangePlan>& plans) {
     const auto produced = static_cast<std::int64_t>(std::count_if(
         plans.begin(), plans.end(),
@@ -15,14 +26,11 @@ NetworkLoad network_load(const std::vector<ExchangePlan>& plans) {
     for (const auto& plan : plans) {
         if (plan.spec.direction != Direction::produce) continue;
         const std::chrono::nanoseconds period = plan.spec.period;
-        ExchangeLoad exchange{plan.spec.name, plan.spec.destination, 0, 0,
+        const auto rate = rate_of(plan);
+        ExchangeLoad exchange{plan.spec.name, plan.spec.destination, rate.datagrams_per_s,
+                              rate.bits_per_s,
                               std::chrono::nanoseconds{period.count() * index / produced}};
         ++index;
-        if (period.count() > 0) {
-            exchange.datagrams_per_s = 1e9 / static_cast<double>(period.count());
-            exchange.bits_per_s =
-                exchange.datagrams_per_s * static_cast<double>(wire_bytes(plan.length) * 8);
-        }
         auto to = std::find_if(
             load.destinations.begin(), load.destinations.end(),
             [&](const DestinationLoad& d) { return d.destination == exchange.destination; });
@@ -39,6 +47,16 @@ NetworkLoad network_load(const std::vector<ExchangePlan>& plans) {
         load.exchanges.push_back(std::move(exchange));
     }
     return load;
+}
+
+Rate configured_rate(const std::vector<ExchangePlan>& plans) {
+    Rate total;
+    for (const auto& plan : plans) {
+        const auto rate = rate_of(plan);
+        total.datagrams_per_s += rate.datagrams_per_s;
+        total.bits_per_s += rate.bits_per_s;
+    }
+    return total;
 }
 
 }  // namespace eip2mqtt::core::plan

@@ -132,6 +132,7 @@ std::vector<std::string> expected_figures() {
              "journal disk bytes per journaled tag update",            // 10
              "command requests/s answered, zero loss",                 // 11
              "datagrams/s accepted, zero loss, command port flooded",  // 11
+             "s for tshark to decode",                                 // 12
          }) {
         figures.push_back(figure);
     }

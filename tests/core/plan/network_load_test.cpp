@@ -24,6 +24,18 @@ TEST(WireBytes, CountsEthernetIpUdpAndTheEipHeaderBesideTheData) {
     EXPECT_EQ(wire_overhead_bytes, 98u);
     EXPECT_EQ(wire_bytes(1), 99u);
     EXPECT_EQ(wire_bytes(1400), 1498u);
+    // A captured datagram's size already holds the EIP header.
+    EXPECT_EQ(wire_bytes_of_datagram(32 + 1), 99u);
+    EXPECT_EQ(wire_bytes_of_datagram(20), 86u);  // a datagram too short for a header
+}
+
+TEST(ConfiguredRate, AddsConsumedAndProducedExchangesAtTheirPeriods) {
+    // What a capture of the network should see: the PLC's datagrams and the gateway's.
+    const auto rate = configured_rate({plan("a", Direction::produce, 20ms, 52, "10.0.0.5"),
+                                       plan("in", Direction::consume, 2ms, 1400, "")});
+    EXPECT_DOUBLE_EQ(rate.datagrams_per_s, 50 + 500);
+    EXPECT_DOUBLE_EQ(rate.bits_per_s, 50 * 150 * 8 + 500 * 1498 * 8);
+    EXPECT_DOUBLE_EQ(configured_rate({}).bits_per_s, 0);
 }
 
 TEST(NetworkLoad, AddsProducedExchangesOnlyPerDestinationInFirstAppearanceOrder) {

@@ -33,6 +33,17 @@ constexpr std::size_t wire_bytes(std::size_t data_length) {
     return wire_overhead_bytes + data_length;
 }
 
+/// Bytes a datagram of `datagram_bytes` (its UDP payload: header and data) takes on the link.
+constexpr std::size_t wire_bytes_of_datagram(std::size_t datagram_bytes) {
+    return wire_overhead_bytes - wire::header_size + datagram_bytes;
+}
+
+/// A flow of datagrams on the link.
+struct Rate {
+    double datagrams_per_s = 0;
+    double bits_per_s = 0;  ///< on the wire, overhead included
+};
+
 struct ExchangeLoad {
     std::string name;
     std::string destination;  ///< as configured
@@ -62,5 +73,9 @@ struct NetworkLoad {
 
 /// The load of the produced exchanges among `plans` (consumed ones are ignored).
 NetworkLoad network_load(const std::vector<ExchangePlan>& plans);
+
+/// What every exchange of `plans`, consumed and produced alike, puts on the link when each is
+/// sent at its period: the traffic a capture of the configuration's network should see.
+Rate configured_rate(const std::vector<ExchangePlan>& plans);
 
 }  // namespace eip2mqtt::core::plan

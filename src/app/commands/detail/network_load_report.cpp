@@ -22,14 +22,14 @@ std::string figure(double value, int decimals) {
     return s;
 }
 
+std::string share_text(double share) { return figure(share * 100, 2) + " %"; }
+
+}  // namespace
+
 std::string rate(double datagrams_per_s, double bits_per_s) {
     return figure(datagrams_per_s, 3) + " datagrams/s, " + figure(std::round(bits_per_s), 0) +
            " bit/s";
 }
-
-std::string share_text(double share) { return figure(share * 100, 2) + " %"; }
-
-}  // namespace
 
 bool report_network_load(const std::vector<core::plan::ExchangePlan>& plans, double link_mbps,
                          std::ostream& out, std::ostream& err) {
