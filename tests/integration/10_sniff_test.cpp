@@ -83,6 +83,20 @@ std::map<std::string, std::string> last_row(const std::string& output,
     return row;
 }
 
+/// The load of the datagrams DecodesHeadersAndTagsAndCountsGapsAndDuplicates sends: 7 of 4 x
+/// 40, 36, 34 and 20 bytes, each with 66 bytes of Ethernet, IP and UDP around it (98 - the 32
+/// bytes of EIP header it holds); configured: turbine1 (8 bytes) and setpoints (4 bytes), each
+/// every 100 ms: 10 x 106 x 8 + 10 x 102 x 8 bit/s.
+void expect_load(const std::string& output) {
+    const auto load = output.rfind("load: measured ");
+    ASSERT_NE(load, std::string::npos) << output;
+    const auto load_line = output.substr(load, output.find('\n', load) - load);
+    EXPECT_NE(load_line.find("(7 datagrams, 712 bytes on the wire since start)"), std::string::npos)
+        << load_line;
+    EXPECT_NE(load_line.find("configured 20 datagrams/s, 16640 bit/s"), std::string::npos)
+        << load_line;
+}
+
 TEST(Sniff, DecodesHeadersAndTagsAndCountsGapsAndDuplicates) {
     TempDir dir;
     const auto port = free_udp_port();
@@ -133,16 +147,7 @@ TEST(Sniff, DecodesHeadersAndTagsAndCountsGapsAndDuplicates) {
     EXPECT_FALSE(last_row(output, "10.0.0.77/5").empty()) << output;
     EXPECT_NE(output.find("dropped: too_short=1"), std::string::npos) << output;
 
-    // The load: 7 datagrams of 4 x 40, 36, 34 and 20 bytes, each with 66 bytes of Ethernet, IP
-    // and UDP around it (98 - the 32 bytes of EIP header it holds); configured: turbine1 (8
-    // bytes) and setpoints (4 bytes), each every 100 ms: 10 x 106 x 8 + 10 x 102 x 8 bit/s.
-    const auto load = output.rfind("load: measured ");
-    ASSERT_NE(load, std::string::npos) << output;
-    const auto load_line = output.substr(load, output.find('\n', load) - load);
-    EXPECT_NE(load_line.find("(7 datagrams, 712 bytes on the wire since start)"), std::string::npos)
-        << load_line;
-    EXPECT_NE(load_line.find("configured 20 datagrams/s, 16640 bit/s"), std::string::npos)
-        << load_line;
+    expect_load(output);
 }
 
 TEST(Sniff, StopsOnSigterm) {

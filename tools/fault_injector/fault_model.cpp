@@ -218,6 +218,35 @@ bool FaultModel::corrupt_field(std::vector<std::byte>& bytes) {
     return true;
 }
 
+bool FaultModel::corrupt_byte(std::vector<std::byte>& bytes) {
+    if (bytes.empty()) return false;
+    auto& r = rng(Fault::corrupt_byte);
+    const auto at = config_.corrupt_byte_offset && *config_.corrupt_byte_offset < bytes.size()
+                        ? *config_.corrupt_byte_offset
+                        : r.below(bytes.size());
+    bytes[at] ^= static_cast<std::byte>(1 + r.below(255));
+    return true;
+}
+
+bool FaultModel::corrupt_bit(std::vector<std::byte>& bytes) {
+    if (bytes.empty()) return false;
+    const auto bits = bytes.size() * 8;
+    const auto at = config_.corrupt_bit_offset && *config_.corrupt_bit_offset < bits
+                        ? *config_.corrupt_bit_offset
+                        : rng(Fault::corrupt_bit).below(bits);
+    bytes[at / 8] ^= static_cast<std::byte>(1u << (at % 8));
+    return true;
+}
+
+bool FaultModel::truncate(std::vector<std::byte>& bytes) {
+    if (bytes.empty()) return false;
+    const auto length = config_.truncate_length && *config_.truncate_length < bytes.size()
+                            ? *config_.truncate_length
+                            : rng(Fault::truncate).below(bytes.size());
+    bytes.resize(length);
+    return true;
+}
+
 std::vector<Emission> FaultModel::on_datagram(std::vector<std::byte> datagram) {
     ++counters_.in;
     // Every fault draws once per datagram, whatever happens to it, so that each stream stays in
@@ -242,30 +271,9 @@ std::vector<Emission> FaultModel::on_datagram(std::vector<std::byte> datagram) {
         return {};
     }
     if (field && corrupt_field(datagram)) count(Fault::corrupt_field);
-    if (byte && !datagram.empty()) {
-        auto& r = rng(Fault::corrupt_byte);
-        const auto at =
-            config_.corrupt_byte_offset && *config_.corrupt_byte_offset < datagram.size()
-                ? *config_.corrupt_byte_offset
-                : r.below(datagram.size());
-        datagram[at] ^= static_cast<std::byte>(1 + r.below(255));
-        count(Fault::corrupt_byte);
-    }
-    if (bit && !datagram.empty()) {
-        const auto bits = datagram.size() * 8;
-        const auto at = config_.corrupt_bit_offset && *config_.corrupt_bit_offset < bits
-                            ? *config_.corrupt_bit_offset
-                            : rng(Fault::corrupt_bit).below(bits);
-        datagram[at / 8] ^= static_cast<std::byte>(1u << (at % 8));
-        count(Fault::corrupt_bit);
-    }
-    if (cut && !datagram.empty()) {
-        const auto length = config_.truncate_length && *config_.truncate_length < datagram.size()
-                                ? *config_.truncate_length
-                                : rng(Fault::truncate).below(datagram.size());
-        datagram.resize(length);
-        count(Fault::truncate);
-    }
+    if (byte && corrupt_byte(datagram)) count(Fault::corrupt_byte);
+    if (bit && corrupt_bit(datagram)) count(Fault::corrupt_bit);
+    if (cut && truncate(datagram)) count(Fault::truncate);
     auto delay = config_.delay;
     if (delay.count() > 0) count(Fault::delay);
     if (jitter) {

@@ -129,6 +129,9 @@ private:
     Rng& rng(Fault fault) { return rngs_[static_cast<std::size_t>(fault)]; }
     void count(Fault fault) { ++counters_.affected[static_cast<std::size_t>(fault)]; }
     bool corrupt_field(std::vector<std::byte>& bytes);
+    bool corrupt_byte(std::vector<std::byte>& bytes);
+    bool corrupt_bit(std::vector<std::byte>& bytes);
+    bool truncate(std::vector<std::byte>& bytes);
 
     FaultConfig config_;
     std::vector<Rng> rngs_;

@@ -212,36 +212,40 @@ void Loader::read_eip(const Node& node, const Mark& at, Config& config) {
             } else if (key == "commands") {
                 read_commands(value, k, config);
             } else if (key == "multicast") {
-                if (value.is_null()) return;
-                if (!value.is_sequence()) {
-                    error(k, "expected a list for 'multicast'");
-                    return;
-                }
-                for (std::size_t i = 0; i < value.size(); ++i) {
-                    const Node item = value.item(i);
-                    core::config::MulticastGroup group;
-                    const auto item_marks =
-                        walk(item, mark(item), "multicast", "in a multicast entry", multicast_keys,
-                             [&](const std::string& key2, const Node& v2, const Mark& k2) {
-                                 const auto s = text(v2, key2, k2);
-                                 if (!s) return;
-                                 if (key2 == "interface") group.interface = *s;
-                                 if (key2 != "group") return;
-                                 group.group = *s;
-                                 const auto ip = parse_ipv4(*s);
-                                 if (!ip || (*ip >> 28) != 0xE) {
-                                     error(k2, "multicast group " + in_quotes(*s) +
-                                                   " is not an IPv4 multicast address "
-                                                   "(224.0.0.0-239.255.255.255)");
-                                 }
-                             });
-                    if (!item_marks.contains("group")) {
-                        error(item_marks.node, "multicast entry lacks 'group'");
-                    }
-                    eip.multicast.push_back(std::move(group));
-                }
+                read_multicast(value, k, eip);
             }
         });
+}
+
+void Loader::read_multicast(const Node& value, const Mark& k, core::config::EipSection& eip) {
+    if (value.is_null()) return;
+    if (!value.is_sequence()) {
+        error(k, "expected a list for 'multicast'");
+        return;
+    }
+    for (std::size_t i = 0; i < value.size(); ++i) {
+        const Node item = value.item(i);
+        core::config::MulticastGroup group;
+        const auto item_marks =
+            walk(item, mark(item), "multicast", "in a multicast entry", multicast_keys,
+                 [&](const std::string& key, const Node& v, const Mark& at) {
+                     const auto s = text(v, key, at);
+                     if (!s) return;
+                     if (key == "interface") group.interface = *s;
+                     if (key != "group") return;
+                     group.group = *s;
+                     const auto ip = parse_ipv4(*s);
+                     if (!ip || (*ip >> 28) != 0xE) {
+                         error(at, "multicast group " + in_quotes(*s) +
+                                       " is not an IPv4 multicast address "
+                                       "(224.0.0.0-239.255.255.255)");
+                     }
+                 });
+        if (!item_marks.contains("group")) {
+            error(item_marks.node, "multicast entry lacks 'group'");
+        }
+        eip.multicast.push_back(std::move(group));
+    }
 }
 
 void Loader::read_commands(const Node& node, const Mark& at, Config& config) {

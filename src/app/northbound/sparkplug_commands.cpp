@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <variant>
+#include <vector>
 
 #include "eip2mqtt/app/northbound/sparkplug_node.hpp"
 #include "eip2mqtt/core/printable.hpp"
@@ -61,6 +63,39 @@ std::optional<std::size_t> find_tag(const core::plan::ExchangePlan& plan,
 std::string in_the_last_minute(std::uint64_t count, std::string_view what) {
     if (count <= 1) return {};
     return " (" + std::to_string(count) + " " + std::string(what) + " since the last line)";
+}
+
+/// The writes a DCMD's metrics ask of the produced exchange `plan`, or why they are refused.
+std::variant<ExchangeWrite, WriteRejection> device_write(
+    const core::plan::ExchangePlan& plan,
+    const std::vector<adapters::sparkplug::CommandMetric>& metrics, std::uint64_t alias_base) {
+    ExchangeWrite write{&plan, {}};
+    write.writes.reserve(metrics.size());
+    for (const auto& metric : metrics) {
+        const auto tag = find_tag(plan, metric, alias_base);
+        if (!tag) {
+            return WriteRejection{
+                WriteError::unknown_tag,
+                "unknown metric " +
+                    (metric.name.empty() && metric.alias ? "alias " + std::to_string(*metric.alias)
+                                                         : metric.name) +
+                    " in exchange " + plan.spec.name};
+        }
+        const auto& spec = plan.tags[*tag].spec;
+        if (!metric.value) {
+            return WriteRejection{WriteError::wrong_type,
+                                  spec.name + ": no value of a datatype the gateway takes"};
+        }
+        auto value = core::write::validate_write(spec, write_input(*metric.value));
+        if (!value) {
+            return WriteRejection{value.error().error, spec.name + ": " + value.error().message};
+        }
+        write.writes.push_back({*tag, std::move(value).value()});
+    }
+    if (auto overlap = core::write::overlap_rejection(plan, write.writes)) {
+        return std::move(*overlap);
+    }
+    return write;
 }
 
 }  // namespace
@@ -139,31 +174,9 @@ void SparkplugNode::on_device_command(const adapters::mqtt::Incoming& message, D
     const auto metrics = adapters::sparkplug::decode_command(message.payload);
     if (!metrics) return refuse(WriteError::malformed, "DCMD: " + metrics.error());
     if (metrics.value().empty()) return refuse(WriteError::empty, "a DCMD with no metric");
-    ExchangeWrite write{device->plan, {}};
-    write.writes.reserve(metrics.value().size());
-    for (const auto& metric : metrics.value()) {
-        const auto tag = find_tag(plan, metric, device->alias_base);
-        if (!tag) {
-            return refuse(
-                WriteError::unknown_tag,
-                "unknown metric " +
-                    (metric.name.empty() && metric.alias ? "alias " + std::to_string(*metric.alias)
-                                                         : metric.name) +
-                    " in exchange " + plan.spec.name);
-        }
-        const auto& spec = plan.tags[*tag].spec;
-        if (!metric.value) {
-            return refuse(WriteError::wrong_type,
-                          spec.name + ": no value of a datatype the gateway takes");
-        }
-        auto value = core::write::validate_write(spec, write_input(*metric.value));
-        if (!value) {
-            return refuse(value.error().error, spec.name + ": " + value.error().message);
-        }
-        write.writes.push_back({*tag, std::move(value).value()});
-    }
-    if (auto overlap = core::write::overlap_rejection(plan, write.writes)) {
-        return refuse(overlap->error, std::move(overlap->message));
+    auto write = device_write(plan, metrics.value(), device->alias_base);
+    if (auto* rejection = std::get_if<WriteRejection>(&write)) {
+        return refuse(rejection->error, std::move(rejection->message));
     }
     request.outcome = std::move(write);
     writes_.on_write(std::move(request));

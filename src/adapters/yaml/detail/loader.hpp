@@ -226,6 +226,7 @@ private:
 
     void read_eip(const Node& node, const Mark& at, Config& config);
     void read_commands(const Node& node, const Mark& at, Config& config);
+    void read_multicast(const Node& node, const Mark& at, core::config::EipSection& eip);
 
     void read_metrics(const Node& node, const Mark& at, Config& config);
     void read_sparkplug(const Node& node, const Mark& at, Config& config);
