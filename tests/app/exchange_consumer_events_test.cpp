@@ -1,4 +1,4 @@
-// What a consumed exchange reports north (issue #14), read through a fake northbound: the tags a
+// What a consumed exchange reports north, read through a fake northbound: the tags a
 // datagram changed, in one batch with their quality and time; the exchange going up and down;
 // its status. No protocol in between, and time is passed in.
 

@@ -1,4 +1,4 @@
-// A consumed exchange with no tags yet (issue #13): every datagram is checked as usual (length,
+// A consumed exchange with no tags yet: every datagram is checked as usual (length,
 // sequence) and counted, and only its `_status` is published, so its traffic can be watched
 // before the byte map is known.
 

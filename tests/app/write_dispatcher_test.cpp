@@ -1,4 +1,4 @@
-// Every northbound's writes in one place (issue #14): a decoded write is staged or refused; each
+// Every northbound's writes in one place: a decoded write is staged or refused; each
 // refusal is counted under its error and answered through the northbound it came from. Time is
 // injected.
 

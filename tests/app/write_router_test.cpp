@@ -1,5 +1,5 @@
 // The write router without a socket: which topics are ours, where results go, and what is
-// refused before anything is staged (docs/mqtt-api.md "Writes"; issue #12 for response topics).
+// refused before anything is staged (docs/mqtt-api.md "Writes").
 
 #include "eip2mqtt/app/write_router.hpp"
 

@@ -229,7 +229,7 @@ TEST_F(ClientFixture, Mqtt311Works) {
     EXPECT_TRUE(incoming_[0].retained);
 }
 
-// Issue #12: a publication the broker refuses closes the connection; sent again after every
+// A publication the broker refuses closes the connection; sent again after every
 // reconnect, it kept the gateway from ever staying connected.
 TEST_F(ClientFixture, PublicationsABrokerWouldRefuseAreDroppedAndTheConnectionStays) {
     Mosquitto broker;

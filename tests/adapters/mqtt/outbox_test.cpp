@@ -1,4 +1,4 @@
-// The client's outbox without a broker (issue #14): two lanes served in turn, buffers handed back
+// The client's outbox without a broker: two lanes served in turn, buffers handed back
 // to the publisher, a bounded stock of spares, and memory given back after a drained backlog.
 
 #include "adapters/mqtt/detail/outbox.hpp"

@@ -1,4 +1,4 @@
-// Store and forward (issue #16) over a real journal file, a recording sink and a connection the
+// Store and forward over a real journal file, a recording sink and a connection the
 // test switches: what is journaled and when, the replay's order, rate and resumption, and what
 // leaves the journal (acknowledged entries only, or those no exchange can take any more).
 

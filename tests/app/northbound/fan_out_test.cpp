@@ -1,4 +1,4 @@
-// Several northbounds at once (issue #14): every event reaches each, in order; a write result
+// Several northbounds at once: every event reaches each, in order; a write result
 // only the northbound the write came from.
 
 #include "eip2mqtt/app/northbound/fan_out.hpp"

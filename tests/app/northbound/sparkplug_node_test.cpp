@@ -1,4 +1,4 @@
-// The Sparkplug B edge node (issue #15) over a recording publisher: births, bdSeq and seq, DDATA
+// The Sparkplug B edge node over a recording publisher: births, bdSeq and seq, DDATA
 // by alias, DDEATH and rebirth of a device, NCMD rebirth, DCMD writes accepted and refused, and
 // the primary host's STATE. Payloads are read back with the protobuf classes of our .proto; the
 // integration test reads them with Eclipse Tahu's decoder.

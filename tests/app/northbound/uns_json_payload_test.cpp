@@ -17,7 +17,7 @@ std::string json_string(std::string_view text) {
 
 TEST(JsonString, QuotesAndEscapesWhatJsonRequires) {
     EXPECT_EQ(json_string("PRESSAO"), R"(x"PRESSAO")");
-    // Tag names may hold quotes and backslashes (issue #13: `_values` was invalid JSON).
+    // Tag names may hold quotes and backslashes (`_values` was invalid JSON).
     EXPECT_EQ(json_string(R"(SAY"HI\)"), R"(x"SAY\"HI\\")");
     EXPECT_EQ(json_string(std::string("A\x01"
                                       "B\n",

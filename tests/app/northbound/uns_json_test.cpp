@@ -1,4 +1,4 @@
-// The JSON topic tree as a northbound (issue #14): the domain events the exchanges report become
+// The JSON topic tree as a northbound: the domain events the exchanges report become
 // today's topics and payloads (docs/mqtt-api.md), and a message on a `set` topic comes back as one
 // decoded write whose answer goes to this northbound.
 
