@@ -64,6 +64,54 @@ protected:
         return json::parse(m->payload);
     }
 
+    /// Every `_meta` the start publishes: the turbine's tags in full, the produced exchange's
+    /// destination and writable tag, and steady's.
+    void expect_described_at_start(std::uint16_t capture_port) {
+        const auto before = meta_of("area/turbine");
+        EXPECT_EQ(before["exchange"], "turbine");
+        EXPECT_EQ(before["direction"], "consume");
+        EXPECT_EQ(before["producer_id"], "10.0.0.1");
+        EXPECT_EQ(before["exchange_id"], 1);
+        EXPECT_EQ(before["length"], 8);
+        EXPECT_EQ(before["period_ms"], 100);
+        EXPECT_EQ(before["signature"], "1.0");
+        const auto& speed = before["tags"]["SPEED"];
+        EXPECT_EQ(speed["type"], "real");
+        EXPECT_EQ(speed["address"], "0.0");
+        EXPECT_EQ(speed["unit"], "rpm");
+        EXPECT_EQ(speed["description"], "shaft speed");
+        EXPECT_EQ(speed["writable"], false);
+        EXPECT_EQ(speed["min"], 0);
+        EXPECT_EQ(speed["max"], 4000);
+        EXPECT_EQ(speed["deadband"], 0.5);
+        EXPECT_EQ(before["tags"]["RUN"]["address"], "4.3");
+        const auto produced = meta_of("sp");
+        EXPECT_EQ(produced["direction"], "produce");
+        EXPECT_EQ(produced["destination"], "127.0.0.1:" + std::to_string(capture_port));
+        EXPECT_EQ(produced["tags"]["SPEED_SP"]["writable"], true);
+        meta_of("steady");
+    }
+
+    /// A consumer arriving after the reload gets the descriptions from the broker's retained
+    /// store: the turbine's new one and steady's, none for sp.
+    void expect_retained_after_reload() {
+        MqttRecorder late(broker_->url(),
+                          {topic("sp/_meta"), topic("area/turbine/_meta"), topic("steady/_meta")},
+                          "late-subscriber");
+        ASSERT_TRUE(late.wait_for([](const auto& all) { return all.size() >= 2; }));
+        std::vector<SchemaCheck> checks;
+        for (const auto& m : late.messages()) {
+            EXPECT_TRUE(m.retained) << m.topic;
+            EXPECT_NE(m.topic, topic("sp/_meta")) << m.payload;
+            checks.push_back({schema_file("meta.json"), m.payload});
+        }
+        for (const auto& problem : schema_problems(checks)) EXPECT_EQ(problem, "");
+        EXPECT_EQ(json::parse(late.messages_on(topic("area/turbine/_meta"))
+                                  .at(0)
+                                  .payload)["tags"]["SPEED"]["unit"],
+                  "rad/s");
+    }
+
     void rewrite_exchanges(const std::string& exchanges_yaml) {
         std::ifstream in(config_path_);
         std::stringstream text;
@@ -78,29 +126,7 @@ TEST_F(MetaTest, DescribesEachExchangeAtStartAndAfterAReloadThatChangesItMatchin
     UdpClient capture;  // where the produced exchange goes
     start(turbine("rpm") + setpoints(capture.port()) + steady());
 
-    const auto before = meta_of("area/turbine");
-    EXPECT_EQ(before["exchange"], "turbine");
-    EXPECT_EQ(before["direction"], "consume");
-    EXPECT_EQ(before["producer_id"], "10.0.0.1");
-    EXPECT_EQ(before["exchange_id"], 1);
-    EXPECT_EQ(before["length"], 8);
-    EXPECT_EQ(before["period_ms"], 100);
-    EXPECT_EQ(before["signature"], "1.0");
-    const auto& speed = before["tags"]["SPEED"];
-    EXPECT_EQ(speed["type"], "real");
-    EXPECT_EQ(speed["address"], "0.0");
-    EXPECT_EQ(speed["unit"], "rpm");
-    EXPECT_EQ(speed["description"], "shaft speed");
-    EXPECT_EQ(speed["writable"], false);
-    EXPECT_EQ(speed["min"], 0);
-    EXPECT_EQ(speed["max"], 4000);
-    EXPECT_EQ(speed["deadband"], 0.5);
-    EXPECT_EQ(before["tags"]["RUN"]["address"], "4.3");
-    const auto produced = meta_of("sp");
-    EXPECT_EQ(produced["direction"], "produce");
-    EXPECT_EQ(produced["destination"], "127.0.0.1:" + std::to_string(capture.port()));
-    EXPECT_EQ(produced["tags"]["SPEED_SP"]["writable"], true);
-    meta_of("steady");
+    expect_described_at_start(capture.port());
 
     // The turbine's unit changes, sp goes, steady stays as it was.
     const auto from = recorder_->count();
@@ -125,23 +151,7 @@ TEST_F(MetaTest, DescribesEachExchangeAtStartAndAfterAReloadThatChangesItMatchin
     }
     EXPECT_EQ(steady_metas, 0u) << "an unchanged exchange's _meta is not published again";
 
-    // A consumer arriving now gets the descriptions from the broker's retained store: the
-    // turbine's new one and steady's, none for sp.
-    MqttRecorder late(broker_->url(),
-                      {topic("sp/_meta"), topic("area/turbine/_meta"), topic("steady/_meta")},
-                      "late-subscriber");
-    ASSERT_TRUE(late.wait_for([](const auto& all) { return all.size() >= 2; }));
-    std::vector<SchemaCheck> checks;
-    for (const auto& m : late.messages()) {
-        EXPECT_TRUE(m.retained) << m.topic;
-        EXPECT_NE(m.topic, topic("sp/_meta")) << m.payload;
-        checks.push_back({schema_file("meta.json"), m.payload});
-    }
-    for (const auto& problem : schema_problems(checks)) EXPECT_EQ(problem, "");
-    EXPECT_EQ(
-        json::parse(
-            late.messages_on(topic("area/turbine/_meta")).at(0).payload)["tags"]["SPEED"]["unit"],
-        "rad/s");
+    expect_retained_after_reload();
 }
 
 /// The JSON examples of a page of docs/ marked `<!-- schema: NAME -->` on the line before their
