@@ -55,7 +55,7 @@ protected:
         const auto built =
             run_command({std::string(EIP2MQTT_SOURCE_DIR) + "/tools/package.sh", "--build-dir",
                          build_dir, "--out", dir_.path(), "--no-build"},
-                        240s);  // stripping and dpkg-shlibdeps on a sanitizer build take long
+                        240s);
         ASSERT_EQ(built.status, 0) << built.output;
         deb_ = last_line(built.output);
         root_ = dir_.path() + "/root";

@@ -69,9 +69,11 @@ void GatewayTest::start_gateway() {
 }
 
 void GatewayTest::wait_online(std::size_t from) {
+    // After an outage the gateway tries the broker again at most every 30 s (the client's
+    // max_backoff): a broker back after a long outage may wait that long for it.
     const auto online = recorder_->wait_for_message(
         availability_topic(), [](const std::string& p) { return p == "online"; },
-        std::chrono::seconds(15), from);
+        std::chrono::seconds(60), from);
     ASSERT_TRUE(online.has_value()) << "gateway never came online; its output:\n"
                                     << (gateway_ ? gateway_->output() : "");
 }

@@ -29,16 +29,17 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
         mqtt_.publish({topic, "", options_.publish.qos, true, true});
     }
     // A kept or unchanged exchange's `_meta` stays as the broker has it.
-    std::unordered_map<std::string, std::string> meta;
+    std::unordered_map<std::string, Described> meta;
     for (const auto* plans : {&running.consumed, &running.produced}) {
         for (const auto* plan : *plans) {
-            auto topic = plan->meta_topic;
             auto payload = format_meta_payload(*plan);
-            const auto old = meta_.find(topic);
-            if (old == meta_.end() || old->second != payload) {
-                mqtt_.publish({topic, payload, options_.publish.qos, true, true});
+            const Described described{plan, std::hash<std::string>{}(payload)};
+            const auto old = meta_.find(plan->meta_topic);
+            if (old == meta_.end() || old->second.digest != described.digest) {
+                mqtt_.publish(
+                    {plan->meta_topic, std::move(payload), options_.publish.qos, true, true});
             }
-            meta.emplace(std::move(topic), std::move(payload));
+            meta.emplace(plan->meta_topic, described);
         }
     }
     meta_ = std::move(meta);
@@ -49,8 +50,9 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
 }
 
 void UnsJson::republish_meta() {
-    for (const auto& [topic, payload] : meta_) {
-        mqtt_.publish({topic, payload, options_.publish.qos, true, true});
+    for (const auto& [topic, described] : meta_) {
+        mqtt_.publish(
+            {topic, format_meta_payload(*described.plan), options_.publish.qos, true, true});
     }
 }
 

@@ -89,8 +89,16 @@ private:
     WriteRouter router_;
     /// With store and forward: whether the link is up (samples go live, not to the journal).
     std::function<bool()> connected_;
-    /// Each running exchange's `_meta` topic and payload, as last published.
-    std::unordered_map<std::string, std::string> meta_;
+    /// What a running exchange's `_meta` was last published from: its plan, and a digest of the
+    /// payload, so that a reload publishes only the descriptions that changed without the
+    /// gateway holding every payload (tens of bytes a tag: megabytes for 100,000 tags). Two
+    /// different payloads with one 64-bit digest would leave a change unpublished; at the
+    /// handful of reloads a gateway sees, that chance is nil.
+    struct Described {
+        const core::plan::ExchangePlan* plan = nullptr;
+        std::size_t digest = 0;
+    };
+    std::unordered_map<std::string, Described> meta_;  ///< by `_meta` topic
     /// Every tag publication is filled in here; the publisher takes its content and leaves
     /// spare buffers (Client::publish), so the data path does not allocate.
     adapters::mqtt::Message message_;
