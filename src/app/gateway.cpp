@@ -167,7 +167,8 @@ void Gateway::start() {
     spdlog::info(
         "eip2mqtt {} listening on UDP {}:{}: {} consumed and {} produced exchange(s); MQTT {}",
         config_.gateway.id, config_.eip.bind, receiver_->local_port(),
-        exchanges_.consumers().size(), exchanges_.producers().size(), config_.mqtt.url);
+        exchanges_.consumers().size(), exchanges_.producers().size(),
+        broker_list(config_.mqtt.urls));
     // Sockets are bound and the first connection attempt is under way.
     notifier_.ready(status_line());
 }

@@ -116,6 +116,7 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     g.accepted = sources.datagrams.accepted;
     g.dropped = drops_by_name(sources.datagrams);
     g.mqtt_connected = sources.mqtt.connected;
+    g.mqtt_broker = sources.mqtt.broker;
     g.published = sources.mqtt.published;
     g.buffered = sources.mqtt.queued;
     g.publications_dropped = sources.mqtt.dropped_overflow;

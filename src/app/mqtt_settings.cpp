@@ -63,11 +63,19 @@ std::string read_mqtt_password(const core::config::MqttSection& mqtt) {
     return {};
 }
 
+std::string broker_list(const std::vector<std::string>& urls) {
+    std::string out;
+    for (const auto& url : urls) {
+        out += (out.empty() ? "" : ", then ") + url;
+    }
+    return out;
+}
+
 adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& config,
                                                   const std::string& availability_topic) {
     const auto& mqtt = config.mqtt;
     adapters::mqtt::ClientOptions options;
-    options.url = mqtt.url;
+    options.urls = mqtt.urls;
     options.client_id = mqtt.client_id.empty() ? "eip2mqtt-" + config.gateway.id : mqtt.client_id;
     options.version = mqtt.version;
     options.username = mqtt.username;

@@ -41,6 +41,7 @@ struct Counters {
         mqtt.coalesced = 9;
         mqtt.refused = 11;
         mqtt.connects = 12;
+        mqtt.broker = "tcp://broker-b:1883";
     }
     MetricsSources sources() const { return {datagrams, gateway, mqtt}; }
 };
@@ -59,6 +60,7 @@ TEST(MetricsJson, EachCounterLandsInItsField) {
     EXPECT_EQ(metrics["publications_coalesced"], 9);
     EXPECT_EQ(metrics["publications_refused"], 11);
     EXPECT_EQ(metrics["mqtt_connects"], 12);
+    EXPECT_EQ(metrics["broker"], "tcp://broker-b:1883");
     EXPECT_EQ(metrics["writes_ok"], 5);
     EXPECT_EQ(metrics["writes_cancelled"], 2);
     EXPECT_EQ(metrics["writes_rejected"]["out_of_range"], 4);
@@ -100,6 +102,7 @@ TEST(MetricsSnapshot, CarriesTheGatewayFiguresAndEachExchange) {
     EXPECT_EQ(snapshot.gateway.accepted, 6u);
     EXPECT_EQ(snapshot.gateway.dropped.at("too_short"), 3u);
     EXPECT_TRUE(snapshot.gateway.mqtt_connected);
+    EXPECT_EQ(snapshot.gateway.mqtt_broker, "tcp://broker-b:1883");
     EXPECT_EQ(snapshot.gateway.published, 100u);
     EXPECT_EQ(snapshot.gateway.publications_refused, 11u);
     EXPECT_EQ(snapshot.gateway.writes_rejected.at("out_of_range"), 4u);

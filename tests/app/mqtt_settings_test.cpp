@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 core::config::Config config() {
     core::config::Config c;
     c.gateway.id = "plant1";
-    c.mqtt.url = "tcp://broker:1883";
+    c.mqtt.urls = {"tcp://broker:1883", "tcp://standby:1883"};
     c.mqtt.username = "gw";
     return c;
 }
@@ -61,12 +61,18 @@ TEST_F(MqttSettingsTest, TheClientIdDefaultsToTheGatewaysId) {
     EXPECT_EQ(mqtt_client_options(c, "a").client_id, "scada-gw");
 }
 
+TEST_F(MqttSettingsTest, TheBrokerListReadsInItsOrder) {
+    EXPECT_EQ(broker_list({"tcp://a:1883"}), "tcp://a:1883");
+    EXPECT_EQ(broker_list({"tcp://a:1883", "tcp://b:1883", "tcp://c:1883"}),
+              "tcp://a:1883, then tcp://b:1883, then tcp://c:1883");
+}
+
 TEST_F(MqttSettingsTest, ASessionThatDoesNotExpireIsACleanStart) {
     auto c = config();
     const auto clean = mqtt_client_options(c, "plant/_gateway/plant1/state");
     EXPECT_TRUE(clean.clean_start);
     EXPECT_EQ(clean.availability_topic, "plant/_gateway/plant1/state");
-    EXPECT_EQ(clean.url, "tcp://broker:1883");
+    EXPECT_EQ(clean.urls, (std::vector<std::string>{"tcp://broker:1883", "tcp://standby:1883"}));
     EXPECT_EQ(clean.username, "gw");
     c.mqtt.session_expiry = 3600s;
     const auto kept = mqtt_client_options(c, "a");

@@ -34,6 +34,12 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
     broker_ = std::make_unique<Mosquitto>(options_.broker);
     if (udp_port_ == 0) udp_port_ = free_udp_port();
     udp_ = std::make_unique<UdpClient>();
+    std::string url = options_.secure ? broker_->secure_url() : broker_->url();
+    if (!options_.more_urls.empty()) {
+        url = "[ \"" + url + "\"";
+        for (const auto& more : options_.more_urls) url += ", \"" + more + "\"";
+        url += " ]";
+    }
     const std::string config =
         "gateway:\n"
         "  id: test-gw\n"
@@ -43,7 +49,7 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
         "  log_level: debug\n"
         "mqtt:\n"
         "  url: " +
-        (options_.secure ? broker_->secure_url() : broker_->url()) +
+        url +
         "\n"
         "  base_topic: test\n"
         "  qos: 1\n"

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "tests/support/child_process.hpp"
 #include "tests/support/mosquitto.hpp"
@@ -36,6 +37,9 @@ struct GatewayOptions {
     /// The gateway connects to the broker's secure listener (Mosquitto::secure_url()) instead
     /// of the plain one; the recorder always uses the plain one.
     bool secure = false;
+    /// Brokers after the test's own in `mqtt.url` (tcp://127.0.0.1:PORT...): the gateway gets
+    /// a list, the test's broker first.
+    std::vector<std::string> more_urls;
     std::map<std::string, std::string> env;  ///< added to the gateway's environment
     /// Top-level sections added to the configuration (`sparkplug:` ...), as YAML text.
     std::string sections;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 #include "eip2mqtt/core/config/config.hpp"
@@ -27,6 +28,10 @@ inline constexpr std::string_view default_password_credential = "mqtt-password";
 /// else empty. Throws std::runtime_error naming what could not be read when the file, or the
 /// credential password_file names, cannot be read.
 std::string read_mqtt_password(const core::config::MqttSection& mqtt);
+
+/// `mqtt.url`'s brokers for a log line or `check`: "tcp://a:1883", or
+/// "tcp://a:1883, then tcp://b:1883" when there are several.
+std::string broker_list(const std::vector<std::string>& urls);
 
 /// Options of the gateway's MQTT client; `availability_topic` carries its will.
 adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& config,

@@ -196,6 +196,13 @@ void add_gateway_families(std::vector<MetricFamily>& out, const MetricsSnapshot&
     add_reason_family(out, "datagrams_dropped_total", "Datagrams dropped, by reason", g.dropped);
     add_single(out, "mqtt_connected", "1 while connected to the broker", gauge,
                g.mqtt_connected ? 1 : 0);
+    if (!g.mqtt_broker.empty()) {
+        // Info style: which of mqtt.url's brokers, as a label, so a dashboard sees a failover.
+        auto broker =
+            family("mqtt_broker", "1, labelled with the current connection's broker", gauge);
+        broker.metric.push_back(sample(gauge, 1, {{"url", g.mqtt_broker}}));
+        out.push_back(std::move(broker));
+    }
     add_single(out, "mqtt_published_total", "Messages handed to the broker", counter,
                static_cast<double>(g.published));
     add_single(out, "mqtt_buffered", "Publications waiting for the broker", gauge,

@@ -4,6 +4,7 @@
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "adapters/mqtt/detail/client_impl.hpp"
 
@@ -12,12 +13,17 @@ namespace eip2mqtt::adapters::mqtt {
 namespace {
 
 std::unique_ptr<::mqtt::async_client> make_paho_client(const ClientOptions& options) {
+    if (options.urls.empty()) {
+        throw std::invalid_argument(options.log_name + " client without a broker URL");
+    }
     ::mqtt::create_options create(options.version == 5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
     // Paho C refuses commands beyond maxBufferedMessages (default 100) even while connected:
     // room for max_in_flight publications, availability, subscribes and the disconnect.
     create.set_max_buffered_messages(
         static_cast<int>(std::min<std::size_t>(options.max_in_flight + 64, 1 << 30)));
-    return std::make_unique<::mqtt::async_client>(options.url, options.client_id, create, nullptr);
+    // The first broker; each connect names its own (Connection::do_connect).
+    return std::make_unique<::mqtt::async_client>(options.urls.front(), options.client_id, create,
+                                                  nullptr);
 }
 
 }  // namespace

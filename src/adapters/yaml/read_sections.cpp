@@ -97,9 +97,44 @@ bool read_payload(KeyValue& v, MqttSection& m) {
     return format.has_value();
 }
 
+std::string_view url_scheme(std::string_view url) {
+    const auto sep = url.find("://");
+    return sep == std::string_view::npos ? std::string_view() : url.substr(0, sep);
+}
+
+/// `url: tcp://a:1883` or `url: [tcp://a:1883, tcp://b:1883]`: the brokers, tried in turn.
+/// A single string is checked by validate(), as it always was; a list's entries here, each at
+/// its own line and column.
+bool read_urls(KeyValue& v, MqttSection& m) {
+    std::vector<Mark> marks;
+    auto urls = v.texts(marks);
+    if (!urls) return false;
+    if (urls->empty()) {
+        v.error("mqtt url is an empty list: give at least one broker");
+        return false;
+    }
+    bool ok = true;
+    const auto scheme = url_scheme(urls->front());
+    for (std::size_t i = 0; i < urls->size() && v.node().is_sequence(); ++i) {
+        const auto& url = (*urls)[i];
+        if (url.empty()) {
+            v.error_at(marks[i], "mqtt url is empty");
+            ok = false;
+        } else if (url_scheme(url) != scheme) {
+            // One mqtt.tls block, and one Paho client whose TLS is set by its first URL.
+            v.error_at(marks[i], "mqtt url " + in_quotes(url) + " does not use the scheme of " +
+                                     in_quotes(urls->front()) +
+                                     ": every broker of the list takes the same one");
+            ok = false;
+        }
+    }
+    if (ok) m.urls = std::move(*urls);
+    return ok;
+}
+
 /// `mqtt`
 constexpr KeyReader<MqttSection> mqtt_rows[]{
-    {"url", [](KeyValue& v, MqttSection& m) { return v.text_to(m.url); }},
+    {"url", read_urls},
     {"version", read_version},
     {"client_id", [](KeyValue& v, MqttSection& m) { return v.text_to(m.client_id); }},
     {"username", [](KeyValue& v, MqttSection& m) { return v.text_to(m.username); }},

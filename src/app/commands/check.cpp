@@ -14,6 +14,7 @@
 #include "app/commands/detail/network_load_report.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/commands.hpp"
+#include "eip2mqtt/app/mqtt_settings.hpp"
 #include "eip2mqtt/app/northbound/sparkplug_birth_size.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/config/placeholders.hpp"
@@ -179,6 +180,9 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     out << config_path << ": valid, " << plans.size()
         << (plans.size() == 1 ? " exchange" : " exchanges") << ", base topic "
         << config->mqtt.base_topic << "\n";
+    if (config->mqtt.urls.size() > 1) {
+        out << "brokers, tried in turn: " << broker_list(config->mqtt.urls) << "\n";
+    }
     print_placeholders(config_path, out);
     const core::plan::WarningContext context{config->mqtt.version == 3};
     const auto& sparkplug = config->sparkplug;

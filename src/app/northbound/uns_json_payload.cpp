@@ -128,6 +128,7 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"publications_coalesced", mqtt.coalesced},
         {"publications_refused", mqtt.refused},
         {"mqtt_connects", mqtt.connects},
+        {"broker", mqtt.broker},
         {"writes_ok", sources.gateway.writes_ok},
         {"writes_rejected", rejections_by_name(sources.gateway)},
         {"writes_cancelled", sources.gateway.writes_cancelled},

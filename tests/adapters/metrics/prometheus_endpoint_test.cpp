@@ -50,6 +50,7 @@ MetricsSnapshot snapshot(std::uint64_t received) {
     s.gateway.accepted = received - 2;
     s.gateway.dropped = {{"too_short", 4}, {"unknown_exchange", 1}};
     s.gateway.mqtt_connected = true;
+    s.gateway.mqtt_broker = "tcp://broker-b:1883";
     s.gateway.published = 99;
     s.gateway.buffered = 7;
     s.gateway.writes_ok = 2;
@@ -91,6 +92,8 @@ TEST(PrometheusEndpoint, ServesTheSnapshotInTextFormat) {
             R"(eip2mqtt_datagrams_dropped_total{reason="unknown_exchange"} 1)",
             "# TYPE eip2mqtt_mqtt_connected gauge",
             "eip2mqtt_mqtt_connected 1",
+            "# TYPE eip2mqtt_mqtt_broker gauge",
+            R"(eip2mqtt_mqtt_broker{url="tcp://broker-b:1883"} 1)",
             "eip2mqtt_mqtt_published_total 99",
             "eip2mqtt_mqtt_buffered 7",
             "eip2mqtt_mqtt_publications_dropped_total 0",
@@ -126,6 +129,7 @@ TEST(PrometheusEndpoint, AnUpdateReplacesTheValues) {
     next.exchanges[0].state = "stale";
     next.exchanges.pop_back();  // an exchange removed by a reload disappears
     next.gateway.mqtt_connected = false;
+    next.gateway.mqtt_broker.clear();
     endpoint.update(next);
     const auto page = http_get(endpoint.port(), "/metrics");
     for (const auto* line : {
@@ -138,6 +142,7 @@ TEST(PrometheusEndpoint, AnUpdateReplacesTheValues) {
         EXPECT_TRUE(has_line(page, line)) << "missing: " << line << "\nin:\n" << page;
     }
     EXPECT_EQ(page.find("setpoints"), std::string::npos) << page;
+    EXPECT_EQ(page.find("eip2mqtt_mqtt_broker"), std::string::npos) << page;  // disconnected
 }
 
 TEST(PrometheusEndpoint, ServesAnEmptyPageBeforeTheFirstUpdate) {

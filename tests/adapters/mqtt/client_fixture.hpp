@@ -50,7 +50,7 @@ class ClientFixture : public ::testing::Test {
 protected:
     ClientOptions options_for(const Mosquitto& broker) {
         ClientOptions o;
-        o.url = broker.url();
+        o.urls = {broker.url()};
         o.client_id = "client-test";
         o.availability_topic = "gw/state";
         o.min_backoff = 20ms;

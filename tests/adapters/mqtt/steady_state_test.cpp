@@ -71,7 +71,7 @@ TEST(SteadyState, ClientPublishAllocatesNothingOnceItsTopicsAreQueued) {
     // value of a queued topic gives back the buffers of the one it replaces.
     boost::asio::io_context io;
     ClientOptions options;
-    options.url = "tcp://127.0.0.1:1";
+    options.urls = {"tcp://127.0.0.1:1"};
     Client client(io.get_executor(), options);
     const auto topics = long_topics();
     Message message;

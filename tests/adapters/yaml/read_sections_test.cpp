@@ -75,7 +75,7 @@ TEST(LoadConfig, EverySection) {
     EXPECT_EQ(config.gateway.id, "gw1");
     EXPECT_EQ(config.gateway.state_dir, "/tmp/s");
     EXPECT_EQ(config.gateway.log_level, "debug");
-    EXPECT_EQ(config.mqtt.url, "ssl://broker:8883");
+    EXPECT_EQ(config.mqtt.urls, std::vector<std::string>{"ssl://broker:8883"});
     EXPECT_EQ(config.mqtt.version, 3);
     EXPECT_EQ(config.mqtt.client_id, "me");
     EXPECT_EQ(config.mqtt.username, "u");

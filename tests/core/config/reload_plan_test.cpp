@@ -53,7 +53,7 @@ TEST(ReloadPlan, NothingChangedNamesNothing) {
 
 TEST(ReloadPlan, ASectionKeyIsNamedWithItsRule) {
     Config next;
-    next.mqtt.url = "tcp://elsewhere:1883";
+    next.mqtt.urls = {"tcp://localhost:1883", "tcp://elsewhere:1883"};
     next.mqtt.qos = 0;
     const auto plan = plan_of(Config{}, {}, next, {});
     EXPECT_EQ(plan.changes, (std::vector<KeyChange>{{"mqtt.url", ReloadRule::restart},

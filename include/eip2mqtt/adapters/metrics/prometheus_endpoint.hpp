@@ -20,7 +20,8 @@
 ///   exchange_last_seen_age_seconds, exchange_jitter_seconds,
 ///   exchange_mean_period_seconds{exchange,direction}    gauges; absent while unknown
 ///   datagrams_total, datagrams_accepted_total, datagrams_dropped_total{reason}
-///   mqtt_connected (0/1), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total,
+///   mqtt_connected (0/1), mqtt_broker{url} (1, the current connection's broker; absent while
+///   disconnected), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total,
 ///   mqtt_publications_refused_total
 ///   writes_ok_total, writes_rejected_total{reason}, writes_cancelled_total,
 ///   writes_not_saved_total, writes_sent_unsaved_total, image_save_failures_total,
@@ -94,6 +95,7 @@ struct GatewayMetrics {
     std::uint64_t accepted = 0;
     std::map<std::string, std::uint64_t> dropped;  ///< by core::wire::DropReason name
     bool mqtt_connected = false;
+    std::string mqtt_broker;  ///< the current connection's broker URL; empty while none
     std::uint64_t published = 0;
     std::uint64_t buffered = 0;  ///< publications waiting for the broker (a gauge)
     std::uint64_t publications_dropped = 0;

@@ -14,9 +14,10 @@
 /// never grows without bound (and stays short: Paho C walks its whole command list on every
 /// publish). Batch mode's `_values` have a lane of their own (Message::batch_lane), served in
 /// turn with the main queue. While disconnected, the queue is the buffer of
-/// `mqtt.buffer.max_messages`. Reconnects use exponential backoff; after each connect subscriptions
-/// are renewed, the availability topic gets `online`, and the on_connected handler runs so that the
-/// gateway republishes its retained state.
+/// `mqtt.buffer.max_messages`. Reconnects use exponential backoff, each to the next broker of
+/// ClientOptions::urls; after each connect, whichever the broker, subscriptions are renewed,
+/// the availability topic gets `online`, and the on_connected handler runs so that the gateway
+/// republishes its retained state.
 
 #include <boost/asio/any_io_executor.hpp>
 #include <chrono>
@@ -42,7 +43,9 @@ struct TlsOptions {
 struct ClientOptions {
     /// How its log lines begin ("MQTT connected to ..."), to tell two connections apart.
     std::string log_name = "MQTT";
-    std::string url = "tcp://localhost:1883";
+    /// The brokers, tried in turn: the first at start, the next after a lost connection or a
+    /// failed attempt, back to the first after the last. Never empty.
+    std::vector<std::string> urls{"tcp://localhost:1883"};
     std::string client_id = "eip2mqtt";
     int version = 5;  ///< 5 or 3 (3.1.1)
     std::string username;
@@ -81,6 +84,7 @@ struct ClientOptions {
 
 struct ClientStats {
     bool connected = false;
+    std::string broker;           ///< the URL of the current connection's broker; empty while none
     std::uint64_t published = 0;  ///< completed (QoS 0: written; QoS 1: acknowledged)
     std::uint64_t publish_failures = 0;
     std::uint64_t queued = 0;  ///< waiting in the PublishQueue (both lanes)

@@ -79,7 +79,9 @@ struct StoreAndForwardSection {
 };
 
 struct MqttSection {
-    std::string url = "tcp://localhost:1883";
+    /// `url`: one broker, or several tried in turn (the first at start, the next after each
+    /// lost connection or failed attempt). Never empty once read.
+    std::vector<std::string> urls{"tcp://localhost:1883"};
     int version = 5;        ///< 5 or 3 (3.1.1)
     std::string client_id;  ///< default: eip2mqtt-{gateway.id}
     std::string username;

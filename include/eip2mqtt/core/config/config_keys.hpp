@@ -69,7 +69,7 @@ inline constexpr std::array<ConfigKey<GatewaySection>, 5> gateway{{
 /// The connection's settings need a restart (a new session); how tags are published is applied
 /// live, the retained state republished in the new form.
 inline constexpr std::array<ConfigKey<MqttSection>, 18> mqtt{{
-    {"url", restart, differs<&MqttSection::url>},
+    {"url", restart, differs<&MqttSection::urls>},
     {"version", restart, differs<&MqttSection::version>},
     {"client_id", restart, differs<&MqttSection::client_id>},
     {"username", restart, differs<&MqttSection::username>},

@@ -20,6 +20,13 @@ namespace {
 
 constexpr auto kConnectTimeout = std::chrono::seconds(10);
 
+std::vector<std::optional<BrokerEndpoint>> parse_broker_urls(const std::vector<std::string>& urls) {
+    std::vector<std::optional<BrokerEndpoint>> endpoints;
+    endpoints.reserve(urls.size());
+    for (const auto& url : urls) endpoints.push_back(parse_broker_url(url));
+    return endpoints;
+}
+
 Incoming to_incoming(const paho::const_message_ptr& msg) {
     Incoming in;
     in.topic = msg->get_topic();
@@ -54,7 +61,7 @@ void Connection::ConnectListener::on_failure(const paho::token& tok) {
 
 void Connection::SubscribeListener::on_failure(const paho::token& tok) {
     connection_.loop_.post([&c = connection_, reason = describe_failure(tok)] {
-        spdlog::warn("{} subscribe failed on {}: {}", c.options_.log_name, c.options_.url, reason);
+        spdlog::warn("{} subscribe failed on {}: {}", c.options_.log_name, c.url(), reason);
     });
 }
 
@@ -65,13 +72,15 @@ Connection::Connection(const ClientOptions& options, paho::async_client& paho, c
       loop_(loop),
       sender_(sender),
       nagle_(nagle),
-      endpoint_(parse_broker_url(options.url)),
+      endpoints_(parse_broker_urls(options.urls)),
       reconnect_timer_(loop.executor()),
       backoff_(options.min_backoff, options.max_backoff) {
-    configure_connect_options(connect_options_, options_, endpoint_, kConnectTimeout);
-    if (options_.tls && endpoint_ && !endpoint_->tls) {
+    // The configuration gives every broker of a list the same scheme: the first one's TLS
+    // settings are everyone's.
+    configure_connect_options(connect_options_, options_, endpoints_.front(), kConnectTimeout);
+    if (options_.tls && endpoint() && !endpoint()->tls) {
         spdlog::warn("{} url {} is not ssl:// or wss://: mqtt.tls is ignored", options_.log_name,
-                     options_.url);
+                     url());
     }
     install_callbacks();
 }
@@ -121,6 +130,14 @@ void Connection::do_connect() {
             std::lock_guard lock(will_mutex_);
             last_will_ = std::move(will);
         }
+        // One Paho client for every broker of the list: a connect's server list replaces the
+        // URI the client was made with (Paho C frees and copies it on each connect). A client
+        // per broker would need the Sender's in-flight ledger, the will and the callbacks moved
+        // from one to the next; with one, they stay, and so does everything after a connect.
+        // A list of one URL each time: given them all, Paho would walk them from the first on
+        // every connect and fail only after the last, where each attempt here goes to the next
+        // broker, with the backoff between, and is logged with its URL.
+        connect_options_.set_servers(paho::string_collection::create({url()}));
         connect_token_ = paho_.connect(connect_options_, nullptr, connect_listener_);
     } catch (const paho::exception& e) {
         on_connect(false, e.what());
@@ -151,10 +168,10 @@ void Connection::on_connected() {
     backoff_.reset();
     apply_broker_limits();
     connect_failure_log_.reset();
-    spdlog::info("{} connected to {}", options_.log_name, options_.url);
+    spdlog::info("{} connected to {}", options_.log_name, url());
 
-    if (endpoint_) {
-        nagle_.attach(sockets_connected_to(endpoint_->host, endpoint_->port));
+    if (endpoint()) {
+        nagle_.attach(sockets_connected_to(endpoint()->host, endpoint()->port));
     }
     // Subscribe before announcing `online`: the broker handles one connection's packets in
     // order, so whoever sees `online` can already write to us.
@@ -224,8 +241,7 @@ void Connection::set_subscriptions(std::vector<std::string> filters) {
         try {
             paho_.unsubscribe(paho::string_collection::create(removed));
         } catch (const paho::exception& e) {
-            spdlog::warn("{} unsubscribe failed on {}: {}", options_.log_name, options_.url,
-                         e.what());
+            spdlog::warn("{} unsubscribe failed on {}: {}", options_.log_name, url(), e.what());
         }
     }
 }
@@ -247,7 +263,7 @@ void Connection::renew_subscriptions(const std::vector<std::string>& filters) {
             paho_.subscribe(filter, 1, nullptr, subscribe_listener_, opt);
         }
     } catch (const paho::exception& e) {
-        spdlog::warn("{} subscribe failed on {}: {}", options_.log_name, options_.url, e.what());
+        spdlog::warn("{} subscribe failed on {}: {}", options_.log_name, url(), e.what());
     }
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 /// The connection to the broker, on the loop: the state machine (idle, connecting, connected,
-/// waiting to reconnect, stopped), the reconnect backoff, the subscriptions renewed on every
-/// connect, the will made anew before each, and `online` on the availability topic. It tells
-/// the Sender when it may send and when what was in flight is lost.
+/// waiting to reconnect, stopped), the broker of each attempt (ClientOptions::urls in turn: the
+/// next after a failed attempt or a lost connection), the reconnect backoff, the subscriptions
+/// renewed on every connect, the will made anew before each, and `online` on the availability
+/// topic. It tells the Sender when it may send and when what was in flight is lost.
 ///
 /// Threading: every member runs on the loop, but connected() and add_stats() (any thread), and
 /// the stop steps (the stopping thread: the loop may no longer run). Paho's callbacks copy what
@@ -105,6 +106,11 @@ private:
     void on_connect(bool ok, std::string reason, int return_code = 0);
     /// The connection is up: counts, limits, subscriptions, `online`, the handler, sending.
     void on_connected();
+    /// The URL of the broker being tried or connected to, and what it names.
+    const std::string& url() const { return options_.urls[broker_]; }
+    const std::optional<BrokerEndpoint>& endpoint() const { return endpoints_[broker_]; }
+    /// After a failed attempt or a lost connection: the next attempt goes to the next broker.
+    void move_to_next_broker();
     /// Reads the CONNACK's Receive Maximum and Maximum Packet Size into the Sender.
     void apply_broker_limits();
     void announce_online();
@@ -125,7 +131,8 @@ private:
     const LoopPost& loop_;
     Sender& sender_;
     NagleSwitch& nagle_;
-    const std::optional<BrokerEndpoint> endpoint_;
+    /// What each of options_.urls names (nullopt: not a URL parse_broker_url knows).
+    const std::vector<std::optional<BrokerEndpoint>> endpoints_;
 
     // The loop's.
     State state_ = State::idle;
@@ -144,6 +151,8 @@ private:
     std::optional<Message> last_will_;  ///< options_.will's for the current connection
 
     std::atomic<bool> connected_{false};  ///< the loop's view, for connected() and stats()
+    /// Index in options_.urls of the broker being tried or connected to; written on the loop.
+    std::atomic<std::size_t> broker_{0};
     std::atomic<std::uint64_t> connects_{0};
     std::atomic<std::uint64_t> connection_losses_{0};
     std::atomic<std::uint64_t> received_{0};

@@ -11,20 +11,23 @@ namespace paho = ::mqtt;
 void Connection::on_connect_failed(std::string reason, int return_code) {
     reason = explain_connect_failure(std::move(reason));
     if (options_.version == 5) {
-        if (auto refusal = mqtt5_refusal(return_code, reason, endpoint_ && endpoint_->tls)) {
+        if (auto refusal = mqtt5_refusal(return_code, reason, endpoint() && endpoint()->tls)) {
             // Paho has no words for the 3.1.1 return code 1 ("Unknown error code 1").
             reason = return_code == 1 ? std::move(*refusal) : reason + ": " + *refusal;
         }
     }
     if (const auto count = connect_failure_log_.record(Clock::now())) {
         if (count == 1) {
-            spdlog::warn("{} cannot connect to {}: {}", options_.log_name, options_.url, reason);
+            spdlog::warn("{} cannot connect to {}: {}", options_.log_name, url(), reason);
         } else {
             spdlog::warn("{} cannot connect to {}: {} ({} failed attempts)", options_.log_name,
-                         options_.url, reason, count);
+                         url(), reason, count);
         }
-        spdlog::info("{} reconnecting in {} ms", options_.log_name, schedule_reconnect().count());
+        move_to_next_broker();
+        spdlog::info("{} reconnecting to {} in {} ms", options_.log_name, url(),
+                     schedule_reconnect().count());
     } else {
+        move_to_next_broker();
         schedule_reconnect();
     }
 }
@@ -44,12 +47,12 @@ std::string Connection::explain_connect_failure(std::string reason) const {
             reason += ": " + e.get_message();
         }
     }
-    if (endpoint_ && endpoint_->tls) {
+    if (endpoint() && endpoint()->tls) {
         // Paho C++ 1.2 cannot safely report OpenSSL's reason.
         reason +=
             " (TLS handshake failed or the broker closed the connection: check that "
             "mqtt.tls.ca_file signed the broker's certificate, that the certificate names " +
-            endpoint_->host + ", and whether the broker requires a client certificate)";
+            endpoint()->host + ", and whether the broker requires a client certificate)";
     }
     return reason;
 }
@@ -65,11 +68,15 @@ void Connection::on_connection_lost(std::string cause, bool silent) {
     }
     connected_ = false;
     connection_losses_.fetch_add(1, std::memory_order_relaxed);
-    spdlog::warn("{} connection to {} lost: {}", options_.log_name, options_.url, cause);
+    spdlog::warn("{} connection to {} lost: {}", options_.log_name, url(), cause);
     nagle_.detach();
     sender_.on_connection_lost();
-    spdlog::info("{} reconnecting in {} ms", options_.log_name, schedule_reconnect().count());
+    move_to_next_broker();
+    spdlog::info("{} reconnecting to {} in {} ms", options_.log_name, url(),
+                 schedule_reconnect().count());
 }
+
+void Connection::move_to_next_broker() { broker_ = next_broker(broker_, options_.urls.size()); }
 
 std::chrono::milliseconds Connection::schedule_reconnect() {
     state_ = State::waiting;

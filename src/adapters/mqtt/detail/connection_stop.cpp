@@ -13,6 +13,8 @@ namespace paho = ::mqtt;
 
 void Connection::add_stats(ClientStats& stats) const {
     stats.connected = connected_;
+    // The list never changes and broker_ only names one of it: safe off the loop.
+    if (stats.connected) stats.broker = options_.urls[broker_];
     stats.connects = connects_;
     stats.connection_losses = connection_losses_;
     stats.received = received_;
@@ -75,7 +77,7 @@ void Connection::disconnect() {
     }
     sender_.set_link_up(false);
     connected_ = false;
-    spdlog::info("{} disconnected from {}", options_.log_name, options_.url);
+    spdlog::info("{} disconnected from {}", options_.log_name, url());
 }
 
 }  // namespace eip2mqtt::adapters::mqtt::detail

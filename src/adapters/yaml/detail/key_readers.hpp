@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "adapters/yaml/detail/loader.hpp"
 
@@ -51,6 +52,29 @@ public:
     auto parsed(Parse parse, std::string_view problem) {
         return loader_.parsed(value_, key_, at_, parse, problem);
     }
+
+    /// The value as a string or a list of strings (`url: a` or `url: [a, b]`), each item read
+    /// and reported at its own line and column; `marks` gets each one's (a single string's is
+    /// at()). nullopt when the value or an item did not read.
+    std::optional<std::vector<std::string>> texts(std::vector<Mark>& marks) {
+        if (!value_.is_sequence()) {
+            auto s = text();
+            if (s) marks.push_back(at_);
+            return s ? std::optional(std::vector<std::string>{std::move(*s)}) : std::nullopt;
+        }
+        std::vector<std::string> out;
+        bool read = true;
+        for (std::size_t i = 0; i < value_.size(); ++i) {
+            const Node item = value_.item(i);
+            marks.push_back(loader_.mark(item));
+            auto s = loader_.text(item, key_, marks.back());
+            read = read && s.has_value();
+            out.push_back(s.value_or(std::string()));
+        }
+        return read ? std::optional(std::move(out)) : std::nullopt;
+    }
+    /// Reports `message` at `at` (an item's mark, from texts()).
+    void error_at(const Mark& at, std::string message) { loader_.error(at, std::move(message)); }
 
     /// Each of these stores the value in `field` (converted to the field's type: an integer to
     /// a duration) and returns true; false, the field untouched, when it did not read.

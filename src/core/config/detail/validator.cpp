@@ -82,7 +82,10 @@ void Validator::check_mqtt() {
                       " bytes long (MQTT allows " + std::to_string(max_string_bytes) + ")");
         }
     }
-    if (mqtt.url.empty()) error(mqtt.marks.of("url"), "mqtt url is empty");
+    if (mqtt.urls.empty() ||
+        std::any_of(mqtt.urls.begin(), mqtt.urls.end(), [](const auto& u) { return u.empty(); })) {
+        error(mqtt.marks.of("url"), "mqtt url is empty");
+    }
     if (mqtt.buffer_max_messages == 0) {
         error(mqtt.marks.of("buffer"), "buffer max_messages must be at least 1");
     }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace eip2mqtt::adapters::mqtt::detail {
 namespace {
 
@@ -38,6 +40,20 @@ TEST(BrokerUrl, NotAUrl) {
     EXPECT_FALSE(parse_broker_url("tcp://host:0").has_value());
     EXPECT_FALSE(parse_broker_url("tcp://host:65536").has_value());
     EXPECT_FALSE(parse_broker_url("tcp://host:port").has_value());
+}
+
+TEST(BrokerUrl, TheNextBrokerWrapsAroundTheList) {
+    EXPECT_EQ(next_broker(0, 1), 0u);  // a single broker: always it
+    EXPECT_EQ(next_broker(0, 3), 1u);
+    EXPECT_EQ(next_broker(1, 3), 2u);
+    EXPECT_EQ(next_broker(2, 3), 0u);  // after the last, the first
+    std::size_t broker = 0;
+    std::vector<std::size_t> tried;
+    for (int attempt = 0; attempt < 5; ++attempt) {
+        tried.push_back(broker);
+        broker = next_broker(broker, 2);
+    }
+    EXPECT_EQ(tried, (std::vector<std::size_t>{0, 1, 0, 1, 0}));
 }
 
 }  // namespace

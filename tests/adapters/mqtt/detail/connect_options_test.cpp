@@ -9,7 +9,7 @@ using namespace std::chrono_literals;
 
 ClientOptions options_for(int version) {
     ClientOptions options;
-    options.url = "tcp://localhost:1883";
+    options.urls = {"tcp://localhost:1883"};
     options.version = version;
     options.clean_start = true;
     options.keepalive = 20s;
@@ -24,7 +24,7 @@ TEST(ConnectOptions, Mqtt5WithSessionExpiryCredentialsAndTheOfflineWill) {
     options.username = "gateway";
     options.password = "secret";
     ::mqtt::connect_options co;
-    configure_connect_options(co, options, parse_broker_url(options.url), 10s);
+    configure_connect_options(co, options, parse_broker_url(options.urls.front()), 10s);
     EXPECT_EQ(co.get_mqtt_version(), MQTTVERSION_5);
     EXPECT_FALSE(co.is_clean_start());
     EXPECT_EQ(::mqtt::get<int>(co.get_properties(), ::mqtt::property::SESSION_EXPIRY_INTERVAL),
@@ -45,7 +45,7 @@ TEST(ConnectOptions, Mqtt311CleanSessionNoCredentialsNoWill) {
     auto options = options_for(3);
     options.availability_topic.clear();
     ::mqtt::connect_options co;
-    configure_connect_options(co, options, parse_broker_url(options.url), 10s);
+    configure_connect_options(co, options, parse_broker_url(options.urls.front()), 10s);
     EXPECT_EQ(co.get_mqtt_version(), MQTTVERSION_3_1_1);
     EXPECT_TRUE(co.is_clean_session());
     EXPECT_TRUE(co.get_user_name().empty());
@@ -54,10 +54,10 @@ TEST(ConnectOptions, Mqtt311CleanSessionNoCredentialsNoWill) {
 
 TEST(ConnectOptions, TlsFromTheSchemeWithTheGivenFiles) {
     auto options = options_for(5);
-    options.url = "ssl://broker:8883";
+    options.urls = {"ssl://broker:8883"};
     options.tls = TlsOptions{"/etc/ssl/ca.pem", "client.pem", "client.key", true};
     ::mqtt::connect_options co;
-    configure_connect_options(co, options, parse_broker_url(options.url), 10s);
+    configure_connect_options(co, options, parse_broker_url(options.urls.front()), 10s);
     EXPECT_EQ(co.get_ssl_options().get_trust_store(), "/etc/ssl/ca.pem");
     EXPECT_EQ(co.get_ssl_options().get_key_store(), "client.pem");
     EXPECT_EQ(co.get_ssl_options().get_private_key(), "client.key");
