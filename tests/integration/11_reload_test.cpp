@@ -57,15 +57,6 @@ const json ok = {{"ok", true}};
 
 class ReloadTest : public GatewayTest {
 protected:
-    /// Rewrites the configuration file with other exchanges, keeping the rest.
-    void rewrite_exchanges(const std::string& exchanges_yaml) {
-        std::ifstream in(config_path_);
-        std::stringstream text;
-        text << in.rdbuf();
-        auto content = text.str();
-        content = content.substr(0, content.find("exchanges:\n")) + "exchanges:\n" + exchanges_yaml;
-        std::ofstream(config_path_) << content;
-    }
     /// Publishes `payload` to `exchange`'s VALUE as an MQTT 5 request answered on
     /// replies/reload with correlation data `id`.
     void write(const std::string& exchange, const std::string& payload, const std::string& id) {

@@ -111,15 +111,6 @@ protected:
                                   .payload)["tags"]["SPEED"]["unit"],
                   "rad/s");
     }
-
-    void rewrite_exchanges(const std::string& exchanges_yaml) {
-        std::ifstream in(config_path_);
-        std::stringstream text;
-        text << in.rdbuf();
-        auto content = text.str();
-        content = content.substr(0, content.find("exchanges:\n")) + "exchanges:\n" + exchanges_yaml;
-        std::ofstream(config_path_) << content;
-    }
 };
 
 TEST_F(MetaTest, DescribesEachExchangeAtStartAndAfterAReloadThatChangesItMatchingTheSchema) {

@@ -79,12 +79,7 @@ protected:
         return message.payload.empty() ? json() : json::parse(message.payload);
     }
     void reload_with(const std::string& exchanges) {
-        std::ifstream in(config_path_);
-        std::stringstream text;
-        text << in.rdbuf();
-        auto content = text.str();
-        content = content.substr(0, content.find("exchanges:\n")) + "exchanges:\n" + exchanges;
-        std::ofstream(config_path_) << content;
+        rewrite_exchanges(exchanges);
         gateway_->signal(SIGHUP);  // once per test: the line below is this reload's
         ASSERT_TRUE(gateway_->wait_for_output("configuration applied", 10s)) << gateway_->output();
     }

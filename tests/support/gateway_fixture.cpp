@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "tests/support/free_port.hpp"
@@ -82,6 +83,15 @@ void GatewayTest::wait_online(std::size_t from) {
         std::chrono::seconds(60), from);
     ASSERT_TRUE(online.has_value()) << "gateway never came online; its output:\n"
                                     << (gateway_ ? gateway_->output() : "");
+}
+
+void GatewayTest::rewrite_exchanges(const std::string& exchanges_yaml) {
+    std::ifstream in(config_path_);
+    std::stringstream text;
+    text << in.rdbuf();
+    const auto content = text.str();
+    std::ofstream(config_path_) << content.substr(0, content.find("exchanges:\n")) +
+                                       "exchanges:\n" + exchanges_yaml;
 }
 
 void GatewayTest::TearDown() {

@@ -62,6 +62,8 @@ protected:
     void start_gateway();
     /// Waits for `online` on the availability topic, counting only messages after `from`.
     void wait_online(std::size_t from = 0);
+    /// Rewrites the configuration file with other exchanges, keeping the rest (for a reload).
+    void rewrite_exchanges(const std::string& exchanges_yaml);
     void TearDown() override;
 
     std::string topic(const std::string& suffix) const {

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "eip2mqtt/core/edit_distance.hpp"
+
 namespace eip2mqtt::core::plan {
 namespace {
 
@@ -55,23 +57,6 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 16> foreign_
     {"uint8", "byte"},
 }};
 
-/// Levenshtein distance, for typos of the short type names.
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t above = row[j];
-            const std::size_t replace = diagonal + (a[i - 1] == b[j - 1] ? 0U : 1U);
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, replace});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
-}
-
 }  // namespace
 
 std::optional<std::string_view> tag_type_hint(std::string_view unknown) {
@@ -82,7 +67,7 @@ std::optional<std::string_view> tag_type_hint(std::string_view unknown) {
     // One edit from a name of at least 4 letters: `reel`, `dintt`; a 3-letter name is one edit
     // from too many others to guess.
     for (const auto& [text, type] : yaml_names) {
-        if (text.size() >= 4 && edit_distance(key, text) == 1) return text;
+        if (text.size() >= 4 && core::edit_distance(key, text) == 1) return text;
     }
     return std::nullopt;
 }

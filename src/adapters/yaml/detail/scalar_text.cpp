@@ -5,29 +5,10 @@
 #include <cmath>
 #include <vector>
 
+#include "eip2mqtt/core/edit_distance.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::adapters::yaml::detail {
-namespace {
-
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t above = row[j];
-            row[j] =
-                std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
-}
-
-}  // namespace
-
 std::string lower(std::string_view text) {
     std::string out(text);
     std::transform(out.begin(), out.end(), out.begin(),
@@ -40,7 +21,7 @@ std::optional<std::string_view> suggestion(std::string_view key, Keys allowed) {
     std::size_t best_distance = 3;  // at most 2 edits
     const std::string key_lower = lower(key);
     for (const auto candidate : allowed) {
-        const auto distance = edit_distance(key_lower, candidate);
+        const auto distance = core::edit_distance(key_lower, candidate);
         if (distance < best_distance && distance < candidate.size()) {
             best = candidate;
             best_distance = distance;
