@@ -219,6 +219,9 @@ void Gateway::schedule_tick() {
 }
 
 void Gateway::on_tick() {
+    // What arrived in time is taken before any exchange is judged stale (a loop busy with
+    // births or a reload may not have read it yet).
+    receiver_->read_pending();
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;

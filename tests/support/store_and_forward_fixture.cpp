@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -25,6 +26,24 @@ std::vector<std::byte> counter_datagram(std::uint64_t n) {
         .request_id(static_cast<std::uint16_t>(n))
         .set("0.0", TagType::udint, std::uint64_t{n})
         .build();
+}
+
+/// Whether one delivery of each value can be picked so that the picks come in increasing order:
+/// the gateway's own order, once QoS 1's repeats are set aside. A repeat may come before the
+/// value's place as well as after it: a restarted broker first sends what it kept from before its
+/// stop (some of the values in flight), then the gateway sends all of them again, in order.
+bool in_order_but_for_repeats(const std::vector<std::uint64_t>& arrivals) {
+    std::map<std::uint64_t, std::vector<std::size_t>> positions;  // each value's arrivals, in turn
+    for (std::size_t i = 0; i < arrivals.size(); ++i) positions[arrivals[i]].push_back(i);
+    std::optional<std::size_t> previous;
+    for (const auto& [value, at] : positions) {
+        // The earliest arrival after the previous pick leaves the most room for the rest.
+        const auto pick = std::find_if(at.begin(), at.end(),
+                                       [&](std::size_t i) { return !previous || i > *previous; });
+        if (pick == at.end()) return false;
+        previous = *pick;
+    }
+    return true;
 }
 
 }  // namespace
@@ -106,15 +125,14 @@ void StoreAndForwardTest::expect_each_value_once(std::uint64_t last, int outages
     bool unsorted = false;
     const auto all = recorder_->messages();
     for (const auto* suffix : {"_values", "_history"}) {
-        std::vector<std::uint64_t> firsts;
-        std::set<std::uint64_t> seen;
+        std::vector<std::uint64_t> arrivals;
         for (const auto* m : deliveries_on(suffix, all)) {
             const auto v = counter_of(*m);
             ++count[v];
             payloads[v].insert(suffix + m->payload);
-            if (seen.insert(v).second) firsts.push_back(v);
+            arrivals.push_back(v);
         }
-        const bool sorted = std::is_sorted(firsts.begin(), firsts.end());
+        const bool sorted = in_order_but_for_repeats(arrivals);
         EXPECT_TRUE(sorted) << suffix << " out of order";
         unsorted = unsorted || !sorted;
     }

@@ -53,8 +53,9 @@ protected:
     /// exception, QoS 1's own: a publication in flight when a connection drops is sent again
     /// after the reconnect, and the broker may have taken it before it went. Such a repeat is
     /// the same message again (same topic, same payload: a historian keeps it once), at most a
-    /// few per outage (`outages`). It may come after later values (the restarted broker sends
-    /// what it kept first), so the order is that of each value's first delivery.
+    /// few per outage (`outages`). It may come before or after its place in the order (a
+    /// restarted broker first sends what it kept), so the order asked for is that of one delivery
+    /// of each value.
     void expect_each_value_once(std::uint64_t last, int outages = 1);
 
     /// Pauses the counter once live `_values` delivered its last value: nothing is queued.

@@ -207,12 +207,23 @@ void Receiver::on_readable(std::size_t socket, const boost::system::error_code& 
                           count);
         }
     } else {
-        const int fd = sockets_[socket].native_handle();
-        for (std::size_t i = 0; i < max_batches_per_wakeup; ++i) {
-            if (drain(fd) < batch_ || stopped_) break;
-        }
+        read_socket(socket);
     }
     if (!stopped_) do_wait(socket);
+}
+
+void Receiver::read_socket(std::size_t socket) {
+    const int fd = sockets_[socket].native_handle();
+    for (std::size_t i = 0; i < max_batches_per_wakeup; ++i) {
+        if (drain(fd) < batch_ || stopped_) break;
+    }
+}
+
+void Receiver::read_pending() {
+    if (!handler_) return;
+    for (std::size_t i = 0; i < sockets_.size() && !stopped_; ++i) {
+        if (sockets_[i].is_open()) read_socket(i);
+    }
 }
 
 std::size_t Receiver::drain(int fd) {

@@ -28,21 +28,25 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
     for (const auto& topic : retired_topics) {
         mqtt_.publish({topic, "", options_.publish.qos, true, true});
     }
-    // A kept or unchanged exchange's `_meta` stays as the broker has it.
-    std::unordered_map<std::string, Described> meta;
+    // A kept or unchanged exchange's `_meta` stays as the broker has it. Before the first
+    // connection nothing is published: republish_meta() on connecting publishes every one, and
+    // a start would otherwise queue each description twice (megabytes for a large plant).
+    std::unordered_map<std::string, std::size_t> digests;
+    described_.clear();
     for (const auto* plans : {&running.consumed, &running.produced}) {
         for (const auto* plan : *plans) {
+            described_.push_back(plan);
             auto payload = format_meta_payload(*plan);
-            const Described described{plan, std::hash<std::string>{}(payload)};
-            const auto old = meta_.find(plan->meta_topic);
-            if (old == meta_.end() || old->second.digest != described.digest) {
+            const auto digest = std::hash<std::string>{}(payload);
+            const auto old = meta_digests_.find(plan->meta_topic);
+            if (announced_ && (old == meta_digests_.end() || old->second != digest)) {
                 mqtt_.publish(
                     {plan->meta_topic, std::move(payload), options_.publish.qos, true, true});
             }
-            meta.emplace(plan->meta_topic, described);
+            digests.emplace(plan->meta_topic, digest);
         }
     }
-    meta_ = std::move(meta);
+    meta_digests_ = std::move(digests);
     router_.clear();
     for (const auto* plan : running.consumed) router_.add(*plan);
     for (const auto* plan : running.produced) router_.add(*plan);
@@ -50,9 +54,10 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
 }
 
 void UnsJson::republish_meta() {
-    for (const auto& [topic, described] : meta_) {
+    announced_ = true;
+    for (const auto* plan : described_) {
         mqtt_.publish(
-            {topic, format_meta_payload(*described.plan), options_.publish.qos, true, true});
+            {plan->meta_topic, format_meta_payload(*plan), options_.publish.qos, true, true});
     }
 }
 

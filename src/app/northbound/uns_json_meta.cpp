@@ -1,37 +1,73 @@
 #include "eip2mqtt/app/northbound/uns_json_meta.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
+// Written out directly rather than built as a JSON tree: a plant's 1,000 exchanges of 100 tags
+// are 100,000 tag objects, formatted at every start, and a tree of them cost more than the
+// rest of the start-up together.
+
 namespace eip2mqtt::app::northbound {
 namespace {
 
-using Json = nlohmann::ordered_json;
 using core::plan::Direction;
 
-/// A setting a tag may lack: null rather than left out, so that every tag has every key.
-template <class T>
-Json or_null(const std::optional<T>& value) {
-    return value ? Json(*value) : Json(nullptr);
+/// Text from the configuration: names are validated ASCII-safe, but a unit or a description
+/// from a point list may be in another encoding; a byte that is not UTF-8 is replaced, never
+/// written raw.
+void append_text(std::string& out, std::string_view text) {
+    const bool ascii = std::all_of(text.begin(), text.end(),
+                                   [](char c) { return static_cast<unsigned char>(c) < 0x80; });
+    if (ascii) {
+        append_json_string(out, text);
+    } else {
+        out += nlohmann::json(text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    }
 }
 
-Json text_or_null(const std::string& text) { return text.empty() ? Json(nullptr) : Json(text); }
+void append_text_or_null(std::string& out, std::string_view text) {
+    if (text.empty()) {
+        out += "null";
+    } else {
+        append_text(out, text);
+    }
+}
 
-Json tag_meta(const core::plan::TagPlan& tag) {
+/// A configured limit: a JSON number that reads as one of floating point (`4000.0`, as a JSON
+/// library writes a double), or null when unset.
+void append_number(std::string& out, std::optional<double> value) {
+    if (!value) {
+        out += "null";
+        return;
+    }
+    const auto start = out.size();
+    fmt::format_to(std::back_inserter(out), "{}", *value);
+    if (out.find_first_of(".eE", start) == std::string::npos) out += ".0";
+}
+
+void append_tag(std::string& out, const core::plan::TagPlan& tag) {
     const auto& spec = tag.spec;
-    return {
-        {"type", std::string(core::plan::to_string(spec.type))},
-        {"address", core::plan::to_string(spec.address)},
-        {"unit", text_or_null(spec.unit())},
-        {"description", text_or_null(spec.description())},
-        {"writable", spec.writable},
-        {"min", or_null(spec.min())},
-        {"max", or_null(spec.max())},
-        {"deadband", spec.deadband},
-    };
+    append_text(out, spec.name);
+    fmt::format_to(std::back_inserter(out), R"(:{{"type":"{}","address":"{}","unit":)",
+                   core::plan::to_string(spec.type), core::plan::to_string(spec.address));
+    append_text_or_null(out, spec.unit());
+    out += R"(,"description":)";
+    append_text_or_null(out, spec.description());
+    out += spec.writable ? R"(,"writable":true,"min":)" : R"(,"writable":false,"min":)";
+    append_number(out, spec.min());
+    out += R"(,"max":)";
+    append_number(out, spec.max());
+    out += R"(,"deadband":)";
+    append_number(out, spec.deadband);
+    out += '}';
 }
 
 }  // namespace
@@ -39,24 +75,36 @@ Json tag_meta(const core::plan::TagPlan& tag) {
 std::string format_meta_payload(const core::plan::ExchangePlan& plan) {
     const auto& spec = plan.spec;
     const bool consumed = spec.direction == Direction::consume;
-    Json meta = {
-        {"exchange", spec.name},
-        {"direction", std::string(core::plan::to_string(spec.direction))},
-        {"producer_id", core::wire::to_string(spec.producer_id)},
-        {"exchange_id", spec.exchange_id},
-        {"length", plan.length},
-        {"period_ms", spec.period.count()},
-        {"signature",
-         spec.signature.is_set() ? Json(core::wire::to_string(spec.signature)) : Json(nullptr)},
-        // Consumed: when the tags turn stale (0: never); produced: where the datagrams go.
-        {"timeout_ms", consumed ? Json(plan.timeout.count()) : Json(nullptr)},
-        {"destination", consumed ? Json(nullptr) : Json(spec.destination)},
-    };
-    Json tags = Json::object();
-    for (const auto& tag : plan.tags) tags[tag.spec.name] = tag_meta(tag);
-    meta["tags"] = std::move(tags);
-    // Names are text a broker accepts (validated); replace keeps a stray byte from throwing.
-    return meta.dump(-1, ' ', false, Json::error_handler_t::replace);
+    std::string out;
+    out.reserve(256 + plan.tags.size() * 160);
+    out += R"({"exchange":)";
+    append_text(out, spec.name);
+    fmt::format_to(std::back_inserter(out),
+                   R"(,"direction":"{}","producer_id":"{}","exchange_id":{},"length":{},)"
+                   R"("period_ms":{},"signature":)",
+                   core::plan::to_string(spec.direction), core::wire::to_string(spec.producer_id),
+                   spec.exchange_id, plan.length, spec.period.count());
+    if (spec.signature.is_set()) {
+        fmt::format_to(std::back_inserter(out), R"("{}")", core::wire::to_string(spec.signature));
+    } else {
+        out += "null";
+    }
+    // Consumed: when the tags turn stale (0: never); produced: where the datagrams go.
+    out += R"(,"timeout_ms":)";
+    out += consumed ? std::to_string(plan.timeout.count()) : "null";
+    out += R"(,"destination":)";
+    if (consumed) {
+        out += "null";
+    } else {
+        append_text(out, spec.destination);
+    }
+    out += R"(,"tags":{)";
+    for (std::size_t i = 0; i < plan.tags.size(); ++i) {
+        if (i > 0) out += ',';
+        append_tag(out, plan.tags[i]);
+    }
+    out += "}}";
+    return out;
 }
 
 }  // namespace eip2mqtt::app::northbound

@@ -70,8 +70,16 @@ void append_json_string(std::string& out, std::string_view text) {
             out += '\\';
             out += c;
         } else if (static_cast<unsigned char>(c) < 0x20) {
-            // Names refuse control characters; escaped all the same, never written raw.
-            fmt::format_to(std::back_inserter(out), "\\u{:04x}", static_cast<unsigned>(c));
+            // Names refuse control characters; escaped all the same (as JSON libraries write
+            // them), never written raw.
+            constexpr std::string_view shorts = "\b\t\n\f\r";
+            constexpr std::string_view letters = "btnfr";
+            if (const auto at = shorts.find(c); at != std::string_view::npos) {
+                out += '\\';
+                out += letters[at];
+            } else {
+                fmt::format_to(std::back_inserter(out), "\\u{:04x}", static_cast<unsigned>(c));
+            }
         } else {
             out += c;
         }

@@ -1,6 +1,7 @@
 // Receiver: the gateway's port is its own. No other socket can bind it beside the gateway
 // (Linux would hand that socket some of the unicast datagrams), a second receiver on it is
-// refused with the holder named, and a multicast group stays shareable with other consumers.
+// refused with the holder named, a multicast group stays shareable with other consumers, and what
+// waits unread can be taken without the loop (before timeouts are judged).
 
 #include "eip2mqtt/adapters/udp/receiver.hpp"
 
@@ -85,6 +86,37 @@ TEST(Receiver, ASecondReceiverOnThePortIsRefusedWithTheHolderNamed) {
                   std::string::npos)
             << what;
     }
+}
+
+TEST(Receiver, ReadPendingTakesWhatWaitsWithoutTheLoopRunning) {
+    boost::asio::io_context io;  // never run: a loop busy elsewhere
+    Receiver receiver(io.get_executor(), ReceiverOptions{.bind = "127.0.0.1", .port = 0});
+    std::vector<std::size_t> lengths;
+    receiver.start([&](std::span<const std::byte> datagram, const Endpoint&, bool) {
+        lengths.push_back(datagram.size());
+    });
+    const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(receiver.local_port());
+    inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+    const std::byte datagram[3]{};
+    for (int i = 0; i < 2; ++i) {
+        ASSERT_EQ(::sendto(fd, datagram, sizeof datagram - static_cast<std::size_t>(i), 0,
+                           reinterpret_cast<const sockaddr*>(&to), sizeof to),
+                  static_cast<ssize_t>(sizeof datagram) - i);
+    }
+    ::close(fd);
+    // Loopback has queued them once sendto returned, on every kernel we know; bounded all the
+    // same.
+    for (int i = 0; i < 1000 && lengths.size() < 2; ++i) {
+        receiver.read_pending();
+        if (lengths.size() < 2) std::this_thread::sleep_for(1ms);
+    }
+    EXPECT_EQ(lengths, (std::vector<std::size_t>{3, 2}));
+    EXPECT_EQ(receiver.stats().datagrams, 2u);
+    receiver.read_pending();  // nothing more: nothing handed on twice
+    EXPECT_EQ(lengths.size(), 2u);
 }
 
 /// In a network namespace of its own (where loopback may carry multicast without touching the

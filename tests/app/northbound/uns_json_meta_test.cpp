@@ -71,5 +71,31 @@ TEST(UnsJsonMeta, AProducedExchangeSaysWhereItGoesAndWhichTagsAreWritable) {
     EXPECT_EQ(meta["tags"]["SETPOINT"]["writable"], true);
 }
 
+TEST(UnsJsonMeta, IsWrittenAsAJsonLibraryWritesItAndNeverCarriesABrokenByte) {
+    auto speed = test::test_tag("SPEED", 0, TagType::real);
+    speed.deadband = 2;
+    auto& extras = speed.mutable_extras();
+    extras.unit =
+        "\xb0"
+        "C";  // a Latin-1 degree sign, from a point list exported on Windows
+    extras.description = "say \"hi\"\\ \t";
+    extras.min = -1.5e-7;
+    extras.max = 1e21;
+    auto plan = test::test_plan("t", Direction::consume, 4, {speed});
+    const auto payload = format_meta_payload(plan);
+
+    const auto meta = json::parse(payload);  // throws on a byte that is not UTF-8
+    EXPECT_EQ(meta.dump(), payload);         // the same bytes: numbers, escapes, no spaces
+    const auto& s = meta["tags"]["SPEED"];
+    EXPECT_EQ(s["unit"],
+              "\xef\xbf\xbd"
+              "C");  // U+FFFD in place of the byte
+    EXPECT_EQ(s["description"], "say \"hi\"\\ \t");
+    EXPECT_TRUE(s["deadband"].is_number_float());
+    EXPECT_EQ(s["deadband"], 2.0);
+    EXPECT_EQ(s["min"], -1.5e-7);
+    EXPECT_EQ(s["max"], 1e21);
+}
+
 }  // namespace
 }  // namespace eip2mqtt::app::northbound

@@ -32,6 +32,7 @@ class UnsJsonTest : public ::testing::Test {
 protected:
     explicit UnsJsonTest(PublishSettings settings = {}) : uns_(settings, {}, "acme") {
         uns_.northbound().exchanges_changed({{&consumed_}, {&produced_}}, {});
+        uns_.northbound().republish_meta();  // connected
         // Each exchange's `_meta` (UnsJsonMetaTest); the tests below start after them.
         EXPECT_EQ(published().size(), 2u);
         uns_.publisher.published.clear();
@@ -144,13 +145,19 @@ TEST_F(UnsJsonTest, ARefusedSetMessageIsHandedOnAsARejectionWithTheReasonForTheL
     EXPECT_TRUE(published().empty());  // answering is the WriteHandler's call
 }
 
-TEST(UnsJsonMetaTest, PublishedAtStartThenOnlyWhenAReloadChangesItAndAgainOnReconnect) {
+TEST(UnsJsonMetaTest, PublishedOnConnectingThenOnlyWhenAReloadChangesItAndAgainOnReconnect) {
     test::UnsJsonRecorder uns;
     auto in = plan("in", core::plan::Direction::consume);
     const auto out = plan("out", core::plan::Direction::produce);
     uns.northbound().exchanges_changed({{&in}, {&out}}, {});
     const auto& published = uns.publisher.published;
+    EXPECT_TRUE(published.empty());  // not connected yet: the connection publishes them
+    in.spec.period = std::chrono::milliseconds(500);  // a reload before the first connection
+    uns.northbound().exchanges_changed({{&in}, {&out}}, {});
+    EXPECT_TRUE(published.empty());
+    uns.northbound().republish_meta();  // connected
     ASSERT_EQ(published.size(), 2u);
+    EXPECT_NE(published[0].payload.find(R"("period_ms":500)"), std::string::npos);
     EXPECT_EQ(published[0].topic, "acme/t1/in/_meta");
     EXPECT_EQ(published[1].topic, "acme/t1/out/_meta");
     for (const auto& m : published) {

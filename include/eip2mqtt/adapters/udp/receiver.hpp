@@ -67,6 +67,12 @@ public:
     /// be joined, the groups are put back as they were and std::system_error names the group.
     void set_multicast(const std::vector<MulticastMembership>& memberships);
 
+    /// Reads what the sockets hold now, without waiting (bounded as one wake-up is). Called
+    /// before the exchanges' timeouts are judged: a datagram that arrived in time but waits
+    /// unread behind a busy loop is taken first, so that a busy gateway never calls an exchange
+    /// stale that was not.
+    void read_pending();
+
     std::uint16_t local_port() const;
     const ReceiverStats& stats() const { return stats_; }
 
@@ -80,6 +86,8 @@ private:
     void leave(const MulticastMembership& membership, std::size_t socket);
     void do_wait(std::size_t socket);
     void on_readable(std::size_t socket, const boost::system::error_code& error);
+    /// Up to max_batches_per_wakeup batches from one socket.
+    void read_socket(std::size_t socket);
     std::size_t drain(int fd);
 
     boost::asio::any_io_executor executor_;

@@ -61,11 +61,12 @@ public:
     void on_message(const adapters::mqtt::Incoming& message);
 
     /// Also publishes each running exchange's `_meta` (uns_json_meta.hpp) that is new or
-    /// changed; a retired exchange's is among `retired_topics` (core::plan::diff_plans).
+    /// changed, once republish_meta() has published them all; a retired exchange's is among
+    /// `retired_topics` (core::plan::diff_plans).
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
-    /// Publishes every running exchange's `_meta` again (a reconnect: the broker may have lost
-    /// its retained messages).
+    /// Publishes every running exchange's `_meta` (on each connect: the first, and a reconnect
+    /// to a broker that may have lost its retained messages).
     void republish_meta();
     void tag_samples(const SampleBatch& batch) override;
     void consumed_status(const ConsumedStatus& status) override;
@@ -89,16 +90,14 @@ private:
     WriteRouter router_;
     /// With store and forward: whether the link is up (samples go live, not to the journal).
     std::function<bool()> connected_;
-    /// What a running exchange's `_meta` was last published from: its plan, and a digest of the
-    /// payload, so that a reload publishes only the descriptions that changed without the
-    /// gateway holding every payload (tens of bytes a tag: megabytes for 100,000 tags). Two
-    /// different payloads with one 64-bit digest would leave a change unpublished; at the
-    /// handful of reloads a gateway sees, that chance is nil.
-    struct Described {
-        const core::plan::ExchangePlan* plan = nullptr;
-        std::size_t digest = 0;
-    };
-    std::unordered_map<std::string, Described> meta_;  ///< by `_meta` topic
+    /// A digest of each running exchange's `_meta` payload as last formatted, by topic, so that
+    /// a reload publishes only the descriptions that changed without the gateway holding every
+    /// payload (tens of bytes a tag: megabytes for 100,000 tags). Two different payloads with
+    /// one 64-bit digest would leave a change unpublished; at the handful of reloads a gateway
+    /// sees, that chance is nil.
+    std::unordered_map<std::string, std::size_t> meta_digests_;
+    std::vector<const core::plan::ExchangePlan*> described_;  ///< the running, in order
+    bool announced_ = false;  ///< republish_meta() ran: changes are published from then on
     /// Every tag publication is filled in here; the publisher takes its content and leaves
     /// spare buffers (Client::publish), so the data path does not allocate.
     adapters::mqtt::Message message_;
