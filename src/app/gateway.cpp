@@ -240,6 +240,7 @@ void Gateway::on_tick() {
         }
     }
     exchanges_.tick(now, wall, refresh_scan);
+    uns_json_->publish_due_meta();
     if (commands_) commands_->flush_log(now);
 }
 

@@ -47,6 +47,8 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
         }
     }
     meta_digests_ = std::move(digests);
+    // The running set changed under a republish in progress: it starts again from the first.
+    if (next_due_meta_) next_due_meta_ = 0;
     router_.clear();
     for (const auto* plan : running.consumed) router_.add(*plan);
     for (const auto* plan : running.produced) router_.add(*plan);
@@ -55,10 +57,18 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
 
 void UnsJson::republish_meta() {
     announced_ = true;
-    for (const auto* plan : described_) {
+    next_due_meta_ = 0;
+}
+
+void UnsJson::publish_due_meta() {
+    if (!next_due_meta_) return;
+    auto& next = *next_due_meta_;
+    for (std::size_t sent = 0; sent < meta_per_call && next < described_.size(); ++sent, ++next) {
+        const auto& plan = *described_[next];
         mqtt_.publish(
-            {plan->meta_topic, format_meta_payload(*plan), options_.publish.qos, true, true});
+            {plan.meta_topic, format_meta_payload(plan), options_.publish.qos, true, true});
     }
+    if (next >= described_.size()) next_due_meta_.reset();
 }
 
 void UnsJson::tag_samples(const SampleBatch& batch) {

@@ -20,9 +20,9 @@ TEST(JsonString, QuotesAndEscapesWhatJsonRequires) {
     // Tag names may hold quotes and backslashes (`_values` was invalid JSON).
     EXPECT_EQ(json_string(R"(SAY"HI\)"), R"(x"SAY\"HI\\")");
     EXPECT_EQ(json_string(std::string("A\x01"
-                                      "B\n",
-                                      4)),
-              R"(x"A\u0001B\u000a")");
+                                      "B\n\t",
+                                      5)),
+              R"(x"A\u0001B\n\t")");  // the short escapes where JSON has one
     EXPECT_EQ(json_string("Pressão/°C"), "x\"Pressão/°C\"");  // UTF-8 as is
     EXPECT_EQ(json_string(""), R"(x"")");
 }

@@ -33,6 +33,7 @@ protected:
     explicit UnsJsonTest(PublishSettings settings = {}) : uns_(settings, {}, "acme") {
         uns_.northbound().exchanges_changed({{&consumed_}, {&produced_}}, {});
         uns_.northbound().republish_meta();  // connected
+        uns_.northbound().publish_due_meta();
         // Each exchange's `_meta` (UnsJsonMetaTest); the tests below start after them.
         EXPECT_EQ(published().size(), 2u);
         uns_.publisher.published.clear();
@@ -156,6 +157,7 @@ TEST(UnsJsonMetaTest, PublishedOnConnectingThenOnlyWhenAReloadChangesItAndAgainO
     uns.northbound().exchanges_changed({{&in}, {&out}}, {});
     EXPECT_TRUE(published.empty());
     uns.northbound().republish_meta();  // connected
+    uns.northbound().publish_due_meta();
     ASSERT_EQ(published.size(), 2u);
     EXPECT_NE(published[0].payload.find(R"("period_ms":500)"), std::string::npos);
     EXPECT_EQ(published[0].topic, "acme/t1/in/_meta");
@@ -181,12 +183,51 @@ TEST(UnsJsonMetaTest, PublishedOnConnectingThenOnlyWhenAReloadChangesItAndAgainO
     EXPECT_EQ(published[3].topic, "acme/t1/in/_meta");
 
     uns.northbound().republish_meta();
+    uns.northbound().publish_due_meta();
     ASSERT_EQ(published.size(), 6u);
     // Formatted again from the running plans: what the broker was last given.
     for (std::size_t i = 4; i < 6; ++i) {
         const auto& described = published[i].topic == "acme/t1/in/_meta" ? in : out;
         EXPECT_EQ(published[i].payload, format_meta_payload(described)) << published[i].topic;
     }
+}
+
+TEST(UnsJsonMetaTest, AReconnectSendsTheDescriptionsAFewAtATimeInConfigurationOrder) {
+    test::UnsJsonRecorder uns;
+    constexpr std::size_t per_call = UnsJson::meta_per_call;
+    std::vector<core::plan::ExchangePlan> plans;
+    for (std::size_t i = 0; i < 2 * per_call + 1; ++i) {
+        plans.push_back(plan("e" + std::to_string(i), core::plan::Direction::consume));
+    }
+    ExchangeSet running;
+    for (const auto& p : plans) running.consumed.push_back(&p);
+    uns.northbound().exchanges_changed(running, {});
+    uns.northbound().publish_due_meta();
+    const auto& published = uns.publisher.published;
+    EXPECT_TRUE(published.empty());  // nothing is due before a connection
+
+    uns.northbound().republish_meta();
+    EXPECT_TRUE(published.empty());  // due, not yet sent
+    const std::size_t expected[] = {per_call, 2 * per_call, 2 * per_call + 1, 2 * per_call + 1};
+    for (const auto count : expected) {
+        uns.northbound().publish_due_meta();
+        EXPECT_EQ(published.size(), count);
+    }
+    for (std::size_t i = 0; i < published.size(); ++i) {
+        EXPECT_EQ(published[i].topic, plans[i].meta_topic);
+    }
+
+    // A reload in the middle of a republish starts it again: every description reaches the
+    // broker, whatever the new set.
+    uns.publisher.published.clear();
+    uns.northbound().republish_meta();
+    uns.northbound().publish_due_meta();
+    running.consumed.pop_back();
+    uns.northbound().exchanges_changed(running, {});
+    for (int i = 0; i < 3; ++i) uns.northbound().publish_due_meta();
+    ASSERT_EQ(published.size(), per_call + 2 * per_call);
+    EXPECT_EQ(published[per_call].topic, plans[0].meta_topic);
+    EXPECT_EQ(published.back().topic, plans[2 * per_call - 1].meta_topic);
 }
 
 }  // namespace

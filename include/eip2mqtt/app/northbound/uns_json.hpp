@@ -6,6 +6,7 @@
 /// Threading: the loop only.
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -65,9 +66,14 @@ public:
     /// `retired_topics` (core::plan::diff_plans).
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
-    /// Publishes every running exchange's `_meta` (on each connect: the first, and a reconnect
-    /// to a broker that may have lost its retained messages).
+    /// Makes every running exchange's `_meta` due (on each connect: the first, and a reconnect
+    /// to a broker that may have lost its retained messages); publish_due_meta() sends them.
     void republish_meta();
+    /// Publishes the next `meta_per_call` descriptions republish_meta() made due, in
+    /// configuration order; called on every tick of the loop. Paced so that a plant's
+    /// descriptions (megabytes) never queue all at once ahead of the live values.
+    void publish_due_meta();
+    static constexpr std::size_t meta_per_call = 16;
     void tag_samples(const SampleBatch& batch) override;
     void consumed_status(const ConsumedStatus& status) override;
     void produced_status(const core::plan::ExchangePlan& exchange,
@@ -97,7 +103,10 @@ private:
     /// sees, that chance is nil.
     std::unordered_map<std::string, std::size_t> meta_digests_;
     std::vector<const core::plan::ExchangePlan*> described_;  ///< the running, in order
-    bool announced_ = false;  ///< republish_meta() ran: changes are published from then on
+    bool announced_ = false;
+    std::optional<std::size_t>
+        next_due_meta_;  ///< into described_; none when none is due  ///< republish_meta() ran:
+                         ///< changes are published from then on
     /// Every tag publication is filled in here; the publisher takes its content and leaves
     /// spare buffers (Client::publish), so the data path does not allocate.
     adapters::mqtt::Message message_;
