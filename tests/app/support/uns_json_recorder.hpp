@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
-#include "eip2mqtt/app/northbound/uns_json.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json.hpp"
 
 namespace eip2mqtt::test {
 
@@ -54,7 +54,7 @@ private:
 /// UnsJson publishing to a RecordingPublisher; the writes it decodes are kept, not staged.
 class UnsJsonRecorder final : public app::WriteHandler {
 public:
-    explicit UnsJsonRecorder(app::northbound::PublishSettings settings = {},
+    explicit UnsJsonRecorder(app::northbound::json_tree::PublishSettings settings = {},
                              RecordingPublisher::Mode mode = RecordingPublisher::Mode::keep_all,
                              std::string base_topic = "")
         : publisher(mode),
@@ -62,13 +62,13 @@ public:
                *this) {}
 
     void on_write(app::WriteRequest&& request) override { writes.push_back(std::move(request)); }
-    app::northbound::UnsJson& northbound() { return uns_; }
+    app::northbound::json_tree::UnsJson& northbound() { return uns_; }
 
     RecordingPublisher publisher;
     std::vector<app::WriteRequest> writes;
 
 private:
-    app::northbound::UnsJson uns_;
+    app::northbound::json_tree::UnsJson uns_;
 };
 
 }  // namespace eip2mqtt::test
