@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
-#include "tests/app/support/recording_northbound.hpp"
+#include "tests/support/fakes/recording_northbound.hpp"
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app {
