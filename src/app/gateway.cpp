@@ -52,16 +52,16 @@ Gateway::Gateway(core::config::Config config)
                  writes_.image_saves()) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(
         loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
-    uns_json_ = std::make_unique<northbound::UnsJson>(northbound::uns_json_options(config_), *mqtt_,
-                                                      writes_);
+    uns_json_ = std::make_unique<northbound::json_tree::UnsJson>(
+        northbound::json_tree::uns_json_options(config_), *mqtt_, writes_);
     make_history();
     if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*uns_json_);
     if (config_.sparkplug.enabled()) {
         sparkplug_mqtt_ = std::make_unique<adapters::mqtt::Client>(
             loop_.get_executor(),
             sparkplug_client_options(config_, [this] { return sparkplug_->next_will(); }));
-        sparkplug_ = std::make_unique<northbound::SparkplugNode>(
-            northbound::sparkplug_options(config_), *sparkplug_mqtt_, writes_, [] {
+        sparkplug_ = std::make_unique<northbound::sparkplug::SparkplugNode>(
+            northbound::sparkplug::sparkplug_options(config_), *sparkplug_mqtt_, writes_, [] {
                 return std::chrono::duration_cast<std::chrono::milliseconds>(
                            std::chrono::system_clock::now().time_since_epoch())
                     .count();

@@ -80,7 +80,7 @@ bool Gateway::apply_settings(const core::config::Config& next) {
     }
     // Response topics and the like take effect at once; tags are published in the new form
     // from their next sample, and their retained state is published again (reload()).
-    uns_json_->set_options(northbound::uns_json_options(next));
+    uns_json_->set_options(northbound::json_tree::uns_json_options(next));
     if (commands_) commands_->set_policy(command_policy(next));
     return true;
 }
@@ -112,7 +112,7 @@ void Gateway::reload() {
         return;
     }
     const bool republish =
-        northbound::uns_json_options(config).publish != uns_json_->options().publish;
+        northbound::json_tree::uns_json_options(config).publish != uns_json_->options().publish;
     const bool metrics_interval = config.mqtt.metrics_interval != config_.mqtt.metrics_interval;
     if (!apply_settings(config)) {
         notifier_.ready(status_line());

@@ -13,6 +13,7 @@
 #include "tests/core/command/command_vectors.hpp"
 #include "tests/core/vectors.hpp"
 #include "tests/support/fakes/log_capture.hpp"
+#include "tests/support/fakes/recording_write_handler.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -21,23 +22,10 @@ using namespace std::chrono_literals;
 using core::command::CommandStatus;
 using core::command::PduType;
 namespace v = test::command_vectors;
+using test::RecordingWriteHandler;
 
 constexpr std::uint32_t requester = 0x0A140007;  // 10.20.0.7
 constexpr std::uint32_t stranger = 0x0A150007;   // 10.21.0.7
-
-/// Keeps what the responder hands on, and refuses it on demand.
-class RecordingWrites : public WriteHandler {
-public:
-    void on_write(WriteRequest&& request) override {
-        if (refuse) {
-            request.reply.origin->write_result(request.reply, "rate limited");
-            return;
-        }
-        requests.push_back(std::move(request));
-    }
-    std::vector<WriteRequest> requests;
-    bool refuse = false;
-};
 
 class CommandResponderTest : public ::testing::Test {
 protected:
@@ -87,7 +75,7 @@ protected:
     std::vector<std::byte> image_ = std::vector<std::byte>(8);
     std::vector<core::command::ExchangeView> views_;
     std::vector<Sent> sent_;
-    RecordingWrites writes_;
+    RecordingWriteHandler writes_;
 };
 
 TEST_F(CommandResponderTest, AnAllowedRequesterGetsTheResponseAtItsAddressAndPort) {

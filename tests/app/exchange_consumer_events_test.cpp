@@ -13,8 +13,8 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
-#include "tests/app/support/recording_northbound.hpp"
 #include "tests/support/fakes/log_capture.hpp"
+#include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
 namespace {

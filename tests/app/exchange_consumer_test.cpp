@@ -88,7 +88,7 @@ TEST(ExchangeConsumerDataPath, PublishesEveryChangedTagWithoutAllocatingOnceWarm
 TEST(ExchangeConsumerDataPath, BatchModeAddsOneValuesMessagePerDatagram) {
     // Issue #6, mqtt.batch: besides the tag topics, {exchange}/_values with every tag that
     // changed in the datagram, same value encoding, not retained, in the batch lane.
-    app::northbound::PublishSettings settings;
+    app::northbound::json_tree::PublishSettings settings;
     settings.batch = true;
     test::UnsJsonRecorder uns(settings);
     auto& published = uns.publisher.published;

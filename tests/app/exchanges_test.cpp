@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "tests/app/support/recording_northbound.hpp"
 #include "tests/app/support/test_plan.hpp"
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
 namespace {

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
-#include "tests/app/support/recording_northbound.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
+#include "tests/support/fakes/recording_northbound.hpp"
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app {
@@ -48,7 +48,7 @@ struct Counters {
 
 TEST(MetricsJson, EachCounterLandsInItsField) {
     const Counters c;
-    const auto metrics = json::parse(northbound::metrics_json(c.sources(), 42s));
+    const auto metrics = json::parse(northbound::json_tree::metrics_json(c.sources(), 42s));
     EXPECT_EQ(metrics["uptime_s"], 42);
     EXPECT_EQ(metrics["datagrams"], 10);
     EXPECT_EQ(metrics["accepted"], 6);
@@ -70,7 +70,7 @@ TEST(MetricsJson, EachCounterLandsInItsField) {
 }
 
 TEST(MetricsJson, EveryDropReasonAndWriteErrorIsListedEvenAtZero) {
-    const auto metrics = json::parse(northbound::metrics_json(Counters{}.sources(), 0s));
+    const auto metrics = json::parse(northbound::json_tree::metrics_json(Counters{}.sources(), 0s));
     ASSERT_EQ(metrics["dropped"].size(), core::wire::drop_reason_count);
     for (const auto reason : core::wire::all_drop_reasons) {
         EXPECT_TRUE(metrics["dropped"].contains(std::string(core::wire::to_string(reason))));
@@ -80,7 +80,7 @@ TEST(MetricsJson, EveryDropReasonAndWriteErrorIsListedEvenAtZero) {
 }
 
 TEST(MetricsJson, MatchesTheDocumentedSchema) {
-    const auto payload = northbound::metrics_json(Counters{}.sources(), 42s);
+    const auto payload = northbound::json_tree::metrics_json(Counters{}.sources(), 42s);
     EXPECT_EQ(test::schema_problem(test::schema_file("metrics.json"), payload), "") << payload;
 }
 
@@ -142,7 +142,7 @@ TEST(HistoryMetrics, TheJournalsFiguresWithTheOldestEntrysAge) {
     // On the metrics topic, and as its schema says.
     MetricsSources sources = counters.sources();
     sources.history = &stats;
-    const auto payload = northbound::metrics_json(sources, 42s);
+    const auto payload = northbound::json_tree::metrics_json(sources, 42s);
     const auto m = json::parse(payload);
     EXPECT_EQ(m["history_dropped"], 3);
     EXPECT_EQ(m["history"]["entries"], 1200);

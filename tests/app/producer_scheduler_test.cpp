@@ -12,36 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/fakes/recording_producible.hpp"
+
 namespace eip2mqtt::app {
 namespace {
 
 using namespace std::chrono_literals;
-
-/// A Producible that records each call, in one log shared by every producer of a test.
-class RecordingProducible final : public Producible {
-public:
-    RecordingProducible(std::string name, std::uint16_t port, std::vector<std::string>& log)
-        : name_(std::move(name)), destination_{0x7F000001, port}, log_(log) {}
-
-    std::span<const std::byte> produce(core::WallTime) override {
-        log_.push_back("produce " + name_);
-        datagram_.assign(4, std::byte{static_cast<unsigned char>(destination_.port)});
-        return datagram_;
-    }
-    const adapters::udp::Endpoint& destination() const override { return destination_; }
-    void count_skipped(std::size_t skipped) override { skipped_ += skipped; }
-    void on_sent(bool sent, core::WallTime) override {
-        log_.push_back((sent ? "sent " : "refused ") + name_);
-    }
-
-    std::size_t skipped_ = 0;
-
-private:
-    std::string name_;
-    adapters::udp::Endpoint destination_;
-    std::vector<std::string>& log_;
-    std::vector<std::byte> datagram_;
-};
+using test::RecordingProducible;
 
 class ProducerSchedulerTest : public ::testing::Test {
 protected:

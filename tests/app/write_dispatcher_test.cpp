@@ -9,7 +9,7 @@
 #include <chrono>
 #include <vector>
 
-#include "tests/app/support/recording_northbound.hpp"
+#include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
 namespace {

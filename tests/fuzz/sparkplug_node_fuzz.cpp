@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
-#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 
 namespace {
 
@@ -73,8 +73,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                          "spBv1.0/STATE/host"};
     NullPublisher publisher;
     CheckingWrites writes(produced);
-    app::northbound::SparkplugNode node({"g", "n", "host", 0}, publisher, writes,
-                                        [] { return std::int64_t{1700000000000}; });
+    app::northbound::sparkplug::SparkplugNode node({"g", "n", "host", 0}, publisher, writes,
+                                                   [] { return std::int64_t{1700000000000}; });
     node.exchanges_changed({{&consumed}, {&produced}}, {});
     node.next_will();
     node.on_connected();

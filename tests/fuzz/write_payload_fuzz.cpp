@@ -5,12 +5,12 @@
 #include <cstdint>
 #include <string_view>
 
-#include "eip2mqtt/adapters/mqtt/write_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/write_payload.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view payload(reinterpret_cast<const char*>(data), size);
-    (void)eip2mqtt::adapters::mqtt::parse_tag_write(payload);
-    const auto batch = eip2mqtt::adapters::mqtt::parse_exchange_write(payload);
+    (void)eip2mqtt::app::northbound::json_tree::parse_tag_write(payload);
+    const auto batch = eip2mqtt::app::northbound::json_tree::parse_exchange_write(payload);
     if (batch && batch.value().empty()) __builtin_trap();  // an empty object fails the write
     return 0;
 }

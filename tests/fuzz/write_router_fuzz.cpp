@@ -14,7 +14,7 @@
 #include <string_view>
 #include <variant>
 
-#include "eip2mqtt/app/write_router.hpp"
+#include "eip2mqtt/app/northbound/json_tree/write_router.hpp"
 #include "eip2mqtt/core/plan/topic_rules.hpp"
 
 namespace {
@@ -59,8 +59,8 @@ core::plan::ExchangePlan make_plan(const char* name, core::plan::Direction direc
 const core::plan::ExchangePlan produced = make_plan("sp", core::plan::Direction::produce);
 const core::plan::ExchangePlan consumed = make_plan("in", core::plan::Direction::consume);
 
-app::WriteRouter make_router() {
-    app::WriteRouter router({"acme", false});
+app::northbound::json_tree::WriteRouter make_router() {
+    app::northbound::json_tree::WriteRouter router({"acme", false});
     router.add(produced);
     router.add(consumed);
     return router;
@@ -100,7 +100,7 @@ bool fits(const core::plan::TagSpec& spec, const core::plan::Value& value) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    static const app::WriteRouter router = make_router();
+    static const app::northbound::json_tree::WriteRouter router = make_router();
     if (size == 0) return 0;
     std::string_view rest(reinterpret_cast<const char*>(data) + 1, size - 1);
     adapters::mqtt::Incoming message;

@@ -31,8 +31,8 @@
 #include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/northbound/fan_out.hpp"
-#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
-#include "eip2mqtt/app/northbound/uns_json.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -105,10 +105,10 @@ private:
     adapters::systemd::Notifier notifier_;
     std::unique_ptr<adapters::mqtt::Client> mqtt_;
     WriteDispatcher writes_;
-    std::unique_ptr<northbound::UnsJson> uns_json_;
+    std::unique_ptr<northbound::json_tree::UnsJson> uns_json_;
     /// With `sparkplug:`, the edge node and its own connection (its will is the NDEATH).
     std::unique_ptr<adapters::mqtt::Client> sparkplug_mqtt_;
-    std::unique_ptr<northbound::SparkplugNode> sparkplug_;
+    std::unique_ptr<northbound::sparkplug::SparkplugNode> sparkplug_;
     std::unique_ptr<history::StoreAndForward> history_;  ///< with mqtt.store_and_forward
     northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to
     Exchanges exchanges_;

@@ -1,8 +1,8 @@
 #pragma once
 /// The gateway's metrics, built from its counters alone: the figures by name that the metrics
-/// topic (app/northbound/uns_json_payload) and Prometheus report, and the snapshot Prometheus
-/// serves. Pure: no socket, no clock of its own, so each figure can be checked without running a
-/// gateway.
+/// topic (app/northbound/json_tree/uns_json_payload) and Prometheus report, and the snapshot
+/// Prometheus serves. Pure: no socket, no clock of its own, so each figure can be checked
+/// without running a gateway.
 
 #include <array>
 #include <chrono>
@@ -19,7 +19,7 @@
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
-#include "eip2mqtt/app/northbound/sparkplug_stats.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_stats.hpp"
 #include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
@@ -44,9 +44,9 @@ struct MetricsSources {
     const DatagramCounters& datagrams;
     const GatewayCounters& gateway;
     const adapters::mqtt::ClientStats& mqtt;
-    const history::HistoryStats* history = nullptr;         ///< with store and forward
-    const northbound::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
-    const CommandCounters* commands = nullptr;              ///< with eip.commands enabled
+    const history::HistoryStats* history = nullptr;                    ///< with store and forward
+    const northbound::sparkplug::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
+    const CommandCounters* commands = nullptr;  ///< with eip.commands enabled
 };
 
 /// Store and forward's figures for Prometheus and the metrics topic.

@@ -2,10 +2,10 @@
 /// The seam between the exchanges and the protocols that carry their data north.
 /// Consumers and producers report domain events here (tag samples, exchange status, an exchange
 /// going up or down, write results) and know neither MQTT nor JSON; each protocol implements
-/// Northbound: today's JSON topic tree is app/northbound/uns_json. NorthboundFanOut hands every
-/// event to several at once. Writes come back the other way: a northbound decodes what its
-/// clients send into one WriteRequest and hands it to a WriteHandler (the Gateway), whatever the
-/// protocol.
+/// Northbound in a folder of its own: the JSON topic tree in app/northbound/json_tree/, the
+/// Sparkplug node in app/northbound/sparkplug/. FanOut hands every event to several at once.
+/// Writes come back the other way: a northbound decodes what its clients send into one
+/// WriteRequest and hands it to a WriteHandler (the Gateway), whatever the protocol.
 ///
 /// Threading: the loop only. An event borrows its data for the call.
 

@@ -15,7 +15,7 @@
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/commands.hpp"
 #include "eip2mqtt/app/mqtt_settings.hpp"
-#include "eip2mqtt/app/northbound/sparkplug_birth_size.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_birth_size.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/config/placeholders.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
@@ -136,7 +136,7 @@ void print_birth_size(std::string_view birth, std::size_t bytes, std::size_t max
                       std::ostream& out) {
     out << "  sparkplug " << birth << ": at most " << bytes << " bytes\n";
     const bool set = max_packet_bytes != 0;
-    const auto limit = set ? max_packet_bytes : northbound::common_max_packet_bytes;
+    const auto limit = set ? max_packet_bytes : northbound::sparkplug::common_max_packet_bytes;
     if (bytes <= limit) return;
     const auto whom = birth == "NBIRTH" ? "the edge node" : "this device";
     out << "  warning: the Sparkplug " << birth << " may take " << bytes << " bytes, over ";
@@ -186,9 +186,10 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     print_placeholders(config_path, out);
     const core::plan::WarningContext context{config->mqtt.version == 3};
     const auto& sparkplug = config->sparkplug;
-    std::optional<northbound::SparkplugBirthSizes> births;
+    std::optional<northbound::sparkplug::SparkplugBirthSizes> births;
     if (sparkplug.enabled()) {
-        births = northbound::sparkplug_birth_sizes(northbound::sparkplug_options(*config), plans);
+        births = northbound::sparkplug::sparkplug_birth_sizes(
+            northbound::sparkplug::sparkplug_options(*config), plans);
         print_birth_size("NBIRTH", births->node, sparkplug.max_packet_bytes, out);
     }
     for (std::size_t i = 0; i < plans.size(); ++i) {

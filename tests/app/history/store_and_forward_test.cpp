@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tests/app/support/test_plan.hpp"
+#include "tests/support/fakes/recording_history_sink.hpp"
 
 namespace eip2mqtt::app::history {
 namespace {
@@ -24,29 +25,7 @@ using namespace std::chrono_literals;
 using core::plan::Direction;
 using core::plan::TagType;
 using core::quality::Quality;
-
-struct Replayed {
-    std::string exchange;
-    Quality quality;
-    std::int64_t timestamp_ms;
-    std::vector<std::pair<std::size_t, std::int64_t>> samples;
-    std::uint64_t token;
-};
-
-class RecordingSink final : public HistorySink {
-public:
-    bool replay(const SampleBatch& batch, std::uint64_t ack_token) override {
-        if (good_only && batch.quality != Quality::good) return false;
-        Replayed r{batch.exchange.spec.name, batch.quality, batch.timestamp_ms, {}, ack_token};
-        for (const auto& s : batch.samples) {
-            r.samples.emplace_back(s.tag, std::get<std::int64_t>(s.value));
-        }
-        replayed.push_back(std::move(r));
-        return true;
-    }
-    std::vector<Replayed> replayed;
-    bool good_only = false;  ///< as the Sparkplug node: history of good samples only
-};
+using test::RecordingHistorySink;
 
 class StoreAndForwardTest : public ::testing::Test {
 protected:
@@ -122,7 +101,7 @@ protected:
     std::optional<std::uint64_t> backlog_;
     std::set<std::uint64_t> acknowledged_;
     core::MonoTime now_ = std::chrono::steady_clock::now();
-    RecordingSink sink_;
+    RecordingHistorySink sink_;
     std::unique_ptr<StoreAndForward> saf_;
 };
 
@@ -165,7 +144,7 @@ TEST_F(StoreAndForwardTest, ReplaysOldestFirstAtTheRateWithTheirTimeAndQuality) 
 /// switches; its client holds what it was given until acknowledged, or drops it all when its
 /// connection goes (session-bound).
 struct OtherNorthbound {
-    RecordingSink sink;
+    RecordingHistorySink sink;
     bool connected = false;
     std::size_t acknowledged = 0;  ///< of sink.replayed, in order
     std::size_t dropped = 0;       ///< of sink.replayed, lost with a connection

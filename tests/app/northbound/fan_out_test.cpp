@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
-#include "tests/app/support/recording_northbound.hpp"
+#include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app::northbound {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "sparkplug_b.pb.h"
 #include "tests/app/support/test_plan.hpp"
@@ -120,7 +120,7 @@ protected:
     std::vector<app::WriteRequest> writes_;
     /// Starts a day into the steady clock, as a gateway's does.
     core::MonoTime clock_ = core::MonoTime{} + std::chrono::hours(24);
-    app::northbound::SparkplugNode node_;
+    app::northbound::sparkplug::SparkplugNode node_;
 };
 
 class SparkplugPrimaryHostTest : public SparkplugNodeTest {

@@ -5,9 +5,9 @@
 
 #include <spdlog/spdlog.h>
 
-#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
 
 using adapters::sparkplug::DataType;
@@ -174,4 +174,4 @@ void SparkplugNode::publish_death() {
     for (auto& device : devices_) device.born = false;
 }
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

@@ -12,9 +12,9 @@
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::json_tree {
 
 /// The payload of `plan.meta_topic`: one JSON object, tags in configuration order, keyed by name.
 std::string format_meta_payload(const core::plan::ExchangePlan& plan);
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::json_tree

@@ -1,4 +1,4 @@
-#include "eip2mqtt/adapters/mqtt/write_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/write_payload.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -11,7 +11,7 @@
 #include <variant>
 #include <vector>
 
-namespace eip2mqtt::adapters::mqtt {
+namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
 using core::write::WriteError;
@@ -223,4 +223,4 @@ core::Result<std::vector<std::pair<std::string, WriteInput>>, WriteRejection> pa
     return writes;
 }
 
-}  // namespace eip2mqtt::adapters::mqtt
+}  // namespace eip2mqtt::app::northbound::json_tree

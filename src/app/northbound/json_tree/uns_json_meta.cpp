@@ -1,4 +1,4 @@
-#include "eip2mqtt/app/northbound/uns_json_meta.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json_meta.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
@@ -15,7 +15,7 @@
 // are 100,000 tag objects, formatted at every start, and a tree of them cost more than the
 // rest of the start-up together.
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
 using core::plan::Direction;
@@ -107,4 +107,4 @@ std::string format_meta_payload(const core::plan::ExchangePlan& plan) {
     return out;
 }
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::json_tree

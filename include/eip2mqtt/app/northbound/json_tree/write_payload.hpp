@@ -13,7 +13,7 @@
 #include "eip2mqtt/core/result.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
 
-namespace eip2mqtt::adapters::mqtt {
+namespace eip2mqtt::app::northbound::json_tree {
 
 /// One tag's input. Strings and other non-scalars are `wrong_type`; unparsable text, objects
 /// without exactly the key "value", arrays and empty payloads are `malformed`.
@@ -26,4 +26,4 @@ core::Result<std::vector<std::pair<std::string, core::write::WriteInput>>,
              core::write::WriteRejection>
 parse_exchange_write(std::string_view payload);
 
-}  // namespace eip2mqtt::adapters::mqtt
+}  // namespace eip2mqtt::app::northbound::json_tree

@@ -1,12 +1,12 @@
-// The payloads of the JSON topic tree (app/northbound/uns_json_payload.hpp).
+// The payloads of the JSON topic tree (app/northbound/json_tree/uns_json_payload.hpp).
 
-#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
 
 #include <gtest/gtest.h>
 
 #include "tests/support/schema_check.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
 std::string json_string(std::string_view text) {
@@ -77,4 +77,4 @@ TEST(WriteResult, AppliedButUnsavedSaysSo) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::json_tree

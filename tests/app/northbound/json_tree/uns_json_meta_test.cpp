@@ -1,6 +1,6 @@
 // `{exchange}/_meta`: what a consumer of the JSON tree learns of an exchange and its tags.
 
-#include "eip2mqtt/app/northbound/uns_json_meta.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json_meta.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 
 #include "tests/app/support/test_plan.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
 using core::plan::Direction;
@@ -98,4 +98,4 @@ TEST(UnsJsonMeta, IsWrittenAsAJsonLibraryWritesItAndNeverCarriesABrokenByte) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::json_tree

@@ -2,7 +2,7 @@
 // today's topics and payloads (docs/mqtt-api.md), and a message on a `set` topic comes back as one
 // decoded write whose answer goes to this northbound.
 
-#include "eip2mqtt/app/northbound/uns_json.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "eip2mqtt/app/northbound/uns_json_meta.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json_meta.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "tests/app/support/test_plan.hpp"
 #include "tests/app/support/uns_json_recorder.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
 using core::quality::Quality;
@@ -231,4 +231,4 @@ TEST(UnsJsonMetaTest, AReconnectSendsTheDescriptionsAFewAtATimeInConfigurationOr
 }
 
 }  // namespace
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::json_tree

@@ -7,10 +7,10 @@
 #include <span>
 #include <vector>
 
-#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 
 /// The most bytes each birth's PUBLISH packet can take (adapters::mqtt::publish_packet_bytes),
 /// every value and counter at its widest encoding.
@@ -27,4 +27,4 @@ SparkplugBirthSizes sparkplug_birth_sizes(const SparkplugOptions& options,
 /// set; some cloud brokers take no larger packet.
 inline constexpr std::size_t common_max_packet_bytes = 131072;
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

@@ -10,7 +10,7 @@
 
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
 
 using adapters::sparkplug::DataType;
@@ -135,4 +135,4 @@ TEST_P(SparkplugStateFlapTest, AFlappingHostCostsABirthASecondAndEveryDeathComes
 INSTANTIATE_TEST_SUITE_P(DataQos, SparkplugStateFlapTest, ::testing::Values(0, 1));
 
 }  // namespace
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

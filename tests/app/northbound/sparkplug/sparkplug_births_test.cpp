@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "eip2mqtt/app/gateway_metrics.hpp"
-#include "eip2mqtt/app/northbound/sparkplug_birth_size.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_birth_size.hpp"
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
 
 using core::exchange::ConsumeState;
@@ -223,4 +223,4 @@ TEST_F(SparkplugNodeTest, AConnectAttemptThatFailedLeavesTheBdSeqAsItWas) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

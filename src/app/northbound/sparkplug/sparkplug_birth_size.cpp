@@ -1,14 +1,14 @@
 // A SparkplugNode over a publisher that only measures: its births, made the way the gateway
 // makes them, with every value at its widest, give `check` their size.
 
-#include "eip2mqtt/app/northbound/sparkplug_birth_size.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_birth_size.hpp"
 
 #include <limits>
 #include <string>
 
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
 
 using core::plan::TagType;
@@ -102,4 +102,4 @@ void SparkplugNode::widen_node_metrics_for_sizing() {
     }
 }
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

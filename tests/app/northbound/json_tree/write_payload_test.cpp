@@ -1,4 +1,4 @@
-#include "eip2mqtt/adapters/mqtt/write_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/write_payload.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <string_view>
 #include <variant>
 
-namespace eip2mqtt::adapters::mqtt {
+namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
 using core::write::WriteError;
@@ -270,4 +270,4 @@ TEST(WriteToLint, IntegersAreExactAndNothingElsePasses) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::adapters::mqtt
+}  // namespace eip2mqtt::app::northbound::json_tree

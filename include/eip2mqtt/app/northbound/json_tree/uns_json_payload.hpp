@@ -15,7 +15,7 @@
 #include "eip2mqtt/core/plan/value.hpp"
 #include "eip2mqtt/core/quality/quality.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::json_tree {
 
 /// `{"value":90,"timestamp":1695231678000,"quality":"good"}`, or `90` with payload: raw.
 void format_tag_payload(std::string& out, const core::plan::Value& value,
@@ -54,4 +54,4 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
 /// Appends `text` as a JSON string, quoted and escaped: tag names may hold `"` and a backslash.
 void append_json_string(std::string& out, std::string_view text);
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::json_tree

@@ -2,7 +2,7 @@
 // and the node's metrics (NDATA). Births are in sparkplug_births.cpp, commands and the primary
 // host's STATE in sparkplug_commands.cpp.
 
-#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 
 #include <algorithm>
 #include <array>
@@ -11,7 +11,7 @@
 
 #include "eip2mqtt/app/gateway_metrics.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
 
 using adapters::sparkplug::DataType;
@@ -341,4 +341,4 @@ void SparkplugNode::publish_counters() {
     set_node_metric(metric(3), counter(stats_.node_births));
 }
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

@@ -1,11 +1,11 @@
-#include "eip2mqtt/app/northbound/uns_json.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json.hpp"
 
 #include "eip2mqtt/app/gateway_metrics.hpp"
-#include "eip2mqtt/app/northbound/uns_json_meta.hpp"
-#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json_meta.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
 #include "eip2mqtt/core/printable.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::json_tree {
 
 UnsJsonOptions uns_json_options(const core::config::Config& config) {
     const auto& mqtt = config.mqtt;
@@ -153,4 +153,4 @@ void UnsJson::on_message(const adapters::mqtt::Incoming& message) {
     writes_.on_write(std::move(request));
 }
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::json_tree

@@ -3,7 +3,7 @@
 // the primary host's STATE. Payloads are read back with the protobuf classes of our .proto; the
 // integration test reads them with Eclipse Tahu's decoder.
 
-#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
 
 using adapters::sparkplug::DataType;
@@ -322,4 +322,4 @@ TEST_F(SparkplugPrimaryHostTest, BirthsWaitForThePrimaryHostToBeOnline) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

@@ -11,10 +11,10 @@
 #include <variant>
 #include <vector>
 
-#include "eip2mqtt/app/northbound/sparkplug_node.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 #include "eip2mqtt/core/printable.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
 
 using core::plan::Value;
@@ -229,4 +229,4 @@ void SparkplugNode::host_online(bool online) {
     if (born_) publish_death();
 }
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

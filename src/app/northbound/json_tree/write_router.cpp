@@ -2,17 +2,17 @@
 // retained, payload, type, range) before anything is staged, and one bad value refuses a
 // multi-tag write.
 
-#include "eip2mqtt/app/write_router.hpp"
+#include "eip2mqtt/app/northbound/json_tree/write_router.hpp"
 
 #include <algorithm>
 #include <set>
 #include <string_view>
 #include <vector>
 
-#include "eip2mqtt/adapters/mqtt/write_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/write_payload.hpp"
 #include "eip2mqtt/core/plan/topic_rules.hpp"
 
-namespace eip2mqtt::app {
+namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
 using core::write::WriteError;
@@ -61,11 +61,11 @@ std::optional<WriteRejection> collect_writes(const core::plan::ExchangePlan& pla
         return std::nullopt;
     };
     if (tag_index) {
-        const auto input = adapters::mqtt::parse_tag_write(payload);
+        const auto input = parse_tag_write(payload);
         if (!input) return WriteRejection{input.error().error, input.error().message};
         return add(*tag_index, input.value());
     }
-    const auto inputs = adapters::mqtt::parse_exchange_write(payload);
+    const auto inputs = parse_exchange_write(payload);
     if (!inputs) return WriteRejection{inputs.error().error, inputs.error().message};
     for (const auto& entry : inputs.value()) {
         // Not a structured binding: clang 14 (the fuzz build) cannot capture one.
@@ -195,4 +195,4 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
     return decision;
 }
 
-}  // namespace eip2mqtt::app
+}  // namespace eip2mqtt::app::northbound::json_tree

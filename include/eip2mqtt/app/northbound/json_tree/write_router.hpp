@@ -19,7 +19,7 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/write/write_request.hpp"
 
-namespace eip2mqtt::app {
+namespace eip2mqtt::app::northbound::json_tree {
 
 struct WriteRouterOptions {
     std::string base_topic;
@@ -80,4 +80,4 @@ private:
     std::unordered_map<std::string, Route> exchanges_;
 };
 
-}  // namespace eip2mqtt::app
+}  // namespace eip2mqtt::app::northbound::json_tree

@@ -1,7 +1,7 @@
 // The write router without a socket: which topics are ours, where results go, and what is
 // refused before anything is staged (docs/mqtt-api.md "Writes").
 
-#include "eip2mqtt/app/write_router.hpp"
+#include "eip2mqtt/app/northbound/json_tree/write_router.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace eip2mqtt::app {
+namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
 using core::plan::TagType;
@@ -215,4 +215,4 @@ TEST_F(WriteRouterTest, OneFilterPerDepthOfSetTopic) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::app
+}  // namespace eip2mqtt::app::northbound::json_tree

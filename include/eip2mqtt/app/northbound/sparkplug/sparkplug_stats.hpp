@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 
 /// What the node counts beyond the gateway's counters: the node metrics `Sparkplug/...` and
 /// the metrics topic's `sparkplug`.
@@ -18,4 +18,4 @@ struct SparkplugStats {
     std::uint64_t node_births = 0;       ///< NBIRTHs published
 };
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

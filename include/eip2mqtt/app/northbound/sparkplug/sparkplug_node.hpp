@@ -33,12 +33,12 @@
 #include "eip2mqtt/adapters/sparkplug/payload.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
 #include "eip2mqtt/app/northbound.hpp"
-#include "eip2mqtt/app/northbound/sparkplug_stats.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_stats.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/time.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::sparkplug {
 
 struct SparkplugOptions {
     std::string group_id;
@@ -211,4 +211,4 @@ private:
     core::ThrottledLog refused_log_;  ///< DCMD refused while the node is not born
 };
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::sparkplug

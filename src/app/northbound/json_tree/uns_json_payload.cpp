@@ -1,4 +1,4 @@
-#include "eip2mqtt/app/northbound/uns_json_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 
 #include "eip2mqtt/app/gateway_metrics.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::json_tree {
 
 void format_tag_payload(std::string& out, const core::plan::Value& value,
                         core::quality::Quality quality, std::int64_t timestamp_ms,
@@ -175,4 +175,4 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
     return metrics.dump();
 }
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::json_tree

@@ -14,10 +14,10 @@
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
 #include "eip2mqtt/app/northbound.hpp"
-#include "eip2mqtt/app/write_router.hpp"
+#include "eip2mqtt/app/northbound/json_tree/write_router.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 
-namespace eip2mqtt::app::northbound {
+namespace eip2mqtt::app::northbound::json_tree {
 
 /// How tag publications are made (from the `mqtt:` section).
 struct PublishSettings {
@@ -112,4 +112,4 @@ private:
     adapters::mqtt::Message message_;
 };
 
-}  // namespace eip2mqtt::app::northbound
+}  // namespace eip2mqtt::app::northbound::json_tree
