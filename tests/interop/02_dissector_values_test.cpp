@@ -3,12 +3,12 @@
 // C++ and one generated in Lua, agreeing value by value.
 
 #include <algorithm>
-#include <cstdio>
 #include <ctime>
 #include <limits>
 #include <nlohmann/json.hpp>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/dissector_values.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/pcap_writer.hpp"
@@ -79,37 +79,6 @@ std::vector<std::byte> datagram(int i, std::uint32_t time_s) {
     return builder.build();
 }
 
-/// `value` as tshark prints a float field (`%.6g`, FLT_DIG digits) or a double one (`%.15g`).
-std::string as_tshark_prints(double value, int digits) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    return text;
-}
-
-/// Whether tshark's text and the gateway's JSON value are the same value of `type`. Integers
-/// and bits exactly; reals to the digits tshark prints (6 for binary32, 15 for binary64), the
-/// gateway's value rounded the same way.
-::testing::AssertionResult agree(TagType type, const std::string& shown, const json& published) {
-    std::string expected;
-    switch (type) {
-        case TagType::bit:
-            expected = published.get<bool>() ? "1" : "0";
-            break;
-        case TagType::real:
-            expected = as_tshark_prints(published.get<float>(), 6);
-            break;
-        case TagType::lreal:
-            expected = as_tshark_prints(published.get<double>(), 15);
-            break;
-        default:
-            expected = published.dump();
-            break;
-    }
-    if (shown == expected) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure()
-           << "tshark shows " << shown << ", MQTT has " << published << " (" << expected << ")";
-}
-
 class DissectorValues : public GatewayTest {
 protected:
     /// How many datagrams every tag has been published for.
@@ -125,13 +94,7 @@ protected:
     }
 
     /// `eip2mqtt dissector` on the running gateway's configuration.
-    std::string write_plugin() {
-        const auto plugin = dir_.path() + "/eip2mqtt.lua";
-        const auto result =
-            run_command({EIP2MQTT_BINARY, "dissector", "-c", config_path_, "-o", plugin}, 30s);
-        EXPECT_EQ(result.status, 0) << result.output;
-        return plugin;
-    }
+    std::string write_plugin() { return write_dissector(config_path_, dir_.path()); }
 };
 
 TEST_F(DissectorValues, TsharkDecodesEveryTagAsTheGatewayPublishedIt) {
