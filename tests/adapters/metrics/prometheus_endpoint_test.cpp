@@ -118,6 +118,35 @@ TEST(PrometheusEndpoint, ServesTheSnapshotInTextFormat) {
     EXPECT_EQ(page.find(R"(eip2mqtt_exchange_sent_total{direction="consume")"), std::string::npos);
 }
 
+TEST(PrometheusEndpoint, TheCommandResponderHasItsFamiliesOnlyWhenEnabled) {
+    PrometheusEndpoint endpoint("127.0.0.1:0");
+    auto s = snapshot(42);
+    endpoint.update(s);
+    EXPECT_EQ(http_get(endpoint.port(), "/metrics").find("eip2mqtt_commands_"), std::string::npos);
+
+    CommandMetrics commands;
+    commands.requests = {{"read", 5}, {"summary", 2}};
+    commands.errors = 1;
+    commands.refused = 3;
+    commands.dropped = 190;
+    commands.naks = {{"malformed", 4}};
+    commands.ignored = 6;
+    s.gateway.commands = commands;
+    endpoint.update(s);
+    const auto page = http_get(endpoint.port(), "/metrics");
+    for (const auto* line : {
+             R"(eip2mqtt_commands_requests_total{type="read"} 5)",
+             R"(eip2mqtt_commands_requests_total{type="summary"} 2)",
+             "eip2mqtt_commands_errors_total 1",
+             "eip2mqtt_commands_refused_total 3",
+             "eip2mqtt_commands_dropped_total 190",
+             R"(eip2mqtt_commands_naks_total{reason="malformed"} 4)",
+             "eip2mqtt_commands_ignored_total 6",
+         }) {
+        EXPECT_TRUE(has_line(page, line)) << "missing: " << line << "\nin:\n" << page;
+    }
+}
+
 TEST(PrometheusEndpoint, AnUpdateReplacesTheValues) {
     PrometheusEndpoint endpoint("127.0.0.1:0");
     endpoint.update(snapshot(42));

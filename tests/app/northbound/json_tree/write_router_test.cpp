@@ -10,21 +10,14 @@
 #include <utility>
 #include <vector>
 
+#include "tests/app/support/test_plan.hpp"
+
 namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
 using core::plan::TagType;
 using core::write::WriteError;
 using core::write::WriteRejection;
-
-core::plan::TagSpec tag(std::string name, std::uint16_t byte, TagType type, bool writable) {
-    core::plan::TagSpec spec;
-    spec.name = std::move(name);
-    spec.address = {byte, 0};
-    spec.type = type;
-    spec.writable = writable;
-    return spec;
-}
 
 core::plan::ExchangePlan plan(std::string name, core::plan::Direction direction,
                               std::uint32_t exchange_id) {
@@ -35,10 +28,11 @@ core::plan::ExchangePlan plan(std::string name, core::plan::Direction direction,
     spec.exchange_id = exchange_id;
     spec.length = 16;
     spec.topic = "t1/" + name;
-    spec.tags.push_back(tag("SPEED", 0, TagType::real, true));
-    spec.tags.push_back(tag("COUNT", 4, TagType::lint, true));
-    spec.tags.push_back(tag("FIXED", 12, TagType::int_, false));
-    spec.tags.push_back(tag("COUNT_LO", 4, TagType::dint, true));  // the low half of COUNT
+    spec.tags.push_back(test::test_tag("SPEED", 0, TagType::real, true));
+    spec.tags.push_back(test::test_tag("COUNT", 4, TagType::lint, true));
+    spec.tags.push_back(test::test_tag("FIXED", 12, TagType::int_, false));
+    spec.tags.push_back(
+        test::test_tag("COUNT_LO", 4, TagType::dint, true));  // the low half of COUNT
     return core::plan::make_exchange_plan(std::move(spec), "acme");
 }
 
