@@ -9,6 +9,7 @@
 #include <chrono>
 #include <vector>
 
+#include "tests/support/fakes/log_capture.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
@@ -71,6 +72,20 @@ TEST_F(WriteDispatcherTest, ARefusalIsCountedUnderItsErrorAndAnsweredByItsOrigin
     ASSERT_EQ(origin_.results.size(), 1u);
     EXPECT_EQ(origin_.results[0].topic, "reply/topic");
     EXPECT_EQ(origin_.results[0].error, "read-only");
+}
+
+TEST_F(WriteDispatcherTest, TheLogLineCarriesTheRefusalWhole) {
+    // A retained write's refusal says how to clear it (WriteRouterTest); the operator reads
+    // that in the log as well as in the result.
+    test::LogCapture log;
+    const std::string advice =
+        "retained writes are refused; publish without retain, and clear the retained one with "
+        "`mosquitto_pub -r -n -t 'acme/t1/out/set'`";
+    dispatcher_.on_write(request(WriteRejection{WriteError::retained, advice}));
+    const auto lines = log.lines();
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NE(lines[0].find("write to acme/t1/out/set rejected: " + advice), std::string::npos)
+        << lines[0];
 }
 
 TEST_F(WriteDispatcherTest, WhatTheExchangeRefusesIsCountedAndAnsweredTheSameWay) {
