@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Configures and builds one flavour of eip2mqtt.
-#   tools/build.sh [release|asan|fuzz] [TARGET...]
-# (default: release; build dirs build/, build-asan/, build-fuzz/; every target unless some are named)
+#   tools/build.sh [release|asan] [TARGET...]
+# (default: release; build dirs build/ and build-asan/; every target unless some are named)
+# The asan flavour is one clang build for the sanitized tests and the libFuzzer targets alike:
+# its libraries are compiled once, with coverage for the fuzzers, instead of twice.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 flavour=${1:-release}
@@ -10,9 +12,9 @@ targets=("$@")
 jobs=$(nproc)
 case "$flavour" in
   release) dir=build; args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DEIP2MQTT_WERROR=ON) ;;
-  asan) dir=build-asan; args=(-DCMAKE_BUILD_TYPE=Debug -DEIP2MQTT_WERROR=ON -DEIP2MQTT_SANITIZE=ON -DEIP2MQTT_BENCH=OFF) ;;
-  fuzz) dir=build-fuzz; args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DEIP2MQTT_FUZZ=ON -DEIP2MQTT_TESTS=OFF -DEIP2MQTT_BENCH=OFF) ;;
-  *) echo "usage: $0 [release|asan|fuzz]" >&2; exit 2 ;;
+  asan) dir=build-asan; args=(-DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DEIP2MQTT_WERROR=ON
+    -DEIP2MQTT_SANITIZE=ON -DEIP2MQTT_FUZZ=ON -DEIP2MQTT_BENCH=OFF) ;;
+  *) echo "usage: $0 [release|asan]" >&2; exit 2 ;;
 esac
 cmake -S . -B "$dir" -G Ninja "${args[@]}" >/dev/null
 if [ ${#targets[@]} -gt 0 ]; then

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (tools/build.sh fuzz, clang) and runs each for a bounded time on a
+# Builds the libFuzzer targets (in the sanitizer build, tools/build.sh asan) and runs each for a bounded time on a
 # copy of its seed corpus, so that the checked-in corpora are never rewritten; as many at once
 # as there are cores (each fuzzer is one process on one core). Fails once the running ones end
 # if any crashed, leaked, reported a sanitizer error or timed out; the crashing input is kept
-# under build-fuzz/artifacts/.
+# under build-asan/artifacts/.
 #   FUZZ_SECONDS=30 tools/fuzz.sh [target...]   (default: every target)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,20 +15,20 @@ if [ ${#targets[@]} -eq 0 ]; then
 fi
 
 # Only the fuzz targets (and the libraries they link): not the daemon nor the tools.
-tools/build.sh fuzz "${targets[@]/%/_fuzz}"
+tools/build.sh asan "${targets[@]/%/_fuzz}"
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-mkdir -p build-fuzz/artifacts
+mkdir -p build-asan/artifacts
 
 fuzz() {
   local target=$1
   cp -r "tests/fuzz/corpus/$target" "$work/$target"
   ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} \
   UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-    "build-fuzz/tests/fuzz/${target}_fuzz" \
+    "build-asan/tests/fuzz/${target}_fuzz" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-      -artifact_prefix="build-fuzz/artifacts/${target}-" \
+      -artifact_prefix="build-asan/artifacts/${target}-" \
       "$work/$target" >"$work/$target.log" 2>&1
 }
 
@@ -37,7 +37,7 @@ report() {
   local target=$1 status=$2 log="$work/$1.log"
   if [ "$status" -ne 0 ]; then
     cat "$log" >&2
-    echo "fuzzing $target failed (exit $status); inputs in build-fuzz/artifacts/" >&2
+    echo "fuzzing $target failed (exit $status); inputs in build-asan/artifacts/" >&2
     return "$status"
   fi
   echo "-- $target: ${seconds}s"
