@@ -52,10 +52,10 @@ Gateway::Gateway(core::config::Config config)
                  writes_.image_saves()) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(
         loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
-    uns_json_ = std::make_unique<northbound::json_tree::UnsJson>(
-        northbound::json_tree::uns_json_options(config_), *mqtt_, writes_);
+    json_tree_ = std::make_unique<northbound::json_tree::JsonTree>(
+        northbound::json_tree::json_tree_options(config_), *mqtt_, writes_);
     make_history();
-    if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*uns_json_);
+    if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*json_tree_);
     if (config_.sparkplug.enabled()) {
         sparkplug_mqtt_ = std::make_unique<adapters::mqtt::Client>(
             loop_.get_executor(),
@@ -127,7 +127,7 @@ void Gateway::start() {
         mqtt_->set_on_acknowledged([this](std::uint64_t id) { history_->on_acknowledged(id); });
     }
     mqtt_->set_on_message(
-        [this](const adapters::mqtt::Incoming& message) { uns_json_->on_message(message); });
+        [this](const adapters::mqtt::Incoming& message) { json_tree_->on_message(message); });
     exchanges_.start(started_at_);
     receiver_->start([this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
                             bool truncated) {
@@ -240,7 +240,7 @@ void Gateway::on_tick() {
         }
     }
     exchanges_.tick(now, wall, refresh_scan);
-    uns_json_->publish_due_meta();
+    json_tree_->publish_due_meta();
     if (commands_) commands_->flush_log(now);
 }
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
-#include "tests/app/support/uns_json_recorder.hpp"
+#include "tests/app/support/json_tree_recorder.hpp"
 #include "tests/support/datagram_builder.hpp"
 
 namespace eip2mqtt::app {
@@ -74,7 +74,7 @@ protected:
     }
 
     core::MonoTime now_ = core::MonoTime{} + 1h;
-    test::UnsJsonRecorder uns_;
+    test::JsonTreeRecorder uns_;
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
     DatagramRouter router_{[] { return core::WallTime{} + 1h; }};
 };

@@ -9,13 +9,13 @@
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/config/config_keys.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
-#include "eip2mqtt/core/exchange/producer_clock.hpp"
+#include "eip2mqtt/core/exchange/remote_producer_clock.hpp"
 #include "eip2mqtt/core/exchange/wire_survey.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/quality/quality.hpp"
 #include "eip2mqtt/core/wire/drop_reason.hpp"
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 #include "tests/support/enumerators.hpp"
 
 namespace eip2mqtt::core {

@@ -30,14 +30,14 @@ public:
     void count_cancelled(std::size_t writes) { counters_.writes_cancelled += writes; }
     /// Where the produced exchanges count their image saves (ExchangeProducer).
     ImageSaveTotals& image_saves() { return counters_.image_saves; }
-    const GatewayCounters& counters() const { return counters_; }
+    const WriteCounters& counters() const { return counters_; }
 
 private:
     void reject(const WriteRequest& request, const core::write::WriteRejection& rejection);
 
     StageWrite stage_;
     core::MonoTime (*clock_)();
-    GatewayCounters counters_;
+    WriteCounters counters_;
     core::ThrottledLog log_;
 };
 

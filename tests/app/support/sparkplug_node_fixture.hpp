@@ -12,8 +12,8 @@
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "sparkplug_b.pb.h"
+#include "tests/app/support/json_tree_recorder.hpp"
 #include "tests/app/support/test_plan.hpp"
-#include "tests/app/support/uns_json_recorder.hpp"
 
 namespace eip2mqtt::test {
 

@@ -307,15 +307,15 @@ void SparkplugNode::produced_status(const core::plan::ExchangePlan& exchange,
 }
 
 void SparkplugNode::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
-    const auto& gateway = sources.gateway;
+    const auto& writes = sources.writes;
     const auto metric = [&](const char* name) { return node_metric_of_name_.at(name); };
     set_node_metric(metric("Gateway/uptime_s"),
                     counter(static_cast<std::uint64_t>(uptime.count())));
     set_node_metric(metric("Gateway/datagrams"), counter(sources.datagrams.datagrams));
     set_node_metric(metric("Gateway/accepted"), counter(sources.datagrams.accepted));
     set_node_metric(metric("Gateway/dropped"), counter(sum(sources.datagrams.dropped)));
-    set_node_metric(metric("Gateway/writes_ok"), counter(gateway.writes_ok));
-    set_node_metric(metric("Gateway/writes_rejected"), counter(sum(gateway.writes_rejected)));
+    set_node_metric(metric("Gateway/writes_ok"), counter(writes.writes_ok));
+    set_node_metric(metric("Gateway/writes_rejected"), counter(sum(writes.writes_rejected)));
     if (!born_) return;
     const auto now = static_cast<std::uint64_t>(wall_clock_());
     payload_.metrics.clear();
