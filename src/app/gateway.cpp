@@ -47,7 +47,7 @@ Gateway::Gateway(core::config::Config config)
       watchdog_timer_(loop_),
       writes_([this](ExchangeWrite&& write, const WriteReply& reply,
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
-              [] { return std::chrono::steady_clock::now(); }),
+              system_clock()),
       exchanges_(loop_.get_executor(), exchanges_options(config_), northbound_,
                  writes_.image_saves()) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(
@@ -61,11 +61,8 @@ Gateway::Gateway(core::config::Config config)
             loop_.get_executor(),
             sparkplug_client_options(config_, [this] { return sparkplug_->next_will(); }));
         sparkplug_ = std::make_unique<northbound::sparkplug::SparkplugNode>(
-            northbound::sparkplug::sparkplug_options(config_), *sparkplug_mqtt_, writes_, [] {
-                return std::chrono::duration_cast<std::chrono::milliseconds>(
-                           std::chrono::system_clock::now().time_since_epoch())
-                    .count();
-            });
+            northbound::sparkplug::sparkplug_options(config_), *sparkplug_mqtt_, writes_,
+            system_clock());
         northbound_.add(*sparkplug_);
         add_sparkplug_history();
     }

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 
+#include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/app/gateway_metrics.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -23,7 +24,8 @@ using StageWrite = std::function<std::optional<core::write::WriteRejection>(
 
 class WriteDispatcher final : public WriteHandler {
 public:
-    WriteDispatcher(StageWrite stage, core::MonoTime (*clock)());
+    /// `clock` (when a write arrives, for its rate limit) must outlive the dispatcher.
+    WriteDispatcher(StageWrite stage, const Clock& clock);
 
     void on_write(WriteRequest&& request) override;
     /// Writes a reload answered `reloaded` (ExchangeProducer::cancel_queued_writes).
@@ -36,7 +38,7 @@ private:
     void reject(const WriteRequest& request, const core::write::WriteRejection& rejection);
 
     StageWrite stage_;
-    core::MonoTime (*clock_)();
+    const Clock& clock_;
     WriteCounters counters_;
     core::ThrottledLog log_;
 };
