@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "eip2mqtt/core/command/command_status.hpp"
+#include "eip2mqtt/core/command/decode_error.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/config/config_keys.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
@@ -59,6 +61,8 @@ TEST(EnumNames, EveryCoreEnumeratorHasAName) {
     test::expect_every_value_named(write::write_error_names);
     test::expect_every_value_named(config::reload_rule_names);
     test::expect_every_value_named(config::payload_format_names);
+    test::expect_every_value_named(command::command_status_names);
+    test::expect_every_value_named(command::decode_error_names);
 }
 
 }  // namespace
