@@ -54,7 +54,7 @@ void DatagramRouter::route(std::span<const std::byte> bytes, const adapters::udp
         });
         return;
     }
-    const auto outcome = consumer.on_datagram(datagram, now, wall_clock_());
+    const auto outcome = consumer.on_datagram(datagram, now, clock_.wall());
     if (outcome.accepted()) {
         ++counters_.accepted;
         return;

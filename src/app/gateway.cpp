@@ -47,25 +47,22 @@ Gateway::Gateway(core::config::Config config)
       watchdog_timer_(loop_),
       writes_([this](ExchangeWrite&& write, const WriteReply& reply,
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
-              [] { return std::chrono::steady_clock::now(); }),
+              system_clock()),
       exchanges_(loop_.get_executor(), exchanges_options(config_), northbound_,
                  writes_.image_saves()) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(
         loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
-    uns_json_ = std::make_unique<northbound::json_tree::UnsJson>(
-        northbound::json_tree::uns_json_options(config_), *mqtt_, writes_);
+    json_tree_ = std::make_unique<northbound::json_tree::JsonTree>(
+        northbound::json_tree::json_tree_options(config_), *mqtt_, writes_);
     make_history();
-    if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*uns_json_);
+    if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*json_tree_);
     if (config_.sparkplug.enabled()) {
         sparkplug_mqtt_ = std::make_unique<adapters::mqtt::Client>(
             loop_.get_executor(),
             sparkplug_client_options(config_, [this] { return sparkplug_->next_will(); }));
         sparkplug_ = std::make_unique<northbound::sparkplug::SparkplugNode>(
-            northbound::sparkplug::sparkplug_options(config_), *sparkplug_mqtt_, writes_, [] {
-                return std::chrono::duration_cast<std::chrono::milliseconds>(
-                           std::chrono::system_clock::now().time_since_epoch())
-                    .count();
-            });
+            northbound::sparkplug::sparkplug_options(config_), *sparkplug_mqtt_, writes_,
+            system_clock());
         northbound_.add(*sparkplug_);
         add_sparkplug_history();
     }
@@ -127,7 +124,7 @@ void Gateway::start() {
         mqtt_->set_on_acknowledged([this](std::uint64_t id) { history_->on_acknowledged(id); });
     }
     mqtt_->set_on_message(
-        [this](const adapters::mqtt::Incoming& message) { uns_json_->on_message(message); });
+        [this](const adapters::mqtt::Incoming& message) { json_tree_->on_message(message); });
     exchanges_.start(started_at_);
     receiver_->start([this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
                             bool truncated) {
@@ -240,7 +237,7 @@ void Gateway::on_tick() {
         }
     }
     exchanges_.tick(now, wall, refresh_scan);
-    uns_json_->publish_due_meta();
+    json_tree_->publish_due_meta();
     if (commands_) commands_->flush_log(now);
 }
 

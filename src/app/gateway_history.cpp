@@ -38,8 +38,8 @@ void Gateway::make_history() {
     history_ = std::make_unique<history::StoreAndForward>(
         std::move(journal),
         history::StoreAndForwardOptions{settings.replay_rate, settings.fsync_interval},
-        std::move(link), *uns_json_);
-    uns_json_->set_store_and_forward(connected);
+        std::move(link), *json_tree_);
+    json_tree_->set_store_and_forward(connected);
     northbound_.add(*history_);
     const auto stats = history_->stats();
     spdlog::info("store and forward: journal {} ({} entries, bound {} MB)", options.path,

@@ -47,7 +47,7 @@ std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& count
     return out;
 }
 
-std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& counters) {
+std::map<std::string, std::uint64_t> rejections_by_name(const WriteCounters& counters) {
     std::map<std::string, std::uint64_t> out;
     for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
         out[std::string(core::write::to_string(static_cast<core::write::WriteError>(i)))] =
@@ -56,7 +56,7 @@ std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& c
     return out;
 }
 
-std::map<std::string, std::uint64_t> writes_by_origin(const GatewayCounters& counters) {
+std::map<std::string, std::uint64_t> writes_by_origin(const WriteCounters& counters) {
     std::map<std::string, std::uint64_t> out;
     for (const auto origin : all_write_origins) {
         out[std::string(to_string(origin))] =
@@ -121,13 +121,13 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     g.buffered = sources.mqtt.queued;
     g.publications_dropped = sources.mqtt.dropped_overflow;
     g.publications_refused = sources.mqtt.refused;
-    g.writes_ok = sources.gateway.writes_ok;
-    g.writes_cancelled = sources.gateway.writes_cancelled;
-    g.writes_rejected = rejections_by_name(sources.gateway);
-    g.writes_not_saved = sources.gateway.image_saves.writes_not_saved;
-    g.writes_sent_unsaved = sources.gateway.image_saves.writes_sent_unsaved;
-    g.image_save_failures = sources.gateway.image_saves.failures;
-    g.writes_by_origin = writes_by_origin(sources.gateway);
+    g.writes_ok = sources.writes.writes_ok;
+    g.writes_cancelled = sources.writes.writes_cancelled;
+    g.writes_rejected = rejections_by_name(sources.writes);
+    g.writes_not_saved = sources.writes.image_saves.writes_not_saved;
+    g.writes_sent_unsaved = sources.writes.image_saves.writes_sent_unsaved;
+    g.image_save_failures = sources.writes.image_saves.failures;
+    g.writes_by_origin = writes_by_origin(sources.writes);
     if (sources.history) {
         g.history = history_metrics(*sources.history);
     }

@@ -5,13 +5,16 @@
 namespace eip2mqtt::app {
 
 ProducerScheduler::ProducerScheduler(boost::asio::any_io_executor loop,
-                                     adapters::udp::Sender& sender)
-    : ProducerScheduler(std::move(loop),
-                        [&sender](std::span<const adapters::udp::OutgoingDatagram> batch,
-                                  std::vector<bool>& sent) { sender.send_batch(batch, sent); }) {}
+                                     adapters::udp::Sender& sender, const Clock& clock)
+    : ProducerScheduler(
+          std::move(loop),
+          [&sender](std::span<const adapters::udp::OutgoingDatagram> batch,
+                    std::vector<bool>& sent) { sender.send_batch(batch, sent); },
+          clock) {}
 
-ProducerScheduler::ProducerScheduler(boost::asio::any_io_executor loop, SendBatch send)
-    : timer_(std::move(loop)), send_(std::move(send)) {}
+ProducerScheduler::ProducerScheduler(boost::asio::any_io_executor loop, SendBatch send,
+                                     const Clock& clock)
+    : timer_(std::move(loop)), send_(std::move(send)), clock_(clock) {}
 
 ProducerScheduler::~ProducerScheduler() = default;
 
@@ -45,12 +48,12 @@ void ProducerScheduler::arm() {
 }
 
 void ProducerScheduler::on_wake() {
-    const auto now = std::chrono::steady_clock::now();
+    const auto now = clock_.monotonic();
     due_.clear();
     queue_.take_due(now, due_);
     // Each datagram carries the UTC time of the deadline it serves (SamplingClock), so that
     // its consumers see whole periods however late the loop woke.
-    sampling_clock_.observe(now, std::chrono::system_clock::now());
+    sampling_clock_.observe(now, clock_.wall());
     batch_producers_.clear();
     batch_.clear();
     for (const auto& due : due_) {

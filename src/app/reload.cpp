@@ -58,7 +58,7 @@ void Gateway::apply_plans(std::vector<core::plan::ExchangePlan> plans) {
 }
 
 void Gateway::republish_exchanges() {
-    uns_json_->republish_meta();  // nothing when the JSON tree is off (sparkplug.uns: false)
+    json_tree_->republish_meta();  // nothing when the JSON tree is off (sparkplug.uns: false)
     exchanges_.republish(std::chrono::steady_clock::now(), std::chrono::system_clock::now());
 }
 
@@ -80,7 +80,7 @@ bool Gateway::apply_settings(const core::config::Config& next) {
     }
     // Response topics and the like take effect at once; tags are published in the new form
     // from their next sample, and their retained state is published again (reload()).
-    uns_json_->set_options(northbound::json_tree::uns_json_options(next));
+    json_tree_->set_options(northbound::json_tree::json_tree_options(next));
     if (commands_) commands_->set_policy(command_policy(next));
     return true;
 }
@@ -112,7 +112,7 @@ void Gateway::reload() {
         return;
     }
     const bool republish =
-        northbound::json_tree::uns_json_options(config).publish != uns_json_->options().publish;
+        northbound::json_tree::json_tree_options(config).publish != json_tree_->options().publish;
     const bool metrics_interval = config.mqtt.metrics_interval != config_.mqtt.metrics_interval;
     if (!apply_settings(config)) {
         notifier_.ready(status_line());

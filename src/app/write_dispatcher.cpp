@@ -13,15 +13,15 @@
 
 namespace eip2mqtt::app {
 
-WriteDispatcher::WriteDispatcher(StageWrite stage, core::MonoTime (*clock)())
+WriteDispatcher::WriteDispatcher(StageWrite stage, const Clock& clock)
     : stage_(std::move(stage)), clock_(clock) {}
 
 void WriteDispatcher::on_write(WriteRequest&& request) {
     if (const auto* rejection = std::get_if<core::write::WriteRejection>(&request.outcome)) {
         return reject(request, *rejection);
     }
-    if (auto rejection =
-            stage_(std::get<ExchangeWrite>(std::move(request.outcome)), request.reply, clock_())) {
+    if (auto rejection = stage_(std::get<ExchangeWrite>(std::move(request.outcome)), request.reply,
+                                clock_.monotonic())) {
         return reject(request, *rejection);
     }
     ++counters_.writes_ok;
@@ -32,7 +32,7 @@ void WriteDispatcher::reject(const WriteRequest& request,
                              const core::write::WriteRejection& rejection) {
     ++counters_.writes_rejected[static_cast<std::size_t>(rejection.error)];
     if (request.reply.origin) request.reply.origin->write_result(request.reply, rejection.message);
-    const auto count = log_.record(clock_());
+    const auto count = log_.record(clock_.monotonic());
     if (count == 0) return;
     std::uint64_t total = 0;
     for (const auto n : counters_.writes_rejected) total += n;

@@ -12,8 +12,9 @@
 #include <vector>
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
-#include "tests/app/support/uns_json_recorder.hpp"
+#include "tests/app/support/json_tree_recorder.hpp"
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/fakes/fake_clock.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -74,9 +75,10 @@ protected:
     }
 
     core::MonoTime now_ = core::MonoTime{} + 1h;
-    test::UnsJsonRecorder uns_;
+    test::JsonTreeRecorder uns_;
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
-    DatagramRouter router_{[] { return core::WallTime{} + 1h; }};
+    test::FakeClock clock_{core::WallTime{} + 1h};
+    DatagramRouter router_{clock_};
 };
 
 TEST_F(DatagramRouterTest, EachDatagramReachesTheExchangeItsKeyNames) {

@@ -17,7 +17,7 @@
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
-#include "tests/app/support/uns_json_recorder.hpp"
+#include "tests/app/support/json_tree_recorder.hpp"
 #include "tests/support/count_allocations.hpp"
 
 namespace eip2mqtt::app {
@@ -47,7 +47,7 @@ core::plan::ExchangePlan turbine_plan() {
 
 TEST(ExchangeConsumerDataPath, PublishesEveryChangedTagWithoutAllocatingOnceWarm) {
     // Like Client::publish: takes the content, leaves the buffers of the one before.
-    test::UnsJsonRecorder uns({}, test::RecordingPublisher::Mode::keep_last);
+    test::JsonTreeRecorder uns({}, test::RecordingPublisher::Mode::keep_last);
     const auto& published = uns.publisher.count;
     const auto& last = uns.publisher.last;
     ExchangeConsumer consumer(turbine_plan(), uns.northbound());
@@ -90,7 +90,7 @@ TEST(ExchangeConsumerDataPath, BatchModeAddsOneValuesMessagePerDatagram) {
     // changed in the datagram, same value encoding, not retained, in the batch lane.
     app::northbound::json_tree::PublishSettings settings;
     settings.batch = true;
-    test::UnsJsonRecorder uns(settings);
+    test::JsonTreeRecorder uns(settings);
     auto& published = uns.publisher.published;
     auto plan = turbine_plan();
     plan.timestamp = core::plan::TimestampSource::producer;  // the datagram's 2024 time

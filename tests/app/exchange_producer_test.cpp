@@ -29,7 +29,7 @@
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
-#include "tests/app/support/uns_json_recorder.hpp"
+#include "tests/app/support/json_tree_recorder.hpp"
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app {
@@ -161,7 +161,7 @@ protected:
     std::unique_ptr<adapters::udp::Sender> sender_;
     std::unique_ptr<ProducerScheduler> scheduler_;
     std::unique_ptr<adapters::state::ImagePersister> persister_;
-    test::UnsJsonRecorder uns_;
+    test::JsonTreeRecorder uns_;
     ImageSaveTotals totals_;
     std::unique_ptr<ExchangeProducer> producer_;
 };

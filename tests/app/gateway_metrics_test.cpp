@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_payload.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
 #include "tests/support/schema_check.hpp"
 
@@ -22,7 +22,7 @@ using nlohmann::json;
 
 struct Counters {
     DatagramCounters datagrams;
-    GatewayCounters gateway;
+    WriteCounters writes;
     adapters::mqtt::ClientStats mqtt;
 
     Counters() {
@@ -30,10 +30,10 @@ struct Counters {
         datagrams.accepted = 6;
         datagrams.dropped[static_cast<std::size_t>(DropReason::too_short)] = 3;
         datagrams.dropped[static_cast<std::size_t>(DropReason::wrong_source)] = 1;
-        gateway.writes_ok = 5;
-        gateway.writes_cancelled = 2;
-        gateway.image_saves = {13, 14, 15};
-        gateway.writes_rejected[static_cast<std::size_t>(WriteError::out_of_range)] = 4;
+        writes.writes_ok = 5;
+        writes.writes_cancelled = 2;
+        writes.image_saves = {13, 14, 15};
+        writes.writes_rejected[static_cast<std::size_t>(WriteError::out_of_range)] = 4;
         mqtt.connected = true;
         mqtt.published = 100;
         mqtt.queued = 7;
@@ -43,7 +43,7 @@ struct Counters {
         mqtt.connects = 12;
         mqtt.broker = "tcp://broker-b:1883";
     }
-    MetricsSources sources() const { return {datagrams, gateway, mqtt}; }
+    MetricsSources sources() const { return {datagrams, writes, mqtt}; }
 };
 
 TEST(MetricsJson, EachCounterLandsInItsField) {

@@ -1,6 +1,7 @@
-// ProducerScheduler without a socket: the batches go to a recording fake. Every deadline is set
-// hours in the past or the future, so what is due at a wake-up does not depend on how fast the
-// machine is; the loop runs one handler at a time, bounded.
+// ProducerScheduler without a socket: the batches go to a recording fake, and the scheduler reads
+// a fake clock that stands at the moment the test began. Every deadline is set before that moment
+// (so the real timer has expired too) or an hour after it, so what is due at a wake-up does not
+// depend on how fast the machine is; the loop runs one handler at a time, bounded.
 
 #include "eip2mqtt/app/producer_scheduler.hpp"
 
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/recording_producible.hpp"
 
 namespace eip2mqtt::app {
@@ -22,6 +24,8 @@ using test::RecordingProducible;
 
 class ProducerSchedulerTest : public ::testing::Test {
 protected:
+    ProducerSchedulerTest() { clock_.set_monotonic(std::chrono::steady_clock::now()); }
+
     /// Runs the loop until the next batch has left (a wait the scheduler cancelled by arming
     /// again runs first, and sends nothing); false if none left within the bound.
     bool wake() {
@@ -34,12 +38,13 @@ protected:
         return batches_.size() > before;
     }
     core::exchange::ProductionSchedule due_now(std::chrono::nanoseconds period = 1h) const {
-        return {std::chrono::steady_clock::now() - 10ms, period, 0, 1};
+        return {clock_.monotonic() - 10ms, period, 0, 1};
     }
     core::exchange::ProductionSchedule due_later() const {
-        return {std::chrono::steady_clock::now() + 1h, 1h, 0, 1};
+        return {clock_.monotonic() + 1h, 1h, 0, 1};
     }
 
+    test::FakeClock clock_;
     boost::asio::io_context loop_;
     std::vector<std::string> log_;
     std::vector<std::vector<std::uint16_t>> batches_;  ///< destination ports, per batch
@@ -55,7 +60,8 @@ protected:
                 EXPECT_EQ(batch[i].bytes.size(), 4u);
                 if (i < refuse_.size() && refuse_[i]) sent[i] = false;
             }
-        }};
+        },
+        clock_};
 };
 
 TEST_F(ProducerSchedulerTest, TheExchangesDueLeaveInOneBatchAndBookkeepingComesAfterIt) {
@@ -102,7 +108,7 @@ TEST_F(ProducerSchedulerTest, ARemovedExchangeIsNeverReachedAgain) {
 TEST_F(ProducerSchedulerTest, DeadlinesTheLoopFellBehindOnAreCountedNotSentInABurst) {
     RecordingProducible a("a", 1001, log_);
     // First deadline two and a half periods ago: one datagram now, two deadlines skipped.
-    const auto id = scheduler_.add(a, {std::chrono::steady_clock::now() - 150min, 1h, 0, 1});
+    const auto id = scheduler_.add(a, {clock_.monotonic() - 150min, 1h, 0, 1});
     ASSERT_TRUE(wake());
     EXPECT_EQ(log_, (std::vector<std::string>{"produce a", "send_batch", "sent a"}));
     EXPECT_EQ(a.skipped_, 2u);
@@ -118,6 +124,29 @@ TEST_F(ProducerSchedulerTest, AnExchangeAddedWithAnEarlierDeadlineRearmsTheTimer
     EXPECT_EQ(log_, (std::vector<std::string>{"produce a", "send_batch", "sent a"}));
     scheduler_.remove(id_a);
     scheduler_.remove(id_later);
+}
+
+TEST_F(ProducerSchedulerTest, ADatagramCarriesTheUtcTimeOfItsDeadlineNotOfTheWakeUp) {
+    RecordingProducible a("a", 1001, log_);
+    const auto id = scheduler_.add(a, due_now());  // due 10 ms before the clock's time
+    ASSERT_TRUE(wake());
+    EXPECT_EQ(a.stamps_, std::vector<core::WallTime>{clock_.wall() - 10ms});
+    scheduler_.remove(id);
+}
+
+TEST_F(ProducerSchedulerTest, AWallClockStepIsFollowedFromTheNextWakeUp) {
+    RecordingProducible a("a", 1001, log_);
+    RecordingProducible b("b", 1002, log_);
+    const auto id_a = scheduler_.add(a, due_now());
+    ASSERT_TRUE(wake());
+    const auto before = clock_.wall();
+    clock_.set_wall(before + 1h);  // beyond SamplingClock's tolerance: anchored again
+    const auto id_b = scheduler_.add(b, due_now());
+    ASSERT_TRUE(wake());
+    EXPECT_EQ(a.stamps_, std::vector<core::WallTime>{before - 10ms});
+    EXPECT_EQ(b.stamps_, std::vector<core::WallTime>{before + 1h - 10ms});
+    scheduler_.remove(id_a);
+    scheduler_.remove(id_b);
 }
 
 }  // namespace

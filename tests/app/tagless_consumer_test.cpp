@@ -10,7 +10,7 @@
 
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
-#include "tests/app/support/uns_json_recorder.hpp"
+#include "tests/app/support/json_tree_recorder.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -34,7 +34,7 @@ bool has(const std::string& payload, const std::string& text) {
 }
 
 TEST(TaglessConsumer, PublishesOnlyItsStatusWithCountersThatMove) {
-    test::UnsJsonRecorder uns;
+    test::JsonTreeRecorder uns;
     const auto& published = uns.publisher.published;
     ExchangeConsumer consumer(tagless_plan(), uns.northbound());
     std::vector<std::byte> data(8);

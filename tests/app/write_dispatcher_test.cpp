@@ -9,6 +9,7 @@
 #include <chrono>
 #include <vector>
 
+#include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/log_capture.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
 
@@ -17,8 +18,6 @@ namespace {
 
 using core::write::WriteError;
 using core::write::WriteRejection;
-
-core::MonoTime fixed_clock() { return core::MonoTime{} + std::chrono::hours(1); }
 
 class WriteDispatcherTest : public ::testing::Test {
 protected:
@@ -33,15 +32,16 @@ protected:
     core::plan::ExchangePlan plan_;       ///< the produced exchange written to
     std::vector<ProducerHandle> staged_;  ///< the producer of each staged write
     std::optional<WriteRejection> exchange_refuses_;
+    test::FakeClock clock_;
     WriteDispatcher dispatcher_{[this](ExchangeWrite&& write, const WriteReply& reply,
                                        core::MonoTime now) -> std::optional<WriteRejection> {
                                     EXPECT_EQ(reply.topic, "reply/topic");
-                                    EXPECT_EQ(now, fixed_clock());
+                                    EXPECT_EQ(now, clock_.monotonic());
                                     if (exchange_refuses_) return exchange_refuses_;
                                     staged_.push_back(write.producer);
                                     return std::nullopt;
                                 },
-                                fixed_clock};
+                                clock_};
 };
 
 TEST_F(WriteDispatcherTest, AnAcceptedWriteIsStagedOnItsExchangeAndCountedNotAnswered) {

@@ -6,16 +6,18 @@
 #include <cstdint>
 #include <optional>
 
+#include "eip2mqtt/core/command/command_status.hpp"
+#include "eip2mqtt/core/command/decode_error.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/config/config_keys.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
-#include "eip2mqtt/core/exchange/producer_clock.hpp"
+#include "eip2mqtt/core/exchange/remote_producer_clock.hpp"
 #include "eip2mqtt/core/exchange/wire_survey.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/quality/quality.hpp"
 #include "eip2mqtt/core/wire/drop_reason.hpp"
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 #include "tests/support/enumerators.hpp"
 
 namespace eip2mqtt::core {
@@ -59,6 +61,8 @@ TEST(EnumNames, EveryCoreEnumeratorHasAName) {
     test::expect_every_value_named(write::write_error_names);
     test::expect_every_value_named(config::reload_rule_names);
     test::expect_every_value_named(config::payload_format_names);
+    test::expect_every_value_named(command::command_status_names);
+    test::expect_every_value_named(command::decode_error_names);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // device, the primary host's STATE), the rest is the payload. Whatever it is, the node must
 // neither throw nor crash, and a write it accepts names only tags of the exchange it addresses.
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -62,6 +63,15 @@ core::plan::ExchangePlan make_plan(const char* name, core::plan::Direction direc
     return core::plan::make_exchange_plan(std::move(spec), "f");
 }
 
+/// Payload timestamps at one fixed time, so that a crash replays alike.
+class FixedClock final : public app::Clock {
+public:
+    core::MonoTime monotonic() const override { return {}; }
+    core::WallTime wall() const override {
+        return core::WallTime{std::chrono::milliseconds(1700000000000)};
+    }
+};
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -73,8 +83,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                          "spBv1.0/STATE/host"};
     NullPublisher publisher;
     CheckingWrites writes(produced);
-    app::northbound::sparkplug::SparkplugNode node({"g", "n", "host", 0}, publisher, writes,
-                                                   [] { return std::int64_t{1700000000000}; });
+    const FixedClock clock;
+    app::northbound::sparkplug::SparkplugNode node({"g", "n", "host", 0}, publisher, writes, clock);
     node.exchanges_changed({{&consumed}, {&produced}}, {});
     node.next_will();
     node.on_connected();

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
+#include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/app/drop_log.hpp"
 #include "eip2mqtt/app/exchange_consumer.hpp"
 #include "eip2mqtt/core/time.hpp"
@@ -38,9 +39,8 @@ struct DatagramCounters {
 
 class DatagramRouter {
 public:
-    using WallClock = core::WallTime (*)();
-
-    explicit DatagramRouter(WallClock wall_clock = &system_wall_clock) : wall_clock_(wall_clock) {}
+    /// `clock` stamps each accepted datagram's receive time; it must outlive the router.
+    explicit DatagramRouter(const Clock& clock = system_clock()) : clock_(clock) {}
 
     /// The consumers datagrams are routed to, replacing the ones before (start, reload). They
     /// must outlive their use here: call again before destroying any.
@@ -56,14 +56,13 @@ public:
     const DatagramCounters& counters() const { return counters_; }
 
 private:
-    static core::WallTime system_wall_clock() { return std::chrono::system_clock::now(); }
     void count_drop(core::wire::DropReason reason) {
         ++counters_.dropped[static_cast<std::size_t>(reason)];
     }
 
     std::unordered_map<core::wire::ExchangeKey, ExchangeConsumer*, core::wire::ExchangeKeyHash>
         by_key_;
-    WallClock wall_clock_;
+    const Clock& clock_;
     DatagramCounters counters_;
     DropLog drop_log_;
 };

@@ -13,7 +13,7 @@
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/exchange/arrival_stats.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
-#include "eip2mqtt/core/exchange/producer_clock.hpp"
+#include "eip2mqtt/core/exchange/remote_producer_clock.hpp"
 #include "eip2mqtt/core/exchange/status_grid.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/quality/report_filter.hpp"
@@ -45,7 +45,7 @@ public:
 
     const core::plan::ExchangePlan& plan() const { return plan_; }
     const core::exchange::ConsumedExchange& exchange() const { return exchange_; }
-    const core::exchange::ProducerClock& clock() const { return clock_; }
+    const core::exchange::RemoteProducerClock& clock() const { return clock_; }
     /// Inter-arrival period and jitter of accepted datagrams.
     const core::exchange::ArrivalStats& arrivals() const { return arrivals_; }
     /// A datagram of this exchange from an address other than its `source`.
@@ -59,7 +59,7 @@ private:
     void report_tags(core::MonoTime now, bool all);
     /// `periodic`: the once-a-second report (on the StatusGrid), not a state change's.
     void report_status(core::MonoTime now, bool periodic = false);
-    /// The timestamp of the accepted datagram's tags (ProducerClock), logging a clock change.
+    /// The timestamp of the accepted datagram's tags (RemoteProducerClock), logging a clock change.
     std::int64_t sample_time(core::WallTime wall);
     void log_clock(bool first);
     /// Logs the exchange going stale and coming back, once each: the way in from a mismatch
@@ -71,7 +71,7 @@ private:
     core::exchange::ConsumedExchange exchange_;
     std::vector<core::quality::ReportFilter> filters_;  ///< one per tag of plan_.tags
     core::exchange::ArrivalStats arrivals_;
-    core::exchange::ProducerClock clock_;
+    core::exchange::RemoteProducerClock clock_;
     bool clock_seen_ = false;                   ///< a datagram was accepted since start
     std::int64_t timestamp_ms_ = 0;             ///< of the values the tags report
     std::optional<std::int64_t> last_seen_ms_;  ///< wall time of the last accepted datagram

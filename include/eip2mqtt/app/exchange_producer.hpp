@@ -36,7 +36,7 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/write/rate_limiter.hpp"
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::app {
 

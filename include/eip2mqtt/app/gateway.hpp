@@ -31,7 +31,7 @@
 #include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/northbound/fan_out.hpp"
-#include "eip2mqtt/app/northbound/json_tree/uns_json.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
 #include "eip2mqtt/core/config/config.hpp"
@@ -105,7 +105,7 @@ private:
     adapters::systemd::Notifier notifier_;
     std::unique_ptr<adapters::mqtt::Client> mqtt_;
     WriteDispatcher writes_;
-    std::unique_ptr<northbound::json_tree::UnsJson> uns_json_;
+    std::unique_ptr<northbound::json_tree::JsonTree> json_tree_;
     /// With `sparkplug:`, the edge node and its own connection (its will is the NDEATH).
     std::unique_ptr<adapters::mqtt::Client> sparkplug_mqtt_;
     std::unique_ptr<northbound::sparkplug::SparkplugNode> sparkplug_;

@@ -1,6 +1,6 @@
 #pragma once
 /// The gateway's metrics, built from its counters alone: the figures by name that the metrics
-/// topic (app/northbound/json_tree/uns_json_payload) and Prometheus report, and the snapshot
+/// topic (app/northbound/json_tree/json_tree_payload) and Prometheus report, and the snapshot
 /// Prometheus serves. Pure: no socket, no clock of its own, so each figure can be checked
 /// without running a gateway.
 
@@ -22,12 +22,12 @@
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_stats.hpp"
 #include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/time.hpp"
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::app {
 
 /// What the gateway counts of the writes it handles.
-struct GatewayCounters {
+struct WriteCounters {
     std::uint64_t writes_ok = 0;  ///< writes staged for production
     std::array<std::uint64_t, core::write::write_error_count> writes_rejected{};
     /// Of writes_ok, those still queued when a reload changed or removed their exchange:
@@ -42,7 +42,7 @@ struct GatewayCounters {
 /// Everything the metrics are made of, borrowed for one call.
 struct MetricsSources {
     const DatagramCounters& datagrams;
-    const GatewayCounters& gateway;
+    const WriteCounters& writes;
     const adapters::mqtt::ClientStats& mqtt;
     const history::HistoryStats* history = nullptr;                    ///< with store and forward
     const northbound::sparkplug::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
@@ -56,10 +56,10 @@ adapters::metrics::HistoryMetrics history_metrics(const history::HistoryStats& s
 std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& counters);
 
 /// Write rejections by error name, every error listed.
-std::map<std::string, std::uint64_t> rejections_by_name(const GatewayCounters& counters);
+std::map<std::string, std::uint64_t> rejections_by_name(const WriteCounters& counters);
 
 /// Accepted writes by origin name, every origin listed.
-std::map<std::string, std::uint64_t> writes_by_origin(const GatewayCounters& counters);
+std::map<std::string, std::uint64_t> writes_by_origin(const WriteCounters& counters);
 
 /// The command responder's figures for Prometheus and the metrics topic.
 adapters::metrics::CommandMetrics command_metrics(const CommandCounters& counters);

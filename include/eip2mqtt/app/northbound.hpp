@@ -22,11 +22,11 @@
 #include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
 #include "eip2mqtt/core/exchange/produce_counters.hpp"
-#include "eip2mqtt/core/exchange/producer_clock.hpp"
+#include "eip2mqtt/core/exchange/remote_producer_clock.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
 #include "eip2mqtt/core/quality/quality.hpp"
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::app {
 
@@ -61,7 +61,7 @@ inline std::vector<TagSample>& sample_buffer() {
 struct SampleBatch {
     const core::plan::ExchangePlan& exchange;
     core::quality::Quality quality;
-    std::int64_t timestamp_ms;  ///< chosen by the exchange's clock rules (ProducerClock)
+    std::int64_t timestamp_ms;  ///< chosen by the exchange's clock rules (RemoteProducerClock)
     bool all_tags;              ///< every tag of the exchange, not only the changed ones
     std::span<const TagSample> samples;
 };
@@ -72,7 +72,7 @@ struct ConsumedStatus {
     const core::plan::ExchangePlan& exchange;
     const core::exchange::ConsumedExchange& state;
     std::optional<std::int64_t> last_seen_ms;  ///< wall time of the last accepted datagram
-    const core::exchange::ProducerClock& clock;
+    const core::exchange::RemoteProducerClock& clock;
 };
 
 /// A produced exchange's counters and state.

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/udp/sender.hpp"
+#include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/core/exchange/production_queue.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
 #include "eip2mqtt/core/exchange/sampling_clock.hpp"
@@ -55,10 +56,13 @@ public:
     /// keep the loop on time on a busy machine (docs/decisions/0005).
     static constexpr std::chrono::microseconds batch_slot{250};
 
-    /// `sender` must outlive the scheduler.
-    ProducerScheduler(boost::asio::any_io_executor loop, adapters::udp::Sender& sender);
+    /// `sender` and `clock` (read at each wake-up: what is due, and the UTC time of each
+    /// deadline) must outlive the scheduler. The timer itself waits on the steady clock.
+    ProducerScheduler(boost::asio::any_io_executor loop, adapters::udp::Sender& sender,
+                      const Clock& clock = system_clock());
     /// Batches go to `send` (a test's recording fake).
-    ProducerScheduler(boost::asio::any_io_executor loop, SendBatch send);
+    ProducerScheduler(boost::asio::any_io_executor loop, SendBatch send,
+                      const Clock& clock = system_clock());
     ~ProducerScheduler();
     ProducerScheduler(const ProducerScheduler&) = delete;
     ProducerScheduler& operator=(const ProducerScheduler&) = delete;
@@ -75,6 +79,7 @@ private:
 
     boost::asio::steady_timer timer_;
     SendBatch send_;
+    const Clock& clock_;
     core::exchange::ProductionQueue queue_{batch_slot};
     std::unordered_map<Id, Producible*> producers_;
     std::optional<core::MonoTime> armed_for_;

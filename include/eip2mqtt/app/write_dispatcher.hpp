@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 
+#include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/app/gateway_metrics.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -23,21 +24,22 @@ using StageWrite = std::function<std::optional<core::write::WriteRejection>(
 
 class WriteDispatcher final : public WriteHandler {
 public:
-    WriteDispatcher(StageWrite stage, core::MonoTime (*clock)());
+    /// `clock` (when a write arrives, for its rate limit) must outlive the dispatcher.
+    WriteDispatcher(StageWrite stage, const Clock& clock);
 
     void on_write(WriteRequest&& request) override;
     /// Writes a reload answered `reloaded` (ExchangeProducer::cancel_queued_writes).
     void count_cancelled(std::size_t writes) { counters_.writes_cancelled += writes; }
     /// Where the produced exchanges count their image saves (ExchangeProducer).
     ImageSaveTotals& image_saves() { return counters_.image_saves; }
-    const GatewayCounters& counters() const { return counters_; }
+    const WriteCounters& counters() const { return counters_; }
 
 private:
     void reject(const WriteRequest& request, const core::write::WriteRejection& rejection);
 
     StageWrite stage_;
-    core::MonoTime (*clock_)();
-    GatewayCounters counters_;
+    const Clock& clock_;
+    WriteCounters counters_;
     core::ThrottledLog log_;
 };
 

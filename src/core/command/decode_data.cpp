@@ -1,36 +1,15 @@
 // Read, Write and Masked Write PDUs (docs/protocol.md §9.4).
 
 #include "core/command/detail/byte_io.hpp"
+#include "core/command/detail/cell_shape.hpp"
 #include "eip2mqtt/core/command/decode.hpp"
 
 namespace eip2mqtt::core::command {
 namespace {
 
 using detail::ByteReader;
-
-// What follows each cell's offset and length, by PDU type.
-struct CellShape {
-    bool data = false;
-    bool mask = false;
-};
-
-std::optional<CellShape> cell_shape(PduType type, std::uint8_t status) {
-    switch (type) {
-        case PduType::read_request:
-            return CellShape{};
-        case PduType::write_request:
-            return CellShape{true, false};
-        case PduType::masked_write_request:
-            return CellShape{true, true};
-        // §9.4: a Read response carries the data; one with an error status carries no cell.
-        case PduType::read_response:
-            if (status != 0) return std::nullopt;
-            return CellShape{true, false};
-        // §9.4: Write responses are the fixed part alone.
-        default:
-            return std::nullopt;
-    }
-}
+using detail::cell_shape;
+using detail::CellShape;
 
 Result<std::vector<Cell>, DecodeError> cells_at(ByteReader& in, std::size_t count,
                                                 CellShape shape) {

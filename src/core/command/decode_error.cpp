@@ -2,30 +2,6 @@
 
 namespace eip2mqtt::core::command {
 
-std::string_view to_string(DecodeError error) {
-    switch (error) {
-        case DecodeError::no_header:
-            return "no_header";
-        case DecodeError::oversized:
-            return "oversized";
-        case DecodeError::wrong_version:
-            return "wrong_version";
-        case DecodeError::wrong_length:
-            return "wrong_length";
-        case DecodeError::unknown_type:
-            return "unknown_type";
-        case DecodeError::truncated:
-            return "truncated";
-        case DecodeError::malformed:
-            return "malformed";
-        case DecodeError::not_a_request:
-            return "not_a_request";
-        case DecodeError::not_a_response:
-            return "not_a_response";
-    }
-    return "unknown";
-}
-
 // docs/protocol.md §9.5: the codes are eip2mqtt's; the manual defines none.
 std::optional<std::uint16_t> nak_code(DecodeError error) {
     switch (error) {

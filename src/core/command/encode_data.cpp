@@ -3,6 +3,7 @@
 #include <cassert>
 
 #include "core/command/detail/byte_io.hpp"
+#include "core/command/detail/cell_shape.hpp"
 #include "core/command/detail/header_io.hpp"
 #include "eip2mqtt/core/command/encode.hpp"
 
@@ -10,32 +11,7 @@ namespace eip2mqtt::core::command {
 namespace {
 
 using detail::ByteWriter;
-
-struct CellParts {
-    bool data = false;
-    bool mask = false;
-};
-
-// What follows each cell's offset and length; nullopt: no cells at all.
-std::optional<CellParts> parts_of(PduType type, std::uint8_t status) {
-    switch (type) {
-        case PduType::read_request:
-            return CellParts{};
-        case PduType::write_request:
-            return CellParts{true, false};
-        case PduType::masked_write_request:
-            return CellParts{true, true};
-        case PduType::read_response:
-            if (status != 0) return std::nullopt;
-            return CellParts{true, false};
-        case PduType::write_response:
-        case PduType::masked_write_response:
-            return std::nullopt;
-        default:
-            assert(false && "not a data PDU type");
-            return std::nullopt;
-    }
-}
+using detail::cell_shape;
 
 void put_padded(ByteWriter& out, const std::vector<std::byte>& bytes, std::size_t length) {
     assert(bytes.size() == length);
@@ -46,7 +22,7 @@ void put_padded(ByteWriter& out, const std::vector<std::byte>& bytes, std::size_
 }  // namespace
 
 std::vector<std::byte> encode(PduHeader header, const DataPdu& pdu) {
-    const auto parts = parts_of(header.type, header.status);
+    const auto parts = cell_shape(header.type, header.status);
     std::size_t size = data_fixed_size;
     if (parts) {
         for (const auto& cell : pdu.cells) {

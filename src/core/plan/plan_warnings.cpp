@@ -5,15 +5,12 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "core/detail/lower.hpp"
+
 namespace eip2mqtt::core::plan {
 namespace {
 
-std::string lower(std::string_view text) {
-    std::string out(text);
-    std::transform(out.begin(), out.end(), out.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return out;
-}
+using detail::lower;
 
 /// The tags whose names differ only in case from an earlier one: their topics differ, yet a
 /// case-blind historian or database (SQL Server's default collation, many tag databases)

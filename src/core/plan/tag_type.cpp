@@ -8,17 +8,13 @@
 #include <utility>
 #include <vector>
 
+#include "core/detail/lower.hpp"
 #include "eip2mqtt/core/edit_distance.hpp"
 
 namespace eip2mqtt::core::plan {
 namespace {
 
-std::string lower(std::string_view text) {
-    std::string out(text);
-    std::transform(out.begin(), out.end(), out.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return out;
-}
+using detail::lower;
 
 constexpr std::array<std::pair<std::string_view, TagType>, 14> yaml_names{{
     {"bit", TagType::bit},

@@ -12,8 +12,9 @@
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "sparkplug_b.pb.h"
+#include "tests/app/support/json_tree_recorder.hpp"
 #include "tests/app/support/test_plan.hpp"
-#include "tests/app/support/uns_json_recorder.hpp"
+#include "tests/support/fakes/fake_clock.hpp"
 
 namespace eip2mqtt::test {
 
@@ -57,7 +58,7 @@ protected:
     explicit SparkplugNodeTest(std::string primary_host = "", int qos = 0,
                                std::size_t max_packet_bytes = 0)
         : node_({"plant1", "gw1", std::move(primary_host), qos, max_packet_bytes}, publisher_,
-                *this, [] { return now_ms; }) {
+                *this, wall_clock_) {
         node_.exchanges_changed({{&consumed_}, {&produced_}}, {});
         node_.tick(clock_);
     }
@@ -120,6 +121,7 @@ protected:
     std::vector<app::WriteRequest> writes_;
     /// Starts a day into the steady clock, as a gateway's does.
     core::MonoTime clock_ = core::MonoTime{} + std::chrono::hours(24);
+    FakeClock wall_clock_{core::WallTime{std::chrono::milliseconds(now_ms)}};
     app::northbound::sparkplug::SparkplugNode node_;
 };
 

@@ -19,8 +19,9 @@ public:
     RecordingProducible(std::string name, std::uint16_t port, std::vector<std::string>& log)
         : name_(std::move(name)), destination_{0x7F000001, port}, log_(log) {}
 
-    std::span<const std::byte> produce(core::WallTime) override {
+    std::span<const std::byte> produce(core::WallTime wall) override {
         log_.push_back("produce " + name_);
+        stamps_.push_back(wall);
         datagram_.assign(4, std::byte{static_cast<unsigned char>(destination_.port)});
         return datagram_;
     }
@@ -31,6 +32,7 @@ public:
     }
 
     std::size_t skipped_ = 0;
+    std::vector<core::WallTime> stamps_;  ///< the wall time each datagram was produced for
 
 private:
     std::string name_;

@@ -11,7 +11,7 @@
 #include "eip2mqtt/core/command/command_status.hpp"
 #include "eip2mqtt/core/command/decode.hpp"
 #include "eip2mqtt/core/command/exchange_view.hpp"
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::core::command {
 

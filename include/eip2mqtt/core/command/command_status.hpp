@@ -7,6 +7,8 @@
 #include <optional>
 #include <string_view>
 
+#include "eip2mqtt/core/enum_names.hpp"
+
 namespace eip2mqtt::core::command {
 
 enum class CommandStatus : std::uint8_t {
@@ -29,7 +31,13 @@ enum class CommandStatus : std::uint8_t {
     failed = 8,
 };
 
-std::string_view to_string(CommandStatus status);
+inline constexpr auto command_status_names = enum_names<CommandStatus>(
+    "success", "unknown_exchange", "not_permitted", "out_of_range", "rejected",
+    "signature_mismatch", "unsupported_address", "no_data", "failed");
+
+constexpr std::string_view to_string(CommandStatus status) {
+    return command_status_names.name_of(status);
+}
 std::optional<CommandStatus> command_status_of(std::uint8_t byte);
 
 }  // namespace eip2mqtt::core::command

@@ -8,6 +8,8 @@
 #include <optional>
 #include <string_view>
 
+#include "eip2mqtt/core/enum_names.hpp"
+
 namespace eip2mqtt::core::command {
 
 enum class DecodeError : std::uint8_t {
@@ -33,16 +35,18 @@ enum class DecodeError : std::uint8_t {
     not_a_response,
 };
 
-inline constexpr std::size_t decode_error_count = 9;
+/// snake_case names, as used in metrics, logs and the NAK's error string.
+inline constexpr auto decode_error_names = enum_names<DecodeError>(
+    "no_header", "oversized", "wrong_version", "wrong_length", "unknown_type", "truncated",
+    "malformed", "not_a_request", "not_a_response");
 
-inline constexpr std::array<DecodeError, decode_error_count> all_decode_errors{
-    DecodeError::no_header,    DecodeError::oversized,     DecodeError::wrong_version,
-    DecodeError::wrong_length, DecodeError::unknown_type,  DecodeError::truncated,
-    DecodeError::malformed,    DecodeError::not_a_request, DecodeError::not_a_response,
-};
+inline constexpr std::size_t decode_error_count = decode_error_names.size();
 
-/// snake_case name, as used in metrics, logs and the NAK's error string.
-std::string_view to_string(DecodeError error);
+inline constexpr auto all_decode_errors = decode_error_names.values();
+
+constexpr std::string_view to_string(DecodeError error) {
+    return decode_error_names.name_of(error);
+}
 
 /// The NAK error code a responder sends for `error` (§9.5), or nullopt when a responder stays
 /// silent (no_header, not_a_request, not_a_response).

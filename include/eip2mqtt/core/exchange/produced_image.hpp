@@ -13,7 +13,7 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::core::exchange {
 

@@ -18,7 +18,7 @@
 #include <string_view>
 
 #include "eip2mqtt/core/enum_names.hpp"
-#include "eip2mqtt/core/exchange/producer_clock.hpp"
+#include "eip2mqtt/core/exchange/remote_producer_clock.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
@@ -96,7 +96,7 @@ private:
     void measure(const Sample& from, std::uint16_t step, MonoTime now);
 
     WireSummary summary_;
-    ProducerClock clock_;
+    RemoteProducerClock clock_;
     std::optional<Sample> last_;            ///< the last sample
     std::optional<Sample> behind_;          ///< the last datagram behind it, if the last seen was
     std::chrono::nanoseconds measured_{0};  ///< time over summary_.period_steps

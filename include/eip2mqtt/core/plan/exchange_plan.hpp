@@ -22,7 +22,7 @@ constexpr std::string_view to_string(Direction direction) {
     return direction_names.name_of(direction);
 }
 
-/// Which time a consumed exchange's tags carry (core::exchange::ProducerClock): `automatic`
+/// Which time a consumed exchange's tags carry (core::exchange::RemoteProducerClock): `automatic`
 /// (YAML `auto`) the producer's while its clock is within the tolerance of the receive time,
 /// `producer` the producer's whenever the datagram has one, `receive` always the receive time.
 enum class TimestampSource : std::uint8_t { automatic, producer, receive };

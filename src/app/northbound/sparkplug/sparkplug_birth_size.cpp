@@ -3,6 +3,7 @@
 
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_birth_size.hpp"
 
+#include <chrono>
 #include <limits>
 #include <string>
 
@@ -27,6 +28,18 @@ public:
 class NoWrites final : public WriteHandler {
 public:
     void on_write(WriteRequest&&) override {}
+};
+
+// Milliseconds since 1970 take 6 bytes of varint until the year 2109.
+constexpr std::int64_t widest_time_ms = (std::int64_t{1} << 42) - 1;
+
+/// Always the time whose encoding is the longest.
+class WidestClock final : public Clock {
+public:
+    core::MonoTime monotonic() const override { return {}; }
+    core::WallTime wall() const override {
+        return core::WallTime{std::chrono::milliseconds(widest_time_ms)};
+    }
 };
 
 /// The value of `type` whose Sparkplug encoding is the longest: signed types travel as two's
@@ -57,14 +70,13 @@ Value widest_value(TagType type) {
 
 SparkplugBirthSizes sparkplug_birth_sizes(const SparkplugOptions& options,
                                           std::span<const core::plan::ExchangePlan> plans) {
-    // Milliseconds since 1970 take 6 bytes of varint until the year 2109.
-    constexpr std::int64_t widest_time_ms = (std::int64_t{1} << 42) - 1;
     MeasuringPublisher publisher;
     NoWrites writes;
     SparkplugOptions measured = options;
     measured.primary_host_id.clear();
     measured.max_packet_bytes = 0;
-    SparkplugNode node(std::move(measured), publisher, writes, [] { return widest_time_ms; });
+    const WidestClock clock;
+    SparkplugNode node(std::move(measured), publisher, writes, clock);
     ExchangeSet running;
     for (const auto& plan : plans) {
         (plan.spec.direction == core::plan::Direction::produce ? running.produced

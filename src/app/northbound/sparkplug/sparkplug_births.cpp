@@ -81,7 +81,7 @@ void SparkplugNode::birth() {
     for (auto& device : devices_) device.born = false;
     seq_ = 0;  // NBIRTH is seq 0; every message after it counts on
     set_node_metric(bd_seq_metric, Value{std::int64_t{bd_seq_}});
-    const auto now = static_cast<std::uint64_t>(wall_clock_());
+    const auto now = static_cast<std::uint64_t>(clock_.wall_ms());
     payload_.metrics.clear();
     for (std::size_t i = 0; i < node_metrics_.size(); ++i) {
         auto& metric = node_metrics_[i];
@@ -104,7 +104,7 @@ void SparkplugNode::birth() {
 
 void SparkplugNode::device_birth(Device& device) {
     const auto& plan = *device.plan;
-    const auto now = wall_clock_();
+    const auto now = clock_.wall_ms();
     payload_.metrics.clear();
     payload_.metrics.reserve(plan.tags.size());
     for (std::size_t i = 0; i < plan.tags.size(); ++i) {

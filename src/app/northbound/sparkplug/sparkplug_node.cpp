@@ -45,11 +45,8 @@ SparkplugOptions sparkplug_options(const core::config::Config& config) {
 }
 
 SparkplugNode::SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt,
-                             WriteHandler& writes, WallClock wall_clock)
-    : options_(std::move(options)),
-      mqtt_(mqtt),
-      writes_(writes),
-      wall_clock_(std::move(wall_clock)) {
+                             WriteHandler& writes, const Clock& clock)
+    : options_(std::move(options)), mqtt_(mqtt), writes_(writes), clock_(clock) {
     ncmd_topic_ = node_topic("NCMD");
     dcmd_prefix_ =
         std::string(namespace_prefix) + options_.group_id + "/DCMD/" + options_.edge_node_id + "/";
@@ -88,7 +85,7 @@ adapters::mqtt::Message SparkplugNode::next_will() {
 
 adapters::mqtt::Message SparkplugNode::death_message() const {
     adapters::sparkplug::Payload death;
-    death.timestamp_ms = static_cast<std::uint64_t>(wall_clock_());
+    death.timestamp_ms = static_cast<std::uint64_t>(clock_.wall_ms());
     death.metrics.push_back({"bdSeq",
                              std::nullopt,
                              death.timestamp_ms,
@@ -142,7 +139,7 @@ void SparkplugNode::set_node_metric(std::size_t index, MetricValue value) {
 
 bool SparkplugNode::publish(const std::string& topic, adapters::sparkplug::Payload& payload,
                             std::uint64_t ack_token) {
-    payload.timestamp_ms = static_cast<std::uint64_t>(wall_clock_());
+    payload.timestamp_ms = static_cast<std::uint64_t>(clock_.wall_ms());
     payload.seq = seq_;
     message_.topic = topic;
     message_.payload = adapters::sparkplug::encode(payload);
@@ -307,17 +304,17 @@ void SparkplugNode::produced_status(const core::plan::ExchangePlan& exchange,
 }
 
 void SparkplugNode::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
-    const auto& gateway = sources.gateway;
+    const auto& writes = sources.writes;
     const auto metric = [&](const char* name) { return node_metric_of_name_.at(name); };
     set_node_metric(metric("Gateway/uptime_s"),
                     counter(static_cast<std::uint64_t>(uptime.count())));
     set_node_metric(metric("Gateway/datagrams"), counter(sources.datagrams.datagrams));
     set_node_metric(metric("Gateway/accepted"), counter(sources.datagrams.accepted));
     set_node_metric(metric("Gateway/dropped"), counter(sum(sources.datagrams.dropped)));
-    set_node_metric(metric("Gateway/writes_ok"), counter(gateway.writes_ok));
-    set_node_metric(metric("Gateway/writes_rejected"), counter(sum(gateway.writes_rejected)));
+    set_node_metric(metric("Gateway/writes_ok"), counter(writes.writes_ok));
+    set_node_metric(metric("Gateway/writes_rejected"), counter(sum(writes.writes_rejected)));
     if (!born_) return;
-    const auto now = static_cast<std::uint64_t>(wall_clock_());
+    const auto now = static_cast<std::uint64_t>(clock_.wall_ms());
     payload_.metrics.clear();
     for (std::size_t i = 0; i < node_metrics_.size(); ++i) {
         auto& node = node_metrics_[i];

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "eip2mqtt/core/result.hpp"
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 

@@ -17,7 +17,7 @@
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 

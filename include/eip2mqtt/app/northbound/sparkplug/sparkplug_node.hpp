@@ -31,6 +31,7 @@
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/adapters/sparkplug/payload.hpp"
+#include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_stats.hpp"
@@ -64,12 +65,10 @@ SparkplugOptions sparkplug_options(const core::config::Config& config);
 
 class SparkplugNode final : public Northbound, public history::HistorySink {
 public:
-    /// Milliseconds since the Unix epoch, for payload timestamps.
-    using WallClock = std::function<std::int64_t()>;
-
-    /// `mqtt` (the node's own connection) and `writes` must outlive the node.
+    /// `mqtt` (the node's own connection), `writes` and `clock` (the payloads' timestamps)
+    /// must outlive the node.
     SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes,
-                  WallClock wall_clock);
+                  const Clock& clock);
 
     /// The NDEATH for the next CONNECT's will; the NBIRTH that follows that connection carries
     /// the same bdSeq. Each connection made takes the next bdSeq (0-255, then 0 again); an
@@ -175,7 +174,7 @@ private:
     SparkplugOptions options_;
     adapters::mqtt::Publisher& mqtt_;
     WriteHandler& writes_;
-    WallClock wall_clock_;
+    const Clock& clock_;
     std::string ncmd_topic_, dcmd_prefix_, state_topic_;
 
     std::vector<Device> devices_;

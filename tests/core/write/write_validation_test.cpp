@@ -1,4 +1,4 @@
-#include "eip2mqtt/core/write/write_request.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,13 @@
-#include "eip2mqtt/core/exchange/producer_clock.hpp"
+#include "eip2mqtt/core/exchange/remote_producer_clock.hpp"
 
 namespace eip2mqtt::core::exchange {
 
-ProducerClock::ProducerClock(plan::TimestampSource source, std::chrono::milliseconds tolerance)
+RemoteProducerClock::RemoteProducerClock(plan::TimestampSource source,
+                                         std::chrono::milliseconds tolerance)
     : source_(source), tolerance_(tolerance) {}
 
-std::int64_t ProducerClock::on_datagram(std::uint32_t time_s, std::uint32_t time_ns,
-                                        std::int64_t receive_ms) {
+std::int64_t RemoteProducerClock::on_datagram(std::uint32_t time_s, std::uint32_t time_ns,
+                                              std::int64_t receive_ms) {
     if (time_s == 0) {
         state_ = ClockState::none;
         return receive_ms;

@@ -1,29 +1,29 @@
-#include "eip2mqtt/app/northbound/json_tree/uns_json.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 
 #include "eip2mqtt/app/gateway_metrics.hpp"
-#include "eip2mqtt/app/northbound/json_tree/uns_json_meta.hpp"
-#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_meta.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_payload.hpp"
 #include "eip2mqtt/core/printable.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 
-UnsJsonOptions uns_json_options(const core::config::Config& config) {
+JsonTreeOptions json_tree_options(const core::config::Config& config) {
     const auto& mqtt = config.mqtt;
     return {{mqtt.qos, mqtt.retain, mqtt.payload, mqtt.batch},
             {mqtt.base_topic, mqtt.allow_response_topics_under_base},
             mqtt.base_topic + "/_gateway/" + config.gateway.id + "/metrics"};
 }
 
-UnsJson::UnsJson(UnsJsonOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes)
+JsonTree::JsonTree(JsonTreeOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes)
     : options_(std::move(options)), mqtt_(mqtt), writes_(writes), router_(options_.writes) {}
 
-void UnsJson::set_options(UnsJsonOptions options) {
+void JsonTree::set_options(JsonTreeOptions options) {
     options_ = std::move(options);
     router_.set_options(options_.writes);
 }
 
-void UnsJson::exchanges_changed(const ExchangeSet& running,
-                                std::span<const std::string> retired_topics) {
+void JsonTree::exchanges_changed(const ExchangeSet& running,
+                                 std::span<const std::string> retired_topics) {
     // No subscriber may keep reading a tag that no longer exists.
     for (const auto& topic : retired_topics) {
         mqtt_.publish({topic, "", options_.publish.qos, true, true});
@@ -55,12 +55,12 @@ void UnsJson::exchanges_changed(const ExchangeSet& running,
     mqtt_.set_subscriptions(router_.subscriptions());
 }
 
-void UnsJson::republish_meta() {
+void JsonTree::republish_meta() {
     announced_ = true;
     next_due_meta_ = 0;
 }
 
-void UnsJson::publish_due_meta() {
+void JsonTree::publish_due_meta() {
     if (!next_due_meta_) return;
     auto& next = *next_due_meta_;
     for (std::size_t sent = 0; sent < meta_per_call && next < described_.size(); ++sent, ++next) {
@@ -71,7 +71,7 @@ void UnsJson::publish_due_meta() {
     if (next >= described_.size()) next_due_meta_.reset();
 }
 
-void UnsJson::tag_samples(const SampleBatch& batch) {
+void JsonTree::tag_samples(const SampleBatch& batch) {
     const auto& settings = options_.publish;
     const auto& plan = batch.exchange;
     for (const auto& sample : batch.samples) {
@@ -97,7 +97,7 @@ void UnsJson::tag_samples(const SampleBatch& batch) {
     }
 }
 
-bool UnsJson::replay(const SampleBatch& batch, std::uint64_t ack_token) {
+bool JsonTree::replay(const SampleBatch& batch, std::uint64_t ack_token) {
     message_.topic.assign(batch.exchange.topic).append("/_history");
     format_values_payload(message_.payload, batch);
     message_.qos = 1;  // an entry leaves the journal on its PUBACK
@@ -108,26 +108,26 @@ bool UnsJson::replay(const SampleBatch& batch, std::uint64_t ack_token) {
     return true;
 }
 
-void UnsJson::consumed_status(const ConsumedStatus& status) {
+void JsonTree::consumed_status(const ConsumedStatus& status) {
     mqtt_.publish({status.exchange.status_topic, format_status_payload(status),
                    options_.publish.qos, true, true});
 }
 
-void UnsJson::produced_status(const core::plan::ExchangePlan& exchange,
-                              const ProducedStatus& status) {
+void JsonTree::produced_status(const core::plan::ExchangePlan& exchange,
+                               const ProducedStatus& status) {
     mqtt_.publish({exchange.status_topic, format_produced_status_payload(status),
                    options_.publish.qos, true, true});
 }
 
-void UnsJson::write_result(const WriteReply& reply, std::optional<std::string_view> error) {
+void JsonTree::write_result(const WriteReply& reply, std::optional<std::string_view> error) {
     publish_result(reply, format_write_result(error));
 }
 
-void UnsJson::write_result_unsaved(const WriteReply& reply, std::string_view reason) {
+void JsonTree::write_result_unsaved(const WriteReply& reply, std::string_view reason) {
     publish_result(reply, format_write_result_unsaved(reason));
 }
 
-void UnsJson::publish_result(const WriteReply& reply, std::string payload) {
+void JsonTree::publish_result(const WriteReply& reply, std::string payload) {
     // Each result must be delivered: never coalesced with another on the same topic.
     if (reply.topic.empty()) return;  // nowhere a broker accepts (WriteRouter::route)
     adapters::mqtt::Message result{reply.topic, std::move(payload), 1, false, false};
@@ -135,11 +135,11 @@ void UnsJson::publish_result(const WriteReply& reply, std::string payload) {
     mqtt_.publish(std::move(result));
 }
 
-void UnsJson::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
+void JsonTree::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
     mqtt_.publish({options_.metrics_topic, metrics_json(sources, uptime), 0, false, true});
 }
 
-void UnsJson::on_message(const adapters::mqtt::Incoming& message) {
+void JsonTree::on_message(const adapters::mqtt::Incoming& message) {
     auto decision = router_.route(message);
     if (!decision) return;
     WriteRequest request{

@@ -1,6 +1,6 @@
 // `{exchange}/_meta`: what a consumer of the JSON tree learns of an exchange and its tags.
 
-#include "eip2mqtt/app/northbound/json_tree/uns_json_meta.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_meta.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@ using core::plan::Direction;
 using core::plan::TagType;
 using json = nlohmann::ordered_json;  // keeps the payload's order
 
-TEST(UnsJsonMeta, EveryTagWithItsTypeAddressUnitLimitsAndDeadbandInConfigurationOrder) {
+TEST(JsonTreeMeta, EveryTagWithItsTypeAddressUnitLimitsAndDeadbandInConfigurationOrder) {
     auto speed = test::test_tag("SPEED", 0, TagType::real);
     speed.deadband = 0.5;
     auto& extras = speed.mutable_extras();
@@ -60,7 +60,7 @@ TEST(UnsJsonMeta, EveryTagWithItsTypeAddressUnitLimitsAndDeadbandInConfiguration
     }
 }
 
-TEST(UnsJsonMeta, AProducedExchangeSaysWhereItGoesAndWhichTagsAreWritable) {
+TEST(JsonTreeMeta, AProducedExchangeSaysWhereItGoesAndWhichTagsAreWritable) {
     const auto plan = test::test_plan("sp", Direction::produce, 4,
                                       {test::test_tag("SETPOINT", 0, TagType::dint, true)});
     const auto meta = json::parse(format_meta_payload(plan));
@@ -71,7 +71,7 @@ TEST(UnsJsonMeta, AProducedExchangeSaysWhereItGoesAndWhichTagsAreWritable) {
     EXPECT_EQ(meta["tags"]["SETPOINT"]["writable"], true);
 }
 
-TEST(UnsJsonMeta, IsWrittenAsAJsonLibraryWritesItAndNeverCarriesABrokenByte) {
+TEST(JsonTreeMeta, IsWrittenAsAJsonLibraryWritesItAndNeverCarriesABrokenByte) {
     auto speed = test::test_tag("SPEED", 0, TagType::real);
     speed.deadband = 2;
     auto& extras = speed.mutable_extras();

@@ -2,7 +2,7 @@
 // today's topics and payloads (docs/mqtt-api.md), and a message on a `set` topic comes back as one
 // decoded write whose answer goes to this northbound.
 
-#include "eip2mqtt/app/northbound/json_tree/uns_json.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "eip2mqtt/app/northbound/json_tree/uns_json_meta.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_meta.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "tests/app/support/json_tree_recorder.hpp"
 #include "tests/app/support/test_plan.hpp"
-#include "tests/app/support/uns_json_recorder.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 namespace {
@@ -28,13 +28,13 @@ core::plan::ExchangePlan plan(std::string name, core::plan::Direction direction)
         "t1/" + name);
 }
 
-class UnsJsonTest : public ::testing::Test {
+class JsonTreeTest : public ::testing::Test {
 protected:
-    explicit UnsJsonTest(PublishSettings settings = {}) : uns_(settings, {}, "acme") {
+    explicit JsonTreeTest(PublishSettings settings = {}) : uns_(settings, {}, "acme") {
         uns_.northbound().exchanges_changed({{&consumed_}, {&produced_}}, {});
         uns_.northbound().republish_meta();  // connected
         uns_.northbound().publish_due_meta();
-        // Each exchange's `_meta` (UnsJsonMetaTest); the tests below start after them.
+        // Each exchange's `_meta` (JsonTreeMetaTest); the tests below start after them.
         EXPECT_EQ(published().size(), 2u);
         uns_.publisher.published.clear();
     }
@@ -44,10 +44,10 @@ protected:
 
     core::plan::ExchangePlan consumed_ = plan("in", core::plan::Direction::consume);
     core::plan::ExchangePlan produced_ = plan("out", core::plan::Direction::produce);
-    test::UnsJsonRecorder uns_;
+    test::JsonTreeRecorder uns_;
 };
 
-TEST_F(UnsJsonTest, EachSampleIsOneRetainedTagTopicWithValueTimestampAndQuality) {
+TEST_F(JsonTreeTest, EachSampleIsOneRetainedTagTopicWithValueTimestampAndQuality) {
     const std::vector<TagSample> samples{{1, core::plan::Value{std::int64_t{-5}}}};
     uns_.northbound().tag_samples({consumed_, Quality::stale, 1700000000123, false, samples});
     ASSERT_EQ(published().size(), 1u);
@@ -59,13 +59,13 @@ TEST_F(UnsJsonTest, EachSampleIsOneRetainedTagTopicWithValueTimestampAndQuality)
     EXPECT_TRUE(m.coalesce);  // the latest value wins while queued
 }
 
-class UnsJsonBatchTest : public UnsJsonTest {
+class JsonTreeBatchTest : public JsonTreeTest {
 protected:
-    UnsJsonBatchTest()
-        : UnsJsonTest(PublishSettings{0, false, core::config::PayloadFormat::raw, true}) {}
+    JsonTreeBatchTest()
+        : JsonTreeTest(PublishSettings{0, false, core::config::PayloadFormat::raw, true}) {}
 };
 
-TEST_F(UnsJsonBatchTest, AConsumedBatchAddsOneValuesMessageTheEchoOfAProducedOneDoesNot) {
+TEST_F(JsonTreeBatchTest, AConsumedBatchAddsOneValuesMessageTheEchoOfAProducedOneDoesNot) {
     const std::vector<TagSample> samples{{0, core::plan::Value{std::int64_t{1}}},
                                          {1, core::plan::Value{std::int64_t{2}}}};
     uns_.northbound().tag_samples({consumed_, Quality::good, 1000, false, samples});
@@ -84,7 +84,7 @@ TEST_F(UnsJsonBatchTest, AConsumedBatchAddsOneValuesMessageTheEchoOfAProducedOne
     EXPECT_EQ(uns_.publisher.on("acme/t1/out/_values").size(), 0u);
 }
 
-TEST_F(UnsJsonTest, WriteResultsGoToTheReplyTopicOnceEachAndNowhereWithoutOne) {
+TEST_F(JsonTreeTest, WriteResultsGoToTheReplyTopicOnceEachAndNowhereWithoutOne) {
     uns_.northbound().write_result({"r/1", "c1", nullptr}, std::nullopt);
     uns_.northbound().write_result({"r/2", "", nullptr}, "queue full");
     uns_.northbound().write_result({"", "c3", nullptr}, "unknown tag");
@@ -98,7 +98,7 @@ TEST_F(UnsJsonTest, WriteResultsGoToTheReplyTopicOnceEachAndNowhereWithoutOne) {
     EXPECT_EQ(published()[1].payload, R"({"error":"queue full","ok":false})");
 }
 
-TEST_F(UnsJsonTest, ChangedExchangesClearRetiredTopicsAndSubscribeToTheSetTopics) {
+TEST_F(JsonTreeTest, ChangedExchangesClearRetiredTopicsAndSubscribeToTheSetTopics) {
     EXPECT_EQ(uns_.publisher.subscriptions,
               (std::vector<std::string>{"acme/+/+/set", "acme/+/+/+/set"}));
     const std::vector<std::string> retired{"acme/t1/gone/A", "acme/t1/gone/_status"};
@@ -114,7 +114,7 @@ TEST_F(UnsJsonTest, ChangedExchangesClearRetiredTopicsAndSubscribeToTheSetTopics
     EXPECT_TRUE(uns_.writes.empty());
 }
 
-TEST_F(UnsJsonTest, ASetMessageBecomesOneWriteRequestAnsweredByThisNorthbound) {
+TEST_F(JsonTreeTest, ASetMessageBecomesOneWriteRequestAnsweredByThisNorthbound) {
     uns_.northbound().on_message({"acme/t1/out/set", R"({"A":5,"B":6})", false, "", "id", -1});
     ASSERT_EQ(uns_.writes.size(), 1u);
     const auto& request = uns_.writes[0];
@@ -129,7 +129,7 @@ TEST_F(UnsJsonTest, ASetMessageBecomesOneWriteRequestAnsweredByThisNorthbound) {
     EXPECT_EQ(write->writes[1].tag_index, 1u);
 }
 
-TEST_F(UnsJsonTest, ARefusedSetMessageIsHandedOnAsARejectionWithTheReasonForTheLog) {
+TEST_F(JsonTreeTest, ARefusedSetMessageIsHandedOnAsARejectionWithTheReasonForTheLog) {
     uns_.northbound().on_message({"acme/t1/out/A/set", "1", false, "acme/t1/out/A", "", -1});
     uns_.northbound().on_message({"acme/t1/in/A/set", "1", false, "", "", -1});
     uns_.northbound().on_message({"acme/t1/out/A", "1", false, "", "", -1});  // not a set topic
@@ -146,8 +146,8 @@ TEST_F(UnsJsonTest, ARefusedSetMessageIsHandedOnAsARejectionWithTheReasonForTheL
     EXPECT_TRUE(published().empty());  // answering is the WriteHandler's call
 }
 
-TEST(UnsJsonMetaTest, PublishedOnConnectingThenOnlyWhenAReloadChangesItAndAgainOnReconnect) {
-    test::UnsJsonRecorder uns;
+TEST(JsonTreeMetaTest, PublishedOnConnectingThenOnlyWhenAReloadChangesItAndAgainOnReconnect) {
+    test::JsonTreeRecorder uns;
     auto in = plan("in", core::plan::Direction::consume);
     const auto out = plan("out", core::plan::Direction::produce);
     uns.northbound().exchanges_changed({{&in}, {&out}}, {});
@@ -192,9 +192,9 @@ TEST(UnsJsonMetaTest, PublishedOnConnectingThenOnlyWhenAReloadChangesItAndAgainO
     }
 }
 
-TEST(UnsJsonMetaTest, AReconnectSendsTheDescriptionsAFewAtATimeInConfigurationOrder) {
-    test::UnsJsonRecorder uns;
-    constexpr std::size_t per_call = UnsJson::meta_per_call;
+TEST(JsonTreeMetaTest, AReconnectSendsTheDescriptionsAFewAtATimeInConfigurationOrder) {
+    test::JsonTreeRecorder uns;
+    constexpr std::size_t per_call = JsonTree::meta_per_call;
     std::vector<core::plan::ExchangePlan> plans;
     for (std::size_t i = 0; i < 2 * per_call + 1; ++i) {
         plans.push_back(plan("e" + std::to_string(i), core::plan::Direction::consume));

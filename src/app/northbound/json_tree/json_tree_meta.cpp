@@ -1,4 +1,4 @@
-#include "eip2mqtt/app/northbound/json_tree/uns_json_meta.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_meta.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_payload.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/wire/header.hpp"

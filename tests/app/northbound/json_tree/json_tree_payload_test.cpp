@@ -1,6 +1,6 @@
-// The payloads of the JSON topic tree (app/northbound/json_tree/uns_json_payload.hpp).
+// The payloads of the JSON topic tree (app/northbound/json_tree/json_tree_payload.hpp).
 
-#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_payload.hpp"
 
 #include <gtest/gtest.h>
 

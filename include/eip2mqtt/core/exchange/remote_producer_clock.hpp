@@ -25,9 +25,9 @@ inline constexpr auto clock_state_names = enum_names<ClockState>("none", "synced
 
 constexpr std::string_view to_string(ClockState state) { return clock_state_names.name_of(state); }
 
-class ProducerClock {
+class RemoteProducerClock {
 public:
-    ProducerClock(plan::TimestampSource source, std::chrono::milliseconds tolerance);
+    RemoteProducerClock(plan::TimestampSource source, std::chrono::milliseconds tolerance);
 
     /// A datagram stamped `time_s` + `time_ns` (time_s 0: no timestamp) received at
     /// `receive_ms` (ms since 1970 UTC): updates the state and offset, and returns the

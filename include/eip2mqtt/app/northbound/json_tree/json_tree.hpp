@@ -29,24 +29,24 @@ struct PublishSettings {
     friend bool operator==(const PublishSettings&, const PublishSettings&) = default;
 };
 
-struct UnsJsonOptions {
+struct JsonTreeOptions {
     PublishSettings publish;
     WriteRouterOptions writes;
     std::string metrics_topic;  ///< `{base}/_gateway/{id}/metrics`
 };
 
 /// The options of `config`'s `mqtt:` and `gateway:` sections.
-UnsJsonOptions uns_json_options(const core::config::Config& config);
+JsonTreeOptions json_tree_options(const core::config::Config& config);
 
-class UnsJson final : public Northbound, public history::HistorySink {
+class JsonTree final : public Northbound, public history::HistorySink {
 public:
     /// `mqtt` and `writes` must outlive the northbound.
-    UnsJson(UnsJsonOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes);
+    JsonTree(JsonTreeOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes);
 
     /// New settings (a reload), used from the next publication on: a gateway whose publish
     /// settings changed republishes its retained state.
-    void set_options(UnsJsonOptions options);
-    const UnsJsonOptions& options() const { return options_; }
+    void set_options(JsonTreeOptions options);
+    const JsonTreeOptions& options() const { return options_; }
     /// With store and forward, given the probe of its connection (the one the journal's
     /// LinkProbe asks): while the link is down, `_values` is not published (the
     /// journal has the samples and replays them on `_history`), and a reconnect's republish
@@ -61,7 +61,7 @@ public:
     /// to the WriteHandler, refused or not; anything else is ignored.
     void on_message(const adapters::mqtt::Incoming& message);
 
-    /// Also publishes each running exchange's `_meta` (uns_json_meta.hpp) that is new or
+    /// Also publishes each running exchange's `_meta` (json_tree_meta.hpp) that is new or
     /// changed, once republish_meta() has published them all; a retired exchange's is among
     /// `retired_topics` (core::plan::diff_plans).
     void exchanges_changed(const ExchangeSet& running,
@@ -90,7 +90,7 @@ private:
     /// A write result on the reply's topic, with its correlation data.
     void publish_result(const WriteReply& reply, std::string payload);
 
-    UnsJsonOptions options_;
+    JsonTreeOptions options_;
     adapters::mqtt::Publisher& mqtt_;
     WriteHandler& writes_;
     WriteRouter router_;

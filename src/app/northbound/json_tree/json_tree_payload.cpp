@@ -1,4 +1,4 @@
-#include "eip2mqtt/app/northbound/json_tree/uns_json_payload.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_payload.hpp"
 
 #include <fmt/format.h>
 
@@ -137,13 +137,13 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"publications_refused", mqtt.refused},
         {"mqtt_connects", mqtt.connects},
         {"broker", mqtt.broker},
-        {"writes_ok", sources.gateway.writes_ok},
-        {"writes_rejected", rejections_by_name(sources.gateway)},
-        {"writes_cancelled", sources.gateway.writes_cancelled},
-        {"writes_not_saved", sources.gateway.image_saves.writes_not_saved},
-        {"writes_sent_unsaved", sources.gateway.image_saves.writes_sent_unsaved},
-        {"image_save_failures", sources.gateway.image_saves.failures},
-        {"writes_by_origin", writes_by_origin(sources.gateway)},
+        {"writes_ok", sources.writes.writes_ok},
+        {"writes_rejected", rejections_by_name(sources.writes)},
+        {"writes_cancelled", sources.writes.writes_cancelled},
+        {"writes_not_saved", sources.writes.image_saves.writes_not_saved},
+        {"writes_sent_unsaved", sources.writes.image_saves.writes_sent_unsaved},
+        {"image_save_failures", sources.writes.image_saves.failures},
+        {"writes_by_origin", writes_by_origin(sources.writes)},
     };
     if (sources.commands) {
         const auto c = command_metrics(*sources.commands);

@@ -1,4 +1,4 @@
-#include "eip2mqtt/core/exchange/producer_clock.hpp"
+#include "eip2mqtt/core/exchange/remote_producer_clock.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@ constexpr std::int64_t now_ms = 1795435200000;
 constexpr std::uint32_t now_s = 1795435200;
 constexpr std::uint32_t year_2000_s = 947817150;
 
-TEST(ProducerClock, AutoTakesTheProducersTimeWithinTheTolerance) {
-    ProducerClock clock(TimestampSource::automatic, 2000ms);
+TEST(RemoteProducerClock, AutoTakesTheProducersTimeWithinTheTolerance) {
+    RemoteProducerClock clock(TimestampSource::automatic, 2000ms);
     EXPECT_EQ(clock.state(), ClockState::none);
     EXPECT_EQ(clock.on_datagram(now_s - 1, 500000000, now_ms), now_ms - 500);
     EXPECT_EQ(clock.state(), ClockState::synced);
@@ -23,8 +23,8 @@ TEST(ProducerClock, AutoTakesTheProducersTimeWithinTheTolerance) {
     EXPECT_EQ(clock.state(), ClockState::synced);
 }
 
-TEST(ProducerClock, AutoTakesTheReceiveTimeBeyondTheTolerance) {
-    ProducerClock clock(TimestampSource::automatic, 2000ms);
+TEST(RemoteProducerClock, AutoTakesTheReceiveTimeBeyondTheTolerance) {
+    RemoteProducerClock clock(TimestampSource::automatic, 2000ms);
     EXPECT_EQ(clock.on_datagram(year_2000_s, 740000000, now_ms), now_ms);
     EXPECT_EQ(clock.state(), ClockState::unsynced);
     EXPECT_EQ(clock.offset_ms(), std::int64_t{year_2000_s} * 1000 + 740 - now_ms);
@@ -36,10 +36,10 @@ TEST(ProducerClock, AutoTakesTheReceiveTimeBeyondTheTolerance) {
     EXPECT_EQ(clock.state(), ClockState::synced);
 }
 
-TEST(ProducerClock, NoTimestampIsAlwaysTheReceiveTime) {
+TEST(RemoteProducerClock, NoTimestampIsAlwaysTheReceiveTime) {
     for (const auto source :
          {TimestampSource::automatic, TimestampSource::producer, TimestampSource::receive}) {
-        ProducerClock clock(source, 2000ms);
+        RemoteProducerClock clock(source, 2000ms);
         clock.on_datagram(now_s, 0, now_ms);
         EXPECT_EQ(clock.on_datagram(0, 0, now_ms + 7), now_ms + 7);
         EXPECT_EQ(clock.state(), ClockState::none);
@@ -47,16 +47,16 @@ TEST(ProducerClock, NoTimestampIsAlwaysTheReceiveTime) {
     }
 }
 
-TEST(ProducerClock, ProducerAndReceiveAreTakenWhateverTheClock) {
-    ProducerClock producer(TimestampSource::producer, 2000ms);
+TEST(RemoteProducerClock, ProducerAndReceiveAreTakenWhateverTheClock) {
+    RemoteProducerClock producer(TimestampSource::producer, 2000ms);
     EXPECT_EQ(producer.on_datagram(year_2000_s, 0, now_ms), std::int64_t{year_2000_s} * 1000);
     EXPECT_EQ(producer.state(), ClockState::unsynced);
-    ProducerClock receive(TimestampSource::receive, 2000ms);
+    RemoteProducerClock receive(TimestampSource::receive, 2000ms);
     EXPECT_EQ(receive.on_datagram(now_s, 100000000, now_ms), now_ms);
     EXPECT_EQ(receive.state(), ClockState::synced);
 }
 
-TEST(ProducerClock, StateNames) {
+TEST(RemoteProducerClock, StateNames) {
     EXPECT_EQ(to_string(ClockState::none), "none");
     EXPECT_EQ(to_string(ClockState::synced), "synced");
     EXPECT_EQ(to_string(ClockState::unsynced), "unsynced");
