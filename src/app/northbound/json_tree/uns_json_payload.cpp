@@ -140,6 +140,7 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"writes_ok", sources.gateway.writes_ok},
         {"writes_rejected", rejections_by_name(sources.gateway)},
         {"writes_cancelled", sources.gateway.writes_cancelled},
+        {"writes_left_to_leader", sources.gateway.writes_left_to_leader},
         {"writes_not_saved", sources.gateway.image_saves.writes_not_saved},
         {"writes_sent_unsaved", sources.gateway.image_saves.writes_sent_unsaved},
         {"image_save_failures", sources.gateway.image_saves.failures},
