@@ -2,7 +2,8 @@
 // the same produced exchange sent to the test's socket. One leads; when it is killed, or
 // stopped and resumed, the other takes over, and the capture shows the two never produced at
 // once: each unit numbers its datagrams with its own request ids, so the capture is one run of
-// consecutive ids per leadership, and two producers at once would cut it into many.
+// consecutive ids per leadership (never more runs than `leader` said on the role topics), and
+// two producers at once would cut it into many.
 
 #include <signal.h>
 
@@ -125,6 +126,18 @@ protected:
         }
         return out;
     }
+    /// How many times a unit said `leader` on its role topic: a loaded machine may see a unit
+    /// fenced and a takeover more than the test caused, each one a leadership of its own.
+    std::size_t leaderships() const {
+        std::size_t out = 0;
+        for (const auto& m : recorder_->messages()) {
+            if ((m.topic == role_topic("gw-a") || m.topic == role_topic("gw-b")) &&
+                m.payload == "leader") {
+                ++out;
+            }
+        }
+        return out;
+    }
     std::string other(const std::string& id) const { return id == "gw-a" ? "gw-b" : "gw-a"; }
 
     TempDir dir_;
@@ -144,7 +157,7 @@ TEST_F(HotStandbyTest, TheStandbyTakesOverFromAKilledLeaderAndNeverProducesBesid
     const auto epoch = record_of(leader).value("epoch", 0);
     ASSERT_GE(epoch, 1);
     ASSERT_TRUE(capture(20));
-    EXPECT_EQ(runs(), 1u) << "the standby produced beside the leader";
+    EXPECT_LE(runs(), leaderships()) << "the standby produced beside the leader";
 
     const auto from = recorder_->count();
     gateways_[leader]->signal(SIGKILL);
@@ -155,7 +168,8 @@ TEST_F(HotStandbyTest, TheStandbyTakesOverFromAKilledLeaderAndNeverProducesBesid
     EXPECT_EQ(schema_problem(schema_file("leader.json"), record.dump()), "");
     // What the killed leader sent before it died, then the new leader's alone.
     ASSERT_TRUE(capture(40));
-    EXPECT_EQ(runs(), 2u);
+    EXPECT_GE(runs(), 2u);
+    EXPECT_LE(runs(), leaderships());
 }
 
 TEST_F(HotStandbyTest, ALeaderResumedAfterSigstopIsFencedAndStandsBy) {
@@ -177,7 +191,8 @@ TEST_F(HotStandbyTest, ALeaderResumedAfterSigstopIsFencedAndStandsBy) {
     ASSERT_TRUE(says(leader, "standby", resumed));
     // Whatever the resumed unit's timers had due, none of it left: the new leader's run goes on.
     ASSERT_TRUE(capture(40));
-    EXPECT_EQ(runs(), 2u);
+    EXPECT_GE(runs(), 2u);
+    EXPECT_LE(runs(), leaderships());
     // The topic holds the new leader's lease, renewed since.
     const auto last = recorder_->last(leader_topic);
     ASSERT_TRUE(last.has_value());
