@@ -172,6 +172,31 @@ TEST_F(HotStandbyTest, TheStandbyTakesOverFromAKilledLeaderAndNeverProducesBesid
     EXPECT_LE(runs(), leaderships());
 }
 
+TEST_F(HotStandbyTest, AKilledLeaderRestartedStandsByBesideTheNewOne) {
+    const auto leader = first_leader();
+    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto standby = other(leader);
+    const auto from = recorder_->count();
+    gateways_[leader]->signal(SIGKILL);
+    ASSERT_TRUE(gateways_[leader]->wait(10s).has_value());
+    ASSERT_TRUE(says(standby, "leader", from));
+
+    const auto restarted = recorder_->count();
+    start(leader);
+    ASSERT_TRUE(says(leader, "standby", restarted));
+    const auto epoch = record_of(standby, restarted).value("epoch", 0);
+    ASSERT_TRUE(capture(40));
+    EXPECT_LE(runs(), leaderships());
+    // The new leader kept the lead: its renewals go on with its epoch, and the restarted unit
+    // never claimed it.
+    EXPECT_EQ(record_of(standby, recorder_->count() - 1).value("epoch", 0), epoch);
+    EXPECT_FALSE(recorder_
+                     ->wait_for_message(
+                         role_topic(leader), [](const std::string& p) { return p == "leader"; },
+                         0ms, restarted)
+                     .has_value());
+}
+
 TEST_F(HotStandbyTest, ALeaderResumedAfterSigstopIsFencedAndStandsBy) {
     const auto leader = first_leader();
     ASSERT_FALSE(leader.empty()) << "nobody leads";
