@@ -57,7 +57,14 @@ void Gateway::start_pair() {
 void Gateway::on_role(core::redundancy::Role role) {
     // A standby kept its exchanges current without a word north: the new leader says all of it
     // at once, over what the old leader left retained.
-    if (role == core::redundancy::Role::leader) republish_exchanges();
+    if (role == core::redundancy::Role::leader) return republish_exchanges();
+    // Writes this unit accepted as leader and has not produced never will be by it: answered
+    // now, never applied late should it lead again (the new leader may have taken them).
+    std::size_t cancelled = 0;
+    for (const auto& producer : exchanges_.producers()) {
+        cancelled += producer->cancel_queued_writes("standby");
+    }
+    writes_.count_cancelled(cancelled);
 }
 
 }  // namespace eip2mqtt::app

@@ -51,6 +51,8 @@ protected:
         broker_.reset();
     }
 
+    virtual std::uint32_t period_ms() const { return 50; }
+
     std::string config(const std::string& id) const {
         return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
                ", log_level: debug }\n"
@@ -64,7 +66,7 @@ protected:
                "exchanges:\n" +
                ExchangeYaml::produce("sp", "10.1.2.3", 10,
                                      "127.0.0.1:" + std::to_string(capture_.port()))
-                   .period_ms(50)
+                   .period_ms(period_ms())
                    .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 3000")
                    .str();
     }
@@ -249,6 +251,39 @@ TEST_F(HotStandbyTest, OnlyTheLeaderAnswersAWrite) {
     for (const auto& m : recorder_->messages_on("test/sp/SPEED_SP/set/result")) {
         EXPECT_EQ(json::parse(m.payload), json({{"ok", true}})) << m.payload;
     }
+}
+
+/// A period so long that a write accepted by the leader waits in its queue through a takeover.
+class SlowHotStandbyTest : public HotStandbyTest {
+protected:
+    std::uint32_t period_ms() const override { return 20000; }
+};
+
+TEST_F(SlowHotStandbyTest, AWriteQueuedOnALeaderThatStepsDownIsAnsweredStandbyNeverApplied) {
+    const auto leader = first_leader();
+    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto standby = other(leader);
+    ASSERT_TRUE(says(standby, "standby"));
+    // Staged on the leader for its next datagram, 20 s away; the standby leaves it to the leader.
+    recorder_->publish("test/sp/SPEED_SP/set", "3100");
+    ASSERT_TRUE(recorder_
+                    ->wait_for_message(
+                        "test/_gateway/" + standby + "/metrics",
+                        [](const std::string& p) {
+                            return json::parse(p).value("writes_left_to_leader", 0) == 1;
+                        },
+                        10s)
+                    .has_value());
+
+    const auto from = recorder_->count();
+    gateways_[leader]->signal(SIGSTOP);
+    ASSERT_TRUE(says(standby, "leader", from));
+    gateways_[leader]->signal(SIGCONT);
+    ASSERT_TRUE(says(leader, "standby", from));
+    const auto result = recorder_->wait_for_message("test/sp/SPEED_SP/set/result", nullptr, 30s);
+    ASSERT_TRUE(result.has_value()) << "the queued write was never answered";
+    EXPECT_EQ(json::parse(result->payload), json({{"ok", false}, {"error", "standby"}}));
+    EXPECT_EQ(recorder_->messages_on("test/sp/SPEED_SP/set/result").size(), 1u);
 }
 
 }  // namespace
