@@ -24,8 +24,10 @@ constexpr auto refresh_scan_interval = 1s;
 // How long a clean stop waits for queued publications before giving up.
 constexpr auto stop_flush_timeout = 3s;
 
-ExchangesOptions exchanges_options(const core::config::Config& config) {
+ExchangesOptions exchanges_options(const core::config::Config& config,
+                                   std::function<bool(core::MonoTime)> may_produce) {
     ExchangesOptions options;
+    if (config.redundancy.enabled()) options.may_produce = std::move(may_produce);
     options.sender.bind = config.eip.bind;
     options.sender.multicast_ttl = config.eip.multicast_ttl;
     options.sender.multicast_interface = config.eip.multicast_interface;
@@ -48,8 +50,10 @@ Gateway::Gateway(core::config::Config config)
       writes_([this](ExchangeWrite&& write, const WriteReply& reply,
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
               system_clock()),
-      exchanges_(loop_.get_executor(), exchanges_options(config_), northbound_,
-                 writes_.image_saves()) {
+      exchanges_(
+          loop_.get_executor(),
+          exchanges_options(config_, [this](core::MonoTime now) { return may_produce(now); }),
+          northbound_, writes_.image_saves()) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(
         loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
     json_tree_ = std::make_unique<northbound::json_tree::JsonTree>(
@@ -66,6 +70,7 @@ Gateway::Gateway(core::config::Config config)
         northbound_.add(*sparkplug_);
         add_sparkplug_history();
     }
+    make_pair();
     exchanges_.apply(take_plans(config_), std::chrono::steady_clock::now(),
                      std::chrono::system_clock::now());
 
@@ -107,6 +112,8 @@ int Gateway::run() {
     if (command_socket_) command_socket_->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
     exchanges_.stop();
+    // Nothing is produced any more: the lease goes, its will clearing the leader topic.
+    if (pair_mqtt_) pair_mqtt_->stop(stop_flush_timeout);
     // The edge node's NDEATH after its last data, then the JSON tree's `offline`.
     if (sparkplug_mqtt_) sparkplug_mqtt_->stop(stop_flush_timeout);
     mqtt_->stop(stop_flush_timeout);
@@ -138,6 +145,7 @@ void Gateway::start() {
             });
     }
     mqtt_->start();
+    start_pair();
     if (sparkplug_mqtt_) {
         sparkplug_mqtt_->set_on_connected([this] {
             on_sparkplug_event(
@@ -221,6 +229,7 @@ void Gateway::on_tick() {
     receiver_->read_pending();
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
+    if (pair_) pair_->tick(now);
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
     // Before the metrics: figures showing a datagram accepted then show it journaled for good.
     if (history_) history_->on_tick(now);

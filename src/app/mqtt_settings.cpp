@@ -105,4 +105,16 @@ adapters::mqtt::ClientOptions sparkplug_client_options(
     return options;
 }
 
+adapters::mqtt::ClientOptions pair_client_options(const core::config::Config& config,
+                                                  adapters::mqtt::Message will) {
+    auto options = mqtt_client_options(config, {});
+    options.client_id += "-pair";
+    options.log_name = "MQTT (pair)";
+    options.session_expiry = std::chrono::seconds(0);
+    options.clean_start = true;
+    options.will = [will = std::move(will)] { return will; };
+    options.session_bound = true;
+    return options;
+}
+
 }  // namespace eip2mqtt::app

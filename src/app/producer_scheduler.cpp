@@ -51,6 +51,9 @@ void ProducerScheduler::on_wake() {
     const auto now = clock_.monotonic();
     due_.clear();
     queue_.take_due(now, due_);
+    // Asked at the moment of sending: a process resumed after SIGSTOP is fenced here, whatever
+    // its timers did not run while it was stopped.
+    if (may_produce_ && !may_produce_(now)) due_.clear();
     // Each datagram carries the UTC time of the deadline it serves (SamplingClock), so that
     // its consumers see whole periods however late the loop woke.
     sampling_clock_.observe(now, clock_.wall());

@@ -16,7 +16,20 @@ namespace eip2mqtt::app {
 WriteDispatcher::WriteDispatcher(StageWrite stage, const Clock& clock)
     : stage_(std::move(stage)), clock_(clock) {}
 
+bool WriteDispatcher::admitted(const WriteRequest& request) {
+    using core::redundancy::WritePolicy;
+    const auto policy = admission_ ? admission_() : WritePolicy::apply;
+    if (policy == WritePolicy::apply) return true;
+    if (policy == WritePolicy::leave_to_leader && request.reply.via != WriteOrigin::commands) {
+        ++counters_.writes_left_to_leader;
+        return false;
+    }
+    reject(request, {core::write::WriteError::standby, "standby"});
+    return false;
+}
+
 void WriteDispatcher::on_write(WriteRequest&& request) {
+    if (!admitted(request)) return;
     if (const auto* rejection = std::get_if<core::write::WriteRejection>(&request.outcome)) {
         return reject(request, *rejection);
     }

@@ -149,5 +149,29 @@ TEST_F(ProducerSchedulerTest, AWallClockStepIsFollowedFromTheNextWakeUp) {
     scheduler_.remove(id_b);
 }
 
+TEST_F(ProducerSchedulerTest, AClosedGatePassesTheDeadlinesWithoutProducingAnything) {
+    RecordingProducible a("a", 1001, log_);
+    bool open = false;
+    int asked = 0;
+    scheduler_.set_gate([&](core::MonoTime) {
+        ++asked;
+        return open;
+    });
+    // Due every millisecond: the closed gate is asked at several wake-ups.
+    const auto id = scheduler_.add(a, due_now(1ms));
+    const auto give_up = std::chrono::steady_clock::now() + 10s;
+    while (asked < 3 && std::chrono::steady_clock::now() < give_up) {
+        loop_.restart();
+        loop_.run_one_for(1s);
+    }
+    ASSERT_GE(asked, 3);
+    EXPECT_TRUE(log_.empty());
+    EXPECT_TRUE(batches_.empty());
+    open = true;
+    ASSERT_TRUE(wake());
+    EXPECT_EQ(log_, (std::vector<std::string>{"produce a", "send_batch", "sent a"}));
+    scheduler_.remove(id);
+}
+
 }  // namespace
 }  // namespace eip2mqtt::app

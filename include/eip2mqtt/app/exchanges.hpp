@@ -34,6 +34,8 @@ struct ExchangesOptions {
     adapters::udp::SenderOptions sender;  ///< the socket produced datagrams leave from
     std::uint16_t port = 18246;           ///< eip.port: a destination's port when it names none
     std::string state_dir;                ///< where produced images are saved
+    /// Whether produced exchanges may send now (ProducerScheduler::set_gate); unset: always.
+    std::function<bool(core::MonoTime now)> may_produce;
 };
 
 /// What apply() did, by exchange name, in the order of the plans (stopped: of the exchanges

@@ -33,6 +33,7 @@
 #include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
+#include "eip2mqtt/app/redundancy/pair_lease.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -78,6 +79,13 @@ private:
     /// multicast groups, log level, publish settings, MQTT buffers. False, with nothing
     /// changed, when the multicast groups cannot be joined.
     bool apply_settings(const core::config::Config& next);
+    /// With `redundancy:`, the pair's lease on a connection of its own, and the gates it
+    /// keeps: the tag tree, production and writes (gateway_pair.cpp).
+    void make_pair();
+    void start_pair();
+    void on_role(core::redundancy::Role role);
+    /// Whether produced exchanges may send now: always without a pair.
+    bool may_produce(core::MonoTime now) const { return !pair_ || pair_->may_produce(now); }
     /// With `eip.commands.enabled`: the command port and its responder (gateway_commands.cpp).
     void make_commands();
     /// The figures the metrics are made of, borrowed for one call.
@@ -111,6 +119,8 @@ private:
     std::unique_ptr<northbound::sparkplug::SparkplugNode> sparkplug_;
     std::unique_ptr<history::StoreAndForward> history_;  ///< with mqtt.store_and_forward
     northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to
+    std::unique_ptr<adapters::mqtt::Client> pair_mqtt_;  ///< with redundancy:
+    std::unique_ptr<redundancy::PairLease> pair_;        ///< with pair_mqtt_
     Exchanges exchanges_;
     std::unique_ptr<adapters::udp::Receiver> receiver_;
     CommandViewContext command_context_;

@@ -33,6 +33,8 @@ struct WriteCounters {
     /// Of writes_ok, those still queued when a reload changed or removed their exchange:
     /// answered `"reloaded"`, never produced.
     std::uint64_t writes_cancelled = 0;
+    /// Writes a standby of a pair dropped unanswered, because its live leader answers them.
+    std::uint64_t writes_left_to_leader = 0;
     /// Image saves of every produced exchange, and the writes whose save failed.
     ImageSaveTotals image_saves;
     /// Of writes_ok, by the protocol they came by (WriteOrigin).

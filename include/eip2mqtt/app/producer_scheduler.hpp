@@ -72,6 +72,12 @@ public:
     Id add(Producible& producer, const core::exchange::ProductionSchedule& schedule);
     /// Stops producing and forgets the producer: nothing reaches it any more.
     void remove(Id id);
+    /// Whether datagrams may leave at a wake-up (the standby of a pair: README "Redundancy").
+    /// While it says no, the due deadlines pass and nothing is produced: no image takes its
+    /// queued writes, no request id is spent. Unset: always.
+    void set_gate(std::function<bool(core::MonoTime now)> may_produce) {
+        may_produce_ = std::move(may_produce);
+    }
 
 private:
     void arm();
@@ -84,6 +90,7 @@ private:
     std::unordered_map<Id, Producible*> producers_;
     std::optional<core::MonoTime> armed_for_;
     core::exchange::SamplingClock sampling_clock_;
+    std::function<bool(core::MonoTime)> may_produce_;
     // Reused at every wake-up, so a steady batch allocates nothing.
     std::vector<core::exchange::ProductionQueue::Due> due_;
     std::vector<Producible*> batch_producers_;

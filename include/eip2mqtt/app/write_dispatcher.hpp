@@ -8,10 +8,12 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <utility>
 
 #include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/app/gateway_metrics.hpp"
 #include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/core/redundancy/lease.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/time.hpp"
 
@@ -28,6 +30,14 @@ public:
     WriteDispatcher(StageWrite stage, const Clock& clock);
 
     void on_write(WriteRequest&& request) override;
+    /// The standby of a pair (README "Redundancy"): whether this unit takes a write now. A
+    /// write the leader answers is dropped here unanswered (counted); one that no live leader
+    /// will answer is refused `standby`. Writes on the command port go to this unit's own
+    /// address, which no leader answers: they are refused whenever this unit does not lead.
+    /// Unset: every write is taken.
+    void set_admission(std::function<core::redundancy::WritePolicy()> admission) {
+        admission_ = std::move(admission);
+    }
     /// Writes a reload answered `reloaded` (ExchangeProducer::cancel_queued_writes).
     void count_cancelled(std::size_t writes) { counters_.writes_cancelled += writes; }
     /// Where the produced exchanges count their image saves (ExchangeProducer).
@@ -35,10 +45,13 @@ public:
     const WriteCounters& counters() const { return counters_; }
 
 private:
+    /// False when the write stops here (left to the leader, or refused `standby`).
+    bool admitted(const WriteRequest& request);
     void reject(const WriteRequest& request, const core::write::WriteRejection& rejection);
 
     StageWrite stage_;
     const Clock& clock_;
+    std::function<core::redundancy::WritePolicy()> admission_;
     WriteCounters counters_;
     core::ThrottledLog log_;
 };

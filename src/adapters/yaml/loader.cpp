@@ -106,6 +106,7 @@ void Loader::read_root(const Node& root, Config& config) {
              if (key == "eip") read_eip(value, at, config);
              if (key == "metrics") read_metrics(value, at, config);
              if (key == "sparkplug") read_sparkplug(value, at, config);
+             if (key == "redundancy") read_redundancy(value, at, config);
              if (key == "exchanges") read_exchanges(value, at, config);
          });
 }

@@ -183,6 +183,16 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     if (config->mqtt.urls.size() > 1) {
         out << "brokers, tried in turn: " << broker_list(config->mqtt.urls) << "\n";
     }
+    if (const auto& pair = config->redundancy; pair.enabled()) {
+        out << "redundancy: pair " << pair.pair << ", takeover after " << pair.takeover.count()
+            << " ms, the lease renewed every " << (pair.takeover / 4).count() << " ms"
+            << (pair.priority ? ", priority " + std::to_string(*pair.priority) : std::string())
+            << "\n";
+        if (config->sparkplug.enabled()) {
+            out << "warning: redundancy with sparkplug: both units are born as the edge node; "
+                   "only the leader sends its data\n";
+        }
+    }
     print_placeholders(config_path, out);
     const core::plan::WarningContext context{config->mqtt.version == 3};
     const auto& sparkplug = config->sparkplug;

@@ -8,20 +8,24 @@ void FanOut::exchanges_changed(const ExchangeSet& running,
 }
 
 void FanOut::tag_samples(const SampleBatch& batch) {
+    if (closed()) return;
     for (auto* northbound : northbounds_) northbound->tag_samples(batch);
 }
 
 void FanOut::consumed_status(const ConsumedStatus& status) {
+    if (closed()) return;
     for (auto* northbound : northbounds_) northbound->consumed_status(status);
 }
 
 void FanOut::produced_status(const core::plan::ExchangePlan& exchange,
                              const ProducedStatus& status) {
+    if (closed()) return;
     for (auto* northbound : northbounds_) northbound->produced_status(exchange, status);
 }
 
 void FanOut::exchange_state(const core::plan::ExchangePlan& exchange,
                             core::exchange::ConsumeState state) {
+    if (closed()) return;
     for (auto* northbound : northbounds_) northbound->exchange_state(exchange, state);
 }
 

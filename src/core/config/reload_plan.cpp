@@ -49,6 +49,7 @@ void compare_sections(Collector& out, const Config& a, const Config& b) {
     out.compare("eip.commands.", keys::commands, a.eip.commands, b.eip.commands);
     out.compare("metrics.", keys::metrics, a.metrics, b.metrics);
     out.compare("sparkplug.", keys::sparkplug, a.sparkplug, b.sparkplug);
+    out.compare("redundancy.", keys::redundancy, a.redundancy, b.redundancy);
 }
 
 /// The keys of a changed exchange, its tags matched by name.

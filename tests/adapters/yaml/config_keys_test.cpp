@@ -85,6 +85,10 @@ sparkplug:
   uns: true
   qos: 0
   max_packet_bytes: 65536
+redundancy:
+  pair: turbine-gw
+  takeover_ms: 2000
+  priority: 100
 exchanges:
   - name: consumed
     direction: consume
@@ -195,6 +199,9 @@ const std::vector<Edit> edits = {
     {"sparkplug.uns", "uns: true", "uns: false"},
     {"sparkplug.qos", "qos: 0", "qos: 1"},
     {"sparkplug.max_packet_bytes", "max_packet_bytes: 65536", "max_packet_bytes: 32768"},
+    {"redundancy.pair", "pair: turbine-gw", "pair: boiler-gw"},
+    {"redundancy.takeover_ms", "takeover_ms: 2000", "takeover_ms: 3000"},
+    {"redundancy.priority", "priority: 100", "priority: 50"},
     // A new name is another exchange: started, and the old one stopped.
     {"exchanges[].name",
      "name: produced",
@@ -311,6 +318,7 @@ std::map<std::string, ReloadRule> table_keys() {
     add("eip.commands.", keys::commands);
     add("metrics.", keys::metrics);
     add("sparkplug.", keys::sparkplug);
+    add("redundancy.", keys::redundancy);
     add("exchanges[].", keys::exchange);
     add("exchanges[].tags[].", keys::tag);
     return out;

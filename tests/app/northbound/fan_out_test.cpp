@@ -40,5 +40,34 @@ TEST(FanOut, EveryEventReachesEachNorthboundButAResultOnlyItsOrigin) {
     EXPECT_EQ(second.results[0].error, "refused");
 }
 
+TEST(FanOut, AClosedGateStopsWhatTheExchangesSayButNotTheRunningSetOrTheResults) {
+    test::RecordingNorthbound northbound;
+    FanOut fan_out;
+    fan_out.add(northbound);
+    bool open = false;
+    fan_out.set_gate([&] { return open; });
+
+    core::plan::ExchangeSpec spec;
+    spec.name = "e1";
+    spec.length = 4;
+    spec.topic = "e1";
+    const auto plan = core::plan::make_exchange_plan(spec, "acme");
+    const std::vector<TagSample> samples{{0, core::plan::Value{true}}};
+    const auto say_everything = [&] {
+        fan_out.exchanges_changed({{&plan}, {}}, {});
+        fan_out.tag_samples({plan, core::quality::Quality::good, 1, false, samples});
+        fan_out.exchange_state(plan, core::exchange::ConsumeState::stale);
+        fan_out.produced_status(plan, ProducedStatus{});
+        fan_out.write_result({"r", "", &northbound}, "standby");
+    };
+    say_everything();
+    EXPECT_EQ(northbound.events, (std::vector<std::string>{"exchanges", "result"}));
+    open = true;
+    northbound.events.clear();
+    say_everything();
+    EXPECT_EQ(northbound.events,
+              (std::vector<std::string>{"exchanges", "samples", "state", "status", "result"}));
+}
+
 }  // namespace
 }  // namespace eip2mqtt::app::northbound

@@ -5,6 +5,8 @@
 ///
 /// Threading: the loop only.
 
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "eip2mqtt/app/northbound.hpp"
@@ -15,6 +17,10 @@ class FanOut final : public Northbound {
 public:
     /// `northbound` must outlive the fan-out's use of it.
     void add(Northbound& northbound) { northbounds_.push_back(&northbound); }
+    /// The standby of a pair (README "Redundancy") says nothing of the exchanges: while `open`
+    /// says no, samples, statuses and exchange states stop here. The running set, write results
+    /// and the gateway's own metrics still pass. Unset: everything passes.
+    void set_gate(std::function<bool()> open) { open_ = std::move(open); }
 
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
@@ -29,7 +35,10 @@ public:
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
 
 private:
+    bool closed() const { return open_ && !open_(); }
+
     std::vector<Northbound*> northbounds_;
+    std::function<bool()> open_;
 };
 
 }  // namespace eip2mqtt::app::northbound

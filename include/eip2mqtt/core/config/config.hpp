@@ -176,6 +176,22 @@ struct SparkplugSection {
     }
 };
 
+/// `redundancy:`: two gateways, one leading and one standing by (README, "Redundancy").
+struct RedundancySection {
+    std::string pair;  ///< the same on both units; empty: no pair
+    /// The standby takes over this long after it last heard the leader.
+    std::chrono::milliseconds takeover{2000};
+    /// When both claim the lead at once, the higher wins (then the higher gateway.id).
+    std::optional<int> priority;
+    Marks marks;
+
+    bool enabled() const { return !pair.empty(); }
+};
+
+/// The fewest milliseconds `redundancy.takeover_ms` takes: the lease is renewed every quarter.
+inline constexpr long long min_takeover_ms = 200;
+inline constexpr long long max_takeover_ms = 600000;
+
 struct Config {
     std::string file;  ///< path it was loaded from
     GatewaySection gateway;
@@ -183,6 +199,7 @@ struct Config {
     EipSection eip;
     MetricsSection metrics;
     SparkplugSection sparkplug;
+    RedundancySection redundancy;
     std::vector<ExchangeConfig> exchanges;
 };
 

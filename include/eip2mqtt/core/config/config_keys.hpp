@@ -157,6 +157,13 @@ inline constexpr std::array<ConfigKey<SparkplugSection>, 6> sparkplug{{
     {"max_packet_bytes", restart, differs<&SparkplugSection::max_packet_bytes>},
 }};
 
+/// The pair's lease is taken at start, on a connection of its own.
+inline constexpr std::array<ConfigKey<RedundancySection>, 3> redundancy{{
+    {"pair", restart, differs<&RedundancySection::pair>},
+    {"takeover_ms", restart, differs<&RedundancySection::takeover>},
+    {"priority", restart, differs<&RedundancySection::priority>},
+}};
+
 /// An exchange's keys restart that exchange (its name is what matches it: a new name is another
 /// exchange, started, and the old one stopped).
 inline constexpr std::array<ConfigKey<plan::ExchangeSpec>, 15> exchange{{

@@ -46,12 +46,13 @@ enum class WriteError : std::uint8_t {
     too_large,           ///< the payload is over the size limit
     overlapping_tags,    ///< a multi-tag write sets two tags that share bits
     offline,             ///< a Sparkplug DCMD while the edge node is not born
+    standby,             ///< the standby of a pair, with no live leader to answer it
 };
 
 inline constexpr auto write_error_names = enum_names<WriteError>(
     "malformed", "unknown_tag", "read_only", "wrong_type", "not_integer", "below_min", "above_max",
     "out_of_range", "not_finite", "retained", "expired", "queue_full", "empty", "rate_limited",
-    "bad_response_topic", "too_large", "overlapping_tags", "offline");
+    "bad_response_topic", "too_large", "overlapping_tags", "offline", "standby");
 
 inline constexpr std::size_t write_error_count = write_error_names.size();
 

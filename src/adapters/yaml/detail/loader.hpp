@@ -1,9 +1,10 @@
 #pragma once
 /// The configuration loader: walks the YAML tree section by section, records the mark of every
 /// key for diagnostics, and reports every problem of the file in one run. Its reading is in
-/// three files: loader.cpp (the run and scalars), read_sections.cpp (gateway, mqtt, eip,
-/// metrics) and read_exchanges.cpp (exchanges, tags and point lists), the last two with the
-/// tables that bind each key of a mapping to its field (key_readers.hpp).
+/// four files: loader.cpp (the run and scalars), read_sections.cpp (gateway, mqtt, eip,
+/// metrics, sparkplug), read_redundancy.cpp and read_exchanges.cpp (exchanges, tags and point
+/// lists), the last three with the tables that bind each key of a mapping to its field
+/// (key_readers.hpp).
 ///
 /// Module-private to src/adapters/yaml.
 
@@ -40,6 +41,7 @@ using core::config::Mark;
 using core::config::Marks;
 using core::config::MetricsSection;
 using core::config::MqttSection;
+using core::config::RedundancySection;
 using core::config::SparkplugSection;
 using core::config::StoreAndForwardSection;
 using core::config::TagConfig;
@@ -50,8 +52,8 @@ using core::plan::TagType;
 // The keys of each mapping are those of core/config/config_keys.hpp, where each has its reload
 // rule; the top level's are the sections. The mappings read through a table of key readers
 // (key_readers.hpp) take their keys from it.
-inline constexpr std::array<std::string_view, 6> top_keys{"gateway", "mqtt",      "eip",
-                                                          "metrics", "sparkplug", "exchanges"};
+inline constexpr std::array<std::string_view, 7> top_keys{
+    "gateway", "mqtt", "eip", "metrics", "sparkplug", "redundancy", "exchanges"};
 inline constexpr auto eip_keys = core::config::keys::names(core::config::keys::eip);
 inline constexpr auto multicast_keys = core::config::keys::names(core::config::keys::multicast);
 inline constexpr auto commands_keys = core::config::keys::names(core::config::keys::commands);
@@ -230,6 +232,7 @@ private:
 
     void read_metrics(const Node& node, const Mark& at, Config& config);
     void read_sparkplug(const Node& node, const Mark& at, Config& config);
+    void read_redundancy(const Node& node, const Mark& at, Config& config);
 
     void read_exchanges(const Node& node, const Mark& at, Config& config);
 

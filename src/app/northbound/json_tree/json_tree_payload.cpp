@@ -140,6 +140,7 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"writes_ok", sources.writes.writes_ok},
         {"writes_rejected", rejections_by_name(sources.writes)},
         {"writes_cancelled", sources.writes.writes_cancelled},
+        {"writes_left_to_leader", sources.writes.writes_left_to_leader},
         {"writes_not_saved", sources.writes.image_saves.writes_not_saved},
         {"writes_sent_unsaved", sources.writes.image_saves.writes_sent_unsaved},
         {"image_save_failures", sources.writes.image_saves.failures},

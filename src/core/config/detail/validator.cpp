@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/config/detail/config_names.hpp"
+#include "core/config/detail/redundancy_check.hpp"
 #include "core/config/detail/sparkplug_check.hpp"
 
 namespace eip2mqtt::core::config::detail {
@@ -22,6 +23,7 @@ Diagnostics Validator::run() {
     check_gateway_topics();
     check_exchanges();
     detail::check_sparkplug(config_, out_);
+    detail::check_redundancy(config_, out_);
     std::stable_sort(out_.begin(), out_.end(), [this](const Diagnostic& a, const Diagnostic& b) {
         return std::make_tuple(a.mark.file != config_.file, a.mark.file, a.mark.line,
                                a.mark.column) < std::make_tuple(b.mark.file != config_.file,

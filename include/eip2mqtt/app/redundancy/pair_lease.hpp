@@ -1,0 +1,74 @@
+#pragma once
+/// The lease of a hot-standby pair at run time (README "Redundancy"): the core's Lease
+/// (core/redundancy/lease.hpp, where its rules are) fed from the pair's own MQTT connection. It
+/// reads the retained leader topic, publishes this unit's claims and renewals there (retained,
+/// QoS 1: a renewal counts once the broker acknowledged it), and says on the unit's role topic,
+/// retained, whether it leads. The gateway asks it, with the time, whether to produce, publish
+/// the tag tree and take writes.
+///
+/// Threading: the loop only.
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "eip2mqtt/adapters/mqtt/message.hpp"
+#include "eip2mqtt/adapters/mqtt/publisher.hpp"
+#include "eip2mqtt/core/redundancy/lease.hpp"
+#include "eip2mqtt/core/time.hpp"
+
+namespace eip2mqtt::app::redundancy {
+
+struct PairTopics {
+    std::string leader;  ///< {base}/_gateway/_pair/{pair}/leader
+    std::string role;    ///< {base}/_gateway/{id}/role
+};
+
+PairTopics pair_topics(const std::string& base_topic, const std::string& pair,
+                       const std::string& id);
+
+/// The pair connection's will: the leader topic cleared (retained, empty). Either unit's will
+/// clears it; the leader writes it again at its next renewal. Nothing is decided on it: a
+/// standby takes over a takeover after it last heard the leader, cleared or not.
+adapters::mqtt::Message pair_will(const PairTopics& topics);
+
+class PairLease {
+public:
+    using RoleChanged = std::function<void(core::redundancy::Role role)>;
+
+    /// `publisher` (the pair's connection) must outlive the lease; `on_role` runs on each
+    /// change of role, after the role topic was published.
+    PairLease(core::redundancy::LeaseSettings settings, PairTopics topics,
+              adapters::mqtt::Publisher& publisher, core::MonoTime start, RoleChanged on_role);
+
+    /// After each (re)connect of the pair's connection: the role topic again.
+    void on_connected();
+    void on_message(const adapters::mqtt::Incoming& message, core::MonoTime now);
+    /// The acknowledgement token of a claim or renewal (its sending time).
+    void on_acknowledged(std::uint64_t token);
+    /// Publishes a due claim or renewal; a fence or a claim confirmed changes the role.
+    void tick(core::MonoTime now);
+
+    bool leading(core::MonoTime now) const {
+        return lease_.role(now) == core::redundancy::Role::leader;
+    }
+    bool may_produce(core::MonoTime now) const { return lease_.may_produce(now); }
+    core::redundancy::WritePolicy writes(core::MonoTime now) const { return lease_.writes(now); }
+    const core::redundancy::Lease& lease() const { return lease_; }
+
+private:
+    void publish_role(core::redundancy::Role role);
+    void follow_role(core::MonoTime now);
+
+    core::redundancy::Lease lease_;
+    std::chrono::milliseconds takeover_;
+    PairTopics topics_;
+    adapters::mqtt::Publisher& publisher_;
+    RoleChanged on_role_;
+    core::redundancy::Role role_ = core::redundancy::Role::standby;
+    adapters::mqtt::Message message_;
+};
+
+}  // namespace eip2mqtt::app::redundancy

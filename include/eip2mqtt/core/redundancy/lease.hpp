@@ -1,0 +1,104 @@
+#pragma once
+/// The lease of a hot-standby pair: which of two gateways leads, decided through one retained
+/// topic on the broker that both read (the leader's record: its id and an epoch). Pure: every
+/// event and every question takes the time, so each rule is tested by passing times.
+///
+/// The rules, with T = takeover and R = T / 4 (the renewal interval):
+/// - The leader publishes its record every R. A renewal counts once the broker acknowledged it,
+///   as of the moment it was sent.
+/// - The fence: a leader whose newest acknowledged renewal was sent T - R / 2 ago or more is
+///   fenced at once, whether or not anything ran since (a process resumed after SIGSTOP is
+///   fenced at its first question), and steps down. It was sent before the standby received
+///   it, so the leader is fenced at least R / 2 before the standby may take over.
+/// - A standby takes over T after it last heard another unit's record (or after it started):
+///   it claims, publishing its record with the highest epoch it knows plus one.
+/// - A claim stands once the broker acknowledged it and R passed without a claim of the same
+///   epoch from a unit of higher rank (priority, then id): that one wins, the other stands by.
+/// - The new leader produces only from its claim plus one period of its exchanges (the
+///   longest), so the old leader's last datagram is a period behind, at least.
+/// - Any unit seeing a record of a newer epoch, or of the same epoch from a unit of higher rank,
+///   follows it.
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "eip2mqtt/core/enum_names.hpp"
+#include "eip2mqtt/core/time.hpp"
+
+namespace eip2mqtt::core::redundancy {
+
+enum class Role : std::uint8_t { standby, leader };
+
+inline constexpr auto role_names = enum_names<Role>("standby", "leader");
+
+constexpr std::string_view to_string(Role role) { return role_names.name_of(role); }
+
+/// What the leader topic holds.
+struct LeaderRecord {
+    std::string id;
+    std::uint64_t epoch = 0;
+    int priority = 0;
+
+    friend bool operator==(const LeaderRecord&, const LeaderRecord&) = default;
+};
+
+struct LeaseSettings {
+    std::string id;  ///< gateway.id
+    int priority = 0;
+    std::chrono::milliseconds takeover{2000};
+    /// The longest period of the produced exchanges: a new leader waits this long after its
+    /// claim before it produces.
+    std::chrono::milliseconds longest_period{0};
+};
+
+/// What to do with a write that reaches this unit.
+enum class WritePolicy : std::uint8_t {
+    apply,            ///< the leader: stage it
+    leave_to_leader,  ///< a standby that hears a live leader, which answers it: drop it
+    refuse,           ///< no live leader: answer "standby"
+};
+
+class Lease {
+public:
+    Lease(LeaseSettings settings, MonoTime start);
+
+    /// A record read on the leader topic; nullopt for an empty (cleared) one.
+    void on_record(const std::optional<LeaderRecord>& record, MonoTime now);
+    /// The broker acknowledged the publication made at `sent_at` (a claim or a renewal).
+    void on_acknowledged(MonoTime sent_at);
+    /// Advances time: steps down when fenced, claims when the leader is gone, confirms a claim.
+    /// Returns the record to publish now (a claim or a renewal), if one is due.
+    std::optional<LeaderRecord> tick(MonoTime now);
+
+    Role role(MonoTime now) const;
+    bool fenced(MonoTime now) const;
+    /// Whether produced exchanges may send: the leader, unfenced, a period after its claim.
+    bool may_produce(MonoTime now) const;
+    WritePolicy writes(MonoTime now) const;
+
+    std::uint64_t epoch() const { return epoch_; }
+    LeaderRecord own_record() const { return {settings_.id, epoch_, settings_.priority}; }
+    /// The id of the unit this one last heard lead, or its own when leading.
+    const std::string& leader_id() const { return leader_id_; }
+    std::chrono::milliseconds renew_interval() const { return settings_.takeover / 4; }
+
+private:
+    enum class State : std::uint8_t { standby, claiming, leader };
+
+    /// Whether `record` ranks above this unit's own claim of the same epoch.
+    bool outranks(const LeaderRecord& record) const;
+    void stand_by(MonoTime now);
+
+    LeaseSettings settings_;
+    State state_ = State::standby;
+    std::uint64_t epoch_ = 0;  ///< the highest seen, or the own claim's
+    std::string leader_id_;
+    MonoTime last_heard_;    ///< another unit's record, or the start, or a step-down
+    MonoTime claimed_at_{};  ///< the own claim's publication
+    MonoTime last_sent_{};   ///< the own latest claim or renewal
+    std::optional<MonoTime> last_acknowledged_;  ///< sent time of the newest acknowledged one
+};
+
+}  // namespace eip2mqtt::core::redundancy

@@ -1,0 +1,70 @@
+// A hot-standby pair (README "Redundancy"): the lease on its own connection, and the three
+// gates it keeps, one each: what the exchanges say north (the FanOut), what they produce (the
+// ProducerScheduler, through Exchanges' options) and the writes (the WriteDispatcher).
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "eip2mqtt/app/gateway.hpp"
+#include "eip2mqtt/app/mqtt_settings.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+/// The longest period of the produced exchanges: a new leader waits it out before producing.
+std::chrono::milliseconds longest_produced_period(const core::config::Config& config) {
+    std::chrono::milliseconds longest{0};
+    for (const auto& exchange : config.exchanges) {
+        if (exchange.spec.direction == core::plan::Direction::produce) {
+            longest = std::max(longest, exchange.spec.period);
+        }
+    }
+    return longest;
+}
+
+}  // namespace
+
+void Gateway::make_pair() {
+    const auto& section = config_.redundancy;
+    if (!section.enabled()) return;
+    auto topics =
+        redundancy::pair_topics(config_.mqtt.base_topic, section.pair, config_.gateway.id);
+    pair_mqtt_ = std::make_unique<adapters::mqtt::Client>(
+        loop_.get_executor(), pair_client_options(config_, redundancy::pair_will(topics)));
+    core::redundancy::LeaseSettings settings{config_.gateway.id, section.priority.value_or(0),
+                                             section.takeover, longest_produced_period(config_)};
+    pair_ = std::make_unique<redundancy::PairLease>(
+        std::move(settings), std::move(topics), *pair_mqtt_, std::chrono::steady_clock::now(),
+        [this](core::redundancy::Role role) { on_role(role); });
+    northbound_.set_gate([this] { return pair_->leading(std::chrono::steady_clock::now()); });
+    writes_.set_admission([this] { return pair_->writes(std::chrono::steady_clock::now()); });
+    spdlog::info("pair {}: standing by until the lease is settled (takeover after {} ms)",
+                 section.pair, section.takeover.count());
+}
+
+void Gateway::start_pair() {
+    if (!pair_mqtt_) return;
+    pair_mqtt_->set_on_connected([this] { pair_->on_connected(); });
+    pair_mqtt_->set_on_message([this](const adapters::mqtt::Incoming& message) {
+        pair_->on_message(message, std::chrono::steady_clock::now());
+    });
+    pair_mqtt_->set_on_acknowledged([this](std::uint64_t token) { pair_->on_acknowledged(token); });
+    pair_mqtt_->start();
+}
+
+void Gateway::on_role(core::redundancy::Role role) {
+    // A standby kept its exchanges current without a word north: the new leader says all of it
+    // at once, over what the old leader left retained.
+    if (role == core::redundancy::Role::leader) return republish_exchanges();
+    // Writes this unit accepted as leader and has not produced never will be by it: answered
+    // now, never applied late should it lead again (the new leader may have taken them).
+    std::size_t cancelled = 0;
+    for (const auto& producer : exchanges_.producers()) {
+        cancelled += producer->cancel_queued_writes("standby");
+    }
+    writes_.count_cancelled(cancelled);
+}
+
+}  // namespace eip2mqtt::app

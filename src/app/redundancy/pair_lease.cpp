@@ -1,0 +1,99 @@
+#include "eip2mqtt/app/redundancy/pair_lease.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <utility>
+
+#include "eip2mqtt/app/redundancy/leader_record.hpp"
+
+namespace eip2mqtt::app::redundancy {
+namespace {
+
+using core::redundancy::Role;
+
+/// A publication's acknowledgement token is the time it was sent: the lease counts a renewal
+/// as of then. Never 0 (which means none): the steady clock is far past its epoch.
+std::uint64_t token_of(core::MonoTime sent_at) {
+    return static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(sent_at.time_since_epoch()).count());
+}
+
+core::MonoTime time_of(std::uint64_t token) {
+    return core::MonoTime(std::chrono::duration_cast<core::MonoTime::duration>(
+        std::chrono::nanoseconds(static_cast<std::int64_t>(token))));
+}
+
+}  // namespace
+
+PairTopics pair_topics(const std::string& base_topic, const std::string& pair,
+                       const std::string& id) {
+    return {base_topic + "/_gateway/_pair/" + pair + "/leader",
+            base_topic + "/_gateway/" + id + "/role"};
+}
+
+adapters::mqtt::Message pair_will(const PairTopics& topics) {
+    adapters::mqtt::Message will;
+    will.topic = topics.leader;
+    will.qos = 1;
+    will.retain = true;
+    return will;
+}
+
+PairLease::PairLease(core::redundancy::LeaseSettings settings, PairTopics topics,
+                     adapters::mqtt::Publisher& publisher, core::MonoTime start,
+                     RoleChanged on_role)
+    : lease_(settings, start),
+      takeover_(settings.takeover),
+      topics_(std::move(topics)),
+      publisher_(publisher),
+      on_role_(std::move(on_role)) {
+    publisher_.set_subscriptions({topics_.leader});
+}
+
+void PairLease::on_connected() { publish_role(role_); }
+
+void PairLease::on_message(const adapters::mqtt::Incoming& message, core::MonoTime now) {
+    if (message.topic != topics_.leader) return;
+    lease_.on_record(decode_leader_record(message.payload), now);
+    follow_role(now);
+}
+
+void PairLease::on_acknowledged(std::uint64_t token) { lease_.on_acknowledged(time_of(token)); }
+
+void PairLease::tick(core::MonoTime now) {
+    if (const auto record = lease_.tick(now)) {
+        message_.topic = topics_.leader;
+        message_.payload = encode_leader_record(*record, takeover_);
+        message_.qos = 1;
+        message_.retain = true;
+        message_.ack_token = token_of(now);
+        publisher_.publish(std::move(message_));
+    }
+    follow_role(now);
+}
+
+void PairLease::follow_role(core::MonoTime now) {
+    const auto role = lease_.role(now);
+    if (role == role_) return;
+    role_ = role;
+    if (role == Role::leader) {
+        spdlog::info("pair: leading, epoch {}", lease_.epoch());
+    } else {
+        spdlog::warn(
+            "pair: standing by{}, epoch {}",
+            lease_.leader_id().empty() ? std::string() : " (leader " + lease_.leader_id() + ")",
+            lease_.epoch());
+    }
+    publish_role(role);
+    if (on_role_) on_role_(role);
+}
+
+void PairLease::publish_role(Role role) {
+    message_.topic = topics_.role;
+    message_.payload = std::string(core::redundancy::to_string(role));
+    message_.qos = 1;
+    message_.retain = true;
+    publisher_.publish(std::move(message_));
+}
+
+}  // namespace eip2mqtt::app::redundancy

@@ -1,0 +1,91 @@
+#include "eip2mqtt/core/redundancy/lease.hpp"
+
+#include <algorithm>
+#include <tuple>
+#include <utility>
+
+namespace eip2mqtt::core::redundancy {
+
+Lease::Lease(LeaseSettings settings, MonoTime start)
+    : settings_(std::move(settings)), last_heard_(start) {}
+
+bool Lease::outranks(const LeaderRecord& record) const {
+    return std::tie(record.priority, record.id) > std::tie(settings_.priority, settings_.id);
+}
+
+void Lease::stand_by(MonoTime now) {
+    state_ = State::standby;
+    last_heard_ = now;
+    last_acknowledged_.reset();
+}
+
+void Lease::on_record(const std::optional<LeaderRecord>& record, MonoTime now) {
+    // An empty record (a will) says nothing the time since the last record does not.
+    if (!record) return;
+    if (record->id == settings_.id) {
+        // Our own, or one from before a restart: its epoch is spent either way.
+        epoch_ = std::max(epoch_, record->epoch);
+        return;
+    }
+    const bool newer = record->epoch > epoch_;
+    const bool same = record->epoch == epoch_;
+    if (!newer && !(same && (state_ == State::standby || outranks(*record)))) return;
+    epoch_ = record->epoch;
+    leader_id_ = record->id;
+    stand_by(now);
+}
+
+void Lease::on_acknowledged(MonoTime sent_at) {
+    if (state_ == State::standby || sent_at < claimed_at_) return;
+    if (!last_acknowledged_ || sent_at > *last_acknowledged_) last_acknowledged_ = sent_at;
+}
+
+bool Lease::fenced(MonoTime now) const {
+    if (state_ == State::standby) return true;
+    const auto limit = settings_.takeover - renew_interval() / 2;
+    const auto since = last_acknowledged_.value_or(claimed_at_);
+    return now - since >= limit;
+}
+
+std::optional<LeaderRecord> Lease::tick(MonoTime now) {
+    if (state_ != State::standby && fenced(now)) {
+        // Nobody is known to lead now: writes are refused until a leader is heard.
+        leader_id_.clear();
+        stand_by(now);
+    }
+    if (state_ == State::standby) {
+        if (now - last_heard_ < settings_.takeover) return std::nullopt;
+        state_ = State::claiming;
+        ++epoch_;
+        leader_id_ = settings_.id;
+        claimed_at_ = now;
+        last_sent_ = now;
+        last_acknowledged_.reset();
+        return own_record();
+    }
+    if (state_ == State::claiming && last_acknowledged_ && now - claimed_at_ >= renew_interval()) {
+        state_ = State::leader;
+    }
+    if (now - last_sent_ < renew_interval()) return std::nullopt;
+    last_sent_ = now;
+    return own_record();
+}
+
+Role Lease::role(MonoTime now) const {
+    return state_ == State::leader && !fenced(now) ? Role::leader : Role::standby;
+}
+
+bool Lease::may_produce(MonoTime now) const {
+    const auto wait =
+        std::max<std::chrono::milliseconds>(renew_interval(), settings_.longest_period);
+    return role(now) == Role::leader && now - claimed_at_ >= wait;
+}
+
+WritePolicy Lease::writes(MonoTime now) const {
+    if (role(now) == Role::leader) return WritePolicy::apply;
+    const bool live_leader = state_ == State::standby && !leader_id_.empty() &&
+                             leader_id_ != settings_.id && now - last_heard_ < 2 * renew_interval();
+    return live_leader ? WritePolicy::leave_to_leader : WritePolicy::refuse;
+}
+
+}  // namespace eip2mqtt::core::redundancy

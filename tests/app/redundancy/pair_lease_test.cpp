@@ -1,0 +1,128 @@
+// The lease of a pair at run time, against a recording publisher: what it subscribes to, what
+// it publishes and when, and how what it reads turns its role. The lease's own rules are
+// tested in tests/core/redundancy/lease_test.cpp.
+
+#include "eip2mqtt/app/redundancy/pair_lease.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "eip2mqtt/app/redundancy/leader_record.hpp"
+#include "tests/support/fakes/recording_publisher.hpp"
+
+namespace eip2mqtt::app::redundancy {
+namespace {
+
+using namespace std::chrono_literals;
+using core::redundancy::LeaderRecord;
+using core::redundancy::Role;
+
+const core::MonoTime t0{std::chrono::hours(1)};
+const std::string leader_topic = "acme/_gateway/_pair/turbine/leader";
+const std::string role_topic = "acme/_gateway/gw-a/role";
+
+class PairLeaseTest : public ::testing::Test {
+protected:
+    adapters::mqtt::Incoming record(const std::string& id, std::uint64_t epoch) {
+        return {leader_topic, encode_leader_record({id, epoch, 0}, 2000ms)};
+    }
+    /// The last publication on the leader topic, acknowledged as the broker would.
+    void acknowledge_last() {
+        for (auto it = publisher_.published.rbegin(); it != publisher_.published.rend(); ++it) {
+            if (it->topic == leader_topic) return lease_.on_acknowledged(it->ack_token);
+        }
+        FAIL() << "nothing published on the leader topic";
+    }
+
+    test::RecordingPublisher publisher_;
+    std::vector<Role> roles_;
+    PairLease lease_{{"gw-a", 0, 2000ms, 100ms},
+                     pair_topics("acme", "turbine", "gw-a"),
+                     publisher_,
+                     t0,
+                     [this](Role role) { roles_.push_back(role); }};
+};
+
+TEST_F(PairLeaseTest, TopicsAndWill) {
+    const auto topics = pair_topics("acme", "turbine", "gw-a");
+    EXPECT_EQ(topics.leader, leader_topic);
+    EXPECT_EQ(topics.role, role_topic);
+    const auto will = pair_will(topics);
+    EXPECT_EQ(will.topic, leader_topic);
+    EXPECT_TRUE(will.payload.empty());
+    EXPECT_TRUE(will.retain);
+    EXPECT_EQ(will.qos, 1);
+}
+
+TEST_F(PairLeaseTest, ItSubscribesToTheLeaderTopicAndSaysStandbyOnConnect) {
+    EXPECT_EQ(publisher_.subscriptions, std::vector<std::string>{leader_topic});
+    lease_.on_connected();
+    EXPECT_EQ(publisher_.on(role_topic), std::vector<std::string>{"standby"});
+    EXPECT_TRUE(publisher_.published.back().retain);
+}
+
+TEST_F(PairLeaseTest, AClaimAcknowledgedLeadsThenRenewsEveryQuarter) {
+    lease_.tick(t0 + 1999ms);
+    EXPECT_TRUE(publisher_.on(leader_topic).empty());
+    lease_.tick(t0 + 2s);
+    ASSERT_EQ(publisher_.on(leader_topic).size(), 1u);
+    const auto& claim = publisher_.published.back();
+    EXPECT_TRUE(claim.retain);
+    EXPECT_EQ(claim.qos, 1);
+    EXPECT_NE(claim.ack_token, 0u);
+    EXPECT_EQ(decode_leader_record(claim.payload), (LeaderRecord{"gw-a", 1, 0}));
+    acknowledge_last();
+    lease_.tick(t0 + 2500ms);
+    EXPECT_TRUE(lease_.leading(t0 + 2500ms));
+    EXPECT_EQ(roles_, std::vector<Role>{Role::leader});
+    EXPECT_EQ(publisher_.on(role_topic), std::vector<std::string>{"leader"});
+    EXPECT_EQ(publisher_.on(leader_topic).size(), 2u);  // the claim, then its first renewal
+}
+
+TEST_F(PairLeaseTest, ANewerEpochFromThePeerStepsTheLeaderDown) {
+    lease_.tick(t0 + 2s);
+    acknowledge_last();
+    lease_.tick(t0 + 2500ms);
+    lease_.on_message(record("gw-b", 2), t0 + 2600ms);
+    EXPECT_FALSE(lease_.leading(t0 + 2600ms));
+    EXPECT_EQ(roles_, (std::vector<Role>{Role::leader, Role::standby}));
+    EXPECT_EQ(publisher_.on(role_topic), (std::vector<std::string>{"leader", "standby"}));
+}
+
+TEST_F(PairLeaseTest, WithoutAcknowledgementsTheLeaderIsFencedByTimeAlone) {
+    lease_.tick(t0 + 2s);
+    acknowledge_last();
+    lease_.tick(t0 + 2500ms);
+    acknowledge_last();
+    EXPECT_TRUE(lease_.may_produce(t0 + 2500ms));
+    EXPECT_FALSE(lease_.may_produce(t0 + 2500ms + 1750ms));
+    lease_.tick(t0 + 2500ms + 1750ms);
+    EXPECT_EQ(roles_, (std::vector<Role>{Role::leader, Role::standby}));
+}
+
+TEST_F(PairLeaseTest, OtherTopicsAndPayloadsThatAreNoRecordChangeNothing) {
+    lease_.on_message({"acme/other", encode_leader_record({"gw-b", 9, 0}, 2000ms)}, t0 + 1s);
+    lease_.on_message({leader_topic, "not json"}, t0 + 1s);
+    EXPECT_EQ(lease_.lease().epoch(), 0u);
+    lease_.on_message(record("gw-b", 4), t0 + 1s);
+    EXPECT_EQ(lease_.lease().epoch(), 4u);
+}
+
+TEST(LeaderRecordTest, EncodedAndDecoded) {
+    const auto payload = encode_leader_record({"gw-a", 7, 100}, 2000ms);
+    EXPECT_EQ(payload, R"({"epoch":7,"id":"gw-a","priority":100,"takeover_ms":2000})");
+    EXPECT_EQ(decode_leader_record(payload), (LeaderRecord{"gw-a", 7, 100}));
+}
+
+TEST(LeaderRecordTest, WhatIsNoRecordReadsAsNone) {
+    for (const char* payload :
+         {"", "null", "[]", R"({"id":"a"})", R"({"epoch":1})", R"({"id":"","epoch":1})",
+          R"({"id":"a","epoch":-1})", R"({"id":3,"epoch":1})", "{"}) {
+        EXPECT_FALSE(decode_leader_record(payload).has_value()) << payload;
+    }
+    EXPECT_EQ(decode_leader_record(R"({"id":"a","epoch":1,"priority":70000})")->priority, 0);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app::redundancy

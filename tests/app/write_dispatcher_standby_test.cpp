@@ -1,0 +1,94 @@
+// The standby of a pair and the writes that reach it (README "Redundancy"): left to a live
+// leader unanswered, refused `standby` when no leader answers, always refused on the command
+// port (this unit's own address), and taken as ever by the leader.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <vector>
+
+#include "eip2mqtt/app/write_dispatcher.hpp"
+#include "tests/support/fakes/recording_northbound.hpp"
+
+namespace eip2mqtt::app {
+namespace {
+
+using core::redundancy::WritePolicy;
+using core::write::WriteError;
+using core::write::WriteRejection;
+
+core::MonoTime fixed_clock() { return core::MonoTime{} + std::chrono::hours(1); }
+
+class WriteDispatcherStandbyTest : public ::testing::Test {
+protected:
+    WriteDispatcherStandbyTest() {
+        dispatcher_.set_admission([this] { return policy_; });
+    }
+    WriteRequest write(WriteOrigin via = WriteOrigin::mqtt) {
+        WriteRequest request{{"reply/topic", "id", &origin_},
+                             "acme/t1/out/set",
+                             ExchangeWrite{&plan_, {{0, core::plan::Value{true}}}},
+                             {}};
+        request.reply.via = via;
+        return request;
+    }
+    std::uint64_t refused_standby() const {
+        return dispatcher_.counters()
+            .writes_rejected[static_cast<std::size_t>(WriteError::standby)];
+    }
+
+    test::RecordingNorthbound origin_;
+    core::plan::ExchangePlan plan_;
+    int staged_ = 0;
+    WritePolicy policy_ = WritePolicy::apply;
+    WriteDispatcher dispatcher_{[this](ExchangeWrite&&, const WriteReply&,
+                                       core::MonoTime) -> std::optional<WriteRejection> {
+                                    ++staged_;
+                                    return std::nullopt;
+                                },
+                                fixed_clock};
+};
+
+TEST_F(WriteDispatcherStandbyTest, TheLeaderStagesAsEver) {
+    dispatcher_.on_write(write());
+    EXPECT_EQ(staged_, 1);
+    EXPECT_TRUE(origin_.results.empty());
+}
+
+TEST_F(WriteDispatcherStandbyTest, AStandbyWithALiveLeaderDropsTheWriteUnansweredAndCountsIt) {
+    policy_ = WritePolicy::leave_to_leader;
+    dispatcher_.on_write(write());
+    dispatcher_.on_write(write(WriteOrigin::sparkplug));
+    EXPECT_EQ(staged_, 0);
+    EXPECT_TRUE(origin_.results.empty());
+    EXPECT_EQ(dispatcher_.counters().writes_left_to_leader, 2u);
+    EXPECT_EQ(refused_standby(), 0u);
+}
+
+TEST_F(WriteDispatcherStandbyTest, AStandbyWithoutALiveLeaderRefusesStandby) {
+    policy_ = WritePolicy::refuse;
+    dispatcher_.on_write(write());
+    EXPECT_EQ(staged_, 0);
+    ASSERT_EQ(origin_.results.size(), 1u);
+    EXPECT_EQ(origin_.results[0].error, "standby");
+    EXPECT_EQ(refused_standby(), 1u);
+}
+
+TEST_F(WriteDispatcherStandbyTest, TheCommandPortOfAStandbyRefusesEvenBesideALiveLeader) {
+    policy_ = WritePolicy::leave_to_leader;
+    dispatcher_.on_write(write(WriteOrigin::commands));
+    EXPECT_EQ(staged_, 0);
+    ASSERT_EQ(origin_.results.size(), 1u);
+    EXPECT_EQ(origin_.results[0].error, "standby");
+}
+
+TEST_F(WriteDispatcherStandbyTest, AStandbyAnswersEvenAnInvalidWriteOnlyWhenNoLeaderDoes) {
+    policy_ = WritePolicy::leave_to_leader;
+    auto invalid = write();
+    invalid.outcome = WriteRejection{WriteError::read_only, "read-only"};
+    dispatcher_.on_write(std::move(invalid));
+    EXPECT_TRUE(origin_.results.empty());
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app

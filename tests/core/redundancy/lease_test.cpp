@@ -1,0 +1,246 @@
+#include "eip2mqtt/core/redundancy/lease.hpp"
+
+#include <gtest/gtest.h>
+
+namespace eip2mqtt::core::redundancy {
+namespace {
+
+using namespace std::chrono_literals;
+
+const MonoTime t0{std::chrono::hours(1)};
+
+LeaseSettings settings(std::string id, int priority = 0, std::chrono::milliseconds period = 100ms) {
+    return {std::move(id), priority, 2000ms, period};
+}
+
+LeaderRecord record(std::string id, std::uint64_t epoch, int priority = 0) {
+    return {std::move(id), epoch, priority};
+}
+
+/// A unit that claimed at `at` (nobody heard since its start at t0) and had its claim
+/// acknowledged: the leader once a renewal interval passed.
+Lease leader_from(MonoTime at, std::string id = "a") {
+    Lease lease(settings(std::move(id)), t0);
+    const auto claim = lease.tick(at);
+    EXPECT_TRUE(claim.has_value());
+    lease.on_acknowledged(at);
+    EXPECT_FALSE(lease.tick(at + 500ms - 1ms).has_value());
+    EXPECT_TRUE(lease.tick(at + 500ms).has_value());
+    lease.on_acknowledged(at + 500ms);
+    return lease;
+}
+
+TEST(LeaseTest, AStandbyClaimsOnlyATakeoverAfterItStartedWithEpochOne) {
+    Lease lease(settings("a"), t0);
+    EXPECT_FALSE(lease.tick(t0 + 1999ms).has_value());
+    EXPECT_EQ(lease.role(t0 + 1999ms), Role::standby);
+    const auto claim = lease.tick(t0 + 2000ms);
+    ASSERT_TRUE(claim.has_value());
+    EXPECT_EQ(*claim, record("a", 1));
+    // Claiming is not leading.
+    EXPECT_EQ(lease.role(t0 + 2000ms), Role::standby);
+    EXPECT_FALSE(lease.may_produce(t0 + 2000ms));
+}
+
+TEST(LeaseTest, AClaimLeadsOnceAcknowledgedAndARenewalIntervalPassed) {
+    Lease lease(settings("a"), t0);
+    ASSERT_TRUE(lease.tick(t0 + 2s).has_value());
+    lease.on_acknowledged(t0 + 2s);
+    EXPECT_FALSE(lease.tick(t0 + 2499ms).has_value());
+    EXPECT_EQ(lease.role(t0 + 2499ms), Role::standby);
+    EXPECT_TRUE(lease.tick(t0 + 2500ms).has_value());
+    EXPECT_EQ(lease.role(t0 + 2500ms), Role::leader);
+}
+
+TEST(LeaseTest, AnUnacknowledgedClaimNeverLeadsAndFallsBackToStandby) {
+    Lease lease(settings("a"), t0);
+    ASSERT_TRUE(lease.tick(t0 + 2s).has_value());
+    EXPECT_TRUE(lease.tick(t0 + 2500ms).has_value());  // a renewal of the claim
+    EXPECT_EQ(lease.role(t0 + 2500ms), Role::standby);
+    // T - R/2 after the claim it gives up, and waits a whole takeover again.
+    lease.tick(t0 + 2s + 1750ms);
+    EXPECT_FALSE(lease.tick(t0 + 2s + 1750ms + 1999ms).has_value());
+    const auto again = lease.tick(t0 + 2s + 1750ms + 2000ms);
+    ASSERT_TRUE(again.has_value());
+    EXPECT_EQ(again->epoch, 2u);
+}
+
+TEST(LeaseTest, TheLeaderRenewsEveryQuarterOfTheTakeover) {
+    auto lease = leader_from(t0 + 2s);
+    EXPECT_EQ(lease.renew_interval(), 500ms);
+    EXPECT_FALSE(lease.tick(t0 + 2999ms).has_value());
+    const auto renewal = lease.tick(t0 + 3000ms);
+    ASSERT_TRUE(renewal.has_value());
+    EXPECT_EQ(*renewal, record("a", 1));
+    EXPECT_FALSE(lease.tick(t0 + 3499ms).has_value());
+    EXPECT_TRUE(lease.tick(t0 + 3500ms).has_value());
+}
+
+TEST(LeaseTest, ALeaderFencesItselfBeforeTheTakeoverWhenNoRenewalIsAcknowledged) {
+    auto lease = leader_from(t0 + 2s);
+    // Last acknowledged renewal sent at t0 + 2.5 s; nothing acknowledged since.
+    const auto last = t0 + 2500ms;
+    EXPECT_EQ(lease.role(last + 1749ms), Role::leader);
+    EXPECT_TRUE(lease.fenced(last + 1750ms));
+    EXPECT_EQ(lease.role(last + 1750ms), Role::standby);
+    EXPECT_FALSE(lease.may_produce(last + 1750ms));
+    EXPECT_EQ(lease.writes(last + 1750ms), WritePolicy::refuse);
+}
+
+TEST(LeaseTest, AResumedLeaderIsFencedAtItsFirstQuestionWithoutATick) {
+    auto lease = leader_from(t0 + 2s);
+    // SIGSTOP for ten seconds: no tick ran, the first question after it already says no.
+    EXPECT_FALSE(lease.may_produce(t0 + 12s));
+    EXPECT_EQ(lease.role(t0 + 12s), Role::standby);
+    // Its tick steps it down: it waits a whole takeover before it claims again.
+    EXPECT_FALSE(lease.tick(t0 + 12s).has_value());
+    EXPECT_EQ(lease.writes(t0 + 12s), WritePolicy::refuse);
+    EXPECT_FALSE(lease.tick(t0 + 13999ms).has_value());
+    EXPECT_TRUE(lease.tick(t0 + 14s).has_value());
+}
+
+TEST(LeaseTest, TheFenceComesHalfARenewalBeforeTheStandbyMayTakeOver) {
+    auto leader = leader_from(t0 + 2s, "a");
+    Lease standby(settings("b"), t0);
+    // The renewal sent at 2.5 s reaches the standby at 2.5 s (no delay at all: the worst case).
+    standby.on_record(record("a", 1), t0 + 2500ms);
+    const auto fence = t0 + 2500ms + 1750ms;
+    EXPECT_TRUE(leader.fenced(fence));
+    EXPECT_FALSE(standby.tick(fence).has_value());
+    EXPECT_FALSE(standby.tick(t0 + 2500ms + 1999ms).has_value());
+    const auto claim = standby.tick(t0 + 2500ms + 2000ms);
+    ASSERT_TRUE(claim.has_value());
+    EXPECT_EQ(*claim, record("b", 2));
+}
+
+TEST(LeaseTest, AcknowledgedRenewalsKeepTheLeaderUnfenced) {
+    auto lease = leader_from(t0 + 2s);
+    for (auto at = t0 + 3s; at < t0 + 20s; at += 500ms) {
+        ASSERT_TRUE(lease.tick(at).has_value());
+        lease.on_acknowledged(at);
+        EXPECT_EQ(lease.role(at + 499ms), Role::leader);
+    }
+}
+
+TEST(LeaseTest, ANewLeaderProducesOnlyAPeriodAfterItsClaim) {
+    Lease lease(settings("b", 0, 1500ms), t0);
+    ASSERT_TRUE(lease.tick(t0 + 2s).has_value());
+    lease.on_acknowledged(t0 + 2s);
+    lease.tick(t0 + 2500ms);
+    lease.on_acknowledged(t0 + 2500ms);
+    EXPECT_EQ(lease.role(t0 + 2500ms), Role::leader);
+    EXPECT_FALSE(lease.may_produce(t0 + 3499ms));
+    EXPECT_TRUE(lease.may_produce(t0 + 3500ms));
+}
+
+TEST(LeaseTest, AShortPeriodStillWaitsTheClaimsRenewalInterval) {
+    Lease lease(settings("b", 0, 10ms), t0);
+    ASSERT_TRUE(lease.tick(t0 + 2s).has_value());
+    lease.on_acknowledged(t0 + 2s);
+    EXPECT_FALSE(lease.may_produce(t0 + 2010ms));
+    lease.tick(t0 + 2500ms);
+    EXPECT_TRUE(lease.may_produce(t0 + 2500ms));
+}
+
+TEST(LeaseTest, ALeaderSeeingANewerEpochStepsDown) {
+    auto lease = leader_from(t0 + 2s, "a");
+    lease.on_record(record("b", 2), t0 + 2600ms);
+    EXPECT_EQ(lease.role(t0 + 2600ms), Role::standby);
+    EXPECT_FALSE(lease.may_produce(t0 + 2600ms));
+    EXPECT_EQ(lease.epoch(), 2u);
+    EXPECT_EQ(lease.leader_id(), "b");
+    EXPECT_FALSE(lease.tick(t0 + 3s).has_value());  // no renewal any more
+    EXPECT_EQ(lease.writes(t0 + 3s), WritePolicy::leave_to_leader);
+}
+
+TEST(LeaseTest, AStaleRecordOfAnOlderEpochChangesNothing) {
+    auto lease = leader_from(t0 + 2s, "a");
+    lease.on_record(record("b", 0, 9), t0 + 2600ms);
+    EXPECT_EQ(lease.role(t0 + 2600ms), Role::leader);
+}
+
+TEST(LeaseTest, SimultaneousClaimsAreWonByTheHigherPriority) {
+    Lease low(settings("z", 1), t0);
+    Lease high(LeaseSettings{"a", 7, 2000ms, 100ms}, t0);
+    const auto low_claim = low.tick(t0 + 2s);
+    const auto high_claim = high.tick(t0 + 2s);
+    ASSERT_TRUE(low_claim && high_claim);
+    EXPECT_EQ(low_claim->epoch, high_claim->epoch);
+    low.on_acknowledged(t0 + 2s);
+    high.on_acknowledged(t0 + 2s);
+    // Each sees both claims, in the broker's order.
+    for (auto* lease : {&low, &high}) {
+        lease->on_record(*low_claim, t0 + 2010ms);
+        lease->on_record(*high_claim, t0 + 2010ms);
+    }
+    low.tick(t0 + 2500ms);
+    high.tick(t0 + 2500ms);
+    EXPECT_EQ(low.role(t0 + 2500ms), Role::standby);
+    EXPECT_EQ(high.role(t0 + 2500ms), Role::leader);
+    EXPECT_EQ(low.leader_id(), "a");
+}
+
+TEST(LeaseTest, SimultaneousClaimsOfEqualPriorityAreWonByTheHigherId) {
+    Lease a(settings("gw-a"), t0);
+    Lease b(settings("gw-b"), t0);
+    const auto claim_a = a.tick(t0 + 2s);
+    const auto claim_b = b.tick(t0 + 2s);
+    a.on_acknowledged(t0 + 2s);
+    b.on_acknowledged(t0 + 2s);
+    a.on_record(*claim_b, t0 + 2010ms);
+    b.on_record(*claim_a, t0 + 2010ms);
+    a.tick(t0 + 2500ms);
+    b.tick(t0 + 2500ms);
+    EXPECT_EQ(a.role(t0 + 2500ms), Role::standby);
+    EXPECT_EQ(b.role(t0 + 2500ms), Role::leader);
+}
+
+TEST(LeaseTest, AStandbyHearingTheLeaderNeverClaims) {
+    Lease lease(settings("b"), t0);
+    for (auto at = t0; at < t0 + 20s; at += 500ms) {
+        lease.on_record(record("a", 3), at);
+        EXPECT_FALSE(lease.tick(at + 499ms).has_value());
+    }
+    EXPECT_EQ(lease.epoch(), 3u);
+    EXPECT_EQ(lease.writes(t0 + 20s), WritePolicy::leave_to_leader);
+}
+
+TEST(LeaseTest, AClearedRecordDoesNotHastenTheTakeover) {
+    Lease lease(settings("b"), t0);
+    lease.on_record(record("a", 3), t0 + 1s);
+    lease.on_record(std::nullopt, t0 + 1100ms);  // the leader's will
+    EXPECT_FALSE(lease.tick(t0 + 2999ms).has_value());
+    const auto claim = lease.tick(t0 + 3s);
+    ASSERT_TRUE(claim.has_value());
+    EXPECT_EQ(claim->epoch, 4u);
+}
+
+TEST(LeaseTest, ItsOwnRecordFromAnEarlierLifeRaisesTheEpochButIsNotALeader) {
+    Lease lease(settings("a"), t0);
+    lease.on_record(record("a", 5), t0 + 10ms);
+    EXPECT_EQ(lease.writes(t0 + 20ms), WritePolicy::refuse);
+    const auto claim = lease.tick(t0 + 2s);
+    ASSERT_TRUE(claim.has_value());
+    EXPECT_EQ(claim->epoch, 6u);
+}
+
+TEST(LeaseTest, AStandbyRefusesWritesOnceTheLeaderIsLate) {
+    Lease lease(settings("b"), t0);
+    lease.on_record(record("a", 1), t0 + 1s);
+    EXPECT_EQ(lease.writes(t0 + 1999ms), WritePolicy::leave_to_leader);
+    EXPECT_EQ(lease.writes(t0 + 2s), WritePolicy::refuse);
+}
+
+TEST(LeaseTest, AcknowledgementsOfAnEarlierLeadershipDoNotCount) {
+    auto lease = leader_from(t0 + 2s);
+    lease.on_record(record("b", 2), t0 + 2600ms);
+    // It claims again later; a late acknowledgement of a renewal sent while it led before
+    // must not lift the new claim.
+    ASSERT_TRUE(lease.tick(t0 + 4600ms).has_value());
+    lease.on_acknowledged(t0 + 2500ms);
+    lease.tick(t0 + 5100ms);
+    EXPECT_EQ(lease.role(t0 + 5100ms), Role::standby);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::core::redundancy

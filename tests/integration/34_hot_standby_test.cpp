@@ -1,0 +1,290 @@
+// A hot-standby pair (README "Redundancy"): two real gateways on one real Mosquitto, both with
+// the same produced exchange sent to the test's socket. One leads; when it is killed, or
+// stopped and resumed, the other takes over, and the capture shows the two never produced at
+// once: each unit numbers its datagrams with its own request ids, so the capture is one run of
+// consecutive ids per leadership (never more runs than `leader` said on the role topics), and
+// two producers at once would cut it into many.
+
+#include <signal.h>
+
+#include <nlohmann/json.hpp>
+
+#include "eip2mqtt/core/wire/decode.hpp"
+#include "tests/support/child_process.hpp"
+#include "tests/support/exchange_yaml.hpp"
+#include "tests/support/free_port.hpp"
+#include "tests/support/gateway_fixture.hpp"
+#include "tests/support/mosquitto.hpp"
+#include "tests/support/mqtt_recorder.hpp"
+#include "tests/support/schema_check.hpp"
+#include "tests/support/udp_client.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using namespace std::chrono_literals;
+using json = nlohmann::json;
+
+const std::string leader_topic = "test/_gateway/_pair/turbine/leader";
+
+std::string role_topic(const std::string& id) { return "test/_gateway/" + id + "/role"; }
+
+class HotStandbyTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        broker_ = std::make_unique<Mosquitto>();
+        recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"#"});
+        for (const std::string id : {"gw-a", "gw-b"}) {
+            paths_[id] = dir_.write(id + ".yaml", config(id));
+        }
+        start("gw-a");
+        start("gw-b");
+    }
+    void TearDown() override {
+        for (auto& [id, gateway] : gateways_) {
+            if (!gateway) continue;
+            gateway->signal(SIGCONT);
+            if (HasFailure()) std::cerr << "--- " << id << " ---\n" << gateway->output();
+        }
+        gateways_.clear();
+        recorder_.reset();
+        broker_.reset();
+    }
+
+    virtual std::uint32_t period_ms() const { return 50; }
+
+    std::string config(const std::string& id) const {
+        return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
+               ", log_level: debug }\n"
+               "mqtt: { url: \"" +
+               broker_->url() +
+               "\", base_topic: test, qos: 1, metrics_interval_s: 1 }\n"
+               "eip: { bind: 127.0.0.1, port: " +
+               std::to_string(free_udp_port()) +
+               " }\n"
+               "redundancy: { pair: turbine, takeover_ms: 1000 }\n"
+               "exchanges:\n" +
+               ExchangeYaml::produce("sp", "10.1.2.3", 10,
+                                     "127.0.0.1:" + std::to_string(capture_.port()))
+                   .period_ms(period_ms())
+                   .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 3000")
+                   .str();
+    }
+    void start(const std::string& id) {
+        gateways_[id] = std::make_unique<ChildProcess>(
+            std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", paths_[id]});
+    }
+    /// Waits for `id` to say `role` on its role topic (after message `from`).
+    bool says(const std::string& id, const std::string& role, std::size_t from = 0) {
+        return recorder_
+            ->wait_for_message(
+                role_topic(id), [&](const std::string& p) { return p == role; }, 30s, from)
+            .has_value();
+    }
+    /// The first unit to lead; empty when none did.
+    std::string first_leader() {
+        std::string leader;
+        recorder_->wait_for(
+            [&](const std::vector<Received>& all) {
+                for (const auto& m : all) {
+                    if (m.payload != "leader") continue;
+                    if (m.topic == role_topic("gw-a")) leader = "gw-a";
+                    if (m.topic == role_topic("gw-b")) leader = "gw-b";
+                    if (!leader.empty()) return true;
+                }
+                return false;
+            },
+            30s);
+        return leader;
+    }
+    /// The leader record with `id` (after message `from`), as JSON.
+    json record_of(const std::string& id, std::size_t from = 0) {
+        const auto message = recorder_->wait_for_message(
+            leader_topic,
+            [&](const std::string& p) {
+                const auto j = json::parse(p, nullptr, false);
+                return j.is_object() && j.value("id", "") == id;
+            },
+            30s, from);
+        return message ? json::parse(message->payload) : json();
+    }
+    /// Receives `count` more datagrams into captured_; false when they did not come.
+    bool capture(std::size_t count) {
+        for (std::size_t i = 0; i < count; ++i) {
+            const auto bytes = capture_.receive(10s);
+            if (!bytes) return false;
+            const auto decoded = core::wire::decode_datagram(*bytes);
+            if (!decoded.ok()) return false;
+            captured_.push_back(decoded.value().header.request_id);
+        }
+        return true;
+    }
+    /// How many runs of consecutive request ids the capture holds: one per producer that
+    /// produced alone; two producers at once make one per datagram, nearly.
+    std::size_t runs() const {
+        std::size_t out = captured_.empty() ? 0 : 1;
+        for (std::size_t i = 1; i < captured_.size(); ++i) {
+            if (captured_[i] != static_cast<std::uint16_t>(captured_[i - 1] + 1)) ++out;
+        }
+        return out;
+    }
+    /// How many times a unit said `leader` on its role topic: a loaded machine may see a unit
+    /// fenced and a takeover more than the test caused, each one a leadership of its own.
+    std::size_t leaderships() const {
+        std::size_t out = 0;
+        for (const auto& m : recorder_->messages()) {
+            if ((m.topic == role_topic("gw-a") || m.topic == role_topic("gw-b")) &&
+                m.payload == "leader") {
+                ++out;
+            }
+        }
+        return out;
+    }
+    std::string other(const std::string& id) const { return id == "gw-a" ? "gw-b" : "gw-a"; }
+
+    TempDir dir_;
+    UdpClient capture_;
+    std::unique_ptr<Mosquitto> broker_;
+    std::unique_ptr<MqttRecorder> recorder_;
+    std::map<std::string, std::string> paths_;
+    std::map<std::string, std::unique_ptr<ChildProcess>> gateways_;
+    std::vector<std::uint16_t> captured_;
+};
+
+TEST_F(HotStandbyTest, TheStandbyTakesOverFromAKilledLeaderAndNeverProducesBesideIt) {
+    const auto leader = first_leader();
+    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto standby = other(leader);
+    ASSERT_TRUE(says(standby, "standby"));
+    const auto epoch = record_of(leader).value("epoch", 0);
+    ASSERT_GE(epoch, 1);
+    ASSERT_TRUE(capture(20));
+    EXPECT_LE(runs(), leaderships()) << "the standby produced beside the leader";
+
+    const auto from = recorder_->count();
+    gateways_[leader]->signal(SIGKILL);
+    ASSERT_TRUE(gateways_[leader]->wait(10s).has_value());
+    ASSERT_TRUE(says(standby, "leader", from));
+    const auto record = record_of(standby, from);
+    EXPECT_EQ(record.value("epoch", 0), epoch + 1);
+    EXPECT_EQ(schema_problem(schema_file("leader.json"), record.dump()), "");
+    // What the killed leader sent before it died, then the new leader's alone.
+    ASSERT_TRUE(capture(40));
+    EXPECT_GE(runs(), 2u);
+    EXPECT_LE(runs(), leaderships());
+}
+
+TEST_F(HotStandbyTest, AKilledLeaderRestartedStandsByBesideTheNewOne) {
+    const auto leader = first_leader();
+    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto standby = other(leader);
+    const auto from = recorder_->count();
+    gateways_[leader]->signal(SIGKILL);
+    ASSERT_TRUE(gateways_[leader]->wait(10s).has_value());
+    ASSERT_TRUE(says(standby, "leader", from));
+
+    const auto restarted = recorder_->count();
+    start(leader);
+    ASSERT_TRUE(says(leader, "standby", restarted));
+    const auto epoch = record_of(standby, restarted).value("epoch", 0);
+    ASSERT_TRUE(capture(40));
+    EXPECT_LE(runs(), leaderships());
+    // The new leader kept the lead: its renewals go on with its epoch, and the restarted unit
+    // never claimed it.
+    EXPECT_EQ(record_of(standby, recorder_->count() - 1).value("epoch", 0), epoch);
+    EXPECT_FALSE(recorder_
+                     ->wait_for_message(
+                         role_topic(leader), [](const std::string& p) { return p == "leader"; },
+                         0ms, restarted)
+                     .has_value());
+}
+
+TEST_F(HotStandbyTest, ALeaderResumedAfterSigstopIsFencedAndStandsBy) {
+    const auto leader = first_leader();
+    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto standby = other(leader);
+    ASSERT_TRUE(says(standby, "standby"));
+    const auto epoch = record_of(leader).value("epoch", 0);
+    ASSERT_TRUE(capture(20));
+
+    const auto from = recorder_->count();
+    gateways_[leader]->signal(SIGSTOP);
+    ASSERT_TRUE(says(standby, "leader", from));
+    EXPECT_EQ(record_of(standby, from).value("epoch", 0), epoch + 1);
+    ASSERT_TRUE(capture(20));
+
+    const auto resumed = recorder_->count();
+    gateways_[leader]->signal(SIGCONT);
+    ASSERT_TRUE(says(leader, "standby", resumed));
+    // Whatever the resumed unit's timers had due, none of it left: the new leader's run goes on.
+    ASSERT_TRUE(capture(40));
+    EXPECT_GE(runs(), 2u);
+    EXPECT_LE(runs(), leaderships());
+    // The topic holds the new leader's lease, renewed since.
+    const auto last = recorder_->last(leader_topic);
+    ASSERT_TRUE(last.has_value());
+    const auto record = json::parse(last->payload, nullptr, false);
+    ASSERT_TRUE(record.is_object()) << last->payload;
+    EXPECT_EQ(record.value("id", ""), standby);
+}
+
+TEST_F(HotStandbyTest, OnlyTheLeaderAnswersAWrite) {
+    const auto leader = first_leader();
+    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto standby = other(leader);
+    ASSERT_TRUE(says(standby, "standby"));
+    for (int i = 0; i < 2; ++i) {
+        const auto from = recorder_->count();
+        recorder_->publish("test/sp/SPEED_SP/set", std::to_string(3100 + i));
+        ASSERT_TRUE(recorder_->wait_for_message("test/sp/SPEED_SP/set/result", nullptr, 10s, from)
+                        .has_value());
+    }
+    // The standby left both to the leader, and says so in its metrics.
+    ASSERT_TRUE(recorder_
+                    ->wait_for_message(
+                        "test/_gateway/" + standby + "/metrics",
+                        [](const std::string& p) {
+                            return json::parse(p).value("writes_left_to_leader", 0) == 2;
+                        },
+                        10s)
+                    .has_value());
+    for (const auto& m : recorder_->messages_on("test/sp/SPEED_SP/set/result")) {
+        EXPECT_EQ(json::parse(m.payload), json({{"ok", true}})) << m.payload;
+    }
+}
+
+/// A period so long that a write accepted by the leader waits in its queue through a takeover.
+class SlowHotStandbyTest : public HotStandbyTest {
+protected:
+    std::uint32_t period_ms() const override { return 20000; }
+};
+
+TEST_F(SlowHotStandbyTest, AWriteQueuedOnALeaderThatStepsDownIsAnsweredStandbyNeverApplied) {
+    const auto leader = first_leader();
+    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto standby = other(leader);
+    ASSERT_TRUE(says(standby, "standby"));
+    // Staged on the leader for its next datagram, 20 s away; the standby leaves it to the leader.
+    recorder_->publish("test/sp/SPEED_SP/set", "3100");
+    ASSERT_TRUE(recorder_
+                    ->wait_for_message(
+                        "test/_gateway/" + standby + "/metrics",
+                        [](const std::string& p) {
+                            return json::parse(p).value("writes_left_to_leader", 0) == 1;
+                        },
+                        10s)
+                    .has_value());
+
+    const auto from = recorder_->count();
+    gateways_[leader]->signal(SIGSTOP);
+    ASSERT_TRUE(says(standby, "leader", from));
+    gateways_[leader]->signal(SIGCONT);
+    ASSERT_TRUE(says(leader, "standby", from));
+    const auto result = recorder_->wait_for_message("test/sp/SPEED_SP/set/result", nullptr, 30s);
+    ASSERT_TRUE(result.has_value()) << "the queued write was never answered";
+    EXPECT_EQ(json::parse(result->payload), json({{"ok", false}, {"error", "standby"}}));
+    EXPECT_EQ(recorder_->messages_on("test/sp/SPEED_SP/set/result").size(), 1u);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test
