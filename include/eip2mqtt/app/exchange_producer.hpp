@@ -57,7 +57,7 @@ struct ImageHandover {
     std::shared_ptr<adapters::state::ImageFile> file;
 };
 
-class ExchangeProducer : public Producible {
+class ExchangeProducer final : public Producible {
 public:
     /// The image is `handover`'s when given, else restored through `persister` when a file of
     /// the same layout exists. `scheduler`, `persister`, `northbound` and `totals` must outlive
