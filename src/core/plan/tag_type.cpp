@@ -16,6 +16,12 @@ namespace {
 
 using detail::lower;
 
+/// Whether `text` is `lower_case` in any case (std::tolower, as lower()).
+bool equals_lower(std::string_view text, std::string_view lower_case) {
+    return std::equal(text.begin(), text.end(), lower_case.begin(), lower_case.end(),
+                      [](unsigned char a, char b) { return std::tolower(a) == b; });
+}
+
 constexpr std::array<std::pair<std::string_view, TagType>, 14> yaml_names{{
     {"bit", TagType::bit},
     {"bool", TagType::bit},
@@ -69,11 +75,11 @@ std::optional<std::string_view> tag_type_hint(std::string_view unknown) {
 }
 
 std::optional<TagType> parse_tag_type(std::string_view name, TypeNaming naming) {
-    const std::string key = lower(name);
+    // Compared in place, not through lower(): this runs once for every tag of a point list.
     // docs/protocol.md §6: point lists say Word for a signed 16-bit value.
-    if (naming == TypeNaming::point_list && key == "word") return TagType::int_;
+    if (naming == TypeNaming::point_list && equals_lower(name, "word")) return TagType::int_;
     for (const auto& [text, type] : yaml_names) {
-        if (text == key) return type;
+        if (equals_lower(name, text)) return type;
     }
     return std::nullopt;
 }

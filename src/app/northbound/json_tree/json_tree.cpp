@@ -28,31 +28,35 @@ void JsonTree::exchanges_changed(const ExchangeSet& running,
     for (const auto& topic : retired_topics) {
         mqtt_.publish({topic, "", options_.publish.qos, true, true});
     }
-    // A kept or unchanged exchange's `_meta` stays as the broker has it. Before the first
-    // connection nothing is published: republish_meta() on connecting publishes every one, and
-    // a start would otherwise queue each description twice (megabytes for a large plant).
-    std::unordered_map<std::string, std::size_t> digests;
-    described_.clear();
-    for (const auto* plans : {&running.consumed, &running.produced}) {
-        for (const auto* plan : *plans) {
-            described_.push_back(plan);
-            auto payload = format_meta_payload(*plan);
-            const auto digest = std::hash<std::string>{}(payload);
-            const auto old = meta_digests_.find(plan->meta_topic);
-            if (announced_ && (old == meta_digests_.end() || old->second != digest)) {
-                mqtt_.publish(
-                    {plan->meta_topic, std::move(payload), options_.publish.qos, true, true});
-            }
-            digests.emplace(plan->meta_topic, digest);
-        }
-    }
-    meta_digests_ = std::move(digests);
-    // The running set changed under a republish in progress: it starts again from the first.
-    if (next_due_meta_) next_due_meta_ = 0;
+    describe(running);
     router_.clear();
     for (const auto* plan : running.consumed) router_.add(*plan);
     for (const auto* plan : running.produced) router_.add(*plan);
     mqtt_.set_subscriptions(router_.subscriptions());
+}
+
+void JsonTree::describe(const ExchangeSet& running) {
+    described_.clear();
+    for (const auto* plans : {&running.consumed, &running.produced}) {
+        described_.insert(described_.end(), plans->begin(), plans->end());
+    }
+    // Before the first connection nothing has reached the broker: republish_meta() on
+    // connecting publishes every description (and notes its digest), so none is formatted here.
+    if (!announced_) return;
+    // A kept or unchanged exchange's `_meta` stays as the broker has it.
+    std::unordered_map<std::string, std::size_t> digests;
+    for (const auto* plan : described_) {
+        auto payload = format_meta_payload(*plan);
+        const auto digest = std::hash<std::string>{}(payload);
+        const auto old = meta_digests_.find(plan->meta_topic);
+        if (old == meta_digests_.end() || old->second != digest) {
+            mqtt_.publish({plan->meta_topic, std::move(payload), options_.publish.qos, true, true});
+        }
+        digests.emplace(plan->meta_topic, digest);
+    }
+    meta_digests_ = std::move(digests);
+    // The running set changed under a republish in progress: it starts again from the first.
+    if (next_due_meta_) next_due_meta_ = 0;
 }
 
 void JsonTree::republish_meta() {
@@ -65,8 +69,9 @@ void JsonTree::publish_due_meta() {
     auto& next = *next_due_meta_;
     for (std::size_t sent = 0; sent < meta_per_call && next < described_.size(); ++sent, ++next) {
         const auto& plan = *described_[next];
-        mqtt_.publish(
-            {plan.meta_topic, format_meta_payload(plan), options_.publish.qos, true, true});
+        auto payload = format_meta_payload(plan);
+        meta_digests_[plan.meta_topic] = std::hash<std::string>{}(payload);
+        mqtt_.publish({plan.meta_topic, std::move(payload), options_.publish.qos, true, true});
     }
     if (next >= described_.size()) next_due_meta_.reset();
 }

@@ -1,5 +1,7 @@
 #include "core/config/detail/config_names.hpp"
 
+#include <algorithm>
+
 #include "eip2mqtt/core/config/diagnostic.hpp"
 #include "eip2mqtt/core/plan/topic_rules.hpp"
 
@@ -19,7 +21,10 @@ std::string topic_problem(std::string_view topic) {
 
 std::string tag_name_problem(std::string_view name) {
     if (name.empty()) return "a tag has an empty name";
-    if (name.find_first_of("/+#") != std::string_view::npos) {
+    // A loop rather than find_first_of("/+#"), which searches the set for every character:
+    // this runs for every tag of the configuration.
+    if (std::any_of(name.begin(), name.end(),
+                    [](char c) { return c == '/' || c == '+' || c == '#'; })) {
         return "tag name " + in_quotes(name) + " contains '/', '+' or '#'";
     }
     if (const auto problem = plan::text_problem(name); !problem.empty()) {

@@ -87,6 +87,9 @@ public:
     bool replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
 private:
+    /// Keeps the running exchanges in order; once connected, publishes each `_meta` that is new
+    /// or changed.
+    void describe(const ExchangeSet& running);
     /// A write result on the reply's topic, with its correlation data.
     void publish_result(const WriteReply& reply, std::string payload);
 
@@ -96,17 +99,17 @@ private:
     WriteRouter router_;
     /// With store and forward: whether the link is up (samples go live, not to the journal).
     std::function<bool()> connected_;
-    /// A digest of each running exchange's `_meta` payload as last formatted, by topic, so that
+    /// A digest of each running exchange's `_meta` payload as last published, by topic, so that
     /// a reload publishes only the descriptions that changed without the gateway holding every
     /// payload (tens of bytes a tag: megabytes for 100,000 tags). Two different payloads with
     /// one 64-bit digest would leave a change unpublished; at the handful of reloads a gateway
     /// sees, that chance is nil.
     std::unordered_map<std::string, std::size_t> meta_digests_;
     std::vector<const core::plan::ExchangePlan*> described_;  ///< the running, in order
+    /// republish_meta() ran: changes are published from then on.
     bool announced_ = false;
-    std::optional<std::size_t>
-        next_due_meta_;  ///< into described_; none when none is due  ///< republish_meta() ran:
-                         ///< changes are published from then on
+    /// The next description due, into described_; none when none is due.
+    std::optional<std::size_t> next_due_meta_;
     /// Every tag publication is filled in here; the publisher takes its content and leaves
     /// spare buffers (Client::publish), so the data path does not allocate.
     adapters::mqtt::Message message_;
