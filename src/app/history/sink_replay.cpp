@@ -73,6 +73,10 @@ void SinkReplay::note_live(core::MonoTime now, std::uint64_t last_id) {
     }
 }
 
+void SinkReplay::paced(std::size_t handed, bool out_of_time) {
+    pace_ = out_of_time ? std::max<std::size_t>(1, 2 * handed) : SIZE_MAX;
+}
+
 bool SinkReplay::acknowledge(std::uint64_t id) { return outstanding_.erase(id) > 0; }
 
 void SinkReplay::rewind() {

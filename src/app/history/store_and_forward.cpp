@@ -151,10 +151,12 @@ void StoreAndForward::delete_delivered() {
 void StoreAndForward::replay_some(SinkReplay& replay, core::MonoTime now, bool first) {
     const auto room = replay.room(now, options_.replay_rate);
     if (room == 0) return;
+    const auto deadline = options_.clock() + options_.replay_budget;
     // Asked before the read: when nothing waits for the writer then, the read sees it all.
     const bool all_written = pending_.empty() && writer_.idle();
-    const auto entries =
-        writer_.with([&](auto& journal) { return journal.oldest(room, replay.cursor()); });
+    const auto entries = writer_.with([&](auto& journal) {
+        return journal.oldest(std::min(room, replay.pace()), replay.cursor());
+    });
     if (entries.empty() && replay.outstanding() == 0 && all_written) {
         replay.finish();
         if (first && replayed_ > replay_started_with_) {
@@ -164,12 +166,20 @@ void StoreAndForward::replay_some(SinkReplay& replay, core::MonoTime now, bool f
         return;
     }
     std::vector<std::uint64_t> unusable;
+    std::size_t handed = 0;
+    bool out_of_time = false;
     for (const auto& entry : entries) {
+        if (handed > 0 && options_.clock() >= deadline) {
+            out_of_time = true;  // the rest at the next tick: the datagrams go first
+            break;
+        }
+        ++handed;
         if (!replay_entry(replay, entry)) {
             replay.handed(entry.id, false);
             unusable.push_back(entry.id);
         }
     }
+    replay.paced(handed, out_of_time);
     // At once: another sink's replay must not meet them (and count them) again.
     if (!unusable.empty()) writer_.with([&](auto& journal) { journal.remove(unusable); });
 }

@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -42,13 +44,15 @@ protected:
         fs::remove_all(dir_);
     }
 
-    void open(std::uint32_t replay_rate = 100) {
+    void open(std::uint32_t replay_rate = 100, std::function<core::MonoTime()> clock = {}) {
         saf_.reset();
         std::string set_aside;
         auto journal = adapters::history::Journal::open(
             {(dir_ / "history.sqlite").string(), 256ull << 20}, set_aside);
+        StoreAndForwardOptions options{replay_rate, 1000ms};
+        if (clock) options.clock = std::move(clock);
         saf_ = std::make_unique<StoreAndForward>(
-            std::move(journal), StoreAndForwardOptions{replay_rate, 1000ms},
+            std::move(journal), std::move(options),
             LinkProbe{[this] { return connected_; }, [this] { return backlog(); }}, sink_);
         saf_->exchanges_changed({{&plant_}, {&produced_}}, {});
     }
@@ -138,6 +142,31 @@ TEST_F(StoreAndForwardTest, ReplaysOldestFirstAtTheRateWithTheirTimeAndQuality) 
     EXPECT_EQ(replayed_values(), expected);
     EXPECT_EQ(sink_.replayed.back().quality, Quality::stale);
     EXPECT_EQ(sink_.replayed.back().samples[0].first, 1u);  // the counter's tag index
+}
+
+TEST_F(StoreAndForwardTest, ATicksReplayStopsWhenItsTimeIsSpentAndTheRestFollows) {
+    // Each read of the clock takes a millisecond: a tick's 2 ms are spent after two entries,
+    // where the rate alone would allow ten (an entry of a wide exchange costs that much).
+    auto clock = std::chrono::steady_clock::now();
+    open(1000, [&clock] { return clock += 1ms; });
+    for (int i = 1; i <= 30; ++i) counter(i, 1000 + i);
+    run_for(10ms);
+    reconnect();
+    std::vector<std::size_t> per_tick;
+    for (int tick = 0; tick < 100 && sink_.replayed.size() < 30; ++tick) {
+        const auto before = sink_.replayed.size();
+        run_for(10ms);
+        per_tick.push_back(sink_.replayed.size() - before);
+    }
+    EXPECT_EQ(*std::max_element(per_tick.begin(), per_tick.end()), 2u);
+    EXPECT_EQ(std::count(per_tick.begin(), per_tick.end(), 0u), 0) << "a tick replayed nothing";
+    std::vector<std::int64_t> expected(30);
+    std::iota(expected.begin(), expected.end(), 1);
+    EXPECT_EQ(replayed_values(), expected);
+    acknowledge_all();
+    run_for(30ms);
+    EXPECT_EQ(entries(), 0u);
+    EXPECT_FALSE(saf_->stats().replaying);
 }
 
 /// A second northbound with a connection of its own (the Sparkplug node's), which the test

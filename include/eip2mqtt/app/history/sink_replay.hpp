@@ -7,6 +7,7 @@
 ///
 /// Threading: the loop only.
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -61,6 +62,11 @@ public:
         return outstanding_.empty() ? cursor_ : *outstanding_.begin() - 1;
     }
     std::size_t outstanding() const { return outstanding_.size(); }
+    /// How many entries to read for the next tick: twice what the last tick's time allowed
+    /// when it ran out of time (no more is read than can be handed), otherwise any number.
+    std::size_t pace() const { return pace_; }
+    /// The last tick handed `handed` entries; `out_of_time`: its time ran out before the rest.
+    void paced(std::size_t handed, bool out_of_time);
 
 private:
     void rewind();
@@ -75,6 +81,7 @@ private:
     int idle_with_outstanding_ = 0;             ///< ticks the client held none of outstanding_
     std::optional<core::MonoTime> live_since_;  ///< connected between replays since then
     std::uint64_t live_mark_ = 0;               ///< the last entry journaled then
+    std::size_t pace_ = SIZE_MAX;
 };
 
 }  // namespace eip2mqtt::app::history

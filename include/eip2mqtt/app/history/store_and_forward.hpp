@@ -40,6 +40,12 @@ namespace eip2mqtt::app::history {
 struct StoreAndForwardOptions {
     std::uint32_t replay_rate = 2000;
     std::chrono::milliseconds fsync_interval{1000};
+    /// The loop time one tick's replay may take (one entry at least): the rate counts entries,
+    /// and an entry of a wide exchange costs the loop as much as its many tags, so without it
+    /// a replay could keep the loop from its datagrams until the socket's buffer overflowed.
+    std::chrono::microseconds replay_budget{2000};
+    /// Where that time is read (tests give their own).
+    std::function<core::MonoTime()> clock = [] { return std::chrono::steady_clock::now(); };
 };
 
 struct HistoryStats {
