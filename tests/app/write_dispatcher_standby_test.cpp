@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "eip2mqtt/app/write_dispatcher.hpp"
+#include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
@@ -16,8 +17,6 @@ namespace {
 using core::redundancy::WritePolicy;
 using core::write::WriteError;
 using core::write::WriteRejection;
-
-core::MonoTime fixed_clock() { return core::MonoTime{} + std::chrono::hours(1); }
 
 class WriteDispatcherStandbyTest : public ::testing::Test {
 protected:
@@ -37,6 +36,7 @@ protected:
             .writes_rejected[static_cast<std::size_t>(WriteError::standby)];
     }
 
+    test::FakeClock clock_;
     test::RecordingNorthbound origin_;
     core::plan::ExchangePlan plan_;
     int staged_ = 0;
@@ -46,7 +46,7 @@ protected:
                                     ++staged_;
                                     return std::nullopt;
                                 },
-                                fixed_clock};
+                                clock_};
 };
 
 TEST_F(WriteDispatcherStandbyTest, TheLeaderStagesAsEver) {
