@@ -151,7 +151,7 @@ void StoreAndForward::delete_delivered() {
 void StoreAndForward::replay_some(SinkReplay& replay, core::MonoTime now, bool first) {
     const auto room = replay.room(now, options_.replay_rate);
     if (room == 0) return;
-    const auto deadline = options_.clock() + options_.replay_budget;
+    const auto deadline = options_.clock->monotonic() + options_.replay_budget;
     // Asked before the read: when nothing waits for the writer then, the read sees it all.
     const bool all_written = pending_.empty() && writer_.idle();
     const auto entries = writer_.with([&](auto& journal) {
@@ -169,7 +169,7 @@ void StoreAndForward::replay_some(SinkReplay& replay, core::MonoTime now, bool f
     std::size_t handed = 0;
     bool out_of_time = false;
     for (const auto& entry : entries) {
-        if (handed > 0 && options_.clock() >= deadline) {
+        if (handed > 0 && options_.clock->monotonic() >= deadline) {
             out_of_time = true;  // the rest at the next tick: the datagrams go first
             break;
         }

@@ -44,13 +44,13 @@ protected:
         fs::remove_all(dir_);
     }
 
-    void open(std::uint32_t replay_rate = 100, std::function<core::MonoTime()> clock = {}) {
+    void open(std::uint32_t replay_rate = 100, const Clock* clock = nullptr) {
         saf_.reset();
         std::string set_aside;
         auto journal = adapters::history::Journal::open(
             {(dir_ / "history.sqlite").string(), 256ull << 20}, set_aside);
         StoreAndForwardOptions options{replay_rate, 1000ms};
-        if (clock) options.clock = std::move(clock);
+        if (clock) options.clock = clock;
         saf_ = std::make_unique<StoreAndForward>(
             std::move(journal), std::move(options),
             LinkProbe{[this] { return connected_; }, [this] { return backlog(); }}, sink_);
@@ -144,11 +144,21 @@ TEST_F(StoreAndForwardTest, ReplaysOldestFirstAtTheRateWithTheirTimeAndQuality) 
     EXPECT_EQ(sink_.replayed.back().samples[0].first, 1u);  // the counter's tag index
 }
 
+/// A clock on which each read of the monotonic time takes a millisecond.
+class SteppingClock final : public Clock {
+public:
+    core::MonoTime monotonic() const override { return now_ += 1ms; }
+    core::WallTime wall() const override { return std::chrono::system_clock::now(); }
+
+private:
+    mutable core::MonoTime now_ = std::chrono::steady_clock::now();
+};
+
 TEST_F(StoreAndForwardTest, ATicksReplayStopsWhenItsTimeIsSpentAndTheRestFollows) {
     // Each read of the clock takes a millisecond: a tick's 2 ms are spent after two entries,
     // where the rate alone would allow ten (an entry of a wide exchange costs that much).
-    auto clock = std::chrono::steady_clock::now();
-    open(1000, [&clock] { return clock += 1ms; });
+    SteppingClock clock;
+    open(1000, &clock);
     for (int i = 1; i <= 30; ++i) counter(i, 1000 + i);
     run_for(10ms);
     reconnect();

@@ -11,6 +11,15 @@
 namespace eip2mqtt::app::northbound {
 namespace {
 
+/// A 4-byte consumed exchange `e1` under `acme`.
+core::plan::ExchangePlan e1_plan() {
+    core::plan::ExchangeSpec spec;
+    spec.name = "e1";
+    spec.length = 4;
+    spec.topic = "e1";
+    return core::plan::make_exchange_plan(spec, "acme");
+}
+
 TEST(FanOut, EveryEventReachesEachNorthboundButAResultOnlyItsOrigin) {
     test::RecordingNorthbound first;
     test::RecordingNorthbound second;
@@ -18,11 +27,7 @@ TEST(FanOut, EveryEventReachesEachNorthboundButAResultOnlyItsOrigin) {
     fan_out.add(first);
     fan_out.add(second);
 
-    core::plan::ExchangeSpec spec;
-    spec.name = "e1";
-    spec.length = 4;
-    spec.topic = "e1";
-    const auto plan = core::plan::make_exchange_plan(spec, "acme");
+    const auto plan = e1_plan();
     const std::vector<TagSample> samples{{0, core::plan::Value{true}}};
     fan_out.exchanges_changed({{&plan}, {}}, {});
     fan_out.tag_samples({plan, core::quality::Quality::good, 1, false, samples});
@@ -47,11 +52,7 @@ TEST(FanOut, AClosedGateStopsWhatTheExchangesSayButNotTheRunningSetOrTheResults)
     bool open = false;
     fan_out.set_gate([&] { return open; });
 
-    core::plan::ExchangeSpec spec;
-    spec.name = "e1";
-    spec.length = 4;
-    spec.topic = "e1";
-    const auto plan = core::plan::make_exchange_plan(spec, "acme");
+    const auto plan = e1_plan();
     const std::vector<TagSample> samples{{0, core::plan::Value{true}}};
     const auto say_everything = [&] {
         fan_out.exchanges_changed({{&plan}, {}}, {});

@@ -29,6 +29,7 @@
 #include "eip2mqtt/adapters/history/journal.hpp"
 #include "eip2mqtt/adapters/history/journal_writer.hpp"
 #include "eip2mqtt/adapters/history/sample_codec.hpp"
+#include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
 #include "eip2mqtt/app/history/sink_replay.hpp"
 #include "eip2mqtt/app/northbound.hpp"
@@ -44,8 +45,8 @@ struct StoreAndForwardOptions {
     /// and an entry of a wide exchange costs the loop as much as its many tags, so without it
     /// a replay could keep the loop from its datagrams until the socket's buffer overflowed.
     std::chrono::microseconds replay_budget{2000};
-    /// Where that time is read (tests give their own).
-    std::function<core::MonoTime()> clock = [] { return std::chrono::steady_clock::now(); };
+    /// Where that time is read (tests give their own); it must outlive the StoreAndForward.
+    const Clock* clock = &system_clock();
 };
 
 struct HistoryStats {
