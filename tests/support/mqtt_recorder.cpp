@@ -145,11 +145,15 @@ std::optional<Received> MqttRecorder::wait_for_message(
     const std::string& topic, const std::function<bool(const std::string&)>& pred,
     std::chrono::milliseconds timeout, std::size_t from) {
     std::optional<Received> found;
+    // Each message is looked at once: the predicate runs again on every arrival, and a rescan
+    // from `from` each time costs quadratic time holding the lock the recording waits for,
+    // which at thousands of messages a second on a loaded machine starves the recording.
+    auto next = from;
     wait_for(
         [&](const std::vector<Received>& all) {
-            for (std::size_t i = from; i < all.size(); ++i) {
-                if (all[i].topic == topic && (!pred || pred(all[i].payload))) {
-                    found = all[i];
+            for (; next < all.size(); ++next) {
+                if (all[next].topic == topic && (!pred || pred(all[next].payload))) {
+                    found = all[next];
                     return true;
                 }
             }
