@@ -88,6 +88,20 @@ private:
 
 using SparkplugStormTest = GatewayTest;
 
+/// How many lines of `output` contain `text`.
+std::size_t lines_with(const std::string& output, const std::string& text) {
+    std::size_t count = 0;
+    std::istringstream lines(output);
+    for (std::string line; std::getline(lines, line);)
+        count += line.find(text) != std::string::npos;
+    return count;
+}
+
+/// At most the first line and one summary a minute (a part started counts) since `since`.
+std::size_t throttled_lines_at_most(std::chrono::steady_clock::time_point since) {
+    return 2 + static_cast<std::size_t>((std::chrono::steady_clock::now() - since) / 60s);
+}
+
 TEST_F(SparkplugStormTest, AFloodOfRebirthRequestsNeitherStalesNorMissesADatagram) {
     GatewayOptions options;
     options.sections = "sparkplug:\n  group_id: plant1\n";
@@ -150,6 +164,11 @@ TEST_F(SparkplugStormTest, AFloodOfRebirthRequestsNeitherStalesNorMissesADatagra
     // at its end.
     EXPECT_GE(nbirths, 2u);
     EXPECT_LE(nbirths, static_cast<std::size_t>(storm / 1s) + 4) << storm.count() << " ms";
+    // The log says so in a line and a summary a minute, not a line a request.
+    EXPECT_LE(lines_with(gateway_->output(), "rebirth requested by NCMD") +
+                  lines_with(gateway_->output(), "more rebirth requests by NCMD"),
+              throttled_lines_at_most(storm_start))
+        << gateway_->output();
     // And the gateway took every request.
     EXPECT_TRUE(recorder_->wait_for_message(
         metrics_topic(),
@@ -198,6 +217,7 @@ TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth
     ASSERT_TRUE(recorder_->wait_for_message(node_topic("NBIRTH"), nullptr, 20s).has_value());
 
     // 4,000 changes of its STATE as fast as the broker takes them, ending online.
+    const auto flaps_start = std::chrono::steady_clock::now();
     constexpr int flaps = 4000;
     std::string lines;
     for (int i = 0; i <= flaps; ++i) {
@@ -205,11 +225,11 @@ TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth
                  R"(,"timestamp":)" + std::to_string(2 + i) + "}\n";
     }
     const auto file = dir_.write("flaps.txt", lines);
-    const auto pub =
-        run_command({"/bin/sh", "-c",
-                     "/usr/bin/mosquitto_pub -h 127.0.0.1 -p " + std::to_string(broker_->port()) +
-                         " -t spBv1.0/STATE/scada -q 1 -r -l < " + file},
-                    120s);
+    const auto pub = run_command(
+        {"/bin/sh", "-c",
+         "exec /usr/bin/mosquitto_pub -h 127.0.0.1 -p " + std::to_string(broker_->port()) +
+             " -t spBv1.0/STATE/scada -q 1 -r -l < " + file},
+        120s);
     ASSERT_EQ(pub.status, 0) << pub.output;
     // The broker hands the node its messages in order: once it has read an NCMD sent after
     // them (one it logs and ignores: a rebirth would add births of its own), it has taken every
@@ -230,6 +250,10 @@ TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth
     received.erase(end, received.end());
     std::cout << flaps << " STATE changes: the host received " << received.size()
               << " messages of the node\n";
+    // The log says so in a line and a summary a minute, not a line a change.
+    EXPECT_LE(lines_with(gateway_->output(), "Sparkplug primary host scada"),
+              throttled_lines_at_most(flaps_start))
+        << gateway_->output();
 
     // Births and deaths alternate (the clean stop's NDEATH may follow another), each death with
     // the bdSeq of the birth before it, and seq counts on from each NBIRTH.
