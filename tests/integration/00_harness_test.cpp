@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -79,6 +81,15 @@ TEST(Harness, AMosquittoEndsWithATestThatAborts) {
     ASSERT_GT(broker, 0);
     EXPECT_TRUE(ends(broker)) << "mosquitto " << broker << " outlived the test that started it";
 }
+
+#ifndef NDEBUG
+// Where assertions are on (Debug builds, the sanitizer flavour among them), nlohmann::json's
+// would abort the test program on a key a message lacks, and every test after it with it.
+TEST(Harness, AKeyAMessageLacksFailsOneTestInsteadOfAbortingTheProgram) {
+    const auto message = nlohmann::json::parse(R"({"state":"ok"})");
+    EXPECT_THROW(static_cast<void>(message["missing"]), std::logic_error);
+}
+#endif
 
 }  // namespace
 }  // namespace eip2mqtt::test
