@@ -36,19 +36,12 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/write/rate_limiter.hpp"
+#include "eip2mqtt/core/write/write_counters.hpp"
 #include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::app {
 
-/// What the image saves of every produced exchange add up to, kept by the gateway: a reload
-/// replaces producers and their counters, never these.
-struct ImageSaveTotals {
-    std::uint64_t failures = 0;  ///< image saves that failed
-    /// Accepted writes refused because the save that had to precede them failed (`not saved`).
-    std::uint64_t writes_not_saved = 0;
-    /// Writes sent, whose save then failed (`"saved":false`).
-    std::uint64_t writes_sent_unsaved = 0;
-};
+using core::write::ImageSaveTotals;
 
 /// A producer's image, for the one that replaces it when a reload changes its exchange but
 /// not its layout: the image in memory goes on, not what the file holds.
