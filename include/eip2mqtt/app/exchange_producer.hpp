@@ -125,6 +125,8 @@ private:
     void report_echo(core::WallTime wall, bool all);
     void report_status();
     void report_results(std::span<const std::uint64_t> write_ids);
+    /// Where the write's result goes, no longer waited for; none for a write already answered.
+    std::optional<WriteReply> take_reply(std::uint64_t write_id);
 
     /// On the heap, at one address for the producer's life: image_ and the northbounds keep it.
     std::shared_ptr<const core::plan::ExchangePlan> plan_;
