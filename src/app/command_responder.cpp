@@ -81,7 +81,7 @@ void CommandResponder::on_datagram(std::span<const std::byte> datagram,
                        std::string(core::command::to_string(request.error())) + ")",
                    from, now);
     }
-    ++counters_.requests[request_index(request->header.type)];
+    ++counters_.requests[core::command::request_index(request->header.type)];
     answer(std::move(request).value(), from, now, wall);
 }
 

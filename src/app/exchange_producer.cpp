@@ -82,10 +82,7 @@ std::size_t ExchangeProducer::cancel_queued_writes(std::string_view error) {
     image_.discard_pending(ids);
     if (ids.empty()) return 0;
     for (const auto id : ids) {
-        const auto it = replies_.find(id);
-        if (it == replies_.end()) continue;
-        northbound_.write_result(it->second, error);
-        replies_.erase(it);
+        if (const auto reply = take_reply(id)) northbound_.write_result(*reply, error);
     }
     spdlog::warn("exchange {}: {} queued write(s) answered \"{}\": never produced",
                  plan_->spec.name, ids.size(), error);
@@ -206,10 +203,9 @@ void ExchangeProducer::on_save_failed(const std::string& error,
     saved_ = false;
     retry_at_.reset();
     for (const auto id : sent) {
-        const auto it = replies_.find(id);
-        if (it == replies_.end()) continue;
-        northbound_.write_result_unsaved(it->second, error);
-        replies_.erase(it);
+        const auto reply = take_reply(id);
+        if (!reply) continue;
+        northbound_.write_result_unsaved(*reply, error);
         ++totals_.writes_sent_unsaved;
     }
     // Queued writes that this save held wait on no other: they are never produced.
@@ -217,10 +213,9 @@ void ExchangeProducer::on_save_failed(const std::string& error,
     image_.discard_pending(saved_through_, saving_through_, refused);
     const auto answer = "not saved: " + error;
     for (const auto id : refused) {
-        const auto it = replies_.find(id);
-        if (it == replies_.end()) continue;
-        northbound_.write_result(it->second, answer);
-        replies_.erase(it);
+        const auto reply = take_reply(id);
+        if (!reply) continue;
+        northbound_.write_result(*reply, answer);
         ++totals_.writes_not_saved;
     }
     const bool changed = error != save_error_;
@@ -240,11 +235,14 @@ void ExchangeProducer::on_save_failed(const std::string& error,
 
 void ExchangeProducer::report_results(std::span<const std::uint64_t> write_ids) {
     for (const auto id : write_ids) {
-        const auto it = replies_.find(id);
-        if (it == replies_.end()) continue;
-        northbound_.write_result(it->second, std::nullopt);
-        replies_.erase(it);
+        if (const auto reply = take_reply(id)) northbound_.write_result(*reply, std::nullopt);
     }
+}
+
+std::optional<WriteReply> ExchangeProducer::take_reply(std::uint64_t write_id) {
+    auto node = replies_.extract(write_id);
+    if (node.empty()) return std::nullopt;
+    return std::move(node.mapped());
 }
 
 void ExchangeProducer::report_echo(core::WallTime wall, bool all) {

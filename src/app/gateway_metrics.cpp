@@ -47,43 +47,6 @@ std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& count
     return out;
 }
 
-std::map<std::string, std::uint64_t> rejections_by_name(const WriteCounters& counters) {
-    std::map<std::string, std::uint64_t> out;
-    for (std::size_t i = 0; i < core::write::write_error_count; ++i) {
-        out[std::string(core::write::to_string(static_cast<core::write::WriteError>(i)))] =
-            counters.writes_rejected[i];
-    }
-    return out;
-}
-
-std::map<std::string, std::uint64_t> writes_by_origin(const WriteCounters& counters) {
-    std::map<std::string, std::uint64_t> out;
-    for (const auto origin : all_write_origins) {
-        out[std::string(to_string(origin))] =
-            counters.writes_by_origin[static_cast<std::size_t>(origin)];
-    }
-    return out;
-}
-
-adapters::metrics::CommandMetrics command_metrics(const CommandCounters& counters) {
-    adapters::metrics::CommandMetrics c;
-    for (std::size_t i = 0; i < command_request_types.size(); ++i) {
-        auto name = std::string(core::command::to_string(command_request_types[i]));
-        name.resize(name.size() - std::string_view("_request").size());
-        c.requests[name] = counters.requests[i];
-    }
-    c.errors = counters.errors;
-    c.refused = counters.refused;
-    c.dropped = counters.dropped;
-    for (const auto error : core::command::all_decode_errors) {
-        if (!core::command::nak_code(error)) continue;
-        c.naks[std::string(core::command::to_string(error))] =
-            counters.naks[static_cast<std::size_t>(error)];
-    }
-    c.ignored = counters.ignored;
-    return c;
-}
-
 adapters::metrics::HistoryMetrics history_metrics(const history::HistoryStats& stats) {
     adapters::metrics::HistoryMetrics h;
     h.entries = stats.journal.entries;
@@ -121,17 +84,9 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     g.buffered = sources.mqtt.queued;
     g.publications_dropped = sources.mqtt.dropped_overflow;
     g.publications_refused = sources.mqtt.refused;
-    g.writes_ok = sources.writes.writes_ok;
-    g.writes_cancelled = sources.writes.writes_cancelled;
-    g.writes_rejected = rejections_by_name(sources.writes);
-    g.writes_not_saved = sources.writes.image_saves.writes_not_saved;
-    g.writes_sent_unsaved = sources.writes.image_saves.writes_sent_unsaved;
-    g.image_save_failures = sources.writes.image_saves.failures;
-    g.writes_by_origin = writes_by_origin(sources.writes);
-    if (sources.history) {
-        g.history = history_metrics(*sources.history);
-    }
-    if (sources.commands) g.commands = command_metrics(*sources.commands);
+    g.writes = sources.writes;
+    if (sources.history) g.history = history_metrics(*sources.history);
+    if (sources.commands) g.commands = *sources.commands;
     return snapshot;
 }
 

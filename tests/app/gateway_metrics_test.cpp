@@ -105,10 +105,11 @@ TEST(MetricsSnapshot, CarriesTheGatewayFiguresAndEachExchange) {
     EXPECT_EQ(snapshot.gateway.mqtt_broker, "tcp://broker-b:1883");
     EXPECT_EQ(snapshot.gateway.published, 100u);
     EXPECT_EQ(snapshot.gateway.publications_refused, 11u);
-    EXPECT_EQ(snapshot.gateway.writes_rejected.at("out_of_range"), 4u);
-    EXPECT_EQ(snapshot.gateway.image_save_failures, 13u);
-    EXPECT_EQ(snapshot.gateway.writes_not_saved, 14u);
-    EXPECT_EQ(snapshot.gateway.writes_sent_unsaved, 15u);
+    const auto& writes = snapshot.gateway.writes;
+    EXPECT_EQ(writes.writes_rejected[static_cast<std::size_t>(WriteError::out_of_range)], 4u);
+    EXPECT_EQ(writes.image_saves.failures, 13u);
+    EXPECT_EQ(writes.image_saves.writes_not_saved, 14u);
+    EXPECT_EQ(writes.image_saves.writes_sent_unsaved, 15u);
     ASSERT_EQ(snapshot.exchanges.size(), 1u);
     EXPECT_EQ(snapshot.exchanges[0].name, "e1");
     EXPECT_EQ(snapshot.exchanges[0].direction, "consume");

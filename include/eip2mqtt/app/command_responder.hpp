@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
-#include "eip2mqtt/app/command_counters.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/command/answer.hpp"
+#include "eip2mqtt/core/command/command_counters.hpp"
 #include "eip2mqtt/core/command/subnet.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -65,7 +65,7 @@ public:
     /// (the gateway's tick).
     void flush_log(core::MonoTime now);
 
-    const CommandCounters& counters() const { return counters_; }
+    const core::command::CommandCounters& counters() const { return counters_; }
     std::size_t pending_writes() const { return pending_.size(); }
 
     // --- Northbound: only write results concern the responder ----------------------------
@@ -94,7 +94,7 @@ private:
     Send send_;
     WriteHandler* writes_;
     core::write::RateLimiter limiter_;
-    CommandCounters counters_;
+    core::command::CommandCounters counters_;
     std::unordered_map<std::uint64_t, PendingWrite> pending_;
     std::uint64_t next_write_ = 1;
     /// Set while a write is handed to the WriteHandler: a result then is a refusal.

@@ -36,19 +36,12 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/write/rate_limiter.hpp"
+#include "eip2mqtt/core/write/write_counters.hpp"
 #include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::app {
 
-/// What the image saves of every produced exchange add up to, kept by the gateway: a reload
-/// replaces producers and their counters, never these.
-struct ImageSaveTotals {
-    std::uint64_t failures = 0;  ///< image saves that failed
-    /// Accepted writes refused because the save that had to precede them failed (`not saved`).
-    std::uint64_t writes_not_saved = 0;
-    /// Writes sent, whose save then failed (`"saved":false`).
-    std::uint64_t writes_sent_unsaved = 0;
-};
+using core::write::ImageSaveTotals;
 
 /// A producer's image, for the one that replaces it when a reload changes its exchange but
 /// not its layout: the image in memory goes on, not what the file holds.
@@ -132,6 +125,8 @@ private:
     void report_echo(core::WallTime wall, bool all);
     void report_status();
     void report_results(std::span<const std::uint64_t> write_ids);
+    /// Where the write's result goes, no longer waited for; none for a write already answered.
+    std::optional<WriteReply> take_reply(std::uint64_t write_id);
 
     /// On the heap, at one address for the producer's life: image_ and the northbounds keep it.
     std::shared_ptr<const core::plan::ExchangePlan> plan_;

@@ -38,6 +38,23 @@ std::string column_blob(sqlite3_stmt* stmt, int column) {
     return blob == nullptr ? std::string() : std::string(blob, sqlite3_column_bytes(stmt, column));
 }
 
+/// Runs `step` (one statement, stepped and reset) for each of `items` in one transaction, and
+/// commits; the first that does not answer SQLITE_DONE rolls them all back, so a full disk
+/// never leaves half a batch.
+template <class Items, class Step>
+int each_in_transaction(sqlite3* db, const Items& items, Step&& step) {
+    if (const int rc = detail::run(db, "BEGIN"); rc != SQLITE_OK) return rc;
+    for (const auto& item : items) {
+        if (const int rc = step(item); rc != SQLITE_DONE) {
+            detail::rollback(db);
+            return rc;
+        }
+    }
+    const int rc = detail::run(db, "COMMIT");
+    if (rc != SQLITE_OK) detail::rollback(db);
+    return rc;
+}
+
 }  // namespace
 
 Journal::Journal(std::unique_ptr<Db> db, JournalOptions options,
@@ -108,9 +125,7 @@ void Journal::write_chunk(std::span<const JournalEntry> chunk, std::uint64_t byt
 }
 
 int Journal::insert(std::span<const JournalEntry> chunk) {
-    auto* db = db_->db;
-    if (const int rc = detail::run(db, "BEGIN"); rc != SQLITE_OK) return rc;
-    for (const auto& entry : chunk) {
+    return each_in_transaction(db_->db, chunk, [this](const JournalEntry& entry) {
         auto* stmt = db_->insert->fresh();
         sqlite3_bind_text(stmt, 1, entry.exchange.data(), static_cast<int>(entry.exchange.size()),
                           SQLITE_STATIC);
@@ -122,14 +137,8 @@ int Journal::insert(std::span<const JournalEntry> chunk) {
         sqlite3_bind_int64(stmt, 6, static_cast<sqlite3_int64>(entry.id));
         const int rc = sqlite3_step(stmt);
         sqlite3_reset(stmt);
-        if (rc != SQLITE_DONE) {
-            detail::rollback(db);
-            return rc;
-        }
-    }
-    const int rc = detail::run(db, "COMMIT");
-    if (rc != SQLITE_OK) detail::rollback(db);
-    return rc;
+        return rc;
+    });
 }
 
 template <class F>
@@ -247,21 +256,14 @@ void Journal::remove(std::span<const std::uint64_t> ids) {
     const int rc = with_room(
         [&] {
             removed = 0;
-            if (const int begun = detail::run(db, "BEGIN"); begun != SQLITE_OK) return begun;
-            for (const auto id : ids) {
+            return each_in_transaction(db, ids, [&](std::uint64_t id) {
                 auto* stmt = db_->remove->fresh();
                 sqlite3_bind_int64(stmt, 1, static_cast<sqlite3_int64>(id));
-                const int step = sqlite3_step(stmt);
+                const int rc = sqlite3_step(stmt);
                 removed += static_cast<std::uint64_t>(sqlite3_changes(db));
                 sqlite3_reset(stmt);
-                if (step != SQLITE_DONE) {
-                    detail::rollback(db);
-                    return step;
-                }
-            }
-            const int committed = detail::run(db, "COMMIT");
-            if (committed != SQLITE_OK) detail::rollback(db);
-            return committed;
+                return rc;
+            });
         },
         false);
     if (rc != SQLITE_OK) detail::fail(db, rc);

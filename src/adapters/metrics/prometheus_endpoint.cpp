@@ -70,20 +70,14 @@ void add_exchange_family(std::vector<MetricFamily>& out, const MetricsSnapshot& 
     if (!result.metric.empty()) out.push_back(std::move(result));
 }
 
-void add_labelled_family(std::vector<MetricFamily>& out, std::string name, std::string help,
-                         const std::string& label,
-                         const std::map<std::string, std::uint64_t>& counts) {
-    auto result = family(std::move(name), std::move(help), MetricType::Counter);
-    for (const auto& [value, count] : counts) {
-        result.metric.push_back(
-            sample(MetricType::Counter, static_cast<double>(count), {{label, value}}));
-    }
-    if (!result.metric.empty()) out.push_back(std::move(result));
-}
-
 void add_reason_family(std::vector<MetricFamily>& out, std::string name, std::string help,
                        const std::map<std::string, std::uint64_t>& counts) {
-    add_labelled_family(out, std::move(name), std::move(help), "reason", counts);
+    auto result = family(std::move(name), std::move(help), MetricType::Counter);
+    for (const auto& [reason, count] : counts) {
+        result.metric.push_back(
+            sample(MetricType::Counter, static_cast<double>(count), {{"reason", reason}}));
+    }
+    if (!result.metric.empty()) out.push_back(std::move(result));
 }
 
 void add_single(std::vector<MetricFamily>& out, std::string name, std::string help, MetricType type,
@@ -95,6 +89,25 @@ void add_single(std::vector<MetricFamily>& out, std::string name, std::string he
 
 constexpr auto counter = MetricType::Counter;
 constexpr auto gauge = MetricType::Gauge;
+
+/// A gateway-wide counter set: a family per counter, `{set}_{name}_total`, with one sample, or
+/// one per key.
+template <class Fields, class Counters>
+void add_counter_set(std::vector<MetricFamily>& out, std::string_view set, const Fields& fields,
+                     const Counters& counters) {
+    const auto prefix = set.empty() ? std::string() : std::string(set) + "_";
+    for (const auto& field : fields) {
+        if (!field.in(core::in_prometheus)) continue;
+        auto result =
+            family(prefix + std::string(field.name) + "_total", std::string(field.help), counter);
+        core::for_each_count(field, counters, [&](std::string_view key, std::uint64_t count) {
+            std::vector<ClientMetric::Label> labels;
+            if (!key.empty()) labels.push_back({std::string(field.label), std::string(key)});
+            result.metric.push_back(sample(counter, static_cast<double>(count), labels));
+        });
+        out.push_back(std::move(result));
+    }
+}
 
 /// exchange_state: one sample per state an exchange may be in, 1 for the current one.
 void add_state_families(std::vector<MetricFamily>& out, const MetricsSnapshot& snapshot) {
@@ -212,45 +225,7 @@ void add_gateway_families(std::vector<MetricFamily>& out, const MetricsSnapshot&
     add_single(out, "mqtt_publications_refused_total",
                "Publications dropped because the broker would refuse them", counter,
                static_cast<double>(g.publications_refused));
-    add_single(out, "writes_ok_total", "Writes accepted", counter,
-               static_cast<double>(g.writes_ok));
-    add_reason_family(out, "writes_rejected_total", "Writes rejected, by reason",
-                      g.writes_rejected);
-    add_single(out, "writes_cancelled_total",
-               "Writes accepted, then cancelled unproduced: a reload changed or removed their "
-               "exchange",
-               counter, static_cast<double>(g.writes_cancelled));
-    add_single(out, "writes_not_saved_total",
-               "Writes accepted, then refused unproduced: the save that had to precede them failed",
-               counter, static_cast<double>(g.writes_not_saved));
-    add_single(out, "writes_sent_unsaved_total",
-               "Writes sent, whose image save then failed: a restart would undo them until the "
-               "next successful save",
-               counter, static_cast<double>(g.writes_sent_unsaved));
-    add_single(out, "image_save_failures_total", "Image saves of produced exchanges that failed",
-               counter, static_cast<double>(g.image_save_failures));
-    add_labelled_family(out, "writes_by_origin_total",
-                        "Writes accepted, by the protocol they came by", "origin",
-                        g.writes_by_origin);
-}
-
-/// The command responder on UDP 7937, when enabled.
-void add_command_families(std::vector<MetricFamily>& out, const CommandMetrics& c) {
-    add_labelled_family(out, "commands_requests_total", "Command requests answered, by type",
-                        "type", c.requests);
-    add_single(out, "commands_errors_total", "Command requests answered with an error status",
-               counter, static_cast<double>(c.errors));
-    add_single(out, "commands_refused_total",
-               "Command datagrams from sources outside eip.commands.allow, unanswered", counter,
-               static_cast<double>(c.refused));
-    add_single(out, "commands_dropped_total",
-               "Command datagrams over eip.commands.max_requests_per_s, unanswered", counter,
-               static_cast<double>(c.dropped));
-    add_reason_family(out, "commands_naks_total", "Command requests answered with a NAK, by reason",
-                      c.naks);
-    add_single(out, "commands_ignored_total",
-               "Command datagrams without a header, or not requests, unanswered", counter,
-               static_cast<double>(c.ignored));
+    add_counter_set(out, "", core::write::write_counter_fields, g.writes);
 }
 
 /// Store and forward's journal, when enabled.
@@ -282,7 +257,10 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
     add_clock_families(out, snapshot);
     add_gateway_families(out, snapshot);
     if (snapshot.gateway.history) add_history_families(out, *snapshot.gateway.history);
-    if (snapshot.gateway.commands) add_command_families(out, *snapshot.gateway.commands);
+    if (snapshot.gateway.commands) {
+        add_counter_set(out, core::command::command_counters_name,
+                        core::command::command_counter_fields, *snapshot.gateway.commands);
+    }
     return out;
 }
 

@@ -8,6 +8,12 @@ namespace {
 
 namespace keys = core::config::keys;
 
+/// The text itself when it is an IPv4 address: an address is kept as written, for the socket.
+std::optional<std::string> ipv4_text(std::string_view text) {
+    if (!parse_ipv4(text)) return std::nullopt;
+    return std::string(text);
+}
+
 /// How each key of `gateway` is read.
 constexpr KeyReader<GatewaySection> gateway_rows[]{
     {"id", [](KeyValue& v, GatewaySection& g) { return v.text_to(g.id); }},
@@ -219,22 +225,16 @@ void Loader::read_eip(const Node& node, const Mark& at, Config& config) {
         node, at, "eip", "in eip", eip_keys,
         [&](const std::string& key, const Node& value, const Mark& k) {
             if (key == "bind") {
-                const auto s = text(value, key, k);
-                if (s && !parse_ipv4(*s)) {
-                    error(k, "bind " + in_quotes(*s) + " is not an IPv4 address");
-                } else if (s) {
-                    eip.bind = *s;
+                if (auto s = parsed(value, key, k, ipv4_text, "is not an IPv4 address")) {
+                    eip.bind = std::move(*s);
                 }
             } else if (key == "port") {
                 if (const auto n = integer<std::uint16_t>(value, key, k)) eip.port = *n;
             } else if (key == "multicast_ttl") {
                 if (const auto n = integer<int>(value, key, k, 0, 255)) eip.multicast_ttl = *n;
             } else if (key == "multicast_interface") {
-                const auto s = text(value, key, k);
-                if (s && !parse_ipv4(*s)) {
-                    error(k, "multicast_interface " + in_quotes(*s) + " is not an IPv4 address");
-                } else if (s) {
-                    eip.multicast_interface = *s;
+                if (auto s = parsed(value, key, k, ipv4_text, "is not an IPv4 address")) {
+                    eip.multicast_interface = std::move(*s);
                 }
             } else if (key == "link_mbps") {
                 const auto mbps = number(value, key, k);

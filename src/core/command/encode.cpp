@@ -29,6 +29,14 @@ void put_key(ByteWriter& out, const wire::ExchangeKey& key) {
     out.u32(key.exchange_id);
 }
 
+/// Retrieve Configuration and Statistics requests carry an exchange's key and nothing else.
+std::vector<std::byte> key_request(PduHeader& header, PduType type, const wire::ExchangeKey& key) {
+    auto pdu = start(header, type, 16);
+    ByteWriter out(pdu);
+    put_key(out, key);
+    return finish(std::move(pdu));
+}
+
 std::string_view cut(const std::string& text) {
     return std::string_view(text).substr(0, std::min(text.size(), max_text_size));
 }
@@ -36,10 +44,7 @@ std::string_view cut(const std::string& text) {
 }  // namespace
 
 std::vector<std::byte> encode(PduHeader header, const RetrieveConfigRequest& request) {
-    auto pdu = start(header, PduType::retrieve_config_request, 16);
-    ByteWriter out(pdu);
-    put_key(out, request.key);
-    return finish(std::move(pdu));
+    return key_request(header, PduType::retrieve_config_request, request.key);
 }
 
 std::vector<std::byte> encode(PduHeader header, const SummaryRequest& request) {
@@ -58,10 +63,7 @@ std::vector<std::byte> encode(PduHeader header, const CapabilitiesRequest& reque
 }
 
 std::vector<std::byte> encode(PduHeader header, const StatisticsRequest& request) {
-    auto pdu = start(header, PduType::statistics_request, 16);
-    ByteWriter out(pdu);
-    put_key(out, request.key);
-    return finish(std::move(pdu));
+    return key_request(header, PduType::statistics_request, request.key);
 }
 
 // docs/protocol.md §9.3, Retrieve Configuration response: 76 bytes.

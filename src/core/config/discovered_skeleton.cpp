@@ -4,6 +4,7 @@
 #include <set>
 #include <string_view>
 
+#include "core/config/detail/skeleton_lines.hpp"
 #include "eip2mqtt/core/config/skeleton.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
@@ -18,8 +19,6 @@ using command::ExchangeMode;
 constexpr std::uint32_t min_period_ms = 2;
 constexpr std::uint32_t max_period_ms = 3600000;
 constexpr std::uint16_t max_length = 1400;
-
-std::string ipv4(std::uint32_t address) { return wire::to_string(wire::ProducerId{address}); }
 
 std::string key_text(const wire::ExchangeKey& key) {
     return wire::to_string(key.producer_id) + "/" + std::to_string(key.exchange_id);
@@ -56,36 +55,32 @@ void period_line(const ExchangeConfig& c, std::string& out) {
     out += "\n";
 }
 
+exchange::DestinationKind kind_of(DestinationType type) {
+    switch (type) {
+        case DestinationType::unicast:
+            return exchange::DestinationKind::unicast;
+        case DestinationType::broadcast:
+            return exchange::DestinationKind::broadcast;
+        case DestinationType::multicast:
+            return exchange::DestinationKind::multicast;
+        default:
+            return exchange::DestinationKind::unknown;
+    }
+}
+
 void destination_line(const ExchangeConfig& c, std::string& out) {
     out += "    # destination: ";
-    switch (c.destination_type) {
-        case DestinationType::unicast:
-            out += "unicast to " + ipv4(c.destination);
-            break;
-        case DestinationType::broadcast:
-            out += "broadcast to " + ipv4(c.destination);
-            break;
-        case DestinationType::multicast:
-            out += "multicast group " + ipv4(c.destination) +
-                   " (the gateway joins it with eip.multicast: [ { group: " + ipv4(c.destination) +
-                   " } ])";
-            break;
-        default:
-            out += "none told";
-            break;
-    }
+    const auto kind = kind_of(c.destination_type);
+    out += kind == exchange::DestinationKind::unknown
+               ? "none told"
+               : detail::destination_text(kind, c.destination);
     out += ", port " + std::to_string(c.port);
     if (c.port != wire::default_port) out += " (the gateway receives on eip.port)";
     out += "\n";
 }
 
 void exchange_item(const DiscoveredNode& node, const ExchangeConfig& c, std::string& out) {
-    const auto producer = wire::to_string(c.key.producer_id);
-    const auto id = std::to_string(c.key.exchange_id);
-    out += "  - name: \"" + producer + "-" + id + "\"\n";
-    out += "    direction: consume\n";
-    out += "    producer_id: " + producer + "\n";
-    out += "    exchange_id: " + id + "\n";
+    detail::item_head(c.key, out);
     length_line(c, out);
     signature_line(c, out);
     period_line(c, out);

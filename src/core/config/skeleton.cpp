@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "core/config/detail/skeleton_lines.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::core::config {
@@ -19,8 +20,6 @@ using exchange::WireSummary;
 constexpr long min_period_ms = 2;
 constexpr long max_period_ms = 3600000;
 constexpr long default_period_ms = 1000;
-
-std::string ipv4(std::uint32_t address) { return wire::to_string(wire::ProducerId{address}); }
 
 std::string three_decimals(double value) {
     char text[64];
@@ -80,22 +79,8 @@ void period_line(const WireSummary& s, std::string& out) {
 void destination_line(const WireSummary& s, std::string& out) {
     const auto& d = s.destination;
     out += "    # destination: ";
-    switch (d.kind) {
-        case DestinationKind::unknown:
-            out += "unknown (the receiving socket did not say)";
-            break;
-        case DestinationKind::unicast:
-            out += "unicast to " + ipv4(d.address);
-            break;
-        case DestinationKind::broadcast:
-            out += "broadcast to " + ipv4(d.address);
-            break;
-        case DestinationKind::multicast:
-            out += "multicast group " + ipv4(d.address) +
-                   " (the gateway joins it with eip.multicast: [ { group: " + ipv4(d.address) +
-                   " } ])";
-            break;
-    }
+    out += d.kind == DestinationKind::unknown ? "unknown (the receiving socket did not say)"
+                                              : detail::destination_text(d.kind, d.address);
     if (s.destination_varied) out += "; it varied: the last datagram's";
     out += "\n";
 }
@@ -136,12 +121,7 @@ std::string yaml_skeleton(std::span<const WireSummary> exchanges) {
                       "where the byte map is known.\n"
                       "exchanges:\n";
     for (const auto& s : exchanges) {
-        const auto producer = wire::to_string(s.key.producer_id);
-        const auto id = std::to_string(s.key.exchange_id);
-        out += "  - name: \"" + producer + "-" + id + "\"\n";
-        out += "    direction: consume\n";
-        out += "    producer_id: " + producer + "\n";
-        out += "    exchange_id: " + id + "\n";
+        detail::item_head(s.key, out);
         length_line(s, out);
         signature_line(s, out);
         period_line(s, out);

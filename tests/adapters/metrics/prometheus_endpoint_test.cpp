@@ -53,12 +53,11 @@ MetricsSnapshot snapshot(std::uint64_t received) {
     s.gateway.mqtt_broker = "tcp://broker-b:1883";
     s.gateway.published = 99;
     s.gateway.buffered = 7;
-    s.gateway.writes_ok = 2;
-    s.gateway.writes_rejected = {{"above_max", 1}};
-    s.gateway.writes_cancelled = 3;
-    s.gateway.writes_not_saved = 4;
-    s.gateway.writes_sent_unsaved = 1;
-    s.gateway.image_save_failures = 2;
+    s.gateway.writes.writes_ok = 2;
+    s.gateway.writes.writes_rejected[static_cast<std::size_t>(core::write::WriteError::above_max)] =
+        1;
+    s.gateway.writes.writes_cancelled = 3;
+    s.gateway.writes.image_saves = {2, 4, 1};
     return s;
 }
 
@@ -124,12 +123,15 @@ TEST(PrometheusEndpoint, TheCommandResponderHasItsFamiliesOnlyWhenEnabled) {
     endpoint.update(s);
     EXPECT_EQ(http_get(endpoint.port(), "/metrics").find("eip2mqtt_commands_"), std::string::npos);
 
-    CommandMetrics commands;
-    commands.requests = {{"read", 5}, {"summary", 2}};
+    using core::command::DecodeError;
+    using core::command::PduType;
+    core::command::CommandCounters commands;
+    commands.requests[request_index(PduType::read_request)] = 5;
+    commands.requests[request_index(PduType::summary_request)] = 2;
     commands.errors = 1;
     commands.refused = 3;
     commands.dropped = 190;
-    commands.naks = {{"malformed", 4}};
+    commands.naks[static_cast<std::size_t>(DecodeError::malformed)] = 4;
     commands.ignored = 6;
     s.gateway.commands = commands;
     endpoint.update(s);

@@ -23,12 +23,12 @@
 ///   mqtt_connected (0/1), mqtt_broker{url} (1, the current connection's broker; absent while
 ///   disconnected), mqtt_published_total, mqtt_buffered, mqtt_publications_dropped_total,
 ///   mqtt_publications_refused_total
-///   writes_ok_total, writes_rejected_total{reason}, writes_cancelled_total,
-///   writes_not_saved_total, writes_sent_unsaved_total, image_save_failures_total,
-///   writes_by_origin_total{origin}
-///   commands_requests_total{type}, commands_errors_total, commands_refused_total,
-///   commands_dropped_total, commands_naks_total{reason}, commands_ignored_total
-///                                                       with eip.commands enabled
+///   {name}_total, or {name}_total{label} per key        write counters: each of
+///                                                       core::write::write_counter_fields
+///                                                       marked in_prometheus
+///   commands_{name}_total, or per key as above          with eip.commands enabled: each of
+///                                                       core::command::command_counter_fields
+///                                                       marked in_prometheus
 /// Counters are the gateway's own counts, copied as they are: a reload that restarts them
 /// shows as a counter reset, which Prometheus's rate() handles.
 
@@ -41,8 +41,10 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/core/command/command_counters.hpp"
 #include "eip2mqtt/core/exchange/consume_counters.hpp"
 #include "eip2mqtt/core/exchange/produce_counters.hpp"
+#include "eip2mqtt/core/write/write_counters.hpp"
 
 namespace eip2mqtt::adapters::metrics {
 
@@ -79,16 +81,6 @@ struct HistoryMetrics {
     bool replaying = false;
 };
 
-/// The command responder on UDP 7937, when enabled.
-struct CommandMetrics {
-    std::map<std::string, std::uint64_t> requests;  ///< answered, by request type
-    std::uint64_t errors = 0;                       ///< answered with an error status
-    std::uint64_t refused = 0;                      ///< sources outside `allow`
-    std::uint64_t dropped = 0;                      ///< over the rate limit
-    std::map<std::string, std::uint64_t> naks;      ///< by reason
-    std::uint64_t ignored = 0;                      ///< no header, or not a request
-};
-
 /// What the gateway as a whole reports.
 struct GatewayMetrics {
     std::uint64_t datagrams = 0;  ///< received on the EIP socket
@@ -100,15 +92,9 @@ struct GatewayMetrics {
     std::uint64_t buffered = 0;  ///< publications waiting for the broker (a gauge)
     std::uint64_t publications_dropped = 0;
     std::uint64_t publications_refused = 0;  ///< ClientStats::refused
-    std::uint64_t writes_ok = 0;
-    std::map<std::string, std::uint64_t> writes_rejected;  ///< by rejection reason
-    std::uint64_t writes_cancelled = 0;     ///< accepted, then answered "reloaded" unproduced
-    std::uint64_t writes_not_saved = 0;     ///< accepted, then refused: their save failed
-    std::uint64_t writes_sent_unsaved = 0;  ///< sent, then their save failed
-    std::uint64_t image_save_failures = 0;
-    std::map<std::string, std::uint64_t> writes_by_origin;  ///< accepted, by protocol
+    core::write::WriteCounters writes;
     std::optional<HistoryMetrics> history;
-    std::optional<CommandMetrics> commands;
+    std::optional<core::command::CommandCounters> commands;  ///< the responder on UDP 7937
 };
 
 /// Everything the endpoint serves, as plain values: the gateway loop fills one and hands it

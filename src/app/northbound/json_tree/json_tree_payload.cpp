@@ -123,6 +123,26 @@ std::string format_write_result_unsaved(std::string_view reason) {
     return result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
+namespace {
+
+/// A gateway-wide counter set's fields on the metrics topic: a number, or an object by key.
+template <class Fields, class Counters>
+void add_counter_set(nlohmann::json& into, const Fields& fields, const Counters& counters) {
+    for (const auto& field : fields) {
+        if (!field.in(core::in_metrics_topic)) continue;
+        auto& value = into[std::string(field.name)];
+        core::for_each_count(field, counters, [&](std::string_view key, std::uint64_t count) {
+            if (key.empty()) {
+                value = count;
+            } else {
+                value[std::string(key)] = count;
+            }
+        });
+    }
+}
+
+}  // namespace
+
 std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime) {
     const auto& mqtt = sources.mqtt;
     nlohmann::json metrics = {
@@ -137,21 +157,11 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"publications_refused", mqtt.refused},
         {"mqtt_connects", mqtt.connects},
         {"broker", mqtt.broker},
-        {"writes_ok", sources.writes.writes_ok},
-        {"writes_rejected", rejections_by_name(sources.writes)},
-        {"writes_cancelled", sources.writes.writes_cancelled},
-        {"writes_left_to_leader", sources.writes.writes_left_to_leader},
-        {"writes_not_saved", sources.writes.image_saves.writes_not_saved},
-        {"writes_sent_unsaved", sources.writes.image_saves.writes_sent_unsaved},
-        {"image_save_failures", sources.writes.image_saves.failures},
-        {"writes_by_origin", writes_by_origin(sources.writes)},
     };
+    add_counter_set(metrics, core::write::write_counter_fields, sources.writes);
     if (sources.commands) {
-        const auto c = command_metrics(*sources.commands);
-        metrics["commands"] = {
-            {"requests", c.requests}, {"errors", c.errors}, {"refused", c.refused},
-            {"dropped", c.dropped},   {"naks", c.naks},     {"ignored", c.ignored},
-        };
+        add_counter_set(metrics[std::string(core::command::command_counters_name)],
+                        core::command::command_counter_fields, *sources.commands);
     }
     if (sources.history) {
         const auto h = history_metrics(*sources.history);

@@ -21,12 +21,28 @@ using core::plan::Value;
 constexpr std::string_view namespace_prefix = "spBv1.0/";
 /// Node metric 1, in every NBIRTH (Sparkplug B 3.0 requires it, after bdSeq).
 constexpr std::size_t rebirth_metric = 1;
-/// bdSeq, Rebirth, the gateway's six counters and the node's four (SparkplugStats); each
-/// exchange's metrics follow.
-constexpr std::size_t fixed_node_metrics = 12;
+constexpr std::array<const char*, 4> gateway_counters{"Gateway/uptime_s", "Gateway/datagrams",
+                                                      "Gateway/accepted", "Gateway/dropped"};
 constexpr std::array<const char*, 4> node_counters{
     "Sparkplug/births_refused", "Sparkplug/data_refused", "Sparkplug/rebirth_requests",
     "Sparkplug/node_births"};
+
+constexpr std::size_t write_metric_count() {
+    std::size_t count = 0;
+    for (const auto& field : core::write::write_counter_fields) {
+        if (field.in(core::in_sparkplug)) ++count;
+    }
+    return count;
+}
+
+/// bdSeq, Rebirth, the gateway's counters, those of its writes and the node's (SparkplugStats);
+/// each exchange's metrics follow.
+constexpr std::size_t fixed_node_metrics =
+    2 + gateway_counters.size() + write_metric_count() + node_counters.size();
+
+std::string write_metric_name(const core::write::WriteCounterField& field) {
+    return "Gateway/" + std::string(field.name);
+}
 
 std::uint64_t sum(std::span<const std::uint64_t> values) {
     std::uint64_t total = 0;
@@ -59,9 +75,12 @@ SparkplugNode::SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher
     node_metric("bdSeq", DataType::int64);
     node_metric("Node Control/Rebirth", DataType::boolean);
     set_node_metric(rebirth_metric, Value{false});
-    for (const auto* name : {"Gateway/uptime_s", "Gateway/datagrams", "Gateway/accepted",
-                             "Gateway/dropped", "Gateway/writes_ok", "Gateway/writes_rejected"}) {
+    for (const auto* name : gateway_counters) {
         set_node_metric(node_metric(name, DataType::uint64), counter(0));
+    }
+    for (const auto& field : core::write::write_counter_fields) {
+        if (!field.in(core::in_sparkplug)) continue;
+        set_node_metric(node_metric(write_metric_name(field), DataType::uint64), counter(0));
     }
     for (const auto* name : node_counters) {
         set_node_metric(node_metric(name, DataType::uint64), counter(0));
@@ -304,15 +323,17 @@ void SparkplugNode::produced_status(const core::plan::ExchangePlan& exchange,
 }
 
 void SparkplugNode::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
-    const auto& writes = sources.writes;
-    const auto metric = [&](const char* name) { return node_metric_of_name_.at(name); };
+    const auto metric = [&](const std::string& name) { return node_metric_of_name_.at(name); };
     set_node_metric(metric("Gateway/uptime_s"),
                     counter(static_cast<std::uint64_t>(uptime.count())));
     set_node_metric(metric("Gateway/datagrams"), counter(sources.datagrams.datagrams));
     set_node_metric(metric("Gateway/accepted"), counter(sources.datagrams.accepted));
     set_node_metric(metric("Gateway/dropped"), counter(sum(sources.datagrams.dropped)));
-    set_node_metric(metric("Gateway/writes_ok"), counter(writes.writes_ok));
-    set_node_metric(metric("Gateway/writes_rejected"), counter(sum(writes.writes_rejected)));
+    for (const auto& field : core::write::write_counter_fields) {
+        if (!field.in(core::in_sparkplug)) continue;
+        set_node_metric(metric(write_metric_name(field)),
+                        counter(core::total(field, sources.writes)));
+    }
     if (!born_) return;
     const auto now = static_cast<std::uint64_t>(clock_.wall_ms());
     payload_.metrics.clear();
