@@ -6,11 +6,12 @@ namespace eip2mqtt::app::redundancy {
 
 std::string encode_leader_record(const core::redundancy::LeaderRecord& record,
                                  std::chrono::milliseconds takeover) {
-    return nlohmann::json{{"id", record.id},
-                          {"epoch", record.epoch},
-                          {"priority", record.priority},
-                          {"takeover_ms", takeover.count()}}
-        .dump();
+    nlohmann::json json{{"id", record.id},
+                        {"epoch", record.epoch},
+                        {"priority", record.priority},
+                        {"takeover_ms", takeover.count()}};
+    if (record.claim) json["claim"] = true;
+    return json.dump();
 }
 
 std::optional<core::redundancy::LeaderRecord> decode_leader_record(std::string_view payload) {
@@ -28,6 +29,9 @@ std::optional<core::redundancy::LeaderRecord> decode_leader_record(std::string_v
                                                      priority->is_number_unsigned() &&
                                                      priority->get<std::uint64_t>() <= 65535) {
         record.priority = static_cast<int>(priority->get<std::uint64_t>());
+    }
+    if (const auto claim = json.find("claim"); claim != json.end() && claim->is_boolean()) {
+        record.claim = claim->get<bool>();
     }
     return record;
 }

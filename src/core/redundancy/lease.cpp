@@ -13,6 +13,18 @@ bool Lease::outranks(const LeaderRecord& record) const {
     return std::tie(record.priority, record.id) > std::tie(settings_.priority, settings_.id);
 }
 
+bool Lease::gives_way(const LeaderRecord& record) const {
+    switch (state_) {
+        case State::standby:
+            return true;
+        case State::claiming:
+            return !record.claim || outranks(record);
+        case State::leader:
+            return !record.claim && outranks(record);
+    }
+    return false;
+}
+
 void Lease::stand_by(MonoTime now) {
     state_ = State::standby;
     last_heard_ = now;
@@ -28,11 +40,11 @@ void Lease::on_record(const std::optional<LeaderRecord>& record, MonoTime now) {
         return;
     }
     const bool newer = record->epoch > epoch_;
-    const bool same = record->epoch == epoch_;
-    if (!newer && !(same && (state_ == State::standby || outranks(*record)))) return;
+    if (!newer && !(record->epoch == epoch_ && gives_way(*record))) return;
     epoch_ = record->epoch;
     leader_id_ = record->id;
     stand_by(now);
+    lapsed_ = false;
 }
 
 void Lease::on_acknowledged(MonoTime sent_at) {
@@ -52,6 +64,7 @@ std::optional<LeaderRecord> Lease::tick(MonoTime now) {
         // Nobody is known to lead now: writes are refused until a leader is heard.
         leader_id_.clear();
         stand_by(now);
+        lapsed_ = true;
     }
     if (state_ == State::standby) {
         if (now - last_heard_ < settings_.takeover) return std::nullopt;
@@ -65,6 +78,7 @@ std::optional<LeaderRecord> Lease::tick(MonoTime now) {
     }
     if (state_ == State::claiming && last_acknowledged_ && now - claimed_at_ >= renew_interval()) {
         state_ = State::leader;
+        lapsed_ = false;
     }
     if (now - last_sent_ < renew_interval()) return std::nullopt;
     last_sent_ = now;
@@ -85,7 +99,11 @@ WritePolicy Lease::writes(MonoTime now) const {
     if (role(now) == Role::leader) return WritePolicy::apply;
     const bool live_leader = state_ == State::standby && !leader_id_.empty() &&
                              leader_id_ != settings_.id && now - last_heard_ < 2 * renew_interval();
-    return live_leader ? WritePolicy::leave_to_leader : WritePolicy::refuse;
+    // A unit whose lease lapsed (fenced, whether or not a tick has stepped it down yet) never
+    // refuses: the other unit may have taken over meanwhile and answers the write, at once or
+    // as one in doubt when it takes over; so does this one should it lead again first.
+    const bool lapsed = lapsed_ || state_ == State::leader;
+    return live_leader || lapsed ? WritePolicy::leave_to_leader : WritePolicy::refuse;
 }
 
 }  // namespace eip2mqtt::core::redundancy

@@ -71,7 +71,7 @@ TEST_F(PairLeaseTest, AClaimAcknowledgedLeadsThenRenewsEveryQuarter) {
     EXPECT_TRUE(claim.retain);
     EXPECT_EQ(claim.qos, 1);
     EXPECT_NE(claim.ack_token, 0u);
-    EXPECT_EQ(decode_leader_record(claim.payload), (LeaderRecord{"gw-a", 1, 0}));
+    EXPECT_EQ(decode_leader_record(claim.payload), (LeaderRecord{"gw-a", 1, 0, true}));
     acknowledge_last();
     lease_.tick(t0 + 2500ms);
     EXPECT_TRUE(lease_.leading(t0 + 2500ms));

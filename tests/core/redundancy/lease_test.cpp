@@ -17,6 +17,10 @@ LeaderRecord record(std::string id, std::uint64_t epoch, int priority = 0) {
     return {std::move(id), epoch, priority};
 }
 
+LeaderRecord claim_of(std::string id, std::uint64_t epoch) {
+    return {std::move(id), epoch, 0, true};
+}
+
 /// A unit that claimed at `at` (nobody heard since its start at t0) and had its claim
 /// acknowledged: the leader once a renewal interval passed.
 Lease leader_from(MonoTime at, std::string id = "a") {
@@ -36,7 +40,7 @@ TEST(LeaseTest, AStandbyClaimsOnlyATakeoverAfterItStartedWithEpochOne) {
     EXPECT_EQ(lease.role(t0 + 1999ms), Role::standby);
     const auto claim = lease.tick(t0 + 2000ms);
     ASSERT_TRUE(claim.has_value());
-    EXPECT_EQ(*claim, record("a", 1));
+    EXPECT_EQ(*claim, claim_of("a", 1));
     // Claiming is not leading.
     EXPECT_EQ(lease.role(t0 + 2000ms), Role::standby);
     EXPECT_FALSE(lease.may_produce(t0 + 2000ms));
@@ -84,7 +88,8 @@ TEST(LeaseTest, ALeaderFencesItselfBeforeTheTakeoverWhenNoRenewalIsAcknowledged)
     EXPECT_TRUE(lease.fenced(last + 1750ms));
     EXPECT_EQ(lease.role(last + 1750ms), Role::standby);
     EXPECT_FALSE(lease.may_produce(last + 1750ms));
-    EXPECT_EQ(lease.writes(last + 1750ms), WritePolicy::refuse);
+    // Not taken, not refused: the standby that takes over answers them.
+    EXPECT_EQ(lease.writes(last + 1750ms), WritePolicy::leave_to_leader);
 }
 
 TEST(LeaseTest, AResumedLeaderIsFencedAtItsFirstQuestionWithoutATick) {
@@ -94,7 +99,7 @@ TEST(LeaseTest, AResumedLeaderIsFencedAtItsFirstQuestionWithoutATick) {
     EXPECT_EQ(lease.role(t0 + 12s), Role::standby);
     // Its tick steps it down: it waits a whole takeover before it claims again.
     EXPECT_FALSE(lease.tick(t0 + 12s).has_value());
-    EXPECT_EQ(lease.writes(t0 + 12s), WritePolicy::refuse);
+    EXPECT_EQ(lease.writes(t0 + 12s), WritePolicy::leave_to_leader);
     EXPECT_FALSE(lease.tick(t0 + 13999ms).has_value());
     EXPECT_TRUE(lease.tick(t0 + 14s).has_value());
 }
@@ -110,7 +115,7 @@ TEST(LeaseTest, TheFenceComesHalfARenewalBeforeTheStandbyMayTakeOver) {
     EXPECT_FALSE(standby.tick(t0 + 2500ms + 1999ms).has_value());
     const auto claim = standby.tick(t0 + 2500ms + 2000ms);
     ASSERT_TRUE(claim.has_value());
-    EXPECT_EQ(*claim, record("b", 2));
+    EXPECT_EQ(*claim, claim_of("b", 2));
 }
 
 TEST(LeaseTest, AcknowledgedRenewalsKeepTheLeaderUnfenced) {
@@ -195,6 +200,27 @@ TEST(LeaseTest, SimultaneousClaimsOfEqualPriorityAreWonByTheHigherId) {
     EXPECT_EQ(b.role(t0 + 2500ms), Role::leader);
 }
 
+TEST(LeaseTest, ALateClaimOfTheLeadersEpochGivesWayToItsRenewals) {
+    // "z" outranks "a", but claimed epoch 1 cut off from the broker, which delivered the claim
+    // only once the path was back, after "a" had confirmed its own claim of epoch 1.
+    auto a = leader_from(t0 + 2s, "a");
+    Lease z(settings("z"), t0);
+    const auto late = z.tick(t0 + 2s);
+    ASSERT_TRUE(late.has_value());
+    a.on_record(*late, t0 + 2600ms);
+    EXPECT_EQ(a.role(t0 + 2600ms), Role::leader);
+    // The broker hands "z" the leader's renewal before its own claim's acknowledgement.
+    const auto renewal = a.tick(t0 + 3000ms);
+    ASSERT_TRUE(renewal.has_value());
+    EXPECT_EQ(*renewal, record("a", 1));
+    z.on_record(*renewal, t0 + 3000ms);
+    z.on_acknowledged(t0 + 2s);
+    z.tick(t0 + 3000ms);
+    EXPECT_EQ(z.role(t0 + 3000ms), Role::standby);
+    EXPECT_EQ(z.leader_id(), "a");
+    EXPECT_EQ(a.role(t0 + 3000ms), Role::leader);
+}
+
 TEST(LeaseTest, AStandbyHearingTheLeaderNeverClaims) {
     Lease lease(settings("b"), t0);
     for (auto at = t0; at < t0 + 20s; at += 500ms) {
@@ -229,6 +255,19 @@ TEST(LeaseTest, AStandbyRefusesWritesOnceTheLeaderIsLate) {
     lease.on_record(record("a", 1), t0 + 1s);
     EXPECT_EQ(lease.writes(t0 + 1999ms), WritePolicy::leave_to_leader);
     EXPECT_EQ(lease.writes(t0 + 2s), WritePolicy::refuse);
+}
+
+TEST(LeaseTest, ALeaderWhoseLeaseLapsedLeavesWritesToItsSuccessorUntilItHearsALeader) {
+    auto lease = leader_from(t0 + 2s);
+    // The last acknowledged renewal was sent at 2.5 s: fenced at 4.25 s, before any tick.
+    EXPECT_EQ(lease.writes(t0 + 4250ms), WritePolicy::leave_to_leader);
+    lease.tick(t0 + 4250ms);
+    EXPECT_EQ(lease.role(t0 + 4250ms), Role::standby);
+    EXPECT_EQ(lease.writes(t0 + 5s), WritePolicy::leave_to_leader);
+    // Its successor heard, then late: writes are refused as by any standby.
+    lease.on_record(record("b", 2), t0 + 5s);
+    EXPECT_EQ(lease.writes(t0 + 5999ms), WritePolicy::leave_to_leader);
+    EXPECT_EQ(lease.writes(t0 + 6s), WritePolicy::refuse);
 }
 
 TEST(LeaseTest, AcknowledgementsOfAnEarlierLeadershipDoNotCount) {

@@ -16,8 +16,11 @@
 ///   epoch from a unit of higher rank (priority, then id): that one wins, the other stands by.
 /// - The new leader produces only from its claim plus one period of its exchanges (the
 ///   longest), so the old leader's last datagram is a period behind, at least.
-/// - Any unit seeing a record of a newer epoch, or of the same epoch from a unit of higher rank,
-///   follows it.
+/// - Any unit seeing a record of a newer epoch follows it. Of the same epoch, a claim gives way
+///   to a renewal (a leader confirmed: the claim came too late, as one sent by a unit cut off
+///   from the broker and delivered once the path is back), a leader ignores a claim (its sender
+///   gives way to the renewals, which the broker hands it first), and between two claims, or two
+///   renewals, the higher rank wins.
 
 #include <chrono>
 #include <cstdint>
@@ -40,6 +43,8 @@ struct LeaderRecord {
     std::string id;
     std::uint64_t epoch = 0;
     int priority = 0;
+    /// A claim not yet confirmed; false: a confirmed leader's renewal.
+    bool claim = false;
 
     friend bool operator==(const LeaderRecord&, const LeaderRecord&) = default;
 };
@@ -55,9 +60,11 @@ struct LeaseSettings {
 
 /// What to do with a write that reaches this unit.
 enum class WritePolicy : std::uint8_t {
-    apply,            ///< the leader: stage it
-    leave_to_leader,  ///< a standby that hears a live leader, which answers it: drop it
-    refuse,           ///< no live leader: answer "standby"
+    apply,  ///< the leader: stage it
+    /// A standby that hears a live leader, which answers it, or a unit whose lease lapsed,
+    /// whose successor answers it: left to it (WriteDispatcher::took_over).
+    leave_to_leader,
+    refuse,  ///< no live leader: answer "standby"
 };
 
 class Lease {
@@ -79,7 +86,11 @@ public:
     WritePolicy writes(MonoTime now) const;
 
     std::uint64_t epoch() const { return epoch_; }
-    LeaderRecord own_record() const { return {settings_.id, epoch_, settings_.priority}; }
+    /// When this unit last heard another's record (or started, or stepped down).
+    MonoTime last_heard() const { return last_heard_; }
+    LeaderRecord own_record() const {
+        return {settings_.id, epoch_, settings_.priority, state_ == State::claiming};
+    }
     /// The id of the unit this one last heard lead, or its own when leading.
     const std::string& leader_id() const { return leader_id_; }
     std::chrono::milliseconds renew_interval() const { return settings_.takeover / 4; }
@@ -89,6 +100,8 @@ private:
 
     /// Whether `record` ranks above this unit's own claim of the same epoch.
     bool outranks(const LeaderRecord& record) const;
+    /// Whether this unit follows `record`, another unit's of its own epoch.
+    bool gives_way(const LeaderRecord& record) const;
     void stand_by(MonoTime now);
 
     LeaseSettings settings_;
@@ -99,6 +112,8 @@ private:
     MonoTime claimed_at_{};  ///< the own claim's publication
     MonoTime last_sent_{};   ///< the own latest claim or renewal
     std::optional<MonoTime> last_acknowledged_;  ///< sent time of the newest acknowledged one
+    /// It stepped down as its lease lapsed and has heard no leader since.
+    bool lapsed_ = false;
 };
 
 }  // namespace eip2mqtt::core::redundancy
