@@ -57,7 +57,10 @@ void Gateway::start_pair() {
 void Gateway::on_role(core::redundancy::Role role) {
     // A standby kept its exchanges current without a word north: the new leader says all of it
     // at once, over what the old leader left retained.
-    if (role == core::redundancy::Role::leader) return republish_exchanges();
+    if (role == core::redundancy::Role::leader) {
+        writes_.took_over(pair_->lease().last_heard());
+        return republish_exchanges();
+    }
     // Writes this unit accepted as leader and has not produced never will be by it: answered
     // now, never applied late should it lead again (the new leader may have taken them).
     std::size_t cancelled = 0;

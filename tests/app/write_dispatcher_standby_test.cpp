@@ -1,6 +1,7 @@
 // The standby of a pair and the writes that reach it (README "Redundancy"): left to a live
 // leader unanswered, refused `standby` when no leader answers, always refused on the command
-// port (this unit's own address), and taken as ever by the leader.
+// port (this unit's own address), and taken as ever by the leader; at a takeover, those left to
+// a leader that may never have had them are refused.
 
 #include <gtest/gtest.h>
 
@@ -88,6 +89,26 @@ TEST_F(WriteDispatcherStandbyTest, AStandbyAnswersEvenAnInvalidWriteOnlyWhenNoLe
     invalid.outcome = WriteRejection{WriteError::read_only, "read-only"};
     dispatcher_.on_write(std::move(invalid));
     EXPECT_TRUE(origin_.results.empty());
+}
+
+TEST_F(WriteDispatcherStandbyTest, ATakeoverRefusesTheWritesLeftToTheLeaderSinceItWasLastHeard) {
+    policy_ = WritePolicy::leave_to_leader;
+    dispatcher_.on_write(write());  // before the leader's last record: the old leader's to answer
+    clock_.advance(std::chrono::milliseconds(100));
+    const auto last_heard = clock_.monotonic();
+    clock_.advance(std::chrono::milliseconds(100));
+    dispatcher_.on_write(write());  // after it: the old leader may never have had it
+    ASSERT_TRUE(origin_.results.empty());
+
+    policy_ = WritePolicy::apply;
+    dispatcher_.took_over(last_heard);
+    ASSERT_EQ(origin_.results.size(), 1u);
+    EXPECT_EQ(origin_.results[0].error, "standby");
+    EXPECT_EQ(refused_standby(), 1u);
+    EXPECT_EQ(staged_, 0);
+    // Answered once: a later takeover has none of them left.
+    dispatcher_.took_over(last_heard);
+    EXPECT_EQ(origin_.results.size(), 1u);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 /// Threading: the loop only.
 
 #include <cstddef>
+#include <deque>
 #include <functional>
 #include <optional>
 #include <utility>
@@ -38,6 +39,12 @@ public:
     void set_admission(std::function<core::redundancy::WritePolicy()> admission) {
         admission_ = std::move(admission);
     }
+    /// This unit took the lead from a leader last heard at `last_heard`. The writes it left to
+    /// that leader since then may never have reached it (it died, or was cut off from the
+    /// broker, before them; its renewals vouch for nothing after the last one heard): they are
+    /// refused `standby` now, so each is answered, and never applied here, where the old leader
+    /// may have applied it. Those left before it are the old leader's.
+    void took_over(core::MonoTime last_heard);
     /// Writes a reload answered `reloaded` (ExchangeProducer::cancel_queued_writes).
     void count_cancelled(std::size_t writes) { counters_.writes_cancelled += writes; }
     /// Where the produced exchanges count their image saves (ExchangeProducer).
@@ -45,13 +52,21 @@ public:
     const WriteCounters& counters() const { return counters_; }
 
 private:
-    /// False when the write stops here (left to the leader, or refused `standby`).
-    bool admitted(const WriteRequest& request);
+    /// False when the write stops here (left to the leader, then kept, moved from `request`;
+    /// or refused `standby`).
+    bool admitted(WriteRequest& request);
     void reject(const WriteRequest& request, const core::write::WriteRejection& rejection);
 
     StageWrite stage_;
     const Clock& clock_;
     std::function<core::redundancy::WritePolicy()> admission_;
+    struct LeftToLeader {
+        WriteRequest request;
+        core::MonoTime at;
+    };
+    /// The newest writes left to the leader (bounded: only those of the last takeover window
+    /// can matter, and a live leader answers all of them).
+    std::deque<LeftToLeader> left_to_leader_;
     WriteCounters counters_;
     core::ThrottledLog log_;
 };
