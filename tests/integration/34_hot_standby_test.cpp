@@ -1,9 +1,9 @@
 // A hot-standby pair (README "Redundancy"): two real gateways on one real Mosquitto, both with
-// the same produced exchange sent to the test's socket. One leads; when it is killed, or
-// stopped and resumed, the other takes over, and the capture shows the two never produced at
-// once: each unit numbers its datagrams with its own request ids, so the capture is one run of
-// consecutive ids per leadership (never more runs than `leader` said on the role topics), and
-// two producers at once would cut it into many.
+// the same produced exchange sent to the test's socket. One leads; when it is killed, stopped
+// and resumed, or cut off from the broker, the other takes over, and the capture shows the two
+// never produced at once: each unit numbers its datagrams with its own request ids, so the capture
+// is one run of consecutive ids per leadership (never more runs than `leader` said on the role
+// topics), and two producers at once would cut it into many.
 
 #include <signal.h>
 
@@ -17,6 +17,7 @@
 #include "tests/support/mosquitto.hpp"
 #include "tests/support/mqtt_recorder.hpp"
 #include "tests/support/schema_check.hpp"
+#include "tests/support/tcp_proxy.hpp"
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::test {
@@ -33,6 +34,7 @@ class HotStandbyTest : public ::testing::Test {
 protected:
     void SetUp() override {
         broker_ = std::make_unique<Mosquitto>();
+        before_start();
         recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"#"});
         for (const std::string id : {"gw-a", "gw-b"}) {
             paths_[id] = dir_.write(id + ".yaml", config(id));
@@ -52,12 +54,14 @@ protected:
     }
 
     virtual std::uint32_t period_ms() const { return 50; }
+    virtual void before_start() {}
+    virtual std::string broker_url(const std::string&) const { return broker_->url(); }
 
     std::string config(const std::string& id) const {
         return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
                ", log_level: debug }\n"
                "mqtt: { url: \"" +
-               broker_->url() +
+               broker_url(id) +
                "\", base_topic: test, qos: 1, metrics_interval_s: 1 }\n"
                "eip: { bind: 127.0.0.1, port: " +
                std::to_string(free_udp_port()) +
@@ -284,6 +288,66 @@ TEST_F(SlowHotStandbyTest, AWriteQueuedOnALeaderThatStepsDownIsAnsweredStandbyNe
     ASSERT_TRUE(result.has_value()) << "the queued write was never answered";
     EXPECT_EQ(json::parse(result->payload), json({{"ok", false}, {"error", "standby"}}));
     EXPECT_EQ(recorder_->messages_on("test/sp/SPEED_SP/set/result").size(), 1u);
+}
+
+/// Each unit reaches the broker through a proxy of its own, which the test stalls: the leader cut
+/// off from the broker, as behind a dead switch, must stop producing before the standby, which
+/// hears it no more, takes over.
+class CutOffHotStandbyTest : public HotStandbyTest {
+protected:
+    void before_start() override {
+        for (const std::string id : {"gw-a", "gw-b"}) {
+            proxies_[id] = std::make_unique<TcpProxy>(broker_->port());
+        }
+    }
+    std::string broker_url(const std::string& id) const override {
+        return "tcp://127.0.0.1:" + std::to_string(proxies_.at(id)->port());
+    }
+    std::size_t results_after(std::size_t from) const {
+        std::size_t out = 0;
+        const auto all = recorder_->messages();
+        for (auto i = from; i < all.size(); ++i) out += all[i].topic == write_result;
+        return out;
+    }
+
+    const std::string write_result = "test/sp/SPEED_SP/set/result";
+    std::map<std::string, std::unique_ptr<TcpProxy>> proxies_;
+};
+
+TEST_F(CutOffHotStandbyTest, ALeaderCutOffFromTheBrokerStopsBeforeTheStandbyTakesOver) {
+    const auto leader = first_leader();
+    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto standby = other(leader);
+    ASSERT_TRUE(says(standby, "standby"));
+    const auto epoch = record_of(leader).value("epoch", 0);
+    ASSERT_TRUE(capture(20));
+
+    const auto from = recorder_->count();
+    proxies_[leader]->stall();
+    // A write in flight at the cut: the leader cannot hear it; the standby refuses it until it
+    // leads, then takes it. Answered once either way.
+    recorder_->publish("test/sp/SPEED_SP/set", "3100");
+    ASSERT_TRUE(says(standby, "leader", from));
+    EXPECT_EQ(record_of(standby, from).value("epoch", 0), epoch + 1);
+    ASSERT_TRUE(recorder_->wait_for_message(write_result, nullptr, 30s, from).has_value());
+    // The cut-off leader's datagrams stopped before the new leader's began: one run each.
+    ASSERT_TRUE(capture(40));
+    EXPECT_GE(runs(), 2u);
+    EXPECT_LE(runs(), leaderships());
+
+    const auto back = recorder_->count();
+    proxies_[leader]->resume();
+    ASSERT_TRUE(says(leader, "standby", from)) << "the unit cut off never said it stood by";
+    ASSERT_TRUE(record_of(standby, back).is_object());
+    ASSERT_TRUE(capture(40));
+    EXPECT_LE(runs(), leaderships());
+    // The lead stayed with the new leader, and the write was answered once, by one unit.
+    EXPECT_FALSE(
+        recorder_
+            ->wait_for_message(
+                role_topic(leader), [](const std::string& p) { return p == "leader"; }, 0ms, back)
+            .has_value());
+    EXPECT_EQ(results_after(from), 1u);
 }
 
 }  // namespace
