@@ -20,6 +20,7 @@
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_stats.hpp"
+#include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/write_validation.hpp"
@@ -48,7 +49,8 @@ struct MetricsSources {
     const adapters::mqtt::ClientStats& mqtt;
     const history::HistoryStats* history = nullptr;                    ///< with store and forward
     const northbound::sparkplug::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
-    const CommandCounters* commands = nullptr;  ///< with eip.commands enabled
+    const CommandCounters* commands = nullptr;                   ///< with eip.commands enabled
+    const redundancy::PairImageCounters* pair_images = nullptr;  ///< with `redundancy:`
 };
 
 /// Store and forward's figures for Prometheus and the metrics topic.

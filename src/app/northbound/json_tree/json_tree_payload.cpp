@@ -146,6 +146,19 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"image_save_failures", sources.writes.image_saves.failures},
         {"writes_by_origin", writes_by_origin(sources.writes)},
     };
+    if (sources.pair_images) {
+        const auto& p = *sources.pair_images;
+        metrics["pair"] = {
+            {"images_published", p.published},
+            {"images_followed", p.followed},
+            {"images_ignored",
+             {{"other_layout", p.other_layout},
+              {"stale", p.stale},
+              {"unknown_exchange", p.unknown},
+              {"not_an_image", p.not_an_image}}},
+            {"produced_heard", sources.datagrams.produced_heard},
+        };
+    }
     if (sources.commands) {
         const auto c = command_metrics(*sources.commands);
         metrics["commands"] = {
