@@ -8,6 +8,7 @@
 
 #include <signal.h>
 
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "eip2mqtt/core/plan/value_codec.hpp"
@@ -62,7 +63,7 @@ protected:
                ", log_level: debug }\n"
                "mqtt: { url: \"" +
                broker_->url() +
-               "\", base_topic: test, qos: 1 }\n"
+               "\", base_topic: test, qos: 1, metrics_interval_s: 1 }\n"
                "eip: { bind: 127.0.0.1, port: " +
                std::to_string(ports_.at(id)) +
                " }\n"
@@ -90,6 +91,21 @@ protected:
             30s);
         if (first.empty() || !says(first == "gw-a" ? "gw-b" : "gw-a", "standby", 30s)) return {};
         return first;
+    }
+    /// The next metrics of `id` whose `pair` object satisfies `pred`, checked against the schema,
+    /// whole.
+    std::optional<json> pair_metrics(const std::string& id,
+                                     const std::function<bool(const json&)>& pred) {
+        const auto message = recorder_->wait_for_message(
+            "test/_gateway/" + id + "/metrics",
+            [&](const std::string& p) {
+                const auto j = json::parse(p, nullptr, false);
+                return j.is_object() && j.contains("pair") && pred(j["pair"]);
+            },
+            10s);
+        if (!message) return std::nullopt;
+        EXPECT_EQ(schema_problem(schema_file("metrics.json"), message->payload), "");
+        return json::parse(message->payload);
     }
     bool says(const std::string& id, const std::string& role, std::chrono::milliseconds wait,
               std::size_t from = 0) {
@@ -162,6 +178,14 @@ TEST_F(HotStandbyContinuityTest, TheNewLeadersFirstDatagramCarriesTheValueWritte
     const auto decoded = core::wire::decode_datagram(taken_over->bytes);
     ASSERT_TRUE(decoded.ok());
     EXPECT_EQ(speed_sp(decoded->data), 3100.0);
+    // The image it took is counted, none ignored.
+    const auto metrics = pair_metrics(standby, [](const json& p) {
+        return p.value("images_followed", 0) >= 1 && p.value("images_published", 0) >= 1;
+    });
+    ASSERT_TRUE(metrics.has_value());
+    EXPECT_EQ(
+        metrics->at("pair").at("images_ignored"),
+        json({{"other_layout", 0}, {"stale", 0}, {"unknown_exchange", 0}, {"not_an_image", 0}}));
 }
 
 TEST_F(HotStandbyContinuityTest, RequestIdsGoOnFromTheKilledLeadersLastWhenBothHearThem) {
@@ -202,6 +226,11 @@ TEST_F(HotStandbyContinuityTest, RequestIdsGoOnFromTheKilledLeadersLastWhenBothH
     ASSERT_TRUE(new_header.ok());
     EXPECT_EQ(new_header->header.request_id,
               static_cast<std::uint16_t>(old_header->header.request_id + 1));
+    // The standby heard every datagram forwarded to it, none of them counted as dropped.
+    const auto metrics =
+        pair_metrics(standby, [](const json& p) { return p.value("produced_heard", 0) >= 20; });
+    ASSERT_TRUE(metrics.has_value());
+    EXPECT_EQ(metrics->at("dropped").value("unknown_exchange", -1), 0);
 }
 
 }  // namespace
