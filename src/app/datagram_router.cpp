@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <string>
+#include <utility>
 
 #include "eip2mqtt/core/wire/decode.hpp"
 
@@ -11,6 +12,27 @@ namespace eip2mqtt::app {
 void DatagramRouter::set_consumers(std::span<const std::unique_ptr<ExchangeConsumer>> consumers) {
     by_key_.clear();
     for (const auto& consumer : consumers) by_key_.emplace(consumer->plan().key(), consumer.get());
+}
+
+void DatagramRouter::set_followed(std::span<const std::unique_ptr<ExchangeProducer>> producers,
+                                  std::function<bool(core::MonoTime)> follows) {
+    produced_.clear();
+    follows_ = std::move(follows);
+    if (!follows_) return;
+    for (const auto& producer : producers) {
+        produced_.emplace(producer->plan().key(), producer.get());
+    }
+}
+
+bool DatagramRouter::heard_produced(const core::wire::Header& header, core::MonoTime now) {
+    if (produced_.empty()) return false;
+    const auto it = produced_.find(header.key());
+    if (it == produced_.end()) return false;
+    ++counters_.produced_heard;
+    // The other unit's datagram, while this one stands by: its first datagram as leader goes
+    // on from the leader's last, so consumers see one producer, not a restart.
+    if (follows_(now)) it->second->continue_after(header.request_id);
+    return true;
 }
 
 void DatagramRouter::route(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
@@ -34,8 +56,10 @@ void DatagramRouter::route(std::span<const std::byte> bytes, const adapters::udp
         return;
     }
     const auto& datagram = decoded.value();
+    const bool produced = heard_produced(datagram.header, now);
     const auto it = by_key_.find(datagram.header.key());
     if (it == by_key_.end()) {
+        if (produced) return;
         count_drop(DropReason::unknown_exchange);
         drop_log_.record_lazy(DropReason::unknown_exchange, now, [&] {
             return "producer " + core::wire::to_string(datagram.header.producer_id) + " exchange " +

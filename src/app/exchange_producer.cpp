@@ -144,6 +144,7 @@ void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
     if (changed) {
         image_.clear_dirty();
         report_echo(wall, false);
+        if (on_image_changed_) on_image_changed_(*this);
     }
     counters_.writes_applied += carried_.size();
     // docs/mqtt-api.md "Results": a write's result is reported once the datagram carrying it was
@@ -160,6 +161,13 @@ void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
         return;
     }
     report_results(waiting);
+}
+
+bool ExchangeProducer::follow_image(std::span<const std::byte> data) {
+    if (!image_.adopt(data)) return false;
+    // What a restart of this unit produces too, should it lead then.
+    request_save();
+    return true;
 }
 
 void ExchangeProducer::request_save() {

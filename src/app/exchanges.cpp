@@ -92,6 +92,7 @@ ApplyReport Exchanges::apply(std::vector<core::plan::ExchangePlan> plans, core::
     // (the JSON tree's `set` subscriptions), before the stopped ones die with old_*.
     northbound_.exchanges_changed(running(), diff.cleared);
     router_.set_consumers(consumers_);
+    router_.set_followed(producers_, options_.follows_produced);
     by_handle_.clear();
     for (const auto& producer : producers_) by_handle_.emplace(&producer->plan(), producer.get());
     start_built(built, now, wall);
@@ -139,9 +140,11 @@ std::unique_ptr<ExchangeProducer> Exchanges::make_producer(core::plan::ExchangeP
         if (options_.may_produce) scheduler_->set_gate(options_.may_produce);
         persister_ = std::make_unique<adapters::state::ImagePersister>(image_store_, loop_);
     }
-    return std::make_unique<ExchangeProducer>(std::move(plan), *destination, *scheduler_,
-                                              *persister_, northbound_, totals_,
-                                              std::move(handover));
+    auto producer =
+        std::make_unique<ExchangeProducer>(std::move(plan), *destination, *scheduler_, *persister_,
+                                           northbound_, totals_, std::move(handover));
+    producer->set_on_image_changed(options_.on_image_changed);
+    return producer;
 }
 
 void Exchanges::start(core::MonoTime now) {

@@ -24,10 +24,8 @@ constexpr auto refresh_scan_interval = 1s;
 // How long a clean stop waits for queued publications before giving up.
 constexpr auto stop_flush_timeout = 3s;
 
-ExchangesOptions exchanges_options(const core::config::Config& config,
-                                   std::function<bool(core::MonoTime)> may_produce) {
-    ExchangesOptions options;
-    if (config.redundancy.enabled()) options.may_produce = std::move(may_produce);
+/// `options` holds what the pair sets (Gateway::pair_options).
+ExchangesOptions exchanges_options(const core::config::Config& config, ExchangesOptions options) {
     options.sender.bind = config.eip.bind;
     options.sender.multicast_ttl = config.eip.multicast_ttl;
     options.sender.multicast_interface = config.eip.multicast_interface;
@@ -50,10 +48,8 @@ Gateway::Gateway(core::config::Config config)
       writes_([this](ExchangeWrite&& write, const WriteReply& reply,
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
               system_clock()),
-      exchanges_(
-          loop_.get_executor(),
-          exchanges_options(config_, [this](core::MonoTime now) { return may_produce(now); }),
-          northbound_, writes_.image_saves()) {
+      exchanges_(loop_.get_executor(), exchanges_options(config_, pair_options()), northbound_,
+                 writes_.image_saves()) {
     mqtt_ = std::make_unique<adapters::mqtt::Client>(
         loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
     json_tree_ = std::make_unique<northbound::json_tree::JsonTree>(

@@ -1,6 +1,9 @@
 // A hot-standby pair (README "Redundancy"): the lease on its own connection, and the three
 // gates it keeps, one each: what the exchanges say north (the FanOut), what they produce (the
-// ProducerScheduler, through Exchanges' options) and the writes (the WriteDispatcher).
+// ProducerScheduler, through Exchanges' options) and the writes (the WriteDispatcher). And what
+// lets a takeover go on where the leader stopped: its images, published by the leader and
+// followed by the standby (PairImages), and its request ids, heard by the standby
+// (DatagramRouter::set_followed).
 
 #include <spdlog/spdlog.h>
 
@@ -33,6 +36,8 @@ void Gateway::make_pair() {
         redundancy::pair_topics(config_.mqtt.base_topic, section.pair, config_.gateway.id);
     pair_mqtt_ = std::make_unique<adapters::mqtt::Client>(
         loop_.get_executor(), pair_client_options(config_, redundancy::pair_will(topics)));
+    pair_images_ =
+        std::make_unique<redundancy::PairImages>(topics.images, config_.gateway.id, *pair_mqtt_);
     core::redundancy::LeaseSettings settings{config_.gateway.id, section.priority.value_or(0),
                                              section.takeover, longest_produced_period(config_)};
     pair_ = std::make_unique<redundancy::PairLease>(
@@ -44,21 +49,42 @@ void Gateway::make_pair() {
                  section.pair, section.takeover.count());
 }
 
+ExchangesOptions Gateway::pair_options() {
+    ExchangesOptions options;
+    if (!config_.redundancy.enabled()) return options;
+    // Each called only once make_pair() made the pair: exchanges run from start() on.
+    options.may_produce = [this](core::MonoTime now) { return may_produce(now); };
+    // Only a leader produces, so only a leader's images change by writes.
+    options.on_image_changed = [this](const ExchangeProducer& producer) {
+        pair_images_->publish(producer, pair_->lease().epoch());
+    };
+    options.follows_produced = [this](core::MonoTime now) { return !pair_->leading(now); };
+    return options;
+}
+
 void Gateway::start_pair() {
     if (!pair_mqtt_) return;
     pair_mqtt_->set_on_connected([this] { pair_->on_connected(); });
     pair_mqtt_->set_on_message([this](const adapters::mqtt::Incoming& message) {
-        pair_->on_message(message, std::chrono::steady_clock::now());
+        const auto now = std::chrono::steady_clock::now();
+        if (!pair_images_->owns(message.topic)) return pair_->on_message(message, now);
+        pair_images_->on_message(message, exchanges_.producers(), pair_->leading(now),
+                                 pair_->lease().epoch());
     });
     pair_mqtt_->set_on_acknowledged([this](std::uint64_t token) { pair_->on_acknowledged(token); });
     pair_mqtt_->start();
 }
 
 void Gateway::on_role(core::redundancy::Role role) {
-    // A standby kept its exchanges current without a word north: the new leader says all of it
-    // at once, over what the old leader left retained.
     if (role == core::redundancy::Role::leader) {
         writes_.took_over(pair_->lease().last_heard());
+        // The images under this lease's epoch, whatever the retained ones are: a standby that
+        // starts later follows this leader's, not an older one's.
+        for (const auto& producer : exchanges_.producers()) {
+            pair_images_->publish(*producer, pair_->lease().epoch());
+        }
+        // A standby kept its exchanges current without a word north: the new leader says all
+        // of it at once, over what the old leader left retained.
         return republish_exchanges();
     }
     // Writes this unit accepted as leader and has not produced never will be by it: answered

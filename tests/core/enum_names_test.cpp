@@ -16,6 +16,7 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/quality/quality.hpp"
+#include "eip2mqtt/core/redundancy/image_follow.hpp"
 #include "eip2mqtt/core/wire/drop_reason.hpp"
 #include "eip2mqtt/core/write/write_validation.hpp"
 #include "tests/support/enumerators.hpp"
@@ -63,6 +64,7 @@ TEST(EnumNames, EveryCoreEnumeratorHasAName) {
     test::expect_every_value_named(config::payload_format_names);
     test::expect_every_value_named(command::command_status_names);
     test::expect_every_value_named(command::decode_error_names);
+    test::expect_every_value_named(redundancy::follow_verdict_names);
 }
 
 }  // namespace

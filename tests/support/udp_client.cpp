@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <stdexcept>
+#include <utility>
 
 namespace eip2mqtt::test {
 
@@ -38,13 +39,24 @@ void UdpClient::send_to(std::uint16_t port, const std::vector<std::byte>& datagr
 }
 
 std::optional<std::vector<std::byte>> UdpClient::receive(std::chrono::milliseconds timeout) {
+    auto received = receive_from(timeout);
+    if (!received) return std::nullopt;
+    return std::move(received->bytes);
+}
+
+std::optional<UdpDatagram> UdpClient::receive_from(std::chrono::milliseconds timeout) {
     pollfd pfd{fd_, POLLIN, 0};
     if (::poll(&pfd, 1, static_cast<int>(timeout.count())) <= 0) return std::nullopt;
-    std::vector<std::byte> buffer(65536);
-    const auto n = ::recv(fd_, buffer.data(), buffer.size(), 0);
+    UdpDatagram received;
+    received.bytes.resize(65536);
+    sockaddr_in from{};
+    socklen_t length = sizeof from;
+    const auto n = ::recvfrom(fd_, received.bytes.data(), received.bytes.size(), 0,
+                              reinterpret_cast<sockaddr*>(&from), &length);
     if (n < 0) return std::nullopt;
-    buffer.resize(static_cast<std::size_t>(n));
-    return buffer;
+    received.bytes.resize(static_cast<std::size_t>(n));
+    received.from_port = ntohs(from.sin_port);
+    return received;
 }
 
 }  // namespace eip2mqtt::test

@@ -10,6 +10,12 @@
 
 namespace eip2mqtt::test {
 
+/// A datagram with the port it came from (each process sends from a port of its own).
+struct UdpDatagram {
+    std::vector<std::byte> bytes;
+    std::uint16_t from_port = 0;
+};
+
 class UdpClient {
 public:
     /// Binds `address`:`port` (0: ephemeral); `address` is IPv4 in host order, on loopback
@@ -23,6 +29,8 @@ public:
     void send_to(std::uint16_t port, const std::vector<std::byte>& datagram);
     /// Next datagram received, or nullopt after `timeout`.
     std::optional<std::vector<std::byte>> receive(std::chrono::milliseconds timeout);
+    /// The same, with the sender's port.
+    std::optional<UdpDatagram> receive_from(std::chrono::milliseconds timeout);
 
 private:
     int fd_ = -1;

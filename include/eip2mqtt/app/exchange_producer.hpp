@@ -17,6 +17,7 @@
 /// Threading: the loop only.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -92,6 +93,20 @@ public:
     /// Reports every tag's value and the status again (after a reconnect).
     void republish(core::WallTime wall);
 
+    // --- A hot-standby pair (README "Redundancy") ------------------------------------------
+    using ImageChanged = std::function<void(const ExchangeProducer& producer)>;
+    /// Called after a datagram left carrying an image that writes changed (the leader
+    /// publishes it for the standby); unset: nothing is called.
+    void set_on_image_changed(ImageChanged on_changed) {
+        on_image_changed_ = std::move(on_changed);
+    }
+    /// The standby takes the leader's image (the plan's length) as its own and saves it as any
+    /// image; returns whether a byte changed. Writes still queued stay queued over it.
+    bool follow_image(std::span<const std::byte> data);
+    /// The standby heard the leader's datagram of this exchange with request id `heard`: its
+    /// own next datagram continues after it.
+    void continue_after(std::uint16_t heard) { image_.continue_after(heard); }
+
     // --- Producible: called by the ProducerScheduler -------------------------------------
     /// Builds the next datagram (staged writes applied, header stamped with `wall`); the bytes
     /// stay valid until the next call.
@@ -163,6 +178,7 @@ private:
     bool failing_ = false;  ///< the last send failed: the status says paused
     std::optional<core::WallTime> last_sent_;
     core::WallTime configured_at_ = std::chrono::system_clock::now();
+    ImageChanged on_image_changed_;
 };
 
 }  // namespace eip2mqtt::app

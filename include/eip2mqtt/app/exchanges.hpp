@@ -36,6 +36,13 @@ struct ExchangesOptions {
     std::string state_dir;                ///< where produced images are saved
     /// Whether produced exchanges may send now (ProducerScheduler::set_gate); unset: always.
     std::function<bool(core::MonoTime now)> may_produce;
+    /// A pair's leader: each producer's image changed by writes, once the datagram carrying it
+    /// left (ExchangeProducer::set_on_image_changed); unset: not called.
+    ExchangeProducer::ImageChanged on_image_changed;
+    /// A pair's standby: whether a datagram heard of an exchange this unit produces sets its
+    /// producer's next request id (DatagramRouter::set_followed); unset: such datagrams are
+    /// unknown ones.
+    std::function<bool(core::MonoTime now)> follows_produced;
 };
 
 /// What apply() did, by exchange name, in the order of the plans (stopped: of the exchanges

@@ -33,6 +33,7 @@
 #include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
+#include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/redundancy/pair_lease.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
 #include "eip2mqtt/core/config/config.hpp"
@@ -82,6 +83,9 @@ private:
     /// With `redundancy:`, the pair's lease on a connection of its own, and the gates it
     /// keeps: the tag tree, production and writes (gateway_pair.cpp).
     void make_pair();
+    /// The options of the exchanges that a pair sets: the gate of production, the images the
+    /// leader publishes and the request ids the standby follows; none without `redundancy:`.
+    ExchangesOptions pair_options();
     void start_pair();
     void on_role(core::redundancy::Role role);
     /// Whether produced exchanges may send now: always without a pair.
@@ -119,8 +123,9 @@ private:
     std::unique_ptr<northbound::sparkplug::SparkplugNode> sparkplug_;
     std::unique_ptr<history::StoreAndForward> history_;  ///< with mqtt.store_and_forward
     northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to
-    std::unique_ptr<adapters::mqtt::Client> pair_mqtt_;  ///< with redundancy:
-    std::unique_ptr<redundancy::PairLease> pair_;        ///< with pair_mqtt_
+    std::unique_ptr<adapters::mqtt::Client> pair_mqtt_;    ///< with redundancy:
+    std::unique_ptr<redundancy::PairLease> pair_;          ///< with pair_mqtt_
+    std::unique_ptr<redundancy::PairImages> pair_images_;  ///< with pair_mqtt_
     Exchanges exchanges_;
     std::unique_ptr<adapters::udp::Receiver> receiver_;
     CommandViewContext command_context_;

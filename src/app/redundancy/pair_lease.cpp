@@ -28,7 +28,8 @@ core::MonoTime time_of(std::uint64_t token) {
 PairTopics pair_topics(const std::string& base_topic, const std::string& pair,
                        const std::string& id) {
     return {base_topic + "/_gateway/_pair/" + pair + "/leader",
-            base_topic + "/_gateway/" + id + "/role"};
+            base_topic + "/_gateway/" + id + "/role",
+            base_topic + "/_gateway/_pair/" + pair + "/image"};
 }
 
 adapters::mqtt::Message pair_will(const PairTopics& topics) {
@@ -47,7 +48,8 @@ PairLease::PairLease(core::redundancy::LeaseSettings settings, PairTopics topics
       topics_(std::move(topics)),
       publisher_(publisher),
       on_role_(std::move(on_role)) {
-    publisher_.set_subscriptions({topics_.leader});
+    // One list for the connection: the images' readers share it (PairImages).
+    publisher_.set_subscriptions({topics_.leader, topics_.images + "/#"});
 }
 
 void PairLease::on_connected() { publish_role(role_); }

@@ -62,6 +62,19 @@ bool ProducedImage::apply(const write::WriteBatch& batch, std::span<std::byte> d
     return changed;
 }
 
+bool ProducedImage::adopt(std::span<const std::byte> data) {
+    if (data.size() != data_.size() || std::equal(data.begin(), data.end(), data_.begin())) {
+        return false;
+    }
+    std::copy(data.begin(), data.end(), data_.begin());
+    return true;
+}
+
+void ProducedImage::continue_after(std::uint16_t heard) {
+    // docs/protocol.md §2: +1 per datagram, wrapping; consumers see one producer go on.
+    request_id_ = static_cast<std::uint16_t>(heard + 1);
+}
+
 std::uint64_t ProducedImage::project(std::vector<std::byte>& out) const {
     out.assign(data_.begin(), data_.end());
     for (const auto& batch : pending_) apply(batch, out);

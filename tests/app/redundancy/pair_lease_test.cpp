@@ -48,6 +48,7 @@ TEST_F(PairLeaseTest, TopicsAndWill) {
     const auto topics = pair_topics("acme", "turbine", "gw-a");
     EXPECT_EQ(topics.leader, leader_topic);
     EXPECT_EQ(topics.role, role_topic);
+    EXPECT_EQ(topics.images, "acme/_gateway/_pair/turbine/image");
     const auto will = pair_will(topics);
     EXPECT_EQ(will.topic, leader_topic);
     EXPECT_TRUE(will.payload.empty());
@@ -56,7 +57,8 @@ TEST_F(PairLeaseTest, TopicsAndWill) {
 }
 
 TEST_F(PairLeaseTest, ItSubscribesToTheLeaderTopicAndSaysStandbyOnConnect) {
-    EXPECT_EQ(publisher_.subscriptions, std::vector<std::string>{leader_topic});
+    EXPECT_EQ(publisher_.subscriptions,
+              (std::vector<std::string>{leader_topic, "acme/_gateway/_pair/turbine/image/#"}));
     lease_.on_connected();
     EXPECT_EQ(publisher_.on(role_topic), std::vector<std::string>{"standby"});
     EXPECT_TRUE(publisher_.published.back().retain);

@@ -303,5 +303,30 @@ TEST(ProducedImage, DiscardingARangeKeepsTheBatchesAroundIt) {
     EXPECT_EQ(data_hex(image), "00803b4501040000");
 }
 
+TEST(ProducedImage, AnAdoptedImageIsProducedNextWithTheStagedWritesOverIt) {
+    const auto plan = make_plan();
+    ProducedImage image(plan, {});
+    ASSERT_TRUE(image.stage(batch(1, {{offset, Value{std::int64_t{-1}}}})));
+    EXPECT_TRUE(image.adopt(from_hex("1122334400000000")));
+    EXPECT_EQ(data_hex(image), "1122334400000000");
+    EXPECT_FALSE(image.dirty());
+    EXPECT_EQ(image.pending(), 1u);
+    // The same bytes again change nothing; another length is no image of this exchange.
+    EXPECT_FALSE(image.adopt(from_hex("1122334400000000")));
+    EXPECT_FALSE(image.adopt(from_hex("11223344")));
+    EXPECT_EQ(produce(image).hex.substr(64), "1122334400ffff00");
+}
+
+TEST(ProducedImage, RequestIdsContinueAfterTheOneHeard) {
+    const auto plan = make_plan();
+    ProducedImage image(plan, {});
+    image.continue_after(41);
+    EXPECT_EQ(image.next_request_id(), 42);
+    EXPECT_EQ(produce(image).hex.substr(4, 4), "2a00");
+    image.continue_after(65535);
+    EXPECT_EQ(produce(image).hex.substr(4, 4), "0000");
+    EXPECT_EQ(image.next_request_id(), 1);
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::exchange

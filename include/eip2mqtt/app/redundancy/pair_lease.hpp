@@ -3,7 +3,8 @@
 /// (core/redundancy/lease.hpp, where its rules are) fed from the pair's own MQTT connection. It
 /// reads the retained leader topic, publishes this unit's claims and renewals there (retained,
 /// QoS 1: a renewal counts once the broker acknowledged it), and says on the unit's role topic,
-/// retained, whether it leads. The gateway asks it, with the time, whether to produce, publish
+/// retained, whether it leads. It subscribes the connection to the images' topics as well, which
+/// PairImages reads. The gateway asks it, with the time, whether to produce, publish
 /// the tag tree and take writes.
 ///
 /// Threading: the loop only.
@@ -24,6 +25,7 @@ namespace eip2mqtt::app::redundancy {
 struct PairTopics {
     std::string leader;  ///< {base}/_gateway/_pair/{pair}/leader
     std::string role;    ///< {base}/_gateway/{id}/role
+    std::string images;  ///< {base}/_gateway/_pair/{pair}/image, a level per exchange below
 };
 
 PairTopics pair_topics(const std::string& base_topic, const std::string& pair,

@@ -55,6 +55,14 @@ public:
     void discard_pending(std::uint64_t after, std::uint64_t through,
                          std::vector<std::uint64_t>& dropped);
 
+    /// A hot-standby pair: the standby takes the leader's image as its own (the plan's length;
+    /// another size is ignored), the staged batches staying queued over it. Returns whether a
+    /// byte changed. Not dirty: nothing was produced, and the standby reports nothing north.
+    bool adopt(std::span<const std::byte> data);
+    /// A hot-standby pair: the next datagram takes the request id after `heard`, the last one
+    /// the standby heard from the leader's producer of this exchange.
+    void continue_after(std::uint16_t heard);
+
     /// The data bytes as they stand (the last produced values plus nothing staged).
     std::span<const std::byte> data() const { return data_; }
     /// True when produce() changed the data since the last call to clear_dirty().

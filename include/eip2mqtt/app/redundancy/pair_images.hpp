@@ -1,0 +1,73 @@
+#pragma once
+/// A pair's produced images at run time (README "Redundancy"): the leader publishes, on the
+/// pair's own connection, the image of each produced exchange whenever writes changed it
+/// (retained, QoS 1, a topic per exchange, so the newest image wins in the queue and on the
+/// broker); the standby reads them and takes each one the rules allow
+/// (core/redundancy/image_follow.hpp) into its own producer, which saves it as any image. So
+/// the first datagram of a new leader carries the last written values. An image that cannot be
+/// taken is counted by reason, and one of another layout logged once per exchange.
+///
+/// Threading: the loop only.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "eip2mqtt/adapters/mqtt/message.hpp"
+#include "eip2mqtt/adapters/mqtt/publisher.hpp"
+#include "eip2mqtt/app/exchange_producer.hpp"
+#include "eip2mqtt/core/redundancy/image_follow.hpp"
+
+namespace eip2mqtt::app::redundancy {
+
+struct PairImageCounters {
+    std::uint64_t published = 0;     ///< images this unit published as leader
+    std::uint64_t followed = 0;      ///< images taken into a producer (a byte changed)
+    std::uint64_t other_layout = 0;  ///< ignored: the exchange differs between the units
+    std::uint64_t stale = 0;         ///< ignored: a deposed leader's, read late
+    std::uint64_t unknown = 0;       ///< ignored: an exchange this unit does not produce
+    std::uint64_t not_an_image = 0;  ///< ignored: a payload that does not read as an image
+};
+
+class PairImages {
+public:
+    /// `prefix` is `{base}/_gateway/_pair/{pair}/image`, `id` this unit's gateway.id;
+    /// `publisher` (the pair's connection) must outlive this.
+    PairImages(std::string prefix, std::string id, adapters::mqtt::Publisher& publisher);
+
+    /// `{prefix}/{exchange topic}`: the exchange's topic under the base is already a valid,
+    /// unique topic of levels, where its name may hold anything.
+    std::string topic_of(const core::plan::ExchangePlan& plan) const;
+    /// Whether `topic` is one of the images'.
+    bool owns(std::string_view topic) const;
+
+    /// The leader: `producer`'s image as it stands, published as of lease epoch `epoch`.
+    void publish(const ExchangeProducer& producer, std::uint64_t epoch);
+
+    /// An image read on the pair's connection, judged and taken into the producer of its
+    /// exchange among `producers` when the rules allow. `leading` and `epoch`: this unit's
+    /// lease now. nullopt when the payload is no image (an empty one: a topic cleared by hand).
+    std::optional<core::redundancy::FollowVerdict> on_message(
+        const adapters::mqtt::Incoming& message,
+        std::span<const std::unique_ptr<ExchangeProducer>> producers, bool leading,
+        std::uint64_t epoch);
+
+    const PairImageCounters& counters() const { return counters_; }
+
+private:
+    void count(core::redundancy::FollowVerdict verdict, const ExchangeProducer* producer,
+               const core::redundancy::ImageMessage& image);
+
+    std::string prefix_;
+    std::string id_;
+    adapters::mqtt::Publisher& publisher_;
+    PairImageCounters counters_;
+    std::set<std::string> other_layout_logged_;  ///< exchange names
+    adapters::mqtt::Message message_;
+};
+
+}  // namespace eip2mqtt::app::redundancy

@@ -1,0 +1,181 @@
+// A pair's produced images at run time, against a recording publisher and a real producer on a
+// temporary state directory: what the leader publishes, and what the standby takes into its
+// producer (and saves) or ignores. The rules themselves are tested in
+// tests/core/redundancy/image_follow_test.cpp. The loop never runs: saves are flushed by hand.
+
+#include "eip2mqtt/app/redundancy/pair_images.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <boost/asio/io_context.hpp>
+#include <filesystem>
+
+#include "eip2mqtt/adapters/state/image_store.hpp"
+#include "eip2mqtt/app/redundancy/image_message.hpp"
+#include "tests/support/fakes/log_capture.hpp"
+#include "tests/support/fakes/recording_northbound.hpp"
+#include "tests/support/fakes/recording_publisher.hpp"
+
+namespace eip2mqtt::app::redundancy {
+namespace {
+
+namespace fs = std::filesystem;
+using core::redundancy::FollowVerdict;
+using core::redundancy::ImageMessage;
+
+const std::string prefix = "acme/_gateway/_pair/turbine/image";
+const std::string topic = prefix + "/site/sp";
+
+core::plan::ExchangePlan make_plan(std::uint16_t length = 4) {
+    core::plan::ExchangeSpec spec;
+    spec.name = "sp";
+    spec.direction = core::plan::Direction::produce;
+    spec.exchange_id = 10;
+    spec.destination = "127.0.0.1";
+    spec.period = std::chrono::hours(1);
+    spec.topic = "site/sp";
+    core::plan::TagSpec value;
+    value.name = "VALUE";
+    value.address = {0, 0};
+    value.type = core::plan::TagType::dint;
+    value.writable = true;
+    spec.tags = {value};
+    spec.length = length;
+    return core::plan::make_exchange_plan(spec, "acme");
+}
+
+std::vector<std::byte> bytes(std::initializer_list<int> values) {
+    std::vector<std::byte> out;
+    for (const int v : values) out.push_back(static_cast<std::byte>(v));
+    return out;
+}
+
+class PairImagesTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / ("eip2mqtt_pair_images_" + std::string(info->name()) +
+                                            "_" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        store_ = std::make_unique<adapters::state::ImageStore>(dir_.string());
+        adapters::udp::SenderOptions sender_options;
+        sender_options.bind = "127.0.0.1";
+        sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
+        scheduler_ = std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_);
+        persister_ =
+            std::make_unique<adapters::state::ImagePersister>(*store_, loop_.get_executor());
+        producers_.push_back(
+            std::make_unique<ExchangeProducer>(make_plan(), adapters::udp::Endpoint{0x7F000001, 9},
+                                               *scheduler_, *persister_, northbound_, totals_));
+        persister_->flush();
+    }
+    void TearDown() override {
+        producers_.clear();
+        persister_.reset();
+        scheduler_.reset();
+        std::error_code ignored;
+        fs::remove_all(dir_, ignored);
+    }
+
+    ExchangeProducer& producer() { return *producers_.front(); }
+    std::uint64_t layout() const { return adapters::state::layout_fingerprint(make_plan()); }
+    std::vector<std::byte> image() {
+        return {producer().image().data().begin(), producer().image().data().end()};
+    }
+    adapters::mqtt::Incoming incoming(const ImageMessage& image, const std::string& on = topic) {
+        return {on, encode_image_message(image)};
+    }
+    std::optional<FollowVerdict> read(const ImageMessage& image, bool leading = false,
+                                      std::uint64_t epoch = 3) {
+        return images_.on_message(incoming(image), producers_, leading, epoch);
+    }
+
+    fs::path dir_;
+    boost::asio::io_context loop_;
+    std::unique_ptr<adapters::state::ImageStore> store_;
+    std::unique_ptr<adapters::udp::Sender> sender_;
+    std::unique_ptr<ProducerScheduler> scheduler_;
+    std::unique_ptr<adapters::state::ImagePersister> persister_;
+    test::RecordingNorthbound northbound_;
+    ImageSaveTotals totals_;
+    std::vector<std::unique_ptr<ExchangeProducer>> producers_;
+    test::RecordingPublisher publisher_;
+    PairImages images_{prefix, "gw-b", publisher_};
+};
+
+TEST_F(PairImagesTest, TheTopicOfAnExchangeIsItsTopicUnderThePairs) {
+    EXPECT_EQ(images_.topic_of(producer().plan()), topic);
+    EXPECT_TRUE(images_.owns(topic));
+    EXPECT_FALSE(images_.owns(prefix));
+    EXPECT_FALSE(images_.owns(prefix + "/"));
+    EXPECT_FALSE(images_.owns(prefix + "s/sp"));
+    EXPECT_FALSE(images_.owns("acme/_gateway/_pair/turbine/leader"));
+}
+
+TEST_F(PairImagesTest, TheLeaderPublishesItsImageRetainedWithItsEpochAndLayout) {
+    images_.publish(producer(), 7);
+    ASSERT_EQ(publisher_.published.size(), 1u);
+    const auto& message = publisher_.published.front();
+    EXPECT_EQ(message.topic, topic);
+    EXPECT_EQ(message.qos, 1);
+    EXPECT_TRUE(message.retain);
+    EXPECT_EQ(decode_image_message(message.payload), (ImageMessage{"gw-b", 7, layout(), image()}));
+    EXPECT_EQ(images_.counters().published, 1u);
+}
+
+TEST_F(PairImagesTest, TheStandbyTakesTheLeadersImageAndSavesIt) {
+    const auto written = bytes({0x2A, 0, 0, 0});
+    EXPECT_EQ(read({"gw-a", 3, layout(), written}), FollowVerdict::apply);
+    EXPECT_EQ(image(), written);
+    persister_->flush();
+    EXPECT_EQ(store_->load(make_plan()), written);
+    EXPECT_EQ(images_.counters().followed, 1u);
+    // The same image again (a reconnect's retained copy) changes nothing and counts nothing.
+    EXPECT_EQ(read({"gw-a", 3, layout(), written}), FollowVerdict::apply);
+    EXPECT_EQ(images_.counters().followed, 1u);
+}
+
+TEST_F(PairImagesTest, ALeaderKeepsItsOwnImage) {
+    const auto before = image();
+    EXPECT_EQ(read({"gw-a", 3, layout(), bytes({1, 2, 3, 4})}, true), FollowVerdict::leading);
+    EXPECT_EQ(image(), before);
+}
+
+TEST_F(PairImagesTest, AnImageOfAnotherLayoutIsCountedAndLoggedOnce) {
+    test::LogCapture log;
+    const auto before = image();
+    EXPECT_EQ(read({"gw-a", 3, layout() + 1, bytes({1, 2, 3, 4})}), FollowVerdict::other_layout);
+    EXPECT_EQ(read({"gw-a", 3, layout() + 1, bytes({1, 2, 3, 5})}), FollowVerdict::other_layout);
+    EXPECT_EQ(image(), before);
+    EXPECT_EQ(images_.counters().other_layout, 2u);
+    const auto lines = log.lines();
+    EXPECT_EQ(std::count_if(lines.begin(), lines.end(),
+                            [](const std::string& l) {
+                                return l.find("another layout") != std::string::npos;
+                            }),
+              1)
+        << ::testing::PrintToString(lines);
+}
+
+TEST_F(PairImagesTest, StaleUnknownAndMalformedImagesAreCountedAndLeftAlone) {
+    const auto before = image();
+    EXPECT_EQ(read({"gw-a", 2, layout(), bytes({1, 2, 3, 4})}), FollowVerdict::stale);
+    EXPECT_EQ(
+        images_.on_message(incoming({"gw-a", 3, layout(), bytes({1, 2, 3, 4})}, prefix + "/other"),
+                           producers_, false, 3),
+        FollowVerdict::unknown_exchange);
+    EXPECT_FALSE(images_.on_message({topic, "not json"}, producers_, false, 3).has_value());
+    // A topic cleared by hand is no image, and no fault either.
+    EXPECT_FALSE(images_.on_message({topic, ""}, producers_, false, 3).has_value());
+    EXPECT_EQ(image(), before);
+    EXPECT_EQ(images_.counters().stale, 1u);
+    EXPECT_EQ(images_.counters().unknown, 1u);
+    EXPECT_EQ(images_.counters().not_an_image, 1u);
+    EXPECT_EQ(images_.counters().followed, 0u);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app::redundancy
