@@ -50,7 +50,7 @@ std::optional<FollowVerdict> PairImages::on_message(
     std::uint64_t epoch) {
     const auto image = decode_image_message(message.payload);
     if (!image) {
-        if (!message.payload.empty()) ++counters_.not_an_image;
+        if (!message.payload.empty()) ++counters_.ignored_for(ImageIgnored::not_an_image);
         return std::nullopt;
     }
     const auto exchange_topic = std::string_view(message.topic).substr(prefix_.size() + 1);
@@ -77,13 +77,13 @@ void PairImages::count(FollowVerdict verdict, const ExchangeProducer* producer,
         case FollowVerdict::leading:
             return;
         case FollowVerdict::unknown_exchange:
-            ++counters_.unknown;
+            ++counters_.ignored_for(ImageIgnored::unknown_exchange);
             return;
         case FollowVerdict::stale:
-            ++counters_.stale;
+            ++counters_.ignored_for(ImageIgnored::stale);
             return;
         case FollowVerdict::other_layout:
-            ++counters_.other_layout;
+            ++counters_.ignored_for(ImageIgnored::other_layout);
             // A configuration that differs between the two units: said once, not per write.
             if (other_layout_logged_.insert(producer->plan().spec.name).second) {
                 spdlog::warn(

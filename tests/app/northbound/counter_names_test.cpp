@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/core/command/command_counters.hpp"
 #include "eip2mqtt/core/exchange/consume_counters.hpp"
 #include "eip2mqtt/core/exchange/produce_counters.hpp"
@@ -114,6 +115,15 @@ std::string sparkplug_row(const Names& names, const std::string& direction) {
     std::string row = "`Exchanges/{exchange}/" + names.front() + "`";
     for (std::size_t i = 1; i < names.size(); ++i) row += ", `" + names[i] + "`";
     return row + " (" + direction + ")";
+}
+
+TEST(CounterNames, ThePairCountersAreTheMetricsSchemasInItsOrder) {
+    const auto schema = nlohmann::json::parse(read(EIP2MQTT_DOCS_DIR "/schema/metrics.json"));
+    const auto& pair = schema.at("properties").at("pair");
+    EXPECT_EQ(pair.at("required").get<Names>(),
+              names_in(app::redundancy::pair_counter_fields, core::in_metrics_topic));
+    expect_schema_fields(pair, app::redundancy::pair_counter_fields,
+                         app::redundancy::PairCounters{});
 }
 
 TEST(CounterNames, TheExchangeNodeMetricsAreTheOnesTheSparkplugPageLists) {

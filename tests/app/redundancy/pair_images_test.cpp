@@ -150,7 +150,7 @@ TEST_F(PairImagesTest, AnImageOfAnotherLayoutIsCountedAndLoggedOnce) {
     EXPECT_EQ(read({"gw-a", 3, layout() + 1, bytes({1, 2, 3, 4})}), FollowVerdict::other_layout);
     EXPECT_EQ(read({"gw-a", 3, layout() + 1, bytes({1, 2, 3, 5})}), FollowVerdict::other_layout);
     EXPECT_EQ(image(), before);
-    EXPECT_EQ(images_.counters().other_layout, 2u);
+    EXPECT_EQ(images_.counters().ignored_for(ImageIgnored::other_layout), 2u);
     const auto lines = log.lines();
     EXPECT_EQ(std::count_if(lines.begin(), lines.end(),
                             [](const std::string& l) {
@@ -171,9 +171,9 @@ TEST_F(PairImagesTest, StaleUnknownAndMalformedImagesAreCountedAndLeftAlone) {
     // A topic cleared by hand is no image, and no fault either.
     EXPECT_FALSE(images_.on_message({topic, ""}, producers_, false, 3).has_value());
     EXPECT_EQ(image(), before);
-    EXPECT_EQ(images_.counters().stale, 1u);
-    EXPECT_EQ(images_.counters().unknown, 1u);
-    EXPECT_EQ(images_.counters().not_an_image, 1u);
+    EXPECT_EQ(images_.counters().ignored_for(ImageIgnored::stale), 1u);
+    EXPECT_EQ(images_.counters().ignored_for(ImageIgnored::unknown_exchange), 1u);
+    EXPECT_EQ(images_.counters().ignored_for(ImageIgnored::not_an_image), 1u);
     EXPECT_EQ(images_.counters().followed, 0u);
 }
 

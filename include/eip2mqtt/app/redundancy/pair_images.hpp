@@ -9,6 +9,8 @@
 ///
 /// Threading: the loop only.
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -20,18 +22,59 @@
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
+#include "eip2mqtt/core/counter_table.hpp"
 #include "eip2mqtt/core/redundancy/image_follow.hpp"
 
 namespace eip2mqtt::app::redundancy {
 
-struct PairImageCounters {
-    std::uint64_t published = 0;     ///< images this unit published as leader
-    std::uint64_t followed = 0;      ///< images taken into a producer (a byte changed)
-    std::uint64_t other_layout = 0;  ///< ignored: the exchange differs between the units
-    std::uint64_t stale = 0;         ///< ignored: a deposed leader's, read late
-    std::uint64_t unknown = 0;       ///< ignored: an exchange this unit does not produce
-    std::uint64_t not_an_image = 0;  ///< ignored: a payload that does not read as an image
+/// Why a standby left an image aside: the index of PairImageCounters::ignored.
+enum class ImageIgnored : std::uint8_t {
+    other_layout,      ///< the exchange differs between the units
+    stale,             ///< a deposed leader's, read late
+    unknown_exchange,  ///< an exchange this unit does not produce
+    not_an_image,      ///< a payload that does not read as an image
 };
+
+struct PairImageCounters {
+    std::uint64_t published = 0;             ///< images this unit published as leader
+    std::uint64_t followed = 0;              ///< images taken into a producer (a byte changed)
+    std::array<std::uint64_t, 4> ignored{};  ///< by ImageIgnored
+
+    std::uint64_t& ignored_for(ImageIgnored why) { return ignored[static_cast<std::size_t>(why)]; }
+    std::uint64_t ignored_for(ImageIgnored why) const {
+        return ignored[static_cast<std::size_t>(why)];
+    }
+};
+
+/// What the metrics topic's `pair` object reports: the images' counts, and the datagrams of this
+/// unit's own produced exchanges it heard (DatagramRouter: the other unit's, or its own looped
+/// back), which is how a standby follows the request ids.
+struct PairCounters {
+    PairImageCounters images;
+    std::uint64_t produced_heard = 0;
+};
+
+// clang-format off
+inline constexpr std::array<core::GatewayCounterField<PairCounters>, 4> pair_counter_fields{{
+    {"images_published", [](const PairCounters& c) { return core::one(c.images.published); },
+     core::in_metrics_topic, ""},
+    {"images_followed", [](const PairCounters& c) { return core::one(c.images.followed); },
+     core::in_metrics_topic, ""},
+    {"images_ignored",
+     [](const PairCounters& c) { return std::span<const std::uint64_t>(c.images.ignored); },
+     core::in_metrics_topic, "",
+     [](std::size_t i) {
+         constexpr std::array<std::string_view, 4> reasons{"other_layout", "stale",
+                                                           "unknown_exchange", "not_an_image"};
+         return reasons[i];
+     }},
+    {"produced_heard", [](const PairCounters& c) { return core::one(c.produced_heard); },
+     core::in_metrics_topic, ""},
+}};
+// clang-format on
+
+static_assert(core::counts_every_member<PairCounters>(pair_counter_fields),
+              "every pair counter is read once by pair_counter_fields");
 
 class PairImages {
 public:

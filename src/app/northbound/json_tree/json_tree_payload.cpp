@@ -160,17 +160,9 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
     };
     add_counter_set(metrics, core::write::write_counter_fields, sources.writes);
     if (sources.pair_images) {
-        const auto& p = *sources.pair_images;
-        metrics["pair"] = {
-            {"images_published", p.published},
-            {"images_followed", p.followed},
-            {"images_ignored",
-             {{"other_layout", p.other_layout},
-              {"stale", p.stale},
-              {"unknown_exchange", p.unknown},
-              {"not_an_image", p.not_an_image}}},
-            {"produced_heard", sources.datagrams.produced_heard},
-        };
+        add_counter_set(
+            metrics["pair"], redundancy::pair_counter_fields,
+            redundancy::PairCounters{*sources.pair_images, sources.datagrams.produced_heard});
     }
     if (sources.commands) {
         add_counter_set(metrics[std::string(core::command::command_counters_name)],
