@@ -19,6 +19,7 @@
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/mosquitto.hpp"
 #include "tests/support/mqtt_recorder.hpp"
+#include "tests/support/pair_fixture.hpp"
 #include "tests/support/schema_check.hpp"
 #include "tests/support/udp_client.hpp"
 
@@ -30,66 +31,26 @@ using json = nlohmann::json;
 
 const std::string image_topic = "test/_gateway/_pair/turbine/image/sp";
 
-std::string role_topic(const std::string& id) { return "test/_gateway/" + id + "/role"; }
-
 /// SPEED_SP (a real at byte 0) in a datagram's data.
 double speed_sp(std::span<const std::byte> data) {
     return std::get<float>(core::plan::decode_value(data, core::plan::TagType::real, {0, 0}));
 }
 
-class HotStandbyContinuityTest : public ::testing::Test {
+class HotStandbyContinuityTest : public PairTest {
 protected:
     void SetUp() override {
         broker_ = std::make_unique<Mosquitto>();
         recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"#"});
         for (const std::string id : {"gw-a", "gw-b"}) {
             ports_[id] = free_udp_port();
-            const auto path = dir_.write(id + ".yaml", config(id));
-            gateways_[id] = std::make_unique<ChildProcess>(
-                std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", path});
+            start_unit(id, pair_config(id, broker_->url(), ports_[id], 50));
         }
-    }
-    void TearDown() override {
-        for (auto& [id, gateway] : gateways_) {
-            if (gateway && HasFailure()) std::cerr << "--- " << id << " ---\n" << gateway->output();
-        }
-        gateways_.clear();
-        recorder_.reset();
-        broker_.reset();
     }
 
-    std::string config(const std::string& id) const {
-        return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
-               ", log_level: debug }\n"
-               "mqtt: { url: \"" +
-               broker_->url() +
-               "\", base_topic: test, qos: 1, metrics_interval_s: 1 }\n"
-               "eip: { bind: 127.0.0.1, port: " +
-               std::to_string(ports_.at(id)) +
-               " }\n"
-               "redundancy: { pair: turbine, takeover_ms: 1000 }\n"
-               "exchanges:\n" +
-               ExchangeYaml::produce("sp", "10.1.2.3", 10,
-                                     "127.0.0.1:" + std::to_string(capture_.port()))
-                   .period_ms(50)
-                   .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 3000")
-                   .str();
-    }
     /// The first unit to lead, once the other says standby; empty when that did not come.
     std::string leader() {
-        std::string first;
-        recorder_->wait_for(
-            [&](const std::vector<Received>& all) {
-                for (const auto& m : all) {
-                    if (m.payload != "leader") continue;
-                    if (m.topic == role_topic("gw-a")) first = "gw-a";
-                    if (m.topic == role_topic("gw-b")) first = "gw-b";
-                    if (!first.empty()) return true;
-                }
-                return false;
-            },
-            30s);
-        if (first.empty() || !says(first == "gw-a" ? "gw-b" : "gw-a", "standby", 30s)) return {};
+        const auto first = first_leader();
+        if (first.empty() || !says(other(first), "standby")) return {};
         return first;
     }
     /// The next metrics of `id` whose `pair` object satisfies `pred`, checked against the schema,
@@ -106,13 +67,6 @@ protected:
         if (!message) return std::nullopt;
         EXPECT_EQ(schema_problem(schema_file("metrics.json"), message->payload), "");
         return json::parse(message->payload);
-    }
-    bool says(const std::string& id, const std::string& role, std::chrono::milliseconds wait,
-              std::size_t from = 0) {
-        return recorder_
-            ->wait_for_message(
-                role_topic(id), [&](const std::string& p) { return p == role; }, wait, from)
-            .has_value();
     }
     /// The next produced datagram, forwarded to the units still running when `forward`.
     std::optional<UdpDatagram> next(bool forward) {
@@ -131,18 +85,13 @@ protected:
         gateways_[id].reset();
     }
 
-    TempDir dir_;
-    UdpClient capture_;
-    std::unique_ptr<Mosquitto> broker_;
-    std::unique_ptr<MqttRecorder> recorder_;
     std::map<std::string, std::uint16_t> ports_;
-    std::map<std::string, std::unique_ptr<ChildProcess>> gateways_;
 };
 
 TEST_F(HotStandbyContinuityTest, TheNewLeadersFirstDatagramCarriesTheValueWrittenToTheKilledOne) {
     const auto old = leader();
     ASSERT_FALSE(old.empty()) << "nobody leads";
-    const auto standby = old == "gw-a" ? "gw-b" : "gw-a";
+    const auto standby = other(old);
     const auto first = next(false);
     ASSERT_TRUE(first.has_value());
 
@@ -166,7 +115,7 @@ TEST_F(HotStandbyContinuityTest, TheNewLeadersFirstDatagramCarriesTheValueWritte
 
     const auto killed = recorder_->count();
     kill(old);
-    ASSERT_TRUE(says(standby, "leader", 30s, killed));
+    ASSERT_TRUE(says(standby, "leader", killed));
     // Every datagram left in the capture from the killed leader, then the new leader's first.
     std::optional<UdpDatagram> taken_over;
     for (int i = 0; i < 400 && !taken_over; ++i) {
@@ -191,7 +140,7 @@ TEST_F(HotStandbyContinuityTest, TheNewLeadersFirstDatagramCarriesTheValueWritte
 TEST_F(HotStandbyContinuityTest, RequestIdsGoOnFromTheKilledLeadersLastWhenBothHearThem) {
     const auto old = leader();
     ASSERT_FALSE(old.empty()) << "nobody leads";
-    const auto standby = old == "gw-a" ? "gw-b" : "gw-a";
+    const auto standby = other(old);
     std::optional<UdpDatagram> last;
     for (int i = 0; i < 20; ++i) {
         last = next(true);
@@ -208,7 +157,7 @@ TEST_F(HotStandbyContinuityTest, RequestIdsGoOnFromTheKilledLeadersLastWhenBothH
         forward_to_units(*datagram);
         last = std::move(datagram);
     }
-    ASSERT_TRUE(says(standby, "leader", 30s, killed));
+    ASSERT_TRUE(says(standby, "leader", killed));
     std::optional<UdpDatagram> taken_over;
     for (int i = 0; i < 400 && !taken_over; ++i) {
         auto datagram = next(true);

@@ -16,6 +16,7 @@
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/mosquitto.hpp"
 #include "tests/support/mqtt_recorder.hpp"
+#include "tests/support/pair_fixture.hpp"
 #include "tests/support/schema_check.hpp"
 #include "tests/support/tcp_proxy.hpp"
 #include "tests/support/udp_client.hpp"
@@ -28,79 +29,23 @@ using json = nlohmann::json;
 
 const std::string leader_topic = "test/_gateway/_pair/turbine/leader";
 
-std::string role_topic(const std::string& id) { return "test/_gateway/" + id + "/role"; }
-
-class HotStandbyTest : public ::testing::Test {
+class HotStandbyTest : public PairTest {
 protected:
     void SetUp() override {
         broker_ = std::make_unique<Mosquitto>();
         before_start();
         recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"#"});
         for (const std::string id : {"gw-a", "gw-b"}) {
-            paths_[id] = dir_.write(id + ".yaml", config(id));
+            configs_[id] = pair_config(id, broker_url(id), free_udp_port(), period_ms());
+            start(id);
         }
-        start("gw-a");
-        start("gw-b");
-    }
-    void TearDown() override {
-        for (auto& [id, gateway] : gateways_) {
-            if (!gateway) continue;
-            gateway->signal(SIGCONT);
-            if (HasFailure()) std::cerr << "--- " << id << " ---\n" << gateway->output();
-        }
-        gateways_.clear();
-        recorder_.reset();
-        broker_.reset();
     }
 
     virtual std::uint32_t period_ms() const { return 50; }
     virtual void before_start() {}
     virtual std::string broker_url(const std::string&) const { return broker_->url(); }
 
-    std::string config(const std::string& id) const {
-        return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
-               ", log_level: debug }\n"
-               "mqtt: { url: \"" +
-               broker_url(id) +
-               "\", base_topic: test, qos: 1, metrics_interval_s: 1 }\n"
-               "eip: { bind: 127.0.0.1, port: " +
-               std::to_string(free_udp_port()) +
-               " }\n"
-               "redundancy: { pair: turbine, takeover_ms: 1000 }\n"
-               "exchanges:\n" +
-               ExchangeYaml::produce("sp", "10.1.2.3", 10,
-                                     "127.0.0.1:" + std::to_string(capture_.port()))
-                   .period_ms(period_ms())
-                   .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 3000")
-                   .str();
-    }
-    void start(const std::string& id) {
-        gateways_[id] = std::make_unique<ChildProcess>(
-            std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", paths_[id]});
-    }
-    /// Waits for `id` to say `role` on its role topic (after message `from`).
-    bool says(const std::string& id, const std::string& role, std::size_t from = 0) {
-        return recorder_
-            ->wait_for_message(
-                role_topic(id), [&](const std::string& p) { return p == role; }, 30s, from)
-            .has_value();
-    }
-    /// The first unit to lead; empty when none did.
-    std::string first_leader() {
-        std::string leader;
-        recorder_->wait_for(
-            [&](const std::vector<Received>& all) {
-                for (const auto& m : all) {
-                    if (m.payload != "leader") continue;
-                    if (m.topic == role_topic("gw-a")) leader = "gw-a";
-                    if (m.topic == role_topic("gw-b")) leader = "gw-b";
-                    if (!leader.empty()) return true;
-                }
-                return false;
-            },
-            30s);
-        return leader;
-    }
+    void start(const std::string& id) { start_unit(id, configs_[id]); }
     /// The leader record with `id` (after message `from`), as JSON.
     json record_of(const std::string& id, std::size_t from = 0) {
         const auto message = recorder_->wait_for_message(
@@ -144,14 +89,7 @@ protected:
         }
         return out;
     }
-    std::string other(const std::string& id) const { return id == "gw-a" ? "gw-b" : "gw-a"; }
-
-    TempDir dir_;
-    UdpClient capture_;
-    std::unique_ptr<Mosquitto> broker_;
-    std::unique_ptr<MqttRecorder> recorder_;
-    std::map<std::string, std::string> paths_;
-    std::map<std::string, std::unique_ptr<ChildProcess>> gateways_;
+    std::map<std::string, std::string> configs_;
     std::vector<std::uint16_t> captured_;
 };
 

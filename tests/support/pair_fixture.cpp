@@ -1,0 +1,72 @@
+#include "tests/support/pair_fixture.hpp"
+
+#include <signal.h>
+
+#include <iostream>
+#include <vector>
+
+#include "tests/support/exchange_yaml.hpp"
+
+namespace eip2mqtt::test {
+
+std::string PairTest::pair_config(const std::string& id, const std::string& broker_url,
+                                  std::uint16_t port, std::uint32_t period_ms) const {
+    return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
+           ", log_level: debug }\n"
+           "mqtt: { url: \"" +
+           broker_url +
+           "\", base_topic: test, qos: 1, metrics_interval_s: 1 }\n"
+           "eip: { bind: 127.0.0.1, port: " +
+           std::to_string(port) +
+           " }\n"
+           "redundancy: { pair: turbine, takeover_ms: 1000 }\n"
+           "exchanges:\n" +
+           ExchangeYaml::produce("sp", "10.1.2.3", 10,
+                                 "127.0.0.1:" + std::to_string(capture_.port()))
+               .period_ms(period_ms)
+               .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 3000")
+               .str();
+}
+
+void PairTest::start_unit(const std::string& id, const std::string& config) {
+    const auto path = dir_.write(id + ".yaml", config);
+    gateways_[id] = std::make_unique<ChildProcess>(
+        std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", path});
+}
+
+bool PairTest::says(const std::string& id, const std::string& role, std::size_t from,
+                    std::chrono::milliseconds wait) {
+    return recorder_
+        ->wait_for_message(
+            role_topic(id), [&](const std::string& p) { return p == role; }, wait, from)
+        .has_value();
+}
+
+std::string PairTest::first_leader() {
+    std::string leader;
+    recorder_->wait_for(
+        [&](const std::vector<Received>& all) {
+            for (const auto& m : all) {
+                if (m.payload != "leader") continue;
+                if (m.topic == role_topic("gw-a")) leader = "gw-a";
+                if (m.topic == role_topic("gw-b")) leader = "gw-b";
+                if (!leader.empty()) return true;
+            }
+            return false;
+        },
+        std::chrono::seconds(30));
+    return leader;
+}
+
+void PairTest::TearDown() {
+    for (auto& [id, gateway] : gateways_) {
+        if (!gateway) continue;
+        gateway->signal(SIGCONT);
+        if (HasFailure()) std::cerr << "--- " << id << " ---\n" << gateway->output();
+    }
+    gateways_.clear();
+    recorder_.reset();
+    broker_.reset();
+}
+
+}  // namespace eip2mqtt::test
