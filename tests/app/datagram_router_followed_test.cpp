@@ -13,6 +13,7 @@
 
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/app/datagram_router.hpp"
+#include "tests/app/support/test_plan.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
 
@@ -22,23 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using core::wire::DropReason;
-
-core::plan::ExchangePlan produced_plan() {
-    core::plan::ExchangeSpec spec;
-    spec.name = "sp";
-    spec.direction = core::plan::Direction::produce;
-    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
-    spec.exchange_id = 10;
-    spec.destination = "127.0.0.1";
-    spec.period = std::chrono::hours(1);
-    spec.topic = "sp";
-    core::plan::TagSpec value;
-    value.name = "VALUE";
-    value.address = {0, 0};
-    value.type = core::plan::TagType::dint;
-    spec.tags = {value};
-    return core::plan::make_exchange_plan(spec, "acme");
-}
 
 std::vector<std::byte> datagram(std::uint32_t exchange_id, std::uint16_t rid) {
     return test::DatagramBuilder("10.0.0.1", exchange_id, 4).request_id(rid).build();
@@ -61,8 +45,8 @@ protected:
         persister_ =
             std::make_unique<adapters::state::ImagePersister>(*store_, loop_.get_executor());
         producers_.push_back(std::make_unique<ExchangeProducer>(
-            produced_plan(), adapters::udp::Endpoint{0x7F000001, 9}, *scheduler_, *persister_,
-            northbound_, totals_));
+            test::test_produced_plan(), adapters::udp::Endpoint{0x7F000001, 9}, *scheduler_,
+            *persister_, northbound_, totals_));
         persister_->flush();
     }
     void TearDown() override {

@@ -30,6 +30,7 @@
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 #include "tests/app/support/json_tree_recorder.hpp"
+#include "tests/app/support/test_plan.hpp"
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app {
@@ -38,23 +39,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
-
-core::plan::ExchangePlan make_plan() {
-    core::plan::ExchangeSpec spec;
-    spec.name = "sp";
-    spec.direction = core::plan::Direction::produce;
-    spec.exchange_id = 10;
-    spec.destination = "127.0.0.1";
-    spec.period = std::chrono::hours(1);
-    spec.topic = "sp";
-    core::plan::TagSpec value;
-    value.name = "VALUE";
-    value.address = {0, 0};
-    value.type = core::plan::TagType::dint;
-    value.writable = true;
-    spec.tags = {value};
-    return core::plan::make_exchange_plan(spec, "acme");
-}
 
 class ExchangeProducerTest : public ::testing::Test {
 protected:
@@ -87,8 +71,8 @@ protected:
     std::unique_ptr<ExchangeProducer> make_producer(
         std::optional<ImageHandover> handover = std::nullopt) {
         return std::make_unique<ExchangeProducer>(
-            make_plan(), adapters::udp::Endpoint{0x7F000001, 9}, *scheduler_, *persister_,
-            uns_.northbound(), totals_, std::move(handover));
+            test::test_produced_plan(), adapters::udp::Endpoint{0x7F000001, 9}, *scheduler_,
+            *persister_, uns_.northbound(), totals_, std::move(handover));
     }
 
     /// Saves fail from now on: the image file is gone and cannot be created again.

@@ -14,6 +14,7 @@
 
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/app/redundancy/image_message.hpp"
+#include "tests/app/support/test_plan.hpp"
 #include "tests/support/fakes/log_capture.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
 #include "tests/support/fakes/recording_publisher.hpp"
@@ -29,21 +30,7 @@ const std::string prefix = "acme/_gateway/_pair/turbine/image";
 const std::string topic = prefix + "/site/sp";
 
 core::plan::ExchangePlan make_plan(std::uint16_t length = 4) {
-    core::plan::ExchangeSpec spec;
-    spec.name = "sp";
-    spec.direction = core::plan::Direction::produce;
-    spec.exchange_id = 10;
-    spec.destination = "127.0.0.1";
-    spec.period = std::chrono::hours(1);
-    spec.topic = "site/sp";
-    core::plan::TagSpec value;
-    value.name = "VALUE";
-    value.address = {0, 0};
-    value.type = core::plan::TagType::dint;
-    value.writable = true;
-    spec.tags = {value};
-    spec.length = length;
-    return core::plan::make_exchange_plan(spec, "acme");
+    return test::test_produced_plan("site/sp", length);
 }
 
 std::vector<std::byte> bytes(std::initializer_list<int> values) {

@@ -2,6 +2,7 @@
 // Exchange plans for unit tests of the app layer: what a test does not name is the same
 // everywhere (producer 10.0.0.1, exchange 1, destination 127.0.0.1, base topic "acme").
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -34,6 +35,24 @@ inline core::plan::ExchangePlan test_plan(std::string name, core::plan::Directio
     spec.length = length;
     spec.destination = "127.0.0.1";
     spec.tags = std::move(tags);
+    return core::plan::make_exchange_plan(std::move(spec), "acme");
+}
+
+/// Produced exchange `sp` (producer 10.0.0.1, exchange 10) of one writable dint VALUE at byte 0,
+/// whose period (an hour) never comes due in a unit test: a producer's own tests and those of
+/// what hears or follows it. `length` 0: the end of VALUE.
+inline core::plan::ExchangePlan test_produced_plan(std::string topic = "sp",
+                                                   std::size_t length = 0) {
+    core::plan::ExchangeSpec spec;
+    spec.name = "sp";
+    spec.topic = std::move(topic);
+    spec.direction = core::plan::Direction::produce;
+    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+    spec.exchange_id = 10;
+    spec.destination = "127.0.0.1";
+    spec.period = std::chrono::hours(1);
+    if (length > 0) spec.length = static_cast<std::uint16_t>(length);
+    spec.tags = {test_tag("VALUE", 0, core::plan::TagType::dint, true)};
     return core::plan::make_exchange_plan(std::move(spec), "acme");
 }
 
