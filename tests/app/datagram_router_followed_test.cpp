@@ -13,6 +13,7 @@
 
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/app/datagram_router.hpp"
+#include "tests/app/support/producer_rig.hpp"
 #include "tests/app/support/test_plan.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
@@ -31,45 +32,17 @@ std::vector<std::byte> datagram(std::uint32_t exchange_id, std::uint16_t rid) {
 class DatagramRouterFollowedTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("eip2mqtt_router_followed_" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-                std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-        store_ = std::make_unique<adapters::state::ImageStore>(dir_.string());
-        adapters::udp::SenderOptions sender_options;
-        sender_options.bind = "127.0.0.1";
-        sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
-        scheduler_ = std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_);
-        persister_ =
-            std::make_unique<adapters::state::ImagePersister>(*store_, loop_.get_executor());
-        producers_.push_back(std::make_unique<ExchangeProducer>(
-            test::test_produced_plan(), adapters::udp::Endpoint{0x7F000001, 9}, *scheduler_,
-            *persister_, northbound_, totals_));
-        persister_->flush();
+        producers_.push_back(rig_.make(test::test_produced_plan(), northbound_));
     }
-    void TearDown() override {
-        producers_.clear();
-        persister_.reset();
-        scheduler_.reset();
-        std::error_code ignored;
-        fs::remove_all(dir_, ignored);
-    }
+    void TearDown() override { producers_.clear(); }
     void route(std::uint32_t exchange_id, std::uint16_t rid) {
         now_ += 10ms;
         router_.route(datagram(exchange_id, rid), {0x0A000002, 18246}, false, now_);
     }
     std::uint16_t next_id() const { return producers_.front()->image().next_request_id(); }
 
-    fs::path dir_;
-    boost::asio::io_context loop_;
-    std::unique_ptr<adapters::state::ImageStore> store_;
-    std::unique_ptr<adapters::udp::Sender> sender_;
-    std::unique_ptr<ProducerScheduler> scheduler_;
-    std::unique_ptr<adapters::state::ImagePersister> persister_;
+    test::ProducerRig rig_{"eip2mqtt_router_followed"};
     test::RecordingNorthbound northbound_;
-    ImageSaveTotals totals_;
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
     DatagramRouter router_;
     core::MonoTime now_ = core::MonoTime{} + 1h;

@@ -14,6 +14,7 @@
 
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/app/redundancy/image_message.hpp"
+#include "tests/app/support/producer_rig.hpp"
 #include "tests/app/support/test_plan.hpp"
 #include "tests/support/fakes/log_capture.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
@@ -41,31 +42,8 @@ std::vector<std::byte> bytes(std::initializer_list<int> values) {
 
 class PairImagesTest : public ::testing::Test {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("eip2mqtt_pair_images_" + std::string(info->name()) +
-                                            "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-        store_ = std::make_unique<adapters::state::ImageStore>(dir_.string());
-        adapters::udp::SenderOptions sender_options;
-        sender_options.bind = "127.0.0.1";
-        sender_ = std::make_unique<adapters::udp::Sender>(loop_.get_executor(), sender_options);
-        scheduler_ = std::make_unique<ProducerScheduler>(loop_.get_executor(), *sender_);
-        persister_ =
-            std::make_unique<adapters::state::ImagePersister>(*store_, loop_.get_executor());
-        producers_.push_back(
-            std::make_unique<ExchangeProducer>(make_plan(), adapters::udp::Endpoint{0x7F000001, 9},
-                                               *scheduler_, *persister_, northbound_, totals_));
-        persister_->flush();
-    }
-    void TearDown() override {
-        producers_.clear();
-        persister_.reset();
-        scheduler_.reset();
-        std::error_code ignored;
-        fs::remove_all(dir_, ignored);
-    }
+    void SetUp() override { producers_.push_back(rig_.make(make_plan(), northbound_)); }
+    void TearDown() override { producers_.clear(); }
 
     ExchangeProducer& producer() { return *producers_.front(); }
     std::uint64_t layout() const { return adapters::state::layout_fingerprint(make_plan()); }
@@ -80,14 +58,8 @@ protected:
         return images_.on_message(incoming(image), producers_, leading, epoch);
     }
 
-    fs::path dir_;
-    boost::asio::io_context loop_;
-    std::unique_ptr<adapters::state::ImageStore> store_;
-    std::unique_ptr<adapters::udp::Sender> sender_;
-    std::unique_ptr<ProducerScheduler> scheduler_;
-    std::unique_ptr<adapters::state::ImagePersister> persister_;
+    test::ProducerRig rig_{"eip2mqtt_pair_images"};
     test::RecordingNorthbound northbound_;
-    ImageSaveTotals totals_;
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
     test::RecordingPublisher publisher_;
     PairImages images_{prefix, "gw-b", publisher_};
@@ -117,8 +89,8 @@ TEST_F(PairImagesTest, TheStandbyTakesTheLeadersImageAndSavesIt) {
     const auto written = bytes({0x2A, 0, 0, 0});
     EXPECT_EQ(read({"gw-a", 3, layout(), written}), FollowVerdict::apply);
     EXPECT_EQ(image(), written);
-    persister_->flush();
-    EXPECT_EQ(store_->load(make_plan()), written);
+    rig_.persister().flush();
+    EXPECT_EQ(rig_.store().load(make_plan()), written);
     EXPECT_EQ(images_.counters().followed, 1u);
     // The same image again (a reconnect's retained copy) changes nothing and counts nothing.
     EXPECT_EQ(read({"gw-a", 3, layout(), written}), FollowVerdict::apply);
