@@ -17,7 +17,7 @@ from benchlib.harness import Bench
 from benchlib.util import GATEWAY, tool
 from scenarios import (s01_udp, s02_s03_publications, s04_batch, s05_latency, s06_memory,
                        s07_periods, s08_overload, s09_write_latency, s10_store_and_forward,
-                       s11_commands, s12_dissector)
+                       s11_commands, s12_dissector, s13_failover)
 
 # (the scenario numbers a module answers to in --only, its module), in the order they run:
 # later scenarios take their load from scenario 2's figures.
@@ -33,13 +33,14 @@ SCENARIOS = (
     ((10,), s10_store_and_forward),
     ((11,), s11_commands),
     ((12,), s12_dissector),
+    ((13,), s13_failover),
 )
 
 
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
-    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-12)")
+    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-13)")
     parser.add_argument("--against-binary", default="", metavar="PATH",
                         help="an earlier build's eip2mqtt, run beside this one in every "
                              "scenario (bench/run.sh --against REV builds it)")

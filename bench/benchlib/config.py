@@ -21,8 +21,13 @@ def tag_lines(tags, writable):
     return out
 
 
+def flow_map(keys):
+    """{key: YAML text} as a YAML flow mapping."""
+    return "{ " + ", ".join(f"{k}: {v}" for k, v in keys.items()) + " }"
+
+
 def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
-               store_and_forward, log_level, commands=None, link_mbps=None):
+               store_and_forward, log_level, commands=None, link_mbps=None, redundancy=None):
     """Everything above `exchanges:`."""
     lines = [
         f"gateway: {{ id: {name}, state_dir: {state}, log_level: {log_level} }}",
@@ -39,19 +44,20 @@ def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, promet
     if batch == "first":
         lines.append("  batch_first: true")
     if store_and_forward:
-        lines.append("  store_and_forward: { " +
-                     ", ".join(f"{k}: {v}" for k, v in store_and_forward.items()) + " }")
+        lines.append(f"  store_and_forward: {flow_map(store_and_forward)}")
     eip = f"bind: {HOST}, port: {udp_port}"
     if link_mbps:
         eip += f", link_mbps: {link_mbps}"
     if commands:  # the command responder's keys, as {key: YAML text}
-        eip += ", commands: { " + ", ".join(f"{k}: {v}" for k, v in commands.items()) + " }"
+        eip += f", commands: {flow_map(commands)}"
     lines.append(f"eip: {{ {eip} }}")
     if prometheus:
         lines.append(f"metrics: {{ listen: {HOST}:{prometheus} }}")
     if sparkplug:
         # Sparkplug alone (uns: false), at the scenario's QoS.
         lines.append(f"sparkplug: {{ group_id: bench, uns: false, qos: {qos} }}")
+    if redundancy:
+        lines.append(f"redundancy: {flow_map(redundancy)}")
     return lines
 
 
@@ -98,19 +104,20 @@ def produced_lines(produced):
 def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=False,
                  udp_port=0, point_list=False, sparkplug=False, prometheus=0,
                  store_and_forward=None, log_level="warn", state_suffix="", commands=None,
-                 link_mbps=None):
+                 link_mbps=None, redundancy=None):
     """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
     destination). With point_list, the consumed tags are rows of one CSV ({name}.csv, a SCADA
     point list whose Node column names the exchange) that every consumed exchange names in
     `points:`. batch: True for `_values`, "first" for `_values` first (batch_first).
     state_suffix: the state directory's, so that each build keeps its own. commands: the
     `eip.commands` keys ({key: YAML text}), for the command responder. link_mbps: the
-    `eip.link_mbps` to write (None: none)."""
+    `eip.link_mbps` to write (None: none). redundancy: the `redundancy` keys ({key: YAML
+    text}), for a unit of a hot-standby pair."""
     path = os.path.join(tmp, name + ".yaml")
     state = os.path.join(tmp, name + "-state" + state_suffix)
     os.makedirs(state, exist_ok=True)
     lines = head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
-                       store_and_forward, log_level, commands, link_mbps)
+                       store_and_forward, log_level, commands, link_mbps, redundancy)
     lines.append("exchanges:")
     consumed_yaml, rows = consumed_lines(name, consumed, point_list)
     lines += consumed_yaml + produced_lines(produced)

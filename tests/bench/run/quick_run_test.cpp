@@ -133,6 +133,8 @@ std::vector<std::string> expected_figures() {
              "command requests/s answered, zero loss",                 // 11
              "datagrams/s accepted, zero loss, command port flooded",  // 11
              "s for tshark to decode",                                 // 12
+             "failover: SIGKILL of the leader -> first datagram of the new leader",         // 13
+             "failover: SIGKILL of the leader -> first tag publication of the new leader",  // 13
          }) {
         figures.push_back(figure);
     }
