@@ -54,9 +54,8 @@ void Lease::on_acknowledged(MonoTime sent_at) {
 
 bool Lease::fenced(MonoTime now) const {
     if (state_ == State::standby) return true;
-    const auto limit = settings_.takeover - renew_interval() / 2;
     const auto since = last_acknowledged_.value_or(claimed_at_);
-    return now - since >= limit;
+    return now - since >= fence_after();
 }
 
 std::optional<LeaderRecord> Lease::tick(MonoTime now) {
@@ -67,7 +66,8 @@ std::optional<LeaderRecord> Lease::tick(MonoTime now) {
         lapsed_ = true;
     }
     if (state_ == State::standby) {
-        if (now - last_heard_ < settings_.takeover) return std::nullopt;
+        // A renewal interval early, so that the claim stands (below) as the takeover is due.
+        if (now - last_heard_ < settings_.takeover - renew_interval()) return std::nullopt;
         state_ = State::claiming;
         ++epoch_;
         leader_id_ = settings_.id;
@@ -90,15 +90,17 @@ Role Lease::role(MonoTime now) const {
 }
 
 bool Lease::may_produce(MonoTime now) const {
-    const auto wait =
-        std::max<std::chrono::milliseconds>(renew_interval(), settings_.longest_period);
-    return role(now) == Role::leader && now - claimed_at_ >= wait;
+    // The leader last heard was fenced at last_heard_ + fence_after() at the latest, so its last
+    // datagram is a period behind from then on.
+    return role(now) == Role::leader &&
+           now - last_heard_ >= fence_after() + settings_.longest_period;
 }
 
 WritePolicy Lease::writes(MonoTime now) const {
     if (role(now) == Role::leader) return WritePolicy::apply;
+    // Live while it may still hold its lease: a write it may answer is never refused here too.
     const bool live_leader = state_ == State::standby && !leader_id_.empty() &&
-                             leader_id_ != settings_.id && now - last_heard_ < 2 * renew_interval();
+                             leader_id_ != settings_.id && now - last_heard_ < fence_after();
     // A unit whose lease lapsed (fenced, whether or not a tick has stepped it down yet) never
     // refuses: the other unit may have taken over meanwhile and answers the write, at once or
     // as one in doubt when it takes over; so does this one should it lead again first.

@@ -65,9 +65,9 @@ TEST_F(PairLeaseTest, ItSubscribesToTheLeaderTopicAndSaysStandbyOnConnect) {
 }
 
 TEST_F(PairLeaseTest, AClaimAcknowledgedLeadsThenRenewsEveryQuarter) {
-    lease_.tick(t0 + 1999ms);
+    lease_.tick(t0 + 1499ms);
     EXPECT_TRUE(publisher_.on(leader_topic).empty());
-    lease_.tick(t0 + 2s);
+    lease_.tick(t0 + 1500ms);
     ASSERT_EQ(publisher_.on(leader_topic).size(), 1u);
     const auto& claim = publisher_.published.back();
     EXPECT_TRUE(claim.retain);
@@ -75,8 +75,8 @@ TEST_F(PairLeaseTest, AClaimAcknowledgedLeadsThenRenewsEveryQuarter) {
     EXPECT_NE(claim.ack_token, 0u);
     EXPECT_EQ(decode_leader_record(claim.payload), (LeaderRecord{"gw-a", 1, 0, true}));
     acknowledge_last();
-    lease_.tick(t0 + 2500ms);
-    EXPECT_TRUE(lease_.leading(t0 + 2500ms));
+    lease_.tick(t0 + 2s);
+    EXPECT_TRUE(lease_.leading(t0 + 2s));
     EXPECT_EQ(roles_, std::vector<Role>{Role::leader});
     EXPECT_EQ(publisher_.on(role_topic), std::vector<std::string>{"leader"});
     EXPECT_EQ(publisher_.on(leader_topic).size(), 2u);  // the claim, then its first renewal
@@ -98,8 +98,8 @@ TEST_F(PairLeaseTest, WithoutAcknowledgementsTheLeaderIsFencedByTimeAlone) {
     lease_.tick(t0 + 2500ms);
     acknowledge_last();
     EXPECT_TRUE(lease_.may_produce(t0 + 2500ms));
-    EXPECT_FALSE(lease_.may_produce(t0 + 2500ms + 1750ms));
-    lease_.tick(t0 + 2500ms + 1750ms);
+    EXPECT_FALSE(lease_.may_produce(t0 + 2500ms + 1250ms));
+    lease_.tick(t0 + 2500ms + 1250ms);
     EXPECT_EQ(roles_, (std::vector<Role>{Role::leader, Role::standby}));
 }
 

@@ -34,26 +34,26 @@ Lease leader_from(MonoTime at, std::string id = "a") {
     return lease;
 }
 
-TEST(LeaseTest, AStandbyClaimsOnlyATakeoverAfterItStartedWithEpochOne) {
+TEST(LeaseTest, AStandbyClaimsARenewalIntervalBeforeTheTakeoverWithEpochOne) {
     Lease lease(settings("a"), t0);
-    EXPECT_FALSE(lease.tick(t0 + 1999ms).has_value());
-    EXPECT_EQ(lease.role(t0 + 1999ms), Role::standby);
-    const auto claim = lease.tick(t0 + 2000ms);
+    EXPECT_FALSE(lease.tick(t0 + 1499ms).has_value());
+    EXPECT_EQ(lease.role(t0 + 1499ms), Role::standby);
+    const auto claim = lease.tick(t0 + 1500ms);
     ASSERT_TRUE(claim.has_value());
     EXPECT_EQ(*claim, claim_of("a", 1));
     // Claiming is not leading.
-    EXPECT_EQ(lease.role(t0 + 2000ms), Role::standby);
-    EXPECT_FALSE(lease.may_produce(t0 + 2000ms));
+    EXPECT_EQ(lease.role(t0 + 1500ms), Role::standby);
+    EXPECT_FALSE(lease.may_produce(t0 + 1500ms));
 }
 
-TEST(LeaseTest, AClaimLeadsOnceAcknowledgedAndARenewalIntervalPassed) {
+TEST(LeaseTest, AClaimLeadsOnceAcknowledgedAndARenewalIntervalPassedATakeoverAfterTheStart) {
     Lease lease(settings("a"), t0);
-    ASSERT_TRUE(lease.tick(t0 + 2s).has_value());
-    lease.on_acknowledged(t0 + 2s);
-    EXPECT_FALSE(lease.tick(t0 + 2499ms).has_value());
-    EXPECT_EQ(lease.role(t0 + 2499ms), Role::standby);
-    EXPECT_TRUE(lease.tick(t0 + 2500ms).has_value());
-    EXPECT_EQ(lease.role(t0 + 2500ms), Role::leader);
+    ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
+    lease.on_acknowledged(t0 + 1500ms);
+    EXPECT_FALSE(lease.tick(t0 + 1999ms).has_value());
+    EXPECT_EQ(lease.role(t0 + 1999ms), Role::standby);
+    EXPECT_TRUE(lease.tick(t0 + 2000ms).has_value());
+    EXPECT_EQ(lease.role(t0 + 2000ms), Role::leader);
 }
 
 TEST(LeaseTest, AnUnacknowledgedClaimNeverLeadsAndFallsBackToStandby) {
@@ -61,10 +61,10 @@ TEST(LeaseTest, AnUnacknowledgedClaimNeverLeadsAndFallsBackToStandby) {
     ASSERT_TRUE(lease.tick(t0 + 2s).has_value());
     EXPECT_TRUE(lease.tick(t0 + 2500ms).has_value());  // a renewal of the claim
     EXPECT_EQ(lease.role(t0 + 2500ms), Role::standby);
-    // T - R/2 after the claim it gives up, and waits a whole takeover again.
-    lease.tick(t0 + 2s + 1750ms);
-    EXPECT_FALSE(lease.tick(t0 + 2s + 1750ms + 1999ms).has_value());
-    const auto again = lease.tick(t0 + 2s + 1750ms + 2000ms);
+    // T - 3R/2 after the claim it gives up, and waits T - R again before it claims.
+    lease.tick(t0 + 2s + 1250ms);
+    EXPECT_FALSE(lease.tick(t0 + 2s + 1250ms + 1499ms).has_value());
+    const auto again = lease.tick(t0 + 2s + 1250ms + 1500ms);
     ASSERT_TRUE(again.has_value());
     EXPECT_EQ(again->epoch, 2u);
 }
@@ -84,12 +84,12 @@ TEST(LeaseTest, ALeaderFencesItselfBeforeTheTakeoverWhenNoRenewalIsAcknowledged)
     auto lease = leader_from(t0 + 2s);
     // Last acknowledged renewal sent at t0 + 2.5 s; nothing acknowledged since.
     const auto last = t0 + 2500ms;
-    EXPECT_EQ(lease.role(last + 1749ms), Role::leader);
-    EXPECT_TRUE(lease.fenced(last + 1750ms));
-    EXPECT_EQ(lease.role(last + 1750ms), Role::standby);
-    EXPECT_FALSE(lease.may_produce(last + 1750ms));
+    EXPECT_EQ(lease.role(last + 1249ms), Role::leader);
+    EXPECT_TRUE(lease.fenced(last + 1250ms));
+    EXPECT_EQ(lease.role(last + 1250ms), Role::standby);
+    EXPECT_FALSE(lease.may_produce(last + 1250ms));
     // Not taken, not refused: the standby that takes over answers them.
-    EXPECT_EQ(lease.writes(last + 1750ms), WritePolicy::leave_to_leader);
+    EXPECT_EQ(lease.writes(last + 1250ms), WritePolicy::leave_to_leader);
 }
 
 TEST(LeaseTest, AResumedLeaderIsFencedAtItsFirstQuestionWithoutATick) {
@@ -97,25 +97,33 @@ TEST(LeaseTest, AResumedLeaderIsFencedAtItsFirstQuestionWithoutATick) {
     // SIGSTOP for ten seconds: no tick ran, the first question after it already says no.
     EXPECT_FALSE(lease.may_produce(t0 + 12s));
     EXPECT_EQ(lease.role(t0 + 12s), Role::standby);
-    // Its tick steps it down: it waits a whole takeover before it claims again.
+    // Its tick steps it down: it waits T - R before it claims again.
     EXPECT_FALSE(lease.tick(t0 + 12s).has_value());
     EXPECT_EQ(lease.writes(t0 + 12s), WritePolicy::leave_to_leader);
-    EXPECT_FALSE(lease.tick(t0 + 13999ms).has_value());
-    EXPECT_TRUE(lease.tick(t0 + 14s).has_value());
+    EXPECT_FALSE(lease.tick(t0 + 13499ms).has_value());
+    EXPECT_TRUE(lease.tick(t0 + 13500ms).has_value());
 }
 
-TEST(LeaseTest, TheFenceComesHalfARenewalBeforeTheStandbyMayTakeOver) {
+TEST(LeaseTest, TheFenceComesHalfARenewalBeforeTheClaimOfAStandbyThatLeadsATakeoverLater) {
     auto leader = leader_from(t0 + 2s, "a");
     Lease standby(settings("b"), t0);
     // The renewal sent at 2.5 s reaches the standby at 2.5 s (no delay at all: the worst case).
-    standby.on_record(record("a", 1), t0 + 2500ms);
-    const auto fence = t0 + 2500ms + 1750ms;
+    const auto heard = t0 + 2500ms;
+    standby.on_record(record("a", 1), heard);
+    const auto fence = heard + 1250ms;
     EXPECT_TRUE(leader.fenced(fence));
     EXPECT_FALSE(standby.tick(fence).has_value());
-    EXPECT_FALSE(standby.tick(t0 + 2500ms + 1999ms).has_value());
-    const auto claim = standby.tick(t0 + 2500ms + 2000ms);
+    EXPECT_FALSE(standby.tick(heard + 1499ms).has_value());
+    const auto claim = standby.tick(heard + 1500ms);
     ASSERT_TRUE(claim.has_value());
     EXPECT_EQ(*claim, claim_of("b", 2));
+    standby.on_acknowledged(heard + 1500ms);
+    standby.tick(heard + 1999ms);
+    EXPECT_EQ(standby.role(heard + 1999ms), Role::standby);
+    standby.tick(heard + 2000ms);
+    EXPECT_EQ(standby.role(heard + 2000ms), Role::leader);
+    // Its period (100 ms) is shorter than the margin of the fence: it produces as it leads.
+    EXPECT_TRUE(standby.may_produce(heard + 2000ms));
 }
 
 TEST(LeaseTest, AcknowledgedRenewalsKeepTheLeaderUnfenced) {
@@ -127,24 +135,26 @@ TEST(LeaseTest, AcknowledgedRenewalsKeepTheLeaderUnfenced) {
     }
 }
 
-TEST(LeaseTest, ANewLeaderProducesOnlyAPeriodAfterItsClaim) {
+TEST(LeaseTest, ANewLeaderProducesOnlyAPeriodAfterTheLatestFenceOfTheLeaderItHeard) {
     Lease lease(settings("b", 0, 1500ms), t0);
-    ASSERT_TRUE(lease.tick(t0 + 2s).has_value());
-    lease.on_acknowledged(t0 + 2s);
-    lease.tick(t0 + 2500ms);
-    lease.on_acknowledged(t0 + 2500ms);
-    EXPECT_EQ(lease.role(t0 + 2500ms), Role::leader);
-    EXPECT_FALSE(lease.may_produce(t0 + 3499ms));
-    EXPECT_TRUE(lease.may_produce(t0 + 3500ms));
+    // Nobody heard since the start: as if a leader had renewed then, fenced at the latest
+    // T - 3R/2 later (1.25 s); its last datagram then was a period (1.5 s) behind at 2.75 s.
+    ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
+    lease.on_acknowledged(t0 + 1500ms);
+    lease.tick(t0 + 2000ms);
+    lease.on_acknowledged(t0 + 2000ms);
+    EXPECT_EQ(lease.role(t0 + 2000ms), Role::leader);
+    EXPECT_FALSE(lease.may_produce(t0 + 2749ms));
+    EXPECT_TRUE(lease.may_produce(t0 + 2750ms));
 }
 
-TEST(LeaseTest, AShortPeriodStillWaitsTheClaimsRenewalInterval) {
+TEST(LeaseTest, AShortPeriodStillWaitsForTheClaimToStand) {
     Lease lease(settings("b", 0, 10ms), t0);
-    ASSERT_TRUE(lease.tick(t0 + 2s).has_value());
-    lease.on_acknowledged(t0 + 2s);
-    EXPECT_FALSE(lease.may_produce(t0 + 2010ms));
-    lease.tick(t0 + 2500ms);
-    EXPECT_TRUE(lease.may_produce(t0 + 2500ms));
+    ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
+    lease.on_acknowledged(t0 + 1500ms);
+    EXPECT_FALSE(lease.may_produce(t0 + 1999ms));
+    lease.tick(t0 + 2000ms);
+    EXPECT_TRUE(lease.may_produce(t0 + 2000ms));
 }
 
 TEST(LeaseTest, ALeaderSeeingANewerEpochStepsDown) {
@@ -235,8 +245,8 @@ TEST(LeaseTest, AClearedRecordDoesNotHastenTheTakeover) {
     Lease lease(settings("b"), t0);
     lease.on_record(record("a", 3), t0 + 1s);
     lease.on_record(std::nullopt, t0 + 1100ms);  // the leader's will
-    EXPECT_FALSE(lease.tick(t0 + 2999ms).has_value());
-    const auto claim = lease.tick(t0 + 3s);
+    EXPECT_FALSE(lease.tick(t0 + 2499ms).has_value());
+    const auto claim = lease.tick(t0 + 2500ms);
     ASSERT_TRUE(claim.has_value());
     EXPECT_EQ(claim->epoch, 4u);
 }
@@ -250,24 +260,24 @@ TEST(LeaseTest, ItsOwnRecordFromAnEarlierLifeRaisesTheEpochButIsNotALeader) {
     EXPECT_EQ(claim->epoch, 6u);
 }
 
-TEST(LeaseTest, AStandbyRefusesWritesOnceTheLeaderIsLate) {
+TEST(LeaseTest, AStandbyRefusesWritesOnceTheLeaderItHeardIsSurelyFenced) {
     Lease lease(settings("b"), t0);
     lease.on_record(record("a", 1), t0 + 1s);
-    EXPECT_EQ(lease.writes(t0 + 1999ms), WritePolicy::leave_to_leader);
-    EXPECT_EQ(lease.writes(t0 + 2s), WritePolicy::refuse);
+    EXPECT_EQ(lease.writes(t0 + 2249ms), WritePolicy::leave_to_leader);
+    EXPECT_EQ(lease.writes(t0 + 2250ms), WritePolicy::refuse);
 }
 
 TEST(LeaseTest, ALeaderWhoseLeaseLapsedLeavesWritesToItsSuccessorUntilItHearsALeader) {
     auto lease = leader_from(t0 + 2s);
-    // The last acknowledged renewal was sent at 2.5 s: fenced at 4.25 s, before any tick.
-    EXPECT_EQ(lease.writes(t0 + 4250ms), WritePolicy::leave_to_leader);
-    lease.tick(t0 + 4250ms);
-    EXPECT_EQ(lease.role(t0 + 4250ms), Role::standby);
+    // The last acknowledged renewal was sent at 2.5 s: fenced at 3.75 s, before any tick.
+    EXPECT_EQ(lease.writes(t0 + 3750ms), WritePolicy::leave_to_leader);
+    lease.tick(t0 + 3750ms);
+    EXPECT_EQ(lease.role(t0 + 3750ms), Role::standby);
     EXPECT_EQ(lease.writes(t0 + 5s), WritePolicy::leave_to_leader);
     // Its successor heard, then late: writes are refused as by any standby.
     lease.on_record(record("b", 2), t0 + 5s);
-    EXPECT_EQ(lease.writes(t0 + 5999ms), WritePolicy::leave_to_leader);
-    EXPECT_EQ(lease.writes(t0 + 6s), WritePolicy::refuse);
+    EXPECT_EQ(lease.writes(t0 + 6249ms), WritePolicy::leave_to_leader);
+    EXPECT_EQ(lease.writes(t0 + 6250ms), WritePolicy::refuse);
 }
 
 TEST(LeaseTest, AcknowledgementsOfAnEarlierLeadershipDoNotCount) {

@@ -6,16 +6,20 @@
 /// The rules, with T = takeover and R = T / 4 (the renewal interval):
 /// - The leader publishes its record every R. A renewal counts once the broker acknowledged it,
 ///   as of the moment it was sent.
-/// - The fence: a leader whose newest acknowledged renewal was sent T - R / 2 ago or more is
+/// - The fence: a leader whose newest acknowledged renewal was sent T - 3R / 2 ago or more is
 ///   fenced at once, whether or not anything ran since (a process resumed after SIGSTOP is
 ///   fenced at its first question), and steps down. It was sent before the standby received
-///   it, so the leader is fenced at least R / 2 before the standby may take over.
-/// - A standby takes over T after it last heard another unit's record (or after it started):
-///   it claims, publishing its record with the highest epoch it knows plus one.
+///   it, so the leader is fenced at least R / 2 before the standby claims.
+/// - A standby claims T - R after it last heard another unit's record (or after it started),
+///   publishing its record with the highest epoch it knows plus one, so that its claim stands
+///   (below) and it takes over T after it last heard the leader.
 /// - A claim stands once the broker acknowledged it and R passed without a claim of the same
 ///   epoch from a unit of higher rank (priority, then id): that one wins, the other stands by.
-/// - The new leader produces only from its claim plus one period of its exchanges (the
-///   longest), so the old leader's last datagram is a period behind, at least.
+/// - The new leader produces once it leads and T - 3R / 2 plus a period of its exchanges (the
+///   longest) passed since it last heard the old one: that one was fenced by then, so its last
+///   datagram is a period behind at least. With periods up to 3R / 2, it produces as it leads.
+/// - A standby leaves writes to the leader it heard for T - 3R / 2, while that one may hold its
+///   lease, and refuses them after.
 /// - Any unit seeing a record of a newer epoch follows it. Of the same epoch, a claim gives way
 ///   to a renewal (a leader confirmed: the claim came too late, as one sent by a unit cut off
 ///   from the broker and delivered once the path is back), a leader ignores a claim (its sender
@@ -53,8 +57,8 @@ struct LeaseSettings {
     std::string id;  ///< gateway.id
     int priority = 0;
     std::chrono::milliseconds takeover{2000};
-    /// The longest period of the produced exchanges: a new leader waits this long after its
-    /// claim before it produces.
+    /// The longest period of the produced exchanges: a new leader waits this long after the
+    /// latest fence of the leader it last heard before it produces.
     std::chrono::milliseconds longest_period{0};
 };
 
@@ -81,7 +85,8 @@ public:
 
     Role role(MonoTime now) const;
     bool fenced(MonoTime now) const;
-    /// Whether produced exchanges may send: the leader, unfenced, a period after its claim.
+    /// Whether produced exchanges may send: the leader, unfenced, a period after the latest fence
+    /// of the leader it last heard.
     bool may_produce(MonoTime now) const;
     WritePolicy writes(MonoTime now) const;
 
@@ -103,6 +108,10 @@ private:
     /// Whether this unit follows `record`, another unit's of its own epoch.
     bool gives_way(const LeaderRecord& record) const;
     void stand_by(MonoTime now);
+    /// How long after its newest acknowledged renewal was sent a leader is fenced.
+    std::chrono::milliseconds fence_after() const {
+        return settings_.takeover - 3 * renew_interval() / 2;
+    }
 
     LeaseSettings settings_;
     State state_ = State::standby;
