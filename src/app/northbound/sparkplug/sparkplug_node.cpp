@@ -56,8 +56,8 @@ Value counter(std::uint64_t value) { return Value{value}; }
 
 SparkplugOptions sparkplug_options(const core::config::Config& config) {
     const auto& section = config.sparkplug;
-    return {section.group_id, section.node_id(config.gateway), section.primary_host_id, section.qos,
-            section.max_packet_bytes};
+    return {section.group_id, core::config::sparkplug_node_id(config), section.primary_host_id,
+            section.qos, section.max_packet_bytes};
 }
 
 SparkplugNode::SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt,
