@@ -87,6 +87,24 @@ protected:
         return json::parse(message->payload);
     }
 
+    /// The leader, once the other unit stands by and the leader's session is under way: its
+    /// NBIRTH, `plant` born with a first datagram, and a renewal carrying the session's bdSeq,
+    /// which the standby hears as well. An empty leader, and a failure, when that did not come.
+    std::pair<std::string, json> leading_session() {
+        const auto leader = first_leader();
+        if (leader.empty() || !says(other(leader), "standby") ||
+            !index_of(node_topic("NBIRTH"), 0)) {
+            ADD_FAILURE() << "no leader with a Sparkplug session beside a standby";
+            return {};
+        }
+        send_plant(1, 10);
+        auto renewal = renewal_with_bd_seq(leader);
+        if (!index_of(device_topic("DBIRTH", "plant"), 0) || !renewal.is_object()) {
+            ADD_FAILURE() << "no DBIRTH, or no renewal with a bdSeq";
+            return {};
+        }
+        return {leader, std::move(renewal)};
+    }
     /// How many times a unit said `leader` on its role topic since message `from`.
     std::size_t leaderships(std::size_t from) const {
         const auto all = recorder_->messages();
@@ -113,18 +131,11 @@ std::string bd_seq_of(const std::string& payload) {
 }
 
 TEST_F(HotStandbySparkplugTest, OnlyTheLeaderIsTheEdgeNodeAndATakeoverIsANewSessionOfIt) {
-    const auto leader = first_leader();
-    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto [leader, renewal] = leading_session();
+    ASSERT_FALSE(leader.empty());
     const auto standby = other(leader);
-    ASSERT_TRUE(says(standby, "standby"));
-    ASSERT_TRUE(index_of(node_topic("NBIRTH"), 0));
-    send_plant(1, 10);
-    ASSERT_TRUE(index_of(device_topic("DBIRTH", "plant"), 0));
     send_plant(2, 11);
     ASSERT_TRUE(index_of(device_topic("DDATA", "plant"), 0));
-    // The standby has heard the session's bdSeq in the leader's renewals.
-    const auto renewal = renewal_with_bd_seq(leader);
-    ASSERT_TRUE(renewal.is_object());
 
     const auto killed = recorder_->count();
     gateways_[leader]->signal(SIGKILL);
@@ -183,14 +194,9 @@ TEST_F(HotStandbySparkplugTest, OnlyTheLeaderIsTheEdgeNodeAndATakeoverIsANewSess
 }
 
 TEST_F(HotStandbySparkplugTest, ALeaderThatStepsDownEndsItsSessionWithItsOwnNdeath) {
-    const auto leader = first_leader();
-    ASSERT_FALSE(leader.empty()) << "nobody leads";
+    const auto [leader, renewal] = leading_session();
+    ASSERT_FALSE(leader.empty());
     const auto standby = other(leader);
-    ASSERT_TRUE(says(standby, "standby"));
-    send_plant(1, 10);
-    ASSERT_TRUE(index_of(device_topic("DBIRTH", "plant"), 0));
-    const auto renewal = renewal_with_bd_seq(leader);
-    ASSERT_TRUE(renewal.is_object());
 
     // Hung, the leader keeps its connections; the standby takes over meanwhile.
     const auto stopped = recorder_->count();
