@@ -131,6 +131,9 @@ void ExchangeConsumer::on_tick(core::MonoTime now, core::WallTime wall, bool ref
 
 void ExchangeConsumer::republish(core::MonoTime now) {
     report_tags(now, true);
+    // After the samples, as on a datagram: a Sparkplug node that learns here that the
+    // exchange is up (a new leader's) is born with them.
+    northbound_.exchange_state(plan_, exchange_.state());
     report_status(now);
 }
 

@@ -56,16 +56,7 @@ Gateway::Gateway(core::config::Config config)
         northbound::json_tree::json_tree_options(config_), *mqtt_, writes_);
     make_history();
     if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*json_tree_);
-    if (config_.sparkplug.enabled()) {
-        sparkplug_mqtt_ = std::make_unique<adapters::mqtt::Client>(
-            loop_.get_executor(),
-            sparkplug_client_options(config_, [this] { return sparkplug_->next_will(); }));
-        sparkplug_ = std::make_unique<northbound::sparkplug::SparkplugNode>(
-            northbound::sparkplug::sparkplug_options(config_), *sparkplug_mqtt_, writes_,
-            system_clock());
-        northbound_.add(*sparkplug_);
-        add_sparkplug_history();
-    }
+    make_sparkplug();
     make_pair();
     exchanges_.apply(take_plans(config_), std::chrono::steady_clock::now(),
                      std::chrono::system_clock::now());
@@ -159,7 +150,8 @@ void Gateway::start() {
         sparkplug_mqtt_->set_on_message([this](const adapters::mqtt::Incoming& message) {
             on_sparkplug_event(false, [&] { sparkplug_->on_message(message); });
         });
-        sparkplug_mqtt_->start();
+        // A pair's units are one edge node: only the leader holds its session (on_role).
+        if (!pair_) sparkplug_mqtt_->start();
     }
     wait_signal();
     schedule_tick();

@@ -2,8 +2,9 @@
 // gates it keeps, one each: what the exchanges say north (the FanOut), what they produce (the
 // ProducerScheduler, through Exchanges' options) and the writes (the WriteDispatcher). And what
 // lets a takeover go on where the leader stopped: its images, published by the leader and
-// followed by the standby (PairImages), and its request ids, heard by the standby
-// (DatagramRouter::set_followed).
+// followed by the standby (PairImages), its request ids, heard by the standby
+// (DatagramRouter::set_followed), and the Sparkplug session of the one edge node, held by the
+// leader alone.
 
 #include <spdlog/spdlog.h>
 
@@ -43,6 +44,7 @@ void Gateway::make_pair() {
     pair_ = std::make_unique<redundancy::PairLease>(
         std::move(settings), std::move(topics), *pair_mqtt_, std::chrono::steady_clock::now(),
         [this](core::redundancy::Role role) { on_role(role); });
+    if (sparkplug_) pair_->set_bd_seq_source([this] { return sparkplug_->session_bd_seq(); });
     northbound_.set_gate([this] { return pair_->leading(std::chrono::steady_clock::now()); });
     writes_.set_admission([this] { return pair_->writes(std::chrono::steady_clock::now()); });
     spdlog::info("pair {}: standing by until the lease is settled (takeover after {} ms)",
@@ -84,9 +86,12 @@ void Gateway::on_role(core::redundancy::Role role) {
             pair_images_->publish(*producer, pair_->lease().epoch());
         }
         // A standby kept its exchanges current without a word north: the new leader says all
-        // of it at once, over what the old leader left retained.
-        return republish_exchanges();
+        // of it at once, over what the old leader left retained, and its Sparkplug births
+        // hold it.
+        republish_exchanges();
+        return open_sparkplug_session();
     }
+    end_sparkplug_session();
     // Writes this unit accepted as leader and has not produced never will be by it: answered
     // now, never applied late should it lead again (the new leader may have taken them).
     std::size_t cancelled = 0;

@@ -31,6 +31,14 @@ TEST(CheckRedundancy, ThePairItsTakeoverAndItsRenewalAreShown) {
         << out;
 }
 
+TEST(CheckRedundancy, SparkplugInAPairIsOneEdgeNodeWithoutAWarning) {
+    const auto out = checked(
+        "redundancy: { pair: turbine-gw }\n"
+        "sparkplug: { group_id: plant1 }\n");
+    EXPECT_NE(out.find("redundancy: pair turbine-gw"), std::string::npos) << out;
+    EXPECT_EQ(out.find("warning"), std::string::npos) << out;
+}
+
 TEST(CheckRedundancy, NoPairNoLine) {
     EXPECT_EQ(checked("").find("redundancy"), std::string::npos);
 }

@@ -135,18 +135,20 @@ TEST_F(ConsumerEvents, GoingStaleAndComingBackAreEachLoggedOnce) {
               std::vector<std::string>{"exchange e1 is ok again after 2.5 s stale; tags good"});
 }
 
-TEST_F(ConsumerEvents, RepublishReportsEveryTagAsAWholeAndTheStatus) {
+TEST_F(ConsumerEvents, RepublishReportsEveryTagAsAWholeTheStateAndTheStatus) {
     datagram(1, 2);
     north_.events.clear();
     consumer_.republish(now_);
-    EXPECT_EQ(north_.events, (std::vector<std::string>{"samples", "status"}));
+    EXPECT_EQ(north_.events, (std::vector<std::string>{"samples", "state", "status"}));
     EXPECT_TRUE(north_.batches.back().all_tags);
     EXPECT_EQ(north_.batches.back().samples.size(), 2u);
+    EXPECT_EQ(north_.states.back().state, ConsumeState::ok);
 }
 
-TEST_F(ConsumerEvents, BeforeAnyDatagramThereIsNoValueToReportOnlyTheStatus) {
+TEST_F(ConsumerEvents, BeforeAnyDatagramThereIsNoValueToReportOnlyTheStateAndStatus) {
     consumer_.republish(now_);
-    EXPECT_EQ(north_.events, std::vector<std::string>{"status"});
+    EXPECT_EQ(north_.events, (std::vector<std::string>{"state", "status"}));
+    EXPECT_EQ(north_.states.back().state, ConsumeState::waiting);
 }
 
 }  // namespace

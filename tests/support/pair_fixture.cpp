@@ -10,7 +10,8 @@
 namespace eip2mqtt::test {
 
 std::string PairTest::pair_config(const std::string& id, const std::string& broker_url,
-                                  std::uint16_t port, std::uint32_t period_ms) const {
+                                  std::uint16_t port, std::uint32_t period_ms,
+                                  const std::string& sections, const std::string& exchanges) const {
     return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
            ", log_level: debug }\n"
            "mqtt: { url: \"" +
@@ -19,13 +20,14 @@ std::string PairTest::pair_config(const std::string& id, const std::string& brok
            "eip: { bind: 127.0.0.1, port: " +
            std::to_string(port) +
            " }\n"
-           "redundancy: { pair: turbine, takeover_ms: 1000 }\n"
-           "exchanges:\n" +
+           "redundancy: { pair: turbine, takeover_ms: 1000 }\n" +
+           sections + "exchanges:\n" +
            ExchangeYaml::produce("sp", "10.1.2.3", 10,
                                  "127.0.0.1:" + std::to_string(capture_.port()))
                .period_ms(period_ms)
                .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 3000")
-               .str();
+               .str() +
+           exchanges;
 }
 
 void PairTest::start_unit(const std::string& id, const std::string& config) {

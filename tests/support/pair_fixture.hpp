@@ -26,9 +26,12 @@ protected:
     static std::string other(const std::string& id) { return id == "gw-a" ? "gw-b" : "gw-a"; }
 
     /// Unit `id`'s configuration: the broker at `broker_url`, EIP on `port`, the produced
-    /// exchange every `period_ms`.
+    /// exchange every `period_ms`; `sections` (YAML sections, `sparkplug:` say) and
+    /// `exchanges` (more of them, as ExchangeYaml writes them) added.
     std::string pair_config(const std::string& id, const std::string& broker_url,
-                            std::uint16_t port, std::uint32_t period_ms) const;
+                            std::uint16_t port, std::uint32_t period_ms,
+                            const std::string& sections = "",
+                            const std::string& exchanges = "") const;
     /// Writes `id`'s configuration and runs the unit on it.
     void start_unit(const std::string& id, const std::string& config);
     /// Waits for `id` to say `role` on its role topic (after message `from`).

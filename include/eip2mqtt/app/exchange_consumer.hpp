@@ -34,7 +34,9 @@ public:
     /// caller asks for it about once a second: refresh is counted in seconds).
     void on_tick(core::MonoTime now, core::WallTime wall, bool refresh_scan);
 
-    /// Reports every tag and the status again (after a reconnect: brokers lose retained state).
+    /// Reports every tag, the state and the status again (after a reconnect: brokers lose
+    /// retained state; and when a pair's standby takes the lead, its northbounds having heard
+    /// nothing while it stood by).
     void republish(core::MonoTime now);
 
     /// This consumer is `index` of `count` started together: its periodic `_status` goes at its

@@ -33,6 +33,7 @@
 #include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
+#include "eip2mqtt/app/redundancy/leader_publisher.hpp"
 #include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/redundancy/pair_lease.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
@@ -57,6 +58,8 @@ public:
 private:
     void start();
     void on_connected();
+    /// With `sparkplug:`, the edge node on its own connection (gateway_sparkplug.cpp).
+    void make_sparkplug();
     /// With `mqtt.store_and_forward`: the journal and what journals and replays it
     /// (gateway_history.cpp). A journal that cannot be opened is logged; the gateway runs
     /// without it.
@@ -88,6 +91,11 @@ private:
     ExchangesOptions pair_options();
     void start_pair();
     void on_role(core::redundancy::Role role);
+    /// With `sparkplug:`, the leader's session of the one edge node (gateway_sparkplug.cpp):
+    /// opened when this unit takes the lead, with a bdSeq other than the pair's last one, ended
+    /// (its NDEATH said, what waited dropped) when it steps down.
+    void open_sparkplug_session();
+    void end_sparkplug_session();
     /// Whether produced exchanges may send now: always without a pair.
     bool may_produce(core::MonoTime now) const { return !pair_ || pair_->may_produce(now); }
     /// With `eip.commands.enabled`: the command port and its responder (gateway_commands.cpp).
@@ -118,8 +126,11 @@ private:
     std::unique_ptr<adapters::mqtt::Client> mqtt_;
     WriteDispatcher writes_;
     std::unique_ptr<northbound::json_tree::JsonTree> json_tree_;
-    /// With `sparkplug:`, the edge node and its own connection (its will is the NDEATH).
+    /// With `sparkplug:`, the edge node and its own connection (its will is the NDEATH); in a
+    /// pair, connected only while this unit leads.
     std::unique_ptr<adapters::mqtt::Client> sparkplug_mqtt_;
+    /// In a pair, between the node and its connection: nothing passes unless this unit leads.
+    std::unique_ptr<redundancy::LeaderPublisher> sparkplug_leader_;
     std::unique_ptr<northbound::sparkplug::SparkplugNode> sparkplug_;
     std::unique_ptr<history::StoreAndForward> history_;  ///< with mqtt.store_and_forward
     northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to

@@ -75,6 +75,8 @@ void Client::set_subscriptions(std::vector<std::string> filters) {
 
 void Client::start() { impl_->connection().start(); }
 
+void Client::end_session() { impl_->connection().end_session(); }
+
 void Client::publish(Message&& message) {
     if (!impl_->connection().accepts_publications()) {
         impl_->sender().count_discarded();

@@ -188,10 +188,6 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
             << " ms, the lease renewed every " << (pair.takeover / 4).count() << " ms"
             << (pair.priority ? ", priority " + std::to_string(*pair.priority) : std::string())
             << "\n";
-        if (config->sparkplug.enabled()) {
-            out << "warning: redundancy with sparkplug: both units are born as the edge node; "
-                   "only the leader sends its data\n";
-        }
     }
     print_placeholders(config_path, out);
     const core::plan::WarningContext context{config->mqtt.version == 3};

@@ -11,6 +11,7 @@ std::string encode_leader_record(const core::redundancy::LeaderRecord& record,
                         {"priority", record.priority},
                         {"takeover_ms", takeover.count()}};
     if (record.claim) json["claim"] = true;
+    if (record.bd_seq) json["bd_seq"] = *record.bd_seq;
     return json.dump();
 }
 
@@ -32,6 +33,12 @@ std::optional<core::redundancy::LeaderRecord> decode_leader_record(std::string_v
     }
     if (const auto claim = json.find("claim"); claim != json.end() && claim->is_boolean()) {
         record.claim = claim->get<bool>();
+    }
+    // Anything else is no bdSeq: the unit taking over then takes its own next.
+    if (const auto bd_seq = json.find("bd_seq"); bd_seq != json.end() &&
+                                                 bd_seq->is_number_unsigned() &&
+                                                 bd_seq->get<std::uint64_t>() <= 255) {
+        record.bd_seq = static_cast<std::uint8_t>(bd_seq->get<std::uint64_t>());
     }
     return record;
 }

@@ -56,14 +56,19 @@ void PairLease::on_connected() { publish_role(role_); }
 
 void PairLease::on_message(const adapters::mqtt::Incoming& message, core::MonoTime now) {
     if (message.topic != topics_.leader) return;
-    lease_.on_record(decode_leader_record(message.payload), now);
+    const auto record = decode_leader_record(message.payload);
+    lease_.on_record(record, now);
+    if (record && record->bd_seq && record->epoch >= lease_.epoch()) {
+        heard_bd_seq_ = record->bd_seq;
+    }
     follow_role(now);
 }
 
 void PairLease::on_acknowledged(std::uint64_t token) { lease_.on_acknowledged(time_of(token)); }
 
 void PairLease::tick(core::MonoTime now) {
-    if (const auto record = lease_.tick(now)) {
+    if (auto record = lease_.tick(now)) {
+        if (!record->claim && bd_seq_source_) record->bd_seq = bd_seq_source_();
         message_.topic = topics_.leader;
         message_.payload = encode_leader_record(*record, takeover_);
         message_.qos = 1;

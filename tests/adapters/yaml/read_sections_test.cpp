@@ -140,7 +140,7 @@ TEST(LoadConfig, SparkplugSectionWithItsDefaults) {
     const auto config =
         good("gateway: { id: gw7 }\nsparkplug: { group_id: plant1 }\n" + minimal_exchange);
     EXPECT_TRUE(config.sparkplug.enabled());
-    EXPECT_EQ(config.sparkplug.node_id(config.gateway), "gw7");
+    EXPECT_EQ(core::config::sparkplug_node_id(config), "gw7");
     EXPECT_TRUE(config.sparkplug.uns);
     EXPECT_EQ(config.sparkplug.qos, 0);
     EXPECT_TRUE(config.sparkplug.primary_host_id.empty());
@@ -150,11 +150,21 @@ TEST(LoadConfig, SparkplugSectionWithItsDefaults) {
         "max_packet_bytes: 131072 }\n" +
         minimal_exchange);
     EXPECT_EQ(full.sparkplug.max_packet_bytes, 131072u);
-    EXPECT_EQ(full.sparkplug.node_id(full.gateway), "n");
+    EXPECT_EQ(core::config::sparkplug_node_id(full), "n");
     EXPECT_EQ(full.sparkplug.primary_host_id, "scada");
     EXPECT_FALSE(full.sparkplug.uns);
     EXPECT_EQ(full.sparkplug.qos, 1);
     EXPECT_FALSE(good(minimal_exchange).sparkplug.enabled());
+}
+
+TEST(LoadConfig, InAPairTheEdgeNodeIsThePairsUnlessNamed) {
+    const std::string sections =
+        "gateway: { id: gw-a }\nredundancy: { pair: turbine }\nsparkplug: { group_id: g";
+    EXPECT_EQ(core::config::sparkplug_node_id(good(sections + " }\n" + minimal_exchange)),
+              "turbine");
+    EXPECT_EQ(core::config::sparkplug_node_id(
+                  good(sections + ", edge_node_id: n }\n" + minimal_exchange)),
+              "n");
 }
 
 TEST(LoadConfig, SparkplugIdsFollowTheTopicElementRules) {

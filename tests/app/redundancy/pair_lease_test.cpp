@@ -111,10 +111,60 @@ TEST_F(PairLeaseTest, OtherTopicsAndPayloadsThatAreNoRecordChangeNothing) {
     EXPECT_EQ(lease_.lease().epoch(), 4u);
 }
 
+TEST_F(PairLeaseTest, RenewalsCarryTheBdSeqOfTheOpenSparkplugSessionClaimsNone) {
+    std::optional<std::uint8_t> session;
+    lease_.set_bd_seq_source([&session] { return session; });
+    session = 9;  // whatever the source says, a claim has no session yet
+    lease_.tick(t0 + 2s);
+    EXPECT_FALSE(decode_leader_record(publisher_.on(leader_topic).back())->bd_seq.has_value());
+    acknowledge_last();
+    session.reset();
+    lease_.tick(t0 + 2500ms);  // confirmed, its session not open yet
+    EXPECT_FALSE(decode_leader_record(publisher_.on(leader_topic).back())->bd_seq.has_value());
+    session = 9;
+    lease_.tick(t0 + 3000ms);
+    EXPECT_EQ(decode_leader_record(publisher_.on(leader_topic).back())->bd_seq, 9);
+}
+
+TEST_F(PairLeaseTest, TheBdSeqHeardIsTheNewestOfTheLeasesEpoch) {
+    const auto with_bd_seq = [](const std::string& id, std::uint64_t epoch, std::uint8_t bd_seq) {
+        LeaderRecord record{id, epoch, 0};
+        record.bd_seq = bd_seq;
+        return adapters::mqtt::Incoming{leader_topic, encode_leader_record(record, 2000ms)};
+    };
+    EXPECT_FALSE(lease_.heard_bd_seq().has_value());
+    lease_.on_message(record("gw-b", 3), t0 + 100ms);
+    EXPECT_FALSE(lease_.heard_bd_seq().has_value());
+    lease_.on_message(with_bd_seq("gw-b", 3, 40), t0 + 200ms);
+    EXPECT_EQ(lease_.heard_bd_seq(), 40);
+    lease_.on_message(record("gw-b", 3), t0 + 300ms);  // a renewal made before its session
+    EXPECT_EQ(lease_.heard_bd_seq(), 40);
+    lease_.on_message(with_bd_seq("gw-b", 4, 41), t0 + 400ms);
+    EXPECT_EQ(lease_.heard_bd_seq(), 41);
+    // A renewal of a deposed leader, delivered late: its session is over.
+    lease_.on_message(with_bd_seq("gw-c", 3, 17), t0 + 500ms);
+    EXPECT_EQ(lease_.heard_bd_seq(), 41);
+}
+
 TEST(LeaderRecordTest, EncodedAndDecoded) {
     const auto payload = encode_leader_record({"gw-a", 7, 100}, 2000ms);
     EXPECT_EQ(payload, R"({"epoch":7,"id":"gw-a","priority":100,"takeover_ms":2000})");
     EXPECT_EQ(decode_leader_record(payload), (LeaderRecord{"gw-a", 7, 100}));
+}
+
+TEST(LeaderRecordTest, ARenewalCarriesTheBdSeqOfTheSparkplugSession) {
+    LeaderRecord record{"gw-a", 7, 100};
+    record.bd_seq = 255;
+    const auto payload = encode_leader_record(record, 2000ms);
+    EXPECT_EQ(payload, R"({"bd_seq":255,"epoch":7,"id":"gw-a","priority":100,"takeover_ms":2000})");
+    EXPECT_EQ(decode_leader_record(payload), record);
+    for (const char* other :
+         {R"({"id":"a","epoch":1,"bd_seq":256})", R"({"id":"a","epoch":1,"bd_seq":-1})",
+          R"({"id":"a","epoch":1,"bd_seq":"3"})"}) {
+        const auto read = decode_leader_record(other);
+        ASSERT_TRUE(read.has_value()) << other;
+        EXPECT_FALSE(read->bd_seq.has_value()) << other;
+    }
 }
 
 TEST(LeaderRecordTest, WhatIsNoRecordReadsAsNone) {

@@ -123,13 +123,20 @@ public:
     /// Topic filters (QoS 1) subscribed on every connect; may be changed at any time.
     void set_subscriptions(std::vector<std::string> filters) override;
 
-    /// Starts connecting (non-blocking); retries with backoff until stop().
+    /// Starts connecting (non-blocking); retries with backoff until stop() or end_session().
     void start();
 
     /// Queues a publication; sent when connected, buffered while not. Leaves `message` blank
     /// (Message::clear()), often with the buffers of an earlier publication: a caller that
     /// publishes in a loop fills the same Message again and allocates nothing.
     void publish(Message&& message) override;
+
+    /// For a session_bound client whose session is over (a pair's leader that stepped down):
+    /// what waits to be sent is dropped, never flushed; the will made for the current
+    /// connection is published, then DISCONNECT (so the broker does not publish it again); no
+    /// reconnect until start() again, whose connection makes a new will. An attempt in
+    /// progress is cancelled. Returns without waiting for the broker. Nothing when not started.
+    void end_session();
 
     /// Publishes `offline`, waits up to `flush_timeout` for queued and in-flight publications,
     /// then disconnects and ends the sender thread. Blocks the calling thread: call it after

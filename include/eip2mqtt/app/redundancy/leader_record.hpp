@@ -10,7 +10,8 @@
 
 namespace eip2mqtt::app::redundancy {
 
-/// `{"id":"gw-a","epoch":3,"priority":100,"takeover_ms":2000}`.
+/// `{"id":"gw-a","epoch":3,"priority":100,"takeover_ms":2000}`, with `"claim":true` on a claim
+/// and `"bd_seq":n` on a renewal of a leader whose Sparkplug session is open.
 std::string encode_leader_record(const core::redundancy::LeaderRecord& record,
                                  std::chrono::milliseconds takeover);
 

@@ -14,6 +14,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
@@ -39,11 +40,20 @@ adapters::mqtt::Message pair_will(const PairTopics& topics);
 class PairLease {
 public:
     using RoleChanged = std::function<void(core::redundancy::Role role)>;
+    /// The bdSeq of this unit's open Sparkplug session; nullopt while none is open.
+    using BdSeqSource = std::function<std::optional<std::uint8_t>()>;
 
     /// `publisher` (the pair's connection) must outlive the lease; `on_role` runs on each
     /// change of role, after the role topic was published.
     PairLease(core::redundancy::LeaseSettings settings, PairTopics topics,
               adapters::mqtt::Publisher& publisher, core::MonoTime start, RoleChanged on_role);
+
+    /// With `sparkplug:`: each renewal carries what `source` says (LeaderRecord::bd_seq).
+    void set_bd_seq_source(BdSeqSource source) { bd_seq_source_ = std::move(source); }
+    /// The bdSeq of the newest record read on the leader topic that carried one, of the
+    /// lease's epoch or a newer one (a deposed leader's renewal delivered late is not): the
+    /// last Sparkplug session of the pair this unit knows of.
+    std::optional<std::uint8_t> heard_bd_seq() const { return heard_bd_seq_; }
 
     /// After each (re)connect of the pair's connection: the role topic again.
     void on_connected();
@@ -69,6 +79,8 @@ private:
     PairTopics topics_;
     adapters::mqtt::Publisher& publisher_;
     RoleChanged on_role_;
+    BdSeqSource bd_seq_source_;
+    std::optional<std::uint8_t> heard_bd_seq_;
     core::redundancy::Role role_ = core::redundancy::Role::standby;
     adapters::mqtt::Message message_;
 };

@@ -159,7 +159,7 @@ struct MetricsSection {
 /// `sparkplug:`: the gateway as a Sparkplug B edge node, beside the JSON tree.
 struct SparkplugSection {
     std::string group_id;      ///< empty: Sparkplug is off
-    std::string edge_node_id;  ///< default: gateway.id
+    std::string edge_node_id;  ///< default: sparkplug_node_id()
     std::string primary_host_id;
     bool uns = true;  ///< keep the JSON topic tree as well
     /// QoS of births and data; the specification says 0 (the NDEATH will is always 1).
@@ -171,9 +171,6 @@ struct SparkplugSection {
     Marks marks;
 
     bool enabled() const { return !group_id.empty(); }
-    const std::string& node_id(const GatewaySection& gateway) const {
-        return edge_node_id.empty() ? gateway.id : edge_node_id;
-    }
 };
 
 /// `redundancy:`: two gateways, one leading and one standing by (README, "Redundancy").
@@ -202,6 +199,13 @@ struct Config {
     RedundancySection redundancy;
     std::vector<ExchangeConfig> exchanges;
 };
+
+/// The Sparkplug edge node's id: `sparkplug.edge_node_id`; by default the pair's name in a
+/// pair, whose two units are one edge node (README "Redundancy"), else `gateway.id`.
+inline const std::string& sparkplug_node_id(const Config& config) {
+    if (!config.sparkplug.edge_node_id.empty()) return config.sparkplug.edge_node_id;
+    return config.redundancy.enabled() ? config.redundancy.pair : config.gateway.id;
+}
 
 /// Semantic checks across the whole model (tags may overlap: plan::find_overlaps): tags past
 /// the end, lengths over 1400, bit addresses on non-bit types, duplicate names and (producer,

@@ -49,6 +49,9 @@ struct LeaderRecord {
     int priority = 0;
     /// A claim not yet confirmed; false: a confirmed leader's renewal.
     bool claim = false;
+    /// With `sparkplug:`, a leader's renewal carries the bdSeq of its Sparkplug session, so that
+    /// the unit taking over opens one with another (bd_seq.hpp). The lease itself ignores it.
+    std::optional<std::uint8_t> bd_seq;
 
     friend bool operator==(const LeaderRecord&, const LeaderRecord&) = default;
 };

@@ -114,6 +114,8 @@ void Connection::on_message_arrived(const paho::const_message_ptr& msg) {
 void Connection::start() {
     if (state_ == State::idle) {
         do_connect();
+    } else if (state_ == State::ending) {
+        start_pending_ = true;
     }
 }
 

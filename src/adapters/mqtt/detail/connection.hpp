@@ -54,7 +54,7 @@ public:
     /// Subscribes what is new and unsubscribes what is gone when connected; kept for every
     /// connect after.
     void set_subscriptions(std::vector<std::string> filters);
-    /// Starts connecting, once.
+    /// Starts connecting, when idle: at first, or after end_session().
     void start();
     /// Whether a publication made now is queued: a session-bound client's belongs to the
     /// connection it is made on, so none is while there is none.
@@ -63,6 +63,8 @@ public:
     }
     /// stop() began: no more connects, timers cancelled.
     void on_stopped();
+    /// Client::end_session: back to idle, what waits dropped, the will said, DISCONNECT.
+    void end_session();
 
     // --- any thread ------------------------------------------------------------------------
     bool connected() const { return connected_; }
@@ -83,10 +85,18 @@ public:
     void mark_disconnected() { connected_ = false; }
 
 private:
-    enum class State { idle, connecting, connected, waiting, stopped };
+    /// `ending`: end_session() asked Paho to disconnect, which has not finished; a start()
+    /// meanwhile connects once it has (Paho takes no CONNECT before).
+    enum class State { idle, connecting, connected, waiting, ending, stopped };
 
     struct ConnectListener final : ::mqtt::iaction_listener {
         explicit ConnectListener(Connection& connection) : connection_(connection) {}
+        void on_success(const ::mqtt::token& tok) override;
+        void on_failure(const ::mqtt::token& tok) override;
+        Connection& connection_;
+    };
+    struct DisconnectListener final : ::mqtt::iaction_listener {
+        explicit DisconnectListener(Connection& connection) : connection_(connection) {}
         void on_success(const ::mqtt::token& tok) override;
         void on_failure(const ::mqtt::token& tok) override;
         Connection& connection_;
@@ -123,6 +133,8 @@ private:
     std::string explain_connect_failure(std::string reason) const;
     /// `silent`: Paho gave no cause (no DISCONNECT came; the socket closed or failed).
     void on_connection_lost(std::string cause, bool silent = false);
+    /// Paho finished the disconnect of end_session(): idle, or connecting if start() came.
+    void on_session_ended();
     /// Arms the backoff timer; returns the delay.
     std::chrono::milliseconds schedule_reconnect();
 
@@ -136,6 +148,7 @@ private:
 
     // The loop's.
     State state_ = State::idle;
+    bool start_pending_ = false;  ///< start() while ending
     boost::asio::steady_timer reconnect_timer_;
     ReconnectBackoff backoff_;
     ConnectedHandler on_connected_;
@@ -158,6 +171,7 @@ private:
     std::atomic<std::uint64_t> received_{0};
 
     ConnectListener connect_listener_{*this};
+    DisconnectListener disconnect_listener_{*this};
     SubscribeListener subscribe_listener_{*this};
 };
 

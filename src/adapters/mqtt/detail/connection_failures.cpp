@@ -1,6 +1,9 @@
-// The Connection's way down: failed attempts, lost connections, the reconnect backoff.
+// The Connection's way down: failed attempts, lost connections, the reconnect backoff, and a
+// session ended on purpose.
 
 #include <spdlog/spdlog.h>
+
+#include <utility>
 
 #include "adapters/mqtt/detail/connection.hpp"
 
@@ -74,6 +77,54 @@ void Connection::on_connection_lost(std::string cause, bool silent) {
     move_to_next_broker();
     spdlog::info("{} reconnecting to {} in {} ms", options_.log_name, url(),
                  schedule_reconnect().count());
+}
+
+void Connection::DisconnectListener::on_success(const paho::token&) {
+    connection_.loop_.post([&c = connection_] { c.on_session_ended(); });
+}
+
+void Connection::DisconnectListener::on_failure(const paho::token&) {
+    connection_.loop_.post([&c = connection_] { c.on_session_ended(); });
+}
+
+void Connection::end_session() {
+    start_pending_ = false;
+    if (state_ == State::idle || state_ == State::ending || state_ == State::stopped) return;
+    const auto was = state_;
+    state_ = State::idle;
+    reconnect_timer_.cancel();
+    backoff_.reset();
+    if (was == State::connected) {
+        connected_ = false;
+        nagle_.detach();
+        sender_.set_link_up(false);
+        // Session-bound: what waits belonged to this connection and goes with it. A burst the
+        // thread took before is handed over whole first, so the will is the last thing said.
+        sender_.on_connection_lost();
+        sender_.wait_idle();
+        publish_last_will();
+    } else {
+        // An attempt that may connect yet: it is disconnected, its will never said.
+        std::lock_guard lock(will_mutex_);
+        last_will_.reset();
+    }
+    if (was == State::connected || was == State::connecting) {
+        try {
+            // Paho sends the will before the DISCONNECT (waiting up to the timeout for its
+            // PUBACK), and cancels an attempt in progress. Nothing here waits for it.
+            paho_.disconnect(std::chrono::seconds(1), nullptr, disconnect_listener_);
+            state_ = State::ending;
+        } catch (const paho::exception& e) {
+            spdlog::warn("{} disconnect failed: {}", options_.log_name, e.what());
+        }
+    }
+    spdlog::info("{} session ended with {}", options_.log_name, url());
+}
+
+void Connection::on_session_ended() {
+    if (state_ != State::ending) return;
+    state_ = State::idle;
+    if (std::exchange(start_pending_, false)) do_connect();
 }
 
 void Connection::move_to_next_broker() { broker_ = next_broker(broker_, options_.urls.size()); }

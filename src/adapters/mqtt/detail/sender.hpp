@@ -77,6 +77,10 @@ public:
     /// What was in flight is sent again (QoS >= 1, a clean session) or counted as failed; a
     /// session-bound client drops what waits.
     void on_connection_lost();
+    /// After on_connection_lost(): returns once the thread hands nothing more to Paho, the
+    /// burst it took before sending stopped handed over whole (microseconds: Paho only queues
+    /// each publication). What the caller publishes to Paho next comes after all of it.
+    void wait_idle();
 
     // --- the client's own publications (online, offline) -----------------------------------
     /// Takes a slot of the acknowledged window; returns the connection's generation.
@@ -177,6 +181,7 @@ private:
     SendLedger ledger_;
     bool sending_ = false;      ///< connected and announced
     bool sender_idle_ = false;  ///< the thread waits on wake_sender_
+    bool idle_wanted_ = false;  ///< wait_idle() waits on completed_ for sender_idle_
     bool quit_ = false;
     core::ThrottledLog publish_failure_log_;
     core::ThrottledLog refused_log_;

@@ -113,6 +113,13 @@ void Sender::on_connection_lost() {
     }
 }
 
+void Sender::wait_idle() {
+    std::unique_lock lock(mutex_);
+    idle_wanted_ = true;
+    completed_.wait(lock, [this] { return sender_idle_ || quit_; });
+    idle_wanted_ = false;
+}
+
 std::string Sender::requeue_after_loss(std::uint64_t id, Message&& message) {
     hold_for_reconnect();
     auto dropped = ledger_.requeue_suspect(id, std::move(message));

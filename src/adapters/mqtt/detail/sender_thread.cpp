@@ -30,6 +30,7 @@ void Sender::sender_main() {
     std::unique_lock lock(mutex_);
     for (;;) {
         sender_idle_ = true;
+        if (idle_wanted_) completed_.notify_all();
         wake_sender_.wait(lock, [this] { return quit_ || ready_to_send(); });
         sender_idle_ = false;
         if (quit_) {

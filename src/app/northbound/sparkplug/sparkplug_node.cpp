@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "eip2mqtt/app/gateway_metrics.hpp"
+#include "eip2mqtt/core/redundancy/bd_seq.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
@@ -56,8 +57,8 @@ Value counter(std::uint64_t value) { return Value{value}; }
 
 SparkplugOptions sparkplug_options(const core::config::Config& config) {
     const auto& section = config.sparkplug;
-    return {section.group_id, section.node_id(config.gateway), section.primary_host_id, section.qos,
-            section.max_packet_bytes};
+    return {section.group_id, core::config::sparkplug_node_id(config), section.primary_host_id,
+            section.qos, section.max_packet_bytes};
 }
 
 SparkplugNode::SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt,
@@ -99,7 +100,22 @@ adapters::mqtt::Message SparkplugNode::next_will() {
         bd_seq_ = next_bd_seq_++;  // 255 is followed by 0
         will_connected_ = false;
     }
+    session_open_ = true;
     return death_message();
+}
+
+void SparkplugNode::begin_session(std::optional<std::uint8_t> heard) {
+    next_bd_seq_ = core::redundancy::next_session_bd_seq(heard, next_bd_seq_);
+    will_connected_ = true;  // taken by the next will, whatever became of the last CONNECT
+}
+
+void SparkplugNode::end_session() {
+    connected_ = false;
+    born_ = false;
+    session_open_ = false;
+    host_online_ = false;
+    rebirth_pending_ = false;
+    death_unacknowledged_ = 0;
 }
 
 adapters::mqtt::Message SparkplugNode::death_message() const {

@@ -30,7 +30,7 @@ std::string topic_length_problem(std::string_view pattern, std::size_t bytes) {
 /// and node too long for the node's topics are said once, and no device is checked then.
 void check_topic_lengths(const Config& config, Diagnostics& out) {
     const auto& sparkplug = config.sparkplug;
-    const auto& node_id = sparkplug.node_id(config.gateway);
+    const auto& node_id = sparkplug_node_id(config);
     constexpr std::string_view root = "spBv1.0/";
     constexpr std::string_view birth = "/NBIRTH/";
     const std::size_t node_bytes =
@@ -77,10 +77,10 @@ void check_sparkplug(const Config& config, Diagnostics& out) {
     check("sparkplug group_id", sparkplug.group_id, sparkplug.marks.of("group_id"));
     if (sparkplug.marks.contains("edge_node_id")) {
         check("sparkplug edge_node_id", sparkplug.edge_node_id, sparkplug.marks.of("edge_node_id"));
-    } else {
+    } else if (!config.redundancy.enabled()) {
         check("gateway id (the Sparkplug edge_node_id)", config.gateway.id,
               config.gateway.marks.of("id"));
-    }
+    }  // else the pair's name, which check_redundancy holds to the same rules
     if (sparkplug.marks.contains("primary_host_id")) {
         check("sparkplug primary_host_id", sparkplug.primary_host_id,
               sparkplug.marks.of("primary_host_id"));

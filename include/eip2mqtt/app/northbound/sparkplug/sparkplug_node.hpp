@@ -74,6 +74,18 @@ public:
     /// the same bdSeq. Each connection made takes the next bdSeq (0-255, then 0 again); an
     /// attempt that failed leaves it as it was.
     adapters::mqtt::Message next_will();
+    /// A pair's leader opens the one edge node's session (README "Redundancy"): the next will
+    /// takes a bdSeq other than that of the pair's last session, one more than `heard` (the
+    /// last one this unit read in a leader record; core/redundancy/bd_seq.hpp).
+    void begin_session(std::optional<std::uint8_t> heard);
+    /// A pair's leader stepped down, its connection's session ended (Client::end_session):
+    /// nothing more is published until the next connection's births.
+    void end_session();
+    /// The bdSeq of the will made for the current session (its connection, or the attempt
+    /// under way); nullopt before the first will and after end_session().
+    std::optional<std::uint8_t> session_bd_seq() const {
+        return session_open_ ? std::optional<std::uint8_t>(bd_seq_) : std::nullopt;
+    }
     /// The connection is up, to a broker taking packets of up to `max_packet_bytes`
     /// (Client::max_packet_size()): births now, or once the primary host says it is online.
     void on_connected(std::size_t max_packet_bytes = adapters::mqtt::max_mqtt_packet_bytes);
@@ -190,6 +202,7 @@ private:
     std::uint8_t bd_seq_ = 0;                ///< of the current connection's will
     std::uint8_t next_bd_seq_ = 0;
     bool will_connected_ = true;  ///< the last will's CONNECT made a connection
+    bool session_open_ = false;   ///< a will was made since the last end_session()
     std::uint8_t seq_ = 0;        ///< of the next message to publish
     std::size_t max_packet_bytes_ = adapters::mqtt::max_mqtt_packet_bytes;
     std::size_t last_packet_bytes_ = 0;  ///< the size of the last message publish() was given

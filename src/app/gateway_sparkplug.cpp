@@ -1,0 +1,53 @@
+// The Sparkplug B edge node in the gateway (docs/sparkplug.md): the node on a connection of its
+// own, and, in a hot-standby pair, the session of the one edge node that only the leader holds
+// (README "Redundancy"). Its history is in gateway_history.cpp.
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+#include "eip2mqtt/app/gateway.hpp"
+#include "eip2mqtt/app/mqtt_settings.hpp"
+
+namespace eip2mqtt::app {
+
+void Gateway::make_sparkplug() {
+    if (!config_.sparkplug.enabled()) return;
+    sparkplug_mqtt_ = std::make_unique<adapters::mqtt::Client>(
+        loop_.get_executor(),
+        sparkplug_client_options(config_, [this] { return sparkplug_->next_will(); }));
+    adapters::mqtt::Publisher* node_mqtt = sparkplug_mqtt_.get();
+    if (config_.redundancy.enabled()) {
+        // Asked only once make_pair() made the pair: nothing is published before start().
+        sparkplug_leader_ = std::make_unique<redundancy::LeaderPublisher>(
+            *sparkplug_mqtt_, [this] { return pair_->leading(std::chrono::steady_clock::now()); });
+        node_mqtt = sparkplug_leader_.get();
+    }
+    sparkplug_ = std::make_unique<northbound::sparkplug::SparkplugNode>(
+        northbound::sparkplug::sparkplug_options(config_), *node_mqtt, writes_, system_clock());
+    northbound_.add(*sparkplug_);
+    add_sparkplug_history();
+}
+
+void Gateway::open_sparkplug_session() {
+    if (!sparkplug_) return;
+    sparkplug_->begin_session(pair_->heard_bd_seq());
+    sparkplug_mqtt_->start();  // the CONNECT's will, made now, takes the session's bdSeq
+    if (const auto bd_seq = sparkplug_->session_bd_seq()) {
+        spdlog::info("Sparkplug: the edge node's session opens with bdSeq {}", *bd_seq);
+    }
+}
+
+void Gateway::end_sparkplug_session() {
+    if (!sparkplug_) return;
+    const auto bd_seq = sparkplug_->session_bd_seq();
+    if (!bd_seq) return;
+    // A host must see the node die, and nothing of this session once the new leader's has
+    // begun: what waits is dropped, not flushed, and the NDEATH goes last. The other unit's
+    // NBIRTH carries another bdSeq, so an NDEATH of this one delivered after it ends nothing.
+    sparkplug_mqtt_->end_session();
+    sparkplug_->end_session();
+    spdlog::info("Sparkplug: the edge node's session with bdSeq {} ended (NDEATH)", *bd_seq);
+}
+
+}  // namespace eip2mqtt::app
