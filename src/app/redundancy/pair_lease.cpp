@@ -56,7 +56,14 @@ void PairLease::on_connected() { publish_role(role_); }
 
 void PairLease::on_message(const adapters::mqtt::Incoming& message, core::MonoTime now) {
     if (message.topic != topics_.leader) return;
-    lease_.on_record(decode_leader_record(message.payload), now);
+    const auto record = decode_leader_record(message.payload, &heard_);
+    lease_.on_record(record, now);
+    // The renewals of the leader this unit follows: a claim has acknowledged nothing yet, and
+    // this unit's own record (one from before a restart) says nothing of the other's.
+    if (watermarks_heard_ && record && !record->claim && record->id != lease_.own_record().id &&
+        record->id == lease_.leader_id() && record->epoch == lease_.epoch()) {
+        watermarks_heard_(std::move(heard_));
+    }
     follow_role(now);
 }
 
@@ -65,7 +72,9 @@ void PairLease::on_acknowledged(std::uint64_t token) { lease_.on_acknowledged(ti
 void PairLease::tick(core::MonoTime now) {
     if (const auto record = lease_.tick(now)) {
         message_.topic = topics_.leader;
-        message_.payload = encode_leader_record(*record, takeover_);
+        message_.payload = encode_leader_record(
+            *record, takeover_,
+            !record->claim && watermarks_now_ ? watermarks_now_() : Watermarks{});
         message_.qos = 1;
         message_.retain = true;
         message_.ack_token = token_of(now);
