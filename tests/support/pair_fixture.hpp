@@ -29,6 +29,11 @@ protected:
     /// exchange every `period_ms`.
     std::string pair_config(const std::string& id, const std::string& broker_url,
                             std::uint16_t port, std::uint32_t period_ms) const;
+    /// The same with `exchanges` (items of the list, ExchangeYaml) and `mqtt`, more keys of the
+    /// `mqtt:` flow mapping (", batch: true").
+    std::string unit_config(const std::string& id, const std::string& broker_url,
+                            std::uint16_t port, const std::string& exchanges,
+                            const std::string& mqtt = "") const;
     /// Writes `id`'s configuration and runs the unit on it.
     void start_unit(const std::string& id, const std::string& config);
     /// Waits for `id` to say `role` on its role topic (after message `from`).
