@@ -91,11 +91,13 @@ core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::D
         arrivals_.on_arrival(now);
         last_seen_ms_ = to_ms(wall);
         timestamp_ms_ = sample_time(wall);
-        report_tags(now, false);
+        const auto& header = exchange_.last_header();
+        key_ = {header.request_id, header.time_s, header.time_ns, 0};
+        report_tags(now, false, key_);
     } else if (outcome.state_changed) {
         // Entering signature or length mismatch: the last values are reported again as bad.
         timestamp_ms_ = to_ms(wall);
-        report_tags(now, false);
+        report_quality_change(now);
     }
     // After the samples: a protocol that reports an exchange coming up (a Sparkplug DBIRTH)
     // then has its new values.
@@ -115,7 +117,7 @@ void ExchangeConsumer::on_tick(core::MonoTime now, core::WallTime wall, bool ref
         // docs/protocol.md §4 rule 8: every tag of a stale exchange is reported again as
         // stale, keeping its last value; the timestamp says when it was found stale.
         timestamp_ms_ = to_ms(wall);
-        report_tags(now, false);
+        report_quality_change(now);
         northbound_.exchange_state(plan_, exchange_.state());
         report_status(now);
         return;
@@ -137,7 +139,14 @@ void ExchangeConsumer::republish(core::MonoTime now) {
     report_status(now);
 }
 
-void ExchangeConsumer::report_tags(core::MonoTime now, bool all) {
+void ExchangeConsumer::report_quality_change(core::MonoTime now) {
+    // Both units of a pair find it after the same datagram: it is named after that one.
+    ++key_.change;
+    report_tags(now, false, key_);
+}
+
+void ExchangeConsumer::report_tags(core::MonoTime now, bool all,
+                                   std::optional<core::redundancy::SampleKey> key) {
     const auto quality = core::quality::quality_of(exchange_.state());
     if (!quality || !exchange_.has_image()) return;
     const auto image = exchange_.image();
@@ -154,7 +163,7 @@ void ExchangeConsumer::report_tags(core::MonoTime now, bool all) {
         samples.push_back({i, value});
     }
     if (samples.empty()) return;
-    northbound_.tag_samples({plan_, *quality, timestamp_ms_, all, samples});
+    northbound_.tag_samples({plan_, *quality, timestamp_ms_, all, samples, key});
 }
 
 void ExchangeConsumer::report_status(core::MonoTime now, bool periodic) {

@@ -114,8 +114,8 @@ void Gateway::start() {
     started_at_ = std::chrono::steady_clock::now();
     last_refresh_scan_ = started_at_;
     mqtt_->set_on_connected([this] { on_connected(); });
-    if (history_) {
-        mqtt_->set_on_acknowledged([this](std::uint64_t id) { history_->on_acknowledged(id); });
+    if (history_ || pair_history_) {
+        mqtt_->set_on_acknowledged([this](std::uint64_t token) { on_acknowledged(token); });
     }
     mqtt_->set_on_message(
         [this](const adapters::mqtt::Incoming& message) { json_tree_->on_message(message); });
@@ -221,6 +221,7 @@ void Gateway::on_tick() {
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
     // Before the metrics: figures showing a datagram accepted then show it journaled for good.
     if (history_) history_->on_tick(now);
+    if (pair_history_) pair_history_->on_tick();
     // A pending rebirth may be born here: the node's replay of history starts with it.
     if (sparkplug_) on_sparkplug_event(false, [&] { sparkplug_->tick(now); });
     if (refresh_scan) {

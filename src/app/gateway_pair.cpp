@@ -3,8 +3,9 @@
 // ProducerScheduler, through Exchanges' options) and the writes (the WriteDispatcher). And what
 // lets a takeover go on where the leader stopped: its images, published by the leader and
 // followed by the standby (PairImages), its request ids, heard by the standby
-// (DatagramRouter::set_followed), and the Sparkplug session of the one edge node, held by the
-// leader alone.
+// (DatagramRouter::set_followed), its samples: the new leader publishes on `_history` those
+// the old one had not had acknowledged (PairHistory), and the Sparkplug session of the one edge
+// node, held by the leader alone.
 
 #include <spdlog/spdlog.h>
 
@@ -47,8 +48,33 @@ void Gateway::make_pair() {
     if (sparkplug_) pair_->set_bd_seq_source([this] { return sparkplug_->session_bd_seq(); });
     northbound_.set_gate([this] { return pair_->leading(std::chrono::steady_clock::now()); });
     writes_.set_admission([this] { return pair_->writes(std::chrono::steady_clock::now()); });
+    make_pair_history();
     spdlog::info("pair {}: standing by until the lease is settled (takeover after {} ms)",
                  section.pair, section.takeover.count());
+}
+
+void Gateway::make_pair_history() {
+    // `_history` is the JSON tree's: a Sparkplug node alone has none to replay on.
+    if (config_.sparkplug.enabled() && !config_.sparkplug.uns) return;
+    pair_history_ = std::make_unique<redundancy::PairHistory>(
+        redundancy::PairHistoryOptions{config_.redundancy.takeover}, *json_tree_,
+        [this] {
+            const auto stats = mqtt_->stats();
+            return stats.queued + stats.in_flight;
+        },
+        system_clock());
+    northbound_.set_tap(*pair_history_);
+    json_tree_->set_pair(
+        [this](const SampleBatch& batch) { return pair_history_->token_for(batch); });
+    pair_->set_watermarks([this] { return pair_history_->watermarks(); },
+                          [this](redundancy::Watermarks&& watermarks) {
+                              pair_history_->heard(std::move(watermarks));
+                          });
+}
+
+void Gateway::on_acknowledged(std::uint64_t token) {
+    if (pair_history_ && pair_history_->on_acknowledged(token)) return;
+    if (history_) history_->on_acknowledged(token);
 }
 
 ExchangesOptions Gateway::pair_options() {
@@ -78,8 +104,12 @@ void Gateway::start_pair() {
 }
 
 void Gateway::on_role(core::redundancy::Role role) {
+    const auto now = std::chrono::steady_clock::now();
     if (role == core::redundancy::Role::leader) {
         writes_.took_over(pair_->lease().last_heard());
+        // What the old leader had not had acknowledged goes on `_history` before anything
+        // live: the replay takes the window as it stands now.
+        if (pair_history_) pair_history_->took_over(now);
         // The images under this lease's epoch, whatever the retained ones are: a standby that
         // starts later follows this leader's, not an older one's.
         for (const auto& producer : exchanges_.producers()) {
@@ -92,6 +122,7 @@ void Gateway::on_role(core::redundancy::Role role) {
         return open_sparkplug_session();
     }
     end_sparkplug_session();
+    if (pair_history_) pair_history_->stood_by();
     // Writes this unit accepted as leader and has not produced never will be by it: answered
     // now, never applied late should it lead again (the new leader may have taken them).
     std::size_t cancelled = 0;

@@ -145,6 +145,20 @@ TEST_F(ConsumerEvents, RepublishReportsEveryTagAsAWholeTheStateAndTheStatus) {
     EXPECT_EQ(north_.states.back().state, ConsumeState::ok);
 }
 
+TEST_F(ConsumerEvents, ASampleIsNamedByItsDatagramAndAChangeOfQualityByTheOneBefore) {
+    using core::redundancy::SampleKey;
+    datagram(1, 2);
+    EXPECT_EQ(north_.batches.back().key, (SampleKey{1, 0, 0, 0}));
+    advance(400ms);
+    consumer_.on_tick(now_, wall_, false);  // stale: no datagram of its own
+    EXPECT_EQ(north_.batches.back().key, (SampleKey{1, 0, 0, 1}));
+    datagram(1, 3);
+    EXPECT_EQ(north_.batches.back().key, (SampleKey{2, 0, 0, 0}));
+    // A republish repeats a sample: it names none.
+    consumer_.republish(now_);
+    EXPECT_FALSE(north_.batches.back().key.has_value());
+}
+
 TEST_F(ConsumerEvents, BeforeAnyDatagramThereIsNoValueToReportOnlyTheStateAndStatus) {
     consumer_.republish(now_);
     EXPECT_EQ(north_.events, (std::vector<std::string>{"state", "status"}));

@@ -32,6 +32,11 @@ protected:
                             std::uint16_t port, std::uint32_t period_ms,
                             const std::string& sections = "",
                             const std::string& exchanges = "") const;
+    /// A unit's configuration with `exchanges` alone (items of the list, ExchangeYaml), `mqtt`
+    /// (more keys of the `mqtt:` flow mapping: ", batch: true") and `sections`.
+    std::string unit_config(const std::string& id, const std::string& broker_url,
+                            std::uint16_t port, const std::string& exchanges,
+                            const std::string& mqtt = "", const std::string& sections = "") const;
     /// Writes `id`'s configuration and runs the unit on it.
     void start_unit(const std::string& id, const std::string& config);
     /// Waits for `id` to say `role` on its role topic (after message `from`).

@@ -58,7 +58,11 @@ public:
     core::WallTime configured_at() const { return configured_at_; }
 
 private:
-    void report_tags(core::MonoTime now, bool all);
+    /// `key` names the sample (SampleBatch::key); none for a refresh or a republish.
+    void report_tags(core::MonoTime now, bool all,
+                     std::optional<core::redundancy::SampleKey> key = std::nullopt);
+    /// The tags again, at a change of quality (stale, mismatch) that no datagram brought.
+    void report_quality_change(core::MonoTime now);
     /// `periodic`: the once-a-second report (on the StatusGrid), not a state change's.
     void report_status(core::MonoTime now, bool periodic = false);
     /// The timestamp of the accepted datagram's tags (RemoteProducerClock), logging a clock change.
@@ -76,6 +80,7 @@ private:
     core::exchange::RemoteProducerClock clock_;
     bool clock_seen_ = false;                   ///< a datagram was accepted since start
     std::int64_t timestamp_ms_ = 0;             ///< of the values the tags report
+    core::redundancy::SampleKey key_;           ///< of the last sample reported
     std::optional<std::int64_t> last_seen_ms_;  ///< wall time of the last accepted datagram
     core::exchange::StatusGrid status_grid_;
     std::uint64_t last_status_received_ = 0;

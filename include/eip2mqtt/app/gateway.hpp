@@ -34,6 +34,7 @@
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 #include "eip2mqtt/app/redundancy/leader_publisher.hpp"
+#include "eip2mqtt/app/redundancy/pair_history.hpp"
 #include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/redundancy/pair_lease.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
@@ -89,6 +90,8 @@ private:
     /// The options of the exchanges that a pair sets: the gate of production, the images the
     /// leader publishes and the request ids the standby follows; none without `redundancy:`.
     ExchangesOptions pair_options();
+    /// With the JSON tree among the northbounds: the pair's history (make_pair).
+    void make_pair_history();
     void start_pair();
     void on_role(core::redundancy::Role role);
     /// With `sparkplug:`, the leader's session of the one edge node (gateway_sparkplug.cpp):
@@ -96,6 +99,9 @@ private:
     /// (its NDEATH said, what waited dropped) when it steps down.
     void open_sparkplug_session();
     void end_sparkplug_session();
+    /// An acknowledged publication of the JSON tree's connection: a pair's sample, else a
+    /// journal entry of store and forward.
+    void on_acknowledged(std::uint64_t token);
     /// Whether produced exchanges may send now: always without a pair.
     bool may_produce(core::MonoTime now) const { return !pair_ || pair_->may_produce(now); }
     /// With `eip.commands.enabled`: the command port and its responder (gateway_commands.cpp).
@@ -137,6 +143,8 @@ private:
     std::unique_ptr<adapters::mqtt::Client> pair_mqtt_;    ///< with redundancy:
     std::unique_ptr<redundancy::PairLease> pair_;          ///< with pair_mqtt_
     std::unique_ptr<redundancy::PairImages> pair_images_;  ///< with pair_mqtt_
+    /// With pair_mqtt_ and the JSON tree: the samples a takeover replays on `_history`.
+    std::unique_ptr<redundancy::PairHistory> pair_history_;
     Exchanges exchanges_;
     std::unique_ptr<adapters::udp::Receiver> receiver_;
     CommandViewContext command_context_;

@@ -18,7 +18,7 @@
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_stats.hpp"
-#include "eip2mqtt/app/redundancy/pair_images.hpp"
+#include "eip2mqtt/app/redundancy/pair_counters.hpp"
 #include "eip2mqtt/app/write_reply.hpp"
 #include "eip2mqtt/core/command/command_counters.hpp"
 #include "eip2mqtt/core/time.hpp"
@@ -35,8 +35,9 @@ struct MetricsSources {
     const adapters::mqtt::ClientStats& mqtt;
     const history::HistoryStats* history = nullptr;                    ///< with store and forward
     const northbound::sparkplug::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
-    const core::command::CommandCounters* commands = nullptr;    ///< with eip.commands enabled
-    const redundancy::PairImageCounters* pair_images = nullptr;  ///< with `redundancy:`
+    const core::command::CommandCounters* commands = nullptr;       ///< with eip.commands enabled
+    const redundancy::PairImageCounters* pair_images = nullptr;     ///< with `redundancy:`
+    const redundancy::PairHistoryCounters* pair_history = nullptr;  ///< with pair_images
 };
 
 /// Store and forward's figures for Prometheus and the metrics topic.

@@ -24,8 +24,10 @@
 #include "eip2mqtt/core/exchange/produce_counters.hpp"
 #include "eip2mqtt/core/exchange/remote_producer_clock.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/tag_sample.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
 #include "eip2mqtt/core/quality/quality.hpp"
+#include "eip2mqtt/core/redundancy/sample_key.hpp"
 #include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::app {
@@ -39,10 +41,7 @@ struct ExchangeSet {
 };
 
 /// One tag's value in a SampleBatch.
-struct TagSample {
-    std::size_t tag = 0;  ///< index in the exchange plan's tags
-    core::plan::Value value;
-};
+using TagSample = core::plan::TagSample;
 
 /// Where an exchange gathers the samples of the SampleBatch it is about to report, empty: one
 /// buffer per thread, shared by every consumed and produced exchange of the loop, since the
@@ -64,6 +63,11 @@ struct SampleBatch {
     std::int64_t timestamp_ms;  ///< chosen by the exchange's clock rules (RemoteProducerClock)
     bool all_tags;              ///< every tag of the exchange, not only the changed ones
     std::span<const TagSample> samples;
+    /// A consumed exchange's sample by its datagram, alike on both units of a pair
+    /// (core/redundancy/sample_key.hpp): that of an accepted datagram, or of a change of
+    /// quality after it. None for a refresh or a republish, which repeat a sample, and for a
+    /// produced exchange.
+    std::optional<core::redundancy::SampleKey> key = std::nullopt;
 };
 
 /// A consumed exchange's counters and clock, reported on every state change and at most once a

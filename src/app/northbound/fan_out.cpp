@@ -4,10 +4,12 @@ namespace eip2mqtt::app::northbound {
 
 void FanOut::exchanges_changed(const ExchangeSet& running,
                                std::span<const std::string> retired_topics) {
+    if (tap_) tap_->exchanges_changed(running, retired_topics);
     for (auto* northbound : northbounds_) northbound->exchanges_changed(running, retired_topics);
 }
 
 void FanOut::tag_samples(const SampleBatch& batch) {
+    if (tap_) tap_->tag_samples(batch);
     if (closed()) return;
     for (auto* northbound : northbounds_) northbound->tag_samples(batch);
 }

@@ -3,19 +3,62 @@
 #include <nlohmann/json.hpp>
 
 namespace eip2mqtt::app::redundancy {
+namespace {
+
+nlohmann::json encode_key(const core::redundancy::SampleKey& key) {
+    auto json = nlohmann::json::array({key.request_id, key.time_s, key.time_ns});
+    if (key.change != 0) json.push_back(key.change);
+    return json;
+}
+
+/// Element `i` of `json` if it is an unsigned number of at most `max`.
+std::optional<std::uint64_t> element(const nlohmann::json& json, std::size_t i, std::uint64_t max) {
+    if (i >= json.size() || !json[i].is_number_unsigned()) return std::nullopt;
+    const auto value = json[i].get<std::uint64_t>();
+    if (value > max) return std::nullopt;
+    return value;
+}
+
+std::optional<core::redundancy::SampleKey> decode_key(const nlohmann::json& json) {
+    if (!json.is_array() || json.size() < 3 || json.size() > 4) return std::nullopt;
+    const auto request_id = element(json, 0, 0xffff);
+    const auto time_s = element(json, 1, 0xffffffff);
+    const auto time_ns = element(json, 2, 999'999'999);
+    const auto change = json.size() == 4 ? element(json, 3, 0xff) : std::optional<std::uint64_t>(0);
+    if (!request_id || !time_s || !time_ns || !change) return std::nullopt;
+    return core::redundancy::SampleKey{
+        static_cast<std::uint16_t>(*request_id), static_cast<std::uint32_t>(*time_s),
+        static_cast<std::uint32_t>(*time_ns), static_cast<std::uint8_t>(*change)};
+}
+
+void decode_watermarks(const nlohmann::json& record, Watermarks& watermarks) {
+    watermarks.clear();
+    const auto found = record.find("watermarks");
+    if (found == record.end() || !found->is_object()) return;
+    for (const auto& [topic, key] : found->items()) {
+        if (const auto decoded = decode_key(key)) watermarks.emplace(topic, *decoded);
+    }
+}
+
+}  // namespace
 
 std::string encode_leader_record(const core::redundancy::LeaderRecord& record,
-                                 std::chrono::milliseconds takeover) {
+                                 std::chrono::milliseconds takeover, const Watermarks& watermarks) {
     nlohmann::json json{{"id", record.id},
                         {"epoch", record.epoch},
                         {"priority", record.priority},
                         {"takeover_ms", takeover.count()}};
     if (record.claim) json["claim"] = true;
     if (record.bd_seq) json["bd_seq"] = *record.bd_seq;
+    if (!watermarks.empty()) {
+        auto& marks = json["watermarks"] = nlohmann::json::object();
+        for (const auto& [topic, key] : watermarks) marks[topic] = encode_key(key);
+    }
     return json.dump();
 }
 
-std::optional<core::redundancy::LeaderRecord> decode_leader_record(std::string_view payload) {
+std::optional<core::redundancy::LeaderRecord> decode_leader_record(std::string_view payload,
+                                                                   Watermarks* watermarks) {
     if (payload.empty()) return std::nullopt;
     const auto json = nlohmann::json::parse(payload, nullptr, false);
     if (!json.is_object()) return std::nullopt;
@@ -40,6 +83,7 @@ std::optional<core::redundancy::LeaderRecord> decode_leader_record(std::string_v
                                                  bd_seq->get<std::uint64_t>() <= 255) {
         record.bd_seq = static_cast<std::uint8_t>(bd_seq->get<std::uint64_t>());
     }
+    if (watermarks) decode_watermarks(json, *watermarks);
     return record;
 }
 

@@ -56,10 +56,16 @@ void PairLease::on_connected() { publish_role(role_); }
 
 void PairLease::on_message(const adapters::mqtt::Incoming& message, core::MonoTime now) {
     if (message.topic != topics_.leader) return;
-    const auto record = decode_leader_record(message.payload);
+    const auto record = decode_leader_record(message.payload, &heard_);
     lease_.on_record(record, now);
     if (record && record->bd_seq && record->epoch >= lease_.epoch()) {
         heard_bd_seq_ = record->bd_seq;
+    }
+    // The renewals of the leader this unit follows: a claim has acknowledged nothing yet, and
+    // this unit's own record (one from before a restart) says nothing of the other's.
+    if (watermarks_heard_ && record && !record->claim && record->id != lease_.own_record().id &&
+        record->id == lease_.leader_id() && record->epoch == lease_.epoch()) {
+        watermarks_heard_(std::move(heard_));
     }
     follow_role(now);
 }
@@ -70,7 +76,9 @@ void PairLease::tick(core::MonoTime now) {
     if (auto record = lease_.tick(now)) {
         if (!record->claim && bd_seq_source_) record->bd_seq = bd_seq_source_();
         message_.topic = topics_.leader;
-        message_.payload = encode_leader_record(*record, takeover_);
+        message_.payload = encode_leader_record(
+            *record, takeover_,
+            !record->claim && watermarks_now_ ? watermarks_now_() : Watermarks{});
         message_.qos = 1;
         message_.retain = true;
         message_.ack_token = token_of(now);

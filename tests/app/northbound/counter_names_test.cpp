@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "eip2mqtt/app/redundancy/pair_images.hpp"
+#include "eip2mqtt/app/redundancy/pair_counters.hpp"
 #include "eip2mqtt/core/command/command_counters.hpp"
 #include "eip2mqtt/core/exchange/consume_counters.hpp"
 #include "eip2mqtt/core/exchange/produce_counters.hpp"

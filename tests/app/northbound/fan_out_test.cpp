@@ -45,7 +45,7 @@ TEST(FanOut, EveryEventReachesEachNorthboundButAResultOnlyItsOrigin) {
     EXPECT_EQ(second.results[0].error, "refused");
 }
 
-TEST(FanOut, AClosedGateStopsWhatTheExchangesSayButNotTheRunningSetOrTheResults) {
+TEST(FanOut, AClosedGateStopsWhatTheExchangesSayButNotTheRunningSetOrTheResultsNorTheTap) {
     test::RecordingNorthbound northbound;
     FanOut fan_out;
     fan_out.add(northbound);
@@ -61,13 +61,18 @@ TEST(FanOut, AClosedGateStopsWhatTheExchangesSayButNotTheRunningSetOrTheResults)
         fan_out.produced_status(plan, ProducedStatus{});
         fan_out.write_result({"r", "", &northbound}, "standby");
     };
+    test::RecordingNorthbound tap;
+    fan_out.set_tap(tap);
     say_everything();
     EXPECT_EQ(northbound.events, (std::vector<std::string>{"exchanges", "result"}));
+    // The tap sees the running set and the samples, gate closed or open.
+    EXPECT_EQ(tap.events, (std::vector<std::string>{"exchanges", "samples"}));
     open = true;
     northbound.events.clear();
     say_everything();
     EXPECT_EQ(northbound.events,
               (std::vector<std::string>{"exchanges", "samples", "state", "status", "result"}));
+    EXPECT_EQ(tap.events.size(), 4u);
 }
 
 }  // namespace

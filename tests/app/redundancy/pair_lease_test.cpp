@@ -146,6 +146,35 @@ TEST_F(PairLeaseTest, TheBdSeqHeardIsTheNewestOfTheLeasesEpoch) {
     EXPECT_EQ(lease_.heard_bd_seq(), 41);
 }
 
+TEST_F(PairLeaseTest, RenewalsCarryTheWatermarksAndTheStandbyHearsTheLeaders) {
+    const Watermarks mine{{"line", {7, 1700000000, 5}}};
+    std::vector<Watermarks> heard;
+    lease_.set_watermarks([&] { return mine; },
+                          [&](Watermarks&& watermarks) { heard.push_back(std::move(watermarks)); });
+    lease_.tick(t0 + 2s);  // a claim: nothing acknowledged yet
+    Watermarks read;
+    decode_leader_record(publisher_.on(leader_topic).back(), &read);
+    EXPECT_TRUE(read.empty());
+    acknowledge_last();
+    lease_.tick(t0 + 2500ms);  // the first renewal
+    decode_leader_record(publisher_.on(leader_topic).back(), &read);
+    EXPECT_EQ(read, mine);
+
+    const Watermarks theirs{{"line", {9, 0, 0}}};
+    lease_.on_message({leader_topic, encode_leader_record({"gw-b", 2, 0, true}, 2000ms, theirs)},
+                      t0 + 2600ms);
+    EXPECT_TRUE(heard.empty()) << "a claim's";
+    lease_.on_message({leader_topic, encode_leader_record({"gw-b", 2, 0}, 2000ms, theirs)},
+                      t0 + 2700ms);
+    EXPECT_EQ(heard, std::vector<Watermarks>{theirs});
+    // A deposed leader's, late, and this unit's own from before a restart: not the leader's.
+    lease_.on_message({leader_topic, encode_leader_record({"gw-c", 1, 0}, 2000ms, theirs)},
+                      t0 + 2800ms);
+    lease_.on_message({leader_topic, encode_leader_record({"gw-a", 1, 0}, 2000ms, theirs)},
+                      t0 + 2800ms);
+    EXPECT_EQ(heard.size(), 1u);
+}
+
 TEST(LeaderRecordTest, EncodedAndDecoded) {
     const auto payload = encode_leader_record({"gw-a", 7, 100}, 2000ms);
     EXPECT_EQ(payload, R"({"epoch":7,"id":"gw-a","priority":100,"takeover_ms":2000})");
@@ -165,6 +194,33 @@ TEST(LeaderRecordTest, ARenewalCarriesTheBdSeqOfTheSparkplugSession) {
         ASSERT_TRUE(read.has_value()) << other;
         EXPECT_FALSE(read->bd_seq.has_value()) << other;
     }
+}
+
+TEST(LeaderRecordTest, WatermarksEncodedAndDecoded) {
+    const Watermarks watermarks{{"line/1", {4711, 1695231678, 123456789}},
+                                {"line/2", {65535, 0, 0, 2}}};
+    const auto payload = encode_leader_record({"gw-a", 7, 100}, 2000ms, watermarks);
+    EXPECT_EQ(payload, R"({"epoch":7,"id":"gw-a","priority":100,"takeover_ms":2000,"watermarks":)"
+                       R"({"line/1":[4711,1695231678,123456789],"line/2":[65535,0,0,2]}})");
+    Watermarks read{{"stale", {}}};
+    EXPECT_EQ(decode_leader_record(payload, &read), (LeaderRecord{"gw-a", 7, 100}));
+    EXPECT_EQ(read, watermarks);
+    // None without: what was there before goes.
+    decode_leader_record(encode_leader_record({"gw-a", 7, 100}, 2000ms), &read);
+    EXPECT_TRUE(read.empty());
+}
+
+TEST(LeaderRecordTest, AWatermarkThatIsNoSampleIsLeftOut) {
+    Watermarks read;
+    const auto record = decode_leader_record(
+        R"({"id":"a","epoch":1,"watermarks":{"ok":[1,2,3],"short":[1,2],"long":[1,2,3,4,5],)"
+        R"("rid":[65536,0,0],"ns":[1,0,1000000000],"change":[1,0,0,256],"neg":[-1,0,0],)"
+        R"("text":"1,2,3"}})",
+        &read);
+    ASSERT_TRUE(record.has_value());
+    EXPECT_EQ(read, (Watermarks{{"ok", {1, 2, 3}}}));
+    decode_leader_record(R"({"id":"a","epoch":1,"watermarks":[1]})", &read);
+    EXPECT_TRUE(read.empty());
 }
 
 TEST(LeaderRecordTest, WhatIsNoRecordReadsAsNone) {

@@ -20,6 +20,7 @@ public:
         std::int64_t timestamp_ms;
         bool all_tags;
         std::vector<app::TagSample> samples;
+        std::optional<core::redundancy::SampleKey> key;
     };
     struct Result {
         std::string topic;
@@ -42,7 +43,8 @@ public:
                            batch.quality,
                            batch.timestamp_ms,
                            batch.all_tags,
-                           {batch.samples.begin(), batch.samples.end()}});
+                           {batch.samples.begin(), batch.samples.end()},
+                           batch.key});
         events.push_back("samples");
     }
     void consumed_status(const app::ConsumedStatus& status) override {

@@ -21,6 +21,10 @@ public:
     /// says no, samples, statuses and exchange states stop here. The running set, write results
     /// and the gateway's own metrics still pass. Unset: everything passes.
     void set_gate(std::function<bool()> open) { open_ = std::move(open); }
+    /// What sees the running set and every sample, gate open or closed, ahead of the
+    /// northbounds: a pair's window of samples (app/redundancy/pair_history), which the standby
+    /// keeps so that it can publish what the leader missed once it takes over.
+    void set_tap(Northbound& tap) { tap_ = &tap; }
 
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
@@ -39,6 +43,7 @@ private:
 
     std::vector<Northbound*> northbounds_;
     std::function<bool()> open_;
+    Northbound* tap_ = nullptr;
 };
 
 }  // namespace eip2mqtt::app::northbound

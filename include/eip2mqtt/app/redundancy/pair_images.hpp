@@ -22,7 +22,6 @@
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
-#include "eip2mqtt/core/counter_table.hpp"
 #include "eip2mqtt/core/redundancy/image_follow.hpp"
 
 namespace eip2mqtt::app::redundancy {
@@ -45,36 +44,6 @@ struct PairImageCounters {
         return ignored[static_cast<std::size_t>(why)];
     }
 };
-
-/// What the metrics topic's `pair` object reports: the images' counts, and the datagrams of this
-/// unit's own produced exchanges it heard (DatagramRouter: the other unit's, or its own looped
-/// back), which is how a standby follows the request ids.
-struct PairCounters {
-    PairImageCounters images;
-    std::uint64_t produced_heard = 0;
-};
-
-// clang-format off
-inline constexpr std::array<core::GatewayCounterField<PairCounters>, 4> pair_counter_fields{{
-    {"images_published", [](const PairCounters& c) { return core::one(c.images.published); },
-     core::in_metrics_topic, ""},
-    {"images_followed", [](const PairCounters& c) { return core::one(c.images.followed); },
-     core::in_metrics_topic, ""},
-    {"images_ignored",
-     [](const PairCounters& c) { return std::span<const std::uint64_t>(c.images.ignored); },
-     core::in_metrics_topic, "",
-     [](std::size_t i) {
-         constexpr std::array<std::string_view, 4> reasons{"other_layout", "stale",
-                                                           "unknown_exchange", "not_an_image"};
-         return reasons[i];
-     }},
-    {"produced_heard", [](const PairCounters& c) { return core::one(c.produced_heard); },
-     core::in_metrics_topic, ""},
-}};
-// clang-format on
-
-static_assert(core::counts_every_member<PairCounters>(pair_counter_fields),
-              "every pair counter is read once by pair_counter_fields");
 
 class PairImages {
 public:

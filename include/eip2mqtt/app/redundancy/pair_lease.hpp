@@ -4,8 +4,9 @@
 /// reads the retained leader topic, publishes this unit's claims and renewals there (retained,
 /// QoS 1: a renewal counts once the broker acknowledged it), and says on the unit's role topic,
 /// retained, whether it leads. It subscribes the connection to the images' topics as well, which
-/// PairImages reads. The gateway asks it, with the time, whether to produce, publish
-/// the tag tree and take writes.
+/// PairImages reads. Its renewals carry the leader's watermarks, and it hands those of the
+/// leader's renewals it reads on (PairHistory). The gateway asks it, with the time, whether to
+/// produce, publish the tag tree and take writes.
 ///
 /// Threading: the loop only.
 
@@ -18,6 +19,7 @@
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
+#include "eip2mqtt/app/redundancy/leader_record.hpp"
 #include "eip2mqtt/core/redundancy/lease.hpp"
 #include "eip2mqtt/core/time.hpp"
 
@@ -54,6 +56,14 @@ public:
     /// lease's epoch or a newer one (a deposed leader's renewal delivered late is not): the
     /// last Sparkplug session of the pair this unit knows of.
     std::optional<std::uint8_t> heard_bd_seq() const { return heard_bd_seq_; }
+    using WatermarksNow = std::function<Watermarks()>;
+    using WatermarksHeard = std::function<void(Watermarks&& watermarks)>;
+    /// `now` gives the watermarks each renewal carries; `heard` gets those of each renewal read
+    /// from the unit this one follows (core/redundancy/acked_watermarks.hpp).
+    void set_watermarks(WatermarksNow now, WatermarksHeard heard) {
+        watermarks_now_ = std::move(now);
+        watermarks_heard_ = std::move(heard);
+    }
 
     /// After each (re)connect of the pair's connection: the role topic again.
     void on_connected();
@@ -81,6 +91,9 @@ private:
     RoleChanged on_role_;
     BdSeqSource bd_seq_source_;
     std::optional<std::uint8_t> heard_bd_seq_;
+    WatermarksNow watermarks_now_;
+    WatermarksHeard watermarks_heard_;
+    Watermarks heard_;  ///< what the last record read carried
     core::redundancy::Role role_ = core::redundancy::Role::standby;
     adapters::mqtt::Message message_;
 };

@@ -76,9 +76,25 @@ void JsonTree::publish_due_meta() {
     if (next >= described_.size()) next_due_meta_.reset();
 }
 
+bool JsonTree::values_due(const SampleBatch& batch) const {
+    // `_values` carries what consumed datagrams bring, not the echo of produced ones.
+    if (!options_.publish.batch || batch.samples.empty() ||
+        batch.exchange.spec.direction != core::plan::Direction::consume) {
+        return false;
+    }
+    if (batch.all_tags && !repeat_on_values_) return false;
+    // While store and forward's link is down, the journal has the sample.
+    return !connected_ || connected_();
+}
+
 void JsonTree::tag_samples(const SampleBatch& batch) {
     const auto& settings = options_.publish;
     const auto& plan = batch.exchange;
+    const bool values = values_due(batch);
+    // The publication whose acknowledgement tells the leader of a pair that the broker has the
+    // sample: its `_values`, or without mqtt.batch its last tag topic.
+    const bool acknowledged = sample_token_ && batch.key && (values || !settings.batch);
+    const auto token = acknowledged && !batch.samples.empty() ? sample_token_(batch) : 0;
     for (const auto& sample : batch.samples) {
         // Filled in place and handed over: the publisher gives back buffers of an earlier
         // publication, so a tag's publication allocates nothing here.
@@ -87,17 +103,16 @@ void JsonTree::tag_samples(const SampleBatch& batch) {
                            settings.format);
         message_.qos = settings.qos;
         message_.retain = settings.retain;
+        if (!values && &sample == &batch.samples.back()) message_.ack_token = token;
         mqtt_.publish(std::move(message_));  // leaves message_ blank (Publisher)
     }
-    // `_values` carries what consumed datagrams bring, not the echo of produced ones.
-    if (settings.batch && !batch.samples.empty() &&
-        plan.spec.direction == core::plan::Direction::consume &&
-        !(connected_ && (batch.all_tags || !connected_()))) {
+    if (values) {
         message_.topic = plan.values_topic;
         format_values_payload(message_.payload, batch);
         message_.qos = settings.qos;
         message_.coalesce = false;
         message_.batch_lane = true;
+        message_.ack_token = token;
         mqtt_.publish(std::move(message_));
     }
 }

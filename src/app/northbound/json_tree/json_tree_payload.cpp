@@ -162,7 +162,9 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
     if (sources.pair_images) {
         add_counter_set(
             metrics["pair"], redundancy::pair_counter_fields,
-            redundancy::PairCounters{*sources.pair_images, sources.datagrams.produced_heard});
+            redundancy::PairCounters{
+                *sources.pair_images, sources.datagrams.produced_heard,
+                sources.pair_history ? *sources.pair_history : redundancy::PairHistoryCounters{}});
     }
     if (sources.commands) {
         add_counter_set(metrics[std::string(core::command::command_counters_name)],

@@ -42,6 +42,14 @@ protected:
         return uns_.publisher.published;
     }
 
+    /// A and B of the consumed exchange, as the sample of the datagram of request id 7.
+    void named_sample() {
+        uns_.northbound().tag_samples(
+            {consumed_, Quality::good, 1000, false, two_samples_, core::redundancy::SampleKey{7}});
+    }
+
+    const std::vector<TagSample> two_samples_{{0, core::plan::Value{std::int64_t{1}}},
+                                              {1, core::plan::Value{std::int64_t{2}}}};
     core::plan::ExchangePlan consumed_ = plan("in", core::plan::Direction::consume);
     core::plan::ExchangePlan produced_ = plan("out", core::plan::Direction::produce);
     test::JsonTreeRecorder uns_;
@@ -82,6 +90,35 @@ TEST_F(JsonTreeBatchTest, AConsumedBatchAddsOneValuesMessageTheEchoOfAProducedOn
     uns_.northbound().tag_samples({produced_, Quality::good, 1000, false, samples});
     EXPECT_EQ(published().size(), 5u);
     EXPECT_EQ(uns_.publisher.on("acme/t1/out/_values").size(), 0u);
+}
+
+TEST_F(JsonTreeBatchTest, WithAPairEachNamedSampleOnValuesCarriesItsTokenAndARepublishIsNot) {
+    std::vector<core::redundancy::SampleKey> asked;
+    uns_.northbound().set_pair([&](const SampleBatch& batch) {
+        asked.push_back(*batch.key);
+        return std::uint64_t{100 + asked.size()};
+    });
+    named_sample();
+    ASSERT_EQ(published().size(), 3u);
+    EXPECT_EQ(published()[0].ack_token, 0u);
+    EXPECT_EQ(published()[1].ack_token, 0u);
+    EXPECT_EQ(published()[2].topic, "acme/t1/in/_values");
+    EXPECT_EQ(published()[2].ack_token, 101u);
+    EXPECT_EQ(asked, std::vector<core::redundancy::SampleKey>{{7}});
+    // A refresh names no sample; a republish (a takeover) leaves `_values` to `_history`.
+    uns_.northbound().tag_samples({consumed_, Quality::good, 1000, false, two_samples_});
+    EXPECT_EQ(published().back().ack_token, 0u);
+    uns_.northbound().tag_samples({consumed_, Quality::good, 1000, true, two_samples_});
+    EXPECT_EQ(uns_.publisher.on("acme/t1/in/_values").size(), 2u);
+    EXPECT_EQ(asked.size(), 1u);
+}
+
+TEST_F(JsonTreeTest, WithAPairAndNoBatchTheLastTagTopicOfASampleCarriesItsToken) {
+    uns_.northbound().set_pair([](const SampleBatch&) { return std::uint64_t{42}; });
+    named_sample();
+    ASSERT_EQ(published().size(), 2u);
+    EXPECT_EQ(published()[0].ack_token, 0u);
+    EXPECT_EQ(published()[1].ack_token, 42u);
 }
 
 TEST_F(JsonTreeTest, WriteResultsGoToTheReplyTopicOnceEachAndNowhereWithoutOne) {

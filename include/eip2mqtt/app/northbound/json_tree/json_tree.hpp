@@ -55,6 +55,17 @@ public:
     /// two that calls the other (it replays on the tree, its HistorySink).
     void set_store_and_forward(std::function<bool()> connected) {
         connected_ = std::move(connected);
+        repeat_on_values_ = false;
+    }
+    using SampleToken = std::function<std::uint64_t(const SampleBatch& batch)>;
+    /// With a pair (README "Redundancy"): `token` gives the acknowledgement token of the
+    /// publication of each sample a batch names (SampleBatch::key): its `_values`, or without
+    /// mqtt.batch the last of its tag topics, so that the leader learns which samples the broker
+    /// has (app/redundancy/pair_history). And, as with store and forward, a republish (a
+    /// takeover) does not repeat `_values`: the new leader's `_history` carries what it missed.
+    void set_pair(SampleToken token) {
+        sample_token_ = std::move(token);
+        repeat_on_values_ = false;
     }
 
     /// A message on one of our subscriptions: a write on a `…/set` topic is decoded and handed
@@ -90,6 +101,8 @@ private:
     /// Keeps the running exchanges in order; once connected, publishes each `_meta` that is new
     /// or changed.
     void describe(const ExchangeSet& running);
+    /// Whether `batch` goes on `_values` as well as on the tag topics.
+    bool values_due(const SampleBatch& batch) const;
     /// A write result on the reply's topic, with its correlation data.
     void publish_result(const WriteReply& reply, std::string payload);
 
@@ -99,6 +112,10 @@ private:
     WriteRouter router_;
     /// With store and forward: whether the link is up (samples go live, not to the journal).
     std::function<bool()> connected_;
+    /// A republish (every tag again) goes on `_values` too: neither store and forward nor a
+    /// pair's takeover fills what `_values` missed on `_history`.
+    bool repeat_on_values_ = true;
+    SampleToken sample_token_;  ///< with a pair
     /// A digest of each running exchange's `_meta` payload as last published, by topic, so that
     /// a reload publishes only the descriptions that changed without the gateway holding every
     /// payload (tens of bytes a tag: megabytes for 100,000 tags). Two different payloads with

@@ -1,0 +1,54 @@
+#pragma once
+/// The counters of a hot-standby pair as the metrics topic's `pair` object reports them
+/// (docs/schema/metrics.json): one table, which CounterNames compares with the schema.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "eip2mqtt/app/redundancy/pair_history.hpp"
+#include "eip2mqtt/app/redundancy/pair_images.hpp"
+#include "eip2mqtt/core/counter_table.hpp"
+
+namespace eip2mqtt::app::redundancy {
+
+/// What the metrics topic's `pair` object reports: the images' counts, the datagrams of this
+/// unit's own produced exchanges it heard (DatagramRouter: the other unit's, or its own looped
+/// back), which is how a standby follows the request ids, and the samples kept and replayed
+/// across a takeover (PairHistory).
+struct PairCounters {
+    PairImageCounters images;
+    std::uint64_t produced_heard = 0;
+    PairHistoryCounters history;
+};
+
+// clang-format off
+inline constexpr std::array<core::GatewayCounterField<PairCounters>, 6> pair_counter_fields{{
+    {"images_published", [](const PairCounters& c) { return core::one(c.images.published); },
+     core::in_metrics_topic, ""},
+    {"images_followed", [](const PairCounters& c) { return core::one(c.images.followed); },
+     core::in_metrics_topic, ""},
+    {"images_ignored",
+     [](const PairCounters& c) { return std::span<const std::uint64_t>(c.images.ignored); },
+     core::in_metrics_topic, "",
+     [](std::size_t i) {
+         constexpr std::array<std::string_view, 4> reasons{"other_layout", "stale",
+                                                           "unknown_exchange", "not_an_image"};
+         return reasons[i];
+     }},
+    {"produced_heard", [](const PairCounters& c) { return core::one(c.produced_heard); },
+     core::in_metrics_topic, ""},
+    {"samples_replayed", [](const PairCounters& c) { return core::one(c.history.replayed); },
+     core::in_metrics_topic, ""},
+    {"window_overflow",
+     [](const PairCounters& c) { return core::one(c.history.window_overflow); },
+     core::in_metrics_topic, ""},
+}};
+// clang-format on
+
+static_assert(core::counts_every_member<PairCounters>(pair_counter_fields),
+              "every pair counter is read once by pair_counter_fields");
+
+}  // namespace eip2mqtt::app::redundancy
