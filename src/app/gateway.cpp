@@ -50,8 +50,17 @@ Gateway::Gateway(core::config::Config config)
               system_clock()),
       exchanges_(loop_.get_executor(), exchanges_options(config_, pair_options()), northbound_,
                  writes_.image_saves()) {
-    mqtt_ = std::make_unique<adapters::mqtt::Client>(
-        loop_.get_executor(), mqtt_client_options(config_, availability_topic_));
+    auto mqtt_options = mqtt_client_options(config_, availability_topic_);
+    if (config_.redundancy.enabled()) {
+        // The unit's own topics (state, metrics, role) and the exchanges' `_meta` are said by
+        // both units; the tree's retained values and `_values` by the leader alone.
+        mqtt_options.may_send = pair_may_send(
+            [gateway = config_.mqtt.base_topic + "/_gateway/"](const adapters::mqtt::Message& m) {
+                return (m.retain || m.batch_lane) && !m.historical &&
+                       !m.topic.starts_with(gateway) && !m.topic.ends_with("/_meta");
+            });
+    }
+    mqtt_ = std::make_unique<adapters::mqtt::Client>(loop_.get_executor(), std::move(mqtt_options));
     json_tree_ = std::make_unique<northbound::json_tree::JsonTree>(
         northbound::json_tree::json_tree_options(config_), *mqtt_, writes_);
     make_history();
@@ -217,7 +226,10 @@ void Gateway::on_tick() {
     receiver_->read_pending();
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
-    if (pair_) pair_->tick(now);
+    if (pair_) {
+        pair_->tick(now);
+        refresh_leading_until();
+    }
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
     // Before the metrics: figures showing a datagram accepted then show it journaled for good.
     if (history_) history_->on_tick(now);

@@ -77,6 +77,21 @@ void Gateway::on_acknowledged(std::uint64_t token) {
     if (history_) history_->on_acknowledged(token);
 }
 
+std::function<bool(const adapters::mqtt::Message&)> Gateway::pair_may_send(
+    std::function<bool(const adapters::mqtt::Message&)> leader_only) {
+    return [this, leader_only = std::move(leader_only)](const adapters::mqtt::Message& message) {
+        if (leader_only && !leader_only(message)) return true;
+        return std::chrono::steady_clock::now().time_since_epoch().count() <
+               leading_until_.load(std::memory_order_acquire);
+    };
+}
+
+void Gateway::refresh_leading_until() {
+    const auto until =
+        pair_->lease().leading_until().value_or(std::chrono::steady_clock::time_point::min());
+    leading_until_.store(until.time_since_epoch().count(), std::memory_order_release);
+}
+
 ExchangesOptions Gateway::pair_options() {
     ExchangesOptions options;
     if (!config_.redundancy.enabled()) return options;
@@ -95,16 +110,24 @@ void Gateway::start_pair() {
     pair_mqtt_->set_on_connected([this] { pair_->on_connected(); });
     pair_mqtt_->set_on_message([this](const adapters::mqtt::Incoming& message) {
         const auto now = std::chrono::steady_clock::now();
-        if (!pair_images_->owns(message.topic)) return pair_->on_message(message, now);
+        if (!pair_images_->owns(message.topic)) {
+            pair_->on_message(message, now);
+            return refresh_leading_until();
+        }
         pair_images_->on_message(message, exchanges_.producers(), pair_->leading(now),
                                  pair_->lease().epoch());
     });
-    pair_mqtt_->set_on_acknowledged([this](std::uint64_t token) { pair_->on_acknowledged(token); });
+    pair_mqtt_->set_on_acknowledged([this](std::uint64_t token) {
+        pair_->on_acknowledged(token);
+        refresh_leading_until();
+    });
     pair_mqtt_->start();
 }
 
 void Gateway::on_role(core::redundancy::Role role) {
     const auto now = std::chrono::steady_clock::now();
+    // Before anything is said as leader (the republish), or so that nothing more is.
+    refresh_leading_until();
     if (role == core::redundancy::Role::leader) {
         writes_.took_over(pair_->lease().last_heard());
         // What the old leader had not had acknowledged goes on `_history` before anything

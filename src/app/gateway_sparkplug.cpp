@@ -13,9 +13,11 @@ namespace eip2mqtt::app {
 
 void Gateway::make_sparkplug() {
     if (!config_.sparkplug.enabled()) return;
-    sparkplug_mqtt_ = std::make_unique<adapters::mqtt::Client>(
-        loop_.get_executor(),
-        sparkplug_client_options(config_, [this] { return sparkplug_->next_will(); }));
+    auto options = sparkplug_client_options(config_, [this] { return sparkplug_->next_will(); });
+    // In a pair the node's session is the leader's: all of it (its NDEATH goes another way).
+    if (config_.redundancy.enabled()) options.may_send = pair_may_send(nullptr);
+    sparkplug_mqtt_ =
+        std::make_unique<adapters::mqtt::Client>(loop_.get_executor(), std::move(options));
     adapters::mqtt::Publisher* node_mqtt = sparkplug_mqtt_.get();
     if (config_.redundancy.enabled()) {
         // Asked only once make_pair() made the pair: nothing is published before start().

@@ -5,9 +5,11 @@
 /// Members are declared in dependency order so that handlers may capture `this`.
 
 #include <array>
+#include <atomic>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -102,6 +104,14 @@ private:
     /// An acknowledged publication of the JSON tree's connection: a pair's sample, else a
     /// journal entry of store and forward.
     void on_acknowledged(std::uint64_t token);
+    /// ClientOptions::may_send of a pair's connections, asked on their sender threads: what only
+    /// a leader says (`leader_only`, every publication when null) goes only while this unit
+    /// leads, by the lease as the loop last saw it (leading_until_). So what waited when the
+    /// lease lapsed (a leader cut off from the broker, or resumed after SIGSTOP) is never said.
+    std::function<bool(const adapters::mqtt::Message&)> pair_may_send(
+        std::function<bool(const adapters::mqtt::Message&)> leader_only);
+    /// After each event of the lease: leading_until_ from it.
+    void refresh_leading_until();
     /// Whether produced exchanges may send now: always without a pair.
     bool may_produce(core::MonoTime now) const { return !pair_ || pair_->may_produce(now); }
     /// With `eip.commands.enabled`: the command port and its responder (gateway_commands.cpp).
@@ -140,8 +150,12 @@ private:
     std::unique_ptr<northbound::sparkplug::SparkplugNode> sparkplug_;
     std::unique_ptr<history::StoreAndForward> history_;  ///< with mqtt.store_and_forward
     northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to
-    std::unique_ptr<adapters::mqtt::Client> pair_mqtt_;    ///< with redundancy:
-    std::unique_ptr<redundancy::PairLease> pair_;          ///< with pair_mqtt_
+    std::unique_ptr<adapters::mqtt::Client> pair_mqtt_;  ///< with redundancy:
+    std::unique_ptr<redundancy::PairLease> pair_;        ///< with pair_mqtt_
+    /// The instant (steady clock, in its ticks) this unit's lease lapses while it leads; the
+    /// least there is while it does not. Written on the loop, read by the sender threads.
+    std::atomic<std::chrono::steady_clock::rep> leading_until_{
+        std::chrono::steady_clock::time_point::min().time_since_epoch().count()};
     std::unique_ptr<redundancy::PairImages> pair_images_;  ///< with pair_mqtt_
     /// With pair_mqtt_ and the JSON tree: the samples a takeover replays on `_history`.
     std::unique_ptr<redundancy::PairHistory> pair_history_;

@@ -58,6 +58,11 @@ bool Lease::fenced(MonoTime now) const {
     return now - since >= fence_after();
 }
 
+std::optional<MonoTime> Lease::leading_until() const {
+    if (state_ != State::leader) return std::nullopt;
+    return last_acknowledged_.value_or(claimed_at_) + fence_after();
+}
+
 std::optional<LeaderRecord> Lease::tick(MonoTime now) {
     if (state_ != State::standby && fenced(now)) {
         // Nobody is known to lead now: writes are refused until a leader is heard.

@@ -92,6 +92,21 @@ TEST(LeaseTest, ALeaderFencesItselfBeforeTheTakeoverWhenNoRenewalIsAcknowledged)
     EXPECT_EQ(lease.writes(last + 1250ms), WritePolicy::leave_to_leader);
 }
 
+TEST(LeaseTest, LeadingUntilIsTheInstantTheLeaseLapsesAndMovesWithEachAcknowledgement) {
+    Lease standby(settings("a"), t0);
+    EXPECT_FALSE(standby.leading_until().has_value());
+    auto lease = leader_from(t0 + 2s);
+    // Last acknowledged renewal sent at t0 + 2.5 s: fenced from 1.25 s later, as role() says.
+    EXPECT_EQ(lease.leading_until(), t0 + 3750ms);
+    EXPECT_EQ(lease.role(*lease.leading_until() - 1ms), Role::leader);
+    EXPECT_EQ(lease.role(*lease.leading_until()), Role::standby);
+    ASSERT_TRUE(lease.tick(t0 + 3s).has_value());
+    lease.on_acknowledged(t0 + 3s);
+    EXPECT_EQ(lease.leading_until(), t0 + 4250ms);
+    lease.tick(t0 + 4250ms);  // stepped down
+    EXPECT_FALSE(lease.leading_until().has_value());
+}
+
 TEST(LeaseTest, AResumedLeaderIsFencedAtItsFirstQuestionWithoutATick) {
     auto lease = leader_from(t0 + 2s);
     // SIGSTOP for ten seconds: no tick ran, the first question after it already says no.

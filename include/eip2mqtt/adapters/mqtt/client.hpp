@@ -71,6 +71,10 @@ struct ClientOptions {
     /// are dropped, and so is what was queued or in flight when the connection went: the
     /// on_connected handler starts on an empty queue.
     bool session_bound = false;
+    /// When set, asked of each publication as the sender thread takes it to hand it to Paho
+    /// (on that thread: it must be thread-safe and cheap); false drops it, counted in
+    /// `discarded`. A pair's leader that lost its lease says no more as leader, whatever waits.
+    std::function<bool(const Message&)> may_send;
 
     std::size_t buffer_max_messages = 100000;
     std::size_t batch_lane_max_messages = 1000;  ///< `_values` waiting; oldest dropped beyond
@@ -94,7 +98,8 @@ struct ClientStats {
     std::uint64_t connects = 0;
     std::uint64_t connection_losses = 0;
     std::uint64_t received = 0;  ///< messages received on subscriptions
-    /// Dropped by a session_bound client because they belonged to a connection that went.
+    /// Dropped by a session_bound client because they belonged to a connection that went, or
+    /// refused by ClientOptions::may_send.
     std::uint64_t discarded = 0;
     /// Dropped because a broker would refuse them (a topic or size beyond MQTT's limits), or
     /// after the broker closed the connection twice with one of them alone in flight.

@@ -16,16 +16,18 @@ namespace eip2mqtt::app::redundancy {
 
 /// What the metrics topic's `pair` object reports: the images' counts, the datagrams of this
 /// unit's own produced exchanges it heard (DatagramRouter: the other unit's, or its own looped
-/// back), which is how a standby follows the request ids, and the samples kept and replayed
-/// across a takeover (PairHistory).
+/// back), which is how a standby follows the request ids, the samples kept and replayed
+/// across a takeover (PairHistory), and what the unit had queued as leader and dropped once its
+/// lease lapsed (the connection's ClientOptions::may_send).
 struct PairCounters {
     PairImageCounters images;
     std::uint64_t produced_heard = 0;
     PairHistoryCounters history;
+    std::uint64_t publications_fenced = 0;
 };
 
 // clang-format off
-inline constexpr std::array<core::GatewayCounterField<PairCounters>, 6> pair_counter_fields{{
+inline constexpr std::array<core::GatewayCounterField<PairCounters>, 7> pair_counter_fields{{
     {"images_published", [](const PairCounters& c) { return core::one(c.images.published); },
      core::in_metrics_topic, ""},
     {"images_followed", [](const PairCounters& c) { return core::one(c.images.followed); },
@@ -44,6 +46,9 @@ inline constexpr std::array<core::GatewayCounterField<PairCounters>, 6> pair_cou
      core::in_metrics_topic, ""},
     {"window_overflow",
      [](const PairCounters& c) { return core::one(c.history.window_overflow); },
+     core::in_metrics_topic, ""},
+    {"publications_fenced",
+     [](const PairCounters& c) { return core::one(c.publications_fenced); },
      core::in_metrics_topic, ""},
 }};
 // clang-format on

@@ -88,6 +88,8 @@ public:
 
     Role role(MonoTime now) const;
     bool fenced(MonoTime now) const;
+    /// While it leads: the instant its lease lapses (fenced() from then on), as things stand.
+    std::optional<MonoTime> leading_until() const;
     /// Whether produced exchanges may send: the leader, unfenced, a period after the latest fence
     /// of the leader it last heard.
     bool may_produce(MonoTime now) const;

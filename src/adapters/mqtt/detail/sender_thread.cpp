@@ -72,6 +72,13 @@ void Sender::take_burst(std::vector<Taken>& taken) {
             taken.pop_back();
             return;
         }
+        if (options_.may_send && !options_.may_send(next.message)) {
+            discarded_.fetch_add(1, std::memory_order_relaxed);
+            ledger_.drop_taken(std::move(next.message));
+            taken.pop_back();
+            if (stopping_) completed_.notify_all();  // no longer pending: stop() may be done
+            continue;
+        }
         if (next.probe) return;  // a suspect goes alone
     }
 }

@@ -164,7 +164,8 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
             metrics["pair"], redundancy::pair_counter_fields,
             redundancy::PairCounters{
                 *sources.pair_images, sources.datagrams.produced_heard,
-                sources.pair_history ? *sources.pair_history : redundancy::PairHistoryCounters{}});
+                sources.pair_history ? *sources.pair_history : redundancy::PairHistoryCounters{},
+                mqtt.discarded});
     }
     if (sources.commands) {
         add_counter_set(metrics[std::string(core::command::command_counters_name)],

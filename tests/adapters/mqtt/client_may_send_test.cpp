@@ -1,0 +1,53 @@
+// ClientOptions::may_send against a real Mosquitto: asked of each publication as the sender
+// takes it, so what waited when the answer turned to no (a pair's leader whose lease lapsed
+// while cut off from the broker) is dropped and counted, never sent once the path is back.
+
+#include <atomic>
+#include <string>
+
+#include "tests/adapters/mqtt/client_fixture.hpp"
+#include "tests/support/tcp_proxy.hpp"
+
+namespace eip2mqtt::adapters::mqtt {
+namespace {
+
+using namespace test_support;
+
+TEST_F(ClientFixture, WhatMaySendNoLongerAllowsIsDroppedWhenTakenEvenIfItWaitedBefore) {
+    Mosquitto broker;
+    test::TcpProxy proxy(broker.port());
+    MqttRecorder recorder(broker.url(), {"gw/#"}, "may-send-recorder");
+    std::atomic<bool> leading{true};
+    auto options = options_for(broker);
+    options.urls = {"tcp://127.0.0.1:" + std::to_string(proxy.port())};
+    options.may_send = [&leading](const Message& message) {
+        return message.topic != "gw/tag" || leading.load();
+    };
+    const auto window = options.max_in_flight;
+    make_client(std::move(options));
+    on_loop([&] { client_->start(); });
+    ASSERT_TRUE(wait_connected_count(1));
+
+    // Cut off: no more than the window is handed over, the rest waits in the queue.
+    proxy.stall();
+    constexpr std::size_t published = 1000;
+    on_loop([&] {
+        for (std::size_t i = 0; i < published; ++i) {
+            client_->publish(msg("gw/tag", std::to_string(i), 1, false, false));
+        }
+    });
+    leading = false;
+    on_loop([&] { client_->publish(msg("gw/own", "still said", 1, false, false)); });
+    proxy.resume();
+    ASSERT_TRUE(recorder.wait_for_message("gw/own", [](auto& p) { return p == "still said"; }));
+
+    // What was handed over before may arrive (at most the window, and what the connection lost
+    // sent again); nothing of what waited behind it.
+    const auto tags = recorder.messages_on("gw/tag");
+    EXPECT_LE(tags.size(), window);
+    EXPECT_GE(client_->stats().discarded, published - window);
+    EXPECT_EQ(client_->stats().queued, 0u);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::adapters::mqtt
