@@ -89,18 +89,34 @@ protected:
         }
         return out;
     }
+    /// The pair once settled: who leads, who stands by, the lease's epoch, and 20 of the
+    /// leader's datagrams captured; `leader` empty (the reason in `why`) when it did not settle.
+    struct Settled {
+        std::string leader;
+        std::string standby;
+        int epoch = 0;
+        std::string why;
+    };
+    Settled settle() {
+        Settled out{first_leader()};
+        if (out.leader.empty()) return {"", "", 0, "nobody leads"};
+        out.standby = other(out.leader);
+        if (!says(out.standby, "standby")) return {"", "", 0, out.standby + " never stood by"};
+        out.epoch = record_of(out.leader).value("epoch", 0);
+        if (!capture(20)) return {"", "", 0, "the leader's first 20 datagrams did not come"};
+        return out;
+    }
     std::map<std::string, std::string> configs_;
     std::vector<std::uint16_t> captured_;
 };
 
 TEST_F(HotStandbyTest, TheStandbyTakesOverFromAKilledLeaderAndNeverProducesBesideIt) {
-    const auto leader = first_leader();
-    ASSERT_FALSE(leader.empty()) << "nobody leads";
-    const auto standby = other(leader);
-    ASSERT_TRUE(says(standby, "standby"));
-    const auto epoch = record_of(leader).value("epoch", 0);
+    const auto settled = settle();
+    ASSERT_FALSE(settled.leader.empty()) << settled.why;
+    const auto& leader = settled.leader;
+    const auto& standby = settled.standby;
+    const auto epoch = settled.epoch;
     ASSERT_GE(epoch, 1);
-    ASSERT_TRUE(capture(20));
     EXPECT_LE(runs(), leaderships()) << "the standby produced beside the leader";
 
     const auto from = recorder_->count();
@@ -142,12 +158,11 @@ TEST_F(HotStandbyTest, AKilledLeaderRestartedStandsByBesideTheNewOne) {
 }
 
 TEST_F(HotStandbyTest, ALeaderResumedAfterSigstopIsFencedAndStandsBy) {
-    const auto leader = first_leader();
-    ASSERT_FALSE(leader.empty()) << "nobody leads";
-    const auto standby = other(leader);
-    ASSERT_TRUE(says(standby, "standby"));
-    const auto epoch = record_of(leader).value("epoch", 0);
-    ASSERT_TRUE(capture(20));
+    const auto settled = settle();
+    ASSERT_FALSE(settled.leader.empty()) << settled.why;
+    const auto& leader = settled.leader;
+    const auto& standby = settled.standby;
+    const auto epoch = settled.epoch;
 
     const auto from = recorder_->count();
     gateways_[leader]->signal(SIGSTOP);
@@ -253,12 +268,11 @@ protected:
 };
 
 TEST_F(CutOffHotStandbyTest, ALeaderCutOffFromTheBrokerStopsBeforeTheStandbyTakesOver) {
-    const auto leader = first_leader();
-    ASSERT_FALSE(leader.empty()) << "nobody leads";
-    const auto standby = other(leader);
-    ASSERT_TRUE(says(standby, "standby"));
-    const auto epoch = record_of(leader).value("epoch", 0);
-    ASSERT_TRUE(capture(20));
+    const auto settled = settle();
+    ASSERT_FALSE(settled.leader.empty()) << settled.why;
+    const auto& leader = settled.leader;
+    const auto& standby = settled.standby;
+    const auto epoch = settled.epoch;
 
     const auto from = recorder_->count();
     proxies_[leader]->stall();

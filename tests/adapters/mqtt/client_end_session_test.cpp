@@ -86,21 +86,14 @@ TEST_F(ClientFixture, AnEndedSessionDropsWhatWaitedInsteadOfFlushingIt) {
     MqttRecorder recorder(broker.url(), {"gw/#"}, "drop-recorder");
     std::atomic<int> wills{0};
     auto options = session_bound(options_for(broker), wills);
-    options.urls = {"tcp://127.0.0.1:" + std::to_string(proxy.port())};
     const auto window = options.max_in_flight;
-    make_client(std::move(options));
-    on_loop([&] { client_->start(); });
-    ASSERT_TRUE(wait_connected_count(1));
+    ASSERT_TRUE(start_through(std::move(options), proxy.port()));
 
     // Cut off: the broker acknowledges nothing, so no more than the window is handed over and
     // the rest waits.
     proxy.stall();
     constexpr std::size_t published = 1000;
-    on_loop([&] {
-        for (std::size_t i = 0; i < published; ++i) {
-            client_->publish(msg("gw/data", std::to_string(i), 1, false, false));
-        }
-    });
+    publish_numbered("gw/data", published);
     on_loop([&] { client_->end_session(); });
     const auto stats = client_->stats();
     EXPECT_EQ(stats.queued, 0u);

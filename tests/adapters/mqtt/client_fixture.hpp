@@ -103,6 +103,24 @@ protected:
         return result.get();
     }
 
+    /// Makes the client on `options`, connecting through a proxy on 127.0.0.1:`proxy_port`,
+    /// and starts it; true once it connected.
+    bool start_through(ClientOptions options, std::uint16_t proxy_port) {
+        options.urls = {"tcp://127.0.0.1:" + std::to_string(proxy_port)};
+        make_client(std::move(options));
+        on_loop([&] { client_->start(); });
+        return wait_connected_count(1);
+    }
+
+    /// Publishes "0", "1", ... on `topic` (QoS 1), `count` of them, from the loop.
+    void publish_numbered(const std::string& topic, std::size_t count) {
+        on_loop([&] {
+            for (std::size_t i = 0; i < count; ++i) {
+                client_->publish(msg(topic, std::to_string(i), 1, false, false));
+            }
+        });
+    }
+
     bool wait_connected_count(int n) {
         std::unique_lock lock(mutex_);
         return cv_.wait_for(lock, kTimeout, [&] { return connected_count_ >= n; });

@@ -19,23 +19,16 @@ TEST_F(ClientFixture, WhatMaySendNoLongerAllowsIsDroppedWhenTakenEvenIfItWaitedB
     MqttRecorder recorder(broker.url(), {"gw/#"}, "may-send-recorder");
     std::atomic<bool> leading{true};
     auto options = options_for(broker);
-    options.urls = {"tcp://127.0.0.1:" + std::to_string(proxy.port())};
     options.may_send = [&leading](const Message& message) {
         return message.topic != "gw/tag" || leading.load();
     };
     const auto window = options.max_in_flight;
-    make_client(std::move(options));
-    on_loop([&] { client_->start(); });
-    ASSERT_TRUE(wait_connected_count(1));
+    ASSERT_TRUE(start_through(std::move(options), proxy.port()));
 
     // Cut off: no more than the window is handed over, the rest waits in the queue.
     proxy.stall();
     constexpr std::size_t published = 1000;
-    on_loop([&] {
-        for (std::size_t i = 0; i < published; ++i) {
-            client_->publish(msg("gw/tag", std::to_string(i), 1, false, false));
-        }
-    });
+    publish_numbered("gw/tag", published);
     leading = false;
     on_loop([&] { client_->publish(msg("gw/own", "still said", 1, false, false)); });
     proxy.resume();
