@@ -143,9 +143,21 @@ TEST_F(HotStandbyTest, AKilledLeaderRestartedStandsByBesideTheNewOne) {
 
     const auto restarted = recorder_->count();
     start(leader);
+    // A write as soon as the restarted unit is online, before it may have read who leads:
+    // answered once, by the leader.
+    ASSERT_TRUE(recorder_
+                    ->wait_for_message(
+                        "test/_gateway/" + leader + "/state",
+                        [](const std::string& p) { return p == "online"; }, 30s, restarted)
+                    .has_value());
+    recorder_->publish("test/sp/SPEED_SP/set", "3100");
     ASSERT_TRUE(says(leader, "standby", restarted));
     const auto epoch = record_of(standby, restarted).value("epoch", 0);
     ASSERT_TRUE(capture(40));
+    const auto result =
+        recorder_->wait_for_message("test/sp/SPEED_SP/set/result", nullptr, 10s, restarted);
+    ASSERT_TRUE(result.has_value()) << "the write was never answered";
+    EXPECT_EQ(json::parse(result->payload), json({{"ok", true}}));
     EXPECT_LE(runs(), leaderships());
     // The new leader kept the lead: its renewals go on with its epoch, and the restarted unit
     // never claimed it.
@@ -155,6 +167,7 @@ TEST_F(HotStandbyTest, AKilledLeaderRestartedStandsByBesideTheNewOne) {
                          role_topic(leader), [](const std::string& p) { return p == "leader"; },
                          0ms, restarted)
                      .has_value());
+    EXPECT_EQ(recorder_->messages_on("test/sp/SPEED_SP/set/result").size(), 1u);
 }
 
 TEST_F(HotStandbyTest, ALeaderResumedAfterSigstopIsFencedAndStandsBy) {

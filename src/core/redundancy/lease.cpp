@@ -34,6 +34,7 @@ void Lease::stand_by(MonoTime now) {
 void Lease::on_record(const std::optional<LeaderRecord>& record, MonoTime now) {
     // An empty record (a will) says nothing the time since the last record does not.
     if (!record) return;
+    read_a_record_ = true;
     if (record->id == settings_.id) {
         // Our own, or one from before a restart: its epoch is spent either way.
         epoch_ = std::max(epoch_, record->epoch);
@@ -110,7 +111,10 @@ WritePolicy Lease::writes(MonoTime now) const {
     // refuses: the other unit may have taken over meanwhile and answers the write, at once or
     // as one in doubt when it takes over; so does this one should it lead again first.
     const bool lapsed = lapsed_ || state_ == State::leader;
-    return live_leader || lapsed ? WritePolicy::leave_to_leader : WritePolicy::refuse;
+    // Started, and nothing read on the leader topic yet (its retained record comes on another
+    // connection than the writes): should this unit take the lead instead, it refuses them then.
+    const bool starting = state_ == State::standby && !read_a_record_;
+    return live_leader || lapsed || starting ? WritePolicy::leave_to_leader : WritePolicy::refuse;
 }
 
 }  // namespace eip2mqtt::core::redundancy

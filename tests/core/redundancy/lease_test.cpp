@@ -275,6 +275,19 @@ TEST(LeaseTest, ItsOwnRecordFromAnEarlierLifeRaisesTheEpochButIsNotALeader) {
     EXPECT_EQ(claim->epoch, 6u);
 }
 
+TEST(LeaseTest, AStartingUnitLeavesWritesToALeaderItMayNotHaveReadYet) {
+    Lease lease(settings("b"), t0);
+    EXPECT_EQ(lease.writes(t0 + 10ms), WritePolicy::leave_to_leader);
+    EXPECT_EQ(lease.writes(t0 + 1499ms), WritePolicy::leave_to_leader);
+    // Nobody's record came: it claims (and, leading, refuses what it left: took_over).
+    ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
+    EXPECT_EQ(lease.writes(t0 + 1500ms), WritePolicy::refuse);
+    Lease heard(settings("b"), t0);
+    heard.on_record(record("a", 1), t0 + 10ms);
+    EXPECT_EQ(heard.writes(t0 + 20ms), WritePolicy::leave_to_leader);
+    EXPECT_EQ(heard.writes(t0 + 1260ms), WritePolicy::refuse);
+}
+
 TEST(LeaseTest, AStandbyRefusesWritesOnceTheLeaderItHeardIsSurelyFenced) {
     Lease lease(settings("b"), t0);
     lease.on_record(record("a", 1), t0 + 1s);

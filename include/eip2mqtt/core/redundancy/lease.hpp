@@ -19,7 +19,8 @@
 ///   longest) passed since it last heard the old one: that one was fenced by then, so its last
 ///   datagram is a period behind at least. With periods up to 3R / 2, it produces as it leads.
 /// - A standby leaves writes to the leader it heard for T - 3R / 2, while that one may hold its
-///   lease, and refuses them after.
+///   lease, and refuses them after. A unit that started and has read no record yet leaves them
+///   too: a leader may live whose record is on its way.
 /// - Any unit seeing a record of a newer epoch follows it. Of the same epoch, a claim gives way
 ///   to a renewal (a leader confirmed: the claim came too late, as one sent by a unit cut off
 ///   from the broker and delivered once the path is back), a leader ignores a claim (its sender
@@ -128,6 +129,8 @@ private:
     std::optional<MonoTime> last_acknowledged_;  ///< sent time of the newest acknowledged one
     /// It stepped down as its lease lapsed and has heard no leader since.
     bool lapsed_ = false;
+    /// It read a record on the leader topic (anyone's) since it started.
+    bool read_a_record_ = false;
 };
 
 }  // namespace eip2mqtt::core::redundancy
