@@ -77,15 +77,23 @@ void ExchangeProducer::stop() {
     id_.reset();
 }
 
-std::size_t ExchangeProducer::cancel_queued_writes(std::string_view error) {
+std::size_t ExchangeProducer::cancel_queued_writes(std::optional<std::string_view> error) {
     std::vector<std::uint64_t> ids;
     image_.discard_pending(ids);
     if (ids.empty()) return 0;
     for (const auto id : ids) {
-        if (const auto reply = take_reply(id)) northbound_.write_result(*reply, error);
+        const auto reply = take_reply(id);
+        if (reply && error) northbound_.write_result(*reply, error);
     }
-    spdlog::warn("exchange {}: {} queued write(s) answered \"{}\": never produced",
-                 plan_->spec.name, ids.size(), error);
+    if (error) {
+        spdlog::warn("exchange {}: {} queued write(s) answered \"{}\": never produced",
+                     plan_->spec.name, ids.size(), *error);
+    } else {
+        spdlog::warn(
+            "exchange {}: {} queued write(s) left to the unit that took the lead: never "
+            "produced here",
+            plan_->spec.name, ids.size());
+    }
     // Saved ahead of a production that will not come: the file gets the produced image back.
     if (ids.front() <= saved_through_) {
         persister_.save(adapters::state::ImagePersister::unattended, file_, image_.data());
@@ -211,9 +219,9 @@ void ExchangeProducer::on_save_failed(const std::string& error,
     saved_ = false;
     retry_at_.reset();
     for (const auto id : sent) {
-        const auto reply = take_reply(id);
+        auto reply = take_reply(id);
         if (!reply) continue;
-        northbound_.write_result_unsaved(*reply, error);
+        answer_accepted(std::move(*reply), error);
         ++totals_.writes_sent_unsaved;
     }
     // Queued writes that this save held wait on no other: they are never produced.
@@ -243,8 +251,18 @@ void ExchangeProducer::on_save_failed(const std::string& error,
 
 void ExchangeProducer::report_results(std::span<const std::uint64_t> write_ids) {
     for (const auto id : write_ids) {
-        if (const auto reply = take_reply(id)) northbound_.write_result(*reply, std::nullopt);
+        if (auto reply = take_reply(id)) answer_accepted(std::move(*reply), std::nullopt);
     }
+}
+
+void ExchangeProducer::answer_accepted(WriteReply reply, std::optional<std::string> unsaved) {
+    auto answer = [&northbound = northbound_, reply = std::move(reply),
+                   unsaved = std::move(unsaved)] {
+        if (unsaved) return northbound.write_result_unsaved(reply, *unsaved);
+        northbound.write_result(reply, std::nullopt);
+    };
+    if (!answer_gate_) return answer();
+    answer_gate_(*this, std::move(answer));
 }
 
 std::optional<WriteReply> ExchangeProducer::take_reply(std::uint64_t write_id) {

@@ -144,6 +144,7 @@ std::unique_ptr<ExchangeProducer> Exchanges::make_producer(core::plan::ExchangeP
         std::make_unique<ExchangeProducer>(std::move(plan), *destination, *scheduler_, *persister_,
                                            northbound_, totals_, std::move(handover));
     producer->set_on_image_changed(options_.on_image_changed);
+    producer->set_answer_gate(options_.answer_gate);
     return producer;
 }
 
@@ -190,6 +191,11 @@ std::optional<core::write::WriteRejection> Exchanges::stage(ExchangeWrite&& writ
                                            "the exchange is no longer produced"};
     }
     return found->second->stage(std::move(write.writes), reply, now);
+}
+
+bool Exchanges::holds(const ExchangeWrite& write) const {
+    const auto found = by_handle_.find(write.producer);
+    return found != by_handle_.end() && found->second->image().holds(write.writes);
 }
 
 ExchangeSet Exchanges::running() const {

@@ -68,7 +68,8 @@ MetricsSources Gateway::metrics_sources(const adapters::mqtt::ClientStats& mqtt,
             sparkplug_ ? &sparkplug_->stats() : nullptr,
             commands_ ? &commands_->counters() : nullptr,
             pair_images_ ? &pair_images_->counters() : nullptr,
-            pair_history_ ? &pair_history_->counters() : nullptr};
+            pair_history_ ? &pair_history_->counters() : nullptr,
+            pair_writes_ ? &pair_writes_->counters() : nullptr};
 }
 
 }  // namespace eip2mqtt::app

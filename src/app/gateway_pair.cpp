@@ -47,10 +47,27 @@ void Gateway::make_pair() {
         [this](core::redundancy::Role role) { on_role(role); });
     if (sparkplug_) pair_->set_bd_seq_source([this] { return sparkplug_->session_bd_seq(); });
     northbound_.set_gate([this] { return pair_->leading(std::chrono::steady_clock::now()); });
-    writes_.set_admission([this] { return pair_->writes(std::chrono::steady_clock::now()); });
+    make_pair_writes();
     make_pair_history();
     spdlog::info("pair {}: standing by until the lease is settled (takeover after {} ms)",
                  section.pair, section.takeover.count());
+}
+
+void Gateway::make_pair_writes() {
+    // A live leader answers a write within a production, a save and an image's
+    // acknowledgement: twice the takeover and two of the longest periods is past any of it.
+    const auto horizon = 2 * config_.redundancy.takeover + 2 * longest_produced_period(config_);
+    pair_writes_ =
+        std::make_unique<redundancy::PairWrites>(horizon, [this] { json_tree_->listen_again(); });
+    json_tree_->set_answer_listener(
+        [this](const adapters::mqtt::Incoming& answer) { pair_writes_->heard(answer); },
+        [this] { return pair_writes_->response_topics(); });
+    writes_.set_admission({[this] { return pair_->writes(std::chrono::steady_clock::now()); },
+                           [this](WriteRequest&& request) {
+                               pair_writes_->leave(std::move(request),
+                                                   std::chrono::steady_clock::now());
+                           },
+                           [this](const ExchangeWrite& write) { return exchanges_.holds(write); }});
 }
 
 void Gateway::make_pair_history() {
@@ -101,6 +118,9 @@ ExchangesOptions Gateway::pair_options() {
     options.on_image_changed = [this](const ExchangeProducer& producer) {
         pair_images_->publish(producer, pair_->lease().epoch());
     };
+    options.answer_gate = [this](const ExchangeProducer& producer, std::function<void()> answer) {
+        pair_images_->answer_after_image(producer, std::move(answer));
+    };
     options.follows_produced = [this](core::MonoTime now) { return !pair_->leading(now); };
     return options;
 }
@@ -118,6 +138,10 @@ void Gateway::start_pair() {
                                  pair_->lease().epoch());
     });
     pair_mqtt_->set_on_acknowledged([this](std::uint64_t token) {
+        if (pair_images_->on_acknowledged(token,
+                                          pair_->leading(std::chrono::steady_clock::now()))) {
+            return;
+        }
         pair_->on_acknowledged(token);
         refresh_leading_until();
     });
@@ -126,10 +150,16 @@ void Gateway::start_pair() {
 
 void Gateway::on_role(core::redundancy::Role role) {
     const auto now = std::chrono::steady_clock::now();
+    const auto lapsed_at = std::chrono::steady_clock::time_point(
+        std::chrono::steady_clock::duration(leading_until_.load(std::memory_order_acquire)));
     // Before anything is said as leader (the republish), or so that nothing more is.
     refresh_leading_until();
     if (role == core::redundancy::Role::leader) {
-        writes_.took_over(pair_->lease().last_heard());
+        // The writes left to the old leader that it never answered, settled by the image as
+        // it stands: the one the old leader last published.
+        for (auto& request : pair_writes_->take_unanswered(now)) {
+            writes_.settle(std::move(request));
+        }
         // What the old leader had not had acknowledged goes on `_history` before anything
         // live: the replay takes the window as it stands now.
         if (pair_history_) pair_history_->took_over(now);
@@ -146,11 +176,22 @@ void Gateway::on_role(core::redundancy::Role role) {
     }
     end_sparkplug_session();
     if (pair_history_) pair_history_->stood_by();
-    // Writes this unit accepted as leader and has not produced never will be by it: answered
-    // now, never applied late should it lead again (the new leader may have taken them).
+    step_down_writes(now, lapsed_at);
+}
+
+void Gateway::step_down_writes(core::MonoTime now, core::MonoTime lapsed_at) {
+    // Accepted and produced, but the broker had not acknowledged the image carrying them: a
+    // unit taking over settles them by the image it has.
+    pair_images_->withhold_answers();
+    // Accepted and not produced: never produced by this unit, not even should it lead again
+    // (the new leader may have taken them). Answered `standby` if this unit stepped down as
+    // its lease lapsed, before any other may have claimed; else the unit that took the lead
+    // settles them, which a second answer here would contradict.
+    const bool in_time = now >= lapsed_at && now < lapsed_at + pair_->lease().renew_interval() / 4;
     std::size_t cancelled = 0;
     for (const auto& producer : exchanges_.producers()) {
-        cancelled += producer->cancel_queued_writes("standby");
+        cancelled += producer->cancel_queued_writes(
+            in_time ? std::optional<std::string_view>("standby") : std::nullopt);
     }
     writes_.count_cancelled(cancelled);
 }

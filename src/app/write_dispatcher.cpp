@@ -12,38 +12,31 @@
 #include "eip2mqtt/core/printable.hpp"
 
 namespace eip2mqtt::app {
-namespace {
-
-/// Writes left to the leader kept for a takeover: a flood of them beyond it, in the window a
-/// takeover may leave in doubt, is past what any client could wait for.
-constexpr std::size_t max_left_to_leader = 1024;
-
-}  // namespace
 
 WriteDispatcher::WriteDispatcher(StageWrite stage, const Clock& clock)
     : stage_(std::move(stage)), clock_(clock) {}
 
 bool WriteDispatcher::admitted(WriteRequest& request) {
     using core::redundancy::WritePolicy;
-    const auto policy = admission_ ? admission_() : WritePolicy::apply;
+    const auto policy = admission_.policy ? admission_.policy() : WritePolicy::apply;
     if (policy == WritePolicy::apply) return true;
     if (policy == WritePolicy::leave_to_leader && request.reply.via != WriteOrigin::commands) {
         ++counters_.writes_left_to_leader;
-        // Kept for a takeover that would leave it in doubt (took_over).
-        if (left_to_leader_.size() == max_left_to_leader) left_to_leader_.pop_front();
-        left_to_leader_.push_back({std::move(request), clock_.monotonic()});
+        if (admission_.leave) admission_.leave(std::move(request));
         return false;
     }
     reject(request, {core::write::WriteError::standby, "standby"});
     return false;
 }
 
-void WriteDispatcher::took_over(core::MonoTime last_heard) {
-    for (const auto& left : left_to_leader_) {
-        if (left.at >= last_heard)
-            reject(left.request, {core::write::WriteError::standby, "standby"});
+void WriteDispatcher::settle(WriteRequest&& request) {
+    const auto* write = std::get_if<ExchangeWrite>(&request.outcome);
+    if (write && !(admission_.holds && admission_.holds(*write))) {
+        ++counters_.writes_settled_standby;
+        return reject(request, {core::write::WriteError::standby, "standby"});
     }
-    left_to_leader_.clear();
+    if (write) ++counters_.writes_settled_applied;
+    on_write(std::move(request));
 }
 
 void WriteDispatcher::on_write(WriteRequest&& request) {

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -171,6 +172,32 @@ TEST_F(ExchangeProducerTest, QueuedWritesAreAnsweredReloadedOnceAndNeverApplied)
     persister_->flush();
     EXPECT_EQ(results().size(), 2u);
     EXPECT_EQ(results().at("a").size(), 1u);
+}
+
+TEST_F(ExchangeProducerTest, QueuedWritesLeftToAnotherUnitAreDroppedUnansweredNeverApplied) {
+    write("a", 5);
+    EXPECT_EQ(producer_->cancel_queued_writes(std::nullopt), 1u);
+    produce_once();
+    persister_->flush();
+    EXPECT_TRUE(results().empty());
+    EXPECT_EQ(
+        core::plan::decode_value(producer_->image().data(), core::plan::TagType::dint, {0, 0}),
+        core::plan::Value{std::int64_t{0}});
+}
+
+TEST_F(ExchangeProducerTest, AnAnswerGateHoldsOkUntilItRunsTheAnswer) {
+    std::vector<std::function<void()>> held;
+    producer_->set_answer_gate([&](const ExchangeProducer& producer, std::function<void()> answer) {
+        EXPECT_EQ(&producer, producer_.get());
+        held.push_back(std::move(answer));
+    });
+    write("a", 5);
+    produce_once();
+    persister_->flush();
+    ASSERT_EQ(held.size(), 1u);
+    EXPECT_TRUE(results().empty());
+    held[0]();
+    EXPECT_EQ(results(), (std::map<std::string, std::vector<json>>{{"a", {ok}}}));
 }
 
 TEST_F(ExchangeProducerTest, ACarriedWriteWhoseSaveIsUnderWayStillGetsItsOkAfterTheFlush) {

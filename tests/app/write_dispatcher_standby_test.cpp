@@ -1,7 +1,7 @@
 // The standby of a pair and the writes that reach it (README "Redundancy"): left to a live
 // leader unanswered, refused `standby` when no leader answers, always refused on the command
-// port (this unit's own address), and taken as ever by the leader; at a takeover, those left to
-// a leader that may never have had them are refused.
+// port (this unit's own address), and taken as ever by the leader; at a takeover, those the old
+// leader never answered are settled: taken when the image holds what they write, else refused.
 
 #include <gtest/gtest.h>
 
@@ -22,7 +22,10 @@ using core::write::WriteRejection;
 class WriteDispatcherStandbyTest : public ::testing::Test {
 protected:
     WriteDispatcherStandbyTest() {
-        dispatcher_.set_admission([this] { return policy_; });
+        dispatcher_.set_admission(
+            {[this] { return policy_; },
+             [this](WriteRequest&& request) { left_.push_back(std::move(request)); },
+             [this](const ExchangeWrite&) { return holds_; }});
     }
     WriteRequest write(WriteOrigin via = WriteOrigin::mqtt) {
         WriteRequest request{{"reply/topic", "id", &origin_},
@@ -42,6 +45,8 @@ protected:
     core::plan::ExchangePlan plan_;
     int staged_ = 0;
     WritePolicy policy_ = WritePolicy::apply;
+    std::vector<WriteRequest> left_;
+    bool holds_ = false;
     WriteDispatcher dispatcher_{[this](ExchangeWrite&&, const WriteReply&,
                                        core::MonoTime) -> std::optional<WriteRejection> {
                                     ++staged_;
@@ -91,24 +96,38 @@ TEST_F(WriteDispatcherStandbyTest, AStandbyAnswersEvenAnInvalidWriteOnlyWhenNoLe
     EXPECT_TRUE(origin_.results.empty());
 }
 
-TEST_F(WriteDispatcherStandbyTest, ATakeoverRefusesTheWritesLeftToTheLeaderSinceItWasLastHeard) {
+TEST_F(WriteDispatcherStandbyTest, AWriteLeftToTheLeaderIsHandedOverUnanswered) {
     policy_ = WritePolicy::leave_to_leader;
-    dispatcher_.on_write(write());  // before the leader's last record: the old leader's to answer
-    clock_.advance(std::chrono::milliseconds(100));
-    const auto last_heard = clock_.monotonic();
-    clock_.advance(std::chrono::milliseconds(100));
-    dispatcher_.on_write(write());  // after it: the old leader may never have had it
-    ASSERT_TRUE(origin_.results.empty());
+    dispatcher_.on_write(write());
+    ASSERT_EQ(left_.size(), 1u);
+    EXPECT_EQ(left_[0].reply.topic, "reply/topic");
+    EXPECT_EQ(left_[0].reply.correlation_data, "id");
+    EXPECT_TRUE(origin_.results.empty());
+}
 
+TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageHoldsIsTakenAsTheLeaderTakesAny) {
+    policy_ = WritePolicy::leave_to_leader;
+    dispatcher_.on_write(write());
     policy_ = WritePolicy::apply;
-    dispatcher_.took_over(last_heard);
+    holds_ = true;
+    dispatcher_.settle(std::move(left_[0]));
+    EXPECT_EQ(staged_, 1);  // answered `ok` once produced, by the producer
+    EXPECT_TRUE(origin_.results.empty());
+    EXPECT_EQ(dispatcher_.counters().writes_settled_applied, 1u);
+    EXPECT_EQ(dispatcher_.counters().writes_ok, 1u);
+}
+
+TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageDoesNotHoldIsRefusedStandbyUnapplied) {
+    policy_ = WritePolicy::leave_to_leader;
+    dispatcher_.on_write(write());
+    policy_ = WritePolicy::apply;
+    holds_ = false;
+    dispatcher_.settle(std::move(left_[0]));
+    EXPECT_EQ(staged_, 0);
     ASSERT_EQ(origin_.results.size(), 1u);
     EXPECT_EQ(origin_.results[0].error, "standby");
     EXPECT_EQ(refused_standby(), 1u);
-    EXPECT_EQ(staged_, 0);
-    // Answered once: a later takeover has none of them left.
-    dispatcher_.took_over(last_heard);
-    EXPECT_EQ(origin_.results.size(), 1u);
+    EXPECT_EQ(dispatcher_.counters().writes_settled_standby, 1u);
 }
 
 }  // namespace

@@ -85,7 +85,54 @@ protected:
         gateways_[id].reset();
     }
 
+    /// What a write around a leader's death came to: the new leader's first datagram's value,
+    /// and every answer the write got.
+    struct AfterDeath {
+        double produced = 0;
+        std::vector<json> answers;
+    };
+    /// Writes 3100 to the leader, waits for its answer when `answered_first`, kills it, then
+    /// reads the new leader's first datagram. The answers are counted once the new leader
+    /// answered a later write (on a response topic of its own): it answers in order, after
+    /// whatever it settled as it took the lead.
+    std::optional<AfterDeath> write_then_kill(bool answered_first) {
+        const auto old = leader();
+        const auto first = next(false);
+        if (old.empty() || !first) return fail("nobody leads and produces");
+        recorder_->publish(set_topic, "3100");
+        if (answered_first && !recorder_->wait_for_message(result_topic, nullptr, 10s)) {
+            return fail("the leader never answered the write");
+        }
+        const auto killed = recorder_->count();
+        kill(old);
+        if (HasFatalFailure() || !says(other(old), "leader", killed)) return fail("no takeover");
+        std::optional<UdpDatagram> taken_over;
+        for (int i = 0; i < 400 && !taken_over; ++i) {
+            auto datagram = next(false);
+            if (!datagram) break;
+            if (datagram->from_port != first->from_port) taken_over = std::move(datagram);
+        }
+        if (!taken_over) return fail("the new leader produced nothing");
+        const auto decoded = core::wire::decode_datagram(taken_over->bytes);
+        if (!decoded.ok()) return fail("the new leader's datagram does not decode");
+        recorder_->publish_request(set_topic, "3000", "client/barrier", "barrier");
+        if (!recorder_->wait_for_message("client/barrier", nullptr, 10s)) {
+            return fail("the new leader never answered a write");
+        }
+        AfterDeath out{speed_sp(decoded->data), {}};
+        for (const auto& answer : recorder_->messages_on(result_topic)) {
+            out.answers.push_back(json::parse(answer.payload));
+        }
+        return out;
+    }
+    static std::optional<AfterDeath> fail(const std::string& why) {
+        ADD_FAILURE() << why;
+        return std::nullopt;
+    }
+
     std::map<std::string, std::uint16_t> ports_;
+    const std::string set_topic = "test/sp/SPEED_SP/set";
+    const std::string result_topic = set_topic + "/result";
 };
 
 TEST_F(HotStandbyContinuityTest, TheNewLeadersFirstDatagramCarriesTheValueWrittenToTheKilledOne) {
@@ -180,6 +227,28 @@ TEST_F(HotStandbyContinuityTest, RequestIdsGoOnFromTheKilledLeadersLastWhenBothH
         pair_metrics(standby, [](const json& p) { return p.value("produced_heard", 0) >= 20; });
     ASSERT_TRUE(metrics.has_value());
     EXPECT_EQ(metrics->at("dropped").value("unknown_exchange", -1), 0);
+}
+
+TEST_F(HotStandbyContinuityTest, AWriteTheLeaderAnsweredJustBeforeItDiedIsAnsweredOnceAndKept) {
+    const auto after = write_then_kill(true);
+    ASSERT_TRUE(after.has_value());
+    ASSERT_EQ(after->answers.size(), 1u) << ::testing::PrintToString(after->answers);
+    EXPECT_EQ(after->answers[0], json({{"ok", true}}));
+    EXPECT_EQ(after->produced, 3100.0) << "answered ok, then undone by the new leader";
+}
+
+TEST_F(HotStandbyContinuityTest, AWriteInFlightWhenTheLeaderDiesIsAnsweredOnceAndOkOnlyIfKept) {
+    // Whatever the killed leader did with it (nothing, produced it, answered it), one answer,
+    // and it says what the new leader produces.
+    const auto after = write_then_kill(false);
+    ASSERT_TRUE(after.has_value());
+    ASSERT_EQ(after->answers.size(), 1u) << ::testing::PrintToString(after->answers);
+    if (after->answers[0].value("ok", false)) {
+        EXPECT_EQ(after->produced, 3100.0) << "answered ok, then undone by the new leader";
+    } else {
+        EXPECT_EQ(after->answers[0], json({{"ok", false}, {"error", "standby"}}));
+        EXPECT_EQ(after->produced, 3000.0) << "refused, yet produced by the new leader";
+    }
 }
 
 }  // namespace

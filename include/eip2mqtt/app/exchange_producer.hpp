@@ -70,11 +70,12 @@ public:
     void stop();
     /// For a stopped producer about to be destroyed (a reload changed or removed its
     /// exchange): answers every write still queued, which no datagram will ever carry, with
-    /// `error` and forgets it; returns how many. Writes already carried by
+    /// `error` (none: unanswered, a pair's leader that steps down after a unit may have taken
+    /// over, which answers them) and forgets it; returns how many. Writes already carried by
     /// a sent datagram are not touched: they wait for their save, so flush the persister
     /// before destroying the producer, and they get `{"ok":true}`. A queued write saved ahead
     /// of its production is taken out of the file again (the image is saved as produced).
-    std::size_t cancel_queued_writes(std::string_view error);
+    std::size_t cancel_queued_writes(std::optional<std::string_view> error);
     /// The image and its file, for the producer replacing this one (same layout).
     ImageHandover hand_over() const {
         return {{image_.data().begin(), image_.data().end()}, file_};
@@ -100,6 +101,12 @@ public:
     void set_on_image_changed(ImageChanged on_changed) {
         on_image_changed_ = std::move(on_changed);
     }
+    using AnswerGate =
+        std::function<void(const ExchangeProducer& producer, std::function<void()> answer)>;
+    /// The leader answers an accepted write (`ok`, or `ok` unsaved) through `gate`, which runs
+    /// the answer once the broker has the image carrying it (PairImages::answer_after_image);
+    /// unset: at once.
+    void set_answer_gate(AnswerGate gate) { answer_gate_ = std::move(gate); }
     /// The standby takes the leader's image (the plan's length) as its own and saves it as any
     /// image; returns whether a byte changed. Writes still queued stay queued over it.
     bool follow_image(std::span<const std::byte> data);
@@ -142,6 +149,8 @@ private:
     void report_results(std::span<const std::uint64_t> write_ids);
     /// Where the write's result goes, no longer waited for; none for a write already answered.
     std::optional<WriteReply> take_reply(std::uint64_t write_id);
+    /// Answers an accepted write: `ok`, or `ok` with `unsaved`'s reason; through the gate.
+    void answer_accepted(WriteReply reply, std::optional<std::string> unsaved);
 
     /// On the heap, at one address for the producer's life: image_ and the northbounds keep it.
     std::shared_ptr<const core::plan::ExchangePlan> plan_;
@@ -179,6 +188,7 @@ private:
     std::optional<core::WallTime> last_sent_;
     core::WallTime configured_at_ = std::chrono::system_clock::now();
     ImageChanged on_image_changed_;
+    AnswerGate answer_gate_;
 };
 
 }  // namespace eip2mqtt::app

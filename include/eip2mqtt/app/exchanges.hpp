@@ -39,6 +39,9 @@ struct ExchangesOptions {
     /// A pair's leader: each producer's image changed by writes, once the datagram carrying it
     /// left (ExchangeProducer::set_on_image_changed); unset: not called.
     ExchangeProducer::ImageChanged on_image_changed;
+    /// A pair's leader: how each producer answers an accepted write
+    /// (ExchangeProducer::set_answer_gate); unset: at once.
+    ExchangeProducer::AnswerGate answer_gate;
     /// A pair's standby: whether a datagram heard of an exchange this unit produces sets its
     /// producer's next request id (DatagramRouter::set_followed); unset: such datagrams are
     /// unknown ones.
@@ -96,6 +99,11 @@ public:
     /// no running producer has that handle.
     std::optional<core::write::WriteRejection> stage(ExchangeWrite&& write, const WriteReply& reply,
                                                      core::MonoTime now);
+
+    /// Whether the producer `write` names already produces every value it writes (false when
+    /// no running producer has that handle): a pair's new leader settling a write its old
+    /// leader left unanswered (WriteDispatcher::settle).
+    bool holds(const ExchangeWrite& write) const;
 
     /// The running exchanges as the northbounds see them.
     ExchangeSet running() const;

@@ -39,6 +39,7 @@
 #include "eip2mqtt/app/redundancy/pair_history.hpp"
 #include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/redundancy/pair_lease.hpp"
+#include "eip2mqtt/app/redundancy/pair_writes.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -92,6 +93,11 @@ private:
     /// The options of the exchanges that a pair sets: the gate of production, the images the
     /// leader publishes and the request ids the standby follows; none without `redundancy:`.
     ExchangesOptions pair_options();
+    /// The writes a standby leaves to the leader, the answers it listens for on the JSON
+    /// tree's connection, and how it settles the unanswered once it leads (make_pair).
+    void make_pair_writes();
+    /// Stepping down: the answers and the queued writes of this unit as leader.
+    void step_down_writes(core::MonoTime now, core::MonoTime lapsed_at);
     /// With the JSON tree among the northbounds: the pair's history (make_pair).
     void make_pair_history();
     void start_pair();
@@ -157,6 +163,8 @@ private:
     std::atomic<std::chrono::steady_clock::rep> leading_until_{
         std::chrono::steady_clock::time_point::min().time_since_epoch().count()};
     std::unique_ptr<redundancy::PairImages> pair_images_;  ///< with pair_mqtt_
+    /// With pair_mqtt_: the writes left to the leader, until it answers them.
+    std::unique_ptr<redundancy::PairWrites> pair_writes_;
     /// With pair_mqtt_ and the JSON tree: the samples a takeover replays on `_history`.
     std::unique_ptr<redundancy::PairHistory> pair_history_;
     Exchanges exchanges_;

@@ -38,6 +38,7 @@ struct MetricsSources {
     const core::command::CommandCounters* commands = nullptr;       ///< with eip.commands enabled
     const redundancy::PairImageCounters* pair_images = nullptr;     ///< with `redundancy:`
     const redundancy::PairHistoryCounters* pair_history = nullptr;  ///< with pair_images
+    const redundancy::PairWriteCounters* pair_writes = nullptr;     ///< with pair_images
 };
 
 /// Store and forward's figures for Prometheus and the metrics topic.

@@ -6,7 +6,6 @@
 /// Threading: the loop only.
 
 #include <cstddef>
-#include <deque>
 #include <functional>
 #include <optional>
 #include <utility>
@@ -31,20 +30,27 @@ public:
     WriteDispatcher(StageWrite stage, const Clock& clock);
 
     void on_write(WriteRequest&& request) override;
-    /// The standby of a pair (README "Redundancy"): whether this unit takes a write now. A
-    /// write the leader answers is dropped here unanswered (counted); one that no live leader
-    /// will answer is refused `standby`. Writes on the command port go to this unit's own
-    /// address, which no leader answers: they are refused whenever this unit does not lead.
-    /// Unset: every write is taken.
-    void set_admission(std::function<core::redundancy::WritePolicy()> admission) {
-        admission_ = std::move(admission);
-    }
-    /// This unit took the lead from a leader last heard at `last_heard`. The writes it left to
-    /// that leader since then may never have reached it (it died, or was cut off from the
-    /// broker, before them; its renewals vouch for nothing after the last one heard): they are
-    /// refused `standby` now, so each is answered, and never applied here, where the old leader
-    /// may have applied it. Those left before it are the old leader's.
-    void took_over(core::MonoTime last_heard);
+
+    /// What a unit of a hot-standby pair (README "Redundancy") asks of the writes that reach it.
+    struct PairAdmission {
+        /// Whether this unit takes a write now (unset: every write is).
+        std::function<core::redundancy::WritePolicy()> policy;
+        /// Takes each write left to the leader (redundancy::PairWrites); unset: dropped.
+        std::function<void(WriteRequest&& request)> leave;
+        /// Whether the produced image already holds what `write` writes (settle()).
+        std::function<bool(const ExchangeWrite& write)> holds;
+    };
+    /// A write the leader answers is left to it here unanswered (counted); one that no live
+    /// leader will answer is refused `standby`. Writes on the command port go to this unit's
+    /// own address, which no leader answers: they are refused whenever this unit does not lead.
+    void set_admission(PairAdmission admission) { admission_ = std::move(admission); }
+    /// A write that the leader this unit took over from was left, and never answered: it died,
+    /// hung or was cut off from the broker first, or never had it. Refused as its northbound
+    /// refused it; taken as this leader takes any write when the image already holds what it
+    /// writes (the old leader applied it, and the image it published brought it here), so it
+    /// is answered `ok` once produced; else refused `standby`: not applied here, and undone
+    /// should the old leader have sent it.
+    void settle(WriteRequest&& request);
     /// Writes a reload answered `reloaded` (ExchangeProducer::cancel_queued_writes).
     void count_cancelled(std::size_t writes) { counters_.writes_cancelled += writes; }
     /// Where the produced exchanges count their image saves (ExchangeProducer).
@@ -59,14 +65,7 @@ private:
 
     StageWrite stage_;
     const Clock& clock_;
-    std::function<core::redundancy::WritePolicy()> admission_;
-    struct LeftToLeader {
-        WriteRequest request;
-        core::MonoTime at;
-    };
-    /// The newest writes left to the leader (bounded: only those of the last takeover window
-    /// can matter, and a live leader answers all of them).
-    std::deque<LeftToLeader> left_to_leader_;
+    PairAdmission admission_;
     WriteCounters counters_;
     core::ThrottledLog log_;
 };

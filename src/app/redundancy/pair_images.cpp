@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <utility>
 
 #include "eip2mqtt/adapters/state/image_store.hpp"
@@ -11,6 +12,10 @@ namespace eip2mqtt::app::redundancy {
 namespace {
 
 using core::redundancy::FollowVerdict;
+
+/// An image's acknowledgement token: its number with the top bit set, which the lease's own
+/// tokens (the time of a renewal in nanoseconds of the steady clock) never have.
+constexpr std::uint64_t image_token_bit = std::uint64_t{1} << 63;
 
 /// What this unit's image of `producer`'s exchange is, in the image file's own terms: an image
 /// the other unit's file would not restore here is no image of this exchange either.
@@ -40,8 +45,52 @@ void PairImages::publish(const ExchangeProducer& producer, std::uint64_t epoch) 
     message_.payload = encode_image_message(image);
     message_.qos = 1;
     message_.retain = true;
+    const auto number = ++next_image_;
+    message_.ack_token = image_token_bit | number;
+    acks_[message_.topic].published = number;
+    unacknowledged_.emplace(number, message_.topic);
     publisher_.publish(std::move(message_));
     ++counters_.published;
+}
+
+void PairImages::answer_after_image(const ExchangeProducer& producer,
+                                    std::function<void()> answer) {
+    auto topic = topic_of(producer.plan());
+    const auto found = acks_.find(topic);
+    if (found == acks_.end() || found->second.acknowledged >= found->second.published) {
+        return answer();
+    }
+    waiting_.push_back({std::move(topic), found->second.published, std::move(answer)});
+}
+
+bool PairImages::on_acknowledged(std::uint64_t token, bool leading) {
+    if ((token & image_token_bit) == 0) return false;
+    const auto found = unacknowledged_.find(token & ~image_token_bit);
+    if (found == unacknowledged_.end()) return true;
+    const auto topic = found->second;
+    auto& acks = acks_[topic];
+    acks.acknowledged = std::max(acks.acknowledged, found->first);
+    // Those it replaced in the queue were never sent: it stands for them.
+    std::erase_if(unacknowledged_, [&](const auto& entry) {
+        return entry.second == topic && entry.first <= acks.acknowledged;
+    });
+    std::deque<Waiting> still;
+    for (auto& waiting : waiting_) {
+        if (waiting.topic != topic || waiting.through > acks.acknowledged) {
+            still.push_back(std::move(waiting));
+        } else if (leading) {
+            waiting.answer();
+        } else {
+            ++counters_.answers_withheld;
+        }
+    }
+    waiting_ = std::move(still);
+    return true;
+}
+
+void PairImages::withhold_answers() {
+    counters_.answers_withheld += waiting_.size();
+    waiting_.clear();
 }
 
 std::optional<FollowVerdict> PairImages::on_message(

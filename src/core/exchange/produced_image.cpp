@@ -62,6 +62,11 @@ bool ProducedImage::apply(const write::WriteBatch& batch, std::span<std::byte> d
     return changed;
 }
 
+bool ProducedImage::holds(std::span<const write::TagWrite> writes) const {
+    auto scratch = data_;
+    return !apply({0, {writes.begin(), writes.end()}}, scratch);
+}
+
 bool ProducedImage::adopt(std::span<const std::byte> data) {
     if (data.size() != data_.size() || std::equal(data.begin(), data.end(), data_.begin())) {
         return false;

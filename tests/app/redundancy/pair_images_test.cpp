@@ -136,5 +136,56 @@ TEST_F(PairImagesTest, StaleUnknownAndMalformedImagesAreCountedAndLeftAlone) {
     EXPECT_EQ(images_.counters().followed, 0u);
 }
 
+// The leader answers a write `ok` only once the broker has the image carrying it.
+
+TEST_F(PairImagesTest, AnAnswerWithNoImageOutstandingGoesAtOnce) {
+    int answered = 0;
+    images_.answer_after_image(producer(), [&] { ++answered; });
+    EXPECT_EQ(answered, 1);
+}
+
+TEST_F(PairImagesTest, AnAnswerWaitsForTheImagePublishedBeforeItToBeAcknowledged) {
+    images_.publish(producer(), 7);
+    const auto token = publisher_.published.back().ack_token;
+    ASSERT_NE(token, 0u);
+    int answered = 0;
+    images_.answer_after_image(producer(), [&] { ++answered; });
+    EXPECT_EQ(answered, 0);
+    // A lease's token (a time in nanoseconds) is not the images'.
+    EXPECT_FALSE(images_.on_acknowledged(123456789, true));
+    EXPECT_EQ(answered, 0);
+    EXPECT_TRUE(images_.on_acknowledged(token, true));
+    EXPECT_EQ(answered, 1);
+    // Acknowledged: the next answer goes at once.
+    images_.answer_after_image(producer(), [&] { ++answered; });
+    EXPECT_EQ(answered, 2);
+}
+
+TEST_F(PairImagesTest, ANewerImageAcknowledgedStandsForTheOneItReplacedInTheQueue) {
+    images_.publish(producer(), 7);
+    int answered = 0;
+    images_.answer_after_image(producer(), [&] { ++answered; });
+    images_.publish(producer(), 7);
+    images_.answer_after_image(producer(), [&] { ++answered; });
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true));
+    EXPECT_EQ(answered, 2);
+    // The first one's acknowledgement, should it come after all, changes nothing.
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.front().ack_token, true));
+    EXPECT_EQ(answered, 2);
+}
+
+TEST_F(PairImagesTest, AnswersOfAUnitThatNoLongerLeadsAreWithheld) {
+    images_.publish(producer(), 7);
+    int answered = 0;
+    images_.answer_after_image(producer(), [&] { ++answered; });
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false));
+    images_.publish(producer(), 7);
+    images_.answer_after_image(producer(), [&] { ++answered; });
+    images_.withhold_answers();
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true));
+    EXPECT_EQ(answered, 0);
+    EXPECT_EQ(images_.counters().answers_withheld, 2u);
+}
+
 }  // namespace
 }  // namespace eip2mqtt::app::redundancy

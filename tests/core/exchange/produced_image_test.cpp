@@ -328,5 +328,24 @@ TEST(ProducedImage, RequestIdsContinueAfterTheOneHeard) {
     EXPECT_EQ(image.next_request_id(), 1);
 }
 
+TEST(ProducedImage, HoldsAWriteWhoseEveryValueIsThereAlreadyAndChangesNothingAsking) {
+    const auto plan = make_plan();
+    ProducedImage image(plan, {});  // SPEED_SP 3000, START on, MODE off, OFFSET -2
+    const auto before = data_hex(image);
+    const std::vector<write::TagWrite> held{{speed_sp, Value{std::int64_t{3000}}},
+                                            {start, Value{true}}};
+    EXPECT_TRUE(image.holds(held));
+    const std::vector<write::TagWrite> half{{start, Value{true}}, {mode, Value{true}}};
+    EXPECT_FALSE(image.holds(half));
+    EXPECT_FALSE(image.holds(std::vector<write::TagWrite>{{offset, Value{std::int64_t{7}}}}));
+    EXPECT_EQ(data_hex(image), before);
+    EXPECT_FALSE(image.dirty());
+    // Staged writes are not the image yet.
+    ASSERT_TRUE(image.stage(batch(1, {{mode, Value{true}}})));
+    EXPECT_FALSE(image.holds(std::vector<write::TagWrite>{{mode, Value{true}}}));
+    produce(image);
+    EXPECT_TRUE(image.holds(std::vector<write::TagWrite>{{mode, Value{true}}}));
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::exchange

@@ -279,7 +279,7 @@ TEST(LeaseTest, AStartingUnitLeavesWritesToALeaderItMayNotHaveReadYet) {
     Lease lease(settings("b"), t0);
     EXPECT_EQ(lease.writes(t0 + 10ms), WritePolicy::leave_to_leader);
     EXPECT_EQ(lease.writes(t0 + 1499ms), WritePolicy::leave_to_leader);
-    // Nobody's record came: it claims (and, leading, refuses what it left: took_over).
+    // Nobody's record came: it claims (and, leading, settles what it left: PairWrites).
     ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
     EXPECT_EQ(lease.writes(t0 + 1500ms), WritePolicy::refuse);
     Lease heard(settings("b"), t0);

@@ -10,6 +10,7 @@
 
 #include "eip2mqtt/app/redundancy/pair_history.hpp"
 #include "eip2mqtt/app/redundancy/pair_images.hpp"
+#include "eip2mqtt/app/redundancy/pair_writes.hpp"
 #include "eip2mqtt/core/counter_table.hpp"
 
 namespace eip2mqtt::app::redundancy {
@@ -17,17 +18,19 @@ namespace eip2mqtt::app::redundancy {
 /// What the metrics topic's `pair` object reports: the images' counts, the datagrams of this
 /// unit's own produced exchanges it heard (DatagramRouter: the other unit's, or its own looped
 /// back), which is how a standby follows the request ids, the samples kept and replayed
-/// across a takeover (PairHistory), and what the unit had queued as leader and dropped once its
-/// lease lapsed (the connection's ClientOptions::may_send).
+/// across a takeover (PairHistory), what the unit had queued as leader and dropped once its
+/// lease lapsed (the connection's ClientOptions::may_send), and the answers to writes: those
+/// withheld by a leader that stepped down, and those a standby heard (PairWrites).
 struct PairCounters {
     PairImageCounters images;
     std::uint64_t produced_heard = 0;
     PairHistoryCounters history;
     std::uint64_t publications_fenced = 0;
+    PairWriteCounters writes;
 };
 
 // clang-format off
-inline constexpr std::array<core::GatewayCounterField<PairCounters>, 7> pair_counter_fields{{
+inline constexpr std::array<core::GatewayCounterField<PairCounters>, 10> pair_counter_fields{{
     {"images_published", [](const PairCounters& c) { return core::one(c.images.published); },
      core::in_metrics_topic, ""},
     {"images_followed", [](const PairCounters& c) { return core::one(c.images.followed); },
@@ -49,6 +52,12 @@ inline constexpr std::array<core::GatewayCounterField<PairCounters>, 7> pair_cou
      core::in_metrics_topic, ""},
     {"publications_fenced",
      [](const PairCounters& c) { return core::one(c.publications_fenced); },
+     core::in_metrics_topic, ""},
+    {"answers_withheld", [](const PairCounters& c) { return core::one(c.images.answers_withheld); },
+     core::in_metrics_topic, ""},
+    {"answers_heard", [](const PairCounters& c) { return core::one(c.writes.answers_heard); },
+     core::in_metrics_topic, ""},
+    {"left_writes_forgotten", [](const PairCounters& c) { return core::one(c.writes.forgotten); },
      core::in_metrics_topic, ""},
 }};
 // clang-format on

@@ -7,17 +7,25 @@
 /// the first datagram of a new leader carries the last written values. An image that cannot be
 /// taken is counted by reason, and one of another layout logged once per exchange.
 ///
+/// The leader answers a write `ok` only once the broker acknowledged the image carrying it
+/// (answer_after_image): a standby that takes over then has that image, or the old leader
+/// never said `ok` (the new one settles the write: PairWrites).
+///
 /// Threading: the loop only.
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
 #include <span>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
@@ -38,6 +46,9 @@ struct PairImageCounters {
     std::uint64_t published = 0;             ///< images this unit published as leader
     std::uint64_t followed = 0;              ///< images taken into a producer (a byte changed)
     std::array<std::uint64_t, 4> ignored{};  ///< by ImageIgnored
+    /// Answers `ok` withheld: the unit stopped leading before the broker acknowledged the image
+    /// carrying their write; the unit that takes over settles them.
+    std::uint64_t answers_withheld = 0;
 
     std::uint64_t& ignored_for(ImageIgnored why) { return ignored[static_cast<std::size_t>(why)]; }
     std::uint64_t ignored_for(ImageIgnored why) const {
@@ -68,9 +79,30 @@ public:
         std::span<const std::unique_ptr<ExchangeProducer>> producers, bool leading,
         std::uint64_t epoch);
 
+    /// The leader answers a write `ok` (`answer`) once no image of `producer`'s exchange it
+    /// published so far waits for the broker's acknowledgement: now, or in on_acknowledged().
+    void answer_after_image(const ExchangeProducer& producer, std::function<void()> answer);
+    /// An acknowledgement of the pair's connection; false when `token` is no image's. The
+    /// answers it releases are given while `leading`, withheld otherwise.
+    bool on_acknowledged(std::uint64_t token, bool leading);
+    /// This unit no longer leads: the answers waiting are withheld (counted).
+    void withhold_answers();
+
     const PairImageCounters& counters() const { return counters_; }
 
 private:
+    /// Per image topic: the newest image published and the newest acknowledged (a newer image
+    /// replaces an older one still queued, and its acknowledgement stands for both).
+    struct Acks {
+        std::uint64_t published = 0;
+        std::uint64_t acknowledged = 0;
+    };
+    struct Waiting {
+        std::string topic;
+        std::uint64_t through = 0;  ///< waits for this image of `topic` to be acknowledged
+        std::function<void()> answer;
+    };
+
     void count(core::redundancy::FollowVerdict verdict, const ExchangeProducer* producer,
                const core::redundancy::ImageMessage& image);
 
@@ -80,6 +112,10 @@ private:
     PairImageCounters counters_;
     std::set<std::string> other_layout_logged_;  ///< exchange names
     adapters::mqtt::Message message_;
+    std::uint64_t next_image_ = 0;
+    std::unordered_map<std::string, Acks> acks_;
+    std::map<std::uint64_t, std::string> unacknowledged_;  ///< image number -> topic
+    std::deque<Waiting> waiting_;
 };
 
 }  // namespace eip2mqtt::app::redundancy

@@ -63,6 +63,10 @@ public:
     /// the standby heard from the leader's producer of this exchange.
     void continue_after(std::uint16_t heard);
 
+    /// Whether the data already holds every value of `writes`: applying them would change no
+    /// byte. What a new leader of a pair asks of a write its old leader left unanswered.
+    bool holds(std::span<const write::TagWrite> writes) const;
+
     /// The data bytes as they stand (the last produced values plus nothing staged).
     std::span<const std::byte> data() const { return data_; }
     /// True when produce() changed the data since the last call to clear_dirty().

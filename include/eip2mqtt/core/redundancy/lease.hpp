@@ -70,7 +70,7 @@ struct LeaseSettings {
 enum class WritePolicy : std::uint8_t {
     apply,  ///< the leader: stage it
     /// A standby that hears a live leader, which answers it, or a unit whose lease lapsed,
-    /// whose successor answers it: left to it (WriteDispatcher::took_over).
+    /// whose successor answers it: left to it (app/redundancy/PairWrites).
     leave_to_leader,
     refuse,  ///< no live leader: answer "standby"
 };

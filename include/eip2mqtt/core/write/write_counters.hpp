@@ -32,6 +32,10 @@ struct WriteCounters {
     std::uint64_t writes_cancelled = 0;
     /// Writes a standby of a pair dropped unanswered, because its live leader answers them.
     std::uint64_t writes_left_to_leader = 0;
+    /// Of those, writes a unit settled as it took the lead, its old leader's answer unheard:
+    /// taken, the image holding what they wrote, or refused `standby`.
+    std::uint64_t writes_settled_applied = 0;
+    std::uint64_t writes_settled_standby = 0;
     /// Image saves of every produced exchange, and the writes whose save failed.
     ImageSaveTotals image_saves;
     /// Of writes_ok, by the protocol they came by (WriteOrigin).
@@ -41,7 +45,7 @@ struct WriteCounters {
 using WriteCounterField = GatewayCounterField<WriteCounters>;
 
 // clang-format off
-inline constexpr std::array<WriteCounterField, 8> write_counter_fields{{
+inline constexpr std::array<WriteCounterField, 10> write_counter_fields{{
     {"writes_ok", [](const WriteCounters& c) { return one(c.writes_ok); },
      in_metrics_topic | in_prometheus | in_sparkplug, "Writes accepted"},
     {"writes_rejected",
@@ -52,6 +56,10 @@ inline constexpr std::array<WriteCounterField, 8> write_counter_fields{{
      in_metrics_topic | in_prometheus,
      "Writes accepted, then cancelled unproduced: a reload changed or removed their exchange"},
     {"writes_left_to_leader", [](const WriteCounters& c) { return one(c.writes_left_to_leader); },
+     in_metrics_topic, ""},
+    {"writes_settled_applied", [](const WriteCounters& c) { return one(c.writes_settled_applied); },
+     in_metrics_topic, ""},
+    {"writes_settled_standby", [](const WriteCounters& c) { return one(c.writes_settled_standby); },
      in_metrics_topic, ""},
     {"writes_not_saved",
      [](const WriteCounters& c) { return one(c.image_saves.writes_not_saved); },

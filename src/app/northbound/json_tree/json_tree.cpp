@@ -32,7 +32,28 @@ void JsonTree::exchanges_changed(const ExchangeSet& running,
     router_.clear();
     for (const auto* plan : running.consumed) router_.add(*plan);
     for (const auto* plan : running.produced) router_.add(*plan);
-    mqtt_.set_subscriptions(router_.subscriptions());
+    subscribe();
+}
+
+void JsonTree::set_answer_listener(AnswerHeard heard, AnswerTopics topics) {
+    answer_heard_ = std::move(heard);
+    answer_topics_ = std::move(topics);
+    subscribe();
+}
+
+void JsonTree::subscribe() {
+    auto filters = router_.subscriptions();
+    if (answer_heard_) {
+        // `{base}/+/set` and the like: `{set topic}/result` lies under each one's `/result`.
+        const auto writes = filters.size();
+        filters.reserve(2 * writes);
+        for (std::size_t i = 0; i < writes; ++i) filters.push_back(filters[i] + "/result");
+        if (answer_topics_) {
+            auto topics = answer_topics_();
+            filters.insert(filters.end(), topics.begin(), topics.end());
+        }
+    }
+    mqtt_.set_subscriptions(std::move(filters));
 }
 
 void JsonTree::describe(const ExchangeSet& running) {
@@ -161,7 +182,10 @@ void JsonTree::gateway_metrics(const MetricsSources& sources, std::chrono::secon
 
 void JsonTree::on_message(const adapters::mqtt::Incoming& message) {
     auto decision = router_.route(message);
-    if (!decision) return;
+    if (!decision) {
+        if (answer_heard_) answer_heard_(message);  // no write: maybe an answer to one
+        return;
+    }
     WriteRequest request{
         std::move(decision->reply), message.topic, std::move(decision->outcome), {}};
     request.reply.origin = this;

@@ -165,7 +165,8 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
             redundancy::PairCounters{
                 *sources.pair_images, sources.datagrams.produced_heard,
                 sources.pair_history ? *sources.pair_history : redundancy::PairHistoryCounters{},
-                mqtt.discarded});
+                mqtt.discarded,
+                sources.pair_writes ? *sources.pair_writes : redundancy::PairWriteCounters{}});
     }
     if (sources.commands) {
         add_counter_set(metrics[std::string(core::command::command_counters_name)],

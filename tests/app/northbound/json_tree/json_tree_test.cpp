@@ -151,6 +151,30 @@ TEST_F(JsonTreeTest, ChangedExchangesClearRetiredTopicsAndSubscribeToTheSetTopic
     EXPECT_TRUE(uns_.writes.empty());
 }
 
+TEST_F(JsonTreeTest, APairsUnitListensWhereWritesAreAnsweredAndHearsWhatIsNoWrite) {
+    std::vector<std::string> heard;
+    std::vector<std::string> response_topics;
+    uns_.northbound().set_answer_listener(
+        [&](const adapters::mqtt::Incoming& answer) { heard.push_back(answer.topic); },
+        [&] { return response_topics; });
+    EXPECT_EQ(uns_.publisher.subscriptions,
+              (std::vector<std::string>{"acme/+/+/set", "acme/+/+/+/set", "acme/+/+/set/result",
+                                        "acme/+/+/+/set/result"}));
+    response_topics = {"client/replies"};
+    uns_.northbound().listen_again();
+    EXPECT_EQ(uns_.publisher.subscriptions.back(), "client/replies");
+    // The set filters follow the running exchanges, and their results with them.
+    uns_.northbound().exchanges_changed({{}, {&produced_}}, {});
+    EXPECT_EQ(uns_.publisher.subscriptions,
+              (std::vector<std::string>{"acme/+/+/set", "acme/+/+/+/set", "acme/+/+/set/result",
+                                        "acme/+/+/+/set/result", "client/replies"}));
+    uns_.northbound().on_message({"acme/t1/out/A/set/result", R"({"ok":true})", false, "", "", -1});
+    uns_.northbound().on_message({"client/replies", R"({"ok":true})", false, "", "c", -1});
+    uns_.northbound().on_message({"acme/t1/out/A/set", "5", false, "", "", -1});
+    EXPECT_EQ(heard, (std::vector<std::string>{"acme/t1/out/A/set/result", "client/replies"}));
+    EXPECT_EQ(uns_.writes.size(), 1u);  // the write is a write, not an answer
+}
+
 TEST_F(JsonTreeTest, ASetMessageBecomesOneWriteRequestAnsweredByThisNorthbound) {
     uns_.northbound().on_message({"acme/t1/out/set", R"({"A":5,"B":6})", false, "", "id", -1});
     ASSERT_EQ(uns_.writes.size(), 1u);

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
@@ -47,6 +48,16 @@ public:
     /// settings changed republishes its retained state.
     void set_options(JsonTreeOptions options);
     const JsonTreeOptions& options() const { return options_; }
+    using AnswerHeard = std::function<void(const adapters::mqtt::Incoming& answer)>;
+    using AnswerTopics = std::function<std::vector<std::string>()>;
+    /// A unit of a pair (README "Redundancy"): its connection also listens where writes are
+    /// answered, `{set topic}/result` and the topics `topics` names (the response topics of
+    /// the writes the standby left: redundancy::PairWrites), and hands what it hears there to
+    /// `heard`. On the connection the writes come by, a write arrives before its answer, and
+    /// the unit never hears its own answers (MQTT 5's no-local).
+    void set_answer_listener(AnswerHeard heard, AnswerTopics topics);
+    /// The topics of set_answer_listener changed: subscribed again.
+    void listen_again() { subscribe(); }
     /// With store and forward, given the probe of its connection (the one the journal's
     /// LinkProbe asks): while the link is down, `_values` is not published (the
     /// journal has the samples and replays them on `_history`), and a reconnect's republish
@@ -103,6 +114,8 @@ private:
     void describe(const ExchangeSet& running);
     /// Whether `batch` goes on `_values` as well as on the tag topics.
     bool values_due(const SampleBatch& batch) const;
+    /// The write topics' filters, and where writes are answered with an answer listener.
+    void subscribe();
     /// A write result on the reply's topic, with its correlation data.
     void publish_result(const WriteReply& reply, std::string payload);
 
@@ -110,6 +123,8 @@ private:
     adapters::mqtt::Publisher& mqtt_;
     WriteHandler& writes_;
     WriteRouter router_;
+    AnswerHeard answer_heard_;
+    AnswerTopics answer_topics_;
     /// With store and forward: whether the link is up (samples go live, not to the journal).
     std::function<bool()> connected_;
     /// A republish (every tag again) goes on `_values` too: neither store and forward nor a

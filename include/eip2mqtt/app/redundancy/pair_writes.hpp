@@ -1,0 +1,75 @@
+#pragma once
+/// The writes a pair's standby left to the leader (README "Redundancy", "Writes"), each kept
+/// until the standby hears the leader's answer to it on the broker: the JSON tree's connection,
+/// the one the writes come by, listens where writes are answered, `{set topic}/result` and
+/// each left write's MQTT 5 response topic (response_topics(); JsonTree::set_answer_listener).
+/// A unit that takes the lead settles the writes it heard no answer for: its old leader died,
+/// hung or was cut off before answering them, or never had them (WriteDispatcher::settle).
+///
+/// An answer is matched to the oldest write left with its topic and correlation data: writes to
+/// one topic without correlation data cannot be told apart by their client either.
+///
+/// Threading: the loop only.
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "eip2mqtt/adapters/mqtt/message.hpp"
+#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/core/time.hpp"
+
+namespace eip2mqtt::app::redundancy {
+
+struct PairWriteCounters {
+    std::uint64_t answers_heard = 0;  ///< the leader's answers to writes this unit left
+    /// Left writes forgotten unanswered: older than the horizon, or beyond the bound.
+    std::uint64_t forgotten = 0;
+};
+
+class PairWrites {
+public:
+    /// The most writes kept: only those of the last takeover window can matter, and a live
+    /// leader answers every one.
+    static constexpr std::size_t max_left = 1024;
+
+    /// `horizon`: how long a live leader may take to answer a write (its exchange's next
+    /// production, the image's save, the broker's acknowledgement of the image); a write left
+    /// longer ago is forgotten. `topics_changed` runs whenever response_topics() changed.
+    PairWrites(std::chrono::milliseconds horizon, std::function<void()> topics_changed);
+
+    /// A write this unit left to the leader, at `now`. One its northbound refused already
+    /// (an invalid value, an unknown tag) is not kept: the leader refuses it alike, at once.
+    void leave(WriteRequest&& request, core::MonoTime now);
+    /// A message heard on an answer topic: the oldest write left with its topic and
+    /// correlation data has its answer. Others (answers to writes not left here) are ignored.
+    void heard(const adapters::mqtt::Incoming& answer);
+    /// The distinct response topics of the writes kept, to listen on besides `{set}/result`.
+    std::vector<std::string> response_topics() const;
+    /// This unit takes the lead: the writes kept that are within the horizon at `now` and were
+    /// heard unanswered, oldest first. None is kept afterwards.
+    std::vector<WriteRequest> take_unanswered(core::MonoTime now);
+
+    std::size_t size() const { return left_.size(); }
+    const PairWriteCounters& counters() const { return counters_; }
+
+private:
+    struct Left {
+        WriteRequest request;
+        core::MonoTime at;
+        bool response_topic = false;  ///< answered on a response topic, not `{set}/result`
+    };
+    /// Forgets the writes left before `now - horizon`; true when a response topic went.
+    bool forget_older(core::MonoTime now);
+
+    std::chrono::milliseconds horizon_;
+    std::function<void()> topics_changed_;
+    std::deque<Left> left_;
+    PairWriteCounters counters_;
+};
+
+}  // namespace eip2mqtt::app::redundancy

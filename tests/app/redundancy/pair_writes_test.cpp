@@ -1,0 +1,115 @@
+// The writes a standby left to the leader (README "Redundancy"): each kept until the leader's
+// answer is heard, matched by topic and correlation data, oldest first; the response topics to
+// listen on follow what is kept; a takeover takes what was never answered, within the horizon.
+
+#include "eip2mqtt/app/redundancy/pair_writes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace eip2mqtt::app::redundancy {
+namespace {
+
+using namespace std::chrono_literals;
+
+class PairWritesTest : public ::testing::Test {
+protected:
+    /// A write to `acme/sp/SPEED_SP/set` of `value`, answered on `reply_topic` (the set topic's
+    /// `/result` when empty) with `correlation`.
+    static WriteRequest write(double value, std::string reply_topic = "",
+                              std::string correlation = "") {
+        const std::string target = "acme/sp/SPEED_SP/set";
+        if (reply_topic.empty()) reply_topic = target + "/result";
+        return {{std::move(reply_topic), std::move(correlation)},
+                target,
+                ExchangeWrite{nullptr, {{0, core::plan::Value{value}}}},
+                {}};
+    }
+    static adapters::mqtt::Incoming answer(std::string topic, std::string correlation = "") {
+        adapters::mqtt::Incoming incoming;
+        incoming.topic = std::move(topic);
+        incoming.payload = R"({"ok":true})";
+        incoming.correlation_data = std::move(correlation);
+        return incoming;
+    }
+    static double value_of(const WriteRequest& request) {
+        return std::get<double>(std::get<ExchangeWrite>(request.outcome).writes[0].value);
+    }
+
+    core::MonoTime t0_{std::chrono::seconds(100)};
+    int topics_changed_ = 0;
+    PairWrites writes_{10s, [this] { ++topics_changed_; }};
+};
+
+TEST_F(PairWritesTest, AnAnswerHeardTakesTheOldestWriteOfItsTopic) {
+    writes_.leave(write(1), t0_);
+    writes_.leave(write(2), t0_ + 1ms);
+    writes_.heard(answer("acme/sp/SPEED_SP/set/result"));
+    EXPECT_EQ(writes_.counters().answers_heard, 1u);
+    const auto unanswered = writes_.take_unanswered(t0_ + 2ms);
+    ASSERT_EQ(unanswered.size(), 1u);
+    EXPECT_EQ(value_of(unanswered[0]), 2.0);
+}
+
+TEST_F(PairWritesTest, CorrelationDataTellsWritesOnOneResponseTopicApart) {
+    writes_.leave(write(1, "client/replies", "a"), t0_);
+    writes_.leave(write(2, "client/replies", "b"), t0_);
+    writes_.heard(answer("client/replies", "b"));
+    writes_.heard(answer("client/replies", "c"));  // no write of ours: ignored
+    writes_.heard(answer("elsewhere", "a"));
+    const auto unanswered = writes_.take_unanswered(t0_);
+    ASSERT_EQ(unanswered.size(), 1u);
+    EXPECT_EQ(value_of(unanswered[0]), 1.0);
+    EXPECT_EQ(writes_.counters().answers_heard, 1u);
+}
+
+TEST_F(PairWritesTest, ResponseTopicsAreListenedToWhileAWriteWaitsThere) {
+    writes_.leave(write(1), t0_);  // `{set}/result`: under the result filters already
+    EXPECT_TRUE(writes_.response_topics().empty());
+    EXPECT_EQ(topics_changed_, 0);
+    writes_.leave(write(2, "client/replies", "a"), t0_);
+    writes_.leave(write(3, "client/replies", "b"), t0_);
+    EXPECT_EQ(writes_.response_topics(), std::vector<std::string>{"client/replies"});
+    EXPECT_EQ(topics_changed_, 1);
+    writes_.heard(answer("client/replies", "a"));
+    EXPECT_EQ(topics_changed_, 1);  // one write still waits there
+    writes_.heard(answer("client/replies", "b"));
+    EXPECT_TRUE(writes_.response_topics().empty());
+    EXPECT_EQ(topics_changed_, 2);
+}
+
+TEST_F(PairWritesTest, AWriteItsNorthboundRefusedIsNotKept) {
+    auto invalid = write(1);
+    invalid.outcome = core::write::WriteRejection{core::write::WriteError::read_only, "read-only"};
+    writes_.leave(std::move(invalid), t0_);
+    EXPECT_EQ(writes_.size(), 0u);
+}
+
+TEST_F(PairWritesTest, ATakeoverTakesOnlyWritesWithinTheHorizonAndKeepsNone) {
+    writes_.leave(write(1, "client/replies"), t0_);
+    writes_.leave(write(2), t0_ + 5s);
+    EXPECT_EQ(topics_changed_, 1);
+    const auto unanswered = writes_.take_unanswered(t0_ + 12s);
+    ASSERT_EQ(unanswered.size(), 1u);
+    EXPECT_EQ(value_of(unanswered[0]), 2.0);
+    EXPECT_EQ(writes_.counters().forgotten, 1u);
+    EXPECT_EQ(writes_.size(), 0u);
+    EXPECT_TRUE(writes_.response_topics().empty());
+    EXPECT_EQ(topics_changed_, 2);  // the forgotten write's response topic is left
+    EXPECT_TRUE(writes_.take_unanswered(t0_ + 12s).empty());
+}
+
+TEST_F(PairWritesTest, TheBoundForgetsTheOldest) {
+    for (std::size_t i = 0; i <= PairWrites::max_left; ++i) {
+        writes_.leave(write(static_cast<double>(i)), t0_);
+    }
+    EXPECT_EQ(writes_.size(), PairWrites::max_left);
+    EXPECT_EQ(writes_.counters().forgotten, 1u);
+    EXPECT_EQ(value_of(writes_.take_unanswered(t0_).front()), 1.0);
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app::redundancy
