@@ -35,6 +35,16 @@ protected:
         request.reply.via = via;
         return request;
     }
+    /// A write left to the leader as a standby, then settled by this unit as the new leader,
+    /// whose image holds what it writes or not.
+    void leave_then_settle(bool image_holds) {
+        policy_ = WritePolicy::leave_to_leader;
+        dispatcher_.on_write(write());
+        ASSERT_EQ(left_.size(), 1u);
+        policy_ = WritePolicy::apply;
+        holds_ = image_holds;
+        dispatcher_.settle(std::move(left_[0]));
+    }
     std::uint64_t refused_standby() const {
         return dispatcher_.counters()
             .writes_rejected[static_cast<std::size_t>(WriteError::standby)];
@@ -106,11 +116,7 @@ TEST_F(WriteDispatcherStandbyTest, AWriteLeftToTheLeaderIsHandedOverUnanswered) 
 }
 
 TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageHoldsIsTakenAsTheLeaderTakesAny) {
-    policy_ = WritePolicy::leave_to_leader;
-    dispatcher_.on_write(write());
-    policy_ = WritePolicy::apply;
-    holds_ = true;
-    dispatcher_.settle(std::move(left_[0]));
+    leave_then_settle(true);
     EXPECT_EQ(staged_, 1);  // answered `ok` once produced, by the producer
     EXPECT_TRUE(origin_.results.empty());
     EXPECT_EQ(dispatcher_.counters().writes_settled_applied, 1u);
@@ -118,11 +124,7 @@ TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageHoldsIsTakenAsTheLeaderT
 }
 
 TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageDoesNotHoldIsRefusedStandbyUnapplied) {
-    policy_ = WritePolicy::leave_to_leader;
-    dispatcher_.on_write(write());
-    policy_ = WritePolicy::apply;
-    holds_ = false;
-    dispatcher_.settle(std::move(left_[0]));
+    leave_then_settle(false);
     EXPECT_EQ(staged_, 0);
     ASSERT_EQ(origin_.results.size(), 1u);
     EXPECT_EQ(origin_.results[0].error, "standby");
