@@ -41,10 +41,9 @@ protected:
     void SetUp() override {
         broker_ = std::make_unique<Mosquitto>();
         recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"#"});
-        for (const std::string id : {"gw-a", "gw-b"}) {
-            ports_[id] = free_udp_port();
-            start_unit(id, pair_config(id, broker_->url(), ports_[id], 50));
-        }
+        start_units([&](const std::string& id, std::uint16_t port) {
+            return pair_config(id, broker_->url(), port, 50);
+        });
     }
 
     /// The first unit to lead, once the other says standby; empty when that did not come.
@@ -130,7 +129,6 @@ protected:
         return std::nullopt;
     }
 
-    std::map<std::string, std::uint16_t> ports_;
     const std::string set_topic = "test/sp/SPEED_SP/set";
     const std::string result_topic = set_topic + "/result";
 };

@@ -68,10 +68,9 @@ protected:
                                   .timeout_ms(0)
                                   .tag("COUNTER", "0.0", "udint")
                                   .str();
-        for (const std::string id : {"gw-a", "gw-b"}) {
-            ports_[id] = free_udp_port();
-            start_unit(id, unit_config(id, broker_->url(), ports_[id], exchange, ", batch: true"));
-        }
+        start_units([&](const std::string& id, std::uint16_t port) {
+            return unit_config(id, broker_->url(), port, exchange, ", batch: true");
+        });
     }
     void TearDown() override {
         producer_.reset();
@@ -165,7 +164,6 @@ protected:
         EXPECT_EQ(json::parse(metrics->payload)["pair"].value("window_overflow", 1), 0);
     }
 
-    std::map<std::string, std::uint16_t> ports_;
     UdpClient sender_;
     std::unique_ptr<PacedProducer> producer_;
 };

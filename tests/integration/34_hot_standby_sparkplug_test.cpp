@@ -43,11 +43,10 @@ protected:
                                .timeout_ms(0)
                                .tag("PV", "0.0", "dint")
                                .str();
-        for (const std::string id : {"gw-a", "gw-b"}) {
-            ports_[id] = free_udp_port();
-            start_unit(id, pair_config(id, broker_->url(), ports_[id], 50,
-                                       "sparkplug: { group_id: plant1 }\n", plant));
-        }
+        start_units([&](const std::string& id, std::uint16_t port) {
+            return pair_config(id, broker_->url(), port, 50, "sparkplug: { group_id: plant1 }\n",
+                               plant);
+        });
     }
 
     /// A datagram of `plant` to every unit still running, as a multicast group both join.
@@ -116,8 +115,6 @@ protected:
         }
         return out;
     }
-
-    std::map<std::string, std::uint16_t> ports_;
 };
 
 /// The bdSeq metric of an NBIRTH or NDEATH, as Tahu reads it (a string: it is an Int64).

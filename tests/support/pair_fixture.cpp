@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tests/support/exchange_yaml.hpp"
+#include "tests/support/free_port.hpp"
 
 namespace eip2mqtt::test {
 
@@ -35,6 +36,14 @@ std::string PairTest::unit_config(const std::string& id, const std::string& brok
            " }\n"
            "redundancy: { pair: turbine, takeover_ms: 1000 }\n" +
            sections + "exchanges:\n" + exchanges;
+}
+
+void PairTest::start_units(
+    const std::function<std::string(const std::string& id, std::uint16_t port)>& config) {
+    for (const std::string id : {"gw-a", "gw-b"}) {
+        ports_[id] = free_udp_port();
+        start_unit(id, config(id, ports_[id]));
+    }
 }
 
 void PairTest::start_unit(const std::string& id, const std::string& config) {

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -39,6 +40,10 @@ protected:
                             const std::string& mqtt = "", const std::string& sections = "") const;
     /// Writes `id`'s configuration and runs the unit on it.
     void start_unit(const std::string& id, const std::string& config);
+    /// Both units, each on an EIP port of its own (ports_), on the configuration `config`
+    /// makes of its id and that port.
+    void start_units(
+        const std::function<std::string(const std::string& id, std::uint16_t port)>& config);
     /// Waits for `id` to say `role` on its role topic (after message `from`).
     bool says(const std::string& id, const std::string& role, std::size_t from = 0,
               std::chrono::milliseconds wait = std::chrono::seconds(30));
@@ -52,6 +57,7 @@ protected:
     std::unique_ptr<Mosquitto> broker_;
     std::unique_ptr<MqttRecorder> recorder_;
     std::map<std::string, std::unique_ptr<ChildProcess>> gateways_;
+    std::map<std::string, std::uint16_t> ports_;  ///< each unit's EIP port (start_units)
 };
 
 }  // namespace eip2mqtt::test
