@@ -76,6 +76,30 @@ def rss_kb(pid, field="VmRSS"):
     return 0
 
 
+def rss_split_kb(pid):
+    """Resident kB of a process by what holds it (/proc/PID/smaps): its own binary's pages,
+    the main heap, other anonymous memory (threads' arenas and stacks, large blocks) and the
+    shared libraries. Empty once the process is gone."""
+    split = {"binary": 0, "heap": 0, "anonymous": 0, "libraries": 0}
+    try:
+        exe = os.readlink(f"/proc/{pid}/exe")
+        with open(f"/proc/{pid}/smaps") as f:
+            where = None
+            for line in f:
+                fields = line.split()
+                if fields[0].endswith(":"):
+                    if fields[0] == "Rss:" and where:
+                        split[where] += int(fields[1])
+                    continue
+                path = fields[5] if len(fields) > 5 else ""
+                where = ("binary" if path == exe else "heap" if path == "[heap]" else
+                         "anonymous" if path in ("", "[stack]") else
+                         "libraries" if ".so" in path else None)
+    except OSError:
+        return {}
+    return split
+
+
 def stop(proc, timeout=10):
     if proc is None or proc.poll() is not None:
         return

@@ -5,7 +5,8 @@ import os
 import socket
 import time
 
-from benchlib.util import HOST, consumed_list, free_port, median, rss_kb, run_json, stop, tool
+from benchlib.util import (HOST, consumed_list, free_port, median, rss_kb, rss_split_kb,
+                           run_json, stop, tool)
 
 
 def run(bench):
@@ -32,12 +33,19 @@ def run(bench):
 
 
 def rows(bench, form, runs, floor, measured):
-    times, rss_idle, rss_data, hwm = measured[bench.build]
+    times, rss_idle, rss_data, hwm, _ = measured[bench.build]
     startup = median(times)
     print(f"    {form}: READY after {', '.join(f'{t:.0f}' for t in times)} ms "
           f"(yaml-cpp alone {floor['median_ms']:.0f} ms on {floor['bytes']:,} bytes); "
           f"RSS idle {rss_idle / 1024:.1f} MB, with data {rss_data / 1024:.1f} MB, peak "
           f"{hwm / 1024:.1f} MB", flush=True)
+    # Where the resident memory is, for each build: a difference in code shows apart from one
+    # in data.
+    for build, m in measured.items():
+        if m and m[4]:
+            bench.notes.append(f"memory with data, {form}, {build.label}, resident MB by what "
+                               "holds it: " +
+                               ", ".join(f"{k} {v / 1024:.2f}" for k, v in m[4].items()))
     bench.row(f"resident memory, 1,000 x 100 consumed + 100 produced, all tags published, "
               f"{form} (MB)",
               f"{rss_data / 1024:.1f} (idle {rss_idle / 1024:.1f}, peak {hwm / 1024:.1f})",
@@ -79,7 +87,7 @@ def time_to_ready(bench, name, config, path, build):
 
 def memory(bench, name, gw, udp_port, build):
     """VmRSS 1 s after coming online, VmRSS once one datagram per consumed exchange was
-    published, and VmHWM (all kB)."""
+    published, VmHWM (all kB), and the resident kB then by what holds it (rss_split_kb)."""
     bench.wait_online(name, proc=gw, build=build)
     time.sleep(1)
     rss_idle = rss_kb(gw.pid)
@@ -90,7 +98,7 @@ def memory(bench, name, gw, udp_port, build):
         m = bench.metrics(name)
         if m and m["accepted"] >= 1000 and m["buffered"] == 0:
             break
-    return rss_idle, rss_kb(gw.pid), rss_kb(gw.pid, "VmHWM")
+    return rss_idle, rss_kb(gw.pid), rss_kb(gw.pid, "VmHWM"), rss_split_kb(gw.pid)
 
 
 def startup_and_memory(bench, name, config, udp_port, runs, build):
@@ -98,12 +106,13 @@ def startup_and_memory(bench, name, config, udp_port, runs, build):
     the last one (`memory`)."""
     times = []
     rss_idle = rss_data = hwm = 0
+    split = {}
     for n in range(runs):
         notify = os.path.join(bench.tmp, f"notify-{name}-{n}-{build.new}.sock")
         gw, ready = time_to_ready(bench, name, config, notify, build)
         times.append(ready * 1000)
         if n == runs - 1:
-            rss_idle, rss_data, hwm = memory(bench, name, gw, udp_port, build)
+            rss_idle, rss_data, hwm, split = memory(bench, name, gw, udp_port, build)
         stop(gw)
     times.sort()
-    return times, rss_idle, rss_data, hwm
+    return times, rss_idle, rss_data, hwm, split

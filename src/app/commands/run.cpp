@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "app/detail/release_heap.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/commands.hpp"
 #include "eip2mqtt/app/gateway.hpp"
@@ -10,6 +11,7 @@
 namespace eip2mqtt::app {
 
 int run_gateway(const RunOptions& options) {
+    detail::keep_heap_thresholds();
     setup_logging(options.log_level.empty() ? "info" : options.log_level);
     auto loaded = adapters::yaml::load_config(options.config_path);
     if (!loaded) {

@@ -8,4 +8,8 @@ namespace eip2mqtt::app::detail {
 /// freed memory for reuse: without this, the resident size stays at the loader's peak.
 void release_heap();
 
+/// Holds glibc's mmap and trim thresholds at their defaults for the rest of the process (a
+/// no-op elsewhere). Called before the configuration is read.
+void keep_heap_thresholds();
+
 }  // namespace eip2mqtt::app::detail
