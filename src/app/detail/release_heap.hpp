@@ -1,6 +1,7 @@
 #pragma once
-// Shared by the gateway's start and reload: after a configuration is loaded and its plans are
-// built, hand the heap that parsing used back to the system.
+// The gateway's heap policy: glibc's thresholds held fixed from the start of `run`, and, after a
+// configuration is loaded and its plans are built (start and reload), the heap that parsing
+// used handed back to the system.
 
 namespace eip2mqtt::app::detail {
 
