@@ -79,7 +79,8 @@ def rss_kb(pid, field="VmRSS"):
 def rss_split_kb(pid):
     """Resident kB of a process by what holds it (/proc/PID/smaps): its own binary's pages,
     the main heap, other anonymous memory (threads' arenas and stacks, large blocks) and the
-    shared libraries. Empty once the process is gone."""
+    shared libraries; the rest (locale files, the vDSO) is left out. Empty once the process is
+    gone."""
     split = {"binary": 0, "heap": 0, "anonymous": 0, "libraries": 0}
     try:
         exe = os.readlink(f"/proc/{pid}/exe")
