@@ -74,6 +74,8 @@ bool PairImages::on_acknowledged(std::uint64_t token, bool leading) {
     std::erase_if(unacknowledged_, [&](const auto& entry) {
         return entry.second == topic && entry.first <= acks.acknowledged;
     });
+    // Most acknowledgements find no answer waiting: they build no queue.
+    if (waiting_.empty()) return true;
     std::deque<Waiting> still;
     for (auto& waiting : waiting_) {
         if (waiting.topic != topic || waiting.through > acks.acknowledged) {
