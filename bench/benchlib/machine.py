@@ -4,7 +4,7 @@ import os
 import platform
 import subprocess
 
-from benchlib.util import BUILD
+from benchlib.util import BUILD, ROOT
 
 
 def description():
@@ -33,6 +33,17 @@ def build_type():
     except OSError:
         pass
     return "build type unknown"
+
+
+def source_revision():
+    """The commit of the source tree measured (`git describe`), `-dirty` when it had edits:
+    bench/run.sh builds the gateway from this tree just before the run."""
+    try:
+        out = subprocess.run(["git", "-C", ROOT, "describe", "--always", "--dirty", "--abbrev=7"],
+                             capture_output=True, text=True, timeout=5)
+    except (OSError, subprocess.TimeoutExpired):
+        return "unknown"
+    return out.stdout.strip() or "unknown (not a git checkout)"
 
 
 def mosquitto_version():

@@ -63,7 +63,8 @@ class Report:
             f"{' / '.join(f'{x:.1f}' for x in os.getloadavg())} (shared machine: other work "
             "shows here and in the noisier rows)",
             f"- command: `{command}`",
-            f"- gateway: `{shown_path(GATEWAY)}` ({machine.build_type()}); Mosquitto "
+            f"- gateway: `{shown_path(GATEWAY)}` ({machine.build_type()}, source "
+            f"{machine.source_revision()}); Mosquitto "
             f"{machine.mosquitto_version()} on 127.0.0.1; subscriber: bench/mqtt_counter "
             "(libmosquitto)",
         ]

@@ -203,6 +203,12 @@ TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
     EXPECT_NE(markdown.find("\n- bare Paho on this machine, this run: QoS 0 "), std::string::npos)
         << markdown;
     EXPECT_NE(markdown.find("\n- against: self "), std::string::npos) << markdown;
+    // And the build by the commit of its source tree.
+    const auto gateway_line = markdown.find("\n- gateway: ");
+    ASSERT_NE(gateway_line, std::string::npos) << markdown;
+    const auto line =
+        markdown.substr(gateway_line, markdown.find('\n', gateway_line + 1) - gateway_line);
+    EXPECT_NE(line.find(", source "), std::string::npos) << line;
 
     const auto rows = table_rows(markdown, "| figure | gateway |");
     const auto figures = expected_figures();
