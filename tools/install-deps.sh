@@ -11,7 +11,7 @@ packages=(
   libprotobuf-dev protobuf-compiler libsqlite3-dev libpcap-dev
   libgtest-dev libgmock-dev
   mosquitto mosquitto-clients
-  clang libclang-rt-14-dev tshark systemd openssl iproute2
+  clang libclang-rt-14-dev tshark systemd openssl iproute2 iptables
   python3 python3-jsonschema nodejs
   lintian
 )

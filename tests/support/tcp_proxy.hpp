@@ -1,12 +1,17 @@
 #pragma once
-/// A TCP proxy on loopback that a test can stall: every connection made to it is carried to
-/// `upstream_port` on 127.0.0.1 until stall(), when nothing more passes either way while the
-/// connections stay open, as behind a switch that died: neither end learns of it but by its own
-/// timeouts. resume() carries on with what waited. A thread of its own, ended by the destructor.
+/// A TCP proxy that a test can stall, delay or cut: every connection made to it is carried to
+/// `upstream_port` on 127.0.0.1. stall() holds everything while the connections stay open, as
+/// behind a switch that died: neither end learns of it but by its own timeouts; resume() carries
+/// on with what waited. Each direction can also be set on its own, at run time: delayed (what
+/// it reads is written that much later, in order), stalled (nothing read, so what waits reaches
+/// the other end when it is resumed) or cut (what it reads is thrown away: neither end hears of
+/// it, and nothing of it ever arrives). A thread of its own, ended by the destructor.
 
+#include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
-#include <mutex>
+#include <deque>
 #include <thread>
 #include <vector>
 
@@ -14,7 +19,11 @@ namespace eip2mqtt::test {
 
 class TcpProxy {
 public:
+    /// Listens on an ephemeral port of 127.0.0.1.
     explicit TcpProxy(std::uint16_t upstream_port);
+    /// Takes `listener`, a socket already bound and listening (made inside a test's network
+    /// namespace, say: the proxy's own connections upstream are made in the test's namespace).
+    TcpProxy(std::uint16_t upstream_port, int listener);
     ~TcpProxy();
     TcpProxy(const TcpProxy&) = delete;
     TcpProxy& operator=(const TcpProxy&) = delete;
@@ -26,20 +35,43 @@ public:
     /// Connections taken since the start.
     std::size_t connections() const { return connections_; }
 
+    /// to_server: from the clients to the upstream server; to_client: back.
+    enum class Direction : std::uint8_t { to_server, to_client };
+    enum class Mode : std::uint8_t { pass, stall, cut };
+    void set_mode(Direction direction, Mode mode) { modes_[index(direction)] = mode; }
+    /// What is read in `direction` from now on is written `delay` later (0: at once).
+    void set_delay(Direction direction, std::chrono::milliseconds delay) {
+        delays_ms_[index(direction)] = delay.count();
+    }
+
 private:
+    using Clock = std::chrono::steady_clock;
+    struct Pending {
+        Clock::time_point due;
+        std::vector<char> bytes;
+    };
     struct Link {
         int client = -1;
         int server = -1;
+        std::array<std::deque<Pending>, 2> pending;  ///< per direction, oldest first
     };
+    static std::size_t index(Direction d) { return static_cast<std::size_t>(d); }
+    void start();
     void run();
     void accept_one();
-    /// Copies what waits on `from` to `to`; false when either end closed.
-    static bool pass(int from, int to);
+    /// Reads what waits on the link's side for `direction`; false when that end closed.
+    bool read(Link& link, Direction direction);
+    /// Writes what is due; false when the other end is gone.
+    bool flush(Link& link, Clock::time_point now);
+    /// How long the poll may wait: until the next pending write is due, at most 20 ms.
+    int poll_timeout(Clock::time_point now) const;
 
     int listener_ = -1;
     std::uint16_t upstream_port_;
     std::uint16_t port_ = 0;
     std::atomic<bool> stalled_{false};
+    std::array<std::atomic<Mode>, 2> modes_{Mode::pass, Mode::pass};
+    std::array<std::atomic<long>, 2> delays_ms_{0, 0};
     std::atomic<bool> stop_{false};
     std::atomic<std::size_t> connections_{0};
     std::vector<Link> links_;  ///< the proxy's thread only

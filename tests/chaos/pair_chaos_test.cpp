@@ -1,0 +1,100 @@
+// A hot-standby pair under seeded chaos (docs/testing.md): two real gateways in network
+// namespaces of their own, a real Mosquitto reached through proxies, a PLC that drops,
+// duplicates, holds back, delays and corrupts its datagrams, forged sources, and a schedule of
+// cuts, stalls, delays, SIGSTOPs and kills of the units and the broker. Every promise is then
+// checked over everything recorded (tests/support/promises.hpp). A failure prints the seed, the
+// checkers' findings, the faults as applied and each unit's log: run that seed alone with
+// EIP2MQTT_CHAOS_SEEDS=<seed>.
+//
+// A longer soak is the same test with more seeds and a longer schedule:
+//   EIP2MQTT_CHAOS_SEEDS=1-200 EIP2MQTT_CHAOS_SECONDS=120 build/tests/chaos/chaos_tests
+//     --gtest_filter='PairChaos.*'   (one line)
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "tests/support/chaos_rig.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+// The seeds CI runs, each a 20 s schedule. A seed that ever failed stays in the list, with the
+// checker that caught it in a comment next to it.
+const std::vector<std::uint64_t> ci_seeds{
+    1,  // writes answered once: ok then standby, standby twice (a stalled standby took the lead)
+    4,  // writes answered once: ok then standby (a cut leader, a SIGSTOPped one)
+    6,  // writes answered once: ok twice, ok then standby, standby then ok (cuts, broker stop)
+};
+
+// The checkers every seed must pass. The pair of today breaks the other two (`leadership
+// present`: a cut-off unit's stale claims depose a healthy leader; `writes answered once`:
+// answers across takeovers are not once): once the pair's fixes land, set this to true, and
+// every checker must pass every seed. EIP2MQTT_CHAOS_ALL=1 does the same for one run.
+constexpr bool every_checker_required = false;
+const std::set<std::string> checkers_required_today{"one producer", "published was sent",
+                                                    "samples once, in order"};
+
+bool required(const std::string& checker) {
+    const char* all = std::getenv("EIP2MQTT_CHAOS_ALL");
+    return every_checker_required || (all != nullptr && std::string(all) == "1") ||
+           checkers_required_today.count(checker) > 0;
+}
+
+/// EIP2MQTT_CHAOS_SEEDS: "5", "1,4,9" or "1-200"; the CI seeds when unset.
+std::vector<std::uint64_t> seeds() {
+    const char* text = std::getenv("EIP2MQTT_CHAOS_SEEDS");
+    if (text == nullptr || *text == '\0') return ci_seeds;
+    std::vector<std::uint64_t> out;
+    std::string list(text);
+    std::size_t at = 0;
+    while (at <= list.size()) {
+        const auto comma = std::min(list.find(',', at), list.size());
+        const auto item = list.substr(at, comma - at);
+        const auto dash = item.find('-');
+        const auto first = std::stoull(item.substr(0, dash));
+        const auto last = dash == std::string::npos ? first : std::stoull(item.substr(dash + 1));
+        for (auto s = first; s <= last && out.size() < 100000; ++s) out.push_back(s);
+        at = comma + 1;
+    }
+    return out;
+}
+
+std::chrono::milliseconds schedule_length() {
+    const char* text = std::getenv("EIP2MQTT_CHAOS_SECONDS");
+    return text != nullptr && *text != '\0' ? std::chrono::seconds(std::stol(text))
+                                            : std::chrono::milliseconds(20s);
+}
+
+TEST(PairChaos, EveryPromiseHoldsUnderTheSeededFaults) {
+    if (!NetNamespace::unavailable().empty()) GTEST_SKIP() << NetNamespace::unavailable();
+    for (const auto seed : seeds()) {
+        ChaosSettings settings;
+        settings.seed = seed;
+        settings.duration = schedule_length();
+        const auto schedule = chaos_schedule(seed, settings.duration, settings.takeover);
+        ChaosRig rig(settings);
+        const auto settled = rig.settle();
+        ASSERT_EQ(settled, "") << "seed " << seed << "\n" << rig.story();
+        rig.run(schedule);
+        std::string broken;
+        std::string known;
+        for (const auto& [checker, found] : rig.check())
+            (required(checker) ? broken : known) += found;
+        EXPECT_EQ(broken, "") << "seed " << seed << " broke a promise:\n"
+                              << broken << known << rig.story();
+        std::cout << "seed " << seed << " (" << schedule.size()
+                  << " faults): " << (broken.empty() ? "every required promise held" : "FAILED")
+                  << "\n";
+        if (!known.empty()) std::cout << "not yet required:\n" << known;
+    }
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test

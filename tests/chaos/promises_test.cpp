@@ -1,0 +1,184 @@
+// The chaos tests' checkers (tests/support/promises.hpp), fed hand-made recordings: a healthy
+// one passes, and each one that breaks a promise is caught, with a line that says where.
+
+#include "tests/support/promises.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace eip2mqtt::test::promises {
+namespace {
+
+using namespace std::chrono_literals;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::IsEmpty;
+using ::testing::SizeIs;
+
+/// `count` datagrams of `producer` every 50 ms from `from`, request ids from `rid`.
+std::vector<Produced> run_of(const std::string& producer, Millis from, int count,
+                             std::uint16_t rid = 1, double value = 3000) {
+    std::vector<Produced> out;
+    for (int i = 0; i < count; ++i) {
+        out.push_back({producer, static_cast<std::uint16_t>(rid + i), from + i * 50ms, value});
+    }
+    return out;
+}
+
+std::vector<Produced> joined(std::vector<Produced> a, const std::vector<Produced>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
+TEST(OneProducer, ATakeoverAPeriodOrMoreAfterTheLastDatagramHolds) {
+    // a's last at 450 ms, b's first at 1,500 ms; then b's last at 1,950 ms, a again at 2,000.
+    const auto capture =
+        joined(joined(run_of("a", 0ms, 10), run_of("b", 1500ms, 10)), run_of("a", 2000ms, 3, 11));
+    EXPECT_THAT(one_producer(capture, 50ms, 10ms), IsEmpty());
+}
+
+TEST(OneProducer, TwoUnitsProducingAtOnceAreCaught) {
+    const auto capture = joined(run_of("a", 0ms, 10), run_of("b", 225ms, 4, 100));
+    const auto found = one_producer(capture, 50ms, 10ms);
+    ASSERT_THAT(found, SizeIs(8));  // each of b's four datagrams, on each side
+    EXPECT_THAT(found[0], HasSubstr("a (request id 5, at 200 ms) then b (request id 100"));
+}
+
+TEST(OneProducer, ANewLeaderLessThanAPeriodAfterTheOldOneIsCaught) {
+    const auto capture = joined(run_of("a", 0ms, 3), run_of("b", 130ms, 3));
+    EXPECT_THAT(one_producer(capture, 50ms, 10ms), ElementsAre(HasSubstr("30 ms apart")));
+    // The capture's own error is allowed for: 45 ms apart is within 10 ms of a period.
+    EXPECT_THAT(one_producer(joined(run_of("a", 0ms, 3), run_of("b", 145ms, 3)), 50ms, 10ms),
+                IsEmpty());
+}
+
+TEST(LeadershipPresent, ATakeoverWithinTakeoverPlusAPeriodHolds) {
+    const auto capture = joined(run_of("a", 0ms, 10), run_of("b", 1450ms, 10));
+    EXPECT_THAT(leadership_present(capture, 1000ms, 50ms, 100ms, {}, 1950ms), IsEmpty());
+}
+
+TEST(LeadershipPresent, ALongerPauseIsCaughtUnlessNoUnitCouldReachTheBroker) {
+    // Nobody from 450 ms to 3,000 ms: the stale claims of a unit cut off deposed the leader.
+    const auto capture = joined(run_of("a", 0ms, 10), run_of("b", 3000ms, 10));
+    EXPECT_THAT(leadership_present(capture, 1000ms, 50ms, 100ms, {}, 3450ms),
+                ElementsAre(HasSubstr("from 450 ms to 3000 ms")));
+    EXPECT_THAT(leadership_present(capture, 1000ms, 50ms, 100ms, {{1000ms, 2000ms}}, 3450ms),
+                IsEmpty());
+    // A pause at the end counts too, and a run that produced nothing fails.
+    EXPECT_THAT(leadership_present(run_of("a", 0ms, 2), 1000ms, 50ms, 100ms, {}, 5000ms),
+                ElementsAre(HasSubstr("until the end of the run")));
+    EXPECT_THAT(leadership_present({}, 1000ms, 50ms, 100ms, {}, 5000ms), SizeIs(1));
+}
+
+std::vector<Sent> sent_upto(std::int64_t last) {
+    std::vector<Sent> out;
+    for (std::int64_t n = 1; n <= last; ++n) {
+        out.push_back({n, "COUNT=" + std::to_string(n), Millis(n * 20)});
+    }
+    return out;
+}
+
+Published on(const std::string& topic, std::int64_t n, Millis at) {
+    return {topic, n, "COUNT=" + std::to_string(n), at};
+}
+
+TEST(PublishedWasSent, OnlyValuesThePlcSentPass) {
+    auto sent = sent_upto(3);
+    sent.push_back({2, "COUNT=2,NOISE=7", 45ms});  // a corrupted copy is on the wire too
+    EXPECT_THAT(published_was_sent(sent, {on("v", 1, 30ms), {"v", 2, "COUNT=2,NOISE=7", 60ms}}),
+                IsEmpty());
+    EXPECT_THAT(published_was_sent(sent, {{"v", 2, "COUNT=2,NOISE=8", 60ms}}),
+                ElementsAre(HasSubstr("COUNT=2,NOISE=8, which the PLC never sent")));
+    EXPECT_THAT(published_was_sent(sent, {on("v", 900, 60ms)}), SizeIs(1));
+}
+
+TEST(SamplesOnceInOrder, ATakeoverWithItsHistoryHolds) {
+    // 1-5 live from the old leader, 4-7 replayed by the new one, 8-10 live: 4 and 5 on both
+    // topics, as the README allows, each topic once and in order.
+    std::vector<Published> published;
+    for (std::int64_t n = 1; n <= 5; ++n) published.push_back(on("v", n, Millis(n * 20 + 5)));
+    for (std::int64_t n = 4; n <= 7; ++n) published.push_back(on("h", n, 1200ms));
+    for (std::int64_t n = 8; n <= 10; ++n) published.push_back(on("v", n, 1300ms));
+    EXPECT_THAT(
+        samples_once_in_order(sent_upto(10), {1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, published, {}, 0ms),
+        IsEmpty());
+}
+
+TEST(SamplesOnceInOrder, ALostSampleATwiceAndAStepBackAreCaught) {
+    const std::vector<Published> published{on("v", 1, 25ms), on("v", 3, 65ms), on("h", 5, 900ms),
+                                           on("h", 4, 950ms), on("h", 5, 990ms)};
+    const auto found = samples_once_in_order(sent_upto(5), {1, 2, 3}, published, {}, 0ms);
+    EXPECT_THAT(found, ElementsAre(HasSubstr("sample 4 back in time, after 5"),
+                                   HasSubstr("h at 990 ms: sample 5 twice"),
+                                   HasSubstr("sample 2, delivered to both units, never")));
+}
+
+TEST(SamplesOnceInOrder, AQos1RepeatAfterAPathCameBackIsExcusedButNotOneSentDuringTheCut) {
+    // Samples 1-3 live; the path down from 70 to 500 ms; 2 and 3 again after it (in flight at
+    // the cut), then 4-6 sent during the cut and published, then 5 again (a fenced unit's
+    // replay after the heal).
+    const std::vector<Published> published{on("v", 1, 25ms),  on("v", 2, 45ms),  on("v", 3, 65ms),
+                                           on("v", 2, 520ms), on("v", 3, 521ms), on("h", 4, 400ms),
+                                           on("h", 5, 401ms), on("h", 6, 402ms), on("h", 5, 600ms)};
+    const auto found = samples_once_in_order(sent_upto(6), {}, published, {{70ms, 500ms}}, 0ms);
+    EXPECT_THAT(found, ElementsAre(HasSubstr("h at 600 ms: sample 5 twice and back in time")));
+}
+
+TEST(SamplesOnceInOrder, WhatALeaderHandedToItsConnectionBeforeItsLeaseLapsedMayComeLate) {
+    // Cut at 70 ms; the leader goes on taking samples 4 and 5 (sent at 80 and 100 ms) until its
+    // lease lapses, 40 ms later at the latest here; they reach the broker after the heal at
+    // 500 ms, behind the new leader's 6. Sample 6 again after the heal is not excused: it was
+    // sent at 120 ms, after the lapse.
+    const std::vector<Published> published{on("v", 1, 25ms),  on("v", 2, 45ms),  on("v", 3, 65ms),
+                                           on("v", 6, 400ms), on("v", 4, 510ms), on("v", 5, 511ms),
+                                           on("v", 6, 512ms)};
+    const auto found = samples_once_in_order(sent_upto(6), {}, published, {{70ms, 500ms}}, 40ms);
+    EXPECT_THAT(found, ElementsAre(HasSubstr("v at 512 ms: sample 6 twice")));
+    // Without the lapse, the late 4 and 5 are caught as well.
+    EXPECT_THAT(samples_once_in_order(sent_upto(6), {}, published, {{70ms, 500ms}}, 0ms),
+                SizeIs(3));
+}
+
+TEST(WritesAnsweredOnce, OneAnswerPerWriteAndOkOnTheWireHolds) {
+    const std::vector<Write> writes{{"w1", 1001, 100ms}, {"w2", 1002, 200ms}};
+    const std::vector<Answer> answers{{"w1", true, "", 180ms}, {"w2", false, "standby", 260ms}};
+    const auto capture = joined(run_of("a", 0ms, 3), run_of("a", 150ms, 3, 4, 1001));
+    EXPECT_THAT(writes_answered_once(writes, answers, capture, 100ms), IsEmpty());
+}
+
+TEST(WritesAnsweredOnce, TwoWritesAppliedToOneProductionAreBothCarried) {
+    // Delivered together after a cut: the datagram carries the later value; both are ok.
+    const std::vector<Write> writes{{"w1", 1001, 100ms}, {"w2", 1002, 120ms}};
+    const std::vector<Answer> answers{{"w1", true, "", 700ms}, {"w2", true, "", 700ms}};
+    const auto capture = run_of("a", 650ms, 2, 1, 1002);
+    EXPECT_THAT(writes_answered_once(writes, answers, capture, 100ms), IsEmpty());
+    // A datagram long after the answer proves nothing: 1002 first left at 2,000 ms.
+    EXPECT_THAT(writes_answered_once(writes, answers, run_of("a", 2000ms, 2, 1, 1002), 100ms),
+                SizeIs(2));
+}
+
+TEST(WritesAnsweredOnce, TwiceContradictedUnansweredAndOkNeverProducedAreCaught) {
+    const std::vector<Write> writes{
+        {"w1", 1001, 100ms}, {"w2", 1002, 200ms}, {"w3", 1003, 300ms}, {"w4", 1004, 400ms}};
+    const std::vector<Answer> answers{{"w1", true, "", 180ms},
+                                      {"w1", false, "standby", 1800ms},
+                                      {"w2", false, "standby", 260ms},
+                                      {"w2", false, "standby", 2260ms},
+                                      {"w4", true, "", 480ms}};
+    // 1001 went on the wire; 1004 only before its write was sent (another unit's old image).
+    const auto capture = joined(run_of("a", 150ms, 2, 1, 1001), run_of("a", 0ms, 1, 9, 1004));
+    EXPECT_THAT(writes_answered_once(writes, answers, capture, 100ms),
+                ElementsAre(HasSubstr("write w1 (1001.000000, at 100 ms) contradicted: ok at 180 "
+                                      "ms, standby at 1800 ms"),
+                            HasSubstr("write w2 (1002.000000, at 200 ms) answered 2 times"),
+                            HasSubstr("write w3 (1003.000000, at 300 ms) never answered"),
+                            HasSubstr("w4 (1004.000000, at 400 ms) answered ok, but no datagram")));
+}
+
+TEST(Report, NamesTheCheckerOnEachLine) {
+    EXPECT_EQ(report("one producer", {"x", "y"}), "one producer: x\none producer: y\n");
+    EXPECT_EQ(report("one producer", {}), "");
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test::promises

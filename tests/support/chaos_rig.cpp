@@ -1,0 +1,309 @@
+#include "tests/support/chaos_rig.hpp"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+#include <thread>
+
+#include "eip2mqtt/core/plan/tag_type.hpp"
+#include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
+#include "tests/support/forged_sender.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr const char* segment_address = "10.250.0.1";
+constexpr std::uint16_t eip_port = 18246;
+const std::array<std::string, 2> unit_ids{"gw-a", "gw-b"};
+
+std::string unit_address(int unit) { return "10.250." + std::to_string(unit + 1) + ".2"; }
+std::string segment_end(int unit) { return "10.250." + std::to_string(unit + 1) + ".1"; }
+
+/// A UDP socket inside `ns`, bound to `address` and an ephemeral port; the port in `port`.
+int bound_udp(const NetNamespace& ns, const std::string& address, std::uint16_t& port) {
+    const int fd = ns.socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in where{};
+    where.sin_family = AF_INET;
+    ::inet_pton(AF_INET, address.c_str(), &where.sin_addr);
+    socklen_t length = sizeof where;
+    if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&where), sizeof where) != 0 ||
+        ::getsockname(fd, reinterpret_cast<sockaddr*>(&where), &length) != 0) {
+        throw std::runtime_error("cannot bind a UDP socket on " + address);
+    }
+    port = ntohs(where.sin_port);
+    return fd;
+}
+
+/// The PLC's datagram `n`: COUNT = n and NOISE, both changing each time (so `_values` carries
+/// both), its request id n.
+std::vector<std::byte> counter_datagram(std::int64_t count) {
+    using core::plan::TagType;
+    return DatagramBuilder("10.0.0.2", 7, 8)
+        .request_id(static_cast<std::uint16_t>(count))
+        .set("0.0", TagType::dint, std::int64_t{count})
+        .set("4.0", TagType::dint, std::int64_t{(count * 7919) % 1000003})
+        .build();
+}
+
+}  // namespace
+
+ChaosRig::ChaosRig(ChaosSettings settings)
+    : settings_(settings),
+      epoch_(Clock::now()),
+      system_epoch_(std::chrono::system_clock::now()),
+      segment_("seg") {
+    segment_.run({"ip", "addr", "add", std::string(segment_address) + "/32", "dev", "lo"});
+    for (int unit = 0; unit < 2; ++unit) {
+        units_[unit] = std::make_unique<NetNamespace>("u" + std::to_string(unit));
+        units_[unit]->link_to(segment_, unit_address(unit), segment_end(unit));
+        proxies_[unit] =
+            std::make_unique<TcpProxy>(broker_.port(), segment_.listen_tcp(segment_address));
+    }
+    recorder_ = std::make_unique<MqttRecorder>(broker_.url(),
+                                               std::vector<std::string>{"test/#", "answers/#"});
+    capture_ = std::make_unique<SegmentCapture>(bound_udp(segment_, segment_address, capture_port_),
+                                                system_epoch_);
+    for (int unit = 0; unit < 2; ++unit) start_unit(unit);
+}
+
+ChaosRig::~ChaosRig() {
+    plc_.reset();
+    for (auto& gateway : gateways_) {
+        if (gateway) gateway->signal(SIGCONT);
+    }
+    if (broker_stopped_) ::kill(broker_.pid(), SIGCONT);
+    gateways_ = {};
+}
+
+std::chrono::milliseconds ChaosRig::now() const {
+    return std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - epoch_);
+}
+
+std::string ChaosRig::unit_config(int unit) const {
+    const auto& id = unit_ids[unit];
+    const auto exchanges =
+        ExchangeYaml::produce("sp", "10.1.2.3", 10,
+                              std::string(segment_address) + ":" + std::to_string(capture_port_))
+            .period_ms(static_cast<std::uint32_t>(settings_.produce_period.count()))
+            .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 3000")
+            .str() +
+        ExchangeYaml::consume("line", "10.0.0.2", 7)
+            .length(8)
+            .period_ms(static_cast<std::uint32_t>(settings_.consume_period.count()))
+            .timeout_ms(0)
+            .key("source", segment_address)
+            .tag("COUNT", "0.0", "dint", "refresh_s: 3600")
+            .tag("NOISE", "4.0", "dint", "refresh_s: 3600")
+            .str();
+    return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
+           ", log_level: info }\n"
+           "mqtt: { url: \"tcp://" +
+           segment_address + ":" + std::to_string(proxies_[unit]->port()) +
+           "\", base_topic: test, qos: 1, batch: true }\n"
+           "eip: { bind: " +
+           unit_address(unit) + ", port: " + std::to_string(eip_port) +
+           " }\n"
+           "redundancy: { pair: turbine, takeover_ms: " +
+           std::to_string(settings_.takeover.count()) + " }\nexchanges:\n" + exchanges;
+}
+
+void ChaosRig::start_unit(int unit) {
+    if (gateways_[unit]) earlier_logs_[unit] += gateways_[unit]->output() + "--- killed ---\n";
+    const auto path = dir_.write(unit_ids[unit] + ".yaml", unit_config(unit));
+    gateways_[unit] =
+        std::make_unique<ChildProcess>(units_[unit]->inside({EIP2MQTT_BINARY, "run", "-c", path}));
+}
+
+std::string ChaosRig::settle() {
+    const auto roles = [&](const std::vector<Received>& all) {
+        std::array<std::string, 2> role;
+        for (const auto& m : all) {
+            for (int unit = 0; unit < 2; ++unit) {
+                if (m.topic == "test/_gateway/" + unit_ids[unit] + "/role") role[unit] = m.payload;
+            }
+        }
+        return (role[0] == "leader" && role[1] == "standby") ||
+               (role[0] == "standby" && role[1] == "leader");
+    };
+    if (!recorder_->wait_for(roles, 30s)) return "the pair never settled: one leader, one standby";
+    return "";
+}
+
+void ChaosRig::run(const std::vector<ChaosFault>& schedule) {
+    std::uint16_t plc_port = 0;
+    const auto faults = [&](std::uint64_t seed) {
+        fault_injector::FaultConfig c;
+        c.seed = seed;
+        c.loss = 0.02;
+        c.duplicate = 0.02;
+        c.reorder = 0.02;
+        c.jitter = 0.02;
+        c.jitter_delay = 3 * settings_.consume_period / 2;
+        c.corrupt_byte = 0.02;
+        c.corrupt_byte_offset = 32 + 5;  // NOISE only: COUNT names the sample
+        return c;
+    };
+    plc_ = std::make_unique<FaultyPlc>(
+        bound_udp(segment_, segment_address, plc_port),
+        [](std::uint64_t n) { return counter_datagram(static_cast<std::int64_t>(n)); },
+        std::vector<FaultyPlc::Destination>{
+            {unit_address(0), eip_port, faults(settings_.seed * 2 + 1)},
+            {unit_address(1), eip_port, faults(settings_.seed * 2 + 2)}},
+        settings_.consume_period, epoch_);
+    const auto start = Clock::now();
+    for (const auto& fault : schedule) {
+        write_until(start + fault.at);
+        apply(fault);
+        write_until(start + fault.at + fault.length);
+        heal(fault);
+    }
+    write_until(Clock::now() + 3 * settings_.takeover);
+    finish();
+}
+
+void ChaosRig::apply(const ChaosFault& fault) {
+    story_.push_back(std::to_string(now().count()) + " ms: " + fault.str());
+    const auto from = now();
+    auto& proxy = *proxies_[fault.unit];
+    using D = TcpProxy::Direction;
+    switch (fault.kind) {
+        case ChaosKind::cut_unit:
+            units_[fault.unit]->cut(false);
+            break;
+        case ChaosKind::cut_broker:
+            units_[fault.unit]->cut(true);
+            break;
+        case ChaosKind::stall_broker:
+            proxy.set_mode(D::to_server, TcpProxy::Mode::stall);
+            proxy.set_mode(D::to_client, TcpProxy::Mode::stall);
+            break;
+        case ChaosKind::delay_broker:
+            proxy.set_delay(D::to_server, fault.delay);
+            proxy.set_delay(D::to_client, fault.delay);
+            break;
+        case ChaosKind::stop_unit:
+            gateways_[fault.unit]->signal(SIGSTOP);
+            break;
+        case ChaosKind::kill_unit:
+            kill_and_restart(fault.unit);
+            break;
+        case ChaosKind::stop_broker:
+            ::kill(broker_.pid(), SIGSTOP);
+            broker_stopped_ = true;
+            break;
+        case ChaosKind::forge:
+            forge();
+            break;
+    }
+    faulted_.push_back({from, from});
+}
+
+void ChaosRig::heal(const ChaosFault& fault) {
+    auto& proxy = *proxies_[fault.unit];
+    using D = TcpProxy::Direction;
+    switch (fault.kind) {
+        case ChaosKind::cut_unit:
+        case ChaosKind::cut_broker:
+            units_[fault.unit]->heal();
+            break;
+        case ChaosKind::stall_broker:
+            proxy.set_mode(D::to_server, TcpProxy::Mode::pass);
+            proxy.set_mode(D::to_client, TcpProxy::Mode::pass);
+            break;
+        case ChaosKind::delay_broker:
+            proxy.set_delay(D::to_server, 0ms);
+            proxy.set_delay(D::to_client, 0ms);
+            break;
+        case ChaosKind::stop_unit:
+            gateways_[fault.unit]->signal(SIGCONT);
+            break;
+        case ChaosKind::stop_broker:
+            ::kill(broker_.pid(), SIGCONT);
+            broker_stopped_ = false;
+            break;
+        case ChaosKind::kill_unit:
+        case ChaosKind::forge:
+            break;
+    }
+    faulted_.back().to = now();
+    const auto span = faulted_.back();
+    if (fault.kind == ChaosKind::forge) faulted_.pop_back();  // it must change nothing
+    story_.push_back(std::to_string(span.to.count()) + " ms: healed");
+    const bool path_down = fault.kind != ChaosKind::delay_broker &&
+                           fault.kind != ChaosKind::forge && fault.kind != ChaosKind::kill_unit;
+    if (path_down) disrupted_.push_back(span);
+    if (fault.kind == ChaosKind::stop_broker) {
+        // Both units reconnect (their backoff) and one claims: a takeover after the broker is back.
+        unreachable_.push_back({span.from, span.to + 2 * settings_.takeover + 3s});
+    }
+}
+
+void ChaosRig::kill_and_restart(int unit) {
+    gateways_[unit]->signal(SIGKILL);
+    gateways_[unit]->wait(10s);
+    const auto from = recorder_->count();
+    start_unit(unit);
+    // Back once it says its role again (it consumes from then on): the fault's span ends there.
+    const auto role = "test/_gateway/" + unit_ids[unit] + "/role";
+    recorder_->wait_for_message(role, nullptr, 30s, from);
+}
+
+void ChaosRig::forge() {
+    ForgedSender sender(segment_.socket(AF_INET, SOCK_RAW, IPPROTO_RAW));
+    // A hostile node's address, then each unit's: the exchange's `source` refuses them all.
+    const std::array<std::string, 3> sources{"10.250.0.66", unit_address(0), unit_address(1)};
+    for (int i = 0; i < 9; ++i) {
+        const auto datagram = counter_datagram(1'000'000 + i);
+        for (int unit = 0; unit < 2; ++unit) {
+            sender.send(sources[i % 3], eip_port, unit_address(unit), eip_port, datagram);
+        }
+    }
+}
+
+void ChaosRig::write_until(Clock::time_point until) {
+    // Bounded: one write per 250 ms of the span, at most.
+    while (Clock::now() < until) {
+        if (!broker_stopped_) write();
+        std::this_thread::sleep_until(std::min(until, Clock::now() + 250ms));
+    }
+}
+
+void ChaosRig::write() {
+    const auto id = "w" + std::to_string(++writes_made_);
+    const double value = 1000 + writes_made_;
+    writes_.push_back({id, value, now()});
+    recorder_->publish_request("test/sp/SPEED_SP/set", std::to_string(writes_made_ + 1000),
+                               "answers/chaos", id);
+}
+
+void ChaosRig::finish() {
+    // Every write answered, or the bound passed (an unanswered one is then a violation).
+    const auto answered = [&](const std::vector<Received>& all) {
+        std::size_t n = 0;
+        for (const auto& m : all) n += m.topic == "answers/chaos";
+        return n >= writes_.size();
+    };
+    recorder_->wait_for(answered, 3 * settings_.takeover + 10s);
+    plc_->stop();
+    // Then every sample that must be published is, or the bound passed.
+    const auto must = required();
+    const auto all_published = [&](const std::vector<Received>& all) {
+        std::set<std::int64_t> seen;
+        for (const auto& p : published(all)) seen.insert(p.sample);
+        return std::all_of(must.begin(), must.end(),
+                           [&](std::int64_t n) { return seen.count(n) > 0; });
+    };
+    recorder_->wait_for(all_published, 2 * settings_.takeover + 10s);
+    capture_->stop();
+    end_ = now();
+}
+
+}  // namespace eip2mqtt::test

@@ -1,0 +1,182 @@
+#include "tests/support/promises.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace eip2mqtt::test::promises {
+namespace {
+
+std::string ms(Millis t) { return std::to_string(t.count()) + " ms"; }
+
+std::vector<Produced> by_time(std::vector<Produced> capture) {
+    std::stable_sort(capture.begin(), capture.end(),
+                     [](const Produced& a, const Produced& b) { return a.at < b.at; });
+    return capture;
+}
+
+bool overlaps(Millis from, Millis to, const std::vector<Span>& spans) {
+    return std::any_of(spans.begin(), spans.end(),
+                       [&](const Span& s) { return s.from < to && from < s.to; });
+}
+
+/// When each sample first left the PLC.
+std::map<std::int64_t, Millis> first_sent(const std::vector<Sent>& sent) {
+    std::map<std::int64_t, Millis> out;
+    for (const auto& s : sent) {
+        const auto [it, added] = out.emplace(s.sample, s.at);
+        if (!added) it->second = std::min(it->second, s.at);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<std::string> one_producer(const std::vector<Produced>& capture, Millis period,
+                                      Millis slack) {
+    std::vector<std::string> out;
+    const auto sorted = by_time(capture);
+    for (std::size_t i = 1; i < sorted.size(); ++i) {
+        const auto& before = sorted[i - 1];
+        const auto& after = sorted[i];
+        if (before.producer == after.producer) continue;
+        const auto gap = after.at - before.at;
+        if (gap >= period - slack) continue;
+        out.push_back(before.producer + " (request id " + std::to_string(before.request_id) +
+                      ", at " + ms(before.at) + ") then " + after.producer + " (request id " +
+                      std::to_string(after.request_id) + ", at " + ms(after.at) +
+                      "): two producers " + ms(gap) + " apart, within a period of " + ms(period));
+    }
+    return out;
+}
+
+std::vector<std::string> leadership_present(const std::vector<Produced>& capture, Millis takeover,
+                                            Millis period, Millis slack,
+                                            const std::vector<Span>& excused, Millis end) {
+    std::vector<std::string> out;
+    const auto sorted = by_time(capture);
+    if (sorted.empty()) return {"nothing was produced at all"};
+    const auto bound = takeover + period + slack;
+    const auto pause = [&](Millis from, Millis to, const std::string& what) {
+        if (to - from > bound && !overlaps(from, to, excused)) {
+            out.push_back("nobody produced from " + ms(from) + " to " + ms(to) + " (" +
+                          ms(to - from) + ", more than takeover + period + slack = " + ms(bound) +
+                          ") " + what);
+        }
+    };
+    for (std::size_t i = 1; i < sorted.size(); ++i) {
+        pause(sorted[i - 1].at, sorted[i].at,
+              "after " + sorted[i - 1].producer + "'s request id " +
+                  std::to_string(sorted[i - 1].request_id) + ", until " + sorted[i].producer +
+                  "'s");
+    }
+    pause(sorted.back().at, end, "until the end of the run");
+    return out;
+}
+
+std::vector<std::string> published_was_sent(const std::vector<Sent>& sent,
+                                            const std::vector<Published>& published) {
+    std::set<std::pair<std::int64_t, std::string>> on_wire;
+    for (const auto& s : sent) on_wire.emplace(s.sample, s.values);
+    std::vector<std::string> out;
+    for (const auto& p : published) {
+        if (on_wire.count({p.sample, p.values}) > 0) continue;
+        out.push_back(p.topic + " at " + ms(p.at) + " carried " + p.values +
+                      ", which the PLC never sent");
+    }
+    return out;
+}
+
+std::vector<std::string> samples_once_in_order(const std::vector<Sent>& sent,
+                                               const std::vector<std::int64_t>& required,
+                                               const std::vector<Published>& published,
+                                               const std::vector<Span>& disrupted, Millis lapse) {
+    const auto left = first_sent(sent);
+    // In flight when a broker path went down, delivered once it was back: QoS 1's repeat.
+    const auto in_flight = [&](const Published& p) {
+        const auto it = left.find(p.sample);
+        if (it == left.end()) return false;
+        return std::any_of(disrupted.begin(), disrupted.end(), [&](const Span& d) {
+            return it->second < d.from + lapse && d.to <= p.at;
+        });
+    };
+    std::vector<std::string> out;
+    std::map<std::string, std::set<std::int64_t>> seen;
+    std::map<std::string, std::int64_t> newest;
+    std::set<std::int64_t> anywhere;
+    for (const auto& p : published) {
+        anywhere.insert(p.sample);
+        auto& topic_seen = seen[p.topic];
+        const bool twice = !topic_seen.insert(p.sample).second;
+        const auto it = newest.find(p.topic);
+        const bool back = it != newest.end() && p.sample < it->second;
+        if ((twice || back) && !in_flight(p)) {
+            out.push_back(p.topic + " at " + ms(p.at) + ": sample " + std::to_string(p.sample) +
+                          (twice ? " twice" : "") + (twice && back ? " and" : "") +
+                          (back ? " back in time, after " + std::to_string(it->second) : ""));
+        }
+        if (!back) newest[p.topic] = p.sample;
+    }
+    for (const auto sample : required) {
+        if (anywhere.count(sample) == 0) {
+            out.push_back("sample " + std::to_string(sample) +
+                          ", delivered to both units, never published");
+        }
+    }
+    return out;
+}
+
+std::vector<std::string> writes_answered_once(const std::vector<Write>& writes,
+                                              const std::vector<Answer>& answers,
+                                              const std::vector<Produced>& capture, Millis reach) {
+    std::map<std::string, std::vector<const Answer*>> by_write;
+    for (const auto& a : answers) by_write[a.id].push_back(&a);
+    const auto text = [](const Answer& a) {
+        return (a.ok ? std::string("ok") : a.error) + " at " + ms(a.at);
+    };
+    std::vector<std::string> out;
+    for (const auto& w : writes) {
+        const auto& got = by_write[w.id];
+        const std::string name =
+            "write " + w.id + " (" + std::to_string(w.value) + ", at " + ms(w.at) + ")";
+        if (got.empty()) {
+            out.push_back(name + " never answered");
+            continue;
+        }
+        if (got.size() > 1) {
+            const bool agree = std::all_of(got.begin(), got.end(), [&](const Answer* a) {
+                return a->ok == got[0]->ok && a->error == got[0]->error;
+            });
+            std::string all;
+            for (const auto* a : got) all += (all.empty() ? "" : ", ") + text(*a);
+            out.push_back(name +
+                          (agree ? " answered " + std::to_string(got.size()) + " times: "
+                                 : " contradicted: ") +
+                          all);
+        }
+        for (const auto* a : got) {
+            if (!a->ok) continue;
+            const auto carries = [&](const Produced& d) {
+                if (d.at < w.at || d.at > a->at + reach) return false;
+                return std::any_of(writes.begin(), writes.end(), [&](const Write& later) {
+                    return later.at >= w.at && later.value == d.value;
+                });
+            };
+            if (std::none_of(capture.begin(), capture.end(), carries)) {
+                out.push_back(name + " answered ok, but no datagram carried it");
+            }
+            break;
+        }
+    }
+    return out;
+}
+
+std::string report(const std::string& checker, const std::vector<std::string>& violations) {
+    std::ostringstream out;
+    for (const auto& v : violations) out << checker << ": " << v << "\n";
+    return out.str();
+}
+
+}  // namespace eip2mqtt::test::promises

@@ -1,0 +1,111 @@
+#pragma once
+/// Checkers of a hot-standby pair's promises (README "Redundancy"), as pure functions over what a
+/// test recorded: the datagrams captured on the segment, the samples the PLC sent, the MQTT
+/// messages, the writes and their answers, and the faults the test caused. No clock, no socket:
+/// every time is an offset from the start of the run, taken by the test as it recorded; each
+/// checker returns one line per violation (empty: the promise held), so that a failed run names
+/// what broke, where and when. docs/testing.md says how each one reads real timing.
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace eip2mqtt::test::promises {
+
+using Millis = std::chrono::milliseconds;
+
+/// A datagram of the produced exchange, captured on the segment: which unit sent it (its
+/// source address), its request id, when it arrived (the kernel's receive time).
+struct Produced {
+    std::string producer;
+    std::uint16_t request_id = 0;
+    Millis at{0};
+    double value = 0;  ///< the written tag's value it carries
+};
+
+/// Never two producers: a datagram of one unit between two of another's (they produce at once),
+/// or less than `period - slack` after another unit's (the old leader's last datagram is a
+/// period behind the new leader's first, at least). `slack` is the capture's own error (the
+/// senders' scheduling on a loaded machine), never more than a small part of the period.
+std::vector<std::string> one_producer(const std::vector<Produced>& capture, Millis period,
+                                      Millis slack);
+
+/// A span of the run, [from, to).
+struct Span {
+    Millis from{0};
+    Millis to{0};
+};
+
+/// Leadership never absent: the produced stream (all units together) never pauses longer than
+/// `takeover + period + slack`, unless the pause overlaps a span of `excused` (no unit could
+/// reach the broker, and the time both take to be back). Measured from the first datagram to
+/// `end` (a pause at the end counts too).
+std::vector<std::string> leadership_present(const std::vector<Produced>& capture, Millis takeover,
+                                            Millis period, Millis slack,
+                                            const std::vector<Span>& excused, Millis end);
+
+/// A sample the PLC sent: its number (the counter tag's value, one per datagram), the values it
+/// carried as canonical text (`COUNT=5,NOISE=17`), and when it left.
+struct Sent {
+    std::int64_t sample = 0;
+    std::string values;
+    Millis at{0};
+};
+
+/// A sample published on `_values` or `_history`, as the recorder received it.
+struct Published {
+    std::string topic;
+    std::int64_t sample = 0;
+    std::string values;  ///< canonical text, as in Sent
+    Millis at{0};
+};
+
+/// Nothing published that was not sent: every published sample's values are those of a
+/// datagram the PLC's log holds (forged datagrams from other sources never appear).
+std::vector<std::string> published_was_sent(const std::vector<Sent>& sent,
+                                            const std::vector<Published>& published);
+
+/// The samples of `_values` and `_history`: each of `required` (samples delivered intact to
+/// both units, away from any fault) on one topic or the other at least once; never twice on one
+/// topic; never older than one before it on its topic. Excused, as the README and
+/// docs/mqtt-api.md allow: what a unit had handed to its connection when a span of `disrupted`
+/// began (a broker path cut, stalled or stopped) may come again (QoS 1's repeat) or late, once
+/// the path is back. A unit that leads keeps handing samples to its connection until its lease
+/// lapses, `lapse` after the span began at the latest (5/8 of the takeover, plus a period): a
+/// repeat or a step back is excused when its sample was sent before `from + lapse` of such a
+/// span and arrived after the span ended.
+std::vector<std::string> samples_once_in_order(const std::vector<Sent>& sent,
+                                               const std::vector<std::int64_t>& required,
+                                               const std::vector<Published>& published,
+                                               const std::vector<Span>& disrupted, Millis lapse);
+
+/// A write the test published, with its own value (unique in the run).
+struct Write {
+    std::string id;  ///< its correlation data
+    double value = 0;
+    Millis at{0};
+};
+
+/// An answer received for write `id`: `ok`, or the error it gave.
+struct Answer {
+    std::string id;
+    bool ok = false;
+    std::string error;
+    Millis at{0};
+};
+
+/// Every write answered exactly once (never twice, never two answers that disagree, never
+/// unanswered by the end), and each `ok` carried on the wire: a datagram captured after the
+/// write was sent, and no later than `reach` after its answer arrived (the capture's clock and
+/// the recorder's are read apart), holds its value, or that of a write sent after it (writes
+/// that arrive together are applied to one production, the last value of a tag winning).
+std::vector<std::string> writes_answered_once(const std::vector<Write>& writes,
+                                              const std::vector<Answer>& answers,
+                                              const std::vector<Produced>& capture, Millis reach);
+
+/// Every violation of every checker on one line each, prefixed with the checker's name.
+std::string report(const std::string& checker, const std::vector<std::string>& violations);
+
+}  // namespace eip2mqtt::test::promises
