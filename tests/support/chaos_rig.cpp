@@ -207,6 +207,7 @@ void ChaosRig::apply(const ChaosFault& fault) {
 }
 
 void ChaosRig::heal(const ChaosFault& fault) {
+    auto path_back = now();  // when the broker paths are whole again
     auto& proxy = *proxies_[fault.unit];
     using D = TcpProxy::Direction;
     switch (fault.kind) {
@@ -226,8 +227,7 @@ void ChaosRig::heal(const ChaosFault& fault) {
             gateways_[fault.unit]->signal(SIGCONT);
             break;
         case ChaosKind::stop_broker:
-            ::kill(broker_.pid(), SIGCONT);
-            broker_stopped_ = false;
+            path_back = resume_broker();
             break;
         case ChaosKind::kill_unit:
         case ChaosKind::forge:
@@ -239,11 +239,22 @@ void ChaosRig::heal(const ChaosFault& fault) {
     story_.push_back(std::to_string(span.to.count()) + " ms: healed");
     const bool path_down = fault.kind != ChaosKind::delay_broker &&
                            fault.kind != ChaosKind::forge && fault.kind != ChaosKind::kill_unit;
-    if (path_down) disrupted_.push_back(span);
-    if (fault.kind == ChaosKind::stop_broker) {
-        // Both units reconnect (their backoff) and one claims: a takeover after the broker is back.
-        unreachable_.push_back({span.from, span.to + 2 * settings_.takeover + 3s});
-    }
+    if (path_down) disrupted_.push_back({span.from, path_back});
+    if (fault.kind == ChaosKind::stop_broker) unreachable_.push_back(span);
+}
+
+std::chrono::milliseconds ChaosRig::resume_broker() {
+    const auto from = recorder_->count();
+    ::kill(broker_.pid(), SIGCONT);
+    broker_stopped_ = false;
+    const auto resumed = now();
+    // The units reconnect with their backoff (it grew while the broker did not answer), then one
+    // claims the lead: the fault lasts until a leader renews again (docs/testing.md).
+    const auto renewal = [](const std::string& p) {
+        return p.find("\"claim\"") == std::string::npos && p.find("\"id\"") != std::string::npos;
+    };
+    recorder_->wait_for_message("test/_gateway/_pair/turbine/leader", renewal, 60s, from);
+    return resumed;
 }
 
 void ChaosRig::kill_and_restart(int unit) {

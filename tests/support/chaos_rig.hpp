@@ -68,6 +68,8 @@ private:
     void start_unit(int unit);
     void apply(const ChaosFault& fault);
     void heal(const ChaosFault& fault);
+    /// SIGCONT; returns once a leader renews its lease again, with the time of the SIGCONT.
+    std::chrono::milliseconds resume_broker();
     /// SIGKILL, then the unit started again; returns once it says its role.
     void kill_and_restart(int unit);
     void forge();
