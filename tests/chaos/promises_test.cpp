@@ -70,6 +70,43 @@ TEST(LeadershipPresent, ALongerPauseIsCaughtUnlessNoUnitCouldReachTheBroker) {
     EXPECT_THAT(leadership_present({}, 1000ms, 50ms, 100ms, {}, 5000ms), SizeIs(1));
 }
 
+/// gw-b's renewals every 250 ms from `from` to `to`, epoch `epoch`.
+std::vector<Renewal> renewing(const std::string& unit, int epoch, Millis from, Millis to) {
+    std::vector<Renewal> out;
+    for (auto at = from; at <= to; at += 250ms) out.push_back({unit, epoch, at});
+    return out;
+}
+
+TEST(LeaderKept, ALeaderFencedByItsOwnCutOrAFailedOneMayStandDown) {
+    // gw-b renews until 2,000 ms, is cut off 2,000-4,000 ms, says standby at 4,100 ms.
+    auto renewals = renewing("gw-b", 1, 0ms, 2000ms);
+    const auto more = renewing("gw-a", 2, 3200ms, 6000ms);
+    renewals.insert(renewals.end(), more.begin(), more.end());
+    const std::vector<Role> roles{
+        {"gw-b", true, 0ms}, {"gw-a", true, 3200ms}, {"gw-b", false, 4100ms}};
+    EXPECT_THAT(leader_kept(renewals, roles, {{"gw-b", {2000ms, 4000ms}}}, 500ms, 5000ms),
+                IsEmpty());
+    // Killed: it never says standby; the new leader's role alone is no step down.
+    EXPECT_THAT(
+        leader_kept(renewals, {{"gw-b", true, 0ms}, {"gw-a", true, 3200ms}}, {}, 500ms, 5000ms),
+        IsEmpty());
+}
+
+TEST(LeaderKept, AHealthyLeaderDeposedByAStaleClaimIsCaught) {
+    // gw-b renews throughout; gw-a, cut off 2,000-3,000 ms, claims epoch 2 as it comes back,
+    // and gw-b stands down at 3,020 ms, its last renewal at 3,000 ms.
+    auto renewals = renewing("gw-b", 1, 0ms, 3000ms);
+    renewals.push_back({"gw-a", 2, 3300ms});
+    const std::vector<Role> roles{
+        {"gw-b", true, 0ms}, {"gw-b", false, 3020ms}, {"gw-a", true, 3280ms}};
+    EXPECT_THAT(leader_kept(renewals, roles, {{"gw-a", {2000ms, 3000ms}}}, 500ms, 5000ms),
+                ElementsAre(HasSubstr("gw-b stood down at 3020 ms while renewing (epoch 1, last "
+                                      "renewal at 3000 ms) with no fault of its own: gw-a renews "
+                                      "epoch 2 from 3300 ms")));
+    // The broker stopped is every unit's fault.
+    EXPECT_THAT(leader_kept(renewals, roles, {{"", {2000ms, 3000ms}}}, 500ms, 5000ms), IsEmpty());
+}
+
 std::vector<Sent> sent_upto(std::int64_t last) {
     std::vector<Sent> out;
     for (std::int64_t n = 1; n <= last; ++n) {

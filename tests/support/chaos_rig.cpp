@@ -241,6 +241,10 @@ void ChaosRig::heal(const ChaosFault& fault) {
                            fault.kind != ChaosKind::forge && fault.kind != ChaosKind::kill_unit;
     if (path_down) disrupted_.push_back({span.from, path_back});
     if (fault.kind == ChaosKind::stop_broker) unreachable_.push_back(span);
+    if (fault.kind != ChaosKind::forge) {
+        const bool everyone = fault.kind == ChaosKind::stop_broker;
+        unit_faults_.push_back({everyone ? "" : unit_ids[fault.unit], span});
+    }
 }
 
 std::chrono::milliseconds ChaosRig::resume_broker() {

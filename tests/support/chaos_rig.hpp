@@ -55,8 +55,8 @@ public:
     /// the writes answered (or the bound passed) and the last samples published.
     void run(const std::vector<ChaosFault>& schedule);
     /// Each checker's violations (promises::report's lines), by the checker's name: "one
-    /// producer", "leadership present", "published was sent", "samples once, in order",
-    /// "writes answered once".
+    /// producer", "leadership present", "leader kept", "published was sent", "samples once, in
+    /// order", "writes answered once".
     std::map<std::string, std::string> check() const;
     /// What happened (the faults as applied, the roles) and each unit's log, for a failure.
     std::string story() const;
@@ -103,9 +103,10 @@ private:
     std::chrono::milliseconds end_{0};
 
     std::vector<promises::Write> writes_;
-    std::vector<promises::Span> disrupted_;    ///< broker paths down (QoS 1 repeats excused)
-    std::vector<promises::Span> unreachable_;  ///< no unit could reach the broker
-    std::vector<promises::Span> faulted_;      ///< every fault, for the required samples
+    std::vector<promises::Span> disrupted_;         ///< broker paths down (QoS 1 repeats excused)
+    std::vector<promises::Span> unreachable_;       ///< no unit could reach the broker
+    std::vector<promises::Span> faulted_;           ///< every fault, for the required samples
+    std::vector<promises::UnitFault> unit_faults_;  ///< by unit ("": the broker's)
     std::vector<std::string> story_;
 };
 

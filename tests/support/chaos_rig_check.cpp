@@ -107,6 +107,32 @@ std::vector<promises::Published> ChaosRig::published(const std::vector<Received>
     return out;
 }
 
+namespace {
+
+/// The pair's renewals and the units' roles among `messages`, times since `epoch`.
+std::pair<std::vector<promises::Renewal>, std::vector<promises::Role>> lease_of(
+    const std::vector<Received>& messages, std::chrono::steady_clock::time_point epoch) {
+    std::vector<promises::Renewal> renewals;
+    std::vector<promises::Role> roles;
+    const std::string prefix = "test/_gateway/";
+    for (const auto& m : messages) {
+        const auto at = std::chrono::duration_cast<std::chrono::milliseconds>(m.at - epoch);
+        if (m.topic == "test/_gateway/_pair/turbine/leader") {
+            const auto j = json::parse(m.payload, nullptr, false);
+            if (j.is_object() && !j.value("claim", false) && j.contains("id")) {
+                renewals.push_back({j.value("id", ""), j.value("epoch", 0), at});
+            }
+        } else if (m.topic.size() > prefix.size() + 5 && m.topic.rfind(prefix, 0) == 0 &&
+                   m.topic.substr(m.topic.size() - 5) == "/role") {
+            const auto unit = m.topic.substr(prefix.size(), m.topic.size() - prefix.size() - 5);
+            roles.push_back({unit, m.payload == "leader", at});
+        }
+    }
+    return {renewals, roles};
+}
+
+}  // namespace
+
 std::map<std::string, std::string> ChaosRig::check() const {
     const auto capture = produced();
     const auto sent_samples = sent();
@@ -130,6 +156,8 @@ std::map<std::string, std::string> ChaosRig::check() const {
     add("one producer", one_producer(capture, period, period / 5));
     add("leadership present", leadership_present(capture, settings_.takeover, period,
                                                  settings_.takeover / 4, unreachable_, end_));
+    const auto [renewals, roles] = lease_of(recorder_->messages(), epoch_);
+    add("leader kept", leader_kept(renewals, roles, unit_faults_, settings_.takeover / 2, 5s));
     add("published was sent", published_was_sent(sent_samples, samples));
     add("samples once, in order",
         samples_once_in_order(sent_samples, required(), samples, disrupted_, lapse));

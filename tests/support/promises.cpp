@@ -76,6 +76,38 @@ std::vector<std::string> leadership_present(const std::vector<Produced>& capture
     return out;
 }
 
+std::vector<std::string> leader_kept(const std::vector<Renewal>& renewals,
+                                     const std::vector<Role>& roles,
+                                     const std::vector<UnitFault>& faults, Millis renewing,
+                                     Millis back) {
+    std::vector<std::string> out;
+    std::map<std::string, bool> leads;
+    for (const auto& role : roles) {
+        const bool led = leads[role.unit];
+        leads[role.unit] = role.leader;
+        if (!led || role.leader) continue;
+        const auto own_fault = std::any_of(faults.begin(), faults.end(), [&](const UnitFault& f) {
+            return (f.unit.empty() || f.unit == role.unit) && f.span.from <= role.at &&
+                   role.at <= f.span.to + back;
+        });
+        if (own_fault) continue;
+        const Renewal* last = nullptr;
+        const Renewal* newer = nullptr;  // the other unit's first renewal after the step down
+        for (const auto& r : renewals) {
+            if (r.unit == role.unit && r.at <= role.at) last = &r;
+            if (r.unit != role.unit && r.at >= role.at && newer == nullptr) newer = &r;
+        }
+        if (last == nullptr || role.at - last->at >= renewing) continue;
+        out.push_back(role.unit + " stood down at " + ms(role.at) + " while renewing (epoch " +
+                      std::to_string(last->epoch) + ", last renewal at " + ms(last->at) +
+                      ") with no fault of its own" +
+                      (newer ? ": " + newer->unit + " renews epoch " +
+                                   std::to_string(newer->epoch) + " from " + ms(newer->at)
+                             : ""));
+    }
+    return out;
+}
+
 std::vector<std::string> published_was_sent(const std::vector<Sent>& sent,
                                             const std::vector<Published>& published) {
     std::set<std::pair<std::int64_t, std::string>> on_wire;

@@ -46,6 +46,35 @@ std::vector<std::string> leadership_present(const std::vector<Produced>& capture
                                             Millis period, Millis slack,
                                             const std::vector<Span>& excused, Millis end);
 
+/// A renewal on the pair's leader topic (a record without `claim`), and a unit's role message.
+struct Renewal {
+    std::string unit;
+    int epoch = 0;
+    Millis at{0};
+};
+struct Role {
+    std::string unit;
+    bool leader = false;
+    Millis at{0};
+};
+/// A fault of one unit's broker path (cut, stalled, delayed, the unit stopped or killed), or of
+/// every unit's (`unit` empty: the broker stopped).
+struct UnitFault {
+    std::string unit;
+    Span span;
+};
+
+/// A live leader is never deposed: a unit that says `standby` after `leader` while it was
+/// renewing (its last renewal less than `renewing` before) stood down for a newer epoch, which
+/// only a claim made while its claimant could not hear it gives, unless the unit's own path
+/// failed. A unit fenced by its own fault stops renewing `5 * takeover / 8` before it stands
+/// down; renewals it queued during a stall may arrive with its `standby`: its own faults, until
+/// `back` after they end (its reconnection), are not judged.
+std::vector<std::string> leader_kept(const std::vector<Renewal>& renewals,
+                                     const std::vector<Role>& roles,
+                                     const std::vector<UnitFault>& faults, Millis renewing,
+                                     Millis back);
+
 /// A sample the PLC sent: its number (the counter tag's value, one per datagram), the values it
 /// carried as canonical text (`COUNT=5,NOISE=17`), and when it left.
 struct Sent {
