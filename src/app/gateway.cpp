@@ -6,6 +6,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <memory>
 
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/app/mqtt_settings.hpp"
@@ -49,7 +50,14 @@ Gateway::Gateway(core::config::Config config)
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
               system_clock()),
       exchanges_(loop_.get_executor(), exchanges_options(config_, pair_options()), northbound_,
-                 writes_.image_saves()) {
+                 writes_.image_saves()),
+      reloads_(parse_reload, [this](ParseResult parsed) {
+          // Held by a pointer: the handler moves cheaply (and GCC 12 sees no variant to warn on).
+          boost::asio::post(loop_,
+                            [this, parsed = std::make_shared<ParseResult>(std::move(parsed))] {
+                                on_reload_parsed(std::move(*parsed));
+                            });
+      }) {
     auto mqtt_options = mqtt_client_options(config_, availability_topic_);
     if (config_.redundancy.enabled()) {
         // The unit's own topics (state, metrics, role) and the exchanges' `_meta` are said by
@@ -103,6 +111,8 @@ int Gateway::run() {
     loop_.run();
 
     notifier_.stopping();
+    // A parse under way is given up (its result would never be applied) before anything stops.
+    reloads_.stop();
     spdlog::info("stopping: flushing publications and publishing offline");
     receiver_->stop();
     if (command_socket_) command_socket_->stop();

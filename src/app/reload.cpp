@@ -3,7 +3,9 @@
 // added exchanges start, removed ones stop and their retained topics are cleared, changed ones
 // restart; the sections' live keys are applied (core/config/config_keys.hpp has every key's
 // rule). An invalid file, or one that changes a key only a restart applies, is refused whole
-// and the old configuration keeps running.
+// and the old configuration keeps running. The file is read and checked on the ReloadWorker's
+// thread (parse_reload), so the loop goes on receiving, producing and feeding /healthz while a
+// large file parses; the loop only compares and applies (on_reload_parsed).
 
 #include <spdlog/spdlog.h>
 
@@ -11,6 +13,7 @@
 #include <exception>
 #include <string>
 #include <system_error>
+#include <utility>
 
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
@@ -85,19 +88,57 @@ bool Gateway::apply_settings(const core::config::Config& next) {
     return true;
 }
 
+ParseResult Gateway::parse_reload(const std::string& path, std::stop_token stop) {
+    auto loaded = adapters::yaml::load_config(path, std::move(stop));
+    if (!loaded) return core::fail(loaded.error());
+    ParsedConfig parsed{std::move(loaded).value(), {}};
+    parsed.plans = take_plans(parsed.config);
+    return parsed;
+}
+
 void Gateway::reload() {
     notifier_.reloading();
-    spdlog::info("SIGHUP: reloading {}", config_.file);
-    auto loaded = adapters::yaml::load_config(config_.file);
-    if (!loaded) {
-        for (const auto& diagnostic : loaded.error()) spdlog::error("{}", diagnostic.to_string());
+    switch (reloads_.request(config_.file)) {
+        case ReloadWorker::Request::started:
+            ++reloads_pending_;
+            reload_requested_at_ = std::chrono::steady_clock::now();
+            spdlog::info("SIGHUP: reloading {}", config_.file);
+            break;
+        case ReloadWorker::Request::queued:
+            spdlog::info(
+                "SIGHUP: reloading {} again once the parse under way ends (its result is "
+                "dropped)",
+                config_.file);
+            break;
+        case ReloadWorker::Request::merged:
+            spdlog::info("SIGHUP: reloading {} once the parse under way ends", config_.file);
+            break;
+    }
+}
+
+void Gateway::on_reload_parsed(ParseResult parsed) {
+    const auto applying = std::chrono::steady_clock::now();
+    apply_reload(std::move(parsed));
+    if (stopping_) return;
+    const auto ms = [](std::chrono::steady_clock::duration d) {
+        return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
+    };
+    spdlog::debug("reload: parsed in {} ms off the loop, applied in {} ms on it",
+                  ms(applying - reload_requested_at_),
+                  ms(std::chrono::steady_clock::now() - applying));
+    // Ready once no other reload is under way (one SIGHUP came after this one was parsed).
+    if (--reloads_pending_ == 0) notifier_.ready(status_line());
+}
+
+void Gateway::apply_reload(ParseResult parsed) {
+    if (!parsed) {
+        for (const auto& diagnostic : parsed.error()) spdlog::error("{}", diagnostic.to_string());
         spdlog::error("reload refused: {} has {} error(s); the running configuration is kept",
-                      config_.file, loaded.error().size());
-        notifier_.ready(status_line());
+                      config_.file, parsed.error().size());
         return;
     }
-    auto config = std::move(loaded).value();
-    auto plans = take_plans(config);
+    auto config = std::move(parsed.value().config);
+    auto plans = std::move(parsed.value().plans);
     const auto changes =
         core::config::plan_reload(config_, exchanges_.running_plans(), config, plans);
     if (changes.needs_restart) {
@@ -108,16 +149,12 @@ void Gateway::reload() {
             "the running configuration is kept",
             restart, restart.find(", ") == std::string::npos ? "needs" : "need",
             live.empty() ? "" : " (also changed: " + live + ")");
-        notifier_.ready(status_line());
         return;
     }
     const bool republish =
         northbound::json_tree::json_tree_options(config).publish != json_tree_->options().publish;
     const bool metrics_interval = config.mqtt.metrics_interval != config_.mqtt.metrics_interval;
-    if (!apply_settings(config)) {
-        notifier_.ready(status_line());
-        return;
-    }
+    if (!apply_settings(config)) return;
     config_ = std::move(config);
     if (metrics_interval) schedule_metrics();  // the wait under way was for the old interval
     try {
@@ -135,7 +172,6 @@ void Gateway::reload() {
         spdlog::info("reload: applied {}", changes.describe(ReloadRule::live));
     }
     detail::release_heap();
-    notifier_.ready(status_line());
 }
 
 }  // namespace eip2mqtt::app

@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stop_token>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -40,6 +41,7 @@
 #include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/redundancy/pair_lease.hpp"
 #include "eip2mqtt/app/redundancy/pair_writes.hpp"
+#include "eip2mqtt/app/reload_worker.hpp"
 #include "eip2mqtt/app/write_dispatcher.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -80,9 +82,17 @@ private:
     void apply_plans(std::vector<core::plan::ExchangePlan> plans);
     /// Every running exchange's retained state again, and the JSON tree's `_meta` topics.
     void republish_exchanges();
-    /// SIGHUP: a valid new file is applied whole, or refused whole (errors, or a change that
-    /// needs a restart: core::config::plan_reload), the log naming each changed key.
+    /// SIGHUP: the file is handed to reloads_, which reads and checks it off the loop; a
+    /// SIGHUP while it parses has it parsed again once that parse ends (ReloadWorker::request).
     void reload();
+    /// ReloadWorker::Parse, on the worker's thread: the file loaded, its plans made.
+    static ParseResult parse_reload(const std::string& path, std::stop_token stop);
+    /// A parse's result, on the loop: applied (apply_reload), then READY once no other reload
+    /// is under way.
+    void on_reload_parsed(ParseResult parsed);
+    /// A valid new file is applied whole, or refused whole (errors, or a change that needs a
+    /// restart: core::config::plan_reload), the log naming each changed key.
+    void apply_reload(ParseResult parsed);
     /// The live settings of the sections (`next` against config_, before it replaces it):
     /// multicast groups, log level, publish settings, MQTT buffers. False, with nothing
     /// changed, when the multicast groups cannot be joined.
@@ -177,6 +187,12 @@ private:
     core::MonoTime started_at_;
     core::MonoTime last_refresh_scan_;
     bool stopping_ = false;
+    /// Results the loop still waits for from reloads_, and when the last reload started.
+    int reloads_pending_ = 0;
+    core::MonoTime reload_requested_at_;
+    /// Last: its thread is stopped and joined first when the gateway dies, before anything
+    /// its results reach (they are posted to the loop).
+    ReloadWorker reloads_;
 };
 
 }  // namespace eip2mqtt::app

@@ -32,8 +32,13 @@ std::optional<std::pair<int, int>> first_indenting_tab(std::string_view text, in
 core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
     Config config;
     config.file = file_;
+    const auto cancelled = [this] {
+        error({file_, 0, 0}, "the load was given up: the gateway is stopping");
+        return core::fail(std::move(diagnostics_));
+    };
     try {
-        const Tree tree = Tree::parse(text);
+        const Tree tree = Tree::parse(text, stop_);
+        if (stop_.stop_requested()) return cancelled();
         const Node root = tree.root();
         if (!root.is_defined() || root.is_null()) {
             error({file_, 1, 1}, "the configuration is empty");
@@ -56,7 +61,10 @@ core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
             error(mark(e.mark), "YAML syntax error: " + e.msg);
         }
         return core::fail(std::move(diagnostics_));
+    } catch (const Tree::Cancelled&) {
+        return cancelled();
     }
+    if (stop_.stop_requested()) return cancelled();
     if (config.mqtt.client_id.empty()) config.mqtt.client_id = "eip2mqtt-" + config.gateway.id;
     // Semantic checks also run after local errors so that one run shows every problem;
     // entities whose own keys failed to parse were left out of the model to avoid echoes.

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <set>
+#include <stop_token>
 #include <string>
 
 #include "tests/adapters/yaml/loading.hpp"
@@ -37,6 +38,20 @@ TEST(LoadConfig, ExampleConfigurationLoadsAndValidates) {
     const auto plans = core::config::make_plans(config);
     EXPECT_EQ(plans[0].tags.size(), 14u);
     EXPECT_EQ(plans[0].spec.tags.size(), 14u);
+}
+
+TEST(LoadConfig, AStopRequestedGivesTheLoadUpWithADiagnostic) {
+    // A reload's parse when the gateway stops (ReloadWorker): the file is not read to its end.
+    const auto path = std::string(EIP2MQTT_SOURCE_DIR) + "/etc/eip2mqtt/eip2mqtt.yaml";
+    std::stop_source stop;
+    ASSERT_TRUE(load_config(path, stop.get_token()).ok());  // not requested: loads as always
+    stop.request_stop();
+    const auto result = load_config(path, stop.get_token());
+    ASSERT_FALSE(result.ok());
+    ASSERT_EQ(result.error().size(), 1u) << dump(result.error());
+    EXPECT_NE(result.error()[0].message.find("given up: the gateway is stopping"),
+              std::string::npos)
+        << dump(result.error());
 }
 
 TEST(LoadConfig, BadThreeErrorsReportsAllThreeWithLineAndColumn) {

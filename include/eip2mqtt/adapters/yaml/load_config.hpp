@@ -4,6 +4,7 @@
 /// with file:line:column; yaml-cpp's exceptions stop here.
 
 #include <cstddef>
+#include <stop_token>
 #include <string>
 
 #include "eip2mqtt/core/config/config.hpp"
@@ -20,6 +21,11 @@ inline constexpr std::size_t max_file_bytes = std::size_t{64} << 20;
 /// Loads and validates `path`. Fails with every diagnostic (syntax, unknown keys, bad values,
 /// semantic checks) when anything is wrong.
 core::Result<core::config::Config, core::config::Diagnostics> load_config(const std::string& path);
+
+/// Same, giving up soon after `stop` is requested, with a diagnostic saying so (a reload's
+/// parse when the gateway stops: ReloadWorker).
+core::Result<core::config::Config, core::config::Diagnostics> load_config(const std::string& path,
+                                                                          std::stop_token stop);
 
 /// Same, from text already in memory; `file` names it in diagnostics and resolves relative
 /// `points:` paths (used by tests and the fuzzer).

@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <stop_token>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -87,8 +88,11 @@ struct IgnoreFailure {
 
 class Loader {
 public:
-    explicit Loader(std::string file)
-        : file_(std::move(file)), dir_(std::filesystem::path(file_.str()).parent_path()) {}
+    /// `stop`: the load gives up, with one diagnostic, soon after it is requested.
+    explicit Loader(std::string file, std::stop_token stop = {})
+        : file_(std::move(file)),
+          dir_(std::filesystem::path(file_.str()).parent_path()),
+          stop_(std::move(stop)) {}
 
     core::Result<Config, Diagnostics> load(const std::string& text);
 
@@ -257,6 +261,7 @@ private:
 
     FileName file_;  ///< shared by every mark of the file
     std::filesystem::path dir_;
+    std::stop_token stop_;
     Diagnostics diagnostics_;
     std::map<std::string, std::unique_ptr<LoadedPoints>> point_lists_;  ///< null: unreadable
 };

@@ -5,6 +5,7 @@
 #include <yaml-cpp/parser.h>
 
 #include <sstream>
+#include <utility>
 
 namespace eip2mqtt::adapters::yaml::detail {
 
@@ -21,7 +22,7 @@ struct Tree::Parsed {
 /// a container's children are collected while it is open, then stored next to each other.
 class Builder : public YAML::EventHandler {
 public:
-    explicit Builder(Tree::Parsed& tree) : tree_(tree) {}
+    Builder(Tree::Parsed& tree, std::stop_token stop) : tree_(tree), stop_(std::move(stop)) {}
 
     void OnDocumentStart(const YAML::Mark&) override {}
     void OnDocumentEnd() override {}
@@ -65,6 +66,8 @@ private:
 
     std::uint32_t add(Tree::Kind kind, const YAML::Mark& mark, YAML::anchor_t anchor) {
         const auto index = static_cast<std::uint32_t>(tree_.nodes.size());
+        // A reload of a gateway that stops gives up here: the parse is most of a load's time.
+        if (index % 1024 == 0 && stop_.stop_requested()) throw Tree::Cancelled{};
         Tree::Entry entry;
         entry.kind = kind;
         entry.line = mark.is_null() ? -1 : mark.line;
@@ -104,12 +107,13 @@ private:
     }
 
     Tree::Parsed& tree_;
+    std::stop_token stop_;
     std::vector<Open> open_;
     std::vector<std::uint32_t> pending_;  ///< children of the open containers, innermost last
     std::vector<std::uint32_t> anchors_;  ///< node of each anchor_t (1-based)
 };
 
-Tree Tree::parse(const std::string& text) {
+Tree Tree::parse(const std::string& text, std::stop_token stop) {
     auto parsed = std::make_shared<Parsed>();
     // Rough sizes for a configuration (a node per ~8 bytes of text) spare most regrowth copies.
     parsed->nodes.reserve(text.size() / 8);
@@ -117,7 +121,7 @@ Tree Tree::parse(const std::string& text) {
     parsed->text.reserve(text.size() / 4);
     std::istringstream in(text);
     YAML::Parser parser(in);
-    Builder builder(*parsed);
+    Builder builder(*parsed, std::move(stop));
     parser.HandleNextDocument(builder);
     parsed->nodes.shrink_to_fit();
     parsed->children.shrink_to_fit();

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stop_token>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -65,8 +66,12 @@ private:
 /// A parsed YAML document (the first one of the text, as `YAML::Load` reads).
 class Tree {
 public:
-    /// Parses `text`; throws YAML::Exception (with its mark) on a syntax error, as YAML::Load.
-    static Tree parse(const std::string& text);
+    /// Thrown by parse() once its `stop` is requested.
+    struct Cancelled {};
+
+    /// Parses `text`; throws YAML::Exception (with its mark) on a syntax error, as YAML::Load,
+    /// and Cancelled soon after `stop` is requested (every thousand nodes or so).
+    static Tree parse(const std::string& text, std::stop_token stop = {});
 
     /// The document's root; undefined when the text holds no document (empty or comments only).
     Node root() const;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <stop_token>
 #include <string>
 
 namespace eip2mqtt::adapters::yaml::detail {
@@ -22,6 +23,16 @@ TEST(YamlTree, MapsKeepEntriesInDocumentOrder) {
     EXPECT_EQ(root.find("a").scalar(), "two");
     EXPECT_FALSE(root.find("z").is_defined());
     EXPECT_FALSE(root.find("z").is_null());  // undefined is not null, as in YAML::Node
+}
+
+TEST(YamlTree, AStopRequestedEndsTheParseWithCancelled) {
+    std::string text;
+    for (int i = 0; i < 5000; ++i)
+        text += "k" + std::to_string(i) + ": " + std::to_string(i) + "\n";
+    std::stop_source stop;
+    EXPECT_EQ(Tree::parse(text, stop.get_token()).root().size(), 5000u);
+    stop.request_stop();
+    EXPECT_THROW(Tree::parse(text, stop.get_token()), Tree::Cancelled);
 }
 
 TEST(YamlTree, NestedSequencesAndMapsAndFlowStyle) {
