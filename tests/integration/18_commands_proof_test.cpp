@@ -161,8 +161,10 @@ TEST_F(CommandsProofTest, AllowWrittenEmptyAnswersNobodyAndCheckSaysSo) {
     start_with(", allow: []");
     CommandClient client;
     EXPECT_FALSE(client
-                     .ask(commands_port_, PduType::capabilities_request,
-                          core::command::CapabilitiesRequest{}, 500ms)
+                     .ask(commands_port_,
+                          client.request(PduType::capabilities_request,
+                                         core::command::CapabilitiesRequest{}),
+                          500ms)
                      .has_value());
     commands_metrics([](const json& m) { return m["commands"]["refused"] == 1; });
     const auto check = run_command({EIP2MQTT_BINARY, "check", "-c", config_path_}, 30s);
