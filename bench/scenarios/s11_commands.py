@@ -72,8 +72,12 @@ class Requester:
 
 
 def commands_config(port, limit):
+    # The requester is trusted (docs/protocol.md section 9.7: answered in full without proving
+    # its address) and its own limit is the overall one: the responder's work, not the proof's
+    # round trip, is measured.
     return {"enabled": "true", "port": port, "max_requests_per_s": limit,
-            "allow": f"[{HOST}/32]"}
+            "max_requests_per_s_per_source": limit, "allow": f"[{HOST}/32]",
+            "trusted": f"[{HOST}/32]"}
 
 
 def answered_row(bench, duration, steps):

@@ -7,6 +7,7 @@
 
 #include <charconv>
 #include <chrono>
+#include <random>
 
 #include "eip2mqtt/adapters/udp/interfaces.hpp"
 #include "eip2mqtt/core/command/command_nak.hpp"
@@ -24,12 +25,21 @@ std::optional<std::uint64_t> id_of(std::string_view text) {
     return id;
 }
 
+// The proof's secret, new at every start: tokens are not meant to outlive the process.
+core::command::ProofKey random_key() {
+    std::random_device random;
+    const auto word = [&] { return std::uint64_t{random()} << 32 | random(); };
+    return {word(), word()};
+}
+
 }  // namespace
 
 CommandPolicy command_policy(const core::config::Config& config) {
     const auto& commands = config.eip.commands;
-    CommandPolicy policy{commands.allow, commands.writes, commands.max_requests_per_s};
-    if (policy.allow.empty()) {
+    CommandPolicy policy{commands.allow.value_or(std::vector<core::command::Subnet>{}),
+                         commands.writes, commands.max_requests_per_s, commands.trusted,
+                         commands.max_requests_per_s_per_source};
+    if (!commands.allow) {
         policy.allow =
             adapters::udp::local_subnets(adapters::udp::parse_ipv4(config.eip.bind).value_or(0));
     }
@@ -43,13 +53,20 @@ CommandResponder::CommandResponder(CommandPolicy policy, core::command::NodeInfo
       views_(std::move(views)),
       send_(std::move(send)),
       writes_(writes),
-      limiter_(policy_.max_requests_per_s) {
+      proof_(random_key()),
+      sources_(policy_.max_requests_per_s_per_source),
+      limiter_(policy_.max_requests_per_s),
+      unproven_limiter_(policy_.max_requests_per_s) {
     node_.writes = policy_.writes && writes_ != nullptr;
 }
 
 void CommandResponder::set_policy(CommandPolicy policy) {
     if (policy.max_requests_per_s != policy_.max_requests_per_s) {
         limiter_ = core::write::RateLimiter(policy.max_requests_per_s);
+        unproven_limiter_ = core::write::RateLimiter(policy.max_requests_per_s);
+    }
+    if (policy.max_requests_per_s_per_source != policy_.max_requests_per_s_per_source) {
+        sources_ = core::command::SourceLimiter(policy.max_requests_per_s_per_source);
     }
     policy_ = std::move(policy);
     node_.writes = policy_.writes && writes_ != nullptr;
@@ -64,37 +81,80 @@ void CommandResponder::on_datagram(std::span<const std::byte> datagram,
         return log("refused a command datagram from a source outside eip.commands.allow", from,
                    now);
     }
-    if (!limiter_.allow(now)) {
-        ++counters_.dropped;
-        return log("dropped a command datagram over eip.commands.max_requests_per_s", from, now);
-    }
+    const Asker asker{from,
+                      core::command::allowed(policy_.trusted, from.address) ||
+                          proof_.proves(datagram, from.address, now),
+                      datagram.size()};
+    if (!within_limits(asker, now)) return;
     auto request = core::command::decode_request(datagram);
-    if (!request) {
-        const auto nak = core::command::make_nak(datagram, request.error());
-        if (!nak) {
-            ++counters_.ignored;
-            return;
-        }
-        ++counters_.naks[static_cast<std::size_t>(request.error())];
-        reply(core::command::encode(nak->header, nak->nak), from);
-        return log("answered a command request with a NAK (" +
-                       std::string(core::command::to_string(request.error())) + ")",
-                   from, now);
-    }
-    ++counters_.requests[core::command::request_index(request->header.type)];
-    answer(std::move(request).value(), from, now, wall);
+    if (!request) return nak(datagram, request.error(), asker, now);
+    answer(std::move(request).value(), asker, now, wall);
 }
 
-void CommandResponder::answer(core::command::Request request, const adapters::udp::Endpoint& from,
+bool CommandResponder::within_limits(const Asker& asker, core::MonoTime now) {
+    if (!sources_.allow(asker.from.address, now)) {
+        ++counters_.dropped;
+        ++counters_.dropped_per_source;
+        log("dropped a command datagram over eip.commands.max_requests_per_s_per_source",
+            asker.from, now);
+        return false;
+    }
+    // Sources that cannot prove their address have a budget of their own: forged ones cannot
+    // spend that of the requesters that can.
+    if (!(asker.proven ? limiter_ : unproven_limiter_).allow(now)) {
+        ++counters_.dropped;
+        log("dropped a command datagram over eip.commands.max_requests_per_s", asker.from, now);
+        return false;
+    }
+    return true;
+}
+
+void CommandResponder::nak(std::span<const std::byte> datagram, core::command::DecodeError error,
+                           const Asker& asker, core::MonoTime now) {
+    const auto nak = core::command::make_nak(datagram, error);
+    const auto bytes =
+        nak ? core::command::encode(nak->header, nak->nak) : std::vector<std::byte>{};
+    // A NAK larger than its request goes only to a requester that proved its address.
+    if (!nak || (!asker.proven && bytes.size() > asker.request_size)) {
+        ++counters_.ignored;
+        return;
+    }
+    ++counters_.naks[static_cast<std::size_t>(error)];
+    reply(bytes, asker.from);
+    log("answered a command request with a NAK (" + std::string(core::command::to_string(error)) +
+            ")",
+        asker.from, now);
+}
+
+void CommandResponder::answer(core::command::Request request, const Asker& asker,
                               core::MonoTime now, core::WallTime wall) {
+    const auto type = request.header.type;
+    const bool writing = type == core::command::PduType::write_request ||
+                         type == core::command::PduType::masked_write_request;
+    // A write from a source that may be forged is not taken (§9.7).
+    if (writing && !asker.proven) return challenge(request.header, asker, now);
     const auto views = views_(now, wall);
     auto answered = core::command::answer(request, node_, views);
+    auto& answered_count = counters_.requests[core::command::request_index(type)];
     if (auto* staged = std::get_if<core::command::StageWrites>(&answered)) {
-        return stage(std::move(request), std::move(*staged), from);
+        ++answered_count;
+        return stage(std::move(request), std::move(*staged), asker.from);
     }
     const auto& response = std::get<std::vector<std::byte>>(answered);
+    if (!asker.proven && response.size() > asker.request_size) {
+        return challenge(request.header, asker, now);
+    }
+    ++answered_count;
     if (std::to_integer<std::uint8_t>(response[5]) != 0) ++counters_.errors;
-    reply(response, from);
+    reply(response, asker.from);
+}
+
+void CommandResponder::challenge(const core::command::PduHeader& request, const Asker& asker,
+                                 core::MonoTime now) {
+    ++counters_.challenged;
+    reply(core::command::challenge(request, asker.request_size,
+                                   proof_.token(asker.from.address, now)),
+          asker.from);
 }
 
 void CommandResponder::stage(core::command::Request request, core::command::StageWrites writes,
@@ -109,7 +169,12 @@ void CommandResponder::stage(core::command::Request request, core::command::Stag
     write.reply.via = WriteOrigin::commands;
     write.reply.correlation_data = std::to_string(id);
     write.target = "UDP " + adapters::udp::to_string(from);
-    write.outcome = ExchangeWrite{writes.exchange, std::move(writes.writes)};
+    // A value the write checks refused goes the same way, to be counted by its reason.
+    if (writes.rejection) {
+        write.outcome = std::move(*writes.rejection);
+    } else {
+        write.outcome = ExchangeWrite{writes.exchange, std::move(writes.writes)};
+    }
     pending_.emplace(id, PendingWrite{std::move(request), from});
     staging_ = true;
     writes_->on_write(std::move(write));

@@ -38,10 +38,15 @@ void Gateway::make_commands() {
     command_socket_ = std::make_unique<adapters::udp::CommandSocket>(
         loop_.get_executor(), config_.eip.bind, commands.port);
     auto policy = command_policy(config_);
-    spdlog::info("commands: answering on UDP {}:{} to {}; writes {}; at most {} requests/s",
-                 config_.eip.bind, command_socket_->local_port(), describe(policy.allow),
-                 policy.writes ? "on" : "off", policy.max_requests_per_s);
-    if (policy.allow.empty()) {
+    spdlog::info(
+        "commands: answering on UDP {}:{} to {} (trusted without proof: {}); writes {}; at most "
+        "{} requests/s, {} per source",
+        config_.eip.bind, command_socket_->local_port(), describe(policy.allow),
+        describe(policy.trusted), policy.writes ? "on" : "off", policy.max_requests_per_s,
+        policy.max_requests_per_s_per_source);
+    if (policy.allow.empty() && commands.allow) {
+        spdlog::warn("commands: eip.commands.allow is empty: nobody is answered");
+    } else if (policy.allow.empty()) {
         spdlog::warn(
             "commands: no interface has eip.bind {}: nobody is answered until "
             "eip.commands.allow names the requesters",

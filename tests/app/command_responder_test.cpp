@@ -36,8 +36,10 @@ protected:
         views_[0].writable = true;
     }
 
+    /// The requester's subnet allowed and trusted (answered without proving its address).
     CommandPolicy policy(bool writes = false, std::uint32_t rate = 100) const {
-        return {{*core::command::parse_subnet("10.20.0.0/24")}, writes, rate};
+        const auto subnet = *core::command::parse_subnet("10.20.0.0/24");
+        return {{subnet}, writes, rate, {subnet}, 0};
     }
 
     CommandResponder make(CommandPolicy policy) {
@@ -125,6 +127,21 @@ TEST_F(CommandResponderTest, NaksGoToWhatCannotBeUnderstoodAndNothingToResponses
         responder.counters().naks[static_cast<std::size_t>(core::command::DecodeError::malformed)],
         1u);
     EXPECT_EQ(responder.counters().ignored, 3u);
+}
+
+TEST_F(CommandResponderTest, AResponseOrANakWithABadVersionOrLengthIsNotAnswered) {
+    auto responder = make(policy());
+    for (const auto hex :
+         {v::c15_nak, v::c2_retrieve_config_response, v::c4_capabilities_response}) {
+        auto bad_version = test::from_hex(hex);
+        bad_version[4] = std::byte{7};
+        responder.on_datagram(bad_version, {requester, 4000}, t0, core::WallTime{});
+        auto bad_length = test::from_hex(hex);
+        bad_length[6] = std::byte{0xFF};
+        responder.on_datagram(bad_length, {requester, 4000}, t0, core::WallTime{});
+    }
+    EXPECT_TRUE(sent_.empty());
+    EXPECT_EQ(responder.counters().ignored, 6u);
 }
 
 TEST_F(CommandResponderTest, WritesOffAreNotPermittedAndReachNoExchange) {

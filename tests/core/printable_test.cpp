@@ -15,5 +15,17 @@ TEST(Printable, ControlBytesAreEscapedAndLongTextIsCut) {
     EXPECT_EQ(printable("PRESSÃO"), "PRESSÃO");
 }
 
+TEST(Printable, TextANodeToldKeepsOnlyPrintableAscii) {
+    // An escape sequence, a C1 CSI, a YAML line break (U+2028 in UTF-8) and a newline.
+    const std::string told =
+        std::string("\x1b[2Jnode\x9b") + "31m\xe2\x80\xa8" + "eip:\n  commands: {}";
+    const auto shown = printable_ascii(told);
+    EXPECT_EQ(shown, "\\x1b[2Jnode\\x9b31m\\xe2\\x80\\xa8eip:\\x0a  commands: {}");
+    for (const char c : shown) {
+        EXPECT_TRUE(c >= 0x20 && c < 0x7F) << static_cast<int>(c);
+    }
+    EXPECT_EQ(printable_ascii(shown), shown);  // escaping twice changes nothing
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core

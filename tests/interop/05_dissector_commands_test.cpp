@@ -88,6 +88,8 @@ const std::vector<Expected> vectors = {
       {"exchange_id", "7"},
       {"nak.reason", "6"},
       {"nak.error", "malformed"}}},
+    {v::c16_challenge,
+     {{"type", "8"}, {"status", "9"}, {"request_id", "6"}, {"token", "0x00abcdef"}}},
 };
 
 TEST(DissectorCommands, DecodesEveryPduOfTheProtocolPage) {

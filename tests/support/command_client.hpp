@@ -1,7 +1,8 @@
 #pragma once
 /// A requester of the command protocol on UDP 7937 for integration tests (docs/protocol.md §9):
 /// sends a request to a port on 127.0.0.1 from its own socket and waits for the response that
-/// carries the request's id.
+/// carries the request's id. It meets a challenge as `discover` does (§9.7): the request goes
+/// again with the token, which every later request carries.
 
 #include <chrono>
 #include <cstdint>
@@ -25,7 +26,9 @@ public:
         core::command::PduHeader header;
         header.type = type;
         header.request_id = ++request_id_;
-        return core::command::encode(header, body);
+        auto bytes = core::command::encode(header, body);
+        if (token_) carry_token(bytes);
+        return bytes;
     }
 
     /// Sends `request` to `port` and returns the response with its id, or nullopt after
@@ -41,10 +44,15 @@ public:
     }
 
     UdpClient& udp() { return udp_; }
+    /// The token a challenge gave, if one came.
+    std::optional<std::uint32_t> token() const { return token_; }
 
 private:
+    void carry_token(std::vector<std::byte>& request) const;
+
     UdpClient udp_;
     std::uint16_t request_id_ = 0;
+    std::optional<std::uint32_t> token_;
 };
 
 }  // namespace eip2mqtt::test

@@ -299,24 +299,36 @@ void Loader::read_commands(const Node& node, const Mark& at, Config& config) {
                      if (const auto n = integer<std::uint32_t>(value, key, k, 1, 100000)) {
                          commands.max_requests_per_s = *n;
                      }
+                 } else if (key == "max_requests_per_s_per_source") {
+                     if (const auto n = integer<std::uint32_t>(value, key, k, 1, 100000)) {
+                         commands.max_requests_per_s_per_source = *n;
+                     }
                  } else if (key == "allow") {
-                     if (!value.is_sequence()) {
-                         error(k, "expected a list of subnets for 'allow' (10.20.0.0/24)");
-                         return;
-                     }
-                     for (std::size_t i = 0; i < value.size(); ++i) {
-                         const Node item = value.item(i);
-                         const auto s = text(item, key, mark(item));
-                         if (!s) continue;
-                         if (const auto subnet = core::command::parse_subnet(*s)) {
-                             commands.allow.push_back(*subnet);
-                         } else {
-                             error(mark(item), "allow " + in_quotes(*s) +
-                                                   " is not an IPv4 subnet (10.20.0.0/24)");
-                         }
-                     }
+                     commands.allow = subnets(value, key, k);
+                 } else if (key == "trusted") {
+                     commands.trusted = subnets(value, key, k);
                  }
              });
+}
+
+std::vector<core::command::Subnet> Loader::subnets(const Node& value, const std::string& key,
+                                                   const Mark& at) {
+    std::vector<core::command::Subnet> out;
+    if (!value.is_sequence()) {
+        error(at, "expected a list of subnets for " + in_quotes(key) + " (10.20.0.0/24)");
+        return out;
+    }
+    for (std::size_t i = 0; i < value.size(); ++i) {
+        const Node item = value.item(i);
+        const auto s = text(item, key, mark(item));
+        if (!s) continue;
+        if (const auto subnet = core::command::parse_subnet(*s)) {
+            out.push_back(*subnet);
+        } else {
+            error(mark(item), key + " " + in_quotes(*s) + " is not an IPv4 subnet (10.20.0.0/24)");
+        }
+    }
+    return out;
 }
 
 void Loader::read_metrics(const Node& node, const Mark& at, Config& config) {

@@ -167,6 +167,15 @@ void print_placeholders(const std::string& config_path, std::ostream& out) {
     }
 }
 
+/// What eip.commands leaves unanswered that a reader might not expect.
+void print_commands(const core::config::CommandsSection& commands, std::ostream& out) {
+    if (!commands.allow || !commands.allow->empty()) return;
+    const auto& at = commands.marks.of("allow");
+    out << at.file.str() << ":" << at.line << ":" << at.column
+        << ": warning: eip.commands.allow is empty: the command port answers nobody (leave "
+           "'allow' out for the subnets of eip.bind)\n";
+}
+
 }  // namespace
 
 int run_check(const std::string& config_path, std::ostream& out, std::ostream& err) {
@@ -190,6 +199,7 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
             << "\n";
     }
     print_placeholders(config_path, out);
+    print_commands(config->eip.commands, out);
     const core::plan::WarningContext context{config->mqtt.version == 3};
     const auto& sparkplug = config->sparkplug;
     std::optional<northbound::sparkplug::SparkplugBirthSizes> births;

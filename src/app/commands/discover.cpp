@@ -10,6 +10,7 @@
 #include "eip2mqtt/app/commands.hpp"
 #include "eip2mqtt/app/logging.hpp"
 #include "eip2mqtt/core/config/discovered_skeleton.hpp"
+#include "eip2mqtt/core/printable.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -44,7 +45,7 @@ DiscoveredNode discover_node(detail::CommandRequester& requester,
     auto capabilities = requester.ask(core::command::CapabilitiesRequest{}, node);
     if (capabilities) {
         out.capabilities = std::get<core::command::Capabilities>(capabilities->body);
-    } else if (capabilities.error() == requester.no_answer()) {
+    } else if (capabilities.error().starts_with(requester.no_answer())) {
         out.problem = capabilities.error();
         return out;
     }
@@ -59,6 +60,9 @@ DiscoveredNode discover_node(detail::CommandRequester& requester,
     }
     return out;
 }
+
+// What a node told, as it may reach a terminal: no escape sequence, no line of its own.
+std::string told(std::string_view text) { return core::printable_ascii(text, 400); }
 
 std::string cell(std::string text, std::size_t width) {
     if (text.size() < width) text.resize(width, ' ');
@@ -83,7 +87,7 @@ void print_exchange(const DiscoveredExchange& e, std::ostream& out) {
     out << "  " << cell(core::wire::to_string(e.cell.key.producer_id), 15)
         << cell(std::to_string(e.cell.key.exchange_id), 10);
     if (!e.config) {
-        out << "not retrieved: " << e.problem << "\n";
+        out << "not retrieved: " << told(e.problem) << "\n";
         return;
     }
     const auto& c = *e.config;
@@ -97,10 +101,10 @@ void print_exchange(const DiscoveredExchange& e, std::ostream& out) {
 void print_node(const DiscoveredNode& node, std::ostream& out) {
     out << node.address << ": ";
     if (!node.problem.empty()) {
-        out << node.problem << "\n";
+        out << told(node.problem) << "\n";
         return;
     }
-    out << (node.capabilities ? "\"" + node.capabilities->identification + "\"" : "?") << ", "
+    out << (node.capabilities ? "\"" + told(node.capabilities->identification) + "\"" : "?") << ", "
         << node.total << (node.total == 1 ? " exchange" : " exchanges") << "\n";
     if (node.exchanges.empty()) return;
     out << "  " << cell("producer_id", 15) << cell("exchange", 10) << cell("mode", 8)

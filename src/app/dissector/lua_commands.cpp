@@ -18,7 +18,7 @@ local pdu_types = {
 }
 local statuses = { [0] = "success", [1] = "unknown_exchange", [2] = "not_permitted",
   [3] = "out_of_range", [4] = "rejected", [5] = "signature_mismatch",
-  [6] = "unsupported_address", [7] = "no_data", [8] = "failed" }
+  [6] = "unsupported_address", [7] = "no_data", [8] = "failed", [9] = "prove_address" }
 local nak_reasons = { [1] = "oversized", [2] = "wrong_version", [3] = "wrong_length",
   [4] = "unknown_type", [5] = "truncated", [6] = "malformed" }
 local modes = { [1] = "produced", [2] = "consumed" }
@@ -70,6 +70,7 @@ local cf = {
   nak_reason = ProtoField.uint16(c("nak.reason"), "Reason", base.DEC, nak_reasons),
   nak_request = ProtoField.bytes(c("nak.request"), "Start of the request"),
   nak_error = ProtoField.string(c("nak.error"), "Error"),
+  token = ProtoField.uint32(c("token"), "Address token", base.HEX),
 }
 do
   local list = {}
@@ -207,6 +208,13 @@ function cmd.dissector(buf, pinfo, tree)
   root:add_le(cf.length, buf(6, 2))
   pinfo.cols.info = string.format("%s, request id %d", pdu_types[type] or
     string.format("PDU type %d", type), buf(2, 2):le_uint())
+  -- docs/protocol.md 9.7: a challenge (status 9) is the header and the token, no body.
+  if buf(5, 1):uint() == 9 and length <= 12 then
+    if length == 12 then root:add_le(cf.token, buf(8, 4)) end
+    pinfo.cols.info = string.format("%s, request id %d, challenge", pdu_types[type] or
+      string.format("PDU type %d", type), buf(2, 2):le_uint())
+    return length
+  end
   local body = bodies[type]
   if body == nil then return length end
   if length < sizes[type] or body(root, buf) == false then

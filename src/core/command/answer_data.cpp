@@ -66,7 +66,11 @@ Answer answer_data(const PduHeader& header, const DataPdu& pdu, const NodeInfo& 
     if (reading) return read(header, pdu, *view);
     auto writes =
         plan_write(*view->plan, view->image, pdu, header.type == PduType::masked_write_request);
-    if (!writes) return refuse(header, pdu, writes.error());
+    if (!writes) {
+        auto refusal = writes.error();
+        if (refusal.rejection) return StageWrites{view->plan, {}, std::move(refusal.rejection)};
+        return refuse(header, pdu, refusal.status);
+    }
     if (writes->empty()) return refuse(header, pdu, CommandStatus::success);
     return StageWrites{view->plan, std::move(writes).value()};
 }

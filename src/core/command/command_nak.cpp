@@ -34,6 +34,9 @@ std::optional<NakReply> make_nak(std::span<const std::byte> request, DecodeError
     const auto code = nak_code(error);
     if (!code || request.size() < header_size) return std::nullopt;
     detail::ByteReader in(request);
+    // §9.5: a response or a NAK is never answered, even one with a bad version or length, so
+    // that two nodes can never keep answering each other.
+    if (const auto type = pdu_type_of(in.u8(0)); type && !is_request(*type)) return std::nullopt;
     PduHeader header;
     header.type = PduType::nak;
     header.flag = in.u8(1);

@@ -43,9 +43,9 @@ write::WriteInput input_of(const plan::Value& value) {
 
 }  // namespace
 
-Result<std::vector<write::TagWrite>, CommandStatus> plan_write(const plan::ExchangePlan& plan,
-                                                               std::span<const std::byte> image,
-                                                               const DataPdu& pdu, bool masked) {
+Result<std::vector<write::TagWrite>, WriteRefusal> plan_write(const plan::ExchangePlan& plan,
+                                                              std::span<const std::byte> image,
+                                                              const DataPdu& pdu, bool masked) {
     std::vector<std::byte> next(image.begin(), image.end());
     next.resize(plan.length);
     Bits written(plan.length, 0);
@@ -64,7 +64,8 @@ Result<std::vector<write::TagWrite>, CommandStatus> plan_write(const plan::Excha
         if (tag.spec.writable) mark_tag(writable, tag.spec);
     }
     for (std::size_t i = 0; i < written.size(); ++i) {
-        if ((written[i] & ~writable[i]) != 0) return fail(CommandStatus::not_permitted);
+        if ((written[i] & ~writable[i]) != 0)
+            return fail(WriteRefusal{CommandStatus::not_permitted, std::nullopt});
     }
     std::vector<write::TagWrite> writes;
     for (std::size_t index = 0; index < plan.tags.size(); ++index) {
@@ -72,10 +73,12 @@ Result<std::vector<write::TagWrite>, CommandStatus> plan_write(const plan::Excha
         if (!tag.writable || !intersects(written, tag)) continue;
         const auto value = plan::decode_value(next, tag.type, tag.address);
         auto checked = write::validate_write(tag, input_of(value));
-        if (!checked) return fail(CommandStatus::rejected);
+        if (!checked) return fail(WriteRefusal{CommandStatus::rejected, checked.error()});
         writes.push_back({index, std::move(checked).value()});
     }
-    if (write::overlap_rejection(plan, writes)) return fail(CommandStatus::rejected);
+    if (auto overlap = write::overlap_rejection(plan, writes)) {
+        return fail(WriteRefusal{CommandStatus::rejected, std::move(*overlap)});
+    }
     return writes;
 }
 

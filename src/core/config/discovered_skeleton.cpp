@@ -6,6 +6,7 @@
 
 #include "core/config/detail/skeleton_lines.hpp"
 #include "eip2mqtt/core/config/skeleton.hpp"
+#include "eip2mqtt/core/printable.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::core::config {
@@ -19,6 +20,10 @@ using command::ExchangeMode;
 constexpr std::uint32_t min_period_ms = 2;
 constexpr std::uint32_t max_period_ms = 3600000;
 constexpr std::uint16_t max_length = 1400;
+
+// What a node told (a NAK's text...), as it may stand in a comment line: no line break, no
+// byte that would end the comment.
+std::string told(std::string_view text) { return printable_ascii(text, 400); }
 
 std::string key_text(const wire::ExchangeKey& key) {
     return wire::to_string(key.producer_id) + "/" + std::to_string(key.exchange_id);
@@ -96,13 +101,13 @@ std::string notes(std::span<const DiscoveredNode> nodes) {
     std::string out;
     for (const auto& node : nodes) {
         if (!node.problem.empty()) {
-            out += "# " + node.address + ": " + node.problem + "\n";
+            out += "# " + node.address + ": " + told(node.problem) + "\n";
             continue;
         }
         for (const auto& e : node.exchanges) {
             if (!e.config) {
                 out += "# " + key_text(e.cell.key) + " (" + node.address +
-                       "): not retrieved: " + e.problem + "\n";
+                       "): not retrieved: " + told(e.problem) + "\n";
             } else if (e.config->mode == ExchangeMode::consumed) {
                 out += "# " + key_text(e.cell.key) + ": consumed by " + node.address + " (" +
                        std::to_string(e.config->length) + " bytes every " +

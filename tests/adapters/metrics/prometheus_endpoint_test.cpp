@@ -131,6 +131,8 @@ TEST(PrometheusEndpoint, TheCommandResponderHasItsFamiliesOnlyWhenEnabled) {
     commands.errors = 1;
     commands.refused = 3;
     commands.dropped = 190;
+    commands.dropped_per_source = 150;
+    commands.challenged = 7;
     commands.naks[static_cast<std::size_t>(DecodeError::malformed)] = 4;
     commands.ignored = 6;
     s.gateway.commands = commands;
@@ -142,6 +144,8 @@ TEST(PrometheusEndpoint, TheCommandResponderHasItsFamiliesOnlyWhenEnabled) {
              "eip2mqtt_commands_errors_total 1",
              "eip2mqtt_commands_refused_total 3",
              "eip2mqtt_commands_dropped_total 190",
+             "eip2mqtt_commands_dropped_per_source_total 150",
+             "eip2mqtt_commands_challenged_total 7",
              R"(eip2mqtt_commands_naks_total{reason="malformed"} 4)",
              "eip2mqtt_commands_ignored_total 6",
          }) {

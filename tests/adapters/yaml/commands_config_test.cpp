@@ -36,9 +36,11 @@ TEST(CommandsConfig, OffByDefaultOnPort7937WithoutWrites) {
     const auto commands = commands_of("");
     EXPECT_FALSE(commands.enabled);
     EXPECT_EQ(commands.port, 7937);
-    EXPECT_TRUE(commands.allow.empty());  // the subnets of eip.bind, resolved at start
+    EXPECT_FALSE(commands.allow.has_value());  // the subnets of eip.bind, resolved at start
+    EXPECT_TRUE(commands.trusted.empty());
     EXPECT_FALSE(commands.writes);
     EXPECT_EQ(commands.max_requests_per_s, 100u);
+    EXPECT_EQ(commands.max_requests_per_s_per_source, 20u);
 }
 
 TEST(CommandsConfig, EveryKeyIsRead) {
@@ -49,14 +51,40 @@ TEST(CommandsConfig, EveryKeyIsRead) {
         "    port: 17937\n"
         "    allow: [ 10.20.0.7/24, 192.168.1.5 ]\n"
         "    writes: true\n"
-        "    max_requests_per_s: 20\n");
+        "    max_requests_per_s: 20\n"
+        "    trusted: [ 10.20.0.9 ]\n"
+        "    max_requests_per_s_per_source: 5\n");
     EXPECT_TRUE(commands.enabled);
     EXPECT_EQ(commands.port, 17937);
-    ASSERT_EQ(commands.allow.size(), 2u);
-    EXPECT_EQ(core::command::to_string(commands.allow[0]), "10.20.0.0/24");
-    EXPECT_EQ(core::command::to_string(commands.allow[1]), "192.168.1.5/32");
+    ASSERT_TRUE(commands.allow.has_value());
+    ASSERT_EQ(commands.allow->size(), 2u);
+    EXPECT_EQ(core::command::to_string((*commands.allow)[0]), "10.20.0.0/24");
+    EXPECT_EQ(core::command::to_string((*commands.allow)[1]), "192.168.1.5/32");
     EXPECT_TRUE(commands.writes);
     EXPECT_EQ(commands.max_requests_per_s, 20u);
+    ASSERT_EQ(commands.trusted.size(), 1u);
+    EXPECT_EQ(core::command::to_string(commands.trusted[0]), "10.20.0.9/32");
+    EXPECT_EQ(commands.max_requests_per_s_per_source, 5u);
+}
+
+TEST(CommandsConfig, AllowWrittenEmptyIsNobodyNotTheDefault) {
+    const auto commands = commands_of("eip:\n  commands: { enabled: true, allow: [] }\n");
+    ASSERT_TRUE(commands.allow.has_value());
+    EXPECT_TRUE(commands.allow->empty());
+}
+
+TEST(CommandsConfig, WrongTrustedAndPerSourceValuesAreNamedWhereTheyAre) {
+    const auto text = errors_of(
+        "eip:\n"
+        "  commands:\n"
+        "    trusted: [ 10.20.0.0/40 ]\n"
+        "    max_requests_per_s_per_source: 0\n"
+        "    allow: 10.0.0.0/8\n");
+    EXPECT_NE(text.find("3:16: trusted '10.20.0.0/40' is not an IPv4 subnet"), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("4:5: 'max_requests_per_s_per_source' 0 is outside 1.."), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("5:5: expected a list of subnets for 'allow'"), std::string::npos) << text;
 }
 
 TEST(CommandsConfig, WrongValuesAreNamedWhereTheyAre) {

@@ -74,8 +74,10 @@ eip:
     enabled: true
     port: 7937
     allow: [ 10.20.0.0/24 ]
+    trusted: [ 10.30.0.0/24 ]
     writes: false
     max_requests_per_s: 100
+    max_requests_per_s_per_source: 20
 metrics:
   listen: 127.0.0.1:9108
 sparkplug:
@@ -191,7 +193,10 @@ const std::vector<Edit> edits = {
     {"eip.commands.port", "port: 7937", "port: 7938"},
     {"eip.commands.allow", "10.20.0.0/24", "10.20.1.0/24"},
     {"eip.commands.writes", "writes: false", "writes: true"},
+    {"eip.commands.trusted", "10.30.0.0/24", "10.30.1.0/24"},
     {"eip.commands.max_requests_per_s", "max_requests_per_s: 100", "max_requests_per_s: 200"},
+    {"eip.commands.max_requests_per_s_per_source", "max_requests_per_s_per_source: 20",
+     "max_requests_per_s_per_source: 30"},
     {"metrics.listen", "127.0.0.1:9108", "127.0.0.1:9109"},
     {"sparkplug.group_id", "group_id: plant", "group_id: plant-b"},
     {"sparkplug.edge_node_id", "node-a", "node-b"},

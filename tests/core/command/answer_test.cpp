@@ -233,9 +233,12 @@ TEST_F(Answers, AWriteToAWritableWordIsStagedWithItsValue) {
 
 TEST_F(Answers, WriteChecksAreThoseOfAnMqttWrite) {
     node_.writes = true;
-    // 5000 is over the tag's max of 4000.
-    EXPECT_EQ(status_of(PduType::write_request, cells(out_, {{4, 2, bytes("8813")}})),
-              CommandStatus::rejected);
+    // 5000 is over the tag's max of 4000: refused by the write checks, with their reason, for
+    // the write handler to count and answer as an MQTT write's.
+    const auto refused = staged(PduType::write_request, cells(out_, {{4, 2, bytes("8813")}}));
+    EXPECT_TRUE(refused.writes.empty());
+    ASSERT_TRUE(refused.rejection.has_value());
+    EXPECT_EQ(refused.rejection->error, write::WriteError::above_max);
     // Byte 1 is a read-only tag; byte 6 is no tag at all; bits of byte 0 include read-only 0.1.
     EXPECT_EQ(status_of(PduType::write_request, cells(out_, {{1, 1, bytes("01")}})),
               CommandStatus::not_permitted);

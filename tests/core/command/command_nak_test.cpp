@@ -41,6 +41,23 @@ TEST(CommandNak, NothingIsAnsweredWithoutAHeaderOrToAResponse) {
         make_nak(from_hex(v::c2_retrieve_config_response), DecodeError::not_a_request).has_value());
 }
 
+TEST(CommandNak, AResponseOrANakWithABadVersionOrLengthIsNotAnswered) {
+    // §9.5: responses and NAKs are never answered, whatever else is wrong with them; two
+    // responders would otherwise NAK each other's NAKs for ever.
+    for (const auto hex : {v::c15_nak, v::c2_retrieve_config_response}) {
+        auto bad_version = from_hex(hex);
+        bad_version[4] = std::byte{2};
+        EXPECT_FALSE(make_nak(bad_version, decode_request(bad_version).error()).has_value());
+        auto bad_length = from_hex(hex);
+        bad_length[6] = std::byte{0xFF};
+        EXPECT_FALSE(make_nak(bad_length, decode_request(bad_length).error()).has_value());
+    }
+    // A request with a bad version is still NAKed.
+    auto request = from_hex(v::c9_read_request);
+    request[4] = std::byte{2};
+    EXPECT_TRUE(make_nak(request, DecodeError::wrong_version).has_value());
+}
+
 TEST(CommandNak, ANakIsNeverLargerThanFiftyTwoBytes) {
     // The longest reason name bounds a NAK: a reflected NAK cannot amplify much.
     for (const auto error : all_decode_errors) {

@@ -61,4 +61,7 @@ inline constexpr std::string_view c15_nak =
     "20000b0001002000000000000a000005"
     "6d616c666f726d656400";
 
+/// C16: the challenge to C5 from a requester that has not proved its address, token 0xABCDEF.
+inline constexpr std::string_view c16_challenge = "0800060001090c00efcdab00";
+
 }  // namespace eip2mqtt::test::command_vectors

@@ -85,5 +85,30 @@ TEST(DiscoveredSkeleton, NothingProducedIsNoList) {
     EXPECT_FALSE(has(text, "exchanges:\n"));
 }
 
+TEST(DiscoveredSkeleton, WhatANodeToldCannotLeaveItsCommentLine) {
+    // A NAK's text, as a hostile node sends it: a newline, then configuration.
+    const std::string nak =
+        "NAK x\neip: {commands: {enabled: true, writes: true, allow: [0.0.0.0/0]}}\r\x1b[2J";
+    DiscoveredNode node;
+    node.address = "10.20.0.7:7937";
+    node.problem = nak;
+    DiscoveredNode other;
+    other.address = "10.20.0.8:7937";
+    other.total = 1;
+    other.exchanges.push_back({{key(0x0A000009, 5)}, std::nullopt, nak});
+    const auto text = discovered_skeleton(std::vector{node, other});
+    EXPECT_FALSE(has(text, "\neip:")) << text;
+    EXPECT_FALSE(has(text, "\r")) << text;
+    EXPECT_FALSE(has(text, "\x1b")) << text;
+    EXPECT_TRUE(has(text, "# 10.20.0.7:7937: NAK x\\x0aeip: {commands:")) << text;
+    // Every line is a comment: nothing the node told became a key.
+    std::size_t start = 0;
+    while (start < text.size()) {
+        const auto end = text.find('\n', start);
+        EXPECT_EQ(text[start], '#') << text.substr(start, end - start);
+        start = end == std::string::npos ? text.size() : end + 1;
+    }
+}
+
 }  // namespace
 }  // namespace eip2mqtt::core::config

@@ -4,6 +4,7 @@
 /// writes a Write or Masked Write asks for.
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <variant>
 #include <vector>
@@ -21,6 +22,9 @@ namespace eip2mqtt::core::command {
 struct StageWrites {
     const plan::ExchangePlan* exchange = nullptr;
     std::vector<write::TagWrite> writes;
+    /// Set when the write checks refused a value: nothing to apply, but the refusal goes where
+    /// an MQTT write's does, to be counted by its reason and answered `rejected`.
+    std::optional<write::WriteRejection> rejection;
 };
 
 /// The bytes to send back, or writes to stage before answering.
@@ -28,7 +32,7 @@ using Answer = std::variant<std::vector<std::byte>, StageWrites>;
 
 /// The answer to `request`. Every response is built here, an error status included (an
 /// unknown exchange, a Read of data not there yet, a write refused); a write that passes every
-/// check becomes StageWrites.
+/// check, or that only the write checks refuse, becomes StageWrites.
 Answer answer(const Request& request, const NodeInfo& node,
               std::span<const ExchangeView> exchanges);
 

@@ -30,17 +30,23 @@ constexpr std::size_t request_index(PduType type) {
 }
 
 struct CommandCounters {
-    /// Requests understood and answered, by type.
+    /// Requests understood and answered with their response, by type (not those challenged).
     std::array<std::uint64_t, command_request_types.size()> requests{};
     /// Of those, answered with a non-zero status (an unknown exchange, a write refused...).
     std::uint64_t errors = 0;
     /// Datagrams from a source outside `allow`: never answered.
     std::uint64_t refused = 0;
-    /// Datagrams over `max_requests_per_s`: never answered.
+    /// Datagrams over `max_requests_per_s` or `max_requests_per_s_per_source`: never answered.
     std::uint64_t dropped = 0;
+    /// Of `dropped`, those over their source's own limit.
+    std::uint64_t dropped_per_source = 0;
+    /// Requests from requesters that have not proved their address (docs/protocol.md §9.7),
+    /// answered with a challenge: a write, or an answer larger than the request.
+    std::uint64_t challenged = 0;
     /// Requests that could not be understood, answered with a NAK, by reason.
     std::array<std::uint64_t, decode_error_count> naks{};
-    /// Datagrams not answered at all: no header, or a response or a NAK.
+    /// Datagrams not answered at all: no header, a response or a NAK, or a request whose NAK
+    /// would be larger than it, from a requester that has not proved its address.
     std::uint64_t ignored = 0;
 };
 
@@ -64,7 +70,7 @@ inline std::string_view nak_key(std::size_t index) {
 using CommandCounterField = GatewayCounterField<CommandCounters>;
 
 // clang-format off
-inline constexpr std::array<CommandCounterField, 6> command_counter_fields{{
+inline constexpr std::array<CommandCounterField, 8> command_counter_fields{{
     {"requests",
      [](const CommandCounters& c) { return std::span<const std::uint64_t>(c.requests); },
      in_metrics_topic | in_prometheus, "Command requests answered, by type", request_key, "type"},
@@ -75,13 +81,22 @@ inline constexpr std::array<CommandCounterField, 6> command_counter_fields{{
      "Command datagrams from sources outside eip.commands.allow, unanswered"},
     {"dropped", [](const CommandCounters& c) { return one(c.dropped); },
      in_metrics_topic | in_prometheus,
-     "Command datagrams over eip.commands.max_requests_per_s, unanswered"},
+     "Command datagrams over eip.commands.max_requests_per_s or its per-source limit, "
+     "unanswered"},
+    {"dropped_per_source", [](const CommandCounters& c) { return one(c.dropped_per_source); },
+     in_metrics_topic | in_prometheus,
+     "Command datagrams over eip.commands.max_requests_per_s_per_source, unanswered"},
+    {"challenged", [](const CommandCounters& c) { return one(c.challenged); },
+     in_metrics_topic | in_prometheus,
+     "Command requests from requesters that have not proved their address, answered with a "
+     "challenge"},
     {"naks", [](const CommandCounters& c) { return std::span<const std::uint64_t>(c.naks); },
      in_metrics_topic | in_prometheus, "Command requests answered with a NAK, by reason", nak_key,
      "reason"},
     {"ignored", [](const CommandCounters& c) { return one(c.ignored); },
      in_metrics_topic | in_prometheus,
-     "Command datagrams without a header, or not requests, unanswered"},
+     "Command datagrams without a header, not requests, or NAKs larger than an unproven "
+     "request, unanswered"},
 }};
 // clang-format on
 

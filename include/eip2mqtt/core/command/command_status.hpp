@@ -29,11 +29,14 @@ enum class CommandStatus : std::uint8_t {
     no_data = 7,
     /// The write was accepted but its datagram or its image could not be sent or saved.
     failed = 8,
+    /// The requester has not proved its address (§9.7) and the answer would be larger than its
+    /// request, or it asked to write: the response carries the token to ask again with.
+    prove_address = 9,
 };
 
 inline constexpr auto command_status_names = enum_names<CommandStatus>(
     "success", "unknown_exchange", "not_permitted", "out_of_range", "rejected",
-    "signature_mismatch", "unsupported_address", "no_data", "failed");
+    "signature_mismatch", "unsupported_address", "no_data", "failed", "prove_address");
 
 constexpr std::string_view to_string(CommandStatus status) {
     return command_status_names.name_of(status);

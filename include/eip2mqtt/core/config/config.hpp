@@ -121,16 +121,24 @@ struct MulticastGroup {
 struct CommandsSection {
     bool enabled = false;  ///< nothing listens on the port unless asked
     std::uint16_t port = 7937;
-    /// The requesters answered; empty: the subnets of `eip.bind`'s interfaces (resolved at
-    /// start, when the interfaces are known).
-    std::vector<command::Subnet> allow;
+    /// The requesters answered (an address filter: it authenticates no one). Not written: the
+    /// subnets of `eip.bind`'s interfaces (resolved at start, when the interfaces are known);
+    /// written empty (`allow: []`): nobody.
+    std::optional<std::vector<command::Subnet>> allow;
+    /// Requesters answered in full without proving their address (§9.7): tools that cannot
+    /// carry a token. A forged source inside them is answered in full, and may write.
+    std::vector<command::Subnet> trusted;
     bool writes = false;  ///< Write and Masked Write; off: answered `not_permitted`
     std::uint32_t max_requests_per_s = 100;  ///< beyond: dropped unanswered, and counted
+    /// The same for each requester address, so that one cannot spend every other's share.
+    std::uint32_t max_requests_per_s_per_source = 20;
     Marks marks;
 
     friend bool operator==(const CommandsSection& a, const CommandsSection& b) {
         return a.enabled == b.enabled && a.port == b.port && a.allow == b.allow &&
-               a.writes == b.writes && a.max_requests_per_s == b.max_requests_per_s;
+               a.trusted == b.trusted && a.writes == b.writes &&
+               a.max_requests_per_s == b.max_requests_per_s &&
+               a.max_requests_per_s_per_source == b.max_requests_per_s_per_source;
     }
 };
 

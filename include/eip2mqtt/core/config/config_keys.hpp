@@ -128,12 +128,15 @@ inline constexpr std::array<ConfigKey<EipSection>, 7> eip{{
 
 /// `eip.commands`: the responder's socket is opened at start; who it answers, how often, and
 /// whether it writes are applied live.
-inline constexpr std::array<ConfigKey<CommandsSection>, 5> commands{{
+inline constexpr std::array<ConfigKey<CommandsSection>, 7> commands{{
     {"enabled", restart, differs<&CommandsSection::enabled>},
     {"port", restart, differs<&CommandsSection::port>},
     {"allow", live, differs<&CommandsSection::allow>},
+    {"trusted", live, differs<&CommandsSection::trusted>},
     {"writes", live, differs<&CommandsSection::writes>},
     {"max_requests_per_s", live, differs<&CommandsSection::max_requests_per_s>},
+    {"max_requests_per_s_per_source", live,
+     differs<&CommandsSection::max_requests_per_s_per_source>},
 }};
 
 /// An entry of `eip.multicast`: a change to it is a change to the list.

@@ -2,10 +2,13 @@
 // Asks nodes on the command port and waits for each answer (`discover`; docs/protocol.md §9):
 // one request at a time, each sent again after `timeout` up to `attempts` times. An answer is
 // taken from any port of the node's address (responders may answer from another port than
-// 7937) when it carries the request's id and is its response or a NAK.
+// 7937) when it answers the request asked (core::command::answers_request): its id, its type
+// or a NAK, and the exchange or page asked for. A challenge (§9.7) is met once per request: the
+// request goes again carrying the token, which later requests to that node carry too.
 
 #include <boost/asio/io_context.hpp>
 #include <chrono>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -21,7 +24,8 @@ public:
     CommandRequester(std::chrono::milliseconds timeout, int attempts);
 
     /// The answer of `node` to `body`, or why there is none: no answer after every attempt, a
-    /// NAK with its reason, or the status of an error response.
+    /// NAK with its reason, or the status of an error response. Text the node told is escaped
+    /// (core::printable_ascii).
     template <class Body>
     core::Result<core::command::Response, std::string> ask(const Body& body,
                                                            const adapters::udp::Endpoint& node) {
@@ -35,7 +39,9 @@ public:
 
 private:
     core::Result<core::command::Response, std::string> exchange(
-        const std::vector<std::byte>& request, const adapters::udp::Endpoint& node);
+        std::vector<std::byte> request, const adapters::udp::Endpoint& node);
+    /// Sends `request_` up to `attempts_` times until an answer or a challenge comes.
+    void attempt(const adapters::udp::Endpoint& node);
     void on_datagram(std::span<const std::byte> datagram, const adapters::udp::Endpoint& from);
 
     std::chrono::milliseconds timeout_;
@@ -43,10 +49,15 @@ private:
     boost::asio::io_context io_;
     adapters::udp::CommandSocket socket_;
     std::uint16_t request_id_ = 0;
+    /// The token each node gave in a challenge, by address.
+    std::map<std::uint32_t, std::uint32_t> tokens_;
     // What the answer must match while a request waits.
     std::uint32_t node_address_ = 0;
-    core::command::PduType expected_ = core::command::PduType::nak;
+    std::vector<std::byte> request_bytes_;
+    std::optional<core::command::Request> request_;
     std::optional<core::command::Response> answer_;
+    std::optional<std::uint32_t> challenge_;
+    std::size_t mismatched_ = 0;  ///< answers from the node that were not to this request
 };
 
 }  // namespace eip2mqtt::app::detail
