@@ -68,8 +68,9 @@ void TcpProxy::run() {
         // Stalled, nothing is watched: the poll only paces the checks of the flags.
         if (!stalled_) {
             fds.push_back({listener_, POLLIN, 0});
+            const short upstream = upstream_stalled_ ? 0 : POLLIN;
             for (const auto& link : links_) {
-                fds.push_back({link.client, POLLIN, 0});
+                fds.push_back({link.client, upstream, 0});
                 fds.push_back({link.server, POLLIN, 0});
             }
         }
@@ -83,8 +84,10 @@ void TcpProxy::run() {
         for (std::size_t i = 0; i < links_.size(); ++i) {
             const auto& link = links_[i];
             // A link accepted in this round has no poll entry yet: kept as it is.
-            const bool up = i >= polled || ((!ready(1 + 2 * i) || pass(link.client, link.server)) &&
-                                            (!ready(2 + 2 * i) || pass(link.server, link.client)));
+            const bool up =
+                i >= polled ||
+                ((!ready(1 + 2 * i) || upstream_stalled_ || pass(link.client, link.server)) &&
+                 (!ready(2 + 2 * i) || pass(link.server, link.client)));
             if (up) {
                 open.push_back(link);
             } else {

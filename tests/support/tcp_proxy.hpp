@@ -22,7 +22,13 @@ public:
     std::uint16_t port() const { return port_; }
     /// From now on nothing passes and no connection is taken (the kernel's backlog holds them).
     void stall() { stalled_ = true; }
-    void resume() { stalled_ = false; }
+    /// From now on nothing passes from the connections' clients to the upstream port; what
+    /// the upstream sends still passes (a cut in one direction).
+    void stall_upstream() { upstream_stalled_ = true; }
+    void resume() {
+        stalled_ = false;
+        upstream_stalled_ = false;
+    }
     /// Connections taken since the start.
     std::size_t connections() const { return connections_; }
 
@@ -40,6 +46,7 @@ private:
     std::uint16_t upstream_port_;
     std::uint16_t port_ = 0;
     std::atomic<bool> stalled_{false};
+    std::atomic<bool> upstream_stalled_{false};
     std::atomic<bool> stop_{false};
     std::atomic<std::size_t> connections_{0};
     std::vector<Link> links_;  ///< the proxy's thread only

@@ -74,6 +74,10 @@ void PairLease::on_acknowledged(std::uint64_t token) { lease_.on_acknowledged(ti
 
 void PairLease::tick(core::MonoTime now) {
     if (auto record = lease_.tick(now)) {
+        if (record->claim && record->epoch != claimed_epoch_) {
+            claimed_epoch_ = record->epoch;
+            spdlog::info("pair: claiming the lead, epoch {}", record->epoch);
+        }
         if (!record->claim && bd_seq_source_) record->bd_seq = bd_seq_source_();
         message_.topic = topics_.leader;
         message_.payload = encode_leader_record(
@@ -89,9 +93,15 @@ void PairLease::tick(core::MonoTime now) {
 
 void PairLease::follow_role(core::MonoTime now) {
     const auto role = lease_.role(now);
+    if (role == Role::leader && role_ == Role::leader && lease_.epoch() != led_epoch_) {
+        led_epoch_ = lease_.epoch();
+        spdlog::warn("pair: a stale claim renewed over, leading on under epoch {}", led_epoch_);
+        if (on_epoch_raised_) on_epoch_raised_();
+    }
     if (role == role_) return;
     role_ = role;
     if (role == Role::leader) {
+        led_epoch_ = lease_.epoch();
         spdlog::info("pair: leading, epoch {}", lease_.epoch());
     } else {
         spdlog::warn(
