@@ -57,14 +57,14 @@ void PairLease::on_connected() { publish_role(role_); }
 void PairLease::on_message(const adapters::mqtt::Incoming& message, core::MonoTime now) {
     if (message.topic != topics_.leader) return;
     const auto record = decode_leader_record(message.payload, &heard_);
-    lease_.on_record(record, now);
+    const bool followed = lease_.on_record(record, now);
     if (record && record->bd_seq && record->epoch >= lease_.epoch()) {
         heard_bd_seq_ = record->bd_seq;
     }
-    // The renewals of the leader this unit follows: a claim has acknowledged nothing yet, and
-    // this unit's own record (one from before a restart) says nothing of the other's.
-    if (watermarks_heard_ && record && !record->claim && record->id != lease_.own_record().id &&
-        record->id == lease_.leader_id() && record->epoch == lease_.epoch()) {
+    // The renewals of the leader this unit follows (below the epoch a failed claim of its own
+    // raised, too): a claim has acknowledged nothing yet, and a deposed leader's renewal,
+    // late, is not followed.
+    if (watermarks_heard_ && followed && !record->claim) {
         watermarks_heard_(std::move(heard_));
     }
     follow_role(now);

@@ -76,26 +76,28 @@ void Lease::stand_by(MonoTime now) {
     reassert_ = false;
 }
 
-void Lease::on_record(const std::optional<LeaderRecord>& record, MonoTime now) {
+bool Lease::on_record(const std::optional<LeaderRecord>& record, MonoTime now) {
     // An empty record (a will) says nothing the time since the last record does not.
-    if (!record) return;
+    if (!record) return false;
     if (record->id == settings_.id) {
         // Our own, or one from before a restart: its epoch is spent either way.
         epoch_ = std::max(epoch_, record->epoch);
-        return;
+        return false;
     }
     if (record->claim && state_ == State::leader && !fenced(now) && stale(*record)) {
         // Made while its claimant could not hear this leader: renewed over at once, under the
         // claim's epoch if higher, so that the claimant gives way to a renewal of its own.
         if (record->epoch >= epoch_) reassert_ = true;
         epoch_ = std::max(epoch_, record->epoch);
-        return;
+        return false;
     }
     const bool newer = record->epoch > epoch_;
     const bool same_and_gives_way = record->epoch == epoch_ && gives_way(*record);
     // The leader it follows renews still: whatever its own failed claim raised its epoch to.
     const bool still_heard = state_ == State::standby && renews_after(*record, heard_);
-    if (newer || same_and_gives_way || still_heard) follow(*record, now);
+    if (!newer && !same_and_gives_way && !still_heard) return false;
+    follow(*record, now);
+    return true;
 }
 
 void Lease::on_acknowledged(MonoTime sent_at) {

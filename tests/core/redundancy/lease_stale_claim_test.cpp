@@ -173,7 +173,7 @@ TEST(LeaseStaleClaimTest, AStandbyFollowsItsLeaderRenewingBelowTheEpochItsFailed
         const auto renewal = pair.a.tick(at);
         ASSERT_TRUE(renewal.has_value());
         pair.a.on_acknowledged(at);
-        pair.b.on_record(*renewal, at);
+        EXPECT_TRUE(pair.b.on_record(*renewal, at)) << at - t0;  // followed: its watermarks
         EXPECT_FALSE(pair.b.tick(at + 1ms).has_value()) << at - t0;
         EXPECT_EQ(pair.b.leader_id(), "a");
         EXPECT_EQ(pair.b.writes(at + 1ms), WritePolicy::leave_to_leader);

@@ -114,8 +114,9 @@ public:
     /// Whether the pair connection is up, as of `now` (asked before each tick): while it is
     /// down, no claim; once it is up again, a standby waits T - R before it claims.
     void on_connection(bool up, MonoTime now);
-    /// A record read on the leader topic; nullopt for an empty (cleared) one.
-    void on_record(const std::optional<LeaderRecord>& record, MonoTime now);
+    /// A record read on the leader topic; nullopt for an empty (cleared) one. Returns whether
+    /// this unit follows it (another unit's record that it now takes as the lead).
+    bool on_record(const std::optional<LeaderRecord>& record, MonoTime now);
     /// The broker acknowledged the publication made at `sent_at` (a claim or a renewal).
     void on_acknowledged(MonoTime sent_at);
     /// Advances time: steps down when fenced, claims when the leader is gone, confirms a claim.
