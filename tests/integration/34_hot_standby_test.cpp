@@ -293,8 +293,8 @@ TEST_F(CutOffHotStandbyTest, ALeaderCutOffFromTheBrokerStopsBeforeTheStandbyTake
 
     const auto from = recorder_->count();
     proxies_[leader]->stall();
-    // A write in flight at the cut: the leader cannot hear it; the standby refuses it until it
-    // leads, then takes it. Answered once either way.
+    // A write in flight at the cut: the leader cannot hear it; the standby leaves it to the
+    // leader, then settles it as it leads. Answered once either way.
     recorder_->publish("test/sp/SPEED_SP/set", "3100");
     ASSERT_TRUE(says(standby, "leader", from));
     EXPECT_EQ(record_of(standby, from).value("epoch", 0), epoch + 1);
