@@ -101,6 +101,31 @@ std::size_t ExchangeProducer::cancel_queued_writes(std::optional<std::string_vie
     return ids.size();
 }
 
+std::vector<WriteRequest> ExchangeProducer::take_queued_writes() {
+    std::vector<core::write::WriteBatch> batches;
+    image_.take_pending(batches);
+    std::vector<WriteRequest> taken;
+    if (batches.empty()) return taken;
+    for (auto& batch : batches) {
+        auto reply = take_reply(batch.id);
+        if (!reply) continue;
+        // Answered on `{set topic}/result`, or on its response topic (PairWrites tells them so).
+        auto target = reply->topic;
+        if (target.ends_with("/result")) target.resize(target.size() - 7);
+        taken.push_back({std::move(*reply),
+                         std::move(target),
+                         ExchangeWrite{plan_.get(), std::move(batch.writes)},
+                         {}});
+    }
+    spdlog::warn(
+        "exchange {}: {} queued write(s) left to the unit that leads next: never produced here",
+        plan_->spec.name, batches.size());
+    if (batches.front().id <= saved_through_) {
+        persister_.save(adapters::state::ImagePersister::unattended, file_, image_.data());
+    }
+    return taken;
+}
+
 std::optional<core::write::WriteRejection> ExchangeProducer::stage(
     std::vector<core::write::TagWrite> writes, WriteReply reply, core::MonoTime now) {
     for (const auto& write : writes) {

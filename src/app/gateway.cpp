@@ -10,6 +10,7 @@
 
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/app/mqtt_settings.hpp"
+#include "eip2mqtt/core/redundancy/acked_watermarks.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 
 namespace eip2mqtt::app {
@@ -61,12 +62,15 @@ Gateway::Gateway(core::config::Config config)
     auto mqtt_options = mqtt_client_options(config_, availability_topic_);
     if (config_.redundancy.enabled()) {
         // The unit's own topics (state, metrics, role) and the exchanges' `_meta` are said by
-        // both units; the tree's retained values and `_values` by the leader alone.
-        mqtt_options.may_send = pair_may_send(
-            [gateway = config_.mqtt.base_topic + "/_gateway/"](const adapters::mqtt::Message& m) {
-                return (m.retain || m.batch_lane) && !m.historical &&
-                       !m.topic.starts_with(gateway) && !m.topic.ends_with("/_meta");
-            });
+        // both units; the tree's retained values, `_values` and a takeover's `_history` replay
+        // (its tokens are the pair's) by the leader alone. Store and forward's `_history` goes
+        // whoever leads: each unit replays what it journaled.
+        mqtt_options.may_send = pair_may_send([gateway = config_.mqtt.base_topic + "/_gateway/"](
+                                                  const adapters::mqtt::Message& m) {
+            const bool leaders = m.historical ? core::redundancy::AckedWatermarks::owns(m.ack_token)
+                                              : m.retain || m.batch_lane;
+            return leaders && !m.topic.starts_with(gateway) && !m.topic.ends_with("/_meta");
+        });
     }
     mqtt_ = std::make_unique<adapters::mqtt::Client>(loop_.get_executor(), std::move(mqtt_options));
     json_tree_ = std::make_unique<northbound::json_tree::JsonTree>(
@@ -237,6 +241,7 @@ void Gateway::on_tick() {
     const auto now = std::chrono::steady_clock::now();
     const auto wall = std::chrono::system_clock::now();
     if (pair_) {
+        pair_->on_connection(pair_mqtt_->connected(), now);
         pair_->tick(now);
         refresh_leading_until();
     }

@@ -45,6 +45,11 @@ void Gateway::make_pair() {
     pair_ = std::make_unique<redundancy::PairLease>(
         std::move(settings), std::move(topics), *pair_mqtt_, std::chrono::steady_clock::now(),
         [this](core::redundancy::Role role) { on_role(role); });
+    pair_->set_on_epoch_raised([this] {
+        for (const auto& producer : exchanges_.producers()) {
+            pair_images_->publish(*producer, pair_->lease().epoch());
+        }
+    });
     if (sparkplug_) pair_->set_bd_seq_source([this] { return sparkplug_->session_bd_seq(); });
     northbound_.set_gate([this] { return pair_->leading(std::chrono::steady_clock::now()); });
     make_pair_writes();
@@ -80,6 +85,8 @@ void Gateway::make_pair_history() {
             return stats.queued + stats.in_flight;
         },
         system_clock());
+    pair_history_->set_replay_gate(
+        [this] { return pair_->lease().renewed_since_leading(std::chrono::steady_clock::now()); });
     northbound_.set_tap(*pair_history_);
     json_tree_->set_pair(
         [this](const SampleBatch& batch) { return pair_history_->token_for(batch); });
@@ -150,8 +157,6 @@ void Gateway::start_pair() {
 
 void Gateway::on_role(core::redundancy::Role role) {
     const auto now = std::chrono::steady_clock::now();
-    const auto lapsed_at = std::chrono::steady_clock::time_point(
-        std::chrono::steady_clock::duration(leading_until_.load(std::memory_order_acquire)));
     // Before anything is said as leader (the republish), or so that nothing more is.
     refresh_leading_until();
     if (role == core::redundancy::Role::leader) {
@@ -176,22 +181,30 @@ void Gateway::on_role(core::redundancy::Role role) {
     }
     end_sparkplug_session();
     if (pair_history_) pair_history_->stood_by();
-    step_down_writes(now, lapsed_at);
+    step_down_writes(now);
 }
 
-void Gateway::step_down_writes(core::MonoTime now, core::MonoTime lapsed_at) {
+void Gateway::step_down_writes(core::MonoTime now) {
     // Accepted and produced, but the broker had not acknowledged the image carrying them: a
     // unit taking over settles them by the image it has.
     pair_images_->withhold_answers();
     // Accepted and not produced: never produced by this unit, not even should it lead again
-    // (the new leader may have taken them). Answered `standby` if this unit stepped down as
-    // its lease lapsed, before any other may have claimed; else the unit that took the lead
-    // settles them, which a second answer here would contradict.
-    const bool in_time = now >= lapsed_at && now < lapsed_at + pair_->lease().renew_interval() / 4;
+    // (the new leader may have taken them). An answer now could contradict the unit that
+    // takes the lead, which settles them too (the other unit left them: it heard them), and a
+    // unit cut off would say it only once its path is back, after that one. So they are left
+    // as the other unit left them: whichever leads next settles them, and this unit forgets
+    // each once it hears the answer. The command port's and Sparkplug's reach this unit
+    // alone: answered `standby`.
     std::size_t cancelled = 0;
     for (const auto& producer : exchanges_.producers()) {
-        cancelled += producer->cancel_queued_writes(
-            in_time ? std::optional<std::string_view>("standby") : std::nullopt);
+        for (auto& request : producer->take_queued_writes()) {
+            ++cancelled;
+            if (request.reply.via == core::write::WriteOrigin::mqtt) {
+                pair_writes_->leave(std::move(request), now);
+            } else if (request.reply.origin) {
+                request.reply.origin->write_result(request.reply, "standby");
+            }
+        }
     }
     writes_.count_cancelled(cancelled);
 }

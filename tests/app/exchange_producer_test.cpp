@@ -185,6 +185,27 @@ TEST_F(ExchangeProducerTest, QueuedWritesLeftToAnotherUnitAreDroppedUnansweredNe
         core::plan::Value{std::int64_t{0}});
 }
 
+TEST_F(ExchangeProducerTest, QueuedWritesTakenForThePairAreUnansweredAndCarryWhatTheyWrote) {
+    write("a", 5);
+    write("b", 6);
+    const auto taken = producer_->take_queued_writes();
+    ASSERT_EQ(taken.size(), 2u);
+    EXPECT_EQ(taken[0].reply.topic, "reply/a");
+    EXPECT_EQ(taken[0].reply.correlation_data, "a");
+    const auto* write = std::get_if<ExchangeWrite>(&taken[1].outcome);
+    ASSERT_NE(write, nullptr);
+    EXPECT_EQ(write->producer, &producer_->plan());
+    ASSERT_EQ(write->writes.size(), 1u);
+    EXPECT_EQ(write->writes[0].value, core::plan::Value{std::int64_t{6}});
+    EXPECT_TRUE(producer_->take_queued_writes().empty());
+    produce_once();
+    persister_->flush();
+    EXPECT_TRUE(results().empty());
+    EXPECT_EQ(
+        core::plan::decode_value(producer_->image().data(), core::plan::TagType::dint, {0, 0}),
+        core::plan::Value{std::int64_t{0}});
+}
+
 TEST_F(ExchangeProducerTest, AnAnswerGateHoldsOkUntilItRunsTheAnswer) {
     std::vector<std::function<void()>> held;
     producer_->set_answer_gate([&](const ExchangeProducer& producer, std::function<void()> answer) {

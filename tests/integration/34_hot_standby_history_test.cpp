@@ -21,6 +21,7 @@
 #include "tests/support/paced_producer.hpp"
 #include "tests/support/pair_fixture.hpp"
 #include "tests/support/schema_check.hpp"
+#include "tests/support/tcp_proxy.hpp"
 
 namespace eip2mqtt::test {
 namespace {
@@ -58,6 +59,7 @@ class HotStandbyHistoryTest : public PairTest {
 protected:
     void SetUp() override {
         broker_ = std::make_unique<Mosquitto>();
+        before_start();
         recorder_ = std::make_unique<MqttRecorder>(
             broker_->url(),
             std::vector<std::string>{values_topic, history_topic, leader_topic,
@@ -69,9 +71,11 @@ protected:
                                   .tag("COUNTER", "0.0", "udint")
                                   .str();
         start_units([&](const std::string& id, std::uint16_t port) {
-            return unit_config(id, broker_->url(), port, exchange, ", batch: true");
+            return unit_config(id, broker_url(id), port, exchange, ", batch: true");
         });
     }
+    virtual void before_start() {}
+    virtual std::string broker_url(const std::string&) const { return broker_->url(); }
     void TearDown() override {
         producer_.reset();
         PairTest::TearDown();
@@ -208,6 +212,64 @@ TEST_F(HotStandbyHistoryTest, EveryValueArrivesOnceAcrossAKillOfTheLeader) {
               << new_run.front() << "\n";
     expect_historical(all);
     expect_counted(standby, history.size());
+}
+
+/// The standby reaches the broker through a proxy the test cuts in one direction: what it
+/// sends goes nowhere, what the broker sends it still comes.
+class CutOffHistoryTest : public HotStandbyHistoryTest {
+protected:
+    void before_start() override {
+        for (const std::string id : {"gw-a", "gw-b"}) {
+            proxies_[id] = std::make_unique<TcpProxy>(broker_->port());
+        }
+    }
+    std::string broker_url(const std::string& id) const override {
+        return "tcp://127.0.0.1:" + std::to_string(proxies_.at(id)->port());
+    }
+    std::map<std::string, std::unique_ptr<TcpProxy>> proxies_;
+};
+
+TEST_F(CutOffHistoryTest, AUnitThatLedCutOffNeverReplaysOnceThePathIsBack) {
+    const auto old = first_leader();
+    ASSERT_FALSE(old.empty()) << "nobody leads";
+    const auto standby = other(old);
+    ASSERT_TRUE(says(standby, "standby"));
+    start_counter();
+    ASSERT_TRUE(values_reach(50));
+    ASSERT_TRUE(renewal_with_watermark(old).has_value());
+
+    const auto killed = recorder_->count();
+    gateways_[old]->signal(SIGKILL);
+    ASSERT_TRUE(gateways_[old]->wait(10s).has_value());
+    gateways_[old].reset();
+    // Its claim reached the broker, which acknowledges it; nothing it sends from now on does.
+    ASSERT_TRUE(recorder_->wait_for_message(
+        leader_topic,
+        [&](const std::string& p) {
+            const auto j = json::parse(p, nullptr, false);
+            return j.is_object() && j.value("id", "") == standby && j.contains("claim");
+        },
+        10s, killed));
+    proxies_[standby]->stall_upstream();
+    // It leads on that claim, cut off, until its lease lapses: its takeover's replay, if it
+    // made one, waits in its connection.
+    ASSERT_TRUE(gateways_[standby]->wait_for_output("pair: leading, epoch", 10s));
+    ASSERT_TRUE(gateways_[standby]->wait_for_output("pair: standing by", 10s));
+    const auto back = recorder_->count();
+    proxies_[standby]->resume();
+    // It takes over again, reaching the broker this time, and replays then.
+    ASSERT_TRUE(values_reach(producer_->last() + 25, back));
+    const auto last = producer_->pause();
+    ASSERT_TRUE(values_reach(last, back));
+    ASSERT_TRUE(recorder_->wait_for(
+        [&](const std::vector<Received>& all) { return !counters_on(all, history_topic).empty(); },
+        10s))
+        << "nothing on _history";
+    const auto history = counters_on(recorder_->messages(), history_topic);
+    // One replay: each sample once, in order (the replay of the leadership cut off, delivered
+    // once the path was back, would repeat them and go back in time).
+    EXPECT_TRUE(consecutive(history)) << ::testing::PrintToString(history);
+    expect_historical(recorder_->messages());
 }
 
 }  // namespace

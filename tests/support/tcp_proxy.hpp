@@ -31,7 +31,17 @@ public:
     std::uint16_t port() const { return port_; }
     /// From now on nothing passes and no connection is taken (the kernel's backlog holds them).
     void stall() { stalled_ = true; }
-    void resume() { stalled_ = false; }
+    /// From now on nothing passes from the connections' clients to the upstream port; what
+    /// the upstream sends still passes (a cut in one direction).
+    void stall_upstream() {
+        upstream_stalled_ = true;
+        set_mode(Direction::to_server, Mode::stall);
+    }
+    /// Ends stall() and stall_upstream(); modes set by set_mode() stay.
+    void resume() {
+        stalled_ = false;
+        if (upstream_stalled_.exchange(false)) set_mode(Direction::to_server, Mode::pass);
+    }
     /// Connections taken since the start.
     std::size_t connections() const { return connections_; }
 
@@ -72,6 +82,7 @@ private:
     std::atomic<bool> stalled_{false};
     std::array<std::atomic<Mode>, 2> modes_{Mode::pass, Mode::pass};
     std::array<std::atomic<long>, 2> delays_ms_{0, 0};
+    std::atomic<bool> upstream_stalled_{false};
     std::atomic<bool> stop_{false};
     std::atomic<std::size_t> connections_{0};
     std::vector<Link> links_;  ///< the proxy's thread only

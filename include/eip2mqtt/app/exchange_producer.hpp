@@ -76,6 +76,11 @@ public:
     /// before destroying the producer, and they get `{"ok":true}`. A queued write saved ahead
     /// of its production is taken out of the file again (the image is saved as produced).
     std::size_t cancel_queued_writes(std::optional<std::string_view> error);
+    /// A pair's leader stepping down: every write still queued, never to be produced here, taken
+    /// out unanswered, as requests (target: the set topic, or the response topic) for the unit
+    /// to leave to whichever leads next (PairWrites), which settles them. Saved ahead of its
+    /// production, such a write is taken out of the file again, as by cancel_queued_writes.
+    std::vector<WriteRequest> take_queued_writes();
     /// The image and its file, for the producer replacing this one (same layout).
     ImageHandover hand_over() const {
         return {{image_.data().begin(), image_.data().end()}, file_};

@@ -107,7 +107,7 @@ private:
     /// tree's connection, and how it settles the unanswered once it leads (make_pair).
     void make_pair_writes();
     /// Stepping down: the answers and the queued writes of this unit as leader.
-    void step_down_writes(core::MonoTime now, core::MonoTime lapsed_at);
+    void step_down_writes(core::MonoTime now);
     /// With the JSON tree among the northbounds: the pair's history (make_pair).
     void make_pair_history();
     void start_pair();

@@ -40,6 +40,20 @@ void decode_watermarks(const nlohmann::json& record, Watermarks& watermarks) {
     }
 }
 
+std::optional<core::redundancy::LeaderMark> decode_mark(const nlohmann::json& record) {
+    const auto found = record.find("heard");
+    if (found == record.end() || !found->is_object()) return std::nullopt;
+    const auto id = found->find("id");
+    const auto epoch = found->find("epoch");
+    const auto beat = found->find("beat");
+    if (id == found->end() || !id->is_string() || epoch == found->end() ||
+        !epoch->is_number_unsigned() || beat == found->end() || !beat->is_number_unsigned()) {
+        return std::nullopt;
+    }
+    return core::redundancy::LeaderMark{id->get<std::string>(), epoch->get<std::uint64_t>(),
+                                        beat->get<std::uint64_t>()};
+}
+
 }  // namespace
 
 std::string encode_leader_record(const core::redundancy::LeaderRecord& record,
@@ -50,6 +64,11 @@ std::string encode_leader_record(const core::redundancy::LeaderRecord& record,
                         {"takeover_ms", takeover.count()}};
     if (record.claim) json["claim"] = true;
     if (record.bd_seq) json["bd_seq"] = *record.bd_seq;
+    if (record.beat != 0) json["beat"] = record.beat;
+    if (record.heard) {
+        json["heard"] = {
+            {"id", record.heard->id}, {"epoch", record.heard->epoch}, {"beat", record.heard->beat}};
+    }
     if (!watermarks.empty()) {
         auto& marks = json["watermarks"] = nlohmann::json::object();
         for (const auto& [topic, key] : watermarks) marks[topic] = encode_key(key);
@@ -83,6 +102,11 @@ std::optional<core::redundancy::LeaderRecord> decode_leader_record(std::string_v
                                                  bd_seq->get<std::uint64_t>() <= 255) {
         record.bd_seq = static_cast<std::uint8_t>(bd_seq->get<std::uint64_t>());
     }
+    // Of an earlier version: beat 0, and a claim that names nothing (stale to a live leader).
+    if (const auto beat = json.find("beat"); beat != json.end() && beat->is_number_unsigned()) {
+        record.beat = beat->get<std::uint64_t>();
+    }
+    if (record.claim) record.heard = decode_mark(json);
     if (watermarks) decode_watermarks(json, *watermarks);
     return record;
 }

@@ -127,6 +127,7 @@ void PairHistory::stood_by() {
 }
 
 void PairHistory::replay_some() {
+    if (next_due_ == due_.size() || (gate_ && !gate_())) return;
     std::size_t handed = 0;
     while (next_due_ < due_.size() && handed < replay_per_call &&
            (!backlog_ || backlog_() < options_.max_backlog)) {

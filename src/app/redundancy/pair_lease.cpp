@@ -57,14 +57,14 @@ void PairLease::on_connected() { publish_role(role_); }
 void PairLease::on_message(const adapters::mqtt::Incoming& message, core::MonoTime now) {
     if (message.topic != topics_.leader) return;
     const auto record = decode_leader_record(message.payload, &heard_);
-    lease_.on_record(record, now);
+    const bool followed = lease_.on_record(record, now);
     if (record && record->bd_seq && record->epoch >= lease_.epoch()) {
         heard_bd_seq_ = record->bd_seq;
     }
-    // The renewals of the leader this unit follows: a claim has acknowledged nothing yet, and
-    // this unit's own record (one from before a restart) says nothing of the other's.
-    if (watermarks_heard_ && record && !record->claim && record->id != lease_.own_record().id &&
-        record->id == lease_.leader_id() && record->epoch == lease_.epoch()) {
+    // The renewals of the leader this unit follows (below the epoch a failed claim of its own
+    // raised, too): a claim has acknowledged nothing yet, and a deposed leader's renewal,
+    // late, is not followed.
+    if (watermarks_heard_ && followed && !record->claim) {
         watermarks_heard_(std::move(heard_));
     }
     follow_role(now);
@@ -74,6 +74,10 @@ void PairLease::on_acknowledged(std::uint64_t token) { lease_.on_acknowledged(ti
 
 void PairLease::tick(core::MonoTime now) {
     if (auto record = lease_.tick(now)) {
+        if (record->claim && record->epoch != claimed_epoch_) {
+            claimed_epoch_ = record->epoch;
+            spdlog::info("pair: claiming the lead, epoch {}", record->epoch);
+        }
         if (!record->claim && bd_seq_source_) record->bd_seq = bd_seq_source_();
         message_.topic = topics_.leader;
         message_.payload = encode_leader_record(
@@ -89,9 +93,15 @@ void PairLease::tick(core::MonoTime now) {
 
 void PairLease::follow_role(core::MonoTime now) {
     const auto role = lease_.role(now);
+    if (role == Role::leader && role_ == Role::leader && lease_.epoch() != led_epoch_) {
+        led_epoch_ = lease_.epoch();
+        spdlog::warn("pair: a stale claim renewed over, leading on under epoch {}", led_epoch_);
+        if (on_epoch_raised_) on_epoch_raised_();
+    }
     if (role == role_) return;
     role_ = role;
     if (role == Role::leader) {
+        led_epoch_ = lease_.epoch();
         spdlog::info("pair: leading, epoch {}", lease_.epoch());
     } else {
         spdlog::warn(

@@ -4,6 +4,7 @@
 #include <array>
 #include <cassert>
 #include <chrono>
+#include <iterator>
 #include <utility>
 
 #include "eip2mqtt/core/plan/value_codec.hpp"
@@ -35,6 +36,11 @@ bool ProducedImage::stage(write::WriteBatch batch) {
 
 void ProducedImage::discard_pending(std::vector<std::uint64_t>& dropped) {
     for (const auto& batch : pending_) dropped.push_back(batch.id);
+    pending_.clear();
+}
+
+void ProducedImage::take_pending(std::vector<write::WriteBatch>& taken) {
+    std::move(pending_.begin(), pending_.end(), std::back_inserter(taken));
     pending_.clear();
 }
 

@@ -123,6 +123,28 @@ TEST_F(PairHistoryTest, SteppingDownEndsTheReplayAndForgetsItsWatermarks) {
     EXPECT_TRUE(history_.watermarks().empty());
 }
 
+TEST_F(PairHistoryTest, TheReplayWaitsForItsGateAndAUnitFencedMeanwhileReplaysNothing) {
+    // The gate: a renewal sent since it leads acknowledged (Lease::renewed_since_leading).
+    bool renewed = false;
+    history_.set_replay_gate([&] { return renewed; });
+    for (std::uint16_t n = 1; n <= 3; ++n) report(line_, n);
+    history_.took_over(clock_.monotonic());
+    history_.on_tick();
+    EXPECT_TRUE(sink_.replayed.empty());
+    EXPECT_TRUE(history_.replaying());
+    // Cut off as it took over: no renewal acknowledged, its lease lapsed.
+    history_.stood_by();
+    renewed = true;
+    history_.on_tick();
+    EXPECT_TRUE(sink_.replayed.empty());
+    // Leading again, and reaching the broker: the replay goes.
+    renewed = false;
+    history_.took_over(clock_.monotonic());
+    renewed = true;
+    history_.on_tick();
+    EXPECT_EQ(replayed().size(), 3u);
+}
+
 TEST_F(PairHistoryTest, ALeaderThatStoodByAndLeadsAgainReplaysOnlyWhatCameAfterItsOwn) {
     report(line_, 1);
     history_.took_over(clock_.monotonic());  // nothing heard: sample 1 goes on `_history`

@@ -175,6 +175,46 @@ TEST_F(PairLeaseTest, RenewalsCarryTheWatermarksAndTheStandbyHearsTheLeaders) {
     EXPECT_EQ(heard.size(), 1u);
 }
 
+TEST_F(PairLeaseTest, NoClaimWhileThePairConnectionIsDown) {
+    lease_.on_connection(false, t0);
+    lease_.tick(t0 + 1500ms);
+    lease_.tick(t0 + 5s);
+    EXPECT_TRUE(publisher_.on(leader_topic).empty());
+    lease_.on_connection(true, t0 + 5s);
+    lease_.tick(t0 + 6499ms);
+    EXPECT_TRUE(publisher_.on(leader_topic).empty());
+    lease_.tick(t0 + 6500ms);
+    ASSERT_EQ(publisher_.on(leader_topic).size(), 1u);
+    const auto claim = decode_leader_record(publisher_.published.back().payload);
+    ASSERT_TRUE(claim.has_value());
+    EXPECT_TRUE(claim->claim);
+    // Its beat is its sending time, as its acknowledgement token.
+    EXPECT_EQ(claim->beat, publisher_.published.back().ack_token);
+}
+
+TEST(LeaderRecordTest, EveryRecordCarriesItsBeatAndAClaimWhatItHeard) {
+    LeaderRecord claim{"gw-b", 3, 0, true};
+    claim.beat = 5000;
+    claim.heard = core::redundancy::LeaderMark{"gw-a", 2, 4000};
+    const auto payload = encode_leader_record(claim, 2000ms);
+    EXPECT_EQ(payload, R"({"beat":5000,"claim":true,"epoch":3,"heard":{"beat":4000,"epoch":2,)"
+                       R"("id":"gw-a"},"id":"gw-b","priority":0,"takeover_ms":2000})");
+    const auto read = decode_leader_record(payload);
+    ASSERT_TRUE(read.has_value());
+    EXPECT_EQ(read->beat, 5000u);
+    EXPECT_EQ(read->heard, claim.heard);
+    // Of an earlier version: beat 0, a claim that heard nothing; a renewal hears nothing.
+    const auto old = decode_leader_record(R"({"id":"a","epoch":1,"claim":true})");
+    EXPECT_EQ(old->beat, 0u);
+    EXPECT_FALSE(old->heard.has_value());
+    const auto renewal = decode_leader_record(
+        R"({"id":"a","epoch":1,"beat":7,"heard":{"id":"b","epoch":1,"beat":1}})");
+    EXPECT_EQ(renewal->beat, 7u);
+    EXPECT_FALSE(renewal->heard.has_value());
+    EXPECT_FALSE(decode_leader_record(R"({"id":"a","epoch":1,"claim":true,"heard":{"id":"b"}})")
+                     ->heard.has_value());
+}
+
 TEST(LeaderRecordTest, EncodedAndDecoded) {
     const auto payload = encode_leader_record({"gw-a", 7, 100}, 2000ms);
     EXPECT_EQ(payload, R"({"epoch":7,"id":"gw-a","priority":100,"takeover_ms":2000})");

@@ -256,6 +256,23 @@ TEST(ProducedImage, DiscardedBatchesAreNeverApplied) {
     EXPECT_EQ(data_hex(image), "00803b4501010000");  // batch 1 only
 }
 
+TEST(ProducedImage, TakenBatchesLeaveUnappliedWithWhatTheyWrite) {
+    const auto plan = make_plan();
+    ProducedImage image(plan, {});
+    ASSERT_TRUE(image.stage(batch(2, {{offset, Value{std::int64_t{2}}}})));
+    ASSERT_TRUE(image.stage(batch(3, {{start, Value{false}}})));
+    std::vector<write::WriteBatch> taken(1);  // appended to, not cleared
+    image.take_pending(taken);
+    ASSERT_EQ(taken.size(), 3u);
+    EXPECT_EQ(taken[1].id, 2u);
+    EXPECT_EQ(taken[2].id, 3u);
+    ASSERT_EQ(taken[1].writes.size(), 1u);
+    EXPECT_EQ(taken[1].writes[0].value, Value{std::int64_t{2}});
+    EXPECT_EQ(image.pending(), 0u);
+    EXPECT_TRUE(produce(image).carried.empty());
+    EXPECT_EQ(data_hex(image), "00803b4501feff00");
+}
+
 TEST(ProducedImage, ProjectionShowsEveryStagedBatchAndChangesNothing) {
     const auto plan = make_plan();
     ProducedImage image(plan, {});

@@ -21,6 +21,8 @@ using Watermarks = std::map<std::string, core::redundancy::SampleKey, std::less<
 /// `"bd_seq":n` on a renewal of a leader whose Sparkplug session is open, and with watermarks
 /// `"watermarks":{"line/1":[4711,1695231678,123456789]}`: each sample's request id, the
 /// seconds and nanoseconds of its producer's timestamp, and its change of quality when not 0.
+/// Each record carries `"beat":n` (LeaderRecord::beat) and a claim what it heard:
+/// `"heard":{"id":"gw-b","epoch":2,"beat":n}`.
 std::string encode_leader_record(const core::redundancy::LeaderRecord& record,
                                  std::chrono::milliseconds takeover,
                                  const Watermarks& watermarks = {});

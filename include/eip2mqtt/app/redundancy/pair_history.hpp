@@ -70,6 +70,10 @@ public:
     /// The watermarks of the last renewal heard from the leader.
     void heard(Watermarks&& watermarks) { heard_ = std::move(watermarks); }
 
+    /// The replay goes only while `gate` says so (the gateway: a renewal sent since this unit
+    /// leads was acknowledged, so it led, reaching the broker, after it took over): a unit cut
+    /// off as it takes the lead hands nothing to a connection that carries nothing.
+    void set_replay_gate(std::function<bool()> gate) { gate_ = std::move(gate); }
     /// This unit leads from `now` on: the replay of what the leader had not had acknowledged.
     void took_over(core::MonoTime now);
     /// This unit stands by: nothing more is replayed, no watermark is its own; those it had
@@ -100,6 +104,7 @@ private:
     PairHistoryOptions options_;
     history::HistorySink& sink_;
     std::function<std::uint64_t()> backlog_;
+    std::function<bool()> gate_;
     const Clock& clock_;
     using Exchanges =
         std::unordered_map<const core::plan::ExchangePlan*, std::unique_ptr<Exchange>>;

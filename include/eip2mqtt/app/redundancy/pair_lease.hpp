@@ -65,8 +65,16 @@ public:
         watermarks_heard_ = std::move(heard);
     }
 
+    /// Runs when this unit leads on under a higher epoch (a stale claim's, renewed over):
+    /// what it publishes under its epoch (the images) goes again.
+    void set_on_epoch_raised(std::function<void()> handler) {
+        on_epoch_raised_ = std::move(handler);
+    }
+
     /// After each (re)connect of the pair's connection: the role topic again.
     void on_connected();
+    /// Whether the pair's connection is up, asked before each tick (Lease::on_connection).
+    void on_connection(bool up, core::MonoTime now) { lease_.on_connection(up, now); }
     void on_message(const adapters::mqtt::Incoming& message, core::MonoTime now);
     /// The acknowledgement token of a claim or renewal (its sending time).
     void on_acknowledged(std::uint64_t token);
@@ -95,6 +103,9 @@ private:
     WatermarksHeard watermarks_heard_;
     Watermarks heard_;  ///< what the last record read carried
     core::redundancy::Role role_ = core::redundancy::Role::standby;
+    std::uint64_t led_epoch_ = 0;      ///< the epoch it leads under
+    std::uint64_t claimed_epoch_ = 0;  ///< of its latest claim (logged once)
+    std::function<void()> on_epoch_raised_;
     adapters::mqtt::Message message_;
 };
 

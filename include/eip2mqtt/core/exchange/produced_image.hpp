@@ -51,6 +51,9 @@ public:
     /// Drops every staged batch unapplied (its exchange stops for good: a reload changed or
     /// removed it); their ids are appended to `dropped` (not cleared first), in staging order.
     void discard_pending(std::vector<std::uint64_t>& dropped);
+    /// Takes every staged batch out unapplied (a pair's leader steps down: another unit settles
+    /// them), appended to `taken` in staging order.
+    void take_pending(std::vector<write::WriteBatch>& taken);
     /// Drops the staged batches whose id lies in (`after`, `through`], the others stay queued.
     void discard_pending(std::uint64_t after, std::uint64_t through,
                          std::vector<std::uint64_t>& dropped);
