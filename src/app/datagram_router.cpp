@@ -1,7 +1,5 @@
 #include "eip2mqtt/app/datagram_router.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <string>
 #include <utility>
 
@@ -83,14 +81,8 @@ void DatagramRouter::route(std::span<const std::byte> bytes, const adapters::udp
         ++counters_.accepted;
         return;
     }
+    // Its exchange logs a mismatch it enters (ExchangeConsumer, paced when it flaps).
     count_drop(*outcome.dropped);
-    if (outcome.state_changed) {
-        spdlog::warn(
-            "exchange {}: {} (received {} data bytes, configured {}, signature {})", spec.name,
-            core::exchange::to_string(consumer.exchange().state()), datagram.data.size(),
-            consumer.plan().length,
-            core::wire::to_string(core::wire::Signature::from_wire(datagram.header.signature)));
-    }
 }
 
 }  // namespace eip2mqtt::app

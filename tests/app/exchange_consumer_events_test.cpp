@@ -4,13 +4,17 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "eip2mqtt/app/exchange_consumer.hpp"
+#include "eip2mqtt/core/exchange/change_log.hpp"
+#include "eip2mqtt/core/exchange/change_pacer.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "tests/support/fakes/log_capture.hpp"
@@ -57,6 +61,33 @@ protected:
         d.data = data_;
         advance(10ms);
         consumer_.on_datagram(d, now_, wall_);
+    }
+    /// A datagram of 6 data bytes where 8 are configured: a length mismatch.
+    void short_datagram() {
+        core::wire::Datagram d;
+        d.header.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+        d.header.exchange_id = 1;
+        d.header.request_id = ++rid_;
+        d.data = std::span<const std::byte>(data_).first(6);
+        advance(1ms);
+        consumer_.on_datagram(d, now_, wall_);
+    }
+    /// A good datagram stamped `offset` off the receive time, 1 ms after the last.
+    void stamped_datagram(std::chrono::milliseconds offset) {
+        core::wire::Datagram d;
+        d.header.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+        d.header.exchange_id = 1;
+        d.header.request_id = ++rid_;
+        advance(1ms);
+        const auto stamp = core::wire_time(wall_ + offset);
+        d.header.time_s = stamp.seconds;
+        d.header.time_ns = stamp.nanoseconds;
+        d.data = data_;
+        consumer_.on_datagram(d, now_, wall_);
+    }
+    std::size_t count(const std::string& event) const {
+        return static_cast<std::size_t>(
+            std::count(north_.events.begin(), north_.events.end(), event));
     }
     void advance(std::chrono::milliseconds step) {
         now_ += step;
@@ -163,6 +194,50 @@ TEST_F(ConsumerEvents, BeforeAnyDatagramThereIsNoValueToReportOnlyTheStateAndSta
     consumer_.republish(now_);
     EXPECT_EQ(north_.events, (std::vector<std::string>{"state", "status"}));
     EXPECT_EQ(north_.states.back().state, ConsumeState::waiting);
+}
+
+TEST_F(ConsumerEvents, AlternatingGoodAndShortDatagramsReportQualityAtMostOncePerPeriod) {
+    // 200 datagrams over 1.1 s of a 100 ms exchange, a tick between each: each was a
+    // republish of both tags, a state and a status, and a log line.
+    test::LogCapture log;
+    datagram(1, 2);
+    north_.events.clear();
+    log.lines();
+    const auto start = now_;
+    for (int i = 0; i < 100; ++i) {
+        short_datagram();
+        consumer_.on_tick(now_, wall_, false);
+        datagram(1, 2);  // 1 ms later: see short_datagram
+        consumer_.on_tick(now_, wall_, false);
+    }
+    // A report a period, plus the burst.
+    const auto reports = (now_ - start) / 100ms + core::exchange::ChangePacer::burst;
+    EXPECT_LE(count("samples"), static_cast<std::size_t>(reports));
+    EXPECT_LE(count("state"), static_cast<std::size_t>(reports));
+    EXPECT_LE(count("status"), static_cast<std::size_t>(reports));
+    EXPECT_LE(log.lines().size(), core::exchange::ChangeLog::burst + 1);
+    // Ending on a good datagram, what was reported ends good a period later at the latest.
+    advance(100ms);
+    consumer_.on_tick(now_, wall_, false);
+    EXPECT_EQ(north_.batches.back().quality, Quality::good);
+    EXPECT_EQ(north_.states.back().state, ConsumeState::ok);
+    EXPECT_EQ(north_.events.back(), "status");
+}
+
+TEST_F(ConsumerEvents, AProducerClockFlippingIsReportedAtMostOncePerPeriod) {
+    // Stamps alternately on time and an hour off: the clock flips synced/unsynced each datagram.
+    test::LogCapture log;
+    stamped_datagram(0ms);
+    north_.events.clear();
+    log.lines();
+    for (int i = 0; i < 100; ++i) {
+        stamped_datagram(1h);
+        consumer_.on_tick(now_, wall_, false);
+        stamped_datagram(0ms);
+        consumer_.on_tick(now_, wall_, false);
+    }
+    EXPECT_LE(count("status"), static_cast<std::size_t>(2 + core::exchange::ChangePacer::burst));
+    EXPECT_LE(log.lines().size(), core::exchange::ChangeLog::burst + 1);
 }
 
 }  // namespace

@@ -107,7 +107,7 @@ TEST(CheckCommand, RefusesTopicsTooLongControlCharactersAndSetLevelsWithLineAndC
     for (const std::string& expected :
          {path +
               ":3:5: error: exchange 'ex' topic 'area/set' has a level 'set', reserved for writes",
-          path + ":8:11: error: tag name 'A\\0x' contains a NUL character of exchange 'ex'",
+          path + ":8:11: error: tag name 'A\\x00x' contains a NUL character of exchange 'ex'",
           path + ":9:11: error: tag 'LLLL",
           std::string("(65600 bytes) of exchange 'ex' makes topic "
                       "'{base_topic}/{topic}/{tag}/set/result' "
@@ -222,6 +222,33 @@ TEST(CheckCommand, ExampleConfigurationIsValidAndShowsItsLayout) {
     EXPECT_EQ(result.status, 0) << result.output;
     EXPECT_NE(result.output.find("PRESSAO"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find("acme/demo/turbine1/PRESSAO"), std::string::npos) << result.output;
+}
+
+TEST(CheckCommand, NamesARawNulByteAndABidirectionalOverrideAtTheirLineAndColumn) {
+    // A raw NUL was reported as a bad hex number further on; an RLO (U+202E) passed in a topic,
+    // where "area/<RLO>tes/1t" reads "area/t1/set".
+    TempDir dir;
+    const auto nul =
+        dir.write("nul.yaml", std::string("exchanges:\n  - name: ex\n    topic: a") + '\0' +
+                                  "b\n    producer_id: 10.0.0.1\n    exchange_id: 1\n    tags:\n"
+                                  "      - { name: \"A\\x00\", address: \"0.0\", type: dint }\n");
+    auto result = run_command({EIP2MQTT_BINARY, "check", "-c", nul}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    EXPECT_NE(result.output.find(nul + ":3:13: error: YAML syntax error: a NUL byte (\\x00)"),
+              std::string::npos)
+        << result.output;
+    const auto rlo = dir.write("rlo.yaml",
+                               "exchanges:\n  - name: ex\n    topic: area/\xE2\x80\xAEtes/1t\n"
+                               "    producer_id: 10.0.0.1\n    exchange_id: 1\n    tags:\n"
+                               "      - { name: \"A\\x00\", address: \"0.0\", type: dint }\n");
+    result = run_command({EIP2MQTT_BINARY, "check", "-c", rlo}, 10s);
+    EXPECT_EQ(result.status, 1) << result.output;
+    EXPECT_NE(result.output.find(rlo + ":3:5: error: exchange 'ex' topic 'area/\\u202Etes/1t' "
+                                       "contains a bidirectional control character"),
+              std::string::npos)
+        << result.output;
+    EXPECT_NE(result.output.find("tag name 'A\\x00' contains a NUL character"), std::string::npos)
+        << result.output;
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
-// The gateway's optional Prometheus endpoint serves its live counters.
+// The gateway's optional Prometheus endpoint serves its live counters, on the one address
+// it is given.
 
 #include <signal.h>
 
 #include <fstream>
 #include <thread>
 
+#include "tests/support/child_process.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
@@ -58,6 +60,29 @@ TEST_F(PrometheusTest, EndpointServesPerExchangeCountersAndMqttState) {
               std::string::npos)
         << page;
     EXPECT_NE(page.find("eip2mqtt_mqtt_connected 1"), std::string::npos) << page;
+}
+
+TEST(PrometheusListen, CheckAndRunRefuseAListOfAddressesAtItsLineAndColumn) {
+    // civetweb takes "a,b" as two listeners: check passed it and run opened the second.
+    const auto first = free_tcp_port();
+    const auto second = free_tcp_port();
+    TempDir dir;
+    const auto path = dir.write("list.yaml",
+                                "mqtt:\n  url: tcp://127.0.0.1:1\nmetrics:\n"
+                                "  listen: 127.0.0.1:" +
+                                    std::to_string(first) + ",127.0.0.1:" + std::to_string(second) +
+                                    "\nexchanges:\n"
+                                    "  - { name: ex, producer_id: 10.0.0.1, "
+                                    "exchange_id: 1, length: 4 }\n");
+    const auto check = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    EXPECT_EQ(check.status, 1) << check.output;
+    EXPECT_NE(check.output.find(path + ":4:3: error: listen '127.0.0.1:"), std::string::npos)
+        << check.output;
+    EXPECT_NE(check.output.find("is not one host:port"), std::string::npos) << check.output;
+    // run refuses the file as check does, before it listens on anything.
+    const auto run = run_command({EIP2MQTT_BINARY, "run", "-c", path}, 10s);
+    EXPECT_EQ(run.status, 1) << run.output;
+    EXPECT_NE(run.output.find("is not one host:port"), std::string::npos) << run.output;
 }
 
 }  // namespace

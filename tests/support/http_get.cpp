@@ -2,21 +2,32 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <unistd.h>
 
+#include <cerrno>
+
 namespace eip2mqtt::test {
+namespace {
+
+sockaddr_in loopback(std::uint16_t port) {
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(port);
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    return address;
+}
+
+}  // namespace
 
 std::string http_get(std::uint16_t port, const std::string& path) {
     const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
     if (fd < 0) return {};
     timeval timeout{5, 0};
     ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(port);
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    const auto address = loopback(port);
     std::string response;
     if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0) {
         const std::string request = "GET " + path + " HTTP/1.0\r\nHost: localhost\r\n\r\n";
@@ -31,6 +42,32 @@ std::string http_get(std::uint16_t port, const std::string& path) {
     }
     ::close(fd);
     return response;
+}
+
+SilentClient::SilentClient(std::uint16_t port, const std::string& sent)
+    : fd_(::socket(AF_INET, SOCK_STREAM, 0)) {
+    if (fd_ < 0) return;
+    const auto address = loopback(port);
+    connected_ = ::connect(fd_, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0;
+    if (connected_ && !sent.empty()) ::send(fd_, sent.data(), sent.size(), 0);
+}
+
+SilentClient::~SilentClient() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+bool SilentClient::closed_by_server(int timeout_ms) const {
+    if (!connected_) return false;
+    pollfd entry{fd_, POLLIN, 0};
+    if (::poll(&entry, 1, timeout_ms) <= 0) return false;
+    char buffer[256];
+    // An answer (civetweb's 408, if any) and then the end; 0 is the end.
+    for (;;) {
+        const auto n = ::recv(fd_, buffer, sizeof buffer, MSG_DONTWAIT);
+        if (n == 0) return true;
+        if (n < 0) return errno != EAGAIN && errno != EWOULDBLOCK;
+        if (::poll(&entry, 1, timeout_ms) <= 0) return false;
+    }
 }
 
 }  // namespace eip2mqtt::test

@@ -10,4 +10,22 @@ namespace eip2mqtt::test {
 /// an empty string when nothing answered within 5 s.
 std::string http_get(std::uint16_t port, const std::string& path);
 
+/// A client that connects to 127.0.0.1:`port`, sends `sent` (nothing, or part of a request)
+/// and then nothing more, until destroyed: what a slow or hostile client does to a server.
+class SilentClient {
+public:
+    SilentClient(std::uint16_t port, const std::string& sent);
+    ~SilentClient();
+    SilentClient(const SilentClient&) = delete;
+    SilentClient& operator=(const SilentClient&) = delete;
+
+    bool connected() const { return connected_; }
+    /// Waits up to `timeout_ms` for the server to close the connection; true when it did.
+    bool closed_by_server(int timeout_ms) const;
+
+private:
+    int fd_ = -1;
+    bool connected_ = false;
+};
+
 }  // namespace eip2mqtt::test

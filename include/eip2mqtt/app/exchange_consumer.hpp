@@ -3,6 +3,12 @@
 /// report-by-exception filter of each tag; what they lead to goes to the Northbound as events
 /// (tag samples, status, state), in no protocol's terms.
 ///
+/// Changes of its state and its producer's clock are reported at most once per period
+/// (core::exchange::ChangePacer) and logged line by line only while they are few
+/// (core::exchange::ChangeLog): a stream alternating good and bad datagrams republishes each
+/// tag's quality and the `_status` once a period, not once a datagram, and is logged as a
+/// summary.
+///
 /// Threading: the loop only.
 
 #include <cstdint>
@@ -12,6 +18,8 @@
 
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/core/exchange/arrival_stats.hpp"
+#include "eip2mqtt/core/exchange/change_log.hpp"
+#include "eip2mqtt/core/exchange/change_pacer.hpp"
 #include "eip2mqtt/core/exchange/consumed_exchange.hpp"
 #include "eip2mqtt/core/exchange/remote_producer_clock.hpp"
 #include "eip2mqtt/core/exchange/status_grid.hpp"
@@ -63,14 +71,30 @@ private:
                      std::optional<core::redundancy::SampleKey> key = std::nullopt);
     /// The tags again, at a change of quality (stale, mismatch) that no datagram brought.
     void report_quality_change(core::MonoTime now);
+    /// After the state or the clock moved: reports the change now, or holds it for the
+    /// ChangePacer (or forgets a held one when the exchange is back to what was reported).
+    /// True when it reported.
+    bool settle(core::MonoTime now);
+    /// Reports what changed since the last report: the tags' quality and the state if the state
+    /// changed, and the status.
+    void report_change(core::MonoTime now);
+    /// Whether what is reported is what the exchange is in (no change held).
+    bool reported_current() const {
+        return exchange_.state() == reported_state_ && clock_.state() == reported_clock_;
+    }
     /// `periodic`: the once-a-second report (on the StatusGrid), not a state change's.
     void report_status(core::MonoTime now, bool periodic = false);
     /// The timestamp of the accepted datagram's tags (RemoteProducerClock), logging a clock change.
-    std::int64_t sample_time(core::WallTime wall);
-    void log_clock(bool first);
-    /// Logs the exchange going stale and coming back, once each: the way in from a mismatch
-    /// is logged where the datagram's detail is known (DatagramRouter).
-    void log_state_change(core::exchange::ConsumeState before, core::MonoTime now);
+    std::int64_t sample_time(core::MonoTime now, core::WallTime wall);
+    void log_clock(bool first, core::MonoTime now);
+    /// Logs the exchange going stale, into a mismatch (with `datagram`'s detail) and coming
+    /// back, each once, through change_log_.
+    void log_state_change(core::exchange::ConsumeState before, core::MonoTime now,
+                          const core::wire::Datagram* datagram = nullptr);
+    /// Whether a change at `now` has its own line (else it is counted, and a summary written
+    /// when due).
+    bool log_change(core::MonoTime now);
+    void log_summary(std::uint64_t changes);
 
     core::plan::ExchangePlan plan_;
     Northbound& northbound_;
@@ -86,6 +110,11 @@ private:
     std::uint64_t last_status_received_ = 0;
     bool status_dirty_ = true;
     core::MonoTime down_since_{};  ///< when the exchange last left `ok`
+    /// What the tags, the state and the status last reported.
+    core::exchange::ConsumeState reported_state_ = core::exchange::ConsumeState::waiting;
+    core::exchange::ClockState reported_clock_ = core::exchange::ClockState::none;
+    core::exchange::ChangePacer pacer_;
+    core::exchange::ChangeLog change_log_;
     core::WallTime configured_at_ = std::chrono::system_clock::now();
 };
 

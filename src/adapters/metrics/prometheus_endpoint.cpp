@@ -296,8 +296,8 @@ PrometheusEndpoint::PrometheusEndpoint(const std::string& listen,
     : impl_(std::make_unique<Impl>()) {
     impl_->health = std::make_shared<HealthState>(liveness_timeout);
     try {
-        impl_->exposer =
-            std::make_unique<prometheus::Exposer>(listen, 2, &detail::health_callbacks());
+        impl_->exposer = std::make_unique<prometheus::Exposer>(detail::server_options(listen),
+                                                               &detail::health_callbacks());
     } catch (const std::exception& e) {
         // civetweb's CivetException: typically the port is taken or the address is not ours.
         throw std::runtime_error("cannot listen for metrics on " + listen + ": " + e.what());

@@ -182,8 +182,9 @@ constexpr KeyReader<MetricsSection> metrics_rows[]{
      [](KeyValue& v, MetricsSection& m) {
          const auto s = v.text();
          if (!s || s->empty()) return s.has_value();
-         if (!valid_host_port(*s, true)) {
-             v.error("listen " + in_quotes(*s) + " is not host:port");
+         // civetweb reads a list (',') as one listener per entry: a second, unchecked port.
+         if (!valid_host_port(*s, true) || !one_host_port(*s)) {
+             v.error("listen " + in_quotes(*s) + " is not one host:port");
              return false;
          }
          m.listen = *s;

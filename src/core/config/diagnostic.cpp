@@ -71,8 +71,8 @@ void append_escaped(std::string& out, std::string_view text) {
             continue;
         }
         if (length == 1) {
-            const char* const named = lead == '\0'   ? "\\0"
-                                      : lead == '\t' ? "\\t"
+            // NUL as \x00, not \0: followed by digits, "\0" reads as another byte ("\012").
+            const char* const named = lead == '\t'   ? "\\t"
                                       : lead == '\n' ? "\\n"
                                       : lead == '\r' ? "\\r"
                                                      : nullptr;

@@ -3,6 +3,18 @@
 #include <cstdint>
 
 namespace eip2mqtt::core::plan {
+namespace {
+
+/// Unicode's explicit directional formatting characters (UAX #9 §2): ALM, LRM, RLM, the
+/// embeddings and overrides LRE..RLO (U+202E, RIGHT-TO-LEFT OVERRIDE, among them) and the
+/// isolates LRI..PDI. Shown, they reorder the text around them ("Trojan Source",
+/// CVE-2021-42574): a topic that reads as another, a name that reads as another's.
+constexpr bool bidirectional_control(std::uint32_t code) {
+    return code == 0x061C || code == 0x200E || code == 0x200F ||
+           (code >= 0x202A && code <= 0x202E) || (code >= 0x2066 && code <= 0x2069);
+}
+
+}  // namespace
 
 std::string_view text_problem(std::string_view text) {
     const auto* p = reinterpret_cast<const unsigned char*>(text.data());
@@ -38,6 +50,10 @@ std::string_view text_problem(std::string_view text) {
         if (code <= 0x1F || (code >= 0x7F && code <= 0x9F)) return "contains a control character";
         if ((code >= 0xFDD0 && code <= 0xFDEF) || (code & 0xFFFEu) == 0xFFFEu) {
             return "contains a Unicode non-character";
+        }
+        if (bidirectional_control(code)) {
+            return "contains a bidirectional control character (text would read other than it "
+                   "is stored)";
         }
         p += length;
     }

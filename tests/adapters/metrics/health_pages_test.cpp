@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "tests/support/http_get.hpp"
@@ -76,6 +78,47 @@ TEST(HealthPages, HealthzFailsOnceUpdatesStop) {
         << answer.second;
     endpoint.update(snapshot(true, "ok"));
     EXPECT_EQ(status_and_body(http_get(endpoint.port(), "/healthz")).first, "200");
+}
+
+/// Six clients that connect and say nothing, six that send half a request line and stop: two
+/// of them (civetweb's two default workers, each waiting 30 s for its request) made 28 of 32
+/// probes fail over a minute.
+std::vector<std::unique_ptr<test::SilentClient>> slow_clients(std::uint16_t port) {
+    std::vector<std::unique_ptr<test::SilentClient>> clients;
+    for (int i = 0; i < 12; ++i) {
+        clients.push_back(std::make_unique<test::SilentClient>(port, i % 2 ? "GET /heal" : ""));
+    }
+    return clients;
+}
+
+TEST(HealthPages, EveryProbeAnswersWhileSlowClientsHoldConnections) {
+    PrometheusEndpoint endpoint("127.0.0.1:0");
+    endpoint.update(snapshot(true, "ok"));
+    const auto clients = slow_clients(endpoint.port());
+    for (const auto& client : clients) ASSERT_TRUE(client->connected());
+    // Probes for longer than the request timeout, so the slow clients' connections end (and
+    // would be taken again by a client that reconnects) while probes go on.
+    const auto until = std::chrono::steady_clock::now() +
+                       std::chrono::milliseconds(detail::request_timeout_ms) + 1s;
+    int probes = 0;
+    while (probes < 10 || std::chrono::steady_clock::now() < until) {
+        const auto answer = status_and_body(http_get(endpoint.port(), "/healthz"));
+        ASSERT_EQ(answer, std::make_pair(std::string("200"), std::string("ok\n")))
+            << "probe " << probes;
+        ++probes;
+        std::this_thread::sleep_for(100ms);
+    }
+}
+
+TEST(HealthPages, AClientThatSendsNoRequestIsDisconnectedAfterTheRequestTimeout) {
+    PrometheusEndpoint endpoint("127.0.0.1:0");
+    const test::SilentClient silent(endpoint.port(), "");
+    const test::SilentClient half(endpoint.port(), "GET /healthz HT");
+    ASSERT_TRUE(silent.connected());
+    ASSERT_TRUE(half.connected());
+    // civetweb's default held them 30 s; the bound leaves room for a busy machine.
+    EXPECT_TRUE(silent.closed_by_server(detail::request_timeout_ms + 8000));
+    EXPECT_TRUE(half.closed_by_server(detail::request_timeout_ms + 8000));
 }
 
 }  // namespace

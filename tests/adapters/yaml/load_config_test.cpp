@@ -208,12 +208,12 @@ exchanges:
     ASSERT_EQ(d.size(), 8u) << dump(d);
     const std::vector<std::pair<int, std::string>> expected{
         {2, "gateway id 'gw\\x1B' contains a control character (it is a topic level)"},
-        {4, "client_id 'c\\0' contains a NUL character"},
+        {4, "client_id 'c\\x00' contains a NUL character"},
         {5, "base_topic 'acme\\x01' contains a control character"},
         {7, "exchange name 'ex\\x85' is not valid UTF-8"},
-        {8, "exchange 'ex\\x85' topic 't\\0' contains a NUL character"},
-        {13, "tag name 'A\\0x' contains a NUL character of exchange 'ex\\x85'"},
-        {14, "tag name 'A\\0y' contains a NUL character of exchange 'ex\\x85'"},
+        {8, "exchange 'ex\\x85' topic 't\\x00' contains a NUL character"},
+        {13, "tag name 'A\\x00x' contains a NUL character of exchange 'ex\\x85'"},
+        {14, "tag name 'A\\x00y' contains a NUL character of exchange 'ex\\x85'"},
         {15, "tag name 'B\\u0085' contains a control character of exchange 'ex\\x85'"}};
     for (std::size_t i = 0; i < expected.size(); ++i) {
         EXPECT_EQ(d[i].mark.line, expected[i].first) << dump(d);
@@ -265,6 +265,18 @@ TEST(LoadConfig, ATabInTheIndentationIsNamed) {
     EXPECT_NE(d[0].message.find("tab"), std::string::npos) << d[0].message;
     EXPECT_EQ(d[0].mark.line, 4) << d[0].message;
     EXPECT_EQ(d[0].mark.column, 1) << d[0].message;
+}
+
+TEST(LoadConfig, ARawNulByteIsNamedAtItsLineAndColumn) {
+    // yaml-cpp said "bad character found while scanning hex number", two lines further on.
+    const std::string text = std::string("exchanges:\n  - name: ex\n    topic: a") + '\0' +
+                             "b\n    producer_id: 10.0.0.1\n    exchange_id: 1\n"
+                             "    tags:\n      - { name: A, address: \"0.0\", type: dint }\n";
+    const auto text_out = dump(bad(text));
+    EXPECT_EQ(text_out,
+              "test.yaml:3:13: YAML syntax error: a NUL byte (\\x00) in the file; YAML allows "
+              "none\n");
+    EXPECT_NE(dump(bad(std::string("\0", 1))).find("test.yaml:1:1: "), std::string::npos);
 }
 
 }  // namespace

@@ -92,8 +92,8 @@ TEST(LoadConfig, PointListTagNamesWithControlCharactersAreRefusedAtTheirRows) {
         EXPECT_EQ(d[i].mark.file, csv);
         EXPECT_EQ(d[i].mark.line, static_cast<int>(i) + 2);
     }
-    EXPECT_EQ(d[0].message, "tag name 'A\\0B' contains a NUL character of exchange 'ex'");
-    EXPECT_EQ(d[1].message, "tag name 'A\\0C' contains a NUL character of exchange 'ex'");
+    EXPECT_EQ(d[0].message, "tag name 'A\\x00B' contains a NUL character of exchange 'ex'");
+    EXPECT_EQ(d[1].message, "tag name 'A\\x00C' contains a NUL character of exchange 'ex'");
     EXPECT_EQ(d[2].message,
               "tag name '\\x1B[31mRED' contains a control character of exchange 'ex'");
 }

@@ -250,5 +250,20 @@ TEST(LoadConfig, BatchFirstPutsValuesFirstAndNeedsBatch) {
         << text;
 }
 
+TEST(LoadConfig, MetricsListenIsOneHostPortNotAList) {
+    // civetweb opens a listener per entry of a list: "a,b" passed and listened on both.
+    for (const std::string listen :
+         {"127.0.0.1:9108,127.0.0.1:9109", "127.0.0.1:9108, 0.0.0.0:9109", "'127.0.0.1 :9108'",
+          "127.0.0.1", "9108"}) {
+        const auto text = dump(bad("metrics:\n  listen: " + listen + "\n" + minimal_exchange));
+        EXPECT_NE(text.find("test.yaml:2:3: listen '"), std::string::npos) << listen << text;
+        EXPECT_NE(text.find("' is not one host:port"), std::string::npos) << listen << text;
+    }
+    EXPECT_EQ(good("metrics: { listen: '[::1]:9108' }\n" + minimal_exchange).metrics.listen,
+              "[::1]:9108");
+    EXPECT_EQ(good("metrics: { listen: localhost:9108 }\n" + minimal_exchange).metrics.listen,
+              "localhost:9108");
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::yaml

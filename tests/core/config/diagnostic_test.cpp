@@ -32,7 +32,12 @@ TEST(InQuotes, PlainTextIsQuotedAsItIs) {
 }
 
 TEST(InQuotes, ControlCharactersAndInvalidUtf8AreEscaped) {
-    EXPECT_EQ(in_quotes(std::string("A\0B", 3)), "'A\\0B'");
+    EXPECT_EQ(in_quotes(std::string("A\0B", 3)), "'A\\x00B'");
+    // A NUL before digits: "\012" would read as a newline, another byte.
+    EXPECT_EQ(in_quotes(std::string("A\0"
+                                    "12",
+                                    4)),
+              "'A\\x0012'");
     EXPECT_EQ(in_quotes("a\tb\nc\rd"), "'a\\tb\\nc\\rd'");
     EXPECT_EQ(in_quotes("\x1B[2J"), "'\\x1B[2J'");  // a terminal escape sequence stays inert
     EXPECT_EQ(in_quotes("\x7F"), "'\\x7F'");

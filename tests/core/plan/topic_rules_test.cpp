@@ -35,6 +35,23 @@ TEST(TopicRules, NonCharactersAreRefused) {
     EXPECT_EQ(text_problem("\xEF\xB7\x90"), "contains a Unicode non-character");  // U+FDD0
 }
 
+TEST(TopicRules, BidirectionalControlsAreRefused) {
+    // "acme/<RLO>tes/eulav" shows as "acme/value/set" on a terminal or a dashboard.
+    const std::string problem =
+        "contains a bidirectional control character (text would read other than it is stored)";
+    EXPECT_EQ(text_problem("acme/\xE2\x80\xAEtes/eulav"), problem);  // U+202E RLO
+    for (const char* control : {"\xD8\x9C", "\xE2\x80\x8E", "\xE2\x80\x8F", "\xE2\x80\xAA",
+                                "\xE2\x80\xAD", "\xE2\x81\xA6", "\xE2\x81\xA9"}) {
+        EXPECT_EQ(text_problem(std::string("a") + control + "b"), problem) << control;
+        EXPECT_EQ(topic_name_problem(std::string("a/") + control), problem) << control;
+    }
+    // Their neighbours are text: U+200D (zero-width joiner, in emoji), U+202F, U+2065, U+206A.
+    for (const char* other :
+         {"\xE2\x80\x8D", "\xE2\x80\xAF", "\xE2\x81\xA5", "\xE2\x81\xAA", "\xD8\x9B"}) {
+        EXPECT_EQ(text_problem(std::string("a") + other), "") << other;
+    }
+}
+
 TEST(TopicRules, TopicNamesHaveNoWildcardAndFitTwoBytesOfLength) {
     EXPECT_EQ(topic_name_problem("a/b"), "");
     EXPECT_EQ(topic_name_problem(""), "is empty");

@@ -17,7 +17,9 @@ inline constexpr std::size_t max_topic_bytes = 65535;
 /// invalid or overlong UTF-8, surrogates, U+0000, the control characters U+0001..U+001F and
 /// U+007F..U+009F, and the non-characters (U+FDD0..U+FDEF, U+xFFFE, U+xFFFF). The MQTT
 /// specification forbids the first three and lets a receiver refuse the others; Mosquitto
-/// does, by closing the connection.
+/// does, by closing the connection. Refused too, though brokers take them: the bidirectional
+/// controls (U+061C, U+200E, U+200F, U+202A..U+202E, U+2066..U+2069), with which a topic or a
+/// name reads, on a screen or in a log, as other than it is.
 std::string_view text_problem(std::string_view text);
 
 /// Why `topic` cannot be published to, or empty when it can: empty, longer than

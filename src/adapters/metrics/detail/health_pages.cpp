@@ -58,6 +58,13 @@ CivetCallbacks make_callbacks() {
 
 }  // namespace
 
+std::vector<std::string> server_options(const std::string& listen) {
+    return {"listening_ports",    listen,
+            "num_threads",        std::to_string(server_threads),
+            "request_timeout_ms", std::to_string(request_timeout_ms),
+            "enable_keep_alive",  "no"};
+}
+
 const CivetCallbacks& health_callbacks() {
     static const CivetCallbacks callbacks = make_callbacks();
     return callbacks;

@@ -6,10 +6,24 @@
 #include <CivetServer.h>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "eip2mqtt/adapters/metrics/health.hpp"
 
 namespace eip2mqtt::adapters::metrics::detail {
+
+/// Worker threads of the listener: each serves one connection at a time, so this many slow or
+/// silent clients at once are needed before a probe waits.
+inline constexpr int server_threads = 16;
+/// How long a connection may take to send its request (and each write to it may take): a
+/// client that connects and sends nothing, or half a request line, holds a worker this long,
+/// not civetweb's default 30 s. Scrapes and probes send their request at once.
+inline constexpr int request_timeout_ms = 2000;
+
+/// civetweb's options for a listener on `listen` (one host:port): server_threads workers,
+/// request_timeout_ms, no keep-alive (a connection ends with its answer).
+std::vector<std::string> server_options(const std::string& listen);
 
 /// The callbacks to hand prometheus::Exposer; they live as long as the process.
 const CivetCallbacks& health_callbacks();

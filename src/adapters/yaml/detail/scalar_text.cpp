@@ -55,4 +55,11 @@ bool valid_host_port(std::string_view text, bool port_required) {
     return colon > 0 && port && *port >= 1 && *port <= 65535;
 }
 
+bool one_host_port(std::string_view text) {
+    return std::none_of(text.begin(), text.end(), [](char c) {
+        const auto byte = static_cast<unsigned char>(c);
+        return c == ',' || byte <= 0x20 || byte == 0x7F;
+    });
+}
+
 }  // namespace eip2mqtt::adapters::yaml::detail

@@ -40,4 +40,8 @@ std::optional<std::uint32_t> parse_ipv4(std::string_view text);
 /// `host` or `host:port`: the port, when written, must be 1..65535.
 bool valid_host_port(std::string_view text, bool port_required);
 
+/// `text` names one address, not a list: no ',' (civetweb's list separator), no space or
+/// control character.
+bool one_host_port(std::string_view text);
+
 }  // namespace eip2mqtt::adapters::yaml::detail

@@ -162,8 +162,15 @@ TEST_F(WriteRouterTest, AValidResponseTopicGetsTheResult) {
 
 TEST_F(WriteRouterTest, AResponseTopicNoBrokerAcceptsIsRefusedAndAnsweredOnTheResultTopic) {
     const std::vector<std::string> topics{
-        "rt/#",  "a/+/b",       "#", std::string(65536, 'r'), "a\nb", std::string("a\0b", 3),
-        "\xC3(", "\xEF\xBF\xBF"};
+        "rt/#",
+        "a/+/b",
+        "#",
+        std::string(65536, 'r'),
+        "a\nb",
+        std::string("a\0b", 3),
+        "\xC3(",
+        "\xEF\xBF\xBF",
+        "clients/\xE2\x80\xAEylper"};  // the last: an RLO (U+202E)
     for (const auto& topic : topics) {
         const auto decision = route("acme/t1/sp/SPEED/set", "1", topic);
         const auto rejection = refused(decision);

@@ -121,7 +121,12 @@ TEST(Validate, ControlCharactersAndInvalidUtf8InExchangeNamesAndTopics) {
     }
     c = valid();
     c.exchanges[0].spec.topic = std::string("area/t\0", 7);
-    EXPECT_TRUE(mentions(only(validate(c)), "topic 'area/t\\0' contains a NUL character"));
+    EXPECT_TRUE(mentions(only(validate(c)), "topic 'area/t\\x00' contains a NUL character"));
+    // A right-to-left override: "area/<RLO>tes/1t" reads "area/t1/set"; shown escaped.
+    c = valid();
+    c.exchanges[0].spec.topic = "area/\xE2\x80\xAEtes/1t";
+    EXPECT_TRUE(mentions(only(validate(c)),
+                         "topic 'area/\\u202Etes/1t' contains a bidirectional control character"));
 }
 
 TEST(Validate, AnExchangeTopicTooLongIsRefusedOnceNotForEachTag) {

@@ -144,7 +144,7 @@ TEST(Validate, ControlCharactersAndInvalidUtf8InTagNames) {
     auto c = valid();
     c.exchanges[0].tags[1].spec.name = std::string("A\0B", 3);
     EXPECT_EQ(only(validate(c)).message,
-              "tag name 'A\\0B' contains a NUL character of exchange 'turbine1'");
+              "tag name 'A\\x00B' contains a NUL character of exchange 'turbine1'");
     c.exchanges[0].tags[1].spec.name = "PRESS\xC3\x83O";  // UTF-8 is welcome
     EXPECT_TRUE(validate(c).empty());
 }
@@ -156,8 +156,8 @@ TEST(Validate, TwoTagNamesAlikeUpToANulAreBothRefused) {
     c.exchanges[0].tags.push_back(tag(std::string("A\0y", 3), 10, 0, TagType::int_));
     const auto d = validate(c);
     ASSERT_EQ(d.size(), 2u);
-    EXPECT_TRUE(mentions(d[0], "'A\\0x' contains a NUL character")) << d[0].message;
-    EXPECT_TRUE(mentions(d[1], "'A\\0y' contains a NUL character")) << d[1].message;
+    EXPECT_TRUE(mentions(d[0], "'A\\x00x' contains a NUL character")) << d[0].message;
+    EXPECT_TRUE(mentions(d[1], "'A\\x00y' contains a NUL character")) << d[1].message;
 }
 
 // acme/site/turbine1/{tag}/set/result: 30 bytes and the tag's name.
