@@ -27,6 +27,19 @@ std::optional<std::pair<int, int>> first_indenting_tab(std::string_view text, in
     return std::nullopt;
 }
 
+/// The 1-based line and column of the first NUL byte. YAML allows none (YAML 1.2 §5.1,
+/// c-printable); yaml-cpp reads one as the end of a token and says something else further on
+/// ("bad character found while scanning hex number"), so it is named where it is.
+std::optional<std::pair<int, int>> first_nul(std::string_view text) {
+    const auto nul = text.find('\0');
+    if (nul == std::string_view::npos) return std::nullopt;
+    const auto before = text.substr(0, nul);
+    const auto line = std::count(before.begin(), before.end(), '\n') + 1;
+    const auto line_start = before.rfind('\n');
+    const auto column = line_start == std::string_view::npos ? nul + 1 : nul - line_start;
+    return std::pair{static_cast<int>(line), static_cast<int>(column)};
+}
+
 }  // namespace
 
 core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
@@ -36,15 +49,8 @@ core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
         error({file_, 0, 0}, "the load was given up: the gateway is stopping");
         return core::fail(std::move(diagnostics_));
     };
-    // YAML allows no NUL byte in a file (YAML 1.2 §5.1, c-printable); yaml-cpp reads one as
-    // the end of a token and says something else further on ("bad character found while
-    // scanning hex number"): name it where it is.
-    if (const auto nul = text.find('\0'); nul != std::string::npos) {
-        const auto before = std::string_view(text).substr(0, nul);
-        const auto line = std::count(before.begin(), before.end(), '\n') + 1;
-        const auto line_start = before.rfind('\n');
-        const auto column = line_start == std::string_view::npos ? nul + 1 : nul - line_start;
-        error({file_, static_cast<int>(line), static_cast<int>(column)},
+    if (const auto nul = first_nul(text)) {
+        error({file_, nul->first, nul->second},
               "YAML syntax error: a NUL byte (\\x00) in the file; YAML allows none");
         return core::fail(std::move(diagnostics_));
     }
