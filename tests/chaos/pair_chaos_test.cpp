@@ -36,15 +36,17 @@ const std::vector<std::uint64_t> ci_seeds{
     6,  // writes answered once: ok twice, ok then standby, standby then ok (cuts, broker stop);
         // leader kept
 };
+// Seed 2 also failed `writes answered once` after the pair's fixes: ok from the leader, then
+// standby from the unit that took over after Mosquitto was stopped for 850 ms.
 
-// The checkers every seed must pass. The pair of today breaks the others, now and then or
-// always: a unit cut off from the broker queues claims that depose a healthy leader when its path
-// heals (`leader kept`, `leadership present`, and `one producer` when the deposed leader's last
-// datagram and the new one's first fall within a period), and answers across takeovers are not
-// once (`writes answered once`). Once the pair's fixes land, set this to true, and every checker
-// must pass every seed. EIP2MQTT_CHAOS_ALL=1 does the same for one run.
+// The checkers every seed must pass. One is not required yet: seed 2 found a write the
+// leader answered `ok` and the unit that took over after a broker stop answered `standby`
+// (`writes answered once`). Once that is fixed, set this to true, and every checker must pass
+// every seed. EIP2MQTT_CHAOS_ALL=1 does the same for one run.
 constexpr bool every_checker_required = false;
-const std::set<std::string> checkers_required_today{"published was sent", "samples once, in order"};
+const std::set<std::string> checkers_required_today{"published was sent", "samples once, in order",
+                                                    "one producer", "leader kept",
+                                                    "leadership present"};
 
 bool required(const std::string& checker) {
     const char* all = std::getenv("EIP2MQTT_CHAOS_ALL");
