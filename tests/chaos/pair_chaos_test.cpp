@@ -31,7 +31,9 @@ const std::vector<std::uint64_t> ci_seeds{
     1,  // writes answered once: ok then standby, standby twice (a stalled standby took the lead);
         // leader kept: gw-a deposed while renewing
     2,  // one producer: gw-a's last datagram and gw-b's first 37 ms apart, as gw-b's claims,
-        // queued while its broker path stalled, deposed gw-a (leader kept); writes answered once
+        // queued while its broker path stalled, deposed gw-a (leader kept); writes answered once;
+        // later ok then standby (the standby subscribed to the response topic anew with each
+        // write and missed an answer that came first: it lingers now)
     4,  // writes answered once: ok then standby (a cut leader, a SIGSTOPped one)
     6,  // writes answered once: ok twice, ok then standby, standby then ok (cuts, broker stop);
         // leader kept

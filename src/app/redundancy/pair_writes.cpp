@@ -1,7 +1,6 @@
 #include "eip2mqtt/app/redundancy/pair_writes.hpp"
 
 #include <algorithm>
-#include <set>
 #include <utility>
 #include <variant>
 
@@ -12,19 +11,17 @@ PairWrites::PairWrites(std::chrono::milliseconds horizon, std::function<void()> 
 
 void PairWrites::leave(WriteRequest&& request, core::MonoTime now) {
     if (!std::holds_alternative<ExchangeWrite>(request.outcome)) return;
-    bool changed = forget_older(now);
+    forget_older(now);
+    bool changed = forget_topics(now);
     if (left_.size() == max_left) {
-        changed |= left_.front().response_topic;
         left_.pop_front();
         ++counters_.forgotten;
     }
-    const bool response_topic = request.reply.topic != request.target + "/result";
-    const bool new_topic =
-        response_topic && std::none_of(left_.begin(), left_.end(), [&](const Left& left) {
-            return left.request.reply.topic == request.reply.topic;
-        });
-    left_.push_back({std::move(request), now, response_topic});
-    if ((changed || new_topic) && topics_changed_) topics_changed_();
+    if (request.reply.topic != request.target + "/result") {
+        changed |= listen(request.reply.topic, now);
+    }
+    left_.push_back({std::move(request), now});
+    if (changed && topics_changed_) topics_changed_();
 }
 
 void PairWrites::heard(const adapters::mqtt::Incoming& answer) {
@@ -33,45 +30,53 @@ void PairWrites::heard(const adapters::mqtt::Incoming& answer) {
                left.request.reply.correlation_data == answer.correlation_data;
     });
     if (found == left_.end()) return;
-    const bool response_topic = found->response_topic;
     left_.erase(found);
     ++counters_.answers_heard;
-    // The subscription goes with the last write answered there.
-    if (response_topic && topics_changed_ &&
-        std::none_of(left_.begin(), left_.end(),
-                     [&](const Left& left) { return left.request.reply.topic == answer.topic; })) {
-        topics_changed_();
-    }
+    // The topic stays listened to (topic_linger): the next write's answer may come before a
+    // new subscription would.
 }
 
 std::vector<std::string> PairWrites::response_topics() const {
-    std::set<std::string> topics;
-    for (const auto& left : left_) {
-        if (left.response_topic) topics.insert(left.request.reply.topic);
-    }
-    return {topics.begin(), topics.end()};
+    std::vector<std::string> topics;
+    topics.reserve(topics_.size());
+    for (const auto& [topic, at] : topics_) topics.push_back(topic);
+    return topics;
 }
 
 std::vector<WriteRequest> PairWrites::take_unanswered(core::MonoTime now) {
-    const bool topic_went = forget_older(now);
+    forget_older(now);
     std::vector<WriteRequest> unanswered;
     unanswered.reserve(left_.size());
     for (auto& left : left_) unanswered.push_back(std::move(left.request));
-    const bool had_topics = std::any_of(left_.begin(), left_.end(),
-                                        [](const Left& left) { return left.response_topic; });
     left_.clear();
-    if ((topic_went || had_topics) && topics_changed_) topics_changed_();
+    const bool had_topics = !topics_.empty();
+    topics_.clear();
+    if (had_topics && topics_changed_) topics_changed_();
     return unanswered;
 }
 
-bool PairWrites::forget_older(core::MonoTime now) {
-    bool topic_went = false;
+void PairWrites::forget_older(core::MonoTime now) {
     while (!left_.empty() && now - left_.front().at > horizon_) {
-        topic_went |= left_.front().response_topic;
         left_.pop_front();
         ++counters_.forgotten;
     }
-    return topic_went;
+}
+
+bool PairWrites::listen(const std::string& topic, core::MonoTime now) {
+    const bool inserted = topics_.insert_or_assign(topic, now).second;
+    if (inserted && topics_.size() > max_topics) {
+        const auto oldest = std::min_element(topics_.begin(), topics_.end(), [&](auto& a, auto& b) {
+            // The topic just listened to is the latest: never the one to go.
+            return a.first != topic && (b.first == topic || a.second < b.second);
+        });
+        topics_.erase(oldest);
+    }
+    return inserted;
+}
+
+bool PairWrites::forget_topics(core::MonoTime now) {
+    return std::erase_if(topics_,
+                         [&](const auto& entry) { return now - entry.second > topic_linger; }) > 0;
 }
 
 }  // namespace eip2mqtt::app::redundancy

@@ -77,8 +77,42 @@ TEST_F(PairWritesTest, ResponseTopicsAreListenedToWhileAWriteWaitsThere) {
     writes_.heard(answer("client/replies", "a"));
     EXPECT_EQ(topics_changed_, 1);  // one write still waits there
     writes_.heard(answer("client/replies", "b"));
+    // Still listened to, for the next write's answer (below).
+    EXPECT_EQ(writes_.response_topics(), std::vector<std::string>{"client/replies"});
+    EXPECT_EQ(topics_changed_, 1);
+}
+
+// One client writing every 250 ms with one response topic, the leader answering each within
+// milliseconds: a subscription dropped with each answer and asked again with the next write
+// reached the broker after the leader's answer now and then, and the unit taking the lead
+// refused `standby` a write the leader had answered `ok`.
+TEST_F(PairWritesTest, AResponseTopicStaysListenedToBetweenOneWritesAnswerAndTheNextWrite) {
+    for (int i = 0; i < 8; ++i) {
+        const auto correlation = "w" + std::to_string(i);
+        writes_.leave(write(i, "answers/chaos", correlation), t0_ + i * 250ms);
+        writes_.heard(answer("answers/chaos", correlation));
+        EXPECT_EQ(writes_.response_topics(), std::vector<std::string>{"answers/chaos"});
+    }
+    EXPECT_EQ(topics_changed_, 1);  // subscribed once, before the first answer could come
+    EXPECT_EQ(writes_.counters().answers_heard, 8u);
+    EXPECT_TRUE(writes_.take_unanswered(t0_ + 2s).empty());
+}
+
+TEST_F(PairWritesTest, AResponseTopicLapsesAfterTheLingerAndTheBoundKeepsTheLatest) {
+    writes_.leave(write(1, "client/replies", "a"), t0_);
+    writes_.heard(answer("client/replies", "a"));
+    writes_.leave(write(2), t0_ + PairWrites::topic_linger);
+    EXPECT_EQ(writes_.response_topics(), std::vector<std::string>{"client/replies"});
+    writes_.leave(write(3), t0_ + PairWrites::topic_linger + 1ms);
     EXPECT_TRUE(writes_.response_topics().empty());
     EXPECT_EQ(topics_changed_, 2);
+    for (std::size_t i = 0; i <= PairWrites::max_topics; ++i) {
+        writes_.leave(write(1, "replies/" + std::to_string(i + 100)), t0_ + 11min + i * 1ms);
+    }
+    const auto topics = writes_.response_topics();
+    EXPECT_EQ(topics.size(), PairWrites::max_topics);
+    EXPECT_EQ(topics.front(), "replies/101");  // the least recent one went
+    EXPECT_EQ(topics.back(), "replies/" + std::to_string(PairWrites::max_topics + 100));
 }
 
 TEST_F(PairWritesTest, AWriteItsNorthboundRefusedIsNotKept) {

@@ -3,6 +3,12 @@
 /// until the standby hears the leader's answer to it on the broker: the JSON tree's connection,
 /// the one the writes come by, listens where writes are answered, `{set topic}/result` and
 /// each left write's MQTT 5 response topic (response_topics(); JsonTree::set_answer_listener).
+/// A response topic stays listened to for `topic_linger` after the last write left with it,
+/// answered or not: the leader answers a write within milliseconds, often before a
+/// subscription the write's arrival asked for reaches the broker, so a topic subscribed anew
+/// for each write would miss answers, and the unit taking the lead would settle a write the
+/// leader had answered (a second, contradicting answer). Only a topic's first write in a
+/// linger, or one beyond `max_topics`, can still race its answer.
 /// A unit that takes the lead settles the writes it heard no answer for: its old leader died,
 /// hung or was cut off before answering them, or never had them (WriteDispatcher::settle).
 ///
@@ -16,6 +22,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -36,6 +43,10 @@ public:
     /// The most writes kept: only those of the last takeover window can matter, and a live
     /// leader answers every one.
     static constexpr std::size_t max_left = 1024;
+    /// How long a response topic stays listened to after the last write left with it.
+    static constexpr std::chrono::minutes topic_linger{10};
+    /// The most response topics listened to: beyond, the one written least recently goes.
+    static constexpr std::size_t max_topics = 64;
 
     /// `horizon`: how long a live leader may take to answer a write (its exchange's next
     /// production, the image's save, the broker's acknowledgement of the image); a write left
@@ -48,10 +59,11 @@ public:
     /// A message heard on an answer topic: the oldest write left with its topic and
     /// correlation data has its answer. Others (answers to writes not left here) are ignored.
     void heard(const adapters::mqtt::Incoming& answer);
-    /// The distinct response topics of the writes kept, to listen on besides `{set}/result`.
+    /// The response topics of the writes left within `topic_linger` (at most `max_topics`, the
+    /// latest), to listen on besides `{set}/result`.
     std::vector<std::string> response_topics() const;
     /// This unit takes the lead: the writes kept that are within the horizon at `now` and were
-    /// heard unanswered, oldest first. None is kept afterwards.
+    /// heard unanswered, oldest first. None is kept afterwards, and no topic listened to.
     std::vector<WriteRequest> take_unanswered(core::MonoTime now);
 
     std::size_t size() const { return left_.size(); }
@@ -61,14 +73,18 @@ private:
     struct Left {
         WriteRequest request;
         core::MonoTime at;
-        bool response_topic = false;  ///< answered on a response topic, not `{set}/result`
     };
-    /// Forgets the writes left before `now - horizon`; true when a response topic went.
-    bool forget_older(core::MonoTime now);
+    /// Forgets the writes left before `now - horizon`.
+    void forget_older(core::MonoTime now);
+    /// Listens on `topic`, a write's response topic, from `now` on; true when it is new.
+    bool listen(const std::string& topic, core::MonoTime now);
+    /// Stops listening on the topics lapsed at `now`; true when one went.
+    bool forget_topics(core::MonoTime now);
 
     std::chrono::milliseconds horizon_;
     std::function<void()> topics_changed_;
     std::deque<Left> left_;
+    std::map<std::string, core::MonoTime> topics_;  ///< response topic: last write left there
     PairWriteCounters counters_;
 };
 
