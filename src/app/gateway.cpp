@@ -36,6 +36,15 @@ ExchangesOptions exchanges_options(const core::config::Config& config, Exchanges
     return options;
 }
 
+adapters::udp::ReceiverOptions receiver_options(const core::config::EipSection& eip) {
+    adapters::udp::ReceiverOptions options;
+    options.bind = eip.bind;
+    options.port = eip.port;
+    for (const auto& group : eip.multicast)
+        options.multicast.push_back({group.group, group.interface});
+    return options;
+}
+
 }  // namespace
 
 Gateway::Gateway(core::config::Config config)
@@ -82,13 +91,8 @@ Gateway::Gateway(core::config::Config config)
     exchanges_.apply(take_plans(config_), std::chrono::steady_clock::now(),
                      std::chrono::system_clock::now());
 
-    adapters::udp::ReceiverOptions receiver_options;
-    receiver_options.bind = config_.eip.bind;
-    receiver_options.port = config_.eip.port;
-    for (const auto& group : config_.eip.multicast) {
-        receiver_options.multicast.push_back({group.group, group.interface});
-    }
-    receiver_ = std::make_unique<adapters::udp::Receiver>(loop_.get_executor(), receiver_options);
+    receiver_ = std::make_unique<adapters::udp::Receiver>(loop_.get_executor(),
+                                                          receiver_options(config_.eip));
     make_commands();
     if (!config_.metrics.listen.empty()) {
         prometheus_ =
