@@ -13,19 +13,13 @@
 
 #include <string>
 
+#include "tests/support/loopback.hpp"
+
 namespace eip2mqtt::test {
 namespace {
 
 using namespace std::chrono_literals;
 using D = TcpProxy::Direction;
-
-sockaddr_in loopback(std::uint16_t port) {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_port = htons(port);
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    return a;
-}
 
 /// What arrives on `fd` within `wait` (empty: nothing).
 std::string receive(int fd, std::chrono::milliseconds wait) {

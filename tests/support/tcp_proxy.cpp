@@ -13,16 +13,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "tests/support/loopback.hpp"
+
 namespace eip2mqtt::test {
 namespace {
-
-sockaddr_in loopback(std::uint16_t port) {
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(port);
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    return address;
-}
 
 /// Writes all of `size` bytes (the other end reads as it can: a test's messages are small).
 bool write_all(int fd, const char* data, std::size_t size) {
