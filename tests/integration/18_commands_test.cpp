@@ -9,10 +9,9 @@
 
 #include "eip2mqtt/core/command/command_status.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
+#include "tests/integration/commands_fixture.hpp"
 #include "tests/support/command_client.hpp"
 #include "tests/support/exchange_yaml.hpp"
-#include "tests/support/free_port.hpp"
-#include "tests/support/gateway_fixture.hpp"
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::test {
@@ -23,19 +22,11 @@ using core::command::CommandStatus;
 using core::command::PduType;
 using nlohmann::json;
 
-constexpr std::uint32_t other_source = 0x7F000002;  // 127.0.0.2
-
-const core::wire::ExchangeKey produced_key{core::wire::ProducerId{0x0A010203}, 10};
-
-class CommandsTest : public GatewayTest {
+class CommandsTest : public CommandsFixture {
 protected:
     /// Starts the gateway with its responder; `commands` adds keys to eip.commands.
     void start_with(const std::string& commands) {
-        capture_ = std::make_unique<UdpClient>();
-        commands_port_ = free_udp_port();
-        GatewayOptions options;
-        options.eip_extra = "  commands: { enabled: true, port: " + std::to_string(commands_port_) +
-                            commands + " }\n";
+        auto options = commands_options(commands);
         start(ExchangeYaml::produce("sp", "10.1.2.3", 10,
                                     "127.0.0.1:" + std::to_string(capture_->port()))
                   .period_ms(20)
@@ -56,13 +47,6 @@ protected:
         return speeds;
     }
 
-    core::command::DataPdu cells(std::vector<core::command::Cell> list) const {
-        core::command::DataPdu pdu;
-        pdu.key = produced_key;
-        pdu.cells = std::move(list);
-        return pdu;
-    }
-
     /// SPEED_SP as a Read of 2 bytes at offset 0 returns it.
     std::uint64_t read_speed(CommandClient& client) {
         const auto response = client.ask(commands_port_, PduType::read_request, cells({{0, 2}}));
@@ -73,22 +57,6 @@ protected:
         return std::to_integer<std::uint64_t>(data[0]) | std::to_integer<std::uint64_t>(data[1])
                                                              << 8;
     }
-
-    /// The next metrics message whose `commands` satisfies `done`.
-    json commands_metrics(const std::function<bool(const json&)>& done) {
-        const auto message = recorder_->wait_for_message(
-            metrics_topic(),
-            [&](const std::string& payload) {
-                const auto metrics = json::parse(payload, nullptr, false);
-                return metrics.contains("commands") && done(metrics);
-            },
-            20s);
-        EXPECT_TRUE(message.has_value()) << "no such metrics";
-        return message ? json::parse(message->payload) : json();
-    }
-
-    std::unique_ptr<UdpClient> capture_;
-    std::uint16_t commands_port_ = 0;
 };
 
 TEST_F(CommandsTest, AReadReturnsWhatAnMqttWritePutInAProducedExchange) {
