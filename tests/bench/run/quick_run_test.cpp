@@ -193,7 +193,7 @@ TEST(BenchRun, EveryScenarioOfTheQuickRunFillsItsRowsWithMeasuredFigures) {
          "EIP2MQTT_BENCH_RESULTS=" + results.path(), "python3",
          std::string(EIP2MQTT_SOURCE_DIR) + "/bench/run.py", "--quick", "--against-binary", gateway,
          "--against-label", "self"},
-        1100s);
+        1400s);
     ASSERT_EQ(run.status, 0) << run.output;
     std::ifstream in(results.path() + "/quick.md");
     const std::string markdown{std::istreambuf_iterator<char>(in), {}};
