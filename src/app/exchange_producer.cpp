@@ -246,7 +246,7 @@ void ExchangeProducer::on_save_failed(const std::string& error,
     for (const auto id : sent) {
         auto reply = take_reply(id);
         if (!reply) continue;
-        answer_accepted(std::move(*reply), error);
+        answer_accepted(id, std::move(*reply), error);
         ++totals_.writes_sent_unsaved;
     }
     // Queued writes that this save held wait on no other: they are never produced.
@@ -276,18 +276,28 @@ void ExchangeProducer::on_save_failed(const std::string& error,
 
 void ExchangeProducer::report_results(std::span<const std::uint64_t> write_ids) {
     for (const auto id : write_ids) {
-        if (auto reply = take_reply(id)) answer_accepted(std::move(*reply), std::nullopt);
+        if (auto reply = take_reply(id)) answer_accepted(id, std::move(*reply), std::nullopt);
     }
 }
 
-void ExchangeProducer::answer_accepted(WriteReply reply, std::optional<std::string> unsaved) {
-    auto answer = [&northbound = northbound_, reply = std::move(reply),
-                   unsaved = std::move(unsaved)] {
+void ExchangeProducer::answer_accepted(std::uint64_t write_id, WriteReply reply,
+                                       std::optional<std::string> unsaved) {
+    auto answer = [&northbound = northbound_, reply, unsaved = std::move(unsaved)] {
         if (unsaved) return northbound.write_result_unsaved(reply, *unsaved);
         northbound.write_result(reply, std::nullopt);
     };
     if (!answer_gate_) return answer();
-    answer_gate_(*this, std::move(answer));
+    answer_gate_(*this, write_id, reply, std::move(answer));
+}
+
+std::vector<std::pair<std::uint64_t, const WriteReply*>> ExchangeProducer::carried_replies() const {
+    std::vector<std::pair<std::uint64_t, const WriteReply*>> replies;
+    for (const auto id : carried_) {
+        if (const auto found = replies_.find(id); found != replies_.end()) {
+            replies.emplace_back(id, &found->second);
+        }
+    }
+    return replies;
 }
 
 std::optional<WriteReply> ExchangeProducer::take_reply(std::uint64_t write_id) {

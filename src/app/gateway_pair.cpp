@@ -14,6 +14,7 @@
 
 #include "eip2mqtt/app/gateway.hpp"
 #include "eip2mqtt/app/mqtt_settings.hpp"
+#include "eip2mqtt/core/redundancy/answer_key.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -29,6 +30,12 @@ std::chrono::milliseconds longest_produced_period(const core::config::Config& co
     return longest;
 }
 
+/// How long a live leader may take to answer a write: a production, a save and an image's
+/// acknowledgement. Twice the takeover and two of the longest periods is past any of it.
+std::chrono::milliseconds write_horizon(const core::config::Config& config) {
+    return 2 * config.redundancy.takeover + 2 * longest_produced_period(config);
+}
+
 }  // namespace
 
 void Gateway::make_pair() {
@@ -38,18 +45,14 @@ void Gateway::make_pair() {
         redundancy::pair_topics(config_.mqtt.base_topic, section.pair, config_.gateway.id);
     pair_mqtt_ = std::make_unique<adapters::mqtt::Client>(
         loop_.get_executor(), pair_client_options(config_, redundancy::pair_will(topics)));
-    pair_images_ =
-        std::make_unique<redundancy::PairImages>(topics.images, config_.gateway.id, *pair_mqtt_);
+    pair_images_ = std::make_unique<redundancy::PairImages>(topics.images, config_.gateway.id,
+                                                            *pair_mqtt_, write_horizon(config_));
     core::redundancy::LeaseSettings settings{config_.gateway.id, section.priority.value_or(0),
                                              section.takeover, longest_produced_period(config_)};
     pair_ = std::make_unique<redundancy::PairLease>(
         std::move(settings), std::move(topics), *pair_mqtt_, std::chrono::steady_clock::now(),
         [this](core::redundancy::Role role) { on_role(role); });
-    pair_->set_on_epoch_raised([this] {
-        for (const auto& producer : exchanges_.producers()) {
-            pair_images_->publish(*producer, pair_->lease().epoch());
-        }
-    });
+    pair_->set_on_epoch_raised([this] { publish_images(); });
     if (sparkplug_) pair_->set_bd_seq_source([this] { return sparkplug_->session_bd_seq(); });
     northbound_.set_gate([this] { return pair_->leading(std::chrono::steady_clock::now()); });
     make_pair_writes();
@@ -59,11 +62,8 @@ void Gateway::make_pair() {
 }
 
 void Gateway::make_pair_writes() {
-    // A live leader answers a write within a production, a save and an image's
-    // acknowledgement: twice the takeover and two of the longest periods is past any of it.
-    const auto horizon = 2 * config_.redundancy.takeover + 2 * longest_produced_period(config_);
-    pair_writes_ =
-        std::make_unique<redundancy::PairWrites>(horizon, [this] { json_tree_->listen_again(); });
+    pair_writes_ = std::make_unique<redundancy::PairWrites>(write_horizon(config_),
+                                                            [this] { json_tree_->listen_again(); });
     json_tree_->set_answer_listener(
         [this](const adapters::mqtt::Incoming& answer) { pair_writes_->heard(answer); },
         [this] { return pair_writes_->response_topics(); });
@@ -123,18 +123,30 @@ ExchangesOptions Gateway::pair_options() {
     options.may_produce = [this](core::MonoTime now) { return may_produce(now); };
     // Only a leader produces, so only a leader's images change by writes.
     options.on_image_changed = [this](const ExchangeProducer& producer) {
-        pair_images_->publish(producer, pair_->lease().epoch());
+        pair_images_->publish(producer, pair_->lease().epoch(), std::chrono::steady_clock::now());
     };
-    options.answer_gate = [this](const ExchangeProducer& producer, std::function<void()> answer) {
-        pair_images_->answer_after_image(producer, std::move(answer));
+    options.answer_gate = [this](const ExchangeProducer& producer, std::uint64_t write_id,
+                                 const WriteReply& reply, std::function<void()> answer) {
+        pair_images_->answer_after_image(producer, write_id, reply,
+                                         std::chrono::steady_clock::now(), std::move(answer));
     };
     options.follows_produced = [this](core::MonoTime now) { return !pair_->leading(now); };
     return options;
 }
 
+void Gateway::publish_images() {
+    const auto now = std::chrono::steady_clock::now();
+    for (const auto& producer : exchanges_.producers()) {
+        pair_images_->publish(*producer, pair_->lease().epoch(), now);
+    }
+}
+
 void Gateway::start_pair() {
     if (!pair_mqtt_) return;
-    pair_mqtt_->set_on_connected([this] { pair_->on_connected(); });
+    pair_mqtt_->set_on_connected([this] {
+        pair_images_->reconnected();
+        pair_->on_connected();
+    });
     pair_mqtt_->set_on_message([this](const adapters::mqtt::Incoming& message) {
         const auto now = std::chrono::steady_clock::now();
         if (!pair_images_->owns(message.topic)) {
@@ -145,8 +157,8 @@ void Gateway::start_pair() {
                                  pair_->lease().epoch());
     });
     pair_mqtt_->set_on_acknowledged([this](std::uint64_t token) {
-        if (pair_images_->on_acknowledged(token,
-                                          pair_->leading(std::chrono::steady_clock::now()))) {
+        if (pair_images_->on_acknowledged(token, pair_->leading(std::chrono::steady_clock::now()),
+                                          pair_->others_epoch())) {
             return;
         }
         pair_->on_acknowledged(token);
@@ -160,19 +172,13 @@ void Gateway::on_role(core::redundancy::Role role) {
     // Before anything is said as leader (the republish), or so that nothing more is.
     refresh_leading_until();
     if (role == core::redundancy::Role::leader) {
-        // The writes left to the old leader that it never answered, settled by the image as
-        // it stands: the one the old leader last published.
-        for (auto& request : pair_writes_->take_unanswered(now)) {
-            writes_.settle(std::move(request));
-        }
+        settle_left_writes(now);
         // What the old leader had not had acknowledged goes on `_history` before anything
         // live: the replay takes the window as it stands now.
         if (pair_history_) pair_history_->took_over(now);
         // The images under this lease's epoch, whatever the retained ones are: a standby that
         // starts later follows this leader's, not an older one's.
-        for (const auto& producer : exchanges_.producers()) {
-            pair_images_->publish(*producer, pair_->lease().epoch());
-        }
+        publish_images();
         // A standby kept its exchanges current without a word north: the new leader says all
         // of it at once, over what the old leader left retained, and its Sparkplug births
         // hold it.
@@ -184,10 +190,28 @@ void Gateway::on_role(core::redundancy::Role role) {
     step_down_writes(now);
 }
 
+void Gateway::settle_left_writes(core::MonoTime now) {
+    // What the other unit's images list as answered is not answered again: neither the writes
+    // left to it, nor those this unit withheld when it last stood down (answered now if not).
+    const auto listed = pair_images_->take_leader_answers();
+    pair_images_->answer_withheld(listed, now);
+    // The others are settled by the image as it stands: the one the old leader last published.
+    for (auto& request : pair_writes_->take_unanswered(now, listed)) {
+        const auto* write = std::get_if<ExchangeWrite>(&request.outcome);
+        const auto* plan = write != nullptr ? write->producer : nullptr;
+        const auto key =
+            core::redundancy::answer_key(request.reply.topic, request.reply.correlation_data);
+        // A refusal is listed in the images as well: whoever leads next answers it no more.
+        if (!writes_.settle(std::move(request)) && plan)
+            pair_images_->list_refusal(*plan, key, now);
+    }
+}
+
 void Gateway::step_down_writes(core::MonoTime now) {
-    // Accepted and produced, but the broker had not acknowledged the image carrying them: a
-    // unit taking over settles them by the image it has.
-    pair_images_->withhold_answers();
+    // Accepted and produced, but the broker had not acknowledged the image listing them: given
+    // only if the broker has it before any claim of the other unit (PairImages), else withheld
+    // and settled by the unit that takes over, by the image it has.
+    pair_images_->stood_down();
     // Accepted and not produced: never produced by this unit, not even should it lead again
     // (the new leader may have taken them). An answer now could contradict the unit that
     // takes the lead, which settles them too (the other unit left them: it heard them), and a

@@ -102,6 +102,7 @@ adapters::mqtt::ClientOptions sparkplug_client_options(
     options.clean_start = true;
     options.will = std::move(will);
     options.session_bound = true;
+    options.hear_own = true;  // a claim heard back confirms it (core/redundancy/lease.hpp)
     return options;
 }
 
@@ -114,6 +115,7 @@ adapters::mqtt::ClientOptions pair_client_options(const core::config::Config& co
     options.clean_start = true;
     options.will = [will = std::move(will)] { return will; };
     options.session_bound = true;
+    options.hear_own = true;  // a claim heard back confirms it (core/redundancy/lease.hpp)
     return options;
 }
 

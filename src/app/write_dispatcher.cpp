@@ -29,14 +29,16 @@ bool WriteDispatcher::admitted(WriteRequest& request) {
     return false;
 }
 
-void WriteDispatcher::settle(WriteRequest&& request) {
+bool WriteDispatcher::settle(WriteRequest&& request) {
     const auto* write = std::get_if<ExchangeWrite>(&request.outcome);
     if (write && !(admission_.holds && admission_.holds(*write))) {
         ++counters_.writes_settled_standby;
-        return reject(request, {core::write::WriteError::standby, "standby"});
+        reject(request, {core::write::WriteError::standby, "standby"});
+        return false;
     }
     if (write) ++counters_.writes_settled_applied;
     on_write(std::move(request));
+    return write != nullptr;
 }
 
 void WriteDispatcher::on_write(WriteRequest&& request) {

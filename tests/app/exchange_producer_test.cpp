@@ -208,14 +208,28 @@ TEST_F(ExchangeProducerTest, QueuedWritesTakenForThePairAreUnansweredAndCarryWha
 
 TEST_F(ExchangeProducerTest, AnAnswerGateHoldsOkUntilItRunsTheAnswer) {
     std::vector<std::function<void()>> held;
-    producer_->set_answer_gate([&](const ExchangeProducer& producer, std::function<void()> answer) {
+    std::vector<std::uint64_t> gated;
+    producer_->set_answer_gate([&](const ExchangeProducer& producer, std::uint64_t write_id,
+                                   const WriteReply& reply, std::function<void()> answer) {
         EXPECT_EQ(&producer, producer_.get());
+        EXPECT_EQ(reply.topic, "reply/a");
+        gated.push_back(write_id);
         held.push_back(std::move(answer));
+    });
+    // The image published for the datagram names the write it carried, as the gate does.
+    std::vector<std::pair<std::uint64_t, std::string>> carried;
+    producer_->set_on_image_changed([&](const ExchangeProducer& producer) {
+        for (const auto& [id, reply] : producer.carried_replies()) {
+            carried.emplace_back(id, reply->correlation_data);
+        }
     });
     write("a", 5);
     produce_once();
     persister_->flush();
     ASSERT_EQ(held.size(), 1u);
+    ASSERT_EQ(carried.size(), 1u);
+    EXPECT_EQ(carried[0].second, "a");
+    EXPECT_EQ(gated, std::vector<std::uint64_t>{carried[0].first});
     EXPECT_TRUE(results().empty());
     held[0]();
     EXPECT_EQ(results(), (std::map<std::string, std::vector<json>>{{"a", {ok}}}));

@@ -43,8 +43,9 @@ protected:
         ASSERT_EQ(left_.size(), 1u);
         policy_ = WritePolicy::apply;
         holds_ = image_holds;
-        dispatcher_.settle(std::move(left_[0]));
+        taken_ = dispatcher_.settle(std::move(left_[0]));
     }
+    bool taken_ = false;  ///< what settle() said
     std::uint64_t refused_standby() const {
         return dispatcher_.counters()
             .writes_rejected[static_cast<std::size_t>(WriteError::standby)];
@@ -117,6 +118,7 @@ TEST_F(WriteDispatcherStandbyTest, AWriteLeftToTheLeaderIsHandedOverUnanswered) 
 
 TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageHoldsIsTakenAsTheLeaderTakesAny) {
     leave_then_settle(true);
+    EXPECT_TRUE(taken_);
     EXPECT_EQ(staged_, 1);  // answered `ok` once produced, by the producer
     EXPECT_TRUE(origin_.results.empty());
     EXPECT_EQ(dispatcher_.counters().writes_settled_applied, 1u);
@@ -125,6 +127,7 @@ TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageHoldsIsTakenAsTheLeaderT
 
 TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageDoesNotHoldIsRefusedStandbyUnapplied) {
     leave_then_settle(false);
+    EXPECT_FALSE(taken_);
     EXPECT_EQ(staged_, 0);
     ASSERT_EQ(origin_.results.size(), 1u);
     EXPECT_EQ(origin_.results[0].error, "standby");

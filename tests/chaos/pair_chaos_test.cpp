@@ -14,7 +14,6 @@
 
 #include <cstdlib>
 #include <iostream>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -29,30 +28,22 @@ using namespace std::chrono_literals;
 // checker that caught it in a comment next to it.
 const std::vector<std::uint64_t> ci_seeds{
     1,  // writes answered once: ok then standby, standby twice (a stalled standby took the lead);
-        // leader kept: gw-a deposed while renewing
+        // leader kept: gw-a deposed while renewing; later a write sent 21 ms before Mosquitto
+        // was stopped for 1.9 s never answered (a leader standing down dropped the `ok` it held
+        // for the image's acknowledgement: it is given late or settled by the other unit now)
     2,  // one producer: gw-a's last datagram and gw-b's first 37 ms apart, as gw-b's claims,
         // queued while its broker path stalled, deposed gw-a (leader kept); writes answered once;
         // later ok then standby (the standby subscribed to the response topic anew with each
-        // write and missed an answer that came first: it lingers now)
+        // write and missed an answer that came first: it lingers now, and the leader's images
+        // list its answers)
     4,  // writes answered once: ok then standby (a cut leader, a SIGSTOPped one)
     6,  // writes answered once: ok twice, ok then standby, standby then ok (cuts, broker stop);
         // leader kept
+    15,  // one producer: a standby cut off claimed; its claim's acknowledgement overtook the
+         // leader's renewals the broker held for it, and it led 14 ms beside the leader (a
+         // claim now stands once heard back); writes answered once: ok twice, from both
+    24,  // writes answered once: standby (new leader), then ok (old one), around a broker stop
 };
-
-// The checkers every seed must pass. One is not required yet: after the fix of seed 2's, seed 1
-// found a write sent 21 ms before Mosquitto was stopped for 1.9 s that no unit ever answered
-// (`writes answered once`). Once that is fixed, set this to true, and every checker must pass
-// every seed. EIP2MQTT_CHAOS_ALL=1 does the same for one run.
-constexpr bool every_checker_required = false;
-const std::set<std::string> checkers_required_today{"published was sent", "samples once, in order",
-                                                    "one producer", "leader kept",
-                                                    "leadership present"};
-
-bool required(const std::string& checker) {
-    const char* all = std::getenv("EIP2MQTT_CHAOS_ALL");
-    return every_checker_required || (all != nullptr && std::string(all) == "1") ||
-           checkers_required_today.count(checker) > 0;
-}
 
 /// EIP2MQTT_CHAOS_SEEDS: "5", "1,4,9" or "1-200"; the CI seeds when unset.
 std::vector<std::uint64_t> seeds() {
@@ -91,15 +82,10 @@ TEST(PairChaos, EveryPromiseHoldsUnderTheSeededFaults) {
         ASSERT_EQ(settled, "") << "seed " << seed << "\n" << rig.story();
         rig.run(schedule);
         std::string broken;
-        std::string known;
-        for (const auto& [checker, found] : rig.check())
-            (required(checker) ? broken : known) += found;
-        EXPECT_EQ(broken, "") << "seed " << seed << " broke a promise:\n"
-                              << broken << known << rig.story();
+        for (const auto& [checker, found] : rig.check()) broken += found;
+        EXPECT_EQ(broken, "") << "seed " << seed << " broke a promise:\n" << broken << rig.story();
         std::cout << "seed " << seed << " (" << schedule.size()
-                  << " faults): " << (broken.empty() ? "every required promise held" : "FAILED")
-                  << "\n";
-        if (!known.empty()) std::cout << "not yet required:\n" << known;
+                  << " faults): " << (broken.empty() ? "every promise held" : "FAILED") << "\n";
     }
 }
 

@@ -106,10 +106,14 @@ private:
     /// The writes a standby leaves to the leader, the answers it listens for on the JSON
     /// tree's connection, and how it settles the unanswered once it leads (make_pair).
     void make_pair_writes();
+    /// Taking the lead: the writes left to the old leader and the answers this unit withheld.
+    void settle_left_writes(core::MonoTime now);
     /// Stepping down: the answers and the queued writes of this unit as leader.
     void step_down_writes(core::MonoTime now);
     /// With the JSON tree among the northbounds: the pair's history (make_pair).
     void make_pair_history();
+    /// The leader: every produced image, under its epoch.
+    void publish_images();
     void start_pair();
     void on_role(core::redundancy::Role role);
     /// With `sparkplug:`, the leader's session of the one edge node (gateway_sparkplug.cpp):

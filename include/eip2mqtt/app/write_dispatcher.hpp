@@ -49,8 +49,9 @@ public:
     /// refused it; taken as this leader takes any write when the image already holds what it
     /// writes (the old leader applied it, and the image it published brought it here), so it
     /// is answered `ok` once produced; else refused `standby`: not applied here, and undone
-    /// should the old leader have sent it.
-    void settle(WriteRequest&& request);
+    /// should the old leader have sent it. True when taken (answered once produced), false
+    /// when refused.
+    bool settle(WriteRequest&& request);
     /// Writes a reload answered `reloaded` (ExchangeProducer::cancel_queued_writes).
     void count_cancelled(std::size_t writes) { counters_.writes_cancelled += writes; }
     /// Where the produced exchanges count their image saves (ExchangeProducer).

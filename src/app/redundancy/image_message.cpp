@@ -41,13 +41,13 @@ std::optional<std::vector<std::byte>> from_hex(std::string_view text) {
     return out;
 }
 
-std::string layout_hex(std::uint64_t layout) {
+std::string hex16(std::uint64_t value) {
     std::string out(16, '0');
-    for (std::size_t i = 0; i < 16; ++i) out[15 - i] = digits[(layout >> (4 * i)) & 0x0F];
+    for (std::size_t i = 0; i < 16; ++i) out[15 - i] = digits[(value >> (4 * i)) & 0x0F];
     return out;
 }
 
-std::optional<std::uint64_t> layout_of(std::string_view text) {
+std::optional<std::uint64_t> from_hex16(std::string_view text) {
     if (text.size() != 16) return std::nullopt;
     std::uint64_t layout = 0;
     for (const char c : text) {
@@ -58,6 +58,23 @@ std::optional<std::uint64_t> layout_of(std::string_view text) {
     return layout;
 }
 
+/// `answers`, absent from an image of a unit that answered none (or of an older release): an
+/// empty list. nullopt when present and not a list of keys.
+std::optional<std::vector<std::uint64_t>> answers_of(const nlohmann::json& json) {
+    std::vector<std::uint64_t> answers;
+    const auto found = json.find("answers");
+    if (found == json.end()) return answers;
+    if (!found->is_array()) return std::nullopt;
+    answers.reserve(found->size());
+    for (const auto& item : *found) {
+        const auto key =
+            item.is_string() ? from_hex16(item.get_ref<const std::string&>()) : std::nullopt;
+        if (!key) return std::nullopt;
+        answers.push_back(*key);
+    }
+    return answers;
+}
+
 const std::string* string_at(const nlohmann::json& json, const char* key) {
     const auto it = json.find(key);
     return it != json.end() && it->is_string() ? &it->get_ref<const std::string&>() : nullptr;
@@ -66,11 +83,15 @@ const std::string* string_at(const nlohmann::json& json, const char* key) {
 }  // namespace
 
 std::string encode_image_message(const core::redundancy::ImageMessage& image) {
-    return nlohmann::json{{"id", image.id},
-                          {"epoch", image.epoch},
-                          {"layout", layout_hex(image.layout)},
-                          {"data", to_hex(image.data)}}
-        .dump();
+    nlohmann::json json{{"id", image.id},
+                        {"epoch", image.epoch},
+                        {"layout", hex16(image.layout)},
+                        {"data", to_hex(image.data)}};
+    if (!image.answers.empty()) {
+        auto& answers = json["answers"] = nlohmann::json::array();
+        for (const auto key : image.answers) answers.push_back(hex16(key));
+    }
+    return json.dump();
 }
 
 std::optional<core::redundancy::ImageMessage> decode_image_message(std::string_view payload) {
@@ -84,11 +105,12 @@ std::optional<core::redundancy::ImageMessage> decode_image_message(std::string_v
     if (!id || !layout_text || !data_text || epoch == json.end() || !epoch->is_number_unsigned()) {
         return std::nullopt;
     }
-    const auto layout = layout_of(*layout_text);
+    const auto layout = from_hex16(*layout_text);
     auto data = from_hex(*data_text);
-    if (!layout || !data) return std::nullopt;
+    auto answers = answers_of(json);
+    if (!layout || !data || !answers) return std::nullopt;
     return core::redundancy::ImageMessage{*id, epoch->get<std::uint64_t>(), *layout,
-                                          std::move(*data)};
+                                          std::move(*data), std::move(*answers)};
 }
 
 }  // namespace eip2mqtt::app::redundancy

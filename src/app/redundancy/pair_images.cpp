@@ -7,6 +7,7 @@
 
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/app/redundancy/image_message.hpp"
+#include "eip2mqtt/core/redundancy/answer_key.hpp"
 
 namespace eip2mqtt::app::redundancy {
 namespace {
@@ -23,10 +24,18 @@ core::redundancy::ImageLayout layout_of(const ExchangeProducer& producer) {
     return {adapters::state::layout_fingerprint(producer.plan()), producer.plan().length};
 }
 
+std::uint64_t key_of(const WriteReply& reply) {
+    return core::redundancy::answer_key(reply.topic, reply.correlation_data);
+}
+
 }  // namespace
 
-PairImages::PairImages(std::string prefix, std::string id, adapters::mqtt::Publisher& publisher)
-    : prefix_(std::move(prefix)), id_(std::move(id)), publisher_(publisher) {}
+PairImages::PairImages(std::string prefix, std::string id, adapters::mqtt::Publisher& publisher,
+                       std::chrono::milliseconds answers_kept)
+    : prefix_(std::move(prefix)),
+      id_(std::move(id)),
+      publisher_(publisher),
+      answers_kept_(answers_kept) {}
 
 std::string PairImages::topic_of(const core::plan::ExchangePlan& plan) const {
     return prefix_ + "/" + plan.spec.topic;
@@ -37,11 +46,16 @@ bool PairImages::owns(std::string_view topic) const {
            topic[prefix_.size()] == '/';
 }
 
-void PairImages::publish(const ExchangeProducer& producer, std::uint64_t epoch) {
-    const auto data = producer.image().data();
-    const core::redundancy::ImageMessage image{
-        id_, epoch, layout_of(producer).fingerprint, {data.begin(), data.end()}};
+void PairImages::publish(const ExchangeProducer& producer, std::uint64_t epoch,
+                         core::MonoTime now) {
     message_.topic = topic_of(producer.plan());
+    for (const auto& [write_id, reply] : producer.carried_replies()) {
+        list_answer(message_.topic, write_id, key_of(*reply), now);
+    }
+    const auto data = producer.image().data();
+    core::redundancy::ImageMessage image{
+        id_, epoch, layout_of(producer).fingerprint, {data.begin(), data.end()}, {}};
+    for (const auto& answered : answers_[message_.topic]) image.answers.push_back(answered.key);
     message_.payload = encode_image_message(image);
     message_.qos = 1;
     message_.retain = true;
@@ -49,21 +63,45 @@ void PairImages::publish(const ExchangeProducer& producer, std::uint64_t epoch) 
     message_.ack_token = image_token_bit | number;
     acks_[message_.topic].published = number;
     unacknowledged_.emplace(number, message_.topic);
+    epoch_ = epoch;
     publisher_.publish(std::move(message_));
     ++counters_.published;
 }
 
-void PairImages::answer_after_image(const ExchangeProducer& producer,
-                                    std::function<void()> answer) {
-    auto topic = topic_of(producer.plan());
-    const auto found = acks_.find(topic);
-    if (found == acks_.end() || found->second.acknowledged >= found->second.published) {
-        return answer();
+bool PairImages::list_answer(const std::string& topic, std::uint64_t write_id, std::uint64_t key,
+                             core::MonoTime now) {
+    auto& answers = answers_[topic];
+    while (!answers.empty() &&
+           (now - answers.front().at > answers_kept_ || answers.size() >= max_answers)) {
+        answers.pop_front();
     }
-    waiting_.push_back({std::move(topic), found->second.published, std::move(answer)});
+    // Listed by the write, not its key: writes sharing a key (no correlation data) are each
+    // listed, and a standby drops as many as the image lists.
+    const bool listed = std::any_of(answers.begin(), answers.end(), [&](const Answered& answered) {
+        return answered.write_id == write_id;
+    });
+    if (!listed) answers.push_back({write_id, key, now});
+    return !listed;
 }
 
-bool PairImages::on_acknowledged(std::uint64_t token, bool leading) {
+void PairImages::answer_after_image(const ExchangeProducer& producer, std::uint64_t write_id,
+                                    const WriteReply& reply, core::MonoTime now,
+                                    std::function<void()> answer) {
+    auto topic = topic_of(producer.plan());
+    const auto key = key_of(reply);
+    if (list_answer(topic, write_id, key, now)) publish(producer, epoch_, now);
+    // An image the broker never acknowledges (its connection dropped it) holds nothing forever.
+    while (!waiting_.empty() && now - waiting_.front().since > answers_kept_) {
+        withhold(std::move(waiting_.front()));
+        waiting_.pop_front();
+    }
+    const auto& acks = acks_[topic];
+    if (acks.acknowledged >= acks.published) return answer();
+    waiting_.push_back({std::move(topic), acks.published, std::move(answer), now, epoch_,
+                        stand_downs_, false, key});
+}
+
+bool PairImages::on_acknowledged(std::uint64_t token, bool leading, std::uint64_t others_epoch) {
     if ((token & image_token_bit) == 0) return false;
     const auto found = unacknowledged_.find(token & ~image_token_bit);
     if (found == unacknowledged_.end()) return true;
@@ -80,19 +118,53 @@ bool PairImages::on_acknowledged(std::uint64_t token, bool leading) {
     for (auto& waiting : waiting_) {
         if (waiting.topic != topic || waiting.through > acks.acknowledged) {
             still.push_back(std::move(waiting));
-        } else if (leading) {
-            waiting.answer();
         } else {
-            ++counters_.answers_withheld;
+            release(waiting, leading, others_epoch);
         }
     }
     waiting_ = std::move(still);
     return true;
 }
 
-void PairImages::withhold_answers() {
-    counters_.answers_withheld += waiting_.size();
-    waiting_.clear();
+void PairImages::release(Waiting& waiting, bool leading, std::uint64_t others_epoch) {
+    if (leading && waiting.stand_downs == stand_downs_) return waiting.answer();
+    if (!waiting.reconnected && others_epoch <= waiting.epoch) {
+        ++counters_.answers_late;
+        return waiting.answer();
+    }
+    withhold(std::move(waiting));
+}
+
+void PairImages::withhold(Waiting&& waiting) {
+    ++counters_.answers_withheld;
+    withheld_.push_back(std::move(waiting));
+}
+
+void PairImages::answer_withheld(std::span<const std::uint64_t> listed, core::MonoTime now) {
+    std::unordered_map<std::uint64_t, std::size_t> answered;
+    for (const auto key : listed) ++answered[key];
+    auto withheld = std::move(withheld_);
+    withheld_.clear();
+    for (auto& waiting : withheld) {
+        // Older than the horizon: the other unit forgot the write too; nobody settles it.
+        if (now - waiting.since > answers_kept_) continue;
+        const auto found = answered.find(waiting.key);
+        if (found != answered.end() && found->second > 0) {
+            --found->second;
+            continue;
+        }
+        ++counters_.answers_late;
+        waiting.answer();
+    }
+}
+
+void PairImages::list_refusal(const core::plan::ExchangePlan& plan, std::uint64_t key,
+                              core::MonoTime now) {
+    list_answer(topic_of(plan), next_refusal_++, key, now);
+}
+
+void PairImages::reconnected() {
+    for (auto& waiting : waiting_) waiting.reconnected = true;
 }
 
 std::optional<FollowVerdict> PairImages::on_message(
@@ -112,9 +184,22 @@ std::optional<FollowVerdict> PairImages::on_message(
     core::redundancy::FollowContext context{leading, epoch, std::nullopt};
     if (producer) context.producer = layout_of(*producer);
     const auto verdict = core::redundancy::judge_image(*image, context);
+    // Answers listed by the other unit's image as it leads (not a deposed one's, read late).
+    if (verdict != FollowVerdict::stale && verdict != FollowVerdict::leading && image->id != id_) {
+        heard_answers_[message.topic] = std::move(image->answers);
+    }
     if (verdict == FollowVerdict::apply && !producer->follow_image(image->data)) return verdict;
     count(verdict, producer, *image);
     return verdict;
+}
+
+std::vector<std::uint64_t> PairImages::take_leader_answers() {
+    std::vector<std::uint64_t> answers;
+    for (const auto& [topic, keys] : heard_answers_) {
+        answers.insert(answers.end(), keys.begin(), keys.end());
+    }
+    heard_answers_.clear();
+    return answers;
 }
 
 void PairImages::count(FollowVerdict verdict, const ExchangeProducer* producer,

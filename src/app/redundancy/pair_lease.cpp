@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <utility>
 
 #include "eip2mqtt/app/redundancy/leader_record.hpp"
@@ -57,6 +58,9 @@ void PairLease::on_connected() { publish_role(role_); }
 void PairLease::on_message(const adapters::mqtt::Incoming& message, core::MonoTime now) {
     if (message.topic != topics_.leader) return;
     const auto record = decode_leader_record(message.payload, &heard_);
+    if (record && record->id != lease_.id()) {
+        others_epoch_ = std::max(others_epoch_, record->epoch);
+    }
     const bool followed = lease_.on_record(record, now);
     if (record && record->bd_seq && record->epoch >= lease_.epoch()) {
         heard_bd_seq_ = record->bd_seq;

@@ -1,8 +1,11 @@
 #include "eip2mqtt/app/redundancy/pair_writes.hpp"
 
 #include <algorithm>
+#include <unordered_map>
 #include <utility>
 #include <variant>
+
+#include "eip2mqtt/core/redundancy/answer_key.hpp"
 
 namespace eip2mqtt::app::redundancy {
 
@@ -43,11 +46,24 @@ std::vector<std::string> PairWrites::response_topics() const {
     return topics;
 }
 
-std::vector<WriteRequest> PairWrites::take_unanswered(core::MonoTime now) {
+std::vector<WriteRequest> PairWrites::take_unanswered(core::MonoTime now,
+                                                      std::span<const std::uint64_t> listed) {
     forget_older(now);
+    std::unordered_map<std::uint64_t, std::size_t> answered;
+    for (const auto key : listed) ++answered[key];
     std::vector<WriteRequest> unanswered;
     unanswered.reserve(left_.size());
-    for (auto& left : left_) unanswered.push_back(std::move(left.request));
+    for (auto& left : left_) {
+        const auto& reply = left.request.reply;
+        const auto found =
+            answered.find(core::redundancy::answer_key(reply.topic, reply.correlation_data));
+        if (found != answered.end() && found->second > 0) {
+            --found->second;
+            ++counters_.answers_listed;
+            continue;
+        }
+        unanswered.push_back(std::move(left.request));
+    }
     left_.clear();
     const bool had_topics = !topics_.empty();
     topics_.clear();

@@ -80,6 +80,13 @@ bool Lease::on_record(const std::optional<LeaderRecord>& record, MonoTime now) {
     // An empty record (a will) says nothing the time since the last record does not.
     if (!record) return false;
     if (record->id == settings_.id) {
+        // Our claim heard back: what the broker had queued for this unit before it took the
+        // claim came first (a subscriber's messages keep their order; an acknowledgement may
+        // overtake them).
+        if (state_ == State::claiming && record->claim && record->epoch == epoch_ &&
+            record->beat >= beat_of(claimed_at_)) {
+            echoed_ = true;
+        }
         // Our own, or one from before a restart: its epoch is spent either way.
         epoch_ = std::max(epoch_, record->epoch);
         return false;
@@ -94,7 +101,12 @@ bool Lease::on_record(const std::optional<LeaderRecord>& record, MonoTime now) {
     const bool newer = record->epoch > epoch_;
     const bool same_and_gives_way = record->epoch == epoch_ && gives_way(*record);
     // The leader it follows renews still: whatever its own failed claim raised its epoch to.
-    const bool still_heard = state_ == State::standby && renews_after(*record, heard_);
+    // Claiming, a renewal after the one its claim named, which the broker took before the
+    // claim (it comes before the claim heard back): the claim was made without hearing it.
+    // One the broker took after the claim is a leader's that finds the claim in its way.
+    const bool still_heard =
+        (state_ == State::standby && renews_after(*record, heard_)) ||
+        (state_ == State::claiming && !echoed_ && renews_after(*record, named_));
     if (!newer && !same_and_gives_way && !still_heard) return false;
     follow(*record, now);
     return true;
@@ -143,9 +155,11 @@ std::optional<LeaderRecord> Lease::tick(MonoTime now) {
         claimed_at_ = now;
         last_sent_ = now;
         last_acknowledged_.reset();
+        echoed_ = false;
         return own_record();
     }
-    if (state_ == State::claiming && last_acknowledged_ && now - claimed_at_ >= renew_interval()) {
+    if (state_ == State::claiming && last_acknowledged_ && echoed_ &&
+        now - claimed_at_ >= renew_interval()) {
         state_ = State::leader;
         led_at_ = now;
     }

@@ -15,7 +15,8 @@ ImageMessage sample() {
     return {"gw-a",
             3,
             0x8c1f'0e5a'2b3d'4c6eULL,
-            {std::byte{0x00}, std::byte{0x80}, std::byte{0x3b}, std::byte{0x45}}};
+            {std::byte{0x00}, std::byte{0x80}, std::byte{0x3b}, std::byte{0x45}},
+            {}};
 }
 
 TEST(ImageMessage, EncodesTheLayoutAndDataInHex) {
@@ -35,7 +36,20 @@ TEST(ImageMessage, DecodesWhatItEncodes) {
     EXPECT_EQ(decode_image_message(encode_image_message(large)), large);
     EXPECT_EQ(
         decode_image_message(R"({"id":"b","epoch":0,"layout":"0000000000000001","data":"FFfe"})"),
-        (ImageMessage{"b", 0, 1, {std::byte{0xFF}, std::byte{0xFE}}}));
+        (ImageMessage{"b", 0, 1, {std::byte{0xFF}, std::byte{0xFE}}, {}}));
+}
+
+TEST(ImageMessage, ListsTheAnswersOfItsWritesAsSixteenHexDigitsEach) {
+    auto image = sample();
+    image.answers = {0x5d2a'0000'0000'0001ULL, ~std::uint64_t{0}, 0};
+    const auto payload = encode_image_message(image);
+    EXPECT_EQ(nlohmann::json::parse(payload)["answers"],
+              nlohmann::json({"5d2a000000000001", "ffffffffffffffff", "0000000000000000"}));
+    EXPECT_EQ(test::schema_problem(test::schema_file("pair-image.json"), payload), "");
+    EXPECT_EQ(decode_image_message(payload), image);
+    // Absent, the list is empty: an image of a unit that answered nothing, or of an older
+    // release, reads as before.
+    EXPECT_EQ(decode_image_message(encode_image_message(sample()))->answers.size(), 0u);
 }
 
 TEST(ImageMessage, WhatIsNoImageDecodesToNothing) {
@@ -47,7 +61,10 @@ TEST(ImageMessage, WhatIsNoImageDecodesToNothing) {
           R"({"id":"a","epoch":1,"layout":"000000000000000g","data":"00"})",
           R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"0"})",
           R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"zz"})",
-          R"({"id":"a","epoch":1,"layout":"0000000000000001"})"}) {
+          R"({"id":"a","epoch":1,"layout":"0000000000000001"})",
+          R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","answers":"01"})",
+          R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","answers":[1]})",
+          R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","answers":["01"]})"}) {
         EXPECT_FALSE(decode_image_message(payload).has_value()) << payload;
     }
 }

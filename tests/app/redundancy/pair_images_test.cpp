@@ -14,6 +14,7 @@
 
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/app/redundancy/image_message.hpp"
+#include "eip2mqtt/core/redundancy/answer_key.hpp"
 #include "tests/app/support/producer_rig.hpp"
 #include "tests/app/support/test_plan.hpp"
 #include "tests/support/fakes/log_capture.hpp"
@@ -26,6 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 using core::redundancy::FollowVerdict;
 using core::redundancy::ImageMessage;
+using namespace std::chrono_literals;
 
 const std::string prefix = "acme/_gateway/_pair/turbine/image";
 const std::string topic = prefix + "/site/sp";
@@ -50,6 +52,16 @@ protected:
     std::vector<std::byte> image() {
         return {producer().image().data().begin(), producer().image().data().end()};
     }
+    /// Write `id` of the producer, answered on `reply/{correlation}`.
+    static WriteReply reply(const std::string& correlation) {
+        return {"reply/" + correlation, correlation};
+    }
+    static std::uint64_t key(const std::string& correlation) {
+        return core::redundancy::answer_key("reply/" + correlation, correlation);
+    }
+    std::vector<std::uint64_t> listed_in(const adapters::mqtt::Message& message) {
+        return decode_image_message(message.payload)->answers;
+    }
     adapters::mqtt::Incoming incoming(const ImageMessage& image, const std::string& on = topic) {
         return {on, encode_image_message(image)};
     }
@@ -58,11 +70,12 @@ protected:
         return images_.on_message(incoming(image), producers_, leading, epoch);
     }
 
+    core::MonoTime t0_{std::chrono::seconds(100)};
     test::ProducerRig rig_{"eip2mqtt_pair_images"};
     test::RecordingNorthbound northbound_;
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
     test::RecordingPublisher publisher_;
-    PairImages images_{prefix, "gw-b", publisher_};
+    PairImages images_{prefix, "gw-b", publisher_, 10s};
 };
 
 TEST_F(PairImagesTest, TheTopicOfAnExchangeIsItsTopicUnderThePairs) {
@@ -75,7 +88,7 @@ TEST_F(PairImagesTest, TheTopicOfAnExchangeIsItsTopicUnderThePairs) {
 }
 
 TEST_F(PairImagesTest, TheLeaderPublishesItsImageRetainedWithItsEpochAndLayout) {
-    images_.publish(producer(), 7);
+    images_.publish(producer(), 7, t0_);
     ASSERT_EQ(publisher_.published.size(), 1u);
     const auto& message = publisher_.published.front();
     EXPECT_EQ(message.topic, topic);
@@ -136,55 +149,122 @@ TEST_F(PairImagesTest, StaleUnknownAndMalformedImagesAreCountedAndLeftAlone) {
     EXPECT_EQ(images_.counters().followed, 0u);
 }
 
-// The leader answers a write `ok` only once the broker has the image carrying it.
+// The leader answers a write `ok` only once the broker has an image listing it.
 
-TEST_F(PairImagesTest, AnAnswerWithNoImageOutstandingGoesAtOnce) {
+TEST_F(PairImagesTest, AWriteNoImageListedHasTheImagePublishedAgainListingIt) {
     int answered = 0;
-    images_.answer_after_image(producer(), [&] { ++answered; });
-    EXPECT_EQ(answered, 1);
-}
-
-TEST_F(PairImagesTest, AnAnswerWaitsForTheImagePublishedBeforeItToBeAcknowledged) {
-    images_.publish(producer(), 7);
-    const auto token = publisher_.published.back().ack_token;
-    ASSERT_NE(token, 0u);
-    int answered = 0;
-    images_.answer_after_image(producer(), [&] { ++answered; });
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    ASSERT_EQ(publisher_.published.size(), 1u);
+    EXPECT_EQ(listed_in(publisher_.published.back()), std::vector<std::uint64_t>{key("a")});
     EXPECT_EQ(answered, 0);
     // A lease's token (a time in nanoseconds) is not the images'.
-    EXPECT_FALSE(images_.on_acknowledged(123456789, true));
+    EXPECT_FALSE(images_.on_acknowledged(123456789, true, 0));
     EXPECT_EQ(answered, 0);
-    EXPECT_TRUE(images_.on_acknowledged(token, true));
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true, 0));
     EXPECT_EQ(answered, 1);
-    // Acknowledged: the next answer goes at once.
-    images_.answer_after_image(producer(), [&] { ++answered; });
+    // Listed and acknowledged: the same write's answer (a save's) goes at once.
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
     EXPECT_EQ(answered, 2);
+    EXPECT_EQ(publisher_.published.size(), 1u);
+}
+
+TEST_F(PairImagesTest, EachImageListsTheAnswersOfTheHorizonBeforeIt) {
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [] {});
+    images_.answer_after_image(producer(), 2, reply("b"), t0_ + 1s, [] {});
+    images_.publish(producer(), 7, t0_ + 2s);
+    EXPECT_EQ(listed_in(publisher_.published.back()),
+              (std::vector<std::uint64_t>{key("a"), key("b")}));
+    // Two writes sharing one key are listed twice: a standby drops as many.
+    images_.answer_after_image(producer(), 3, reply("b"), t0_ + 10500ms, [] {});
+    EXPECT_EQ(listed_in(publisher_.published.back()),
+              (std::vector<std::uint64_t>{key("b"), key("b")}));
 }
 
 TEST_F(PairImagesTest, ANewerImageAcknowledgedStandsForTheOneItReplacedInTheQueue) {
-    images_.publish(producer(), 7);
     int answered = 0;
-    images_.answer_after_image(producer(), [&] { ++answered; });
-    images_.publish(producer(), 7);
-    images_.answer_after_image(producer(), [&] { ++answered; });
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true));
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    images_.answer_after_image(producer(), 2, reply("b"), t0_, [&] { ++answered; });
+    ASSERT_EQ(publisher_.published.size(), 2u);
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true, 0));
     EXPECT_EQ(answered, 2);
     // The first one's acknowledgement, should it come after all, changes nothing.
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.front().ack_token, true));
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.front().ack_token, true, 0));
     EXPECT_EQ(answered, 2);
 }
 
-TEST_F(PairImagesTest, AnswersOfAUnitThatNoLongerLeadsAreWithheld) {
-    images_.publish(producer(), 7);
+TEST_F(PairImagesTest, AUnitThatStoodDownAnswersWhenTheBrokerHadTheImageBeforeAnyOtherClaim) {
+    images_.publish(producer(), 7, t0_);
     int answered = 0;
-    images_.answer_after_image(producer(), [&] { ++answered; });
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false));
-    images_.publish(producer(), 7);
-    images_.answer_after_image(producer(), [&] { ++answered; });
-    images_.withhold_answers();
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true));
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    images_.stood_down();
+    // The broker was stopped, say: its acknowledgement comes with no claim of the other unit
+    // before it, so whoever leads next reads the image and settles the write no more.
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 6));
+    EXPECT_EQ(answered, 1);
+    EXPECT_EQ(images_.counters().answers_late, 1u);
+}
+
+TEST_F(PairImagesTest, AnswersAreWithheldAfterAClaimOfTheOtherUnitOrAReconnect) {
+    int answered = 0;
+    images_.publish(producer(), 7, t0_);
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    images_.stood_down();
+    // The other unit's claim (epoch 8) came first: it may lead, and not have had the image.
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 8));
+    images_.publish(producer(), 9, t0_);
+    images_.answer_after_image(producer(), 2, reply("b"), t0_, [&] { ++answered; });
+    images_.reconnected();
+    // Leading again, but not throughout: it stood down since the answer began waiting.
+    images_.stood_down();
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true, 0));
     EXPECT_EQ(answered, 0);
     EXPECT_EQ(images_.counters().answers_withheld, 2u);
+}
+
+TEST_F(PairImagesTest, LeadingAgainAnswersWhatItWithheldUnlessTheOtherUnitAnsweredIt) {
+    std::vector<std::string> answered;
+    images_.publish(producer(), 7, t0_);
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { answered.push_back("a"); });
+    images_.answer_after_image(producer(), 2, reply("b"), t0_, [&] { answered.push_back("b"); });
+    images_.answer_after_image(producer(), 3, reply("c"), t0_, [&] { answered.push_back("c"); });
+    images_.stood_down();
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 8));
+    EXPECT_TRUE(answered.empty());
+    // The other unit led meanwhile and answered `b` (settled it by its image: it lists it).
+    images_.answer_withheld(std::vector<std::uint64_t>{key("b")}, t0_ + 5s);
+    EXPECT_EQ(answered, (std::vector<std::string>{"a", "c"}));
+    EXPECT_EQ(images_.counters().answers_late, 2u);
+    // Given once: leading again later answers nothing more.
+    images_.answer_withheld({}, t0_ + 6s);
+    EXPECT_EQ(answered.size(), 2u);
+}
+
+TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsNotGivenLate) {
+    int answered = 0;
+    images_.publish(producer(), 7, t0_);
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    images_.stood_down();
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 8));
+    images_.answer_withheld({}, t0_ + 11s);
+    EXPECT_EQ(answered, 0);
+}
+
+TEST_F(PairImagesTest, ARefusalSettledByANewLeaderIsListedInItsNextImage) {
+    images_.list_refusal(producer().plan(), key("r"), t0_);
+    images_.publish(producer(), 9, t0_);
+    EXPECT_EQ(listed_in(publisher_.published.back()), std::vector<std::uint64_t>{key("r")});
+}
+
+TEST_F(PairImagesTest, ATakeoverTakesTheAnswersTheOtherUnitsNewestImagesList) {
+    ImageMessage leader{"gw-a", 3, layout(), image(), {key("a")}};
+    read(leader);
+    leader.answers = {key("a"), key("b")};
+    read(leader);
+    // A stale image (a deposed leader's, read late) and this unit's own are not heard.
+    read({"gw-a", 2, layout(), image(), {key("c")}});
+    read({"gw-b", 3, layout(), image(), {key("d")}});
+    EXPECT_EQ(images_.take_leader_answers(), (std::vector<std::uint64_t>{key("a"), key("b")}));
+    EXPECT_TRUE(images_.take_leader_answers().empty());
 }
 
 }  // namespace

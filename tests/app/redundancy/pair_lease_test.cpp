@@ -27,10 +27,13 @@ protected:
     adapters::mqtt::Incoming record(const std::string& id, std::uint64_t epoch) {
         return {leader_topic, encode_leader_record({id, epoch, 0}, 2000ms)};
     }
-    /// The last publication on the leader topic, acknowledged as the broker would.
+    /// The last publication on the leader topic, acknowledged as the broker would, and heard
+    /// back (the pair's connection hears its own records).
     void acknowledge_last() {
         for (auto it = publisher_.published.rbegin(); it != publisher_.published.rend(); ++it) {
-            if (it->topic == leader_topic) return lease_.on_acknowledged(it->ack_token);
+            if (it->topic != leader_topic) continue;
+            lease_.on_acknowledged(it->ack_token);
+            return lease_.on_message({it->topic, it->payload}, t0);
         }
         FAIL() << "nothing published on the leader topic";
     }

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/core/redundancy/answer_key.hpp"
+
 namespace eip2mqtt::app::redundancy {
 namespace {
 
@@ -49,7 +51,7 @@ TEST_F(PairWritesTest, AnAnswerHeardTakesTheOldestWriteOfItsTopic) {
     writes_.leave(write(2), t0_ + 1ms);
     writes_.heard(answer("acme/sp/SPEED_SP/set/result"));
     EXPECT_EQ(writes_.counters().answers_heard, 1u);
-    const auto unanswered = writes_.take_unanswered(t0_ + 2ms);
+    const auto unanswered = writes_.take_unanswered(t0_ + 2ms, {});
     ASSERT_EQ(unanswered.size(), 1u);
     EXPECT_EQ(value_of(unanswered[0]), 2.0);
 }
@@ -60,7 +62,7 @@ TEST_F(PairWritesTest, CorrelationDataTellsWritesOnOneResponseTopicApart) {
     writes_.heard(answer("client/replies", "b"));
     writes_.heard(answer("client/replies", "c"));  // no write of ours: ignored
     writes_.heard(answer("elsewhere", "a"));
-    const auto unanswered = writes_.take_unanswered(t0_);
+    const auto unanswered = writes_.take_unanswered(t0_, {});
     ASSERT_EQ(unanswered.size(), 1u);
     EXPECT_EQ(value_of(unanswered[0]), 1.0);
     EXPECT_EQ(writes_.counters().answers_heard, 1u);
@@ -95,7 +97,7 @@ TEST_F(PairWritesTest, AResponseTopicStaysListenedToBetweenOneWritesAnswerAndThe
     }
     EXPECT_EQ(topics_changed_, 1);  // subscribed once, before the first answer could come
     EXPECT_EQ(writes_.counters().answers_heard, 8u);
-    EXPECT_TRUE(writes_.take_unanswered(t0_ + 2s).empty());
+    EXPECT_TRUE(writes_.take_unanswered(t0_ + 2s, {}).empty());
 }
 
 TEST_F(PairWritesTest, AResponseTopicLapsesAfterTheLingerAndTheBoundKeepsTheLatest) {
@@ -126,14 +128,14 @@ TEST_F(PairWritesTest, ATakeoverTakesOnlyWritesWithinTheHorizonAndKeepsNone) {
     writes_.leave(write(1, "client/replies"), t0_);
     writes_.leave(write(2), t0_ + 5s);
     EXPECT_EQ(topics_changed_, 1);
-    const auto unanswered = writes_.take_unanswered(t0_ + 12s);
+    const auto unanswered = writes_.take_unanswered(t0_ + 12s, {});
     ASSERT_EQ(unanswered.size(), 1u);
     EXPECT_EQ(value_of(unanswered[0]), 2.0);
     EXPECT_EQ(writes_.counters().forgotten, 1u);
     EXPECT_EQ(writes_.size(), 0u);
     EXPECT_TRUE(writes_.response_topics().empty());
     EXPECT_EQ(topics_changed_, 2);  // the forgotten write's response topic is left
-    EXPECT_TRUE(writes_.take_unanswered(t0_ + 12s).empty());
+    EXPECT_TRUE(writes_.take_unanswered(t0_ + 12s, {}).empty());
 }
 
 TEST_F(PairWritesTest, TheBoundForgetsTheOldest) {
@@ -142,7 +144,26 @@ TEST_F(PairWritesTest, TheBoundForgetsTheOldest) {
     }
     EXPECT_EQ(writes_.size(), PairWrites::max_left);
     EXPECT_EQ(writes_.counters().forgotten, 1u);
-    EXPECT_EQ(value_of(writes_.take_unanswered(t0_).front()), 1.0);
+    EXPECT_EQ(value_of(writes_.take_unanswered(t0_, {}).front()), 1.0);
+}
+
+TEST_F(PairWritesTest, WritesTheOldLeadersImagesListAsAnsweredAreNotSettledAgain) {
+    // Left unheard: the answers went while this unit's connection was down, or before its
+    // subscription to a new response topic reached the broker.
+    writes_.leave(write(1, "client/replies", "a"), t0_);
+    writes_.leave(write(2, "client/replies", "b"), t0_);
+    writes_.leave(write(3), t0_);
+    writes_.leave(write(4), t0_);
+    const std::vector<std::uint64_t> listed{
+        core::redundancy::answer_key("client/replies", "b"),
+        core::redundancy::answer_key("acme/sp/SPEED_SP/set/result", ""),
+        core::redundancy::answer_key("client/replies", "c")};
+    const auto unanswered = writes_.take_unanswered(t0_ + 1ms, listed);
+    // One listing of a key shared by two writes (no correlation data) drops one of them.
+    ASSERT_EQ(unanswered.size(), 2u);
+    EXPECT_EQ(value_of(unanswered[0]), 1.0);
+    EXPECT_EQ(value_of(unanswered[1]), 4.0);
+    EXPECT_EQ(writes_.counters().answers_listed, 2u);
 }
 
 }  // namespace

@@ -19,6 +19,13 @@ LeaseSettings settings(std::string id, int priority = 0) {
     return {std::move(id), priority, 2000ms, 100ms};
 }
 
+/// The broker took `claim`, made at `at`: it acknowledges it, and the unit hears it back.
+void claim_taken(Lease& lease, const std::optional<LeaderRecord>& claim, MonoTime at) {
+    ASSERT_TRUE(claim.has_value());
+    lease.on_acknowledged(at);
+    lease.on_record(*claim, at);
+}
+
 /// "a" leads from 2 s (claimed at 1.5 s), renewing every 500 ms, each acknowledged at once,
 /// up to `until`; "b" heard it up to `heard_until` (the renewals sent before), then nothing.
 struct Pair {
@@ -31,8 +38,7 @@ struct Pair {
         // b hears a's claim at once, so it does not claim at 1.5 s itself.
         for (auto at = t0 + 1500ms; at <= until; at += 500ms) {
             auto record = a.tick(at);
-            EXPECT_TRUE(record.has_value());
-            a.on_acknowledged(at);
+            claim_taken(a, record, at);
             if (at <= heard_until) b.on_record(*record, at);
             sent.push_back(*record);
         }
@@ -84,12 +90,43 @@ TEST(LeaseStaleClaimTest, ALiveLeaderIgnoresAClaimDeliveredAfterItsRenewalsWhate
     }
 }
 
-TEST(LeaseStaleClaimTest, TheClaimantGivesWayToTheRenewalEvenIfItLedMeanwhileAndOutranks) {
-    // b outranks a; its claim, made cut off at 4 s, is acknowledged at 4.6 s: it leads at once.
+TEST(LeaseStaleClaimTest, AnAcknowledgementAloneLeadsNobodyBeforeTheRenewalsQueuedAheadOfIt) {
+    // b outranks a; its claim, made cut off at 4 s, is acknowledged at 4.6 s, before the
+    // renewals of a the broker queued for b meanwhile (it holds those beyond b's in-flight
+    // window, and sends an acknowledgement at once): b does not lead on it.
     Pair pair(9, t0 + 2500ms, t0 + 4500ms);
     const auto claim = pair.b.tick(t0 + 4000ms);
     ASSERT_TRUE(claim.has_value());
     pair.b.on_acknowledged(t0 + 4000ms);
+    pair.b.tick(t0 + 4600ms);
+    EXPECT_EQ(pair.b.role(t0 + 4600ms), Role::standby);
+    // Then the renewals b never heard (sent from 3 s on), then its claim heard back: it gave
+    // way to the first of them, a renewal after the one its claim named.
+    for (std::size_t i = 3; i < pair.sent.size(); ++i) pair.b.on_record(pair.sent[i], t0 + 4610ms);
+    pair.b.on_record(*claim, t0 + 4620ms);
+    pair.b.tick(t0 + 5200ms);
+    EXPECT_EQ(pair.b.role(t0 + 5200ms), Role::standby);
+    EXPECT_EQ(pair.b.leader_id(), "a");
+    EXPECT_FALSE(pair.b.may_produce(t0 + 5200ms));
+}
+
+TEST(LeaseStaleClaimTest, ARenewalTheBrokerTookAfterTheClaimDoesNotUndoIt) {
+    // a's renewals from 3 s on were held on a's way to the broker (a was fenced meanwhile),
+    // and reached it after b's claim, made at 4 s: b hears its claim back first, then them.
+    Pair pair(0, t0 + 2500ms, t0 + 4500ms);
+    const auto claim = pair.b.tick(t0 + 4000ms);
+    claim_taken(pair.b, claim, t0 + 4000ms);
+    for (std::size_t i = 3; i < pair.sent.size(); ++i) pair.b.on_record(pair.sent[i], t0 + 4100ms);
+    pair.b.tick(t0 + 4500ms);
+    EXPECT_EQ(pair.b.role(t0 + 4500ms), Role::leader);
+}
+
+TEST(LeaseStaleClaimTest, TheClaimantGivesWayToTheRenewalEvenIfItLedMeanwhileAndOutranks) {
+    // b outranks a; its claim, made cut off at 4 s, is acknowledged and heard back at 4.6 s,
+    // ahead of a's renewals (delayed on a's side): it leads at once.
+    Pair pair(9, t0 + 2500ms, t0 + 4500ms);
+    const auto claim = pair.b.tick(t0 + 4000ms);
+    claim_taken(pair.b, claim, t0 + 4000ms);
     pair.b.tick(t0 + 4600ms);
     ASSERT_EQ(pair.b.role(t0 + 4600ms), Role::leader);
     // a hears the claim, renews over it; b hears that renewal of its own epoch.
@@ -183,8 +220,7 @@ TEST(LeaseStaleClaimTest, AStandbyFollowsItsLeaderRenewingBelowTheEpochItsFailed
 
 TEST(LeaseTest, RenewedSinceLeadingOnlyOnceARenewalSentAsItLeadsIsAcknowledged) {
     Lease lease(settings("a"), t0);
-    ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
-    lease.on_acknowledged(t0 + 1500ms);
+    claim_taken(lease, lease.tick(t0 + 1500ms), t0 + 1500ms);
     EXPECT_FALSE(lease.renewed_since_leading(t0 + 1600ms));
     ASSERT_TRUE(lease.tick(t0 + 2000ms).has_value());  // leads, and renews
     EXPECT_EQ(lease.role(t0 + 2000ms), Role::leader);

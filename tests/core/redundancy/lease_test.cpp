@@ -21,13 +21,18 @@ LeaderRecord claim_of(std::string id, std::uint64_t epoch) {
     return {std::move(id), epoch, 0, true};
 }
 
+/// The broker took `claim`, made at `at`: it acknowledges it, and the unit hears it back.
+void claim_taken(Lease& lease, const std::optional<LeaderRecord>& claim, MonoTime at) {
+    ASSERT_TRUE(claim.has_value());
+    lease.on_acknowledged(at);
+    lease.on_record(*claim, at);
+}
+
 /// A unit that claimed at `at` (nobody heard since its start at t0) and had its claim
 /// acknowledged: the leader once a renewal interval passed.
 Lease leader_from(MonoTime at, std::string id = "a") {
     Lease lease(settings(std::move(id)), t0);
-    const auto claim = lease.tick(at);
-    EXPECT_TRUE(claim.has_value());
-    lease.on_acknowledged(at);
+    claim_taken(lease, lease.tick(at), at);
     EXPECT_FALSE(lease.tick(at + 500ms - 1ms).has_value());
     EXPECT_TRUE(lease.tick(at + 500ms).has_value());
     lease.on_acknowledged(at + 500ms);
@@ -48,8 +53,7 @@ TEST(LeaseTest, AStandbyClaimsARenewalIntervalBeforeTheTakeoverWithEpochOne) {
 
 TEST(LeaseTest, AClaimLeadsOnceAcknowledgedAndARenewalIntervalPassedATakeoverAfterTheStart) {
     Lease lease(settings("a"), t0);
-    ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
-    lease.on_acknowledged(t0 + 1500ms);
+    claim_taken(lease, lease.tick(t0 + 1500ms), t0 + 1500ms);
     EXPECT_FALSE(lease.tick(t0 + 1999ms).has_value());
     EXPECT_EQ(lease.role(t0 + 1999ms), Role::standby);
     EXPECT_TRUE(lease.tick(t0 + 2000ms).has_value());
@@ -104,8 +108,7 @@ TEST(LeaseTest, LeadingUntilIsTheInstantTheLeaseLapsesAndMovesWithEachAcknowledg
     EXPECT_EQ(lease.leading_until(), t0 + 3750ms);
     EXPECT_EQ(lease.role(*lease.leading_until() - 1ms), Role::leader);
     EXPECT_EQ(lease.role(*lease.leading_until()), Role::standby);
-    ASSERT_TRUE(lease.tick(t0 + 3s).has_value());
-    lease.on_acknowledged(t0 + 3s);
+    claim_taken(lease, lease.tick(t0 + 3s), t0 + 3s);
     EXPECT_EQ(lease.leading_until(), t0 + 4250ms);
     lease.tick(t0 + 4250ms);  // stepped down
     EXPECT_FALSE(lease.leading_until().has_value());
@@ -136,7 +139,7 @@ TEST(LeaseTest, TheFenceComesHalfARenewalBeforeTheClaimOfAStandbyThatLeadsATakeo
     const auto claim = standby.tick(heard + 1500ms);
     ASSERT_TRUE(claim.has_value());
     EXPECT_EQ(*claim, claim_of("b", 2));
-    standby.on_acknowledged(heard + 1500ms);
+    claim_taken(standby, claim, heard + 1500ms);
     standby.tick(heard + 1999ms);
     EXPECT_EQ(standby.role(heard + 1999ms), Role::standby);
     standby.tick(heard + 2000ms);
@@ -148,8 +151,7 @@ TEST(LeaseTest, TheFenceComesHalfARenewalBeforeTheClaimOfAStandbyThatLeadsATakeo
 TEST(LeaseTest, AcknowledgedRenewalsKeepTheLeaderUnfenced) {
     auto lease = leader_from(t0 + 2s);
     for (auto at = t0 + 3s; at < t0 + 20s; at += 500ms) {
-        ASSERT_TRUE(lease.tick(at).has_value());
-        lease.on_acknowledged(at);
+        claim_taken(lease, lease.tick(at), at);
         EXPECT_EQ(lease.role(at + 499ms), Role::leader);
     }
 }
@@ -158,8 +160,7 @@ TEST(LeaseTest, ANewLeaderProducesOnlyAPeriodAfterTheLatestFenceOfTheLeaderItHea
     Lease lease(settings("b", 0, 1500ms), t0);
     // Nobody heard since the start: as if a leader had renewed then, fenced at the latest
     // T - 3R/2 later (1.25 s); its last datagram then was a period (1.5 s) behind at 2.75 s.
-    ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
-    lease.on_acknowledged(t0 + 1500ms);
+    claim_taken(lease, lease.tick(t0 + 1500ms), t0 + 1500ms);
     lease.tick(t0 + 2000ms);
     lease.on_acknowledged(t0 + 2000ms);
     EXPECT_EQ(lease.role(t0 + 2000ms), Role::leader);
@@ -169,8 +170,7 @@ TEST(LeaseTest, ANewLeaderProducesOnlyAPeriodAfterTheLatestFenceOfTheLeaderItHea
 
 TEST(LeaseTest, AShortPeriodStillWaitsForTheClaimToStand) {
     Lease lease(settings("b", 0, 10ms), t0);
-    ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
-    lease.on_acknowledged(t0 + 1500ms);
+    claim_taken(lease, lease.tick(t0 + 1500ms), t0 + 1500ms);
     EXPECT_FALSE(lease.may_produce(t0 + 1999ms));
     lease.tick(t0 + 2000ms);
     EXPECT_TRUE(lease.may_produce(t0 + 2000ms));
@@ -219,8 +219,8 @@ TEST(LeaseTest, SimultaneousClaimsOfEqualPriorityAreWonByTheHigherId) {
     Lease b(settings("gw-b"), t0);
     const auto claim_a = a.tick(t0 + 2s);
     const auto claim_b = b.tick(t0 + 2s);
-    a.on_acknowledged(t0 + 2s);
-    b.on_acknowledged(t0 + 2s);
+    claim_taken(a, claim_a, t0 + 2s);
+    claim_taken(b, claim_b, t0 + 2s);
     a.on_record(*claim_b, t0 + 2010ms);
     b.on_record(*claim_a, t0 + 2010ms);
     a.tick(t0 + 2500ms);
@@ -284,9 +284,9 @@ TEST(LeaseTest, AStartingUnitLeavesWritesToALeaderItMayNotHaveReadYet) {
     EXPECT_EQ(lease.writes(t0 + 10ms), WritePolicy::leave_to_leader);
     EXPECT_EQ(lease.writes(t0 + 1499ms), WritePolicy::leave_to_leader);
     // Nobody's record came: it claims (and, leading, settles what it left: PairWrites).
-    ASSERT_TRUE(lease.tick(t0 + 1500ms).has_value());
+    const auto claim = lease.tick(t0 + 1500ms);
     EXPECT_EQ(lease.writes(t0 + 1500ms), WritePolicy::leave_to_leader);
-    lease.on_acknowledged(t0 + 1500ms);
+    claim_taken(lease, claim, t0 + 1500ms);
     lease.tick(t0 + 2000ms);
     EXPECT_EQ(lease.writes(t0 + 2000ms), WritePolicy::apply);
     Lease heard(settings("b"), t0);
@@ -301,8 +301,7 @@ TEST(LeaseTest, AStandbyRefusesNoWriteEvenOnceTheLeaderItHeardIsSurelyFenced) {
     lease.on_record(record("a", 1), t0 + 1s);
     EXPECT_EQ(lease.writes(t0 + 2249ms), WritePolicy::leave_to_leader);
     EXPECT_EQ(lease.writes(t0 + 2250ms), WritePolicy::leave_to_leader);
-    ASSERT_TRUE(lease.tick(t0 + 2500ms).has_value());  // its claim
-    lease.on_acknowledged(t0 + 2500ms);
+    claim_taken(lease, lease.tick(t0 + 2500ms), t0 + 2500ms);  // its claim
     EXPECT_EQ(lease.writes(t0 + 2600ms), WritePolicy::leave_to_leader);
 }
 

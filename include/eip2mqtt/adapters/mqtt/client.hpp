@@ -71,6 +71,10 @@ struct ClientOptions {
     /// are dropped, and so is what was queued or in flight when the connection went: the
     /// on_connected handler starts on an empty queue.
     bool session_bound = false;
+    /// MQTT 5: the subscriptions hear this connection's own publications too (no_local off).
+    /// A pair's lease hears its claim come back after whatever the broker queued for it before
+    /// (core/redundancy/lease.hpp). MQTT 3.1.1 has no no_local: every connection hears its own.
+    bool hear_own = false;
     /// When set, asked of each publication as the sender thread takes it to hand it to Paho
     /// (on that thread: it must be thread-safe and cheap); false drops it, counted in
     /// `discarded`. A pair's leader that lost its lease says no more as leader, whatever waits.

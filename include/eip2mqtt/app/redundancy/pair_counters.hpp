@@ -20,7 +20,8 @@ namespace eip2mqtt::app::redundancy {
 /// back), which is how a standby follows the request ids, the samples kept and replayed
 /// across a takeover (PairHistory), what the unit had queued as leader and dropped once its
 /// lease lapsed (the connection's ClientOptions::may_send), and the answers to writes: those
-/// withheld by a leader that stepped down, and those a standby heard (PairWrites).
+/// withheld or given late by a leader that stepped down, and those a standby heard or found
+/// listed in the old leader's images (PairWrites).
 struct PairCounters {
     PairImageCounters images;
     std::uint64_t produced_heard = 0;
@@ -30,7 +31,7 @@ struct PairCounters {
 };
 
 // clang-format off
-inline constexpr std::array<core::GatewayCounterField<PairCounters>, 10> pair_counter_fields{{
+inline constexpr std::array<core::GatewayCounterField<PairCounters>, 12> pair_counter_fields{{
     {"images_published", [](const PairCounters& c) { return core::one(c.images.published); },
      core::in_metrics_topic, ""},
     {"images_followed", [](const PairCounters& c) { return core::one(c.images.followed); },
@@ -55,7 +56,11 @@ inline constexpr std::array<core::GatewayCounterField<PairCounters>, 10> pair_co
      core::in_metrics_topic, ""},
     {"answers_withheld", [](const PairCounters& c) { return core::one(c.images.answers_withheld); },
      core::in_metrics_topic, ""},
+    {"answers_late", [](const PairCounters& c) { return core::one(c.images.answers_late); },
+     core::in_metrics_topic, ""},
     {"answers_heard", [](const PairCounters& c) { return core::one(c.writes.answers_heard); },
+     core::in_metrics_topic, ""},
+    {"answers_listed", [](const PairCounters& c) { return core::one(c.writes.answers_listed); },
      core::in_metrics_topic, ""},
     {"left_writes_forgotten", [](const PairCounters& c) { return core::one(c.writes.forgotten); },
      core::in_metrics_topic, ""},

@@ -7,13 +7,16 @@
 /// the first datagram of a new leader carries the last written values. An image that cannot be
 /// taken is counted by reason, and one of another layout logged once per exchange.
 ///
-/// The leader answers a write `ok` only once the broker acknowledged the image carrying it
-/// (answer_after_image): a standby that takes over then has that image, or the old leader
-/// never said `ok` (the new one settles the write: PairWrites).
+/// The leader answers a write `ok` only once the broker acknowledged an image that lists the
+/// write among its `answers` (answer_after_image; each image lists those of the write horizon
+/// before it): a standby that takes over then has that image, and settles none of them again
+/// (take_leader_answers(), PairWrites::take_unanswered), or the old leader never said `ok`
+/// (the new one settles the write).
 ///
 /// Threading: the loop only.
 
 #include <array>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -26,11 +29,13 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/app/exchange_producer.hpp"
 #include "eip2mqtt/core/redundancy/image_follow.hpp"
+#include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::app::redundancy {
 
@@ -46,9 +51,13 @@ struct PairImageCounters {
     std::uint64_t published = 0;             ///< images this unit published as leader
     std::uint64_t followed = 0;              ///< images taken into a producer (a byte changed)
     std::array<std::uint64_t, 4> ignored{};  ///< by ImageIgnored
-    /// Answers `ok` withheld: the unit stopped leading before the broker acknowledged the image
-    /// carrying their write; the unit that takes over settles them.
+    /// Answers `ok` withheld: the unit stopped leading, and another may have taken the lead,
+    /// before the broker acknowledged the image listing their write; the unit that takes over
+    /// settles them.
     std::uint64_t answers_withheld = 0;
+    /// Answers given after the unit stopped leading: the broker acknowledged the image listing
+    /// their write before any other unit claimed, so whoever leads next knows them answered.
+    std::uint64_t answers_late = 0;
 
     std::uint64_t& ignored_for(ImageIgnored why) { return ignored[static_cast<std::size_t>(why)]; }
     std::uint64_t ignored_for(ImageIgnored why) const {
@@ -58,9 +67,15 @@ struct PairImageCounters {
 
 class PairImages {
 public:
+    /// The most answers an image lists: beyond, the oldest goes (a write horizon's worth at
+    /// tens of writes a second).
+    static constexpr std::size_t max_answers = 1024;
+
     /// `prefix` is `{base}/_gateway/_pair/{pair}/image`, `id` this unit's gateway.id;
-    /// `publisher` (the pair's connection) must outlive this.
-    PairImages(std::string prefix, std::string id, adapters::mqtt::Publisher& publisher);
+    /// `publisher` (the pair's connection) must outlive this. An answer stays listed for
+    /// `answers_kept` (the pair's write horizon, PairWrites).
+    PairImages(std::string prefix, std::string id, adapters::mqtt::Publisher& publisher,
+               std::chrono::milliseconds answers_kept);
 
     /// `{prefix}/{exchange topic}`: the exchange's topic under the base is already a valid,
     /// unique topic of levels, where its name may hold anything.
@@ -68,8 +83,9 @@ public:
     /// Whether `topic` is one of the images'.
     bool owns(std::string_view topic) const;
 
-    /// The leader: `producer`'s image as it stands, published as of lease epoch `epoch`.
-    void publish(const ExchangeProducer& producer, std::uint64_t epoch);
+    /// The leader: `producer`'s image as it stands, published as of lease epoch `epoch`, at
+    /// `now`, listing the answers of the writes its last datagram carried and those before.
+    void publish(const ExchangeProducer& producer, std::uint64_t epoch, core::MonoTime now);
 
     /// An image read on the pair's connection, judged and taken into the producer of its
     /// exchange among `producers` when the rules allow. `leading` and `epoch`: this unit's
@@ -79,14 +95,37 @@ public:
         std::span<const std::unique_ptr<ExchangeProducer>> producers, bool leading,
         std::uint64_t epoch);
 
-    /// The leader answers a write `ok` (`answer`) once no image of `producer`'s exchange it
-    /// published so far waits for the broker's acknowledgement: now, or in on_acknowledged().
-    void answer_after_image(const ExchangeProducer& producer, std::function<void()> answer);
-    /// An acknowledgement of the pair's connection; false when `token` is no image's. The
-    /// answers it releases are given while `leading`, withheld otherwise.
-    bool on_acknowledged(std::uint64_t token, bool leading);
-    /// This unit no longer leads: the answers waiting are withheld (counted).
-    void withhold_answers();
+    /// The leader answers its write `write_id` of `producer`, to `reply`, `ok` (`answer`) once
+    /// the broker acknowledged an image of the exchange that lists it, and every image
+    /// published before: now, or in on_acknowledged(). A write no image listed yet (one that
+    /// changed nothing) has the image published again, listing it.
+    void answer_after_image(const ExchangeProducer& producer, std::uint64_t write_id,
+                            const WriteReply& reply, core::MonoTime now,
+                            std::function<void()> answer);
+    /// An acknowledgement of the pair's connection; false when `token` is no image's.
+    /// `leading`: this unit's role now; `others_epoch`: the highest epoch the other unit
+    /// claimed, as heard (PairLease::others_epoch). The answers it releases are given by a
+    /// unit that led throughout; by one that stopped leading, when no claim of the other
+    /// unit came before it on a connection kept throughout (the broker then had the image
+    /// before any other unit could lead, and whoever leads next reads it); withheld otherwise.
+    bool on_acknowledged(std::uint64_t token, bool leading, std::uint64_t others_epoch);
+    /// This unit no longer leads: the answers waiting are given only on the terms above.
+    void stood_down() { ++stand_downs_; }
+    /// This unit takes the lead again: the answers it withheld within the horizon at `now` are
+    /// given, but for the writes the other unit's images list as answered (`listed`, from
+    /// take_leader_answers(); each listing stands for one write).
+    void answer_withheld(std::span<const std::uint64_t> listed, core::MonoTime now);
+    /// The leader settled a write left to the old one by refusing it (WriteDispatcher::settle):
+    /// its images list that answer too, `key`, so that no unit answers the write again.
+    void list_refusal(const core::plan::ExchangePlan& plan, std::uint64_t key, core::MonoTime now);
+    /// The pair's connection came back: what it waited for may have been sent again, after
+    /// claims this unit did not hear before the acknowledgement.
+    void reconnected();
+
+    /// Taking the lead: the answers listed by the other unit's newest image of each exchange,
+    /// as this unit heard them, forgotten here (its own images, read back retained, are not
+    /// heard: they list answers it may have withheld).
+    std::vector<std::uint64_t> take_leader_answers();
 
     const PairImageCounters& counters() const { return counters_; }
 
@@ -101,10 +140,28 @@ private:
         std::string topic;
         std::uint64_t through = 0;  ///< waits for this image of `topic` to be acknowledged
         std::function<void()> answer;
+        core::MonoTime since;
+        std::uint64_t epoch = 0;        ///< of the images it waits for
+        std::uint64_t stand_downs = 0;  ///< stand_downs_ when it began waiting
+        bool reconnected = false;       ///< the connection came back since
+        std::uint64_t key = 0;          ///< of its write's answer
+    };
+    struct Answered {
+        std::uint64_t write_id = 0;  ///< in its producer: the answers are an exchange's
+        std::uint64_t key = 0;
+        core::MonoTime at;
     };
 
     void count(core::redundancy::FollowVerdict verdict, const ExchangeProducer* producer,
                const core::redundancy::ImageMessage& image);
+    /// Lists write `write_id`'s answer, `key`, among `topic`'s at `now`; false when it was
+    /// already.
+    bool list_answer(const std::string& topic, std::uint64_t write_id, std::uint64_t key,
+                     core::MonoTime now);
+    /// Gives or withholds a waiting answer whose image the broker acknowledged.
+    void release(Waiting& waiting, bool leading, std::uint64_t others_epoch);
+    /// Keeps an answer withheld until this unit leads again (answer_withheld).
+    void withhold(Waiting&& waiting);
 
     std::string prefix_;
     std::string id_;
@@ -116,6 +173,14 @@ private:
     std::unordered_map<std::string, Acks> acks_;
     std::map<std::uint64_t, std::string> unacknowledged_;  ///< image number -> topic
     std::deque<Waiting> waiting_;
+    std::deque<Waiting> withheld_;
+    std::uint64_t next_refusal_ = std::uint64_t{1} << 63;  ///< write ids no producer gives
+    std::chrono::milliseconds answers_kept_;
+    std::unordered_map<std::string, std::deque<Answered>> answers_;  ///< image topic: answers
+    std::uint64_t epoch_ = 0;  ///< of the last image published
+    std::uint64_t stand_downs_ = 0;
+    /// The standby: image topic -> the answers of the other unit's newest image of it.
+    std::unordered_map<std::string, std::vector<std::uint64_t>> heard_answers_;
 };
 
 }  // namespace eip2mqtt::app::redundancy

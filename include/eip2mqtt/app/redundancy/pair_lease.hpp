@@ -87,6 +87,8 @@ public:
     bool may_produce(core::MonoTime now) const { return lease_.may_produce(now); }
     core::redundancy::WritePolicy writes(core::MonoTime now) const { return lease_.writes(now); }
     const core::redundancy::Lease& lease() const { return lease_; }
+    /// The highest epoch of a record read from the other unit, claim or renewal: 0 until one.
+    std::uint64_t others_epoch() const { return others_epoch_; }
 
 private:
     void publish_role(core::redundancy::Role role);
@@ -105,6 +107,7 @@ private:
     core::redundancy::Role role_ = core::redundancy::Role::standby;
     std::uint64_t led_epoch_ = 0;      ///< the epoch it leads under
     std::uint64_t claimed_epoch_ = 0;  ///< of its latest claim (logged once)
+    std::uint64_t others_epoch_ = 0;
     std::function<void()> on_epoch_raised_;
     adapters::mqtt::Message message_;
 };

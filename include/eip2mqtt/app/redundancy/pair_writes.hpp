@@ -9,8 +9,10 @@
 /// for each write would miss answers, and the unit taking the lead would settle a write the
 /// leader had answered (a second, contradicting answer). Only a topic's first write in a
 /// linger, or one beyond `max_topics`, can still race its answer.
-/// A unit that takes the lead settles the writes it heard no answer for: its old leader died,
-/// hung or was cut off before answering them, or never had them (WriteDispatcher::settle).
+/// A unit that takes the lead settles the writes it heard no answer for and that the old
+/// leader's images do not list as answered: the old leader died, hung or was cut off before
+/// answering them, or never had them (WriteDispatcher::settle). The images are what a unit cut
+/// off from the answers still hears: retained, the newest lists the answers of the horizon.
 ///
 /// An answer is matched to the oldest write left with its topic and correlation data: writes to
 /// one topic without correlation data cannot be told apart by their client either.
@@ -23,6 +25,7 @@
 #include <deque>
 #include <functional>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,6 +37,8 @@ namespace eip2mqtt::app::redundancy {
 
 struct PairWriteCounters {
     std::uint64_t answers_heard = 0;  ///< the leader's answers to writes this unit left
+    /// Left writes the old leader's images listed as answered when this unit took the lead.
+    std::uint64_t answers_listed = 0;
     /// Left writes forgotten unanswered: older than the horizon, or beyond the bound.
     std::uint64_t forgotten = 0;
 };
@@ -63,8 +68,11 @@ public:
     /// latest), to listen on besides `{set}/result`.
     std::vector<std::string> response_topics() const;
     /// This unit takes the lead: the writes kept that are within the horizon at `now` and were
-    /// heard unanswered, oldest first. None is kept afterwards, and no topic listened to.
-    std::vector<WriteRequest> take_unanswered(core::MonoTime now);
+    /// heard unanswered, oldest first, less those the old leader's images list as answered
+    /// (`listed`: answer keys, PairImages::take_leader_answers; a key listed n times drops n
+    /// writes). None is kept afterwards, and no topic listened to.
+    std::vector<WriteRequest> take_unanswered(core::MonoTime now,
+                                              std::span<const std::uint64_t> listed);
 
     std::size_t size() const { return left_.size(); }
     const PairWriteCounters& counters() const { return counters_; }

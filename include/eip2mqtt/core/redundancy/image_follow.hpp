@@ -21,6 +21,10 @@ struct ImageMessage {
     std::uint64_t epoch = 0;   ///< its lease's epoch when it published
     std::uint64_t layout = 0;  ///< the layout fingerprint of its exchange's image file
     std::vector<std::byte> data;
+    /// The keys (answer_key.hpp) of the writes the publisher answered, or answers once the
+    /// broker acknowledges this image, within the pair's write horizon: a standby taking over
+    /// settles none of them again.
+    std::vector<std::uint64_t> answers;
 
     friend bool operator==(const ImageMessage&, const ImageMessage&) = default;
 };

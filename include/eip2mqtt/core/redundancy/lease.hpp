@@ -13,8 +13,17 @@
 /// - A standby claims T - R after it last heard another unit's record (or after it started),
 ///   publishing its record with the highest epoch it knows plus one, so that its claim stands
 ///   (below) and it takes over T after it last heard the leader.
-/// - A claim stands once the broker acknowledged it and R passed without a claim of the same
-///   epoch from a unit of higher rank (priority, then id): that one wins, the other stands by.
+/// - A claim stands once the broker acknowledged it, the unit heard it back (its subscription
+///   hears its own records), and R passed without a claim of the same epoch from a unit of
+///   higher rank (priority, then id): that one wins, the other stands by. Heard back, the
+///   claim came after everything the broker had queued for the unit before taking it: an
+///   acknowledgement can overtake those (the broker sends it at once, and holds messages
+///   beyond the unit's in-flight window), so a unit cut off from the broker, whose claims
+///   and the leader's renewals crossed, leads on no acknowledgement before it read the
+///   renewals. A claimant that hears the leader its claim named renew after what it named,
+///   before its claim came back, gives way: its claim was made without hearing that renewal.
+///   After, the renewal is one the broker took after the claim (a leader stalled on its way
+///   to the broker, fenced meanwhile): the claim stands.
 /// - The new leader produces once it leads and T - 3R / 2 plus a period of its exchanges (the
 ///   longest) passed since it last heard the old one: that one was fenced by then, so its last
 ///   datagram is a period behind at least. With periods up to 3R / 2, it produces as it leads.
@@ -144,6 +153,7 @@ public:
     LeaderRecord own_record() const;
     /// The id of the unit this one last heard lead, or its own when leading.
     const std::string& leader_id() const { return leader_id_; }
+    const std::string& id() const { return settings_.id; }
     std::chrono::milliseconds renew_interval() const { return settings_.takeover / 4; }
 
 private:
@@ -179,6 +189,7 @@ private:
     /// What its current claim (or the claim it leads on) named.
     std::optional<LeaderMark> named_;
     bool connected_ = true;
+    bool echoed_ = false;  ///< its current claim was heard back
     /// The sending time of its claim that lapsed unacknowledged: no claim while it is set.
     std::optional<MonoTime> unanswered_claim_;
     /// That claim was acknowledged since the last tick: the path is back.
