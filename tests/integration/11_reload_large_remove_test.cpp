@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include "tests/integration/reload_large_fixture.hpp"
@@ -60,6 +61,12 @@ TEST_F(ReloadLargeTest, ProductionGoesOnWhileTheRetainedTopicsOf100000TagsAreCle
         "reloads seen for %lld ms: %zu produced datagram(s) inside, the longest gap %lld ms\n",
         static_cast<long long>((ended - started) / 1ms), inside,
         static_cast<long long>(capture_.longest_gap(started, ended) / 1ms));
+    // The gateway's own account of each reload: how long the loop applied, in how many slices.
+    const auto log = gateway_->output();
+    for (auto at = log.find("reload: parsed in"); at != std::string::npos;
+         at = log.find("reload: parsed in", at + 1)) {
+        std::printf("%s\n", log.substr(at, log.find('\n', at) - at).c_str());
+    }
     EXPECT_GT(inside, 0u);
     EXPECT_TRUE(health.failures().empty()) << health.failures().front();
 
@@ -102,6 +109,24 @@ TEST_F(ReloadLargeTest, ProductionGoesOnWhileTheRetainedTopicsOf100000TagsAreCle
     EXPECT_EQ(plant_retained, (std::vector<std::string>{topic("c0/_meta"), topic("c0/_status")}));
     EXPECT_GT(kept_retained, 0u);
     EXPECT_TRUE(gateway_->running());
+}
+
+TEST_F(ReloadLargeTest, AStopWhileAPlantsTopicsAreClearedEndsTheGatewayCleanly) {
+    GatewayOptions options;
+    options.broker.extra_config = "max_queued_messages 0\n";
+    start_producing(plant(1000), options);
+    const auto before = recorder_->count();
+    rewrite_exchanges(produced(capture_.port()) + kept());
+    gateway_->signal(SIGHUP);
+    // The clears have begun (they take seconds at the broker's pace): the reload is under way.
+    ASSERT_TRUE(recorder_->wait_for_message(
+        topic("c0/T0"), [](auto& p) { return p.empty(); }, 30s, before));
+    gateway_->signal(SIGTERM);
+    EXPECT_EQ(gateway_->wait(60s), std::optional<int>(0)) << gateway_->output();
+    EXPECT_NE(gateway_->output().find("stopped:"), std::string::npos) << gateway_->output();
+    // It stopped during the apply, which never ended.
+    EXPECT_EQ(gateway_->output().find("configuration applied"), std::string::npos)
+        << gateway_->output();
 }
 
 }  // namespace

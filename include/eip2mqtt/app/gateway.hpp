@@ -89,10 +89,17 @@ private:
     void reload();
     /// ReloadWorker::Parse, on the worker's thread: the file loaded, its plans made.
     static ParseResult parse_reload(const std::string& path, std::stop_token stop);
-    /// A parse's result, on the loop: applied (apply_reload), its publications made in slices
-    /// (continue_reload), then end_reload. One that arrives while another is applied waits
-    /// for it to end.
+    /// A parse's result, on the loop: started (start_reload), or, while another is applied,
+    /// kept until that one ends.
     void on_reload_parsed(ParseResult parsed);
+    /// A result and how long its parse took.
+    struct ParsedReload {
+        ParseResult result;
+        std::chrono::steady_clock::duration parse_took;
+    };
+    /// Applied (apply_reload), its publications made in slices (continue_reload), then
+    /// end_reload.
+    void start_reload(ParsedReload parsed);
     /// A valid new file is applied whole, or refused whole (errors, or a change that needs a
     /// restart: core::config::plan_reload), the log naming each changed key. Leaves the
     /// publications of the change (retained topics cleared, new descriptions) to
@@ -205,15 +212,16 @@ private:
     core::MonoTime reload_requested_at_;
     /// The reload being applied, from its result on the loop to end_reload.
     struct ReloadApply {
-        core::MonoTime parsed_at;
+        core::MonoTime applying_from;
+        std::chrono::steady_clock::duration parse_took;
         std::vector<std::string> outcome;  ///< info lines, logged once it is done
         bool applied = false;              ///< the heap is released at the end
         int slices = 0;
         std::chrono::steady_clock::duration longest_slice{};
     };
     std::optional<ReloadApply> reload_apply_;
-    std::deque<ParseResult> reloads_parsed_;  ///< arrived while reload_apply_ was under way
-    boost::asio::steady_timer reload_timer_;  ///< waits for the publish queue to drain
+    std::deque<ParsedReload> reloads_parsed_;  ///< arrived while reload_apply_ was under way
+    boost::asio::steady_timer reload_timer_;   ///< waits for the publish queue to drain
     /// Last: its thread is stopped and joined first when the gateway dies, before anything
     /// its results reach (they are posted to the loop).
     ReloadWorker reloads_;
