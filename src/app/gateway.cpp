@@ -6,6 +6,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <limits>
 #include <memory>
 
 #include "app/detail/release_heap.hpp"
@@ -61,6 +62,7 @@ Gateway::Gateway(core::config::Config config)
               system_clock()),
       exchanges_(loop_.get_executor(), exchanges_options(config_, pair_options()), northbound_,
                  writes_.image_saves()),
+      reload_timer_(loop_),
       reloads_(parse_reload, [this](ParseResult parsed) {
           // Held by a pointer: the handler moves cheaply (and GCC 12 sees no variant to warn on).
           boost::asio::post(loop_,
@@ -126,6 +128,8 @@ int Gateway::run() {
     if (command_socket_) command_socket_->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
     exchanges_.stop();
+    // The retained topics a reload under way had yet to clear, before the connection ends.
+    json_tree_->publish_changes(std::numeric_limits<std::size_t>::max());
     // Nothing is produced any more: the lease goes, its will clearing the leader topic.
     if (pair_mqtt_) pair_mqtt_->stop(stop_flush_timeout);
     // The edge node's NDEATH after its last data, then the JSON tree's `offline`.

@@ -5,10 +5,17 @@
 // rule). An invalid file, or one that changes a key only a restart applies, is refused whole
 // and the old configuration keeps running. The file is read and checked on the ReloadWorker's
 // thread (parse_reload), so the loop goes on receiving, producing and feeding /healthz while a
-// large file parses; the loop only compares and applies (on_reload_parsed).
+// large file parses; the loop only compares and applies (on_reload_parsed). The exchanges are
+// swapped in one handler; what the change publishes (a removed plant's retained topics cleared,
+// new descriptions) follows in slices of core::config::slice_units, the loop receiving and
+// producing between two, and a result that arrives meanwhile waits for the end
+// (continue_reload, end_reload).
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <boost/asio/post.hpp>
 #include <chrono>
 #include <exception>
 #include <string>
@@ -20,11 +27,16 @@
 #include "eip2mqtt/app/gateway.hpp"
 #include "eip2mqtt/app/logging.hpp"
 #include "eip2mqtt/core/config/reload_plan.hpp"
+#include "eip2mqtt/core/config/reload_slice.hpp"
 
 namespace eip2mqtt::app {
 namespace {
 
 using core::config::ReloadRule;
+using namespace std::chrono_literals;
+
+// How long a reload waits for the publish queue to drain before its next slice: a tick.
+constexpr auto queue_drain_wait = 10ms;
 
 std::vector<adapters::udp::MulticastMembership> memberships(const core::config::EipSection& eip) {
     std::vector<adapters::udp::MulticastMembership> out;
@@ -49,11 +61,11 @@ std::vector<core::plan::ExchangePlan> Gateway::take_plans(core::config::Config& 
     return plans;
 }
 
-void Gateway::apply_plans(std::vector<core::plan::ExchangePlan> plans) {
+std::string Gateway::apply_plans(std::vector<core::plan::ExchangePlan> plans) {
     const auto report = exchanges_.apply(std::move(plans), std::chrono::steady_clock::now(),
                                          std::chrono::system_clock::now());
     writes_.count_cancelled(report.cancelled_writes);
-    spdlog::info(
+    return fmt::format(
         "configuration applied: {} exchange(s) kept, {} started, {} stopped ({}); {} retained "
         "topic(s) cleared",
         report.kept.size(), report.started.size(), report.stopped.size(), report.changes,
@@ -117,17 +129,73 @@ void Gateway::reload() {
 }
 
 void Gateway::on_reload_parsed(ParseResult parsed) {
-    const auto applying = std::chrono::steady_clock::now();
-    apply_reload(std::move(parsed));
+    // Results come in the order of their requests: this is the last one started's.
+    ParsedReload arrived{std::move(parsed),
+                         std::chrono::steady_clock::now() - reload_requested_at_};
+    if (reload_apply_) {
+        // The one under way ends first: a change applied over its clears could be undone.
+        reloads_parsed_.push_back(std::move(arrived));
+        return;
+    }
+    start_reload(std::move(arrived));
+}
+
+void Gateway::start_reload(ParsedReload parsed) {
+    const auto start = std::chrono::steady_clock::now();
+    reload_apply_ = ReloadApply{start, parsed.parse_took, {}, false, 1, {}};
+    apply_reload(std::move(parsed.result));
     if (stopping_) return;
+    reload_apply_->longest_slice = std::chrono::steady_clock::now() - start;
+    continue_reload();
+}
+
+void Gateway::continue_reload() {
+    if (!json_tree_->changes_pending()) {
+        end_reload();
+        return;
+    }
+    const auto stats = mqtt_->stats();
+    const auto units = core::config::slice_units(
+        core::config::reload_slice_units,
+        {stats.queued, config_.mqtt.buffer_max_messages, stats.connected});
+    if (units == 0) {
+        reload_timer_.expires_after(queue_drain_wait);
+        reload_timer_.async_wait([this](const boost::system::error_code& error) {
+            if (!error) continue_reload();
+        });
+        return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    json_tree_->publish_changes(units);
+    auto& apply = *reload_apply_;
+    ++apply.slices;
+    apply.longest_slice = std::max(apply.longest_slice, std::chrono::steady_clock::now() - start);
+    // Behind what the loop has ready: datagrams, timers, /healthz's report.
+    boost::asio::post(loop_, [this] { continue_reload(); });
+}
+
+void Gateway::end_reload() {
+    auto apply = std::move(*reload_apply_);
+    reload_apply_.reset();
+    // After the plans were built and the old ones freed: the parse's heap goes back. On the
+    // worker's thread: malloc_trim walks every arena, 30-50 ms after a plant's reload, and the
+    // loop waits for an arena's lock only while it allocates in that one.
+    if (apply.applied) reloads_.post(detail::release_heap);
+    for (const auto& line : apply.outcome) spdlog::info("{}", line);
     const auto ms = [](std::chrono::steady_clock::duration d) {
         return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
     };
-    spdlog::debug("reload: parsed in {} ms off the loop, applied in {} ms on it",
-                  ms(applying - reload_requested_at_),
-                  ms(std::chrono::steady_clock::now() - applying));
+    const auto now = std::chrono::steady_clock::now();
+    spdlog::debug(
+        "reload: parsed in {} ms off the loop, applied in {} ms on it, in {} slice(s) of at "
+        "most {} ms",
+        ms(apply.parse_took), ms(now - apply.applying_from), apply.slices, ms(apply.longest_slice));
     // Ready once no other reload is under way (one SIGHUP came after this one was parsed).
     if (--reloads_pending_ == 0) notifier_.ready(status_line());
+    if (reloads_parsed_.empty()) return;
+    auto next = std::move(reloads_parsed_.front());
+    reloads_parsed_.pop_front();
+    start_reload(std::move(next));
 }
 
 void Gateway::apply_reload(ParseResult parsed) {
@@ -157,8 +225,10 @@ void Gateway::apply_reload(ParseResult parsed) {
     if (!apply_settings(config)) return;
     config_ = std::move(config);
     if (metrics_interval) schedule_metrics();  // the wait under way was for the old interval
+    auto& outcome = reload_apply_->outcome;
     try {
-        apply_plans(std::move(plans));
+        outcome.push_back(apply_plans(std::move(plans)));
+        reload_apply_->applied = true;
     } catch (const std::exception& e) {
         spdlog::critical("reload failed half-way: {}; exiting for a clean restart", e.what());
         stopping_ = true;
@@ -166,12 +236,8 @@ void Gateway::apply_reload(ParseResult parsed) {
         return;
     }
     if (republish) republish_exchanges();
-    if (changes.empty()) {
-        spdlog::info("reload: no key changed");
-    } else {
-        spdlog::info("reload: applied {}", changes.describe(ReloadRule::live));
-    }
-    detail::release_heap();
+    outcome.push_back(changes.empty() ? "reload: no key changed"
+                                      : "reload: applied " + changes.describe(ReloadRule::live));
 }
 
 }  // namespace eip2mqtt::app

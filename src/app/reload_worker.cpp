@@ -26,6 +26,14 @@ ReloadWorker::Request ReloadWorker::request(std::string path) {
     return outcome;
 }
 
+void ReloadWorker::post(std::function<void()> job) {
+    {
+        std::lock_guard lock(mutex_);
+        jobs_.push_back(std::move(job));
+    }
+    wake_.notify_one();
+}
+
 void ReloadWorker::stop() {
     thread_.request_stop();  // wakes the wait below, and a parse that polls its token
     if (thread_.joinable()) thread_.join();
@@ -34,9 +42,18 @@ void ReloadWorker::stop() {
 void ReloadWorker::run(std::stop_token stop) {
     for (;;) {
         std::string path;
+        std::vector<std::function<void()>> jobs;
         {
             std::unique_lock lock(mutex_);
-            if (!wake_.wait(lock, stop, [this] { return waiting_.has_value(); })) return;
+            const auto ready = [this] { return waiting_.has_value() || !jobs_.empty(); };
+            if (!wake_.wait(lock, stop, ready)) return;
+            jobs.swap(jobs_);
+        }
+        for (auto& job : jobs) job();
+        {
+            std::lock_guard lock(mutex_);
+            if (stop.stop_requested()) return;
+            if (!waiting_) continue;
             path = std::move(*waiting_);
             waiting_.reset();
             parsing_ = true;

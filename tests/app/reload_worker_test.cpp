@@ -5,6 +5,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -116,6 +117,32 @@ TEST(ReloadWorker, StopGivesUpAParseUnderWayAndDeliversNothing) {
     EXPECT_EQ(recorder.given_up(), 1);
     EXPECT_EQ(recorder.parsed(), std::vector<std::string>{"large.yaml"});
     EXPECT_TRUE(recorder.delivered().empty());
+}
+
+TEST(ReloadWorker, APostedJobRunsOnItsThreadAndParsesGoOnAfterIt) {
+    Recorder recorder;
+    recorder.release();
+    ReloadWorker worker(recorder.parse(), recorder.deliver());
+    const auto caller = std::this_thread::get_id();
+    std::mutex mutex;
+    std::condition_variable ran;
+    std::vector<std::string> order;
+    std::thread::id job_on;
+    worker.post([&] {
+        std::lock_guard lock(mutex);
+        job_on = std::this_thread::get_id();
+        order.push_back("job");
+        ran.notify_all();
+    });
+    {
+        std::unique_lock lock(mutex);
+        ASSERT_TRUE(ran.wait_for(lock, 10s, [&] { return !order.empty(); }));
+    }
+    EXPECT_NE(job_on, caller);
+    // The worker goes on parsing after it.
+    EXPECT_EQ(worker.request("a.yaml"), ReloadWorker::Request::started);
+    ASSERT_TRUE(recorder.wait(1, 1));
+    EXPECT_EQ(recorder.delivered(), std::vector<std::string>{"a.yaml"});
 }
 
 TEST(ReloadWorker, DestroyingAnIdleWorkerEndsItsThread) {

@@ -11,6 +11,7 @@
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -78,8 +79,9 @@ private:
     /// The plans of `config`'s exchanges, for Exchanges::apply. The exchange configs (every tag
     /// again, with the marks of its keys) served validation only: they are released here.
     static std::vector<core::plan::ExchangePlan> take_plans(core::config::Config& config);
-    /// The new exchanges of a reload applied, the outcome counted and logged.
-    void apply_plans(std::vector<core::plan::ExchangePlan> plans);
+    /// The new exchanges of a reload applied, the outcome counted; returns the line that
+    /// logs it once the reload is done.
+    std::string apply_plans(std::vector<core::plan::ExchangePlan> plans);
     /// Every running exchange's retained state again, and the JSON tree's `_meta` topics.
     void republish_exchanges();
     /// SIGHUP: the file is handed to reloads_, which reads and checks it off the loop; a
@@ -87,12 +89,29 @@ private:
     void reload();
     /// ReloadWorker::Parse, on the worker's thread: the file loaded, its plans made.
     static ParseResult parse_reload(const std::string& path, std::stop_token stop);
-    /// A parse's result, on the loop: applied (apply_reload), then READY once no other reload
-    /// is under way.
+    /// A parse's result, on the loop: started (start_reload), or, while another is applied,
+    /// kept until that one ends.
     void on_reload_parsed(ParseResult parsed);
+    /// A result and how long its parse took.
+    struct ParsedReload {
+        ParseResult result;
+        std::chrono::steady_clock::duration parse_took;
+    };
+    /// Applied (apply_reload), its publications made in slices (continue_reload), then
+    /// end_reload.
+    void start_reload(ParsedReload parsed);
     /// A valid new file is applied whole, or refused whole (errors, or a change that needs a
-    /// restart: core::config::plan_reload), the log naming each changed key.
+    /// restart: core::config::plan_reload), the log naming each changed key. Leaves the
+    /// publications of the change (retained topics cleared, new descriptions) to
+    /// continue_reload.
     void apply_reload(ParseResult parsed);
+    /// One slice of the reload's publications (JsonTree::publish_changes), bounded by
+    /// core::config::slice_units; the next one posted, or after a tick while the publish queue
+    /// is half full. Once none is left, end_reload.
+    void continue_reload();
+    /// The heap released, the outcome logged; READY once no other reload is under way; the
+    /// next result that waited applied.
+    void end_reload();
     /// The live settings of the sections (`next` against config_, before it replaces it):
     /// multicast groups, log level, publish settings, MQTT buffers. False, with nothing
     /// changed, when the multicast groups cannot be joined.
@@ -191,9 +210,22 @@ private:
     core::MonoTime started_at_;
     core::MonoTime last_refresh_scan_;
     bool stopping_ = false;
-    /// Results the loop still waits for from reloads_, and when the last reload started.
+    /// Results the loop still waits for from reloads_ (or has, waiting in reloads_parsed_),
+    /// and when the last reload started.
     int reloads_pending_ = 0;
     core::MonoTime reload_requested_at_;
+    /// The reload being applied, from its result on the loop to end_reload.
+    struct ReloadApply {
+        core::MonoTime applying_from;
+        std::chrono::steady_clock::duration parse_took;
+        std::vector<std::string> outcome;  ///< info lines, logged once it is done
+        bool applied = false;              ///< the heap is released at the end
+        int slices = 0;
+        std::chrono::steady_clock::duration longest_slice{};
+    };
+    std::optional<ReloadApply> reload_apply_;
+    std::deque<ParsedReload> reloads_parsed_;  ///< arrived while reload_apply_ was under way
+    boost::asio::steady_timer reload_timer_;   ///< waits for the publish queue to drain
     /// Last: its thread is stopped and joined first when the gateway dies, before anything
     /// its results reach (they are posted to the loop).
     ReloadWorker reloads_;

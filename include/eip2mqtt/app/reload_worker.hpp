@@ -55,6 +55,12 @@ public:
     /// and the file of the last request is parsed; one result is delivered for them all.
     Request request(std::string path);
 
+    /// From the owner's thread: runs `job` on the worker's thread, before the next parse (once
+    /// the parse under way, if any, ends). For the work that would stop the loop after a
+    /// reload: malloc_trim, which walks every arena for tens of milliseconds. A job not begun
+    /// when stop() is called is dropped.
+    void post(std::function<void()> job);
+
     /// Asks a parse under way to give up, and waits for the thread to end; nothing is delivered
     /// after. Requests made after it are never parsed.
     void stop();
@@ -66,9 +72,10 @@ private:
     Deliver deliver_;
     std::mutex mutex_;
     std::condition_variable_any wake_;
-    std::optional<std::string> waiting_;  ///< guarded by mutex_: the next file to parse
-    bool parsing_ = false;                ///< guarded by mutex_
-    std::jthread thread_;                 ///< last: starts once the rest is built
+    std::optional<std::string> waiting_;       ///< guarded by mutex_: the next file to parse
+    std::vector<std::function<void()>> jobs_;  ///< guarded by mutex_: post()ed, not yet run
+    bool parsing_ = false;                     ///< guarded by mutex_
+    std::jthread thread_;                      ///< last: starts once the rest is built
 };
 
 }  // namespace eip2mqtt::app

@@ -24,10 +24,12 @@ void JsonTree::set_options(JsonTreeOptions options) {
 
 void JsonTree::exchanges_changed(const ExchangeSet& running,
                                  std::span<const std::string> retired_topics) {
-    // No subscriber may keep reading a tag that no longer exists.
-    for (const auto& topic : retired_topics) {
-        mqtt_.publish({topic, "", options_.publish.qos, true, true});
+    // No subscriber may keep reading a tag that no longer exists (publish_changes).
+    if (next_retired_ == retired_.size()) {
+        retired_.clear();
+        next_retired_ = 0;
     }
+    retired_.insert(retired_.end(), retired_topics.begin(), retired_topics.end());
     describe(running);
     router_.clear();
     for (const auto* plan : running.consumed) router_.add(*plan);
@@ -61,23 +63,50 @@ void JsonTree::describe(const ExchangeSet& running) {
     for (const auto* plans : {&running.consumed, &running.produced}) {
         described_.insert(described_.end(), plans->begin(), plans->end());
     }
+    // The running set changed under a republish in progress: it starts again from the first.
+    if (next_due_meta_) next_due_meta_ = 0;
     // Before the first connection nothing has reached the broker: republish_meta() on
     // connecting publishes every description (and notes its digest), so none is formatted here.
     if (!announced_) return;
-    // A kept or unchanged exchange's `_meta` stays as the broker has it.
-    std::unordered_map<std::string, std::size_t> digests;
-    for (const auto* plan : described_) {
-        auto payload = format_meta_payload(*plan);
-        const auto digest = std::hash<std::string>{}(payload);
-        const auto old = meta_digests_.find(plan->meta_topic);
-        if (old == meta_digests_.end() || old->second != digest) {
-            mqtt_.publish({plan->meta_topic, std::move(payload), options_.publish.qos, true, true});
-        }
-        digests.emplace(plan->meta_topic, digest);
+    next_described_ = 0;
+    described_digests_.clear();
+}
+
+bool JsonTree::publish_changes(std::size_t units) {
+    std::size_t used = 0;
+    for (; used < units && next_retired_ < retired_.size(); ++used, ++next_retired_) {
+        mqtt_.publish({std::move(retired_[next_retired_]), "", options_.publish.qos, true, true});
     }
-    meta_digests_ = std::move(digests);
-    // The running set changed under a republish in progress: it starts again from the first.
-    if (next_due_meta_) next_due_meta_ = 0;
+    if (next_retired_ == retired_.size()) {
+        std::vector<std::string>().swap(retired_);  // a plant's topics: megabytes
+        next_retired_ = 0;
+        used += describe_changed(units - used);
+    }
+    return changes_pending();
+}
+
+std::size_t JsonTree::describe_changed(std::size_t units) {
+    std::size_t used = 0;
+    if (!next_described_) return used;
+    auto& next = *next_described_;
+    // A kept or unchanged exchange's `_meta` stays as the broker has it.
+    for (; used < units && next < described_.size(); ++next) {
+        const auto& plan = *described_[next];
+        auto payload = format_meta_payload(plan);
+        const auto digest = std::hash<std::string>{}(payload);
+        const auto old = meta_digests_.find(plan.meta_topic);
+        if (old == meta_digests_.end() || old->second != digest) {
+            mqtt_.publish({plan.meta_topic, std::move(payload), options_.publish.qos, true, true});
+        }
+        described_digests_.emplace(plan.meta_topic, digest);
+        used += 1 + plan.tags.size();
+    }
+    if (next >= described_.size()) {
+        meta_digests_ = std::move(described_digests_);
+        described_digests_.clear();
+        next_described_.reset();
+    }
+    return used;
 }
 
 void JsonTree::republish_meta() {

@@ -140,6 +140,8 @@ TEST_F(JsonTreeTest, ChangedExchangesClearRetiredTopicsAndSubscribeToTheSetTopic
               (std::vector<std::string>{"acme/+/+/set", "acme/+/+/+/set"}));
     const std::vector<std::string> retired{"acme/t1/gone/A", "acme/t1/gone/_status"};
     uns_.northbound().exchanges_changed({{}, {&produced_}}, retired);
+    EXPECT_TRUE(published().empty());  // in slices, by publish_changes
+    EXPECT_FALSE(uns_.northbound().publish_changes(1000));
     ASSERT_EQ(published().size(), 2u);
     for (std::size_t i = 0; i < 2; ++i) {
         EXPECT_EQ(published()[i].topic, retired[i]);
@@ -229,17 +231,21 @@ TEST(JsonTreeMetaTest, PublishedOnConnectingThenOnlyWhenAReloadChangesItAndAgain
     }
 
     uns.northbound().exchanges_changed({{&in}, {&out}}, {});  // a reload that kept both
+    uns.northbound().publish_changes(1000);
     EXPECT_EQ(published.size(), 2u);
 
     in.spec.period = std::chrono::milliseconds(250);  // a reload that changed one
     uns.northbound().exchanges_changed({{&in}, {&out}}, {});
+    uns.northbound().publish_changes(1000);
     ASSERT_EQ(published.size(), 3u);
     EXPECT_EQ(published[2].topic, "acme/t1/in/_meta");
     EXPECT_NE(published[2].payload.find(R"("period_ms":250)"), std::string::npos);
 
     // Removed (diff_plans clears its topic), then back: published again.
     uns.northbound().exchanges_changed({{}, {&out}}, {});
+    uns.northbound().publish_changes(1000);
     uns.northbound().exchanges_changed({{&in}, {&out}}, {});
+    uns.northbound().publish_changes(1000);
     ASSERT_EQ(published.size(), 4u);
     EXPECT_EQ(published[3].topic, "acme/t1/in/_meta");
 
@@ -251,6 +257,40 @@ TEST(JsonTreeMetaTest, PublishedOnConnectingThenOnlyWhenAReloadChangesItAndAgain
         const auto& described = published[i].topic == "acme/t1/in/_meta" ? in : out;
         EXPECT_EQ(published[i].payload, format_meta_payload(described)) << published[i].topic;
     }
+}
+
+TEST(JsonTreeMetaTest, AReloadPublishesInSlicesClearsFirstThenChangedDescriptions) {
+    test::JsonTreeRecorder uns;
+    auto in = plan("in", core::plan::Direction::consume);
+    const auto out = plan("out", core::plan::Direction::produce);
+    uns.northbound().exchanges_changed({{&in}, {&out}}, {});
+    uns.northbound().republish_meta();  // connected
+    uns.northbound().publish_due_meta();
+    const auto& published = uns.publisher.published;
+    ASSERT_EQ(published.size(), 2u);
+
+    // A reload that retires five topics and changes `in` (two tags: 3 units to describe).
+    in.spec.period = std::chrono::milliseconds(250);
+    const std::vector<std::string> retired{"acme/a", "acme/b", "acme/c", "acme/d", "acme/e"};
+    uns.northbound().exchanges_changed({{&in}, {&out}}, retired);
+    EXPECT_EQ(published.size(), 2u);  // nothing yet: the subscriptions only
+    EXPECT_TRUE(uns.northbound().changes_pending());
+    EXPECT_TRUE(uns.northbound().publish_changes(2));
+    EXPECT_TRUE(uns.northbound().publish_changes(2));
+    ASSERT_EQ(published.size(), 6u);
+    // The last clear, then a description begun with the unit left takes its whole cost.
+    EXPECT_TRUE(uns.northbound().publish_changes(2));
+    ASSERT_EQ(published.size(), 8u);
+    for (std::size_t i = 0; i < retired.size(); ++i) {
+        EXPECT_EQ(published[2 + i].topic, retired[i]);
+        EXPECT_EQ(published[2 + i].payload, "");
+        EXPECT_TRUE(published[2 + i].retain);
+    }
+    EXPECT_EQ(published[7].topic, "acme/t1/in/_meta");
+    // `out` is compared, unchanged: nothing published, nothing left.
+    EXPECT_FALSE(uns.northbound().publish_changes(2));
+    EXPECT_EQ(published.size(), 8u);
+    EXPECT_FALSE(uns.northbound().changes_pending());
 }
 
 TEST(JsonTreeMetaTest, AReconnectSendsTheDescriptionsAFewAtATimeInConfigurationOrder) {

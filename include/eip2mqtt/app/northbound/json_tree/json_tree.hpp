@@ -83,11 +83,19 @@ public:
     /// to the WriteHandler, refused or not; anything else is ignored.
     void on_message(const adapters::mqtt::Incoming& message);
 
-    /// Also publishes each running exchange's `_meta` (json_tree_meta.hpp) that is new or
-    /// changed, once republish_meta() has published them all; a retired exchange's is among
-    /// `retired_topics` (core::plan::diff_plans).
+    /// The `set` topics follow `running` at once. The publications follow in slices, by
+    /// publish_changes(): `retired_topics` (core::plan::diff_plans; a retired exchange's
+    /// `_meta` among them) cleared, then each running exchange's `_meta` (json_tree_meta.hpp)
+    /// published when new or changed, once republish_meta() has published them all. The
+    /// previous call's publications must be done (changes_pending() false) or they are
+    /// merged: its clears still made, its descriptions compared afresh.
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
+    /// Makes the next publications exchanges_changed() left, taking at most `units`: one per
+    /// cleared topic, one per description plus one per tag it describes (the formatting is the
+    /// cost). Returns whether some are left.
+    bool publish_changes(std::size_t units);
+    bool changes_pending() const { return next_retired_ < retired_.size() || next_described_; }
     /// Makes every running exchange's `_meta` due (on each connect: the first, and a reconnect
     /// to a broker that may have lost its retained messages); publish_due_meta() sends them.
     void republish_meta();
@@ -109,9 +117,11 @@ public:
     bool replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
 private:
-    /// Keeps the running exchanges in order; once connected, publishes each `_meta` that is new
-    /// or changed.
+    /// Keeps the running exchanges in order; once connected, makes their `_meta` due for
+    /// comparison by publish_changes().
     void describe(const ExchangeSet& running);
+    /// publish_changes() for descriptions: returns the units it took.
+    std::size_t describe_changed(std::size_t units);
     /// Whether `batch` goes on `_values` as well as on the tag topics.
     bool values_due(const SampleBatch& batch) const;
     /// The write topics' filters, and where writes are answered with an answer listener.
@@ -138,6 +148,13 @@ private:
     /// sees, that chance is nil.
     std::unordered_map<std::string, std::size_t> meta_digests_;
     std::vector<const core::plan::ExchangePlan*> described_;  ///< the running, in order
+    /// Retained topics to clear (exchanges_changed), the next at next_retired_.
+    std::vector<std::string> retired_;
+    std::size_t next_retired_ = 0;
+    /// The next running exchange whose `_meta` publish_changes() compares, into described_;
+    /// none when none is left. The digests of those compared so far, for meta_digests_.
+    std::optional<std::size_t> next_described_;
+    std::unordered_map<std::string, std::size_t> described_digests_;
     /// republish_meta() ran: changes are published from then on.
     bool announced_ = false;
     /// The next description due, into described_; none when none is due.
