@@ -173,11 +173,14 @@ void ChaosRig::run(const std::vector<ChaosFault>& schedule) {
     std::stable_sort(steps.begin(), steps.end(),
                      [](const Step& a, const Step& b) { return a.at < b.at; });
     begun_.assign(schedule.size(), std::chrono::milliseconds(0));
-    const auto start = Clock::now();
+    auto start = Clock::now();
+    std::size_t on = 0;  // faults begun and not healed
     for (const auto& step : steps) {
         write_until(start + step.at);
         step.heal ? heal(schedule[step.fault], step.fault)
                   : apply(schedule[step.fault], step.fault);
+        on = step.heal ? on - 1 : on + 1;
+        if (settings_.keep_quiet && on == 0) start = std::max(start, Clock::now() - step.at);
     }
     write_until(Clock::now() + 3 * settings_.takeover);
     excuse_both_down();
