@@ -22,7 +22,6 @@ using namespace std::chrono_literals;
 
 constexpr const char* segment_address = "10.250.0.1";
 constexpr std::uint16_t eip_port = 18246;
-const std::array<std::string, 2> unit_ids{"gw-a", "gw-b"};
 
 std::string unit_address(int unit) { return "10.250." + std::to_string(unit + 1) + ".2"; }
 std::string segment_end(int unit) { return "10.250." + std::to_string(unit + 1) + ".1"; }
@@ -59,7 +58,8 @@ ChaosRig::ChaosRig(ChaosSettings settings)
     : settings_(settings),
       epoch_(Clock::now()),
       system_epoch_(std::chrono::system_clock::now()),
-      segment_("seg") {
+      segment_("seg"),
+      broker_(MosquittoOptions{.persistence = true}) {
     segment_.run({"ip", "addr", "add", std::string(segment_address) + "/32", "dev", "lo"});
     for (int unit = 0; unit < 2; ++unit) {
         units_[unit] = std::make_unique<NetNamespace>("u" + std::to_string(unit));
@@ -79,7 +79,7 @@ ChaosRig::~ChaosRig() {
     for (auto& gateway : gateways_) {
         if (gateway) gateway->signal(SIGCONT);
     }
-    if (broker_stopped_) ::kill(broker_.pid(), SIGCONT);
+    if (broker_stopped_ && broker_.pid() > 0) ::kill(broker_.pid(), SIGCONT);
     gateways_ = {};
 }
 
@@ -88,7 +88,7 @@ std::chrono::milliseconds ChaosRig::now() const {
 }
 
 std::string ChaosRig::unit_config(int unit) const {
-    const auto& id = unit_ids[unit];
+    const auto& id = chaos_unit_ids[unit];
     const auto exchanges =
         ExchangeYaml::produce("sp", "10.1.2.3", 10,
                               std::string(segment_address) + ":" + std::to_string(capture_port_))
@@ -117,7 +117,7 @@ std::string ChaosRig::unit_config(int unit) const {
 
 void ChaosRig::start_unit(int unit) {
     if (gateways_[unit]) earlier_logs_[unit] += gateways_[unit]->output() + "--- killed ---\n";
-    const auto path = dir_.write(unit_ids[unit] + ".yaml", unit_config(unit));
+    const auto path = dir_.write(chaos_unit_ids[unit] + ".yaml", unit_config(unit));
     gateways_[unit] =
         std::make_unique<ChildProcess>(units_[unit]->inside({EIP2MQTT_BINARY, "run", "-c", path}));
 }
@@ -127,7 +127,8 @@ std::string ChaosRig::settle() {
         std::array<std::string, 2> role;
         for (const auto& m : all) {
             for (int unit = 0; unit < 2; ++unit) {
-                if (m.topic == "test/_gateway/" + unit_ids[unit] + "/role") role[unit] = m.payload;
+                if (m.topic == "test/_gateway/" + chaos_unit_ids[unit] + "/role")
+                    role[unit] = m.payload;
             }
         }
         return (role[0] == "leader" && role[1] == "standby") ||
@@ -158,117 +159,32 @@ void ChaosRig::run(const std::vector<ChaosFault>& schedule) {
             {unit_address(0), eip_port, faults(settings_.seed * 2 + 1)},
             {unit_address(1), eip_port, faults(settings_.seed * 2 + 2)}},
         settings_.consume_period, epoch_);
-    const auto start = Clock::now();
-    for (const auto& fault : schedule) {
-        write_until(start + fault.at);
-        apply(fault);
-        write_until(start + fault.at + fault.length);
-        heal(fault);
+    // Each fault's beginning and end, in time order (a fault of no length begins first).
+    struct Step {
+        std::chrono::milliseconds at;
+        std::size_t fault;
+        bool heal;
+    };
+    std::vector<Step> steps;
+    for (std::size_t i = 0; i < schedule.size(); ++i) {
+        steps.push_back({schedule[i].at, i, false});
+        steps.push_back({schedule[i].at + schedule[i].length, i, true});
+    }
+    std::stable_sort(steps.begin(), steps.end(),
+                     [](const Step& a, const Step& b) { return a.at < b.at; });
+    begun_.assign(schedule.size(), std::chrono::milliseconds(0));
+    auto start = Clock::now();
+    std::size_t on = 0;  // faults begun and not healed
+    for (const auto& step : steps) {
+        write_until(start + step.at);
+        step.heal ? heal(schedule[step.fault], step.fault)
+                  : apply(schedule[step.fault], step.fault);
+        on = step.heal ? on - 1 : on + 1;
+        if (settings_.keep_quiet && on == 0) start = std::max(start, Clock::now() - step.at);
     }
     write_until(Clock::now() + 3 * settings_.takeover);
+    excuse_both_down();
     finish();
-}
-
-void ChaosRig::apply(const ChaosFault& fault) {
-    story_.push_back(std::to_string(now().count()) + " ms: " + fault.str());
-    const auto from = now();
-    auto& proxy = *proxies_[fault.unit];
-    using D = TcpProxy::Direction;
-    switch (fault.kind) {
-        case ChaosKind::cut_unit:
-            units_[fault.unit]->cut(false);
-            break;
-        case ChaosKind::cut_broker:
-            units_[fault.unit]->cut(true);
-            break;
-        case ChaosKind::stall_broker:
-            proxy.set_mode(D::to_server, TcpProxy::Mode::stall);
-            proxy.set_mode(D::to_client, TcpProxy::Mode::stall);
-            break;
-        case ChaosKind::delay_broker:
-            proxy.set_delay(D::to_server, fault.delay);
-            proxy.set_delay(D::to_client, fault.delay);
-            break;
-        case ChaosKind::stop_unit:
-            gateways_[fault.unit]->signal(SIGSTOP);
-            break;
-        case ChaosKind::kill_unit:
-            kill_and_restart(fault.unit);
-            break;
-        case ChaosKind::stop_broker:
-            ::kill(broker_.pid(), SIGSTOP);
-            broker_stopped_ = true;
-            break;
-        case ChaosKind::forge:
-            forge();
-            break;
-    }
-    faulted_.push_back({from, from});
-}
-
-void ChaosRig::heal(const ChaosFault& fault) {
-    auto path_back = now();  // when the broker paths are whole again
-    auto& proxy = *proxies_[fault.unit];
-    using D = TcpProxy::Direction;
-    switch (fault.kind) {
-        case ChaosKind::cut_unit:
-        case ChaosKind::cut_broker:
-            units_[fault.unit]->heal();
-            break;
-        case ChaosKind::stall_broker:
-            proxy.set_mode(D::to_server, TcpProxy::Mode::pass);
-            proxy.set_mode(D::to_client, TcpProxy::Mode::pass);
-            break;
-        case ChaosKind::delay_broker:
-            proxy.set_delay(D::to_server, 0ms);
-            proxy.set_delay(D::to_client, 0ms);
-            break;
-        case ChaosKind::stop_unit:
-            gateways_[fault.unit]->signal(SIGCONT);
-            break;
-        case ChaosKind::stop_broker:
-            path_back = resume_broker();
-            break;
-        case ChaosKind::kill_unit:
-        case ChaosKind::forge:
-            break;
-    }
-    faulted_.back().to = now();
-    const auto span = faulted_.back();
-    if (fault.kind == ChaosKind::forge) faulted_.pop_back();  // it must change nothing
-    story_.push_back(std::to_string(span.to.count()) + " ms: healed");
-    const bool path_down = fault.kind != ChaosKind::delay_broker &&
-                           fault.kind != ChaosKind::forge && fault.kind != ChaosKind::kill_unit;
-    if (path_down) disrupted_.push_back({span.from, path_back});
-    if (fault.kind == ChaosKind::stop_broker) unreachable_.push_back(span);
-    if (fault.kind != ChaosKind::forge) {
-        const bool everyone = fault.kind == ChaosKind::stop_broker;
-        unit_faults_.push_back({everyone ? "" : unit_ids[fault.unit], span});
-    }
-}
-
-std::chrono::milliseconds ChaosRig::resume_broker() {
-    const auto from = recorder_->count();
-    ::kill(broker_.pid(), SIGCONT);
-    broker_stopped_ = false;
-    const auto resumed = now();
-    // The units reconnect with their backoff (it grew while the broker did not answer), then one
-    // claims the lead: the fault lasts until a leader renews again (docs/testing.md).
-    const auto renewal = [](const std::string& p) {
-        return p.find("\"claim\"") == std::string::npos && p.find("\"id\"") != std::string::npos;
-    };
-    recorder_->wait_for_message("test/_gateway/_pair/turbine/leader", renewal, 60s, from);
-    return resumed;
-}
-
-void ChaosRig::kill_and_restart(int unit) {
-    gateways_[unit]->signal(SIGKILL);
-    gateways_[unit]->wait(10s);
-    const auto from = recorder_->count();
-    start_unit(unit);
-    // Back once it says its role again (it consumes from then on): the fault's span ends there.
-    const auto role = "test/_gateway/" + unit_ids[unit] + "/role";
-    recorder_->wait_for_message(role, nullptr, 30s, from);
 }
 
 void ChaosRig::forge() {
@@ -284,9 +200,9 @@ void ChaosRig::forge() {
 }
 
 void ChaosRig::write_until(Clock::time_point until) {
-    // Bounded: one write per 250 ms of the span, at most.
+    // Bounded: one write per 250 ms of the span, at most; none while the recorder cannot.
     while (Clock::now() < until) {
-        if (!broker_stopped_) write();
+        if (!broker_stopped_ && !broker_killed_ && recorder_->connected()) write();
         std::this_thread::sleep_until(std::min(until, Clock::now() + 250ms));
     }
 }

@@ -4,7 +4,9 @@
 /// reaching a real Mosquitto through a TcpProxy of its own; a faulty PLC on the segment sending a
 /// consumed counter to both; a capture of what the pair produces; a recorder of every message;
 /// writes with answers on a response topic. It records everything, then runs every checker of
-/// tests/support/promises.hpp over it (docs/testing.md).
+/// tests/support/promises.hpp over it (docs/testing.md). The broker runs with persistence, as a
+/// packaged Mosquitto does, but never autosaves within a run: when it is killed it comes back
+/// without retained messages and sessions, which the pair must survive.
 ///
 ///   segment namespace: 10.250.0.1 (lo): PLC, capture, the units' broker proxies, forged sources
 ///   unit 0 namespace: 10.250.1.2, default route via 10.250.1.1 (the segment's end of the veth)
@@ -32,12 +34,19 @@
 
 namespace eip2mqtt::test {
 
+/// The units' ids: unit 0 and unit 1.
+inline const std::array<std::string, 2> chaos_unit_ids{"gw-a", "gw-b"};
+
 struct ChaosSettings {
     std::uint64_t seed = 1;
     std::chrono::milliseconds duration{20000};  ///< of the schedule
     std::chrono::milliseconds takeover{1000};
     std::chrono::milliseconds produce_period{50};
     std::chrono::milliseconds consume_period{20};
+    /// Keep each quiet spell whole: when the last fault of a group ends late (its heal waited
+    /// for a leader's renewal, or a restart), the later faults move by as long. Schedule
+    /// version 2's; version 1 runs as it always did (the next fault at its time).
+    bool keep_quiet = false;
 };
 
 class ChaosRig {
@@ -66,10 +75,14 @@ private:
     std::chrono::milliseconds now() const;
     std::string unit_config(int unit) const;
     void start_unit(int unit);
-    void apply(const ChaosFault& fault);
-    void heal(const ChaosFault& fault);
-    /// SIGCONT; returns once a leader renews its lease again, with the time of the SIGCONT.
-    std::chrono::milliseconds resume_broker();
+    /// Begins schedule fault `index`; heal() ends it (faults may overlap).
+    void apply(const ChaosFault& fault, std::size_t index);
+    void heal(const ChaosFault& fault, std::size_t index);
+    /// SIGCONT (stop_broker) or started again on its port (kill_broker); returns once a leader
+    /// renews its lease again, with the time the broker was back.
+    std::chrono::milliseconds restore_broker(ChaosKind kind);
+    /// Adds to `unreachable_` the spans when both units were down at once.
+    void excuse_both_down();
     /// SIGKILL, then the unit started again; returns once it says its role.
     void kill_and_restart(int unit);
     void forge();
@@ -98,7 +111,8 @@ private:
     std::unique_ptr<FaultyPlc> plc_;
     std::array<std::unique_ptr<ChildProcess>, 2> gateways_;
     std::array<std::string, 2> earlier_logs_;  ///< of the processes killed
-    bool broker_stopped_ = false;
+    bool broker_stopped_ = false;              ///< SIGSTOPped
+    bool broker_killed_ = false;               ///< killed, not yet started again
     int writes_made_ = 0;
     std::chrono::milliseconds end_{0};
 
@@ -107,6 +121,8 @@ private:
     std::vector<promises::Span> unreachable_;       ///< no unit could reach the broker
     std::vector<promises::Span> faulted_;           ///< every fault, for the required samples
     std::vector<promises::UnitFault> unit_faults_;  ///< by unit ("": the broker's)
+    std::array<std::vector<promises::Span>, 2> down_;  ///< a unit's path or process down
+    std::vector<std::chrono::milliseconds> begun_;     ///< each schedule fault's start
     std::vector<std::string> story_;
 };
 

@@ -206,6 +206,17 @@ void Mosquitto::start() {
     }
 }
 
+void Mosquitto::kill() {
+    if (pid_ <= 0) {
+        return;
+    }
+    ::kill(pid_, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = -1;
+}
+
 void Mosquitto::stop() {
     if (pid_ <= 0) {
         return;

@@ -50,6 +50,9 @@ public:
 
     /// Stops the broker (SIGTERM, then waits for it to exit).
     void stop();
+    /// Kills the broker (SIGKILL, as a crash would: nothing saved since its last autosave) and
+    /// waits for it to end.
+    void kill();
     /// Starts it again on the same port, with the same persistence directory.
     void start();
     bool running() const { return pid_ > 0; }

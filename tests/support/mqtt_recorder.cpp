@@ -179,6 +179,8 @@ std::vector<Received> MqttRecorder::messages_on(const std::string& topic) const 
     return out;
 }
 
+bool MqttRecorder::connected() const { return impl_->client.is_connected(); }
+
 std::size_t MqttRecorder::count() const {
     std::lock_guard lock(impl_->mutex);
     return impl_->messages.size();

@@ -48,6 +48,8 @@ public:
     std::vector<Received> messages() const;
     std::vector<Received> messages_on(const std::string& topic) const;
     std::size_t count() const;
+    /// Connected to the broker now (it reconnects by itself after the broker was away).
+    bool connected() const;
     /// The last message recorded on `topic`.
     std::optional<Received> last(const std::string& topic) const;
 
