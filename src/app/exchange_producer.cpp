@@ -290,16 +290,6 @@ void ExchangeProducer::answer_accepted(std::uint64_t write_id, WriteReply reply,
     answer_gate_(*this, write_id, reply, std::move(answer));
 }
 
-std::vector<std::pair<std::uint64_t, const WriteReply*>> ExchangeProducer::carried_replies() const {
-    std::vector<std::pair<std::uint64_t, const WriteReply*>> replies;
-    for (const auto id : carried_) {
-        if (const auto found = replies_.find(id); found != replies_.end()) {
-            replies.emplace_back(id, &found->second);
-        }
-    }
-    return replies;
-}
-
 std::optional<WriteReply> ExchangeProducer::take_reply(std::uint64_t write_id) {
     auto node = replies_.extract(write_id);
     if (node.empty()) return std::nullopt;

@@ -123,7 +123,7 @@ ExchangesOptions Gateway::pair_options() {
     options.may_produce = [this](core::MonoTime now) { return may_produce(now); };
     // Only a leader produces, so only a leader's images change by writes.
     options.on_image_changed = [this](const ExchangeProducer& producer) {
-        pair_images_->publish(producer, pair_->lease().epoch(), std::chrono::steady_clock::now());
+        pair_images_->publish(producer, pair_->lease().epoch());
     };
     options.answer_gate = [this](const ExchangeProducer& producer, std::uint64_t write_id,
                                  const WriteReply& reply, std::function<void()> answer) {
@@ -135,9 +135,8 @@ ExchangesOptions Gateway::pair_options() {
 }
 
 void Gateway::publish_images() {
-    const auto now = std::chrono::steady_clock::now();
     for (const auto& producer : exchanges_.producers()) {
-        pair_images_->publish(*producer, pair_->lease().epoch(), now);
+        pair_images_->publish(*producer, pair_->lease().epoch());
     }
 }
 

@@ -212,6 +212,22 @@ TEST(WritesAnsweredOnce, TwiceContradictedUnansweredAndOkNeverProducedAreCaught)
                             HasSubstr("w4 (1004.000000, at 400 ms) answered ok, but no datagram")));
 }
 
+TEST(WritesAnsweredOnce, AWriteLostWithAKilledBrokerIsExcusedFromAnAnswerNotFromTwo) {
+    // Mosquitto killed from 1,000 to 2,500 ms; an answer is due within 500 ms of a write.
+    const std::vector<Write> writes{{"w1", 1001, 300ms},
+                                    {"w2", 1002, 600ms},
+                                    {"w3", 1003, 2000ms},
+                                    {"w4", 1004, 2700ms},
+                                    {"w5", 1005, 900ms}};
+    const std::vector<Answer> answers{{"w5", false, "standby", 950ms},
+                                      {"w5", false, "standby", 3000ms}};
+    const std::vector<Span> killed{{1000ms, 2500ms}};
+    EXPECT_THAT(writes_answered_once(writes, answers, {}, 100ms, killed, 500ms),
+                ElementsAre(HasSubstr("write w1 (1001.000000, at 300 ms) never answered"),
+                            HasSubstr("write w4 (1004.000000, at 2700 ms) never answered"),
+                            HasSubstr("write w5 (1005.000000, at 900 ms) answered 2 times")));
+}
+
 TEST(Report, NamesTheCheckerOnEachLine) {
     EXPECT_EQ(report("one producer", {"x", "y"}), "one producer: x\none producer: y\n");
     EXPECT_EQ(report("one producer", {}), "");

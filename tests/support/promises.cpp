@@ -162,7 +162,9 @@ std::vector<std::string> samples_once_in_order(const std::vector<Sent>& sent,
 
 std::vector<std::string> writes_answered_once(const std::vector<Write>& writes,
                                               const std::vector<Answer>& answers,
-                                              const std::vector<Produced>& capture, Millis reach) {
+                                              const std::vector<Produced>& capture, Millis reach,
+                                              const std::vector<Span>& broker_lost,
+                                              Millis answer_within) {
     std::map<std::string, std::vector<const Answer*>> by_write;
     for (const auto& a : answers) by_write[a.id].push_back(&a);
     const auto text = [](const Answer& a) {
@@ -174,7 +176,10 @@ std::vector<std::string> writes_answered_once(const std::vector<Write>& writes,
         const std::string name =
             "write " + w.id + " (" + std::to_string(w.value) + ", at " + ms(w.at) + ")";
         if (got.empty()) {
-            out.push_back(name + " never answered");
+            const bool lost = std::any_of(broker_lost.begin(), broker_lost.end(), [&](auto& s) {
+                return w.at + answer_within >= s.from && w.at <= s.to;
+            });
+            if (!lost) out.push_back(name + " never answered");
             continue;
         }
         if (got.size() > 1) {

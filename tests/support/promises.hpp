@@ -130,9 +130,14 @@ struct Answer {
 /// write was sent, and no later than `reach` after its answer arrived (the capture's clock and
 /// the recorder's are read apart), holds its value, or that of a write sent after it (writes
 /// that arrive together are applied to one production, the last value of a tag winning).
+/// Excused: a write never answered that was sent less than `answer_within` before a span of
+/// `broker_lost` began, or during it (Mosquitto killed, with what it had not saved: the write,
+/// its answer or the image its answer waited for may have been lost with it).
 std::vector<std::string> writes_answered_once(const std::vector<Write>& writes,
                                               const std::vector<Answer>& answers,
-                                              const std::vector<Produced>& capture, Millis reach);
+                                              const std::vector<Produced>& capture, Millis reach,
+                                              const std::vector<Span>& broker_lost = {},
+                                              Millis answer_within = Millis{0});
 
 /// Every violation of every checker on one line each, prefixed with the checker's name.
 std::string report(const std::string& checker, const std::vector<std::string>& violations);

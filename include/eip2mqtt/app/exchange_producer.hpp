@@ -24,7 +24,6 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
-#include <utility>
 #include <vector>
 
 #include "eip2mqtt/adapters/state/image_persister.hpp"
@@ -107,16 +106,13 @@ public:
     void set_on_image_changed(ImageChanged on_changed) {
         on_image_changed_ = std::move(on_changed);
     }
-    /// `write_id`: the write's number in this producer, as in carried_replies().
+    /// `write_id`: the write's number in this producer.
     using AnswerGate = std::function<void(const ExchangeProducer& producer, std::uint64_t write_id,
                                           const WriteReply& reply, std::function<void()> answer)>;
     /// The leader answers an accepted write (`ok`, or `ok` unsaved) through `gate`, which runs
     /// the answer once the broker has the image carrying it (PairImages::answer_after_image);
     /// unset: at once.
     void set_answer_gate(AnswerGate gate) { answer_gate_ = std::move(gate); }
-    /// The writes the last datagram carried that are not answered yet, by number, and where
-    /// each is answered: the image published for it lists them (PairImages::publish).
-    std::vector<std::pair<std::uint64_t, const WriteReply*>> carried_replies() const;
     /// The standby takes the leader's image (the plan's length) as its own and saves it as any
     /// image; returns whether a byte changed. Writes still queued stay queued over it.
     bool follow_image(std::span<const std::byte> data);

@@ -46,12 +46,8 @@ bool PairImages::owns(std::string_view topic) const {
            topic[prefix_.size()] == '/';
 }
 
-void PairImages::publish(const ExchangeProducer& producer, std::uint64_t epoch,
-                         core::MonoTime now) {
+void PairImages::publish(const ExchangeProducer& producer, std::uint64_t epoch) {
     message_.topic = topic_of(producer.plan());
-    for (const auto& [write_id, reply] : producer.carried_replies()) {
-        list_answer(message_.topic, write_id, key_of(*reply), now);
-    }
     const auto data = producer.image().data();
     core::redundancy::ImageMessage image{
         id_, epoch, layout_of(producer).fingerprint, {data.begin(), data.end()}, {}};
@@ -89,7 +85,7 @@ void PairImages::answer_after_image(const ExchangeProducer& producer, std::uint6
                                     std::function<void()> answer) {
     auto topic = topic_of(producer.plan());
     const auto key = key_of(reply);
-    if (list_answer(topic, write_id, key, now)) publish(producer, epoch_, now);
+    if (list_answer(topic, write_id, key, now)) publish(producer, epoch_);
     // An image the broker never acknowledges (its connection dropped it) holds nothing forever.
     while (!waiting_.empty() && now - waiting_.front().since > answers_kept_) {
         withhold(std::move(waiting_.front()));

@@ -88,7 +88,7 @@ TEST_F(PairImagesTest, TheTopicOfAnExchangeIsItsTopicUnderThePairs) {
 }
 
 TEST_F(PairImagesTest, TheLeaderPublishesItsImageRetainedWithItsEpochAndLayout) {
-    images_.publish(producer(), 7, t0_);
+    images_.publish(producer(), 7);
     ASSERT_EQ(publisher_.published.size(), 1u);
     const auto& message = publisher_.published.front();
     EXPECT_EQ(message.topic, topic);
@@ -171,7 +171,7 @@ TEST_F(PairImagesTest, AWriteNoImageListedHasTheImagePublishedAgainListingIt) {
 TEST_F(PairImagesTest, EachImageListsTheAnswersOfTheHorizonBeforeIt) {
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [] {});
     images_.answer_after_image(producer(), 2, reply("b"), t0_ + 1s, [] {});
-    images_.publish(producer(), 7, t0_ + 2s);
+    images_.publish(producer(), 7);
     EXPECT_EQ(listed_in(publisher_.published.back()),
               (std::vector<std::uint64_t>{key("a"), key("b")}));
     // Two writes sharing one key are listed twice: a standby drops as many.
@@ -193,7 +193,7 @@ TEST_F(PairImagesTest, ANewerImageAcknowledgedStandsForTheOneItReplacedInTheQueu
 }
 
 TEST_F(PairImagesTest, AUnitThatStoodDownAnswersWhenTheBrokerHadTheImageBeforeAnyOtherClaim) {
-    images_.publish(producer(), 7, t0_);
+    images_.publish(producer(), 7);
     int answered = 0;
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
     images_.stood_down();
@@ -206,12 +206,12 @@ TEST_F(PairImagesTest, AUnitThatStoodDownAnswersWhenTheBrokerHadTheImageBeforeAn
 
 TEST_F(PairImagesTest, AnswersAreWithheldAfterAClaimOfTheOtherUnitOrAReconnect) {
     int answered = 0;
-    images_.publish(producer(), 7, t0_);
+    images_.publish(producer(), 7);
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
     images_.stood_down();
     // The other unit's claim (epoch 8) came first: it may lead, and not have had the image.
     EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 8));
-    images_.publish(producer(), 9, t0_);
+    images_.publish(producer(), 9);
     images_.answer_after_image(producer(), 2, reply("b"), t0_, [&] { ++answered; });
     images_.reconnected();
     // Leading again, but not throughout: it stood down since the answer began waiting.
@@ -223,7 +223,7 @@ TEST_F(PairImagesTest, AnswersAreWithheldAfterAClaimOfTheOtherUnitOrAReconnect) 
 
 TEST_F(PairImagesTest, LeadingAgainAnswersWhatItWithheldUnlessTheOtherUnitAnsweredIt) {
     std::vector<std::string> answered;
-    images_.publish(producer(), 7, t0_);
+    images_.publish(producer(), 7);
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { answered.push_back("a"); });
     images_.answer_after_image(producer(), 2, reply("b"), t0_, [&] { answered.push_back("b"); });
     images_.answer_after_image(producer(), 3, reply("c"), t0_, [&] { answered.push_back("c"); });
@@ -241,7 +241,7 @@ TEST_F(PairImagesTest, LeadingAgainAnswersWhatItWithheldUnlessTheOtherUnitAnswer
 
 TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsNotGivenLate) {
     int answered = 0;
-    images_.publish(producer(), 7, t0_);
+    images_.publish(producer(), 7);
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
     images_.stood_down();
     EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 8));
@@ -251,7 +251,7 @@ TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsNotGivenLate) {
 
 TEST_F(PairImagesTest, ARefusalSettledByANewLeaderIsListedInItsNextImage) {
     images_.list_refusal(producer().plan(), key("r"), t0_);
-    images_.publish(producer(), 9, t0_);
+    images_.publish(producer(), 9);
     EXPECT_EQ(listed_in(publisher_.published.back()), std::vector<std::uint64_t>{key("r")});
 }
 

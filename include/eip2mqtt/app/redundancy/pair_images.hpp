@@ -83,9 +83,9 @@ public:
     /// Whether `topic` is one of the images'.
     bool owns(std::string_view topic) const;
 
-    /// The leader: `producer`'s image as it stands, published as of lease epoch `epoch`, at
-    /// `now`, listing the answers of the writes its last datagram carried and those before.
-    void publish(const ExchangeProducer& producer, std::uint64_t epoch, core::MonoTime now);
+    /// The leader: `producer`'s image as it stands, published as of lease epoch `epoch`, with
+    /// the answers listed so far.
+    void publish(const ExchangeProducer& producer, std::uint64_t epoch);
 
     /// An image read on the pair's connection, judged and taken into the producer of its
     /// exchange among `producers` when the rules allow. `leading` and `epoch`: this unit's
@@ -97,8 +97,9 @@ public:
 
     /// The leader answers its write `write_id` of `producer`, to `reply`, `ok` (`answer`) once
     /// the broker acknowledged an image of the exchange that lists it, and every image
-    /// published before: now, or in on_acknowledged(). A write no image listed yet (one that
-    /// changed nothing) has the image published again, listing it.
+    /// published before: now, or in on_acknowledged(). The image is published again listing
+    /// it, now, when the answer is due (its datagram sent, its image saved), not earlier: a
+    /// leader that dies before has listed nothing it did not answer.
     void answer_after_image(const ExchangeProducer& producer, std::uint64_t write_id,
                             const WriteReply& reply, core::MonoTime now,
                             std::function<void()> answer);
