@@ -13,7 +13,7 @@ packages=(
   mosquitto mosquitto-clients
   clang libclang-rt-14-dev tshark systemd openssl iproute2 iptables
   python3 python3-jsonschema nodejs
-  lintian
+  lintian stress-ng
 )
 
 missing=()
