@@ -75,6 +75,15 @@ class Gateways:
                              capture_output=True, text=True, timeout=timeout + 5)
         return json.loads(out.stdout) if out.stdout.strip() else None
 
+    def metrics_until(self, name, done, reads=10):
+        """The first metrics publication of gateway `name` for which `done(metrics)` holds
+        (bounded reads), or None."""
+        for _ in range(reads):
+            m = self.metrics(name)
+            if m is not None and done(m):
+                return m
+        return None
+
     def settled_metrics(self, name, key="accepted", reads=6):
         """Metrics once `key` stopped moving between two publications (bounded reads)."""
         previous = None
@@ -101,6 +110,17 @@ class Gateways:
                 name, _, value = line.partition(" ")
                 out[name] = float(value)
         return out
+
+    def prometheus_until(self, port, done, timeout=10):
+        """The gateway's first Prometheus page for which `done(page)` holds (read every 0.05 s;
+        the gateway refreshes it once a second), or None after `timeout`."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            page = self.prometheus(port)
+            if done(page):
+                return page
+            time.sleep(0.05)
+        return None
 
     def settled_prometheus(self, port, key, reads=10):
         """The page once `key` stopped moving between two refreshes (once a second; bounded)."""

@@ -28,8 +28,8 @@ class Bench(Processes, Gateways, Measures, Report):
         self.counter_seq = 0
         # The quick form checks that everything works, not figures: shorter runs, and a
         # counter that stops sooner once the messages stop.
-        self.d = 1 if quick else 5  # seconds per throughput run
-        self.idle_ms = 700 if quick else 1500
+        self.d = 0.4 if quick else 5  # seconds per throughput run
+        self.idle_ms = 400 if quick else 1500
         # Scenario 2's figures later scenarios take as their load: bare Paho's per-tag rate
         # (by QoS) and the gateway's (by ("gw", QoS)), 1 x 100 tags on the tuned broker.
         self.ceilings = {}

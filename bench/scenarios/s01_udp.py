@@ -29,13 +29,15 @@ def sink_ceiling(bench, duration, steps, exchanges=1, tags=100):
 def accepted_trial(bench, name, udp_port, exchanges, tags, duration, build):
     """A trial(rate, n) sending `exchanges` x `tags` (from exchange n when one) to `build`'s
     gateway `name`: (no datagram lost, rate achieved), the datagrams sent and accepted kept in
-    trial.last."""
+    trial.last. The gateway has just started: the quick form takes its count as 0, and a
+    trial's settled count as the next one's start (nothing is sent between them), rather than
+    settle them."""
     def trial(rate, n):
-        before = bench.settled_metrics(name)
+        before = trial.settled if bench.quick else bench.settled_metrics(name)
         gen = bench.generate(udp_port, exchanges, rate, duration=duration, change=0,
                              stamp=False, first=n if exchanges == 1 else 1, tags=tags)
         time.sleep(0.3)
-        after = bench.settled_metrics(name)
+        after = trial.settled = bench.settled_metrics(name)
         accepted = after["accepted"] - before["accepted"]
         trial.last = (gen["sent"], accepted)
         ok = accepted == gen["sent"] and gen["errors"] == 0
@@ -43,6 +45,7 @@ def accepted_trial(bench, name, udp_port, exchanges, tags, duration, build):
               f"({gen['rate']:.0f}/s; {build.label})", flush=True)
         return ok, gen["rate"]
 
+    trial.settled = {"accepted": 0}
     return trial
 
 

@@ -14,6 +14,9 @@ def run(bench):
     sink_port = free_port(socket.SOCK_DGRAM)  # nobody listens: produced datagrams vanish
     udp_port = free_port(socket.SOCK_DGRAM)
     runs = 1 if bench.quick else 3
+    # The quick form publishes at QoS 0, at twice the rate or more: the 100,000 first values
+    # are out sooner.
+    qos = 0 if bench.quick else 1
     # The same exchanges written two ways: every tag inline in the YAML (5.4 MB), and the
     # consumed tags as rows of one SCADA point list named by each exchange's `points:`.
     for form, name, point_list in (("inline YAML", "g6", False),
@@ -22,7 +25,7 @@ def run(bench):
             return bench.write_config(
                 name, consumed=consumed_list(1000),
                 produced=[(5000 + i, 10, 100, f"{HOST}:{sink_port}") for i in range(100)],
-                qos=1, udp_port=udp_port, point_list=point_list, build=build)
+                qos=qos, udp_port=udp_port, point_list=point_list, build=build)
 
         measured = bench.per_build(0, lambda build: startup_and_memory(
             bench, name, config(build), udp_port, runs, build))

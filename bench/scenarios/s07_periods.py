@@ -70,7 +70,7 @@ def period_rows(bench, count, jitter_target, measured):
 
 def run(bench):
     print("[7] produced period accuracy at 10 ms", flush=True)
-    duration = 3 if bench.quick else 6
+    duration = 2 if bench.quick else 6
     for count, jitter_target in ((100, 200), (1000, 1000)):
         measured = [one_round(bench, r, count, duration) for r in range(bench.rounds)]
         period_rows(bench, count, jitter_target, measured)

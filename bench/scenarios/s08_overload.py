@@ -109,7 +109,7 @@ def rows(bench, runs):
 def run(bench):
     print("[8] overload: 5 x the publication ceiling for 10 s (100 x 100 tags, QoS 1)",
           flush=True)
-    duration = 3 if bench.quick else 10
+    duration = 1.5 if bench.quick else 10
     ceiling = bench.ceilings.get(("gw", 1)) or bench.ceilings.get(1) or bench.paho_ceiling(1)
     rate = max(100, round(5 * ceiling / TAGS))
 

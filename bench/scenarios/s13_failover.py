@@ -168,7 +168,7 @@ def one_trial(pair, watch, run_s, phase, index):
 
 def run_round(bench, watch, build, phases, round_index):
     pair = Pair(bench, build, round_index, watch.port)
-    run_s = 1.5 if bench.quick else 2.0
+    run_s = 1.0 if bench.quick else 2.0
     out = []
     try:
         # The generators outlast the round's every bounded wait; stopped with the round.
