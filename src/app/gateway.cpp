@@ -237,6 +237,7 @@ void Gateway::schedule_tick() {
     tick_timer_.expires_after(tick_interval);
     tick_timer_.async_wait([this](const boost::system::error_code& error) {
         if (error) return;
+        loop_watch_.on_tick(tick_timer_.expiry(), std::chrono::steady_clock::now());
         on_tick();
         schedule_tick();
     });
@@ -272,6 +273,7 @@ void Gateway::on_tick() {
     exchanges_.tick(now, wall, refresh_scan);
     json_tree_->publish_due_meta();
     if (commands_) commands_->flush_log(now);
+    loop_watch_.flush(now);
 }
 
 void Gateway::schedule_metrics() {

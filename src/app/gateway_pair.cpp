@@ -150,14 +150,16 @@ void Gateway::start_pair() {
         const auto now = std::chrono::steady_clock::now();
         if (!pair_images_->owns(message.topic)) {
             pair_->on_message(message, now);
+            pair_images_->other_leads(pair_->others_renewed_epoch());
             return refresh_leading_until();
         }
-        pair_images_->on_message(message, exchanges_.producers(), pair_->leading(now),
-                                 pair_->lease().epoch());
+        pair_images_->on_message(message, exchanges_.producers(),
+                                 {pair_->leading(now), pair_->lease().epoch(),
+                                  pair_->others_epoch(), pair_->lease().claim_heard_back()});
     });
     pair_mqtt_->set_on_acknowledged([this](std::uint64_t token) {
-        if (pair_images_->on_acknowledged(token, pair_->leading(std::chrono::steady_clock::now()),
-                                          pair_->others_epoch())) {
+        if (pair_images_->on_acknowledged(token,
+                                          pair_->leading(std::chrono::steady_clock::now()))) {
             return;
         }
         pair_->on_acknowledged(token);

@@ -116,6 +116,8 @@ adapters::mqtt::ClientOptions pair_client_options(const core::config::Config& co
     options.will = [will = std::move(will)] { return will; };
     options.session_bound = true;
     options.hear_own = true;  // a claim heard back confirms it (core/redundancy/lease.hpp)
+    // An image heard back live, not fetched from the store, gives a late answer (PairImages).
+    options.retain_as_published = false;
     return options;
 }
 

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -53,20 +54,52 @@ const std::vector<std::uint64_t> ci_seeds{
     1047,  // one producer: as 15, its claim naming a leader that had claimed 13 s before
 };
 
-// Every checker is required but one: under AddressSanitizer, seed 24 found a write answered
-// `ok` twice, 26 ms apart, around a broker stop: the unit that stood down gave its `ok` late on
-// the broker's acknowledgement of the image, which overtook the other unit's claim queued for
-// it (the claim's fix, hearing one's own message back, is still to be made for the images).
-// `writes answered once` is reported until then; EIP2MQTT_CHAOS_ALL=1 requires it too.
+// The seeds the sanitizer build runs (its schedules twice as long, time_scale()): those that
+// found something under AddressSanitizer, and one of each schedule version besides, so that the
+// sanitizer suite takes no longer than the release one.
+const std::vector<std::uint64_t> sanitizer_seeds{
+    1,     // writes answered once: a write sent just before Mosquitto was stopped, never
+           // answered with a loaded machine (its image's late answer read no echo: the pair's
+           // subscriptions kept the retain flag on live copies)
+    24,    // writes answered once: ok twice, the late answer deciding on an acknowledgement that
+           // overtook the other unit's claim (it decides on the image heard back now)
+    1005,  // leader kept, leadership present: a live leader fenced under a loaded machine at the
+           // release build's times
+    1016,  // writes answered once: a write never answered (withheld by a unit that led again
+           // after the horizon, with nobody else having led since)
+};
+
+// Every checker is required but one: `writes answered once` is reported, and required with
+// EIP2MQTT_CHAOS_ALL=1. Under AddressSanitizer with both cores loaded by stress-ng, seed 1016
+// still leaves a write sent around a broker stop unanswered now and then (none was answered
+// twice in those runs since the late answers decide on the image heard back).
 bool required(const std::string& checker) {
     const char* all = std::getenv("EIP2MQTT_CHAOS_ALL");
     return checker != "writes answered once" || (all != nullptr && std::string(all) == "1");
 }
 
+/// How much slower than the release build the units run: every time of the rig (the takeover,
+/// the periods, the schedule's faults, the writes' pace) is stretched by as much, so that the
+/// lease's margins stand in the same ratio to the units' work. AddressSanitizer makes the units
+/// two to three times slower; on a loaded machine, their acknowledgements came back late enough
+/// to fence a live leader at the release build's times. EIP2MQTT_CHAOS_SCALE overrides it.
+long time_scale() {
+    const char* text = std::getenv("EIP2MQTT_CHAOS_SCALE");
+    if (text != nullptr && *text != '\0') return std::max(1L, std::stol(text));
+#if defined(__SANITIZE_ADDRESS__)
+    return 2;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+    return 2;
+#endif
+#endif
+    return 1;
+}
+
 /// EIP2MQTT_CHAOS_SEEDS: "5", "1,4,9" or "1-200"; the CI seeds when unset.
 std::vector<std::uint64_t> seeds() {
     const char* text = std::getenv("EIP2MQTT_CHAOS_SEEDS");
-    if (text == nullptr || *text == '\0') return ci_seeds;
+    if (text == nullptr || *text == '\0') return time_scale() > 1 ? sanitizer_seeds : ci_seeds;
     std::vector<std::uint64_t> out;
     std::string list(text);
     std::size_t at = 0;
@@ -82,6 +115,17 @@ std::vector<std::uint64_t> seeds() {
     return out;
 }
 
+/// A schedule drawn at the release build's times, stretched by `scale`: a seed names the same
+/// faults, in the same order and proportions, in every build.
+std::vector<ChaosFault> stretched(std::vector<ChaosFault> schedule, long scale) {
+    for (auto& fault : schedule) {
+        fault.at *= scale;
+        fault.length *= scale;
+        fault.delay *= scale;
+    }
+    return schedule;
+}
+
 std::chrono::milliseconds schedule_length() {
     const char* text = std::getenv("EIP2MQTT_CHAOS_SECONDS");
     return text != nullptr && *text != '\0' ? std::chrono::seconds(std::stol(text))
@@ -90,12 +134,17 @@ std::chrono::milliseconds schedule_length() {
 
 TEST(PairChaos, EveryPromiseHoldsUnderTheSeededFaults) {
     if (!NetNamespace::unavailable().empty()) GTEST_SKIP() << NetNamespace::unavailable();
+    const auto scale = time_scale();
     for (const auto seed : seeds()) {
         ChaosSettings settings;
         settings.seed = seed;
-        settings.duration = schedule_length();
         settings.keep_quiet = chaos_schedule_version(seed) == 2;
-        const auto schedule = chaos_schedule(seed, settings.duration, settings.takeover);
+        const auto schedule =
+            stretched(chaos_schedule(seed, schedule_length(), settings.takeover), scale);
+        settings.duration = schedule_length() * scale;
+        settings.takeover *= scale;
+        settings.produce_period *= scale;
+        settings.consume_period *= scale;
         ChaosRig rig(settings);
         const auto settled = rig.settle();
         ASSERT_EQ(settled, "") << "seed " << seed << "\n" << rig.story();

@@ -6,6 +6,7 @@
 #include <sys/socket.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -87,6 +88,16 @@ std::chrono::milliseconds ChaosRig::now() const {
     return std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - epoch_);
 }
 
+namespace {
+
+/// EIP2MQTT_CHAOS_LOG_LEVEL: the units' log level (`debug` to follow a seed); info by default.
+std::string log_level() {
+    const char* text = std::getenv("EIP2MQTT_CHAOS_LOG_LEVEL");
+    return text != nullptr && *text != '\0' ? text : "info";
+}
+
+}  // namespace
+
 std::string ChaosRig::unit_config(int unit) const {
     const auto& id = chaos_unit_ids[unit];
     const auto exchanges =
@@ -104,7 +115,8 @@ std::string ChaosRig::unit_config(int unit) const {
             .tag("NOISE", "4.0", "dint", "refresh_s: 3600")
             .str();
     return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
-           ", log_level: info }\n"
+           ", log_level: " + log_level() +
+           " }\n"
            "mqtt: { url: \"tcp://" +
            segment_address + ":" + std::to_string(proxies_[unit]->port()) +
            "\", base_topic: test, qos: 1, batch: true }\n"
@@ -200,10 +212,11 @@ void ChaosRig::forge() {
 }
 
 void ChaosRig::write_until(Clock::time_point until) {
-    // Bounded: one write per 250 ms of the span, at most; none while the recorder cannot.
+    // Bounded: one write per renewal interval (a quarter takeover) of the span, at most; none
+    // while the recorder cannot.
     while (Clock::now() < until) {
         if (!broker_stopped_ && !broker_killed_ && recorder_->connected()) write();
-        std::this_thread::sleep_until(std::min(until, Clock::now() + 250ms));
+        std::this_thread::sleep_until(std::min(until, Clock::now() + settings_.takeover / 4));
     }
 }
 

@@ -157,14 +157,15 @@ std::map<std::string, std::string> ChaosRig::check() const {
     add("leadership present", leadership_present(capture, settings_.takeover, period,
                                                  settings_.takeover / 4, unreachable_, end_));
     const auto [renewals, roles] = lease_of(recorder_->messages(), epoch_);
-    add("leader kept", leader_kept(renewals, roles, unit_faults_, settings_.takeover / 2, 5s));
+    add("leader kept",
+        leader_kept(renewals, roles, unit_faults_, settings_.takeover / 2, 5 * settings_.takeover));
     add("published was sent", published_was_sent(sent_samples, samples));
     add("samples once, in order",
         samples_once_in_order(sent_samples, required(), samples, disrupted_, lapse));
     // A live leader answers within a production, a save and a broker round trip; a cut one
     // takes over's worth more (the pair's write horizon, app/redundancy/pair_writes.hpp).
     add("writes answered once",
-        writes_answered_once(writes_, answers, capture, 1s, broker_lost_,
+        writes_answered_once(writes_, answers, capture, settings_.takeover, broker_lost_,
                              2 * settings_.takeover + 2 * settings_.produce_period));
     return out;
 }

@@ -33,6 +33,7 @@
 #include "eip2mqtt/app/exchanges.hpp"
 #include "eip2mqtt/app/gateway_metrics.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
+#include "eip2mqtt/app/loop_watch.hpp"
 #include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
@@ -175,6 +176,7 @@ private:
     boost::asio::io_context loop_;
     boost::asio::signal_set signals_;
     boost::asio::steady_timer tick_timer_;
+    LoopWatch loop_watch_;
     boost::asio::steady_timer metrics_timer_;
     boost::asio::steady_timer watchdog_timer_;
     adapters::systemd::Notifier notifier_;

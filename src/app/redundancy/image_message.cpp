@@ -91,6 +91,7 @@ std::string encode_image_message(const core::redundancy::ImageMessage& image) {
         auto& answers = json["answers"] = nlohmann::json::array();
         for (const auto key : image.answers) answers.push_back(hex16(key));
     }
+    if (image.seq != 0) json["seq"] = image.seq;
     return json.dump();
 }
 
@@ -108,9 +109,15 @@ std::optional<core::redundancy::ImageMessage> decode_image_message(std::string_v
     const auto layout = from_hex16(*layout_text);
     auto data = from_hex(*data_text);
     auto answers = answers_of(json);
-    if (!layout || !data || !answers) return std::nullopt;
-    return core::redundancy::ImageMessage{*id, epoch->get<std::uint64_t>(), *layout,
-                                          std::move(*data), std::move(*answers)};
+    const auto seq = json.find("seq");
+    const bool seq_ok = seq == json.end() || seq->is_number_unsigned();
+    if (!layout || !data || !answers || !seq_ok) return std::nullopt;
+    return core::redundancy::ImageMessage{*id,
+                                          epoch->get<std::uint64_t>(),
+                                          *layout,
+                                          std::move(*data),
+                                          std::move(*answers),
+                                          seq == json.end() ? 0 : seq->get<std::uint64_t>()};
 }
 
 }  // namespace eip2mqtt::app::redundancy

@@ -52,10 +52,11 @@ void PairImages::publish(const ExchangeProducer& producer, std::uint64_t epoch) 
     core::redundancy::ImageMessage image{
         id_, epoch, layout_of(producer).fingerprint, {data.begin(), data.end()}, {}};
     for (const auto& answered : answers_[message_.topic]) image.answers.push_back(answered.key);
+    const auto number = ++next_image_;
+    image.seq = number;
     message_.payload = encode_image_message(image);
     message_.qos = 1;
     message_.retain = true;
-    const auto number = ++next_image_;
     message_.ack_token = image_token_bit | number;
     acks_[message_.topic].published = number;
     unacknowledged_.emplace(number, message_.topic);
@@ -97,7 +98,7 @@ void PairImages::answer_after_image(const ExchangeProducer& producer, std::uint6
                         stand_downs_, false, key});
 }
 
-bool PairImages::on_acknowledged(std::uint64_t token, bool leading, std::uint64_t others_epoch) {
+bool PairImages::on_acknowledged(std::uint64_t token, bool leading) {
     if ((token & image_token_bit) == 0) return false;
     const auto found = unacknowledged_.find(token & ~image_token_bit);
     if (found == unacknowledged_.end()) return true;
@@ -108,27 +109,65 @@ bool PairImages::on_acknowledged(std::uint64_t token, bool leading, std::uint64_
     std::erase_if(unacknowledged_, [&](const auto& entry) {
         return entry.second == topic && entry.first <= acks.acknowledged;
     });
-    // Most acknowledgements find no answer waiting: they build no queue.
-    if (waiting_.empty()) return true;
-    std::deque<Waiting> still;
-    for (auto& waiting : waiting_) {
-        if (waiting.topic != topic || waiting.through > acks.acknowledged) {
-            still.push_back(std::move(waiting));
-        } else {
-            release(waiting, leading, others_epoch);
-        }
-    }
-    waiting_ = std::move(still);
+    release(topic, acks.acknowledged, [&](Waiting& waiting) {
+        if (leading && waiting.stand_downs == stand_downs_) return Release::answer;
+        return waiting.reconnected ? Release::withhold : Release::wait;
+    });
     return true;
 }
 
-void PairImages::release(Waiting& waiting, bool leading, std::uint64_t others_epoch) {
-    if (leading && waiting.stand_downs == stand_downs_) return waiting.answer();
-    if (!waiting.reconnected && others_epoch <= waiting.epoch) {
-        ++counters_.answers_late;
-        return waiting.answer();
+void PairImages::heard_back(const std::string& topic, std::uint64_t seq, LeaseNow lease) {
+    release(topic, seq, [&](Waiting& waiting) {
+        if (lease.leading && waiting.stand_downs == stand_downs_) return Release::answer;
+        if (waiting.reconnected) return Release::withhold;
+        if (lease.others_epoch <= waiting.epoch) return Release::late;
+        // A claim came first, but it may not stand: whether the claim that does stood before
+        // or after the image decides (other_leads).
+        waiting.claims_before = lease.others_epoch;
+        return Release::withhold;
+    });
+}
+
+void PairImages::other_leads(std::uint64_t epoch) {
+    others_led_ = std::max(others_led_, epoch);
+    if (withheld_.empty() || epoch == 0) return;
+    std::deque<Waiting> still;
+    for (auto& waiting : withheld_) {
+        if (waiting.claims_before == 0 || epoch <= waiting.epoch) {
+            still.push_back(std::move(waiting));
+        } else if (epoch > waiting.claims_before) {
+            ++counters_.answers_late;
+            waiting.answer();
+        }
     }
-    withhold(std::move(waiting));
+    withheld_ = std::move(still);
+}
+
+void PairImages::release(const std::string& topic, std::uint64_t through,
+                         const std::function<Release(Waiting&)>& decide) {
+    // Most acknowledgements find no answer waiting: they build no queue.
+    if (waiting_.empty()) return;
+    std::deque<Waiting> still;
+    for (auto& waiting : waiting_) {
+        const auto verdict =
+            waiting.topic != topic || waiting.through > through ? Release::wait : decide(waiting);
+        switch (verdict) {
+            case Release::wait:
+                still.push_back(std::move(waiting));
+                break;
+            case Release::late:
+                ++counters_.answers_late;
+                waiting.answer();
+                break;
+            case Release::answer:
+                waiting.answer();
+                break;
+            case Release::withhold:
+                withhold(std::move(waiting));
+                break;
+        }
+    }
+    waiting_ = std::move(still);
 }
 
 void PairImages::withhold(Waiting&& waiting) {
@@ -142,8 +181,9 @@ void PairImages::answer_withheld(std::span<const std::uint64_t> listed, core::Mo
     auto withheld = std::move(withheld_);
     withheld_.clear();
     for (auto& waiting : withheld) {
-        // Older than the horizon: the other unit forgot the write too; nobody settles it.
-        if (now - waiting.since > answers_kept_) continue;
+        // Older than the horizon, with the other unit having led since: it forgot the write,
+        // and whether it settled it, too. Had it not led, nobody answered the write.
+        if (now - waiting.since > answers_kept_ && others_led_ > waiting.epoch) continue;
         const auto found = answered.find(waiting.key);
         if (found != answered.end() && found->second > 0) {
             --found->second;
@@ -165,8 +205,7 @@ void PairImages::reconnected() {
 
 std::optional<FollowVerdict> PairImages::on_message(
     const adapters::mqtt::Incoming& message,
-    std::span<const std::unique_ptr<ExchangeProducer>> producers, bool leading,
-    std::uint64_t epoch) {
+    std::span<const std::unique_ptr<ExchangeProducer>> producers, LeaseNow lease) {
     const auto image = decode_image_message(message.payload);
     if (!image) {
         if (!message.payload.empty()) ++counters_.ignored_for(ImageIgnored::not_an_image);
@@ -177,11 +216,17 @@ std::optional<FollowVerdict> PairImages::on_message(
     for (const auto& candidate : producers) {
         if (candidate->plan().spec.topic == exchange_topic) producer = candidate.get();
     }
-    core::redundancy::FollowContext context{leading, epoch, std::nullopt};
+    // Sent back live, not a retained copy from before a restart or a reconnect.
+    if (image->id == id_ && image->seq != 0 && !message.retained) {
+        heard_back(std::string(message.topic), image->seq, lease);
+    }
+    core::redundancy::FollowContext context{lease.leading, lease.epoch, std::nullopt};
     if (producer) context.producer = layout_of(*producer);
     const auto verdict = core::redundancy::judge_image(*image, context);
-    // Answers listed by the other unit's image as it leads (not a deposed one's, read late).
-    if (verdict != FollowVerdict::stale && verdict != FollowVerdict::leading && image->id != id_) {
+    // Answers listed by the other unit's images that the broker took before this unit's
+    // claim (read before the claim came back): a deposed leader's too, which gives them late
+    // exactly then (other_leads).
+    if (verdict != FollowVerdict::leading && !lease.claim_heard && image->id != id_) {
         heard_answers_[message.topic] = std::move(image->answers);
     }
     if (verdict == FollowVerdict::apply && !producer->follow_image(image->data)) return verdict;

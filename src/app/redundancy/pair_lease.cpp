@@ -60,6 +60,7 @@ void PairLease::on_message(const adapters::mqtt::Incoming& message, core::MonoTi
     const auto record = decode_leader_record(message.payload, &heard_);
     if (record && record->id != lease_.id()) {
         others_epoch_ = std::max(others_epoch_, record->epoch);
+        if (!record->claim) others_renewed_ = std::max(others_renewed_, record->epoch);
     }
     const bool followed = lease_.on_record(record, now);
     if (record && record->bd_seq && record->epoch >= lease_.epoch()) {
@@ -102,11 +103,21 @@ void PairLease::follow_role(core::MonoTime now) {
         spdlog::warn("pair: a stale claim renewed over, leading on under epoch {}", led_epoch_);
         if (on_epoch_raised_) on_epoch_raised_();
     }
-    if (role == role_) return;
+    if (role == role_) {
+        if (role == Role::leader) led_until_ = lease_.leading_until();
+        return;
+    }
     role_ = role;
     if (role == Role::leader) {
         led_epoch_ = lease_.epoch();
+        led_until_ = lease_.leading_until();
         spdlog::info("pair: leading, epoch {}", lease_.epoch());
+    } else if (lease_.leader_id().empty() && led_until_ && now >= *led_until_) {
+        spdlog::warn(
+            "pair: standing by, epoch {}: no renewal acknowledged in time (the lease ran out {} "
+            "ms ago)",
+            lease_.epoch(),
+            std::chrono::duration_cast<std::chrono::milliseconds>(now - *led_until_).count());
     } else {
         spdlog::warn(
             "pair: standing by{}, epoch {}",

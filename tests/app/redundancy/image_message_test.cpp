@@ -52,6 +52,17 @@ TEST(ImageMessage, ListsTheAnswersOfItsWritesAsSixteenHexDigitsEach) {
     EXPECT_EQ(decode_image_message(encode_image_message(sample()))->answers.size(), 0u);
 }
 
+TEST(ImageMessage, CarriesItsNumberWhenItHasOne) {
+    auto image = sample();
+    image.seq = 42;
+    const auto payload = encode_image_message(image);
+    EXPECT_EQ(nlohmann::json::parse(payload)["seq"], 42);
+    EXPECT_EQ(test::schema_problem(test::schema_file("pair-image.json"), payload), "");
+    EXPECT_EQ(decode_image_message(payload), image);
+    EXPECT_FALSE(decode_image_message(
+        R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","seq":"1"})"));
+}
+
 TEST(ImageMessage, WhatIsNoImageDecodesToNothing) {
     for (const char* payload :
          {"", "null", "[]", "{", R"({"epoch":1,"layout":"0000000000000001","data":"00"})",

@@ -67,7 +67,13 @@ protected:
     }
     std::optional<FollowVerdict> read(const ImageMessage& image, bool leading = false,
                                       std::uint64_t epoch = 3) {
-        return images_.on_message(incoming(image), producers_, leading, epoch);
+        return images_.on_message(incoming(image), producers_, {leading, epoch, 0});
+    }
+    /// The broker sends this unit's newest image back (live, not retained) while this unit
+    /// leads or not, having heard the other unit claim up to `others_epoch`.
+    void hear_back(bool leading, std::uint64_t others_epoch) {
+        const auto& sent = publisher_.published.back();
+        images_.on_message({sent.topic, sent.payload}, producers_, {leading, 7, others_epoch});
     }
 
     core::MonoTime t0_{std::chrono::seconds(100)};
@@ -94,7 +100,8 @@ TEST_F(PairImagesTest, TheLeaderPublishesItsImageRetainedWithItsEpochAndLayout) 
     EXPECT_EQ(message.topic, topic);
     EXPECT_EQ(message.qos, 1);
     EXPECT_TRUE(message.retain);
-    EXPECT_EQ(decode_image_message(message.payload), (ImageMessage{"gw-b", 7, layout(), image()}));
+    EXPECT_EQ(decode_image_message(message.payload),
+              (ImageMessage{"gw-b", 7, layout(), image(), {}, 1}));
     EXPECT_EQ(images_.counters().published, 1u);
 }
 
@@ -137,11 +144,11 @@ TEST_F(PairImagesTest, StaleUnknownAndMalformedImagesAreCountedAndLeftAlone) {
     EXPECT_EQ(read({"gw-a", 2, layout(), bytes({1, 2, 3, 4})}), FollowVerdict::stale);
     EXPECT_EQ(
         images_.on_message(incoming({"gw-a", 3, layout(), bytes({1, 2, 3, 4})}, prefix + "/other"),
-                           producers_, false, 3),
+                           producers_, {false, 3, 0}),
         FollowVerdict::unknown_exchange);
-    EXPECT_FALSE(images_.on_message({topic, "not json"}, producers_, false, 3).has_value());
+    EXPECT_FALSE(images_.on_message({topic, "not json"}, producers_, {false, 3, 0}).has_value());
     // A topic cleared by hand is no image, and no fault either.
-    EXPECT_FALSE(images_.on_message({topic, ""}, producers_, false, 3).has_value());
+    EXPECT_FALSE(images_.on_message({topic, ""}, producers_, {false, 3, 0}).has_value());
     EXPECT_EQ(image(), before);
     EXPECT_EQ(images_.counters().ignored_for(ImageIgnored::stale), 1u);
     EXPECT_EQ(images_.counters().ignored_for(ImageIgnored::unknown_exchange), 1u);
@@ -158,9 +165,9 @@ TEST_F(PairImagesTest, AWriteNoImageListedHasTheImagePublishedAgainListingIt) {
     EXPECT_EQ(listed_in(publisher_.published.back()), std::vector<std::uint64_t>{key("a")});
     EXPECT_EQ(answered, 0);
     // A lease's token (a time in nanoseconds) is not the images'.
-    EXPECT_FALSE(images_.on_acknowledged(123456789, true, 0));
+    EXPECT_FALSE(images_.on_acknowledged(123456789, true));
     EXPECT_EQ(answered, 0);
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true, 0));
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true));
     EXPECT_EQ(answered, 1);
     // Listed and acknowledged: the same write's answer (a save's) goes at once.
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
@@ -185,23 +192,84 @@ TEST_F(PairImagesTest, ANewerImageAcknowledgedStandsForTheOneItReplacedInTheQueu
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
     images_.answer_after_image(producer(), 2, reply("b"), t0_, [&] { ++answered; });
     ASSERT_EQ(publisher_.published.size(), 2u);
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true, 0));
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true));
     EXPECT_EQ(answered, 2);
     // The first one's acknowledgement, should it come after all, changes nothing.
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.front().ack_token, true, 0));
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.front().ack_token, true));
     EXPECT_EQ(answered, 2);
 }
 
-TEST_F(PairImagesTest, AUnitThatStoodDownAnswersWhenTheBrokerHadTheImageBeforeAnyOtherClaim) {
+TEST_F(PairImagesTest, TheLeaderAnswersOnHearingItsImageBackAsWellAsOnItsAcknowledgement) {
+    int answered = 0;
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    hear_back(true, 0);
+    EXPECT_EQ(answered, 1);
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true));
+    EXPECT_EQ(answered, 1);
+    EXPECT_EQ(images_.counters().answers_late, 0u);
+    // The image sent back retained (a resubscription's copy, perhaps from before a restart)
+    // proves nothing about the order the broker took it in.
+    images_.answer_after_image(producer(), 2, reply("b"), t0_, [&] { ++answered; });
+    const auto& sent = publisher_.published.back();
+    images_.on_message({sent.topic, sent.payload, true}, producers_, {true, 7, 0});
+    EXPECT_EQ(answered, 1);
+}
+
+TEST_F(PairImagesTest, AUnitThatStoodDownAnswersWhenItHearsItsImageBeforeAnyOtherClaim) {
     images_.publish(producer(), 7);
     int answered = 0;
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
     images_.stood_down();
-    // The broker was stopped, say: its acknowledgement comes with no claim of the other unit
-    // before it, so whoever leads next reads the image and settles the write no more.
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 6));
+    // The acknowledgement alone decides nothing: claims the broker took before the image may
+    // still be queued for this connection behind its window.
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false));
+    EXPECT_EQ(answered, 0);
+    // The image comes back with no claim of the other unit before it (the broker was
+    // stopped, say): whoever leads next reads it before its claim stands.
+    hear_back(false, 6);
     EXPECT_EQ(answered, 1);
     EXPECT_EQ(images_.counters().answers_late, 1u);
+}
+
+TEST_F(PairImagesTest, AClaimHeardBeforeTheImageWithholdsTheAnswerWhateverTheAcknowledgementSaid) {
+    images_.publish(producer(), 7);
+    int answered = 0;
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    images_.stood_down();
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false));
+    hear_back(false, 8);
+    EXPECT_EQ(answered, 0);
+    EXPECT_EQ(images_.counters().answers_withheld, 1u);
+}
+
+TEST_F(PairImagesTest, AClaimBeforeTheImageThatDidNotStandLetsTheAnswerGoWhenALaterOneLeads) {
+    // The broker, stopped, takes on resuming the other unit's claim (epoch 8), the image, and
+    // later the other unit's next claim (epoch 9), which stands: the other unit read the image
+    // before it led, and leaves the write to this unit.
+    images_.publish(producer(), 7);
+    int answered = 0;
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    images_.stood_down();
+    hear_back(false, 8);
+    images_.other_leads(7);  // a renewal from before this unit led: nothing known yet
+    EXPECT_EQ(answered, 0);
+    images_.other_leads(9);
+    EXPECT_EQ(answered, 1);
+    EXPECT_EQ(images_.counters().answers_late, 1u);
+    images_.other_leads(10);
+    images_.answer_withheld({}, t0_ + 1s);
+    EXPECT_EQ(answered, 1);
+}
+
+TEST_F(PairImagesTest, TheClaimThatCameBeforeTheImageStandingTheAnswerIsTheOtherUnits) {
+    images_.publish(producer(), 7);
+    int answered = 0;
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    images_.stood_down();
+    hear_back(false, 8);
+    images_.other_leads(8);  // it led without having read the image: it settled the write
+    images_.answer_withheld({}, t0_ + 1s);
+    EXPECT_EQ(answered, 0);
 }
 
 TEST_F(PairImagesTest, AnswersAreWithheldAfterAClaimOfTheOtherUnitOrAReconnect) {
@@ -210,13 +278,13 @@ TEST_F(PairImagesTest, AnswersAreWithheldAfterAClaimOfTheOtherUnitOrAReconnect) 
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
     images_.stood_down();
     // The other unit's claim (epoch 8) came first: it may lead, and not have had the image.
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 8));
+    hear_back(false, 8);
     images_.publish(producer(), 9);
     images_.answer_after_image(producer(), 2, reply("b"), t0_, [&] { ++answered; });
     images_.reconnected();
     // Leading again, but not throughout: it stood down since the answer began waiting.
     images_.stood_down();
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true, 0));
+    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, true));
     EXPECT_EQ(answered, 0);
     EXPECT_EQ(images_.counters().answers_withheld, 2u);
 }
@@ -228,7 +296,7 @@ TEST_F(PairImagesTest, LeadingAgainAnswersWhatItWithheldUnlessTheOtherUnitAnswer
     images_.answer_after_image(producer(), 2, reply("b"), t0_, [&] { answered.push_back("b"); });
     images_.answer_after_image(producer(), 3, reply("c"), t0_, [&] { answered.push_back("c"); });
     images_.stood_down();
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 8));
+    hear_back(false, 8);
     EXPECT_TRUE(answered.empty());
     // The other unit led meanwhile and answered `b` (settled it by its image: it lists it).
     images_.answer_withheld(std::vector<std::uint64_t>{key("b")}, t0_ + 5s);
@@ -239,14 +307,28 @@ TEST_F(PairImagesTest, LeadingAgainAnswersWhatItWithheldUnlessTheOtherUnitAnswer
     EXPECT_EQ(answered.size(), 2u);
 }
 
-TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsNotGivenLate) {
+TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsNotGivenLateOnceTheOtherUnitLed) {
     int answered = 0;
     images_.publish(producer(), 7);
     images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
     images_.stood_down();
-    EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false, 8));
+    hear_back(false, 8);
+    images_.other_leads(8);
     images_.answer_withheld({}, t0_ + 11s);
     EXPECT_EQ(answered, 0);
+}
+
+TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsGivenWhenNobodyElseLedSince) {
+    // The broker stopped for longer than the horizon: the other unit's claim came first, but
+    // never stood, and this unit leads again.
+    int answered = 0;
+    images_.publish(producer(), 7);
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
+    images_.stood_down();
+    hear_back(false, 8);
+    images_.other_leads(6);  // an old renewal, from before this unit led
+    images_.answer_withheld({}, t0_ + 11s);
+    EXPECT_EQ(answered, 1);
 }
 
 TEST_F(PairImagesTest, ARefusalSettledByANewLeaderIsListedInItsNextImage) {
@@ -260,10 +342,18 @@ TEST_F(PairImagesTest, ATakeoverTakesTheAnswersTheOtherUnitsNewestImagesList) {
     read(leader);
     leader.answers = {key("a"), key("b")};
     read(leader);
-    // A stale image (a deposed leader's, read late) and this unit's own are not heard.
-    read({"gw-a", 2, layout(), image(), {key("c")}});
+    // This unit's own image is not heard, nor one read as leader.
     read({"gw-b", 3, layout(), image(), {key("d")}});
+    read({"gw-a", 3, layout(), image(), {key("e")}}, true);
     EXPECT_EQ(images_.take_leader_answers(), (std::vector<std::uint64_t>{key("a"), key("b")}));
+    // A deposed leader's, read late, is: it answers those late if its image came before the
+    // claim that stood, which is this unit's, taking them now.
+    read({"gw-a", 2, layout(), image(), {key("c")}});
+    // One read after this unit's claim came back came after the claim: its publisher withholds
+    // what it lists, and leaves it to this unit.
+    images_.on_message(incoming({"gw-a", 2, layout(), image(), {key("f")}}), producers_,
+                       {false, 3, 0, true});
+    EXPECT_EQ(images_.take_leader_answers(), (std::vector<std::uint64_t>{key("c")}));
     EXPECT_TRUE(images_.take_leader_answers().empty());
 }
 

@@ -75,6 +75,11 @@ struct ClientOptions {
     /// A pair's lease hears its claim come back after whatever the broker queued for it before
     /// (core/redundancy/lease.hpp). MQTT 3.1.1 has no no_local: every connection hears its own.
     bool hear_own = false;
+    /// MQTT 5: a retained publication forwarded live keeps its retain flag (so that retained
+    /// writes are refused however they come). Off, only what a subscription fetches from the
+    /// broker's store says retained: a pair tells its own image sent back live from a copy of
+    /// it stored before a restart or a reconnect.
+    bool retain_as_published = true;
     /// When set, asked of each publication as the sender thread takes it to hand it to Paho
     /// (on that thread: it must be thread-safe and cheap); false drops it, counted in
     /// `discarded`. A pair's leader that lost its lease says no more as leader, whatever waits.

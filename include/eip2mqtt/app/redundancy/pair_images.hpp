@@ -87,13 +87,25 @@ public:
     /// the answers listed so far.
     void publish(const ExchangeProducer& producer, std::uint64_t epoch);
 
+    /// This unit's lease as an image is read: its role and epoch, and the highest epoch the
+    /// other unit claimed as heard so far (PairLease::others_epoch).
+    struct LeaseNow {
+        bool leading = false;
+        std::uint64_t epoch = 0;
+        std::uint64_t others_epoch = 0;
+        /// This unit's claim was heard back (Lease::claim_heard_back): an image read after it
+        /// came after the claim, and the unit that published it knows so.
+        bool claim_heard = false;
+    };
     /// An image read on the pair's connection, judged and taken into the producer of its
-    /// exchange among `producers` when the rules allow. `leading` and `epoch`: this unit's
-    /// lease now. nullopt when the payload is no image (an empty one: a topic cleared by hand).
+    /// exchange among `producers` when the rules allow. nullopt when the payload is no image
+    /// (an empty one: a topic cleared by hand). This unit's own image, heard back live, gives
+    /// the answers that waited for it: late, by a unit that stopped leading, only when no
+    /// claim of the other unit was heard before it (the broker then took the image before any
+    /// claim, and whoever leads next reads it before its claim stands); withheld otherwise.
     std::optional<core::redundancy::FollowVerdict> on_message(
         const adapters::mqtt::Incoming& message,
-        std::span<const std::unique_ptr<ExchangeProducer>> producers, bool leading,
-        std::uint64_t epoch);
+        std::span<const std::unique_ptr<ExchangeProducer>> producers, LeaseNow lease);
 
     /// The leader answers its write `write_id` of `producer`, to `reply`, `ok` (`answer`) once
     /// the broker acknowledged an image of the exchange that lists it, and every image
@@ -104,17 +116,23 @@ public:
                             const WriteReply& reply, core::MonoTime now,
                             std::function<void()> answer);
     /// An acknowledgement of the pair's connection; false when `token` is no image's.
-    /// `leading`: this unit's role now; `others_epoch`: the highest epoch the other unit
-    /// claimed, as heard (PairLease::others_epoch). The answers it releases are given by a
-    /// unit that led throughout; by one that stopped leading, when no claim of the other
-    /// unit came before it on a connection kept throughout (the broker then had the image
-    /// before any other unit could lead, and whoever leads next reads it); withheld otherwise.
-    bool on_acknowledged(std::uint64_t token, bool leading, std::uint64_t others_epoch);
+    /// `leading`: this unit's role now. The answers waiting for the image are given when the
+    /// unit led throughout. One that stopped leading waits to hear the image back (on_message):
+    /// an acknowledgement may overtake claims the broker took before the image and still
+    /// holds for this connection. After a reconnect it withholds them.
+    bool on_acknowledged(std::uint64_t token, bool leading);
     /// This unit no longer leads: the answers waiting are given only on the terms above.
     void stood_down() { ++stand_downs_; }
-    /// This unit takes the lead again: the answers it withheld within the horizon at `now` are
-    /// given, but for the writes the other unit's images list as answered (`listed`, from
-    /// take_leader_answers(); each listing stands for one write).
+    /// The other unit was heard renewing under `epoch` (it leads): the answers this unit
+    /// withheld on hearing a claim of the other unit before its image are given late when the
+    /// claim that stood came after the image (`epoch` above those heard before it: the other
+    /// unit read the image before it led, and settles none of its answers), and dropped
+    /// otherwise (the other unit settled them). Cheap when nothing is withheld.
+    void other_leads(std::uint64_t epoch);
+    /// This unit takes the lead again: the answers it withheld are given, but for the writes
+    /// the other unit's images list as answered (`listed`, from take_leader_answers(); each
+    /// listing stands for one write), and those older than the horizon at `now` if the other
+    /// unit led since (its images no longer say whether it settled them).
     void answer_withheld(std::span<const std::uint64_t> listed, core::MonoTime now);
     /// The leader settled a write left to the old one by refusing it (WriteDispatcher::settle):
     /// its images list that answer too, `key`, so that no unit answers the write again.
@@ -146,6 +164,9 @@ private:
         std::uint64_t stand_downs = 0;  ///< stand_downs_ when it began waiting
         bool reconnected = false;       ///< the connection came back since
         std::uint64_t key = 0;          ///< of its write's answer
+        /// Heard back after claims of the other unit up to this epoch (withheld until it is
+        /// known which claim stood: other_leads()); 0 when not heard back.
+        std::uint64_t claims_before = 0;
     };
     struct Answered {
         std::uint64_t write_id = 0;  ///< in its producer: the answers are an exchange's
@@ -159,8 +180,13 @@ private:
     /// already.
     bool list_answer(const std::string& topic, std::uint64_t write_id, std::uint64_t key,
                      core::MonoTime now);
-    /// Gives or withholds a waiting answer whose image the broker acknowledged.
-    void release(Waiting& waiting, bool leading, std::uint64_t others_epoch);
+    /// The answers waiting for `topic`'s images up to `through`: each given, kept waiting or
+    /// withheld as `decide` says.
+    enum class Release : std::uint8_t { answer, late, wait, withhold };
+    void release(const std::string& topic, std::uint64_t through,
+                 const std::function<Release(Waiting&)>& decide);
+    /// This unit's own image heard back live (`seq` its number).
+    void heard_back(const std::string& topic, std::uint64_t seq, LeaseNow lease);
     /// Keeps an answer withheld until this unit leads again (answer_withheld).
     void withhold(Waiting&& waiting);
 
@@ -180,6 +206,7 @@ private:
     std::unordered_map<std::string, std::deque<Answered>> answers_;  ///< image topic: answers
     std::uint64_t epoch_ = 0;  ///< of the last image published
     std::uint64_t stand_downs_ = 0;
+    std::uint64_t others_led_ = 0;  ///< the highest epoch the other unit was heard leading
     /// The standby: image topic -> the answers of the other unit's newest image of it.
     std::unordered_map<std::string, std::vector<std::uint64_t>> heard_answers_;
 };

@@ -89,6 +89,8 @@ public:
     const core::redundancy::Lease& lease() const { return lease_; }
     /// The highest epoch of a record read from the other unit, claim or renewal: 0 until one.
     std::uint64_t others_epoch() const { return others_epoch_; }
+    /// The highest epoch of a renewal read from the other unit (it led under it): 0 until one.
+    std::uint64_t others_renewed_epoch() const { return others_renewed_; }
 
 private:
     void publish_role(core::redundancy::Role role);
@@ -105,9 +107,11 @@ private:
     WatermarksHeard watermarks_heard_;
     Watermarks heard_;  ///< what the last record read carried
     core::redundancy::Role role_ = core::redundancy::Role::standby;
-    std::uint64_t led_epoch_ = 0;      ///< the epoch it leads under
-    std::uint64_t claimed_epoch_ = 0;  ///< of its latest claim (logged once)
+    std::uint64_t led_epoch_ = 0;              ///< the epoch it leads under
+    std::optional<core::MonoTime> led_until_;  ///< its lease as of the last tick it led
+    std::uint64_t claimed_epoch_ = 0;          ///< of its latest claim (logged once)
     std::uint64_t others_epoch_ = 0;
+    std::uint64_t others_renewed_ = 0;
     std::function<void()> on_epoch_raised_;
     adapters::mqtt::Message message_;
 };

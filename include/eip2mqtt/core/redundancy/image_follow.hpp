@@ -25,6 +25,9 @@ struct ImageMessage {
     /// broker acknowledges this image, within the pair's write horizon: a standby taking over
     /// settles none of them again.
     std::vector<std::uint64_t> answers;
+    /// The image's number among those its publisher published since it started (0: none, an
+    /// older release's): the publisher knows its own image when the broker sends it back.
+    std::uint64_t seq = 0;
 
     friend bool operator==(const ImageMessage&, const ImageMessage&) = default;
 };

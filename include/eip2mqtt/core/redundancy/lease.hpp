@@ -134,6 +134,8 @@ public:
 
     Role role(MonoTime now) const;
     bool fenced(MonoTime now) const;
+    /// Claiming, and the claim was heard back: what the broker took before it has come.
+    bool claim_heard_back() const { return state_ == State::claiming && echoed_; }
     /// While it leads: the instant its lease lapses (fenced() from then on), as things stand.
     std::optional<MonoTime> leading_until() const;
     /// Whether produced exchanges may send: the leader, unfenced, a period after the latest fence

@@ -256,7 +256,7 @@ void Connection::renew_subscriptions(const std::vector<std::string>& filters) {
     // no_local: never hear our own publications (unless asked: hear_own). Retain-as-published:
     // a write published with retain keeps its flag when forwarded live, as it has when a new
     // subscription fetches it later, so the gateway can refuse retained writes either way.
-    const paho::subscribe_options opt(v5 && !options_.hear_own, v5);
+    const paho::subscribe_options opt(v5 && !options_.hear_own, v5 && options_.retain_as_published);
     try {
         // One SUBSCRIBE per filter: Paho C++ 1.2's many-topic overload crashes inside
         // MQTTAsync_subscribeMany when given subscribe options, and its one-topic overload is
