@@ -35,8 +35,9 @@ std::optional<std::string> mqtt5_refusal(int return_code, std::string_view failu
         }
         return fmt::format(
             "the broker refused MQTT 5: it closed the connection on our MQTT 5 CONNECT without a "
-            "CONNACK, as brokers that speak only MQTT 3.1.1 do (RabbitMQ before 3.13, for one); "
-            "if it is one of them, {}",
+            "CONNACK, as brokers that speak only MQTT 3.1.1 do (RabbitMQ before 3.13, for one), "
+            "and as a proxy or load balancer does whose broker is down; if it is a 3.1.1 broker, "
+            "{}",
             kVersionFix);
     }
     if (return_code == 1) {

@@ -40,6 +40,15 @@ TEST(ConnectionReasons, AnMqtt5RefusalAdvisesVersion311) {
     }
 }
 
+TEST(ConnectionReasons, AConnectionClosedBeforeTheConnackMayAlsoBeAProxyWhoseBrokerIsDown) {
+    // A TCP proxy or load balancer accepts, then closes once it finds no broker behind it: the
+    // same words from Paho as a 3.1.1 broker's refusal.
+    const auto refusal = mqtt5_refusal(-1, "Failure: TCP connect completion failure", false);
+    ASSERT_TRUE(refusal.has_value());
+    EXPECT_TRUE(contains(*refusal, "a proxy or load balancer does whose broker is down"))
+        << *refusal;
+}
+
 TEST(ConnectionReasons, OtherConnectFailuresGetNoVersionAdvice) {
     EXPECT_FALSE(mqtt5_refusal(-1, "Failure: TCP/TLS connect failure", false));  // no listener
     EXPECT_FALSE(mqtt5_refusal(0x87, "Not authorized", false));
