@@ -98,6 +98,33 @@ void PairImages::answer_after_image(const ExchangeProducer& producer, std::uint6
                         stand_downs_, false, key});
 }
 
+template <class Decide>
+void PairImages::release(const std::string& topic, std::uint64_t through, Decide&& decide) {
+    // Most acknowledgements find no answer waiting: they build no queue.
+    if (waiting_.empty()) return;
+    std::deque<Waiting> still;
+    for (auto& waiting : waiting_) {
+        const auto verdict =
+            waiting.topic != topic || waiting.through > through ? Release::wait : decide(waiting);
+        switch (verdict) {
+            case Release::wait:
+                still.push_back(std::move(waiting));
+                break;
+            case Release::late:
+                ++counters_.answers_late;
+                waiting.answer();
+                break;
+            case Release::answer:
+                waiting.answer();
+                break;
+            case Release::withhold:
+                withhold(std::move(waiting));
+                break;
+        }
+    }
+    waiting_ = std::move(still);
+}
+
 bool PairImages::on_acknowledged(std::uint64_t token, bool leading) {
     if ((token & image_token_bit) == 0) return false;
     const auto found = unacknowledged_.find(token & ~image_token_bit);
@@ -141,33 +168,6 @@ void PairImages::other_leads(std::uint64_t epoch) {
         }
     }
     withheld_ = std::move(still);
-}
-
-void PairImages::release(const std::string& topic, std::uint64_t through,
-                         const std::function<Release(Waiting&)>& decide) {
-    // Most acknowledgements find no answer waiting: they build no queue.
-    if (waiting_.empty()) return;
-    std::deque<Waiting> still;
-    for (auto& waiting : waiting_) {
-        const auto verdict =
-            waiting.topic != topic || waiting.through > through ? Release::wait : decide(waiting);
-        switch (verdict) {
-            case Release::wait:
-                still.push_back(std::move(waiting));
-                break;
-            case Release::late:
-                ++counters_.answers_late;
-                waiting.answer();
-                break;
-            case Release::answer:
-                waiting.answer();
-                break;
-            case Release::withhold:
-                withhold(std::move(waiting));
-                break;
-        }
-    }
-    waiting_ = std::move(still);
 }
 
 void PairImages::withhold(Waiting&& waiting) {

@@ -69,6 +69,13 @@ protected:
                                       std::uint64_t epoch = 3) {
         return images_.on_message(incoming(image), producers_, {leading, epoch, 0});
     }
+    /// As leader under epoch 7, the unit owes write `a` its `ok` (counted in `answered`), its
+    /// image published, and stands down before the broker had it.
+    void owe_then_stand_down(int& answered) {
+        images_.publish(producer(), 7);
+        images_.answer_after_image(producer(), 1, reply("a"), t0_, [&answered] { ++answered; });
+        images_.stood_down();
+    }
     /// The broker sends this unit's newest image back (live, not retained) while this unit
     /// leads or not, having heard the other unit claim up to `others_epoch`.
     void hear_back(bool leading, std::uint64_t others_epoch) {
@@ -216,10 +223,8 @@ TEST_F(PairImagesTest, TheLeaderAnswersOnHearingItsImageBackAsWellAsOnItsAcknowl
 }
 
 TEST_F(PairImagesTest, AUnitThatStoodDownAnswersWhenItHearsItsImageBeforeAnyOtherClaim) {
-    images_.publish(producer(), 7);
     int answered = 0;
-    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
-    images_.stood_down();
+    owe_then_stand_down(answered);
     // The acknowledgement alone decides nothing: claims the broker took before the image may
     // still be queued for this connection behind its window.
     EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false));
@@ -232,10 +237,8 @@ TEST_F(PairImagesTest, AUnitThatStoodDownAnswersWhenItHearsItsImageBeforeAnyOthe
 }
 
 TEST_F(PairImagesTest, AClaimHeardBeforeTheImageWithholdsTheAnswerWhateverTheAcknowledgementSaid) {
-    images_.publish(producer(), 7);
     int answered = 0;
-    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
-    images_.stood_down();
+    owe_then_stand_down(answered);
     EXPECT_TRUE(images_.on_acknowledged(publisher_.published.back().ack_token, false));
     hear_back(false, 8);
     EXPECT_EQ(answered, 0);
@@ -246,10 +249,8 @@ TEST_F(PairImagesTest, AClaimBeforeTheImageThatDidNotStandLetsTheAnswerGoWhenALa
     // The broker, stopped, takes on resuming the other unit's claim (epoch 8), the image, and
     // later the other unit's next claim (epoch 9), which stands: the other unit read the image
     // before it led, and leaves the write to this unit.
-    images_.publish(producer(), 7);
     int answered = 0;
-    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
-    images_.stood_down();
+    owe_then_stand_down(answered);
     hear_back(false, 8);
     images_.other_leads(7);  // a renewal from before this unit led: nothing known yet
     EXPECT_EQ(answered, 0);
@@ -262,10 +263,8 @@ TEST_F(PairImagesTest, AClaimBeforeTheImageThatDidNotStandLetsTheAnswerGoWhenALa
 }
 
 TEST_F(PairImagesTest, TheClaimThatCameBeforeTheImageStandingTheAnswerIsTheOtherUnits) {
-    images_.publish(producer(), 7);
     int answered = 0;
-    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
-    images_.stood_down();
+    owe_then_stand_down(answered);
     hear_back(false, 8);
     images_.other_leads(8);  // it led without having read the image: it settled the write
     images_.answer_withheld({}, t0_ + 1s);
@@ -274,9 +273,7 @@ TEST_F(PairImagesTest, TheClaimThatCameBeforeTheImageStandingTheAnswerIsTheOther
 
 TEST_F(PairImagesTest, AnswersAreWithheldAfterAClaimOfTheOtherUnitOrAReconnect) {
     int answered = 0;
-    images_.publish(producer(), 7);
-    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
-    images_.stood_down();
+    owe_then_stand_down(answered);
     // The other unit's claim (epoch 8) came first: it may lead, and not have had the image.
     hear_back(false, 8);
     images_.publish(producer(), 9);
@@ -309,9 +306,7 @@ TEST_F(PairImagesTest, LeadingAgainAnswersWhatItWithheldUnlessTheOtherUnitAnswer
 
 TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsNotGivenLateOnceTheOtherUnitLed) {
     int answered = 0;
-    images_.publish(producer(), 7);
-    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
-    images_.stood_down();
+    owe_then_stand_down(answered);
     hear_back(false, 8);
     images_.other_leads(8);
     images_.answer_withheld({}, t0_ + 11s);
@@ -322,9 +317,7 @@ TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsGivenWhenNobodyElseLedS
     // The broker stopped for longer than the horizon: the other unit's claim came first, but
     // never stood, and this unit leads again.
     int answered = 0;
-    images_.publish(producer(), 7);
-    images_.answer_after_image(producer(), 1, reply("a"), t0_, [&] { ++answered; });
-    images_.stood_down();
+    owe_then_stand_down(answered);
     hear_back(false, 8);
     images_.other_leads(6);  // an old renewal, from before this unit led
     images_.answer_withheld({}, t0_ + 11s);

@@ -181,10 +181,10 @@ private:
     bool list_answer(const std::string& topic, std::uint64_t write_id, std::uint64_t key,
                      core::MonoTime now);
     /// The answers waiting for `topic`'s images up to `through`: each given, kept waiting or
-    /// withheld as `decide` says.
+    /// withheld as `decide(Waiting&) -> Release` says (defined where it is used: the .cpp).
     enum class Release : std::uint8_t { answer, late, wait, withhold };
-    void release(const std::string& topic, std::uint64_t through,
-                 const std::function<Release(Waiting&)>& decide);
+    template <class Decide>
+    void release(const std::string& topic, std::uint64_t through, Decide&& decide);
     /// This unit's own image heard back live (`seq` its number).
     void heard_back(const std::string& topic, std::uint64_t seq, LeaseNow lease);
     /// Keeps an answer withheld until this unit leads again (answer_withheld).
