@@ -13,11 +13,12 @@ import os
 import sys
 import time
 
+from benchlib import node_red
 from benchlib.harness import Bench
 from benchlib.util import GATEWAY, tool
 from scenarios import (s01_udp, s02_s03_publications, s04_batch, s05_latency, s06_memory,
                        s07_periods, s08_overload, s09_write_latency, s10_store_and_forward,
-                       s11_commands, s12_dissector, s13_failover)
+                       s11_commands, s12_dissector, s13_failover, s14_overload_rate)
 
 # (the scenario numbers a module answers to in --only, its module), in the order they run:
 # later scenarios take their load from scenario 2's figures.
@@ -34,13 +35,14 @@ SCENARIOS = (
     ((11,), s11_commands),
     ((12,), s12_dissector),
     ((13,), s13_failover),
+    ((14,), s14_overload_rate),
 )
 
 
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
-    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-13)")
+    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-14)")
     parser.add_argument("--against-binary", default="", metavar="PATH",
                         help="an earlier build's eip2mqtt, run beside this one in every "
                              "scenario (bench/run.sh --against REV builds it)")
@@ -57,7 +59,9 @@ def command_line(args):
              if args.against_binary else ""))
 
 
-def check_programs(args):
+def check_programs(args, only):
+    if not only or 14 in only:  # the Node-RED peer row: installed by tools/install-deps.sh
+        node_red.require_installed()
     for path in (GATEWAY, tool("load_generator"), tool("mqtt_counter"), tool("yaml_parse"),
                  tool("write_latency")) + ((args.against_binary,) if args.against_binary else ()):
         if not os.access(path, os.X_OK):
@@ -78,11 +82,12 @@ def run_scenarios(bench):
 
 def main():
     args = parse_args()
-    check_programs(args)
+    only = {int(x) for x in args.only.split(",") if x}
+    check_programs(args, only)
     against = None
     if args.against_binary:
         against = (args.against_label or args.against_binary, args.against_binary)
-    bench = Bench(args.quick, {int(x) for x in args.only.split(",") if x}, against)
+    bench = Bench(args.quick, only, against)
     try:
         bench.start_broker()
         run_scenarios(bench)

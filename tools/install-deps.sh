@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages eip2mqtt builds, runs and tests with, and the npm package of one
-# test tool. Idempotent: installs only what is missing, and runs apt-get update only when
+# Installs the Debian 12 packages eip2mqtt builds, runs and tests with, and the npm packages of one
+# test tool and of the benchmark's Node-RED peer. Idempotent: installs only what is missing, and runs apt-get update only when
 # something is.
 set -euo pipefail
 
@@ -34,11 +34,27 @@ fi
 
 # Eclipse Tahu's Sparkplug B payload library, from npm, for the tests that decode what the
 # gateway publishes with an implementation we did not write (versions pinned by its lock file).
-tahu="$(cd "$(dirname "$0")/.." && pwd)/tests/support/tahu"
-if [ ! -d "$tahu/node_modules/sparkplug-payload" ]; then
+root="$(cd "$(dirname "$0")/.." && pwd)"
+need_npm() {
   if ! command -v npm >/dev/null; then
     "${sudo_cmd[@]}" apt-get update -qq
     "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends npm
   fi
+}
+tahu="$root/tests/support/tahu"
+if [ ! -d "$tahu/node_modules/sparkplug-payload" ]; then
+  need_npm
   npm ci --prefix "$tahu" --no-audit --no-fund --ignore-scripts --loglevel=error
+fi
+
+# Node-RED, for the benchmark's peer row (bench/README.md, scenario 14): the flow a user would
+# build instead of the gateway, pinned by bench/peers/node-red/package.json and its lock file.
+# Reinstalled when package.json pins another version than the one installed.
+node_red="$root/bench/peers/node-red"
+wanted="$(sed -n 's/^ *"node-red": "\([0-9.]*\)".*/\1/p' "$node_red/package.json")"
+installed="$(sed -n 's/^ *"version": "\([^"]*\)".*/\1/p' \
+  "$node_red/node_modules/node-red/package.json" 2>/dev/null | head -1 || true)"
+if [ "$installed" != "$wanted" ]; then
+  need_npm
+  npm ci --prefix "$node_red" --no-audit --no-fund --ignore-scripts --loglevel=error
 fi

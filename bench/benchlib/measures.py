@@ -63,15 +63,16 @@ class Measures:
     def broker_pid(self):
         return next(proc.pid for proc, port in self.brokers.values() if port == self.broker_port)
 
-    def run_load(self, args, timeout, role, groups, sample):
+    def run_load(self, args, timeout, role, groups, sample, threads=()):
         """Runs `args`, a run's load, to its end: (its JSON line, a CpuSampler of it as `role`,
-        of `groups` ({role: [pid, ...]}) and of the broker, or None unless `sample`)."""
+        of `groups` ({role: [pid, ...]}) and of the broker, or None unless `sample`; the roles
+        in `threads` sampled thread by thread too)."""
         proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.procs.append(proc)
         sampler = None
         if sample:
             sampler = CpuSampler({**groups, role: [proc.pid], "broker": [self.broker_pid()]},
-                                 self.sample_period()).start()
+                                 self.sample_period(), threads).start()
         try:
             out, err = proc.communicate(timeout=timeout)
         finally:
@@ -121,18 +122,20 @@ class Measures:
         return self.start_counter("b/+/+", qos)
 
     def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1, sparkplug=False,
-                     tags=TAGS, build=None, sample=False):
-        """`build`'s gateway offered 1.5 x `ceiling` tag updates/s: the counter's JSON, with
-        the run's CPU per publication as "cpu" when `sample`."""
+                     tags=TAGS, build=None, sample=False, datagrams=None, threads=False):
+        """`build`'s gateway offered 1.5 x `ceiling` tag updates/s (or `datagrams`/s): the
+        counter's JSON, with the run's CPU per publication as "cpu" when `sample` (the
+        gateway's thread by thread too with `threads`)."""
         gw, udp_port = self.launch_gateway(name, consumed_list(exchanges, tags),
                                            qos, batch=batch, sparkplug=sparkplug, build=build)
         counter = self.rate_counter(qos, batch, sparkplug)
         per_datagram = max(1, round(change * tags))
         gen, sampler = self.run_load(
-            self.generator_args(udp_port, exchanges, offered_datagrams(ceiling, change, tags),
+            self.generator_args(udp_port, exchanges,
+                                datagrams or offered_datagrams(ceiling, change, tags),
                                 duration=self.d, change=change, tags=tags),
             self.d + 60, "load generator", {"gateway": [gw.pid], "subscriber": [counter.pid]},
-            sample)
+            sample, ("gateway",) if threads else ())
         got = self.finish(counter)
         got["cpu"] = sampler and sampler.per_publication(got["rate"], self.d)
         # For the log line only (uns: false has no metrics topic).
@@ -143,6 +146,20 @@ class Measures:
               f"{got['update_rate']:.0f}/s; coalesced {m and m.get('publications_coalesced')}",
               flush=True)
         return got
+
+    def gateway_ceiling(self, build, qos, shape, setup):
+        """`build`'s per-tag rate at `qos` with `shape` ((exchanges, tags)), every tag changing,
+        on the broker `setup` (the one in use): scenario 2's figure of this run (the median
+        round), else a short run of scenario 2's kind (offered 1.5 x bare Paho's rate) now."""
+        key = ("gw", build.label, qos, shape, setup)
+        if key not in self.ceilings:
+            paho = ("paho", qos, shape, setup)
+            if paho not in self.ceilings:
+                self.ceilings[paho] = self.paho_ceiling(qos, topics=shape[0] * shape[1])
+            got = self.gateway_rate(f"g14c{qos}", qos, 1.0, self.ceilings[paho],
+                                    exchanges=shape[0], tags=shape[1], build=build)
+            self.ceilings[key] = got["rate"]
+        return self.ceilings[key]
 
     def split_gateways_rate(self, qos, change, ceiling, exchanges, tags, build=None,
                             sample=False):

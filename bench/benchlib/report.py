@@ -100,8 +100,9 @@ class Report:
             "load starts to 0.5 s before it ends, a quarter of a shorter run at each end; "
             "sampled from /proc every 0.25 s, or a tenth of a shorter run), median of the "
             "rounds: the machine's busy time, "
-            "then each process's (for bare Paho, its publisher in the gateway column). Unlike "
-            "a rate, it does not depend on who else runs.", "",
+            "then each process's (for bare Paho, its publisher in the gateway column; for the "
+            "Node-RED flow, its node process; in the overload rows, the busiest threads by name "
+            "in parentheses, us each). Unlike a rate, it does not depend on who else runs.", "",
             "| figure | run | publications/s | machine busy (idle) | gateway | load generator "
             "| broker | subscriber |",
             "|---|---|---|---|---|---|---|---|",
@@ -141,8 +142,22 @@ def cpu_cells(samples):
 
     cells = [f"{middle('rate'):,.0f}", f"{middle('machine'):.1f} us (idle {middle('idle'):.0f} %)"]
     for role in CPU_ROLES:
-        value = middle(role)
+        value, shown = middle(role), role
         if role == "gateway" and value is None:
-            value = middle("publisher")  # bare Paho's run: its publisher in that column
-        cells.append("-" if value is None else f"{value:.1f} us")
+            # Bare Paho's run: its publisher in that column; a peer's run: the peer.
+            shown = next((r for r in ("publisher", "peer") if middle(r) is not None), role)
+            value = middle(shown)
+        cells.append("-" if value is None else f"{value:.1f} us" + threads_note(samples, shown))
     return cells
+
+
+def threads_note(samples, role, most=5):
+    """ " (thread a us, ...)": the `most` busiest threads of `role` (by name), median of the
+    rounds, where the run sampled it thread by thread."""
+    rounds = [s[role + " threads"] for s in samples if s.get(role + " threads")]
+    if not rounds:
+        return ""
+    names = {name for r in rounds for name in r}
+    per = {name: median([r.get(name, 0.0) for r in rounds]) for name in names}
+    busiest = sorted(per.items(), key=lambda kv: -kv[1])[:most]
+    return " (" + ", ".join(f"{name} {us:.1f}" for name, us in busiest if us > 0) + ")"

@@ -2,7 +2,8 @@
 changing (3), in both exchange shapes, at QoS 0 and 1, on both brokers. Each run's CPU per
 publication (benchlib.cpu) goes to the report's second table."""
 
-from benchlib.util import SETUPS, SHAPES, median_round, offered_datagrams, ratio_text
+from benchlib.util import (SETUPS, SHAPES, median, median_round, offered_datagrams,
+                           ratio_text)
 
 
 def run(bench):
@@ -92,6 +93,13 @@ def publications_rows(bench, qos, exchanges, tags, setup, broker):
                   f"{ratio_text(ratio, lambda r: r >= 0.9)}{bench.ratios_note(own)}", ">= 0.90",
                   "yes" if ratio >= 0.9 else "no", against_cells(bench, rounds))
         cpu_rows(bench, figure, rounds)
+        if change == 1.0 and parts == 1:
+            # Each build's own per-tag rate, the load scenario 14 multiplies.
+            for build in bench.builds:
+                rates = [runs[build][1] for runs, _, _, _ in rounds if runs.get(build)]
+                if rates:
+                    bench.ceilings[("gw", build.label, qos, (exchanges, tags), setup)] = \
+                        median(rates)
         if (exchanges, tags) == SHAPES[0] and change == 1.0 and parts == 1:
             bench.paho_rates[(qos, broker)] = paho
             if setup == "tuned":
