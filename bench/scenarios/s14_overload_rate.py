@@ -62,9 +62,9 @@ def met_cell(bench, rounds):
     cpu = [gateway_cpu(new) / gateway_cpu(old) for new, old in pairs if gateway_cpu(old)]
     text = "yes" if rate and median(rate) >= 1.0 else "no"
     if cpu:
-        text += (f"; CPU/publication {median(cpu):.2f} x: "
-                 f"{'yes' if median(cpu) <= 1.0 else 'no'}")
-    return text
+        return text + (f"; CPU/publication {median(cpu):.2f} x: "
+                       f"{'yes' if median(cpu) <= 1.0 else 'no'}")
+    return text + "; CPU/publication not sampled"
 
 
 def targets(bench):

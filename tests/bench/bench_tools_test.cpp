@@ -8,8 +8,11 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -184,6 +187,84 @@ TEST(BenchTools, MqttCounterCountsTheTagUpdatesOfBatchMessages) {
     EXPECT_EQ(counted.value("updates", -1), 6);
     EXPECT_EQ(counted.value("latency_n", -1), 2);
     EXPECT_GE(counted.value("p50_us", 0.0), 2e6);
+}
+
+const std::string node_red_dir = std::string(EIP2MQTT_SOURCE_DIR) + "/bench/peers/node-red";
+
+/// The benchmark's Node-RED peer (bench/peers/node-red, installed by tools/install-deps.sh)
+/// running its flow: datagrams on `udp_port` to `{n}/e{exchange}/{tag}` on `broker`, at QoS 1.
+/// Returns once a probe datagram (exchange 0) it decoded reached the broker.
+std::unique_ptr<ChildProcess> start_node_red(const Mosquitto& broker, const TempDir& dir,
+                                             std::uint16_t udp_port) {
+    const auto node_red = node_red_dir + "/node_modules/.bin/node-red";
+    EXPECT_TRUE(std::filesystem::exists(node_red)) << node_red << ": run tools/install-deps.sh";
+    auto peer = std::make_unique<ChildProcess>(
+        std::vector<std::string>{node_red, "--settings", node_red_dir + "/settings.js", "--userDir",
+                                 dir.path(), node_red_dir + "/flow.json"},
+        std::map<std::string, std::string>{
+            {"EIP2MQTT_PEER_UDP_PORT", std::to_string(udp_port)},
+            {"EIP2MQTT_PEER_BROKER_PORT", std::to_string(broker.port())},
+            {"EIP2MQTT_PEER_QOS", "1"},
+            {"EIP2MQTT_PEER_BASE", "n"},
+            {"EIP2MQTT_PEER_UI_PORT", std::to_string(free_tcp_port())}});
+    ChildProcess ready({"/usr/bin/mosquitto_sub", "-h", "127.0.0.1", "-p",
+                        std::to_string(broker.port()), "-C", "1", "-W", "90", "-t",
+                        "n/_peer/node-red/ready"});
+    while (ready.running() && peer->running()) {
+        run_command({tool("load_generator"), "--port", std::to_string(udp_port), "--exchanges", "1",
+                     "--first-exchange", "0", "--tags", "3", "--rate", "100", "--count", "1"},
+                    10s);
+        std::this_thread::sleep_for(100ms);
+    }
+    EXPECT_EQ(ready.wait(5s), std::optional<int>(0)) << peer->output();
+    return peer;
+}
+
+TEST(BenchTools, NodeRedPeerPublishesEveryTagOfEachDatagramOnTheGatewaysTopicsAndPayloads) {
+    TempDir dir;
+    Mosquitto broker;
+    const auto udp_port = free_udp_port();
+    const auto peer = start_node_red(broker, dir, udp_port);
+    ASSERT_TRUE(peer->running()) << peer->output();
+    const auto port = std::to_string(udp_port);
+    // 20 datagrams of 1 exchange x (ts lint + 10 dints), every tag changing, then one setting
+    // every tag to 2000000007: 11 messages a datagram, each topic ending on that value.
+    const auto [generator, counter] = run_pair(
+        {tool("mqtt_counter"), "--port", std::to_string(broker.port()), "--filter", "n/+/+",
+         "--qos", "1", "--expect-last", "2000000007", "--expect-topics", "11", "--max-s", "60",
+         "--id", "bench-tools-node-red"},
+        {tool("load_generator"), "--port", port, "--exchanges", "1", "--tags", "11", "--rate",
+         "200", "--count", "20", "--change", "1", "--final-value", "2000000007"});
+    EXPECT_EQ(generator.value("sent", -1), 20);
+    EXPECT_EQ(counter.value("messages", -1), 21 * 11);
+    EXPECT_EQ(counter.value("last_ok", -1), 11);
+    EXPECT_EQ(counter.value("last_bad", -1), 0);
+
+    // The gateway's payload on the gateway's topics: eleven messages in a row (a datagram's,
+    // or the end of one and the start of the next) name each tag once.
+    ChildProcess sub({"/usr/bin/mosquitto_sub", "-h", "127.0.0.1", "-p",
+                      std::to_string(broker.port()), "-v", "-C", "11", "-W", "60", "-t", "n/e7/#"});
+    while (sub.running()) {
+        run_command({tool("load_generator"), "--port", port, "--exchanges", "1", "--first-exchange",
+                     "7", "--tags", "11", "--rate", "100", "--count", "1", "--change", "1"},
+                    10s);
+        std::this_thread::sleep_for(100ms);
+    }
+    ASSERT_EQ(sub.wait(5s), std::optional<int>(0)) << sub.output();
+    std::istringstream lines(sub.output());
+    std::set<std::string> topics;
+    for (std::string topic, payload; lines >> topic && std::getline(lines >> std::ws, payload);) {
+        topics.insert(topic);
+        const auto json = nlohmann::json::parse(payload, nullptr, false);
+        ASSERT_TRUE(json.is_object()) << payload;
+        EXPECT_TRUE(json["value"].is_number_integer()) << payload;
+        EXPECT_TRUE(json["timestamp"].is_number_integer()) << payload;
+        EXPECT_EQ(json["quality"], "good") << payload;
+        EXPECT_EQ(json.size(), 3u) << payload;
+    }
+    std::set<std::string> tags = {"n/e7/ts"};
+    for (int k = 1; k <= 10; ++k) tags.insert("n/e7/t" + std::to_string(k));
+    EXPECT_EQ(topics, tags) << sub.output();
 }
 
 TEST(BenchTools, YamlParseReadsTheWholeFile) {

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tests/support/child_process.hpp"
@@ -89,6 +90,29 @@ std::vector<std::string> per_tag_figures() {
     return figures;
 }
 
+const std::string overload_prefix = "overload tag publications/s";
+const std::string peer_prefix =
+    "Node-RED flow peer (udp in -> function -> mqtt out, MQTT 3.1.1): tag publications/s";
+const std::string issue_load = "100 x 11 tags (ts lint + 10 dints), 6,000 datagrams/s";
+
+/// Scenario 14: each build offered 5 x its own per-tag rate, by QoS, shape and broker; then the
+/// issue's load, on the gateway and on the Node-RED flow peer.
+std::vector<std::string> overload_figures() {
+    std::vector<std::string> figures;
+    for (const auto* qos : {"0", "1"}) {
+        for (const auto* shape : {"1 x 100 tags", "100 x 10 tags"}) {
+            for (const auto& broker : brokers) {
+                figures.push_back(overload_prefix + ", QoS " + qos + ", 100 % changing, " + shape +
+                                  ", offered 5 x own rate, " + broker);
+            }
+        }
+    }
+    figures.push_back(overload_prefix + ", QoS 1, 100 % changing, " + issue_load +
+                      " (the issue's load), Debian's default broker");
+    figures.push_back(peer_prefix + ", QoS 1, " + issue_load + ", Debian's default broker");
+    return figures;
+}
+
 /// One row per figure of the table (scenario in brackets), in bench/README.md's order.
 std::vector<std::string> expected_figures() {
     std::vector<std::string> figures = {
@@ -138,6 +162,7 @@ std::vector<std::string> expected_figures() {
          }) {
         figures.push_back(figure);
     }
+    for (const auto& figure : overload_figures()) figures.push_back(figure);  // 14
     return figures;
 }
 
@@ -156,6 +181,17 @@ void expect_measured(const Row& row, const std::string& table) {
         EXPECT_NE(row[2].find(" with the gateway's datagram input beside it"), std::string::npos)
             << row[0] << ": '" << row[2] << "'";
     }
+    if (row[0].rfind(overload_prefix, 0) == 0) {
+        // Against the earlier build, rate and CPU per publication: whether each is met.
+        EXPECT_EQ(row[4], ">= 1.0 x self (and gateway CPU/publication <= self's)") << row[0];
+        EXPECT_NE(row[5].find("; CPU/publication "), std::string::npos)
+            << row[0] << ": '" << row[5] << "'";
+    }
+    if (row[0].rfind(peer_prefix, 0) == 0) {
+        // Node-RED's own figure, and the gateway's ratio to it.
+        EXPECT_TRUE(starts_with_digit(row[2])) << row[0] << ": '" << row[2] << "'";
+        EXPECT_TRUE(starts_with_digit(row[3])) << row[0] << ": '" << row[3] << "'";
+    }
     // The same binary runs every scenario: never "not in".
     EXPECT_TRUE(starts_with_digit(row[6])) << row[0] << ": '" << row[6] << "'";
     // A ratio, unless the earlier build's figure is 0 (nothing to divide by).
@@ -164,23 +200,36 @@ void expect_measured(const Row& row, const std::string& table) {
         << row[0] << ": '" << row[7] << "'";
 }
 
-/// The CPU table: each per-tag row, for this build, the earlier one and bare Paho, with the
-/// publications counted, the machine's CPU and the gateway's (or publisher's) per publication.
+/// The runs of a row in the CPU table: this build, the earlier one, and the baseline of the
+/// per-tag rows (bare Paho) or the peer's run (Node-RED); none for other rows.
+std::vector<std::string> cpu_runs(const std::string& figure) {
+    if (figure.rfind("tag publications/s", 0) == 0) return {"this build", "self", "bare Paho"};
+    if (figure.rfind(overload_prefix, 0) == 0) return {"this build", "self"};
+    if (figure.rfind(peer_prefix, 0) == 0) return {"this build", "self", "Node-RED"};
+    return {};
+}
+
+/// The CPU table: each per-tag, overload and peer row, for each of its runs, with the
+/// publications counted, the machine's CPU and the gateway's (or publisher's, or peer's) per
+/// publication; in the overload rows, the gateway's thread by thread.
 void expect_cpu_rows(const std::vector<Row>& rows, const std::vector<Row>& main_rows,
                      const std::string& markdown) {
-    std::vector<std::string> per_tag;
+    std::vector<std::pair<std::string, std::string>> expected;
     for (const auto& row : main_rows) {
-        if (row[0].rfind("tag publications/s", 0) == 0) per_tag.push_back(row[0]);
+        for (const auto& run : cpu_runs(row[0])) expected.emplace_back(row[0], run);
     }
-    ASSERT_EQ(rows.size(), 3 * per_tag.size()) << markdown;
+    ASSERT_EQ(rows.size(), expected.size()) << markdown;
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const auto& row = rows[i];
         ASSERT_EQ(row.size(), 8u) << markdown;
-        EXPECT_EQ(row[0], per_tag[i / 3]);
-        EXPECT_EQ(row[1], (std::vector<std::string>{"this build", "self", "bare Paho"}[i % 3]));
+        EXPECT_EQ(row[0], expected[i].first);
+        EXPECT_EQ(row[1], expected[i].second);
         for (std::size_t cell = 2; cell <= 4; ++cell) {
             EXPECT_TRUE(starts_with_digit(row[cell]))
                 << row[0] << ", " << row[1] << ": '" << row[cell] << "'";
+        }
+        if (row[0].rfind(overload_prefix, 0) == 0) {
+            EXPECT_NE(row[4].find(" us ("), std::string::npos) << row[0] << ": '" << row[4] << "'";
         }
     }
 }
