@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages eip2mqtt builds, runs and tests with, and the npm packages of one
-# test tool and of the benchmark's Node-RED peer. Idempotent: installs only what is missing, and runs apt-get update only when
-# something is.
+# Installs the Debian 12 packages eip2mqtt builds, runs and tests with, and the npm packages of
+# one test tool and of the benchmark's Node-RED peer. Idempotent: installs only what is missing,
+# and runs apt-get update only when something is.
 set -euo pipefail
 
 packages=(

@@ -1,16 +1,16 @@
 """Scenario 14: publications/s under overload. Each build is offered 5 x its own per-tag rate
 (scenario 2's, by QoS, shape and broker), every tag changing, in both exchange shapes, at QoS
-0 and 1, on both brokers; then the issue's load (100 exchanges of 1 lint + 10 dints, 6,000
+0 and 1, on both brokers; then the reference load (100 exchanges of 1 lint + 10 dints, 6,000
 datagrams/s, QoS 1, Debian's default broker), with the Node-RED flow peer fed the same in the
 same rounds. Rates at the subscriber over its first-to-last span; CPU per publication, the
 gateway's thread by thread, to the report's second table."""
 
 from benchlib import node_red
-from benchlib.util import SETUPS, SHAPES, median, ratio_text, stop
+from benchlib.util import SETUPS, SHAPES, median, ratio_text
 
 OVERLOAD = 5  # x the build's own sustained per-tag rate
-# The issue's reference load: 100 exchanges x (ts lint + 10 dints), 6,000 datagrams/s.
-ISSUE_SHAPE, ISSUE_DATAGRAMS, ISSUE_SETUP = (100, 11), 6000, "default"
+# The reference load: 100 exchanges x (ts lint + 10 dints), 6,000 datagrams/s.
+REFERENCE_SHAPE, REFERENCE_DATAGRAMS, REFERENCE_SETUP = (100, 11), 6000, "default"
 PEER_ROW = "Node-RED flow peer (udp in -> function -> mqtt out, MQTT 3.1.1)"
 
 
@@ -100,36 +100,35 @@ def overload_row(bench, qos, shape, setup, broker):
     cpu_rows(bench, figure, rounds)
 
 
-def issue_rows(bench):
-    """The issue's load on each build and on the Node-RED flow, in the same rounds (the peer
+def reference_rows(bench):
+    """The reference load on each build and on the Node-RED flow, in the same rounds (the peer
     first in odd rounds, last in even ones)."""
-    exchanges, tags = ISSUE_SHAPE
-    broker = dict(SETUPS).get(ISSUE_SETUP, "Debian's default broker")
-    print(f"  the issue's load: {exchanges} x {tags} tags, {ISSUE_DATAGRAMS:,} datagrams/s, "
+    exchanges, tags = REFERENCE_SHAPE
+    broker = dict(SETUPS).get(REFERENCE_SETUP, "Debian's default broker")
+    print(f"  the reference load: {exchanges} x {tags} tags, {REFERENCE_DATAGRAMS:,} datagrams/s, "
           f"QoS 1, {broker}, with the Node-RED flow", flush=True)
-    bench.use_broker(ISSUE_SETUP if ISSUE_SETUP in bench.brokers else "tuned")
+    bench.use_broker(REFERENCE_SETUP if REFERENCE_SETUP in bench.brokers else "tuned")
     peer = node_red.NodeRed(bench.broker_port, 1, log_dir=bench.tmp).start()
     bench.procs.append(peer.proc)
     rounds, peer_rounds = [], []
     try:
         for r in range(bench.rounds):
             if r % 2:
-                peer_rounds.append(peer_run(bench, peer, 1, ISSUE_SHAPE, ISSUE_DATAGRAMS))
-            rounds.append(bench.per_build(r, lambda b: gateway_run(bench, b, 1, ISSUE_SHAPE,
-                                                                   ISSUE_DATAGRAMS)))
+                peer_rounds.append(peer_run(bench, peer, 1, REFERENCE_SHAPE, REFERENCE_DATAGRAMS))
+            rounds.append(bench.per_build(r, lambda b: gateway_run(bench, b, 1, REFERENCE_SHAPE,
+                                                                   REFERENCE_DATAGRAMS)))
             if not r % 2:
-                peer_rounds.append(peer_run(bench, peer, 1, ISSUE_SHAPE, ISSUE_DATAGRAMS))
+                peer_rounds.append(peer_run(bench, peer, 1, REFERENCE_SHAPE, REFERENCE_DATAGRAMS))
     finally:
         peer.stop()
-        stop(peer.proc)
-    shape = f"{exchanges} x {tags} tags (ts lint + 10 dints), {ISSUE_DATAGRAMS:,} datagrams/s"
+    shape = f"{exchanges} x {tags} tags (ts lint + 10 dints), {REFERENCE_DATAGRAMS:,} datagrams/s"
     own = [r[bench.build] for r in rounds]
     rate = median([o["rate"] for o in own])
     peer_rates = [p["rate"] for p in peer_rounds]
-    figure = (f"overload tag publications/s, QoS 1, 100 % changing, {shape} (the issue's load), "
+    figure = (f"overload tag publications/s, QoS 1, 100 % changing, {shape} (the reference load), "
               f"{broker}{bench.rounds_label()}")
     bench.row(figure, f"{rate:,.0f}{bench.values_note([o['rate'] for o in own])}",
-              f"offered {ISSUE_DATAGRAMS * tags:,} tag changes/s; the Node-RED flow: "
+              f"offered {REFERENCE_DATAGRAMS * tags:,} tag changes/s; the Node-RED flow: "
               f"{median(peer_rates):,.0f} (next row)", "-", targets(bench),
               met_cell(bench, rounds), bench.versus(rounds, lambda o: o["rate"]))
     cpu_rows(bench, figure, rounds)
@@ -162,12 +161,12 @@ def peer_row(bench, rounds, peer_rounds, shape, broker):
 
 
 def run(bench):
-    print(f"[14] overload: {OVERLOAD} x each build's own per-tag rate; the issue's load beside "
+    print(f"[14] overload: {OVERLOAD} x each build's own per-tag rate; the reference load beside "
           "the Node-RED flow", flush=True)
     node_red.require_installed()
     for qos in (0, 1):
         for shape in SHAPES:
             for setup, broker in SETUPS:
                 overload_row(bench, qos, shape, setup, broker)
-    issue_rows(bench)
+    reference_rows(bench)
     bench.use_broker("tuned")

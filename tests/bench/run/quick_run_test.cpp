@@ -93,10 +93,11 @@ std::vector<std::string> per_tag_figures() {
 const std::string overload_prefix = "overload tag publications/s";
 const std::string peer_prefix =
     "Node-RED flow peer (udp in -> function -> mqtt out, MQTT 3.1.1): tag publications/s";
-const std::string issue_load = "100 x 11 tags (ts lint + 10 dints), 6,000 datagrams/s";
+const std::string reference_load = "100 x 11 tags (ts lint + 10 dints), 6,000 datagrams/s";
 
 /// Scenario 14: each build offered 5 x its own per-tag rate, by QoS, shape and broker; then the
-/// issue's load, on the gateway and on the Node-RED flow peer.
+/// reference load (100 x 11 tags at 6,000 datagrams/s), on the gateway and on the Node-RED flow
+/// peer.
 std::vector<std::string> overload_figures() {
     std::vector<std::string> figures;
     for (const auto* qos : {"0", "1"}) {
@@ -107,9 +108,9 @@ std::vector<std::string> overload_figures() {
             }
         }
     }
-    figures.push_back(overload_prefix + ", QoS 1, 100 % changing, " + issue_load +
-                      " (the issue's load), Debian's default broker");
-    figures.push_back(peer_prefix + ", QoS 1, " + issue_load + ", Debian's default broker");
+    figures.push_back(overload_prefix + ", QoS 1, 100 % changing, " + reference_load +
+                      " (the reference load), Debian's default broker");
+    figures.push_back(peer_prefix + ", QoS 1, " + reference_load + ", Debian's default broker");
     return figures;
 }
 
