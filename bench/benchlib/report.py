@@ -159,5 +159,6 @@ def threads_note(samples, role, most=5):
         return ""
     names = {name for r in rounds for name in r}
     per = {name: median([r.get(name, 0.0) for r in rounds]) for name in names}
-    busiest = sorted(per.items(), key=lambda kv: -kv[1])[:most]
-    return " (" + ", ".join(f"{name} {us:.1f}" for name, us in busiest if us > 0) + ")"
+    busiest = [(name, us) for name, us in sorted(per.items(), key=lambda kv: -kv[1])[:most]
+               if us > 0]
+    return " (" + ", ".join(f"{name} {us:.1f}" for name, us in busiest) + ")" if busiest else ""

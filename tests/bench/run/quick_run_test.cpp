@@ -229,7 +229,9 @@ void expect_cpu_rows(const std::vector<Row>& rows, const std::vector<Row>& main_
             EXPECT_TRUE(starts_with_digit(row[cell]))
                 << row[0] << ", " << row[1] << ": '" << row[cell] << "'";
         }
-        if (row[0].rfind(overload_prefix, 0) == 0) {
+        if (row[0].rfind(overload_prefix, 0) == 0 && row[4].rfind("0.0 us", 0) != 0) {
+            // Thread by thread: the gateway's threads that ran, by name (a gateway that got no
+            // CPU in a short run on a loaded machine has none to name).
             EXPECT_NE(row[4].find(" us ("), std::string::npos) << row[0] << ": '" << row[4] << "'";
         }
     }
