@@ -6,7 +6,7 @@ same rounds. Rates at the subscriber over its first-to-last span; CPU per public
 gateway's thread by thread, to the report's second table."""
 
 from benchlib import node_red
-from benchlib.util import SETUPS, SHAPES, median, ratio_text
+from benchlib.util import BROKERS, SETUPS, SHAPES, median, ratio_text
 
 OVERLOAD = 5  # x the build's own sustained per-tag rate
 # The reference load: 100 exchanges x (ts lint + 10 dints), 6,000 datagrams/s.
@@ -104,10 +104,12 @@ def reference_rows(bench):
     """The reference load on each build and on the Node-RED flow, in the same rounds (the peer
     first in odd rounds, last in even ones)."""
     exchanges, tags = REFERENCE_SHAPE
-    broker = dict(SETUPS).get(REFERENCE_SETUP, "Debian's default broker")
+    # Debian's default broker, unless EIP2MQTT_BENCH_SETUPS leaves it out.
+    setup = REFERENCE_SETUP if REFERENCE_SETUP in dict(SETUPS) else SETUPS[0][0]
+    broker = dict(BROKERS)[setup]
     print(f"  the reference load: {exchanges} x {tags} tags, {REFERENCE_DATAGRAMS:,} datagrams/s, "
           f"QoS 1, {broker}, with the Node-RED flow", flush=True)
-    bench.use_broker(REFERENCE_SETUP if REFERENCE_SETUP in bench.brokers else "tuned")
+    bench.use_broker(setup)
     peer = node_red.NodeRed(bench.broker_port, 1, log_dir=bench.tmp).start()
     bench.procs.append(peer.proc)
     rounds, peer_rounds = [], []
