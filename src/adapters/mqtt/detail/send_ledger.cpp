@@ -32,15 +32,25 @@ bool SendLedger::acknowledged_room() const {
     return has_acknowledged_room(pending_acknowledged(), own_unacknowledged_, acknowledged_limit_);
 }
 
+bool SendLedger::acknowledged_refill() const {
+    return saturated_ ? has_saturated_room(pending_acknowledged(), own_unacknowledged_,
+                                           acknowledged_limit_)
+                      : acknowledged_room();
+}
+
 bool SendLedger::ready_to_send() const {
     if (!has_queued() || suspect_waits()) return false;
     return has_room(pending(), in_flight_limit_, window_full_) &&
-           (!next_awaits_ack() || acknowledged_room());
+           (!next_awaits_ack() || acknowledged_refill());
 }
 
 bool SendLedger::take_next(Message& message, bool& probe) {
+    stopped_by_acknowledgements_ = false;
     if (pending() >= in_flight_limit_ || suspect_waits()) return false;
-    if (!acknowledged_room() && next_awaits_ack()) return false;
+    if (!acknowledged_room() && next_awaits_ack()) {
+        stopped_by_acknowledgements_ = true;
+        return false;
+    }
     probe = false;
     if (!retry_.empty()) {
         auto retry = std::move(retry_.extract(retry_.begin()).mapped());
@@ -63,6 +73,7 @@ std::uint64_t SendLedger::admit(Message&& message, bool probe) {
     untake(message);
     const bool acknowledged = message.qos > 0;
     const auto id = in_flight_.add(std::move(message), acknowledged);
+    ++admitted_;
     if (probe) probe_ = id;
     return id;
 }
@@ -74,7 +85,16 @@ void SendLedger::drop_taken(Message&& message) {
 
 bool SendLedger::end_burst() {
     window_full_ = in_flight_.pending() >= in_flight_limit_;
-    return window_full_ && has_queued();
+    // Where the burst stopped, not the window now: PUBACKs that came in since have freed slots.
+    if (!stopped_by_acknowledgements_) {
+        ack_backlog_since_.reset();
+        saturated_ = false;
+    } else if (!ack_backlog_since_) {
+        ack_backlog_since_ = admitted_;
+    } else {
+        saturated_ = admitted_ - *ack_backlog_since_ >= kSaturatedWindows * acknowledged_limit_;
+    }
+    return (window_full_ && has_queued()) || saturated_;
 }
 
 std::string SendLedger::requeue_suspect(std::uint64_t id, Message&& message) {
@@ -103,6 +123,8 @@ bool SendLedger::hold() {
 }
 
 void SendLedger::new_connection() {
+    ack_backlog_since_.reset();
+    saturated_ = false;
     own_unacknowledged_ = 0;
     ++own_generation_;
 }

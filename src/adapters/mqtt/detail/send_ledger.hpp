@@ -74,8 +74,11 @@ public:
     std::uint64_t admit(Message&& message, bool probe);
     /// A taken publication is not sent (a broker would refuse it): its buffers are kept.
     void drop_taken(Message&& message);
-    /// Ends the burst; returns whether the window is full with more waiting (a backlog).
+    /// Ends the burst; returns whether the sender has a backlog to pack into full segments: the
+    /// window full with more waiting, or a saturated connection (send_room.hpp).
     bool end_burst();
+    /// Whether a backlog bound by the acknowledged window outlasted kSaturatedWindows windows.
+    bool saturated() const { return saturated_; }
 
     // --- what Paho tells -------------------------------------------------------------------
     /// Takes publication `id` out of the window; nullopt when it is no longer there (abandoned
@@ -130,6 +133,8 @@ private:
     /// Whether the next publication to take awaits an acknowledgement (QoS >= 1).
     bool next_awaits_ack() const;
     bool acknowledged_room() const;
+    /// The wake-up rule: acknowledged_room, or has_saturated_room on a saturated connection.
+    bool acknowledged_refill() const;
     /// A taken publication is no longer counted as taken.
     void untake(const Message& message);
 
@@ -141,6 +146,11 @@ private:
     bool window_full_ = false;  ///< the last burst stopped at the limit: wait for the low mark
     std::size_t taking_ = 0;    ///< taken, neither admitted nor dropped yet
     std::size_t taking_acknowledged_ = 0;
+    std::size_t admitted_ = 0;  ///< publications admitted since the connection started
+    /// admitted_ when the current backlog bound by the acknowledged window began.
+    std::optional<std::size_t> ack_backlog_since_;
+    bool saturated_ = false;
+    bool stopped_by_acknowledgements_ = false;  ///< the last take_next found the window full
     const std::size_t in_flight_limit_;
     std::size_t acknowledged_limit_;
     std::size_t own_unacknowledged_ = 0;

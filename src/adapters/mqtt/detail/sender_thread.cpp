@@ -43,10 +43,12 @@ void Sender::sender_main() {
         lock.unlock();
         prepare_burst(taken);
         lock.lock();
-        // Nagle only for a backlog that waits on the sending itself. One that waits for PUBACKs
-        // (the broker's Receive Maximum reached) gains nothing from fuller segments, and against
-        // a broker that leaves Nagle on too (Mosquitto's default) each side then holds its next
-        // segment until the other's delayed ACK: 40 ms stalls.
+        // Nagle for a backlog that waits on the sending itself, and on a saturated connection
+        // (SendLedger::saturated). A burst that waits for PUBACKs (the broker's Receive Maximum
+        // reached) gains nothing from fuller segments, and against a broker that leaves Nagle
+        // on too (Mosquitto's default) each side then holds its next segment until the other's
+        // delayed ACK: 40 ms stalls in a latency tail. Saturated, the queue is the latency, and
+        // a segment and two wake-ups per publication are what the connection cannot afford.
         const bool backlog = admit_burst(taken, burst);
         // A large backlog (the first publication of every tag, a reconnect's republish, an
         // outage's buffer) leaves its freed messages in malloc's arenas: once it has drained,

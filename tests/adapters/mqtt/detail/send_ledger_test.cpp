@@ -113,6 +113,63 @@ TEST(SendLedger, TheAcknowledgedWindowBoundsQoS1Only) {
     EXPECT_EQ(burst(qos0).size(), 5u);
 }
 
+/// Sends one publication per completion, as the sender does once the acknowledged window is
+/// full, until `count` went; returns whether the last burst reported a backlog to pack.
+bool refill_one_at_a_time(SendLedger& ledger, std::vector<Sent>& in_flight, std::size_t count) {
+    bool backlog = false;
+    for (std::size_t i = 0; i < count; ++i) {
+        EXPECT_TRUE(ledger.complete(in_flight.front().id));
+        in_flight.erase(in_flight.begin());
+        auto sent = burst(ledger);
+        EXPECT_EQ(sent.size(), 1u);
+        backlog = ledger.saturated() || ledger.pending() >= ledger.in_flight_limit();
+        in_flight.insert(in_flight.end(), sent.begin(), sent.end());
+    }
+    return backlog;
+}
+
+TEST(SendLedger, ABacklogOfPubacksOutlastingEightWindowsSaturatesTheConnection) {
+    SendLedger ledger(kCapacity, kCapacity, false, 256);
+    ledger.set_acknowledged_limit(20);
+    for (int i = 0; i < 400; ++i) push(ledger, "q1/" + std::to_string(i), 1);
+    auto in_flight = burst(ledger);
+    ASSERT_EQ(in_flight.size(), 20u);
+    // A burst: TCP_NODELAY stays on, and each completion refills its slot at once.
+    EXPECT_FALSE(refill_one_at_a_time(ledger, in_flight, 7 * 20));
+    EXPECT_FALSE(ledger.saturated());
+    // Eight windows later the backlog is the connection's load, not a burst.
+    EXPECT_TRUE(refill_one_at_a_time(ledger, in_flight, 20));
+    ASSERT_TRUE(ledger.saturated());
+    ASSERT_TRUE(ledger.complete(in_flight.front().id));
+    EXPECT_FALSE(ledger.ready_to_send());  // saturated: two slots at a time
+    ASSERT_TRUE(ledger.complete(in_flight[1].id));
+    EXPECT_TRUE(ledger.ready_to_send());
+    EXPECT_EQ(burst(ledger).size(), 2u);
+    EXPECT_TRUE(ledger.saturated());
+}
+
+TEST(SendLedger, ASaturatedConnectionThatCatchesUpSendsEachPublicationAtOnceAgain) {
+    SendLedger ledger(kCapacity, kCapacity, false, 256);
+    ledger.set_acknowledged_limit(4);
+    for (int i = 0; i < 40; ++i) push(ledger, "q1/" + std::to_string(i), 1);
+    auto in_flight = burst(ledger);
+    EXPECT_TRUE(refill_one_at_a_time(ledger, in_flight, 8 * 4));
+    ASSERT_TRUE(ledger.saturated());
+    complete_all(ledger, in_flight);
+    EXPECT_EQ(burst(ledger).size(), 4u);  // the last four, and nothing waits after them
+    EXPECT_FALSE(ledger.saturated());
+}
+
+TEST(SendLedger, ANewConnectionStartsUnsaturated) {
+    SendLedger ledger(kCapacity, kCapacity, false, 256);
+    ledger.set_acknowledged_limit(2);
+    for (int i = 0; i < 40; ++i) push(ledger, "q1/" + std::to_string(i), 1);
+    auto in_flight = burst(ledger);
+    EXPECT_TRUE(refill_one_at_a_time(ledger, in_flight, 8 * 2));
+    ledger.new_connection();
+    EXPECT_FALSE(ledger.saturated());
+}
+
 TEST(SendLedger, TheAcknowledgedLimitStaysWithinMaxInFlightAndAboveZero) {
     SendLedger ledger(kCapacity, kCapacity, false, 8);
     EXPECT_EQ(ledger.acknowledged_limit(), 8u);

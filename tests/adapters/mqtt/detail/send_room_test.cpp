@@ -33,5 +33,14 @@ TEST(SendRoom, TheClientsOwnUnacknowledgedPublicationsTakeSlots) {
     EXPECT_FALSE(has_acknowledged_room(0, 2, 1));  // never wraps around
 }
 
+TEST(SendRoom, ASaturatedConnectionRefillsTwoSlotsAtATime) {
+    EXPECT_FALSE(has_saturated_room(19, 0, 20));
+    EXPECT_TRUE(has_saturated_room(18, 0, 20));
+    EXPECT_FALSE(has_saturated_room(17, 2, 20));  // `online` and `offline` in flight
+    // A window of two or fewer still refills one at a time.
+    EXPECT_TRUE(has_saturated_room(1, 0, 2));
+    EXPECT_FALSE(has_saturated_room(0, 1, 1));
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::mqtt::detail
