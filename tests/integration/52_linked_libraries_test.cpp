@@ -26,6 +26,14 @@ std::vector<std::string> needed_libraries(const std::string& binary) {
     return names;
 }
 
+TEST(LinkedLibraries, SqliteIsLoadedByTheJournalNotWithTheGateway) {
+    const auto libraries = needed_libraries(EIP2MQTT_BINARY);
+    ASSERT_FALSE(libraries.empty());
+    for (const auto& library : libraries) {
+        EXPECT_EQ(library.find("libsqlite3"), std::string::npos) << library;
+    }
+}
+
 TEST(LinkedLibraries, LibpcapIsLoadedBySniffNotWithTheGateway) {
     const auto libraries = needed_libraries(EIP2MQTT_BINARY);
     ASSERT_FALSE(libraries.empty());
