@@ -86,6 +86,14 @@ if ! shlibs=$(cd "$work/source" && dpkg-shlibdeps -O -e"$pkg/usr/bin/eip2mqtt" 2
 fi
 depends=$(sed -n 's/^shlibs:Depends=//p' <<<"$shlibs")
 [ -n "$depends" ] || { echo "package: dpkg-shlibdeps found no dependencies" >&2; exit 1; }
+# libpcap and SQLite are loaded where they are used (dlopen), so dpkg-shlibdeps does not see
+# them: the packages that hold them, by hand.
+for soname in libpcap.so.0.8 libsqlite3.so.0; do
+  holder=$(dpkg-query -S "*/$(dpkg-architecture -qDEB_HOST_MULTIARCH)/$soname" |
+    cut -d: -f1 | head -n 1)
+  [ -n "$holder" ] || { echo "package: no package holds $soname" >&2; exit 1; }
+  depends="$depends, $holder"
+done
 size=$(du -k -s --exclude=DEBIAN "$pkg" | cut -f1)
 sed -e "s|@VERSION@|$version|" -e "s|@ARCH@|$arch|" -e "s|@MAINTAINER@|$maintainer|" \
   -e "s|@INSTALLED_SIZE@|$size|" -e "s|@DEPENDS@|$depends|" \

@@ -87,7 +87,8 @@ void PackageTest::expect_name_and_fields() const {
     EXPECT_EQ(field("Version"), version);
     EXPECT_EQ(field("Architecture"), arch);
     const auto depends = field("Depends");
-    for (const auto* library : {"libc6", "libstdc++6", "libpaho-mqttpp3", "libyaml-cpp"}) {
+    for (const auto* library :
+         {"libc6", "libstdc++6", "libpaho-mqttpp3", "libyaml-cpp", "libpcap0.8", "libsqlite3-0"}) {
         EXPECT_NE(depends.find(library), std::string::npos) << depends;
     }
 }

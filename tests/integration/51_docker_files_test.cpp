@@ -10,6 +10,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "tests/support/child_process.hpp"
 
@@ -82,6 +83,19 @@ TEST(DockerFiles, TheRuntimeImageInstallsEveryLibraryTheBinaryLinks) {
         if (in_base_image.contains(package)) continue;
         EXPECT_TRUE(has_word(runtime_stage, package))
             << library << " comes with " << package << ", which the runtime stage lacks";
+    }
+}
+
+TEST(DockerFiles, TheRuntimeImageInstallsTheLibrariesLoadedWhereUsed) {
+    // Loaded with dlopen (by a journal, by sniff), so the binary does not name them.
+    const auto dockerfile = read_text(source_dir + "/docker/Dockerfile");
+    const auto runtime_stage = dockerfile.substr(dockerfile.rfind("\nFROM "));
+    const std::vector<std::string> libraries{"libsqlite3.so.0", "libpcap.so.0.8"};
+    const auto packages = packages_of(libraries);
+    for (const auto& library : libraries) {
+        ASSERT_TRUE(packages.contains(library)) << library << " is in no Debian package";
+        EXPECT_TRUE(has_word(runtime_stage, packages.at(library)))
+            << library << " comes with " << packages.at(library) << ", which the runtime lacks";
     }
 }
 

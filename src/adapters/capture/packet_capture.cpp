@@ -1,9 +1,10 @@
 #include "eip2mqtt/adapters/capture/packet_capture.hpp"
 
-#include <pcap/pcap.h>
 #include <unistd.h>
 
 #include <boost/asio/error.hpp>
+
+#include "adapters/capture/detail/pcap_library.hpp"
 
 namespace eip2mqtt::adapters::capture {
 namespace {
@@ -11,12 +12,15 @@ namespace {
 // Frames read per wake-up before yielding to the loop's other handlers.
 constexpr int max_frames_per_wakeup = 256;
 
+/// libpcap's functions, loaded by the first capture (detail/pcap_library.hpp says why).
+const detail::PcapLibrary& lib() { return detail::pcap_library(); }
+
 [[noreturn]] void fail(::pcap* handle, const std::string& what, bool permission = false) {
     std::string message = what;
     if (handle != nullptr) {
         message += ": ";
-        message += pcap_geterr(handle);
-        pcap_close(handle);
+        message += lib().geterr(handle);
+        lib().close(handle);
     }
     throw CaptureError(message, permission);
 }
@@ -32,7 +36,7 @@ void check_activation(::pcap* handle, int status, const std::string& interface) 
         case PCAP_ERROR_NO_SUCH_DEVICE:
             fail(handle, where + " (no such interface; `ip link` lists them)");
         default:
-            fail(handle, where + " (" + pcap_statustostr(status) + ")");
+            fail(handle, where + " (" + lib().statustostr(status) + ")");
     }
 }
 
@@ -41,37 +45,37 @@ void check_activation(::pcap* handle, int status, const std::string& interface) 
 PacketCapture::PacketCapture(boost::asio::any_io_executor executor, const CaptureOptions& options)
     : readable_(executor) {
     char error[PCAP_ERRBUF_SIZE] = {};
-    ::pcap* handle = pcap_create(options.interface.c_str(), error);
+    ::pcap* handle = lib().create(options.interface.c_str(), error);
     if (handle == nullptr) throw CaptureError(error, false);
-    pcap_set_snaplen(handle, options.snapshot_bytes);
+    lib().set_snaplen(handle, options.snapshot_bytes);
     // Each frame as it comes, not a buffer's worth later: sniff prints as datagrams arrive.
-    pcap_set_immediate_mode(handle, 1);
-    pcap_set_buffer_size(handle, 4 * 1024 * 1024);
-    check_activation(handle, pcap_activate(handle), options.interface);
+    lib().set_immediate_mode(handle, 1);
+    lib().set_buffer_size(handle, 4 * 1024 * 1024);
+    check_activation(handle, lib().activate(handle), options.interface);
 
     bpf_program program{};
-    if (pcap_compile(handle, &program, options.filter.c_str(), 1, PCAP_NETMASK_UNKNOWN) != 0) {
+    if (lib().compile(handle, &program, options.filter.c_str(), 1, PCAP_NETMASK_UNKNOWN) != 0) {
         fail(handle, "capture filter '" + options.filter + "'");
     }
-    const int set = pcap_setfilter(handle, &program);
-    pcap_freecode(&program);
+    const int set = lib().setfilter(handle, &program);
+    lib().freecode(&program);
     if (set != 0) fail(handle, "capture filter '" + options.filter + "'");
-    if (pcap_setnonblock(handle, 1, error) != 0) {
-        pcap_close(handle);
+    if (lib().setnonblock(handle, 1, error) != 0) {
+        lib().close(handle);
         throw CaptureError(error, false);
     }
-    const int fd = pcap_get_selectable_fd(handle);
+    const int fd = lib().get_selectable_fd(handle);
     // Asio closes what it is given: it gets a duplicate, pcap_close closes the original.
     const int duplicate = fd < 0 ? -1 : ::dup(fd);
     if (duplicate < 0) fail(handle, "cannot wait on the capture of '" + options.interface + "'");
     readable_.assign(duplicate);
     handle_ = handle;
-    link_type_ = pcap_datalink(handle);
+    link_type_ = lib().datalink(handle);
 }
 
 PacketCapture::~PacketCapture() {
     stop();
-    if (handle_ != nullptr) pcap_close(handle_);
+    if (handle_ != nullptr) lib().close(handle_);
 }
 
 void PacketCapture::start(Handler handler) {
@@ -87,7 +91,7 @@ void PacketCapture::stop() {
 
 std::uint64_t PacketCapture::kernel_drops() const {
     pcap_stat counts{};
-    return handle_ != nullptr && pcap_stats(handle_, &counts) == 0 ? counts.ps_drop : 0;
+    return handle_ != nullptr && lib().stats(handle_, &counts) == 0 ? counts.ps_drop : 0;
 }
 
 void PacketCapture::do_wait() {
@@ -101,7 +105,7 @@ void PacketCapture::on_readable(const boost::system::error_code& error) {
         reinterpret_cast<PacketCapture*>(self)->on_frame(
             {reinterpret_cast<const std::byte*>(bytes), header->caplen});
     };
-    pcap_dispatch(handle_, max_frames_per_wakeup, frame, reinterpret_cast<u_char*>(this));
+    lib().dispatch(handle_, max_frames_per_wakeup, frame, reinterpret_cast<u_char*>(this));
     if (!stopped_) do_wait();
 }
 

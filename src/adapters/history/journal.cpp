@@ -29,13 +29,15 @@ std::uint64_t row_bytes(const JournalEntry& entry) {
 bool is_full(int code) { return (code & 0xff) == SQLITE_FULL; }
 
 std::string column_text(sqlite3_stmt* stmt, int column) {
-    const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(stmt, column));
-    return text == nullptr ? std::string() : std::string(text, sqlite3_column_bytes(stmt, column));
+    const auto* text = reinterpret_cast<const char*>(detail::sqlite().column_text(stmt, column));
+    return text == nullptr ? std::string()
+                           : std::string(text, detail::sqlite().column_bytes(stmt, column));
 }
 
 std::string column_blob(sqlite3_stmt* stmt, int column) {
-    const auto* blob = static_cast<const char*>(sqlite3_column_blob(stmt, column));
-    return blob == nullptr ? std::string() : std::string(blob, sqlite3_column_bytes(stmt, column));
+    const auto* blob = static_cast<const char*>(detail::sqlite().column_blob(stmt, column));
+    return blob == nullptr ? std::string()
+                           : std::string(blob, detail::sqlite().column_bytes(stmt, column));
 }
 
 /// Runs `step` (one statement, stepped and reset) for each of `items` in one transaction, and
@@ -127,16 +129,16 @@ void Journal::write_chunk(std::span<const JournalEntry> chunk, std::uint64_t byt
 int Journal::insert(std::span<const JournalEntry> chunk) {
     return each_in_transaction(db_->db, chunk, [this](const JournalEntry& entry) {
         auto* stmt = db_->insert->fresh();
-        sqlite3_bind_text(stmt, 1, entry.exchange.data(), static_cast<int>(entry.exchange.size()),
-                          SQLITE_STATIC);
-        sqlite3_bind_int64(stmt, 2, static_cast<sqlite3_int64>(entry.layout));
-        sqlite3_bind_int64(stmt, 3, entry.timestamp_ms);
-        sqlite3_bind_int(stmt, 4, entry.quality);
-        sqlite3_bind_blob(stmt, 5, entry.samples.data(), static_cast<int>(entry.samples.size()),
-                          SQLITE_STATIC);
-        sqlite3_bind_int64(stmt, 6, static_cast<sqlite3_int64>(entry.id));
-        const int rc = sqlite3_step(stmt);
-        sqlite3_reset(stmt);
+        detail::sqlite().bind_text(stmt, 1, entry.exchange.data(),
+                                   static_cast<int>(entry.exchange.size()), SQLITE_STATIC);
+        detail::sqlite().bind_int64(stmt, 2, static_cast<sqlite3_int64>(entry.layout));
+        detail::sqlite().bind_int64(stmt, 3, entry.timestamp_ms);
+        detail::sqlite().bind_int(stmt, 4, entry.quality);
+        detail::sqlite().bind_blob(stmt, 5, entry.samples.data(),
+                                   static_cast<int>(entry.samples.size()), SQLITE_STATIC);
+        detail::sqlite().bind_int64(stmt, 6, static_cast<sqlite3_int64>(entry.id));
+        const int rc = detail::sqlite().step(stmt);
+        detail::sqlite().reset(stmt);
         return rc;
     });
 }
@@ -199,10 +201,10 @@ void Journal::give_back() {
 
 bool Journal::drop_oldest(std::uint64_t count) {
     auto* stmt = db_->drop_oldest->fresh();
-    sqlite3_bind_int64(stmt, 1, static_cast<sqlite3_int64>(count));
-    const int rc = sqlite3_step(stmt);
-    const auto removed = static_cast<std::uint64_t>(sqlite3_changes(db_->db));
-    sqlite3_reset(stmt);
+    detail::sqlite().bind_int64(stmt, 1, static_cast<sqlite3_int64>(count));
+    const int rc = detail::sqlite().step(stmt);
+    const auto removed = static_cast<std::uint64_t>(detail::sqlite().changes(db_->db));
+    detail::sqlite().reset(stmt);
     if (rc != SQLITE_DONE) {
         detail::rollback(db_->db);
         return false;
@@ -213,7 +215,7 @@ bool Journal::drop_oldest(std::uint64_t count) {
 }
 
 void Journal::checkpoint(int mode) {
-    sqlite3_wal_checkpoint_v2(db_->db, nullptr, mode, nullptr, nullptr);
+    detail::sqlite().wal_checkpoint_v2(db_->db, nullptr, mode, nullptr, nullptr);
 }
 
 std::uint64_t Journal::used_bytes() {
@@ -234,19 +236,19 @@ void Journal::recount() {
 std::vector<JournalEntry> Journal::oldest(std::size_t limit, std::uint64_t after_id) {
     std::vector<JournalEntry> out;
     auto* stmt = db_->select_after->fresh();
-    sqlite3_bind_int64(stmt, 1, static_cast<sqlite3_int64>(after_id));
-    sqlite3_bind_int64(stmt, 2, static_cast<sqlite3_int64>(limit));
-    while (sqlite3_step(stmt) == SQLITE_ROW) {
+    detail::sqlite().bind_int64(stmt, 1, static_cast<sqlite3_int64>(after_id));
+    detail::sqlite().bind_int64(stmt, 2, static_cast<sqlite3_int64>(limit));
+    while (detail::sqlite().step(stmt) == SQLITE_ROW) {
         JournalEntry entry;
-        entry.id = static_cast<std::uint64_t>(sqlite3_column_int64(stmt, 0));
+        entry.id = static_cast<std::uint64_t>(detail::sqlite().column_int64(stmt, 0));
         entry.exchange = column_text(stmt, 1);
-        entry.layout = static_cast<std::uint64_t>(sqlite3_column_int64(stmt, 2));
-        entry.timestamp_ms = sqlite3_column_int64(stmt, 3);
-        entry.quality = static_cast<std::uint8_t>(sqlite3_column_int(stmt, 4));
+        entry.layout = static_cast<std::uint64_t>(detail::sqlite().column_int64(stmt, 2));
+        entry.timestamp_ms = detail::sqlite().column_int64(stmt, 3);
+        entry.quality = static_cast<std::uint8_t>(detail::sqlite().column_int(stmt, 4));
         entry.samples = column_blob(stmt, 5);
         out.push_back(std::move(entry));
     }
-    sqlite3_reset(stmt);
+    detail::sqlite().reset(stmt);
     return out;
 }
 
@@ -258,10 +260,10 @@ void Journal::remove(std::span<const std::uint64_t> ids) {
             removed = 0;
             return each_in_transaction(db, ids, [&](std::uint64_t id) {
                 auto* stmt = db_->remove->fresh();
-                sqlite3_bind_int64(stmt, 1, static_cast<sqlite3_int64>(id));
-                const int rc = sqlite3_step(stmt);
-                removed += static_cast<std::uint64_t>(sqlite3_changes(db));
-                sqlite3_reset(stmt);
+                detail::sqlite().bind_int64(stmt, 1, static_cast<sqlite3_int64>(id));
+                const int rc = detail::sqlite().step(stmt);
+                removed += static_cast<std::uint64_t>(detail::sqlite().changes(db));
+                detail::sqlite().reset(stmt);
                 return rc;
             });
         },
@@ -276,10 +278,10 @@ void Journal::remove_through(std::uint64_t last_id) {
     const int rc = with_room(
         [&] {
             auto* stmt = db_->remove_through->fresh();
-            sqlite3_bind_int64(stmt, 1, static_cast<sqlite3_int64>(last_id));
-            const int step = sqlite3_step(stmt);
-            removed = static_cast<std::uint64_t>(sqlite3_changes(db));
-            sqlite3_reset(stmt);
+            detail::sqlite().bind_int64(stmt, 1, static_cast<sqlite3_int64>(last_id));
+            const int step = detail::sqlite().step(stmt);
+            removed = static_cast<std::uint64_t>(detail::sqlite().changes(db));
+            detail::sqlite().reset(stmt);
             return step == SQLITE_DONE ? SQLITE_OK : step;
         },
         false);
@@ -295,8 +297,9 @@ JournalStats Journal::stats() {
     stats.dropped = dropped_;
     stats.bytes = file_bytes();
     auto* stmt = db_->oldest_time->fresh();
-    if (sqlite3_step(stmt) == SQLITE_ROW) stats.oldest_timestamp_ms = sqlite3_column_int64(stmt, 0);
-    sqlite3_reset(stmt);
+    if (detail::sqlite().step(stmt) == SQLITE_ROW)
+        stats.oldest_timestamp_ms = detail::sqlite().column_int64(stmt, 0);
+    detail::sqlite().reset(stmt);
     return stats;
 }
 

@@ -52,13 +52,14 @@ void remove_linked_companions(const std::string& path) {
 
 Journal::Db::Db(const std::string& path) {
     const int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOFOLLOW;
-    if (const int rc = sqlite3_open_v2(path.c_str(), &db, flags, nullptr); rc != SQLITE_OK) {
-        const int code = db != nullptr ? sqlite3_extended_errcode(db) : rc;
-        const std::string error = db != nullptr ? sqlite3_errmsg(db) : "out of memory";
-        sqlite3_close(db);
+    if (const int rc = detail::sqlite().open_v2(path.c_str(), &db, flags, nullptr);
+        rc != SQLITE_OK) {
+        const int code = db != nullptr ? detail::sqlite().extended_errcode(db) : rc;
+        const std::string error = db != nullptr ? detail::sqlite().errmsg(db) : "out of memory";
+        detail::sqlite().close(db);
         throw detail::SqliteError(code, error);
     }
-    sqlite3_extended_result_codes(db, 1);
+    detail::sqlite().extended_result_codes(db, 1);
     try {
         // Before the first read: the lock is held until close, and the WAL's index lives in
         // memory, so no `-shm` file needs room on the disk.
@@ -122,7 +123,7 @@ void Journal::Db::close() {
     remove_through.reset();
     oldest_time.reset();
     drop_oldest.reset();
-    sqlite3_close(db);
+    detail::sqlite().close(db);
     db = nullptr;
 }
 

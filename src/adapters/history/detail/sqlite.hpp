@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "adapters/history/detail/sqlite_library.hpp"
+
 namespace eip2mqtt::adapters::history::detail {
 
 /// An SQLite failure with its (extended) result code.
@@ -28,14 +30,14 @@ private:
 class Statement {
 public:
     Statement(sqlite3* db, const char* sql);
-    ~Statement() { sqlite3_finalize(stmt_); }
+    ~Statement() { sqlite().finalize(stmt_); }
     Statement(const Statement&) = delete;
     Statement& operator=(const Statement&) = delete;
     sqlite3_stmt* get() const { return stmt_; }
     /// Ready for the next use, bindings cleared.
     sqlite3_stmt* fresh() const {
-        sqlite3_reset(stmt_);
-        sqlite3_clear_bindings(stmt_);
+        sqlite().reset(stmt_);
+        sqlite().clear_bindings(stmt_);
         return stmt_;
     }
 

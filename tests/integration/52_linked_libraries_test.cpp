@@ -1,0 +1,47 @@
+// What the binary loads at start: libraries only some commands use are loaded by them, so that
+// a running gateway keeps none of their pages resident (README, Performance).
+
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "tests/support/child_process.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// The shared libraries the binary names (DT_NEEDED): the dynamic loader maps each at start.
+std::vector<std::string> needed_libraries(const std::string& binary) {
+    const auto result = run_command({"/usr/bin/readelf", "-d", binary}, 30s);
+    std::vector<std::string> names;
+    const std::regex needed(R"(\(NEEDED\)\s+Shared library: \[([^\]]+)\])");
+    for (std::sregex_iterator it(result.output.begin(), result.output.end(), needed), end;
+         it != end; ++it) {
+        names.push_back((*it)[1]);
+    }
+    return names;
+}
+
+TEST(LinkedLibraries, SqliteIsLoadedByTheJournalNotWithTheGateway) {
+    const auto libraries = needed_libraries(EIP2MQTT_BINARY);
+    ASSERT_FALSE(libraries.empty());
+    for (const auto& library : libraries) {
+        EXPECT_EQ(library.find("libsqlite3"), std::string::npos) << library;
+    }
+}
+
+TEST(LinkedLibraries, LibpcapIsLoadedBySniffNotWithTheGateway) {
+    const auto libraries = needed_libraries(EIP2MQTT_BINARY);
+    ASSERT_FALSE(libraries.empty());
+    for (const auto& library : libraries) {
+        EXPECT_EQ(library.find("libpcap"), std::string::npos) << library;
+        EXPECT_EQ(library.find("libdbus"), std::string::npos) << library;
+    }
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test
