@@ -38,25 +38,35 @@ class Gateways:
         self.procs.append(proc)
         return proc
 
-    def wait_online(self, name, timeout=10, proc=None, build=None):
-        """Until the gateway's state topic says `online`. The retained `offline` of an earlier
+    def wait_said(self, name, topic, payload, timeout=10, proc=None, build=None):
+        """Until gateway `name` says `payload` on `topic`. A retained message of an earlier
         instance of the same gateway may come first: read on (bounded by -W) rather than take
         the first message. An earlier build's gateway `proc` that ended instead is NotInBuild."""
         sub = subprocess.Popen(["mosquitto_sub", "-h", HOST, "-p", str(self.broker_port), "-W",
-                                str(timeout), "-t", f"b/_gateway/{name}/state"],
+                                str(timeout), "-t", topic],
                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
         seen = []
         try:
             for line in sub.stdout:
                 seen.append(line.strip())
-                if seen[-1] == "online":
+                if seen[-1] == payload:
                     return
         finally:
             sub.kill()
             sub.wait(timeout=5)
         if proc is not None:
             (build or self.build).start_failed(proc, os.path.join(self.tmp, name + ".log"))
-        raise RuntimeError(f"gateway {name} did not come online: {seen!r}")
+        raise RuntimeError(f"gateway {name} did not say {payload} on {topic}: {seen!r}")
+
+    def wait_online(self, name, timeout=10, proc=None, build=None):
+        """Until the gateway's state topic says `online` (an `offline` retained by an earlier
+        instance is read past)."""
+        self.wait_said(name, f"b/_gateway/{name}/state", "online", timeout, proc, build)
+
+    def wait_leading(self, name, timeout, proc=None, build=None):
+        """Until the gateway, a unit of a hot-standby pair, says `leader` on its role topic
+        (README "Redundancy"): a lone unit leads once its takeover time passed unheard."""
+        self.wait_said(name, f"b/_gateway/{name}/role", "leader", timeout, proc, build)
 
     def launch_gateway(self, name, consumed, qos, build=None, **config_args):
         """A gateway of `build` consuming `consumed` ((exchange, tags) pairs) on a UDP port of

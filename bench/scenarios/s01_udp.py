@@ -1,5 +1,6 @@
 """Scenario 1: datagrams/s accepted with zero loss, against a bare recvmmsg receiver; and the
-datagrams lost at 70 % of that receiver's ceiling with many small exchanges."""
+datagrams lost at 70 % of that receiver's ceiling with many small exchanges, by a gateway alone and
+by the leading unit of a hot-standby pair."""
 
 import socket
 import time
@@ -8,6 +9,11 @@ from benchlib.util import consumed_list, free_port, last_json, median, stop
 
 # The loss row: 100 exchanges of 10 tags, offered 70 % of the bare receiver's ceiling.
 LOSS_EXCHANGES, LOSS_TAGS, LOSS_SHARE = 100, 10, 0.7
+# Its second row: the same, the gateway configured as a unit of a hot-standby pair (README
+# "Redundancy") whose partner is absent; it leads once its takeover time (the default, 2 s)
+# passed without a record of another unit.
+PAIR_ROW = "a hot-standby pair configured (its one unit, leading)"
+PAIR_TAKEOVER_S = 2
 
 
 def sink_ceiling(bench, duration, steps, exchanges=1, tags=100):
@@ -70,11 +76,18 @@ def ceiling_row(bench, duration, steps):
               bench.versus(rounds, lambda rate: rate))
 
 
-def lost(bench, rate, duration, build):
-    """Datagrams `build`'s gateway did not accept of `rate`/s sent for `duration`."""
-    name = "g1l"
+def lost(bench, rate, duration, build, pair=None):
+    """Datagrams `build`'s gateway did not accept of `rate`/s sent for `duration`. With `pair`
+    (a name of this round's own, so that no record or role an earlier round retained is heard),
+    the gateway is the one unit of a hot-standby pair, loaded once it leads: what a leader does
+    per datagram is measured."""
+    suffix = "" if build.new else "x"
+    name = "g1l" if pair is None else f"g1p{pair}{suffix}"
+    redundancy = {"pair": f"l1{pair}{suffix}"} if pair is not None else None
     gw, udp_port = bench.launch_gateway(name, consumed_list(LOSS_EXCHANGES, LOSS_TAGS), 1,
-                                        build=build)
+                                        build=build, redundancy=redundancy)
+    if pair is not None:
+        bench.wait_leading(name, PAIR_TAKEOVER_S + 10, proc=gw, build=build)
     trial = accepted_trial(bench, name, udp_port, LOSS_EXCHANGES, LOSS_TAGS, duration, build)
     trial(rate, 1)
     stop(gw)
@@ -82,27 +95,36 @@ def lost(bench, rate, duration, build):
     return sent - accepted, sent
 
 
-def loss_row(bench, duration, steps):
+def loss_row(bench, figure, rounds, offered):
+    losses = [r[bench.build][0] for r in rounds]
+    middle = median(losses)
+    note = "; rounds: " + ", ".join(f"{n:,}" for n in losses) if len(losses) > 1 else ""
+    bench.row(figure,
+              f"{middle:,} (of {median([r[bench.build][1] for r in rounds]):,} sent{note})",
+              offered, "-", "0", "yes" if middle == 0 else "no",
+              bench.versus(rounds, lambda r: r[0], fmt="{:,}".format))
+
+
+def loss_rows(bench, duration, steps):
+    """The same load, in the same rounds, to a gateway alone and to the leading unit of a pair."""
     ceiling = sink_ceiling(bench, duration, steps, LOSS_EXCHANGES, LOSS_TAGS)
     # A sink that lost datagrams in its first trial (the quick form's only one, on a loaded
     # machine: 297 of 100,000 once) has a ceiling of 0; the load generator refuses a rate of 0.
     rate = max(100, round(LOSS_SHARE * ceiling))
     if not ceiling:
         bench.notes.append("scenario 1: the recvmmsg sink lost datagrams in its first trial; "
-                           f"the loss row offered {rate} datagrams/s")
+                           f"the loss rows offered {rate} datagrams/s")
     loss_s = 3 if not bench.quick else 1
-    rounds = [bench.per_build(r, lambda b: lost(bench, rate, loss_s, b))
-              for r in range(bench.rounds)]
-    losses = [r[bench.build][0] for r in rounds]
-    middle = median(losses)
-    note = "; rounds: " + ", ".join(f"{n:,}" for n in losses) if len(losses) > 1 else ""
-    bench.row(f"datagrams lost at 70 % of the bare recvmmsg ceiling, {LOSS_EXCHANGES} x "
-              f"{LOSS_TAGS} tags, no tag changing, {loss_s} s{bench.rounds_label()}",
-              f"{middle:,} (of {median([r[bench.build][1] for r in rounds]):,} sent{note})",
-              f"{rate:,} datagrams/s offered ({LOSS_SHARE} x {ceiling:,.0f}, the recvmmsg "
-              "sink's zero-loss rate with the same datagrams)", "-", "0",
-              "yes" if middle == 0 else "no",
-              bench.versus(rounds, lambda r: r[0], fmt="{:,}".format))
+    alone, paired = [], []
+    for r in range(bench.rounds):
+        alone.append(bench.per_build(r, lambda b: lost(bench, rate, loss_s, b)))
+        paired.append(bench.per_build(r, lambda b, r=r: lost(bench, rate, loss_s, b, f"r{r}")))
+    figure = (f"datagrams lost at 70 % of the bare recvmmsg ceiling, {LOSS_EXCHANGES} x "
+              f"{LOSS_TAGS} tags, no tag changing, {loss_s} s")
+    offered = (f"{rate:,} datagrams/s offered ({LOSS_SHARE} x {ceiling:,.0f}, the recvmmsg "
+               "sink's zero-loss rate with the same datagrams)")
+    loss_row(bench, figure + bench.rounds_label(), alone, offered)
+    loss_row(bench, f"{figure}, {PAIR_ROW}{bench.rounds_label()}", paired, offered)
 
 
 def run(bench):
@@ -110,4 +132,4 @@ def run(bench):
     duration = 1 if bench.quick else 2
     steps = 1 if bench.quick else 3
     ceiling_row(bench, duration, steps)
-    loss_row(bench, duration, steps)
+    loss_rows(bench, duration, steps)
