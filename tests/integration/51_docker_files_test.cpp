@@ -28,18 +28,6 @@ std::string read_text(const std::string& path) {
     return text.str();
 }
 
-/// The shared libraries the binary names (DT_NEEDED).
-std::vector<std::string> needed_libraries(const std::string& binary) {
-    const auto result = run_command({"/usr/bin/readelf", "-d", binary}, 30s);
-    std::vector<std::string> names;
-    const std::regex needed(R"(\(NEEDED\)\s+Shared library: \[([^\]]+)\])");
-    for (std::sregex_iterator it(result.output.begin(), result.output.end(), needed), end;
-         it != end; ++it) {
-        names.push_back((*it)[1]);
-    }
-    return names;
-}
-
 /// The Debian package that ships each library for this architecture, from dpkg's database
 /// in one query ("libfmt9"; libm.so.6 is libc6's, not libc6-i386's).
 std::map<std::string, std::string> packages_of(const std::vector<std::string>& libraries) {

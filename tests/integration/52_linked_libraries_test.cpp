@@ -14,18 +14,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-/// The shared libraries the binary names (DT_NEEDED): the dynamic loader maps each at start.
-std::vector<std::string> needed_libraries(const std::string& binary) {
-    const auto result = run_command({"/usr/bin/readelf", "-d", binary}, 30s);
-    std::vector<std::string> names;
-    const std::regex needed(R"(\(NEEDED\)\s+Shared library: \[([^\]]+)\])");
-    for (std::sregex_iterator it(result.output.begin(), result.output.end(), needed), end;
-         it != end; ++it) {
-        names.push_back((*it)[1]);
-    }
-    return names;
-}
-
 TEST(LinkedLibraries, SqliteIsLoadedByTheJournalNotWithTheGateway) {
     const auto libraries = needed_libraries(EIP2MQTT_BINARY);
     ASSERT_FALSE(libraries.empty());

@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -122,6 +123,17 @@ RunResult run_command(std::vector<std::string> argv, std::chrono::milliseconds t
     }
     result.output = child.output();
     return result;
+}
+
+std::vector<std::string> needed_libraries(const std::string& binary) {
+    const auto result = run_command({"/usr/bin/readelf", "-d", binary}, std::chrono::seconds(30));
+    std::vector<std::string> names;
+    const std::regex needed(R"(\(NEEDED\)\s+Shared library: \[([^\]]+)\])");
+    for (std::sregex_iterator it(result.output.begin(), result.output.end(), needed), end;
+         it != end; ++it) {
+        names.push_back((*it)[1]);
+    }
+    return names;
 }
 
 }  // namespace eip2mqtt::test

@@ -53,4 +53,8 @@ struct RunResult {
 };
 RunResult run_command(std::vector<std::string> argv, std::chrono::milliseconds timeout);
 
+/// The shared libraries `binary` names (DT_NEEDED, by readelf): the dynamic loader maps each at
+/// start.
+std::vector<std::string> needed_libraries(const std::string& binary);
+
 }  // namespace eip2mqtt::test
