@@ -7,7 +7,7 @@
 #include <iostream>
 #include <string>
 
-#include "eip2mqtt/app/commands.hpp"
+#include "eip2mqtt/app/cli/commands.hpp"
 #include "eip2mqtt/app/logging.hpp"
 
 namespace {

@@ -10,7 +10,8 @@
 #include <memory>
 
 #include "app/detail/release_heap.hpp"
-#include "eip2mqtt/app/mqtt_settings.hpp"
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
+#include "eip2mqtt/app/northbound/mqtt_settings.hpp"
 #include "eip2mqtt/core/redundancy/acked_watermarks.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
 
@@ -59,7 +60,7 @@ Gateway::Gateway(core::config::Config config)
       watchdog_timer_(loop_),
       writes_([this](ExchangeWrite&& write, const WriteReply& reply,
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
-              system_clock()),
+              adapters::clock::system_clock()),
       exchanges_(loop_.get_executor(), exchanges_options(config_, pair_options()), northbound_,
                  writes_.image_saves()),
       reload_timer_(loop_),

@@ -12,8 +12,9 @@
 #include <algorithm>
 #include <chrono>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/app/gateway.hpp"
-#include "eip2mqtt/app/mqtt_settings.hpp"
+#include "eip2mqtt/app/northbound/mqtt_settings.hpp"
 #include "eip2mqtt/core/redundancy/answer_key.hpp"
 
 namespace eip2mqtt::app {
@@ -84,7 +85,7 @@ void Gateway::make_pair_history() {
             const auto stats = mqtt_->stats();
             return stats.queued + stats.in_flight;
         },
-        system_clock());
+        adapters::clock::system_clock());
     pair_history_->set_replay_gate(
         [this] { return pair_->lease().renewed_since_leading(std::chrono::steady_clock::now()); });
     northbound_.set_tap(*pair_history_);

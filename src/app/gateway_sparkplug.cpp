@@ -6,8 +6,9 @@
 
 #include <chrono>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/app/gateway.hpp"
-#include "eip2mqtt/app/mqtt_settings.hpp"
+#include "eip2mqtt/app/northbound/mqtt_settings.hpp"
 
 namespace eip2mqtt::app {
 
@@ -26,7 +27,8 @@ void Gateway::make_sparkplug() {
         node_mqtt = sparkplug_leader_.get();
     }
     sparkplug_ = std::make_unique<northbound::sparkplug::SparkplugNode>(
-        northbound::sparkplug::sparkplug_options(config_), *node_mqtt, writes_, system_clock());
+        northbound::sparkplug::sparkplug_options(config_), *node_mqtt, writes_,
+        adapters::clock::system_clock());
     northbound_.add(*sparkplug_);
     add_sparkplug_history();
 }

@@ -64,7 +64,7 @@ core::plan::ExchangePlan make_plan(const char* name, core::plan::Direction direc
 }
 
 /// Payload timestamps at one fixed time, so that a crash replays alike.
-class FixedClock final : public app::Clock {
+class FixedClock final : public core::Clock {
 public:
     core::MonoTime monotonic() const override { return {}; }
     core::WallTime wall() const override {

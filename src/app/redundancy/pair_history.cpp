@@ -14,7 +14,7 @@ constexpr std::size_t replay_per_call = 1000;
 }  // namespace
 
 PairHistory::PairHistory(PairHistoryOptions options, history::HistorySink& sink,
-                         std::function<std::uint64_t()> backlog, const Clock& clock)
+                         std::function<std::uint64_t()> backlog, const core::Clock& clock)
     : options_(options), sink_(sink), backlog_(std::move(backlog)), clock_(clock) {}
 
 PairHistory::Exchange* PairHistory::find(const core::plan::ExchangePlan& plan) {

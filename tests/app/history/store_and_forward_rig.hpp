@@ -42,7 +42,7 @@ protected:
         fs::remove_all(dir_);
     }
 
-    void open(std::uint32_t replay_rate = 100, const Clock* clock = nullptr) {
+    void open(std::uint32_t replay_rate = 100, const core::Clock* clock = nullptr) {
         saf_.reset();
         std::string set_aside;
         auto journal = adapters::history::Journal::open(

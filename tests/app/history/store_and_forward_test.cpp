@@ -48,7 +48,7 @@ TEST_F(StoreAndForwardTest, ReplaysOldestFirstAtTheRateWithTheirTimeAndQuality) 
 }
 
 /// A clock on which each read of the monotonic time takes a millisecond.
-class SteppingClock final : public Clock {
+class SteppingClock final : public core::Clock {
 public:
     core::MonoTime monotonic() const override { return now_ += 1ms; }
     core::WallTime wall() const override { return std::chrono::system_clock::now(); }

@@ -15,8 +15,8 @@
 #include "eip2mqtt/adapters/state/image_persister.hpp"
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/adapters/udp/sender.hpp"
-#include "eip2mqtt/app/exchange_producer.hpp"
-#include "eip2mqtt/app/producer_scheduler.hpp"
+#include "eip2mqtt/app/exchanges/exchange_producer.hpp"
+#include "eip2mqtt/app/exchanges/producer_scheduler.hpp"
 
 namespace eip2mqtt::test {
 

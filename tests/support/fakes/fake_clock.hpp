@@ -4,12 +4,12 @@
 
 #include <chrono>
 
-#include "eip2mqtt/app/clock.hpp"
+#include "eip2mqtt/core/clock.hpp"
 
 namespace eip2mqtt::test {
 
 /// Starts a day into the monotonic clock, as a gateway's does, at 2026-01-01T00:00:00Z.
-class FakeClock final : public app::Clock {
+class FakeClock final : public core::Clock {
 public:
     FakeClock() = default;
     explicit FakeClock(core::WallTime wall) : wall_(wall) {}

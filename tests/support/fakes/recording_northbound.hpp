@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 
 namespace eip2mqtt::test {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "eip2mqtt/app/producer_scheduler.hpp"
+#include "eip2mqtt/app/exchanges/producer_scheduler.hpp"
 
 namespace eip2mqtt::test {
 

@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 
 namespace eip2mqtt::test {
 

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 
 namespace eip2mqtt::app::history {
 

@@ -26,13 +26,13 @@
 #include <unordered_map>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/history/journal.hpp"
 #include "eip2mqtt/adapters/history/journal_writer.hpp"
 #include "eip2mqtt/adapters/history/sample_codec.hpp"
-#include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
 #include "eip2mqtt/app/history/sink_replay.hpp"
-#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/time.hpp"
 
@@ -46,7 +46,7 @@ struct StoreAndForwardOptions {
     /// a replay could keep the loop from its datagrams until the socket's buffer overflowed.
     std::chrono::microseconds replay_budget{2000};
     /// Where that time is read (tests give their own); it must outlive the StoreAndForward.
-    const Clock* clock = &system_clock();
+    const core::Clock* clock = &adapters::clock::system_clock();
 };
 
 struct HistoryStats {

@@ -25,10 +25,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
-#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/app/redundancy/leader_record.hpp"
+#include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/redundancy/acked_watermarks.hpp"
 #include "eip2mqtt/core/redundancy/sample_window.hpp"
 
@@ -53,7 +53,7 @@ public:
     /// `sink` (the JSON tree) and `clock` must outlive this; `backlog` gives the publications
     /// waiting or in flight on the sink's connection.
     PairHistory(PairHistoryOptions options, history::HistorySink& sink,
-                std::function<std::uint64_t()> backlog, const Clock& clock);
+                std::function<std::uint64_t()> backlog, const core::Clock& clock);
 
     /// Every consumed exchange's window: a kept exchange keeps its own.
     void exchanges_changed(const ExchangeSet& running,
@@ -105,7 +105,7 @@ private:
     history::HistorySink& sink_;
     std::function<std::uint64_t()> backlog_;
     std::function<bool()> gate_;
-    const Clock& clock_;
+    const core::Clock& clock_;
     using Exchanges =
         std::unordered_map<const core::plan::ExchangePlan*, std::unique_ptr<Exchange>>;
     Exchanges exchanges_;  ///< the running consumed exchanges, by plan

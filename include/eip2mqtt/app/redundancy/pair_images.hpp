@@ -33,7 +33,7 @@
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
-#include "eip2mqtt/app/exchange_producer.hpp"
+#include "eip2mqtt/app/exchanges/exchange_producer.hpp"
 #include "eip2mqtt/core/redundancy/image_follow.hpp"
 #include "eip2mqtt/core/time.hpp"
 

@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
-#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::app::redundancy {

@@ -34,7 +34,7 @@ public:
 constexpr std::int64_t widest_time_ms = (std::int64_t{1} << 42) - 1;
 
 /// Always the time whose encoding is the longest.
-class WidestClock final : public Clock {
+class WidestClock final : public core::Clock {
 public:
     core::MonoTime monotonic() const override { return {}; }
     core::WallTime wall() const override {

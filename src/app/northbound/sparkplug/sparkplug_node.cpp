@@ -9,7 +9,7 @@
 #include <span>
 #include <string_view>
 
-#include "eip2mqtt/app/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/gateway_metrics.hpp"
 #include "eip2mqtt/core/redundancy/bd_seq.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
@@ -62,7 +62,7 @@ SparkplugOptions sparkplug_options(const core::config::Config& config) {
 }
 
 SparkplugNode::SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt,
-                             WriteHandler& writes, const Clock& clock)
+                             WriteHandler& writes, const core::Clock& clock)
     : options_(std::move(options)), mqtt_(mqtt), writes_(writes), clock_(clock) {
     ncmd_topic_ = node_topic("NCMD");
     dcmd_prefix_ =

@@ -14,8 +14,8 @@
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
-#include "eip2mqtt/app/northbound.hpp"
 #include "eip2mqtt/app/northbound/json_tree/write_router.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
 #include "eip2mqtt/core/quality/quality.hpp"

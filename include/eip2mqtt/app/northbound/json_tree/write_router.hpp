@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
-#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/write/write_validation.hpp"
 

@@ -31,10 +31,10 @@
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/adapters/sparkplug/payload.hpp"
-#include "eip2mqtt/app/clock.hpp"
 #include "eip2mqtt/app/history/history_sink.hpp"
-#include "eip2mqtt/app/northbound.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_stats.hpp"
+#include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/time.hpp"
@@ -68,7 +68,7 @@ public:
     /// `mqtt` (the node's own connection), `writes` and `clock` (the payloads' timestamps)
     /// must outlive the node.
     SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes,
-                  const Clock& clock);
+                  const core::Clock& clock);
 
     /// The NDEATH for the next CONNECT's will; the NBIRTH that follows that connection carries
     /// the same bdSeq. Each connection made takes the next bdSeq (0-255, then 0 again); an
@@ -186,7 +186,7 @@ private:
     SparkplugOptions options_;
     adapters::mqtt::Publisher& mqtt_;
     WriteHandler& writes_;
-    const Clock& clock_;
+    const core::Clock& clock_;
     std::string ncmd_topic_, dcmd_prefix_, state_topic_;
 
     std::vector<Device> devices_;

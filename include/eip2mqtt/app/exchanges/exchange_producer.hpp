@@ -1,0 +1,201 @@
+#pragma once
+/// One produced exchange at run time: produces its datagram when the
+/// ProducerScheduler says it is due (every period, against absolute deadlines), applies queued
+/// writes between two productions, reports the produced values that changed (the echo) to the
+/// Northbound, has the ImagePersister save the image when it changes, and answers each write
+/// once the datagram carrying it has left and the image carrying it is saved.
+///
+/// The image in memory is the truth, and what a restart produces is the image file: so nothing
+/// is produced that is not saved, bar one case. While saves succeed, a write is produced first
+/// and saved right after (its result waits for the save): the write costs no disk time on its
+/// way to the wire. Once a save has failed, and until one succeeds (retried every second), each
+/// write is saved before it may be produced, and refused (`not saved: …`) if that save fails.
+/// The one case is the save that fails first: the writes it carried were sent already; they are
+/// answered `saved: false`, and a restart before the next successful save produces the image
+/// from before them.
+///
+/// Threading: the loop only.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "eip2mqtt/adapters/state/image_persister.hpp"
+#include "eip2mqtt/adapters/udp/endpoint.hpp"
+#include "eip2mqtt/app/exchanges/producer_scheduler.hpp"
+#include "eip2mqtt/app/exchanges/write_reply.hpp"
+#include "eip2mqtt/app/northbound/northbound.hpp"
+#include "eip2mqtt/core/exchange/produced_image.hpp"
+#include "eip2mqtt/core/exchange/production_schedule.hpp"
+#include "eip2mqtt/core/exchange/status_grid.hpp"
+#include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/throttled_log.hpp"
+#include "eip2mqtt/core/write/rate_limiter.hpp"
+#include "eip2mqtt/core/write/write_counters.hpp"
+#include "eip2mqtt/core/write/write_validation.hpp"
+
+namespace eip2mqtt::app {
+
+using core::write::ImageSaveTotals;
+
+/// A producer's image, for the one that replaces it when a reload changes its exchange but
+/// not its layout: the image in memory goes on, not what the file holds.
+struct ImageHandover {
+    std::vector<std::byte> data;
+    std::shared_ptr<adapters::state::ImageFile> file;
+};
+
+class ExchangeProducer final : public Producible {
+public:
+    /// The image is `handover`'s when given, else restored through `persister` when a file of
+    /// the same layout exists. `scheduler`, `persister`, `northbound` and `totals` must outlive
+    /// the producer.
+    ExchangeProducer(core::plan::ExchangePlan plan, adapters::udp::Endpoint destination,
+                     ProducerScheduler& scheduler, adapters::state::ImagePersister& persister,
+                     Northbound& northbound, ImageSaveTotals& totals,
+                     std::optional<ImageHandover> handover = std::nullopt);
+    ~ExchangeProducer();
+    ExchangeProducer(const ExchangeProducer&) = delete;
+    ExchangeProducer& operator=(const ExchangeProducer&) = delete;
+
+    /// Starts producing; the first send is at start + period * index / count.
+    void start(core::MonoTime start, std::size_t index, std::size_t count);
+    /// Stops producing; saves under way still report their write results.
+    void stop();
+    /// For a stopped producer about to be destroyed (a reload changed or removed its
+    /// exchange): answers every write still queued, which no datagram will ever carry, with
+    /// `error` (none: unanswered, a pair's leader that steps down after a unit may have taken
+    /// over, which answers them) and forgets it; returns how many. Writes already carried by
+    /// a sent datagram are not touched: they wait for their save, so flush the persister
+    /// before destroying the producer, and they get `{"ok":true}`. A queued write saved ahead
+    /// of its production is taken out of the file again (the image is saved as produced).
+    std::size_t cancel_queued_writes(std::optional<std::string_view> error);
+    /// A pair's leader stepping down: every write still queued, never to be produced here, taken
+    /// out unanswered, as requests (target: the set topic, or the response topic) for the unit
+    /// to leave to whichever leads next (PairWrites), which settles them. Saved ahead of its
+    /// production, such a write is taken out of the file again, as by cancel_queued_writes.
+    std::vector<WriteRequest> take_queued_writes();
+    /// The image and its file, for the producer replacing this one (same layout).
+    ImageHandover hand_over() const {
+        return {{image_.data().begin(), image_.data().end()}, file_};
+    }
+
+    /// Queues a validated write; its result is reported after the datagram carrying it is
+    /// sent. Fails with rate_limited when a tag is written more often than its
+    /// `max_writes_per_s`, and with queue_full when the queue is full.
+    std::optional<core::write::WriteRejection> stage(std::vector<core::write::TagWrite> writes,
+                                                     WriteReply reply, core::MonoTime now);
+
+    /// The status at most once a second while its counters move (docs/mqtt-api.md); while
+    /// saves fail, a save of the image once a second.
+    void on_tick(core::MonoTime now);
+
+    /// Reports every tag's value and the status again (after a reconnect).
+    void republish(core::WallTime wall);
+
+    // --- A hot-standby pair (README "Redundancy") ------------------------------------------
+    using ImageChanged = std::function<void(const ExchangeProducer& producer)>;
+    /// Called after a datagram left carrying an image that writes changed (the leader
+    /// publishes it for the standby); unset: nothing is called.
+    void set_on_image_changed(ImageChanged on_changed) {
+        on_image_changed_ = std::move(on_changed);
+    }
+    /// `write_id`: the write's number in this producer.
+    using AnswerGate = std::function<void(const ExchangeProducer& producer, std::uint64_t write_id,
+                                          const WriteReply& reply, std::function<void()> answer)>;
+    /// The leader answers an accepted write (`ok`, or `ok` unsaved) through `gate`, which runs
+    /// the answer once the broker has the image carrying it (PairImages::answer_after_image);
+    /// unset: at once.
+    void set_answer_gate(AnswerGate gate) { answer_gate_ = std::move(gate); }
+    /// The standby takes the leader's image (the plan's length) as its own and saves it as any
+    /// image; returns whether a byte changed. Writes still queued stay queued over it.
+    bool follow_image(std::span<const std::byte> data);
+    /// The standby heard the leader's datagram of this exchange with request id `heard`: its
+    /// own next datagram continues after it.
+    void continue_after(std::uint16_t heard) { image_.continue_after(heard); }
+
+    // --- Producible: called by the ProducerScheduler -------------------------------------
+    /// Builds the next datagram (staged writes applied, header stamped with `wall`); the bytes
+    /// stay valid until the next call.
+    std::span<const std::byte> produce(core::WallTime wall) override;
+    const adapters::udp::Endpoint& destination() const override { return destination_; }
+    void count_skipped(std::size_t skipped) override { counters_.skipped_deadlines += skipped; }
+    /// Counters, `paused`, echo, and the save whose completion reports the results of the
+    /// writes the datagram carried.
+    void on_sent(bool sent, core::WallTime wall) override;
+
+    const core::plan::ExchangePlan& plan() const { return *plan_; }
+    const core::exchange::ProduceCounters& counters() const { return counters_; }
+    /// True while sends fail (the status says paused).
+    bool paused() const { return failing_; }
+    /// True when the file holds the image being produced, or a newer one.
+    bool saved() const { return saved_; }
+    const core::exchange::ProducedImage& image() const { return image_; }
+    /// When the last datagram left; nullopt before the first.
+    std::optional<core::WallTime> last_sent() const { return last_sent_; }
+    /// When this exchange's configuration took effect (the producer was made).
+    core::WallTime configured_at() const { return configured_at_; }
+
+private:
+    /// Saves the image with every queued write applied, now or once the save under way is done.
+    void request_save();
+    /// A save is done: the writes it answers get their results, or it failed (below).
+    void on_saved(const std::optional<std::string>& error);
+    /// Sent writes answered `saved: false`, queued ones it held refused, and the producer saves
+    /// ahead of production until a save succeeds.
+    void on_save_failed(const std::string& error, const std::vector<std::uint64_t>& sent);
+    void report_echo(core::WallTime wall, bool all);
+    void report_status();
+    void report_results(std::span<const std::uint64_t> write_ids);
+    /// Where the write's result goes, no longer waited for; none for a write already answered.
+    std::optional<WriteReply> take_reply(std::uint64_t write_id);
+    /// Answers an accepted write: `ok`, or `ok` with `unsaved`'s reason; through the gate.
+    void answer_accepted(std::uint64_t write_id, WriteReply reply,
+                         std::optional<std::string> unsaved);
+
+    /// On the heap, at one address for the producer's life: image_ and the northbounds keep it.
+    std::shared_ptr<const core::plan::ExchangePlan> plan_;
+    adapters::udp::Endpoint destination_;
+    ProducerScheduler& scheduler_;
+    std::optional<ProducerScheduler::Id> id_;  ///< set by start(), reset by stop()
+    adapters::state::ImagePersister& persister_;
+    adapters::state::ImagePersister::Key persist_key_;
+    Northbound& northbound_;
+    ImageSaveTotals& totals_;
+    std::shared_ptr<adapters::state::ImageFile> file_;  ///< shared with the saves under way
+    core::exchange::ProducedImage image_;
+    // The image file: at most one save under way, the next one asked for meanwhile.
+    bool saved_ = false;  ///< the file holds image_ (or a newer projection of it)
+    bool save_in_flight_ = false;
+    bool save_again_ = false;
+    std::uint64_t saved_through_ = 0;     ///< the last queued write the file holds
+    std::uint64_t saving_through_ = 0;    ///< the last queued write of the save under way
+    std::vector<std::uint64_t> saving_;   ///< sent writes the save under way answers
+    std::vector<std::uint64_t> unsaved_;  ///< sent writes waiting for the next save
+    std::vector<std::byte> projection_;   ///< what the save under way writes
+    std::string save_error_;              ///< of the last failed save; empty once one succeeds
+    std::optional<core::MonoTime> retry_at_;
+    core::ThrottledLog save_log_;
+    std::vector<std::byte> datagram_;
+    std::vector<std::byte> echoed_;  ///< data bytes as last reported
+    std::vector<std::uint64_t> carried_;
+    std::unordered_map<std::uint64_t, WriteReply> replies_;
+    std::vector<core::write::RateLimiter> limiters_;  ///< one per tag
+    core::exchange::StatusGrid status_grid_;          ///< `_status`: phase set by start()
+    std::uint64_t last_status_sent_ = 0;
+    std::uint64_t next_write_id_ = 1;
+    core::exchange::ProduceCounters counters_;
+    bool failing_ = false;  ///< the last send failed: the status says paused
+    std::optional<core::WallTime> last_sent_;
+    core::WallTime configured_at_ = std::chrono::system_clock::now();
+    ImageChanged on_image_changed_;
+    AnswerGate answer_gate_;
+};
+
+}  // namespace eip2mqtt::app

@@ -1,0 +1,55 @@
+#pragma once
+/// The gateway's metrics, built from its counters alone: the figures by name that the metrics
+/// topic (app/northbound/json_tree/json_tree_payload) and Prometheus report, and the snapshot
+/// Prometheus serves. Pure: no socket, no clock of its own, so each figure can be checked
+/// without running a gateway.
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
+#include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/app/exchanges/datagram_router.hpp"
+#include "eip2mqtt/app/exchanges/exchange_consumer.hpp"
+#include "eip2mqtt/app/exchanges/exchange_producer.hpp"
+#include "eip2mqtt/app/exchanges/write_reply.hpp"
+#include "eip2mqtt/app/history/store_and_forward.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_stats.hpp"
+#include "eip2mqtt/app/redundancy/pair_counters.hpp"
+#include "eip2mqtt/core/command/command_counters.hpp"
+#include "eip2mqtt/core/time.hpp"
+#include "eip2mqtt/core/write/write_counters.hpp"
+
+namespace eip2mqtt::app {
+
+using core::write::WriteCounters;
+
+/// Everything the metrics are made of, borrowed for one call.
+struct MetricsSources {
+    const DatagramCounters& datagrams;
+    const WriteCounters& writes;
+    const adapters::mqtt::ClientStats& mqtt;
+    const history::HistoryStats* history = nullptr;                    ///< with store and forward
+    const northbound::sparkplug::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
+    const core::command::CommandCounters* commands = nullptr;       ///< with eip.commands enabled
+    const redundancy::PairImageCounters* pair_images = nullptr;     ///< with `redundancy:`
+    const redundancy::PairHistoryCounters* pair_history = nullptr;  ///< with pair_images
+    const redundancy::PairWriteCounters* pair_writes = nullptr;     ///< with pair_images
+};
+
+/// Store and forward's figures for Prometheus and the metrics topic.
+adapters::metrics::HistoryMetrics history_metrics(const history::HistoryStats& stats);
+
+/// Drops by reason name, every reason listed, for the metrics topic and Prometheus alike.
+std::map<std::string, std::uint64_t> drops_by_name(const DatagramCounters& counters);
+
+/// Gateway and per-exchange figures for Prometheus, ages taken at `now`.
+adapters::metrics::MetricsSnapshot metrics_snapshot(
+    const MetricsSources& sources, std::span<const std::unique_ptr<ExchangeConsumer>> consumers,
+    std::span<const std::unique_ptr<ExchangeProducer>> producers, core::MonoTime now);
+
+}  // namespace eip2mqtt::app
