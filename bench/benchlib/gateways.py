@@ -65,7 +65,7 @@ class Gateways:
 
     def wait_leading(self, name, timeout, proc=None, build=None):
         """Until the gateway, a unit of a hot-standby pair, says `leader` on its role topic
-        (README "Redundancy"): a lone unit leads once its takeover time passed unheard."""
+        (docs/redundancy.md): a lone unit leads once its takeover time passed unheard."""
         self.wait_said(name, f"b/_gateway/{name}/role", "leader", timeout, proc, build)
 
     def launch_gateway(self, name, consumed, qos, build=None, **config_args):

@@ -9,8 +9,8 @@ from benchlib.util import consumed_list, free_port, last_json, median, stop
 
 # The loss row: 100 exchanges of 10 tags, offered 70 % of the bare receiver's ceiling.
 LOSS_EXCHANGES, LOSS_TAGS, LOSS_SHARE = 100, 10, 0.7
-# Its second row: the same, the gateway configured as a unit of a hot-standby pair (README
-# "Redundancy") whose partner is absent; it leads once its takeover time (the default, 2 s)
+# Its second row: the same, the gateway configured as a unit of a hot-standby pair
+# (docs/redundancy.md) whose partner is absent; it leads once its takeover time (the default, 2 s)
 # passed without a record of another unit.
 PAIR_ROW = "a hot-standby pair configured (its one unit, leading)"
 PAIR_TAKEOVER_S = 2

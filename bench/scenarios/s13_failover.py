@@ -1,4 +1,4 @@
-"""Scenario 13: failover of a hot-standby pair (README "Redundancy"). Two units of one pair on
+"""Scenario 13: failover of a hot-standby pair (docs/redundancy.md). Two units of one pair on
 the tuned broker, each fed its own copy of one consumed exchange by a load generator (each unit
 must receive the datagrams itself), both producing one exchange to a socket the scenario reads.
 Each trial kills the leader (SIGKILL) at T and times T -> the new leader's first datagram and

@@ -1,5 +1,5 @@
-// The command responder on UDP 7937 in the daemon (docs/protocol.md §9; README
-// "Commissioning").
+// The command responder on UDP 7937 in the daemon (docs/protocol.md §9;
+// docs/commissioning.md).
 
 #include <spdlog/spdlog.h>
 

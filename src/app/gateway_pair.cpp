@@ -1,4 +1,4 @@
-// A hot-standby pair (README "Redundancy"): the lease on its own connection, and the three
+// A hot-standby pair (docs/redundancy.md): the lease on its own connection, and the three
 // gates it keeps, one each: what the exchanges say north (the FanOut), what they produce (the
 // ProducerScheduler, through Exchanges' options) and the writes (the WriteDispatcher). And what
 // lets a takeover go on where the leader stopped: its images, published by the leader and

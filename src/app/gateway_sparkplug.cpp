@@ -1,6 +1,6 @@
 // The Sparkplug B edge node in the gateway (docs/sparkplug.md): the node on a connection of its
 // own, and, in a hot-standby pair, the session of the one edge node that only the leader holds
-// (README "Redundancy"). Its history is in gateway_history.cpp.
+// (docs/redundancy.md). Its history is in gateway_history.cpp.
 
 #include <spdlog/spdlog.h>
 

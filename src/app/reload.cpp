@@ -1,4 +1,4 @@
-// Building the exchanges, at start and on SIGHUP (README "Running it as a service", Reload): a
+// Building the exchanges, at start and on SIGHUP (docs/operations.md, Reload): a
 // valid new configuration is applied without dropping the MQTT session or unchanged exchanges;
 // added exchanges start, removed ones stop and their retained topics are cleared, changed ones
 // restart; the sections' live keys are applied (core/config/config_keys.hpp has every key's

@@ -131,7 +131,7 @@ TEST(PublishedWasSent, OnlyValuesThePlcSentPass) {
 
 TEST(SamplesOnceInOrder, ATakeoverWithItsHistoryHolds) {
     // 1-5 live from the old leader, 4-7 replayed by the new one, 8-10 live: 4 and 5 on both
-    // topics, as the README allows, each topic once and in order.
+    // topics, as docs/redundancy.md allows, each topic once and in order.
     std::vector<Published> published;
     for (std::int64_t n = 1; n <= 5; ++n) published.push_back(on("v", n, Millis(n * 20 + 5)));
     for (std::int64_t n = 4; n <= 7; ++n) published.push_back(on("h", n, 1200ms));

@@ -1,4 +1,4 @@
-// SIGHUP reloads, key by key (README "Running it as a service", Reload): a change is applied
+// SIGHUP reloads, key by key (docs/operations.md, Reload): a change is applied
 // whole (multicast groups left and joined on the running socket, publish settings without
 // restarting an exchange or cancelling a write, a new metrics interval at once) or, when a key
 // needs a restart, refused whole; the log names every changed key either way.

@@ -1,5 +1,5 @@
-// `eip2mqtt discover` against a hostile node on UDP 7937 (docs/protocol.md §9; README
-// "Security"): a fake node in the test answers with an identification full of terminal escape
+// `eip2mqtt discover` against a hostile node on UDP 7937 (docs/protocol.md §9;
+// docs/security.md): a fake node in the test answers with an identification full of terminal escape
 // sequences, a NAK whose text carries a newline and a line of YAML, and a Retrieve answer for
 // another exchange than the one asked. Nothing it told reaches the terminal or the skeleton
 // raw, and the answer for another exchange is not taken.

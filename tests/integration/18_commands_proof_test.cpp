@@ -1,5 +1,5 @@
 // The gateway's responder on UDP 7937 against reflection, amplification and forged sources
-// (docs/protocol.md §9.7; README "Security"), with the real binary: a requester that has not
+// (docs/protocol.md §9.7; docs/security.md), with the real binary: a requester that has not
 // proved its address gets no more bytes than it sent and writes nothing; one flooding source
 // does not starve another; a response with a bad version gets no NAK; `allow: []` answers
 // nobody; a write the value checks refuse is counted by its reason.

@@ -1,4 +1,4 @@
-// The gateway's responder on UDP 7937 (docs/protocol.md §9, README "Commissioning") with the
+// The gateway's responder on UDP 7937 (docs/protocol.md §9, docs/commissioning.md) with the
 // real binary: a Read returns what an MQTT write put in a produced exchange; a Write is refused
 // with writes off and changes nothing, and with writes on is applied, sent, echoed on MQTT and
 // answered after its datagram left; a source outside `allow` gets nothing; a flood over the

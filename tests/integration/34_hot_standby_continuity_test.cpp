@@ -1,4 +1,4 @@
-// A hot-standby pair goes on where its leader stopped (README "Redundancy"): two real gateways
+// A hot-standby pair goes on where its leader stopped (docs/redundancy.md): two real gateways
 // on one real Mosquitto, both with the same produced exchange sent to the test's socket. The
 // standby follows the images the leader publishes on the pair's topics, so the first datagram
 // of a new leader carries the last value written to the killed one. And where both units hear

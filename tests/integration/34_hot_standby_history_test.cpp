@@ -1,4 +1,4 @@
-// No sample lost across a takeover (README "Redundancy"): two real gateways on one real
+// No sample lost across a takeover (docs/redundancy.md): two real gateways on one real
 // Mosquitto, both consuming a counter the test sends to each of them every 20 ms, with
 // `mqtt.batch`. The leader is killed (SIGKILL) while the counter runs; for a takeover (1 s) no
 // one publishes, then the new leader publishes on `_history` what the old one had not had

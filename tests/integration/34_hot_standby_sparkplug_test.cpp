@@ -1,4 +1,4 @@
-// A hot-standby pair is one Sparkplug B edge node (README "Redundancy"): two real gateways on
+// A hot-standby pair is one Sparkplug B edge node (docs/redundancy.md): two real gateways on
 // one real Mosquitto, every Sparkplug message read by Eclipse Tahu's decoder. Only the leader
 // holds the node's session; the standby does not even connect it. When the leader is killed,
 // a host sees its session die (the NDEATH will, with the session's bdSeq), then the new

@@ -1,4 +1,4 @@
-// A hot-standby pair (README "Redundancy"): two real gateways on one real Mosquitto, both with
+// A hot-standby pair (docs/redundancy.md): two real gateways on one real Mosquitto, both with
 // the same produced exchange sent to the test's socket. One leads; when it is killed, stopped
 // and resumed, or cut off from the broker, the other takes over, and the capture shows the two
 // never produced at once: each unit numbers its datagrams with its own request ids, so the capture

@@ -1,4 +1,4 @@
-// Writes across a takeover of a hot-standby pair (README "Redundancy", "Writes"): two real
+// Writes across a takeover of a hot-standby pair (docs/redundancy.md, "Writes"): two real
 // gateways on one real Mosquitto, each reaching it through a proxy of its own that the test
 // stalls, as behind a dead switch. A write the leader accepted and queued for its next datagram
 // (a period of 20 s) is answered once, by one unit, even when the leader is cut off with it.

@@ -1,5 +1,5 @@
 // What the binary loads at start: libraries only some commands use are loaded by them, so that
-// a running gateway keeps none of their pages resident (README, Performance).
+// a running gateway keeps none of their pages resident (docs/performance.md).
 
 #include <gtest/gtest.h>
 

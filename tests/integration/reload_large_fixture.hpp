@@ -44,7 +44,7 @@ inline std::string kept() {
         .str();
 }
 
-/// `exchanges` consumed exchanges of 100 dint tags each, written inline (as the README's
+/// `exchanges` consumed exchanges of 100 dint tags each, written inline (as docs/configuration.md's
 /// plant of 100,000 tags: 1,000 of them make 5.3 MB). With `unknown_key`, the last exchange
 /// carries a key no exchange has, so the file is refused once it is read whole.
 inline std::string plant(int exchanges, bool unknown_key = false) {

@@ -1,5 +1,5 @@
 #pragma once
-/// Checkers of a hot-standby pair's promises (README "Redundancy"), as pure functions over what a
+/// Checkers of a hot-standby pair's promises (docs/redundancy.md), as pure functions over what a
 /// test recorded: the datagrams captured on the segment, the samples the PLC sent, the MQTT
 /// messages, the writes and their answers, and the faults the test caused. No clock, no socket:
 /// every time is an offset from the start of the run, taken by the test as it recorded; each
@@ -98,7 +98,7 @@ std::vector<std::string> published_was_sent(const std::vector<Sent>& sent,
 
 /// The samples of `_values` and `_history`: each of `required` (samples delivered intact to
 /// both units, away from any fault) on one topic or the other at least once; never twice on one
-/// topic; never older than one before it on its topic. Excused, as the README and
+/// topic; never older than one before it on its topic. Excused, as docs/redundancy.md and
 /// docs/mqtt-api.md allow: what a unit had handed to its connection when a span of `disrupted`
 /// began (a broker path cut, stalled or stopped) may come again (QoS 1's repeat) or late, once
 /// the path is back. A unit that leads keeps handing samples to its connection until its lease

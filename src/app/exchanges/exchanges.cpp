@@ -1,4 +1,4 @@
-// The exchanges' life cycle (README "Running it as a service", Reload): a reload keeps the
+// The exchanges' life cycle (docs/operations.md, Reload): a reload keeps the
 // exchanges whose plan is unchanged, with their sequence, image and sockets, starts new and
 // changed ones and stops removed and changed ones; no write is left without an answer.
 

@@ -1,4 +1,4 @@
-// `eip.commands` (docs/protocol.md §9; README "Commissioning"): the responder's settings, their
+// `eip.commands` (docs/protocol.md §9; docs/commissioning.md): the responder's settings, their
 // defaults, and the errors a wrong value gets.
 
 #include <gtest/gtest.h>

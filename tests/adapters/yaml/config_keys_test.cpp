@@ -1,5 +1,5 @@
 // Every key of the configuration file has a reload rule, and a reload names a change to it
-// (README "Running it as a service", Reload). The loader accepts exactly the keys of
+// (docs/operations.md, Reload). The loader accepts exactly the keys of
 // core/config/config_keys.hpp; here each of them is changed alone in a file that writes every
 // key, and core::config::plan_reload must name that key, and nothing else, with its rule. A key
 // added to the table without an edit here fails EveryKeyOfTheTableIsEditedHere; one the loader

@@ -1,4 +1,4 @@
-// The `redundancy:` section (README "Redundancy"): read with its defaults, and every mistake
+// The `redundancy:` section (docs/redundancy.md): read with its defaults, and every mistake
 // reported at its line and column.
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The standby of a pair and the writes that reach it (README "Redundancy"): left to a live
+// The standby of a pair and the writes that reach it (docs/redundancy.md): left to a live
 // leader unanswered, refused `standby` when no leader answers, always refused on the command
 // port (this unit's own address), and taken as ever by the leader; at a takeover, those the old
 // leader never answered are settled: taken when the image holds what they write, else refused.

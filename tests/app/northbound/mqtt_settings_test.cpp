@@ -1,4 +1,4 @@
-// The MQTT client's options from the configuration (README "Configuration", mqtt section), and
+// The MQTT client's options from the configuration (docs/configuration.md, mqtt section), and
 // where the password comes from: never the YAML.
 
 #include "eip2mqtt/app/northbound/mqtt_settings.hpp"

@@ -1,4 +1,4 @@
-// The writes a standby left to the leader (README "Redundancy"): each kept until the leader's
+// The writes a standby left to the leader (docs/redundancy.md): each kept until the leader's
 // answer is heard, matched by topic and correlation data, oldest first; the response topics to
 // listen on follow what is kept; a takeover takes what was never answered, within the horizon.
 

@@ -1,4 +1,4 @@
-// What a reload changes, named key by key with its rule (README "Running it as a service",
+// What a reload changes, named key by key with its rule (docs/operations.md,
 // Reload). tests/adapters/yaml/config_keys_test.cpp walks every key of the file; these are the
 // plan's own rules: matching by name, additions and removals, tag order, the cap on names.
 

@@ -1,4 +1,4 @@
-// What a reload keeps, starts, stops and clears (README "Running it as a service", Reload),
+// What a reload keeps, starts, stops and clears (docs/operations.md, Reload),
 // decided from the plans alone.
 
 #include "eip2mqtt/core/plan/plan_diff.hpp"

@@ -1,8 +1,8 @@
 #pragma once
-/// What /healthz and /readyz answer on the metrics listener (README "Health"), worked out from
-/// the snapshots the gateway's loop hands the endpoint about once a second: a loop that stops
-/// handing them over is not live; the gateway is ready while MQTT is connected and no consumed
-/// exchange is stale.
+/// What /healthz and /readyz answer on the metrics listener (docs/operations.md, "Health"), worked
+/// out from the snapshots the gateway's loop hands the endpoint about once a second: a loop that
+/// stops handing them over is not live; the gateway is ready while MQTT is connected and no
+/// consumed exchange is stale.
 
 #include <chrono>
 #include <mutex>

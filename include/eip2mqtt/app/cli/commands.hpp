@@ -1,6 +1,6 @@
 #pragma once
-/// The commands of the `eip2mqtt` binary (README "Commands"). Each returns the process
-/// exit status.
+/// The commands of the `eip2mqtt` binary (docs/commissioning.md, "Commands"). Each returns the
+/// process exit status.
 
 #include <cstdint>
 #include <iosfwd>

@@ -1,7 +1,7 @@
 #pragma once
-/// The responder of the command protocol on UDP 7937 (docs/protocol.md §9; README
-/// "Commissioning"): answers each request from a source in `allow`, within the rate limits (per
-/// source, then overall: one budget for requesters that proved their address, one for those
+/// The responder of the command protocol on UDP 7937 (docs/protocol.md §9;
+/// docs/commissioning.md): answers each request from a source in `allow`, within the rate limits
+/// (per source, then overall: one budget for requesters that proved their address, one for those
 /// that did not), from views of the running exchanges taken when it comes. A requester that has
 /// not proved its address (§9.7) and is not `trusted` never gets more bytes than it sent, and
 /// its writes are not taken: it gets a challenge with the token to ask again with. Writes (with

@@ -54,7 +54,7 @@ public:
 
     /// The producers whose datagrams a standby of a pair follows: when one of their exchanges
     /// is heard while `follows(now)` says so, the producer's request ids continue after the
-    /// one heard (README "Redundancy"). Without a call, such datagrams are unknown as before.
+    /// one heard (docs/redundancy.md). Without a call, such datagrams are unknown as before.
     /// They must outlive their use here: call again before destroying any.
     void set_followed(std::span<const std::unique_ptr<ExchangeProducer>> producers,
                       std::function<bool(core::MonoTime now)> follows);

@@ -99,7 +99,7 @@ public:
     /// Reports every tag's value and the status again (after a reconnect).
     void republish(core::WallTime wall);
 
-    // --- A hot-standby pair (README "Redundancy") ------------------------------------------
+    // --- A hot-standby pair (docs/redundancy.md) ------------------------------------------
     using ImageChanged = std::function<void(const ExchangeProducer& producer)>;
     /// Called after a datagram left carrying an image that writes changed (the leader
     /// publishes it for the standby); unset: nothing is called.

@@ -72,7 +72,7 @@ public:
     Id add(Producible& producer, const core::exchange::ProductionSchedule& schedule);
     /// Stops producing and forgets the producer: nothing reaches it any more.
     void remove(Id id);
-    /// Whether datagrams may leave at a wake-up (the standby of a pair: README "Redundancy").
+    /// Whether datagrams may leave at a wake-up (the standby of a pair: docs/redundancy.md).
     /// While it says no, the due deadlines pass and nothing is produced: no image takes its
     /// queued writes, no request id is spent. Unset: always.
     void set_gate(std::function<bool(core::MonoTime now)> may_produce) {

@@ -31,7 +31,7 @@ public:
 
     void on_write(WriteRequest&& request) override;
 
-    /// What a unit of a hot-standby pair (README "Redundancy") asks of the writes that reach it.
+    /// What a unit of a hot-standby pair (docs/redundancy.md) asks of the writes that reach it.
     struct PairAdmission {
         /// Whether this unit takes a write now (unset: every write is).
         std::function<core::redundancy::WritePolicy()> policy;

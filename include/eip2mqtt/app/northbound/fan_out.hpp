@@ -17,7 +17,7 @@ class FanOut final : public Northbound {
 public:
     /// `northbound` must outlive the fan-out's use of it.
     void add(Northbound& northbound) { northbounds_.push_back(&northbound); }
-    /// The standby of a pair (README "Redundancy") says nothing of the exchanges: while `open`
+    /// The standby of a pair (docs/redundancy.md) says nothing of the exchanges: while `open`
     /// says no, samples, statuses and exchange states stop here. The running set, write results
     /// and the gateway's own metrics still pass. Unset: everything passes.
     void set_gate(std::function<bool()> open) { open_ = std::move(open); }

@@ -1,6 +1,6 @@
 #pragma once
 /// The MQTT client's options from the configuration: the client id's default, the session, TLS,
-/// and the password, which never comes from the YAML (README "Configuration"). Apart from
+/// and the password, which never comes from the YAML (docs/configuration.md). Apart from
 /// reading the password file, a pure function of the configuration.
 
 #include <functional>
@@ -43,7 +43,7 @@ adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& co
 adapters::mqtt::ClientOptions sparkplug_client_options(
     const core::config::Config& config, std::function<adapters::mqtt::Message()> will);
 
-/// Options of a pair's lease connection (README "Redundancy"): the same broker, credentials and
+/// Options of a pair's lease connection (docs/redundancy.md): the same broker, credentials and
 /// TLS, client id `{client id}-pair`, a clean session, session-bound (a renewal queued while
 /// disconnected would be stale when sent), `will` its last will. Its own connection, so that a
 /// renewal never waits behind the tag tree's queue.

@@ -1,5 +1,5 @@
 #pragma once
-/// The Sparkplug node's way to its connection in a pair (README "Redundancy"): publications pass
+/// The Sparkplug node's way to its connection in a pair (docs/redundancy.md): publications pass
 /// only while this unit leads. The edge node's session is the leader's alone, and a leader is
 /// fenced from the instant its lease lapses (hung, or cut off from the broker), before its next
 /// tick ends the session: what the node says meanwhile (its metrics' NDATA, a rebirth) is

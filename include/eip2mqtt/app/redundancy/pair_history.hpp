@@ -1,5 +1,5 @@
 #pragma once
-/// A pair's samples across a takeover (README "Redundancy"), so that a subscriber of `_values`
+/// A pair's samples across a takeover (docs/redundancy.md), so that a subscriber of `_values`
 /// and `_history` gets every sample:
 /// - Both units keep each consumed exchange's last samples in a window
 ///   (core/redundancy/sample_window.hpp), as the exchange reports them, leading or not: the

@@ -1,5 +1,5 @@
 #pragma once
-/// A pair's produced images at run time (README "Redundancy"): the leader publishes, on the
+/// A pair's produced images at run time (docs/redundancy.md): the leader publishes, on the
 /// pair's own connection, the image of each produced exchange whenever writes changed it
 /// (retained, QoS 1, a topic per exchange, so the newest image wins in the queue and on the
 /// broker); the standby reads them and takes each one the rules allow

@@ -1,5 +1,5 @@
 #pragma once
-/// The lease of a hot-standby pair at run time (README "Redundancy"): the core's Lease
+/// The lease of a hot-standby pair at run time (docs/redundancy.md): the core's Lease
 /// (core/redundancy/lease.hpp, where its rules are) fed from the pair's own MQTT connection. It
 /// reads the retained leader topic, publishes this unit's claims and renewals there (retained,
 /// QoS 1: a renewal counts once the broker acknowledged it), and says on the unit's role topic,

@@ -1,5 +1,5 @@
 #pragma once
-/// The writes a pair's standby left to the leader (README "Redundancy", "Writes"), each kept
+/// The writes a pair's standby left to the leader (docs/redundancy.md, "Writes"), each kept
 /// until the standby hears the leader's answer to it on the broker: the JSON tree's connection,
 /// the one the writes come by, listens where writes are answered, `{set topic}/result` and
 /// each left write's MQTT 5 response topic (response_topics(); JsonTree::set_answer_listener).

@@ -181,7 +181,7 @@ struct SparkplugSection {
     bool enabled() const { return !group_id.empty(); }
 };
 
-/// `redundancy:`: two gateways, one leading and one standing by (README, "Redundancy").
+/// `redundancy:`: two gateways, one leading and one standing by (docs/redundancy.md).
 struct RedundancySection {
     std::string pair;  ///< the same on both units; empty: no pair
     /// The standby takes over this long after it last heard the leader.
@@ -209,7 +209,7 @@ struct Config {
 };
 
 /// The Sparkplug edge node's id: `sparkplug.edge_node_id`; by default the pair's name in a
-/// pair, whose two units are one edge node (README "Redundancy"), else `gateway.id`.
+/// pair, whose two units are one edge node (docs/redundancy.md), else `gateway.id`.
 inline const std::string& sparkplug_node_id(const Config& config) {
     if (!config.sparkplug.edge_node_id.empty()) return config.sparkplug.edge_node_id;
     return config.redundancy.enabled() ? config.redundancy.pair : config.gateway.id;

@@ -1,5 +1,5 @@
 #pragma once
-/// How much of a reload's publishing one turn of the loop takes (README "Reliability": a reload
+/// How much of a reload's publishing one turn of the loop takes (docs/reliability.md: a reload
 /// that adds or removes a plant never stops the loop for much longer than a tick). Applying a
 /// reload publishes in slices, the loop receiving and producing between two: clearing the
 /// retained topics of removed exchanges and describing the new ones (app/reload.cpp).

@@ -1,5 +1,5 @@
 #pragma once
-/// The leader's side of a pair's watermark (README "Redundancy"): for each consumed exchange,
+/// The leader's side of a pair's watermark (docs/redundancy.md): for each consumed exchange,
 /// the newest of its samples whose publication the broker acknowledged, which the leader's
 /// renewals carry, so that a standby taking over publishes on `_history` only what came after.
 /// "Newest" is the order of publication, whatever order the acknowledgements come in (a

@@ -1,5 +1,5 @@
 #pragma once
-/// What names a write's answer alike on both units of a pair (README "Redundancy",
+/// What names a write's answer alike on both units of a pair (docs/redundancy.md,
 /// "Writes"): both receive the same MQTT write, so its response topic and correlation data are
 /// the same on both. The leader lists the keys of the writes it answered in its images, so a
 /// standby taking over knows them answered even when it never heard the answers themselves.

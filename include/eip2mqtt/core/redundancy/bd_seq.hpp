@@ -1,5 +1,5 @@
 #pragma once
-/// The Sparkplug session of a pair (README "Redundancy"): the two units are one edge node, and
+/// The Sparkplug session of a pair (docs/redundancy.md): the two units are one edge node, and
 /// only the leader holds its session. A unit that takes the lead opens a new one, whose bdSeq a
 /// Sparkplug host must see differ from the old leader's: the old session's NDEATH, should the
 /// broker deliver it late (a leader cut off from the broker, whose will fires once its

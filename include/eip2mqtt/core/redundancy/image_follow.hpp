@@ -1,5 +1,5 @@
 #pragma once
-/// The standby's side of a pair's produced images (README "Redundancy"): the leader publishes
+/// The standby's side of a pair's produced images (docs/redundancy.md): the leader publishes
 /// the image of each produced exchange whenever a write changed it, and the standby judges each
 /// one it reads before it takes it into its own producer, so that its first datagram after a
 /// takeover carries the last written values. Pure: the unit's state is passed in.

@@ -1,7 +1,7 @@
 #pragma once
-/// What names a consumed exchange's sample alike on both units of a pair (README
-/// "Redundancy"): both receive the same datagrams, so the datagram's own header, its request id
-/// and its producer's timestamp, is the same on both, where the time each unit received it, and
+/// What names a consumed exchange's sample alike on both units of a pair
+/// (docs/redundancy.md): both receive the same datagrams, so the datagram's own header, its request
+/// id and its producer's timestamp, is the same on both, where the time each unit received it, and
 /// so the timestamp it publishes with the receive-time clock, is not. The pair's watermark (the
 /// newest sample the leader had acknowledged) and the standby's window of samples are told
 /// apart in these terms (docs/architecture.md, "The watermark").

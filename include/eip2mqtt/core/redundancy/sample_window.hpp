@@ -1,5 +1,5 @@
 #pragma once
-/// The standby's memory of a consumed exchange's last samples (README "Redundancy"): every
+/// The standby's memory of a consumed exchange's last samples (docs/redundancy.md): every
 /// sample the exchange reported, in the order it reported them, for a bounded time, so that
 /// after a takeover the new leader can publish on `_history` those its leader had not had
 /// acknowledged (`after`). Pure: the time is passed in.

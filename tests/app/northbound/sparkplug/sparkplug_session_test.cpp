@@ -1,4 +1,4 @@
-// The edge node's session in a hot-standby pair (README "Redundancy"): the leader opens it with
+// The edge node's session in a hot-standby pair (docs/redundancy.md): the leader opens it with
 // a bdSeq other than that of the pair's last session, and a leader that steps down ends it,
 // publishing nothing more until its next connection's births.
 

@@ -50,7 +50,7 @@ public:
     const JsonTreeOptions& options() const { return options_; }
     using AnswerHeard = std::function<void(const adapters::mqtt::Incoming& answer)>;
     using AnswerTopics = std::function<std::vector<std::string>()>;
-    /// A unit of a pair (README "Redundancy"): its connection also listens where writes are
+    /// A unit of a pair (docs/redundancy.md): its connection also listens where writes are
     /// answered, `{set topic}/result` and the topics `topics` names (the response topics of
     /// the writes the standby left: redundancy::PairWrites), and hands what it hears there to
     /// `heard`. On the connection the writes come by, a write arrives before its answer, and
@@ -69,7 +69,7 @@ public:
         repeat_on_values_ = false;
     }
     using SampleToken = std::function<std::uint64_t(const SampleBatch& batch)>;
-    /// With a pair (README "Redundancy"): `token` gives the acknowledgement token of the
+    /// With a pair (docs/redundancy.md): `token` gives the acknowledgement token of the
     /// publication of each sample a batch names (SampleBatch::key): its `_values`, or without
     /// mqtt.batch the last of its tag topics, so that the leader learns which samples the broker
     /// has (app/redundancy/pair_history). And, as with store and forward, a republish (a

@@ -74,7 +74,7 @@ public:
     /// the same bdSeq. Each connection made takes the next bdSeq (0-255, then 0 again); an
     /// attempt that failed leaves it as it was.
     adapters::mqtt::Message next_will();
-    /// A pair's leader opens the one edge node's session (README "Redundancy"): the next will
+    /// A pair's leader opens the one edge node's session (docs/redundancy.md): the next will
     /// takes a bdSeq other than that of the pair's last session, one more than `heard` (the
     /// last one this unit read in a leader record; core/redundancy/bd_seq.hpp).
     void begin_session(std::optional<std::uint8_t> heard);
