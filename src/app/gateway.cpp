@@ -11,6 +11,7 @@
 
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/adapters/clock/system_clock.hpp"
+#include "eip2mqtt/app/command_port/command_port.hpp"
 #include "eip2mqtt/app/northbound/mqtt_settings.hpp"
 #include "eip2mqtt/core/redundancy/acked_watermarks.hpp"
 #include "eip2mqtt/core/wire/decode.hpp"
@@ -63,14 +64,7 @@ Gateway::Gateway(core::config::Config config)
               adapters::clock::system_clock()),
       exchanges_(loop_.get_executor(), exchanges_options(config_, pair_options()), northbound_,
                  writes_.image_saves()),
-      reload_timer_(loop_),
-      reloads_(parse_reload, [this](ParseResult parsed) {
-          // Held by a pointer: the handler moves cheaply (and GCC 12 sees no variant to warn on).
-          boost::asio::post(loop_,
-                            [this, parsed = std::make_shared<ParseResult>(std::move(parsed))] {
-                                on_reload_parsed(std::move(*parsed));
-                            });
-      }) {
+      reloads_(loop_.get_executor(), *this, adapters::clock::system_clock()) {
     auto mqtt_options = mqtt_client_options(config_, availability_topic_);
     if (config_.redundancy.enabled()) {
         // The unit's own topics (state, metrics, role) and the exchanges' `_meta` are said by
@@ -91,12 +85,13 @@ Gateway::Gateway(core::config::Config config)
     if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*json_tree_);
     make_sparkplug();
     make_pair();
-    exchanges_.apply(take_plans(config_), std::chrono::steady_clock::now(),
+    exchanges_.apply(reload::take_plans(config_), std::chrono::steady_clock::now(),
                      std::chrono::system_clock::now());
 
     receiver_ = std::make_unique<adapters::udp::Receiver>(loop_.get_executor(),
                                                           receiver_options(config_.eip));
-    make_commands();
+    add(command_port::make_command_port(config_, loop_.get_executor(), exchanges_, writes_,
+                                        adapters::clock::system_clock()));
     if (!config_.metrics.listen.empty()) {
         prometheus_ =
             std::make_unique<adapters::metrics::PrometheusEndpoint>(config_.metrics.listen);
@@ -126,7 +121,7 @@ int Gateway::run() {
     reloads_.stop();
     spdlog::info("stopping: flushing publications and publishing offline");
     receiver_->stop();
-    if (command_socket_) command_socket_->stop();
+    for (auto it = modules_.rbegin(); it != modules_.rend(); ++it) (*it)->stop();
     // The last saves reach the disk, and their write results the MQTT queue before it flushes.
     exchanges_.stop();
     // The retained topics a reload under way had yet to clear, before the connection ends.
@@ -156,13 +151,7 @@ void Gateway::start() {
                             bool truncated) {
         exchanges_.route(bytes, from, truncated, std::chrono::steady_clock::now());
     });
-    if (command_socket_) {
-        command_socket_->start(
-            [this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from) {
-                commands_->on_datagram(bytes, from, std::chrono::steady_clock::now(),
-                                       std::chrono::system_clock::now());
-            });
-    }
+    for (auto& module : modules_) module->start(started_at_);
     mqtt_->start();
     start_pair();
     if (sparkplug_mqtt_) {
@@ -198,13 +187,28 @@ void Gateway::start() {
     notifier_.ready(status_line());
 }
 
+void Gateway::add(std::unique_ptr<Module> module) {
+    if (module) modules_.push_back(std::move(module));
+}
+
+MetricsSources Gateway::metrics_sources(const adapters::mqtt::ClientStats& mqtt,
+                                        const history::HistoryStats* history) const {
+    MetricsSources sources{exchanges_.datagram_counters(), writes_.counters(), mqtt, history};
+    sources.sparkplug = sparkplug_ ? &sparkplug_->stats() : nullptr;
+    sources.pair_images = pair_images_ ? &pair_images_->counters() : nullptr;
+    sources.pair_history = pair_history_ ? &pair_history_->counters() : nullptr;
+    sources.pair_writes = pair_writes_ ? &pair_writes_->counters() : nullptr;
+    for (const auto& module : modules_) module->add_metrics(sources);
+    return sources;
+}
+
 void Gateway::wait_signal() {
     // Signals only reach the loop through the signal_set: handlers run here, between two
     // events, never in signal context (mosquitto's signals.c sets flags for the same reason).
     signals_.async_wait([this](const boost::system::error_code& error, int signo) {
         if (error) return;
         if (signo == SIGHUP) {
-            reload();
+            reloads_.request();
             wait_signal();
             return;
         }
@@ -273,7 +277,7 @@ void Gateway::on_tick() {
     }
     exchanges_.tick(now, wall, refresh_scan);
     json_tree_->publish_due_meta();
-    if (commands_) commands_->flush_log(now);
+    for (auto& module : modules_) module->tick({now, wall, refresh_scan});
     loop_watch_.flush(now);
 }
 

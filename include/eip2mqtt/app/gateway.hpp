@@ -25,16 +25,14 @@
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 #include "eip2mqtt/adapters/state/state_dir_lock.hpp"
 #include "eip2mqtt/adapters/systemd/notifier.hpp"
-#include "eip2mqtt/adapters/udp/command_socket.hpp"
 #include "eip2mqtt/adapters/udp/receiver.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
-#include "eip2mqtt/app/command_port/command_responder.hpp"
-#include "eip2mqtt/app/command_port/command_views.hpp"
 #include "eip2mqtt/app/exchanges/exchanges.hpp"
 #include "eip2mqtt/app/exchanges/write_dispatcher.hpp"
 #include "eip2mqtt/app/health/gateway_metrics.hpp"
 #include "eip2mqtt/app/health/loop_watch.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
+#include "eip2mqtt/app/module.hpp"
 #include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
@@ -44,13 +42,13 @@
 #include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/redundancy/pair_lease.hpp"
 #include "eip2mqtt/app/redundancy/pair_writes.hpp"
-#include "eip2mqtt/app/reload/reload_worker.hpp"
+#include "eip2mqtt/app/reload/reload_sequence.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::app {
 
-class Gateway {
+class Gateway final : private reload::ReloadTarget {
 public:
     /// Builds every adapter from a validated configuration; throws std::exception on start-up
     /// failures (a port that cannot be bound, an unreadable password file).
@@ -77,42 +75,25 @@ private:
     /// Runs `event` (the node's connection, a message or an acknowledgement for it, its tick);
     /// once the node is born by it, its replay of history starts.
     void on_sparkplug_event(bool connection, const std::function<void()>& event);
-    /// The plans of `config`'s exchanges, for Exchanges::apply. The exchange configs (every tag
-    /// again, with the marks of its keys) served validation only: they are released here.
-    static std::vector<core::plan::ExchangePlan> take_plans(core::config::Config& config);
     /// The new exchanges of a reload applied, the outcome counted; returns the line that
     /// logs it once the reload is done.
     std::string apply_plans(std::vector<core::plan::ExchangePlan> plans);
     /// Every running exchange's retained state again, and the JSON tree's `_meta` topics.
     void republish_exchanges();
-    /// SIGHUP: the file is handed to reloads_, which reads and checks it off the loop; a
-    /// SIGHUP while it parses has it parsed again once that parse ends (ReloadWorker::request).
-    void reload();
-    /// ReloadWorker::Parse, on the worker's thread: the file loaded, its plans made.
-    static ParseResult parse_reload(const std::string& path, std::stop_token stop);
-    /// A parse's result, on the loop: started (start_reload), or, while another is applied,
-    /// kept until that one ends.
-    void on_reload_parsed(ParseResult parsed);
-    /// A result and how long its parse took.
-    struct ParsedReload {
-        ParseResult result;
-        std::chrono::steady_clock::duration parse_took;
-    };
-    /// Applied (apply_reload), its publications made in slices (continue_reload), then
-    /// end_reload.
-    void start_reload(ParsedReload parsed);
+    // reload::ReloadTarget
+    const std::string& file() const override { return config_.file; }
+    void reloading() override { notifier_.reloading(); }
     /// A valid new file is applied whole, or refused whole (errors, or a change that needs a
     /// restart: core::config::plan_reload), the log naming each changed key. Leaves the
     /// publications of the change (retained topics cleared, new descriptions) to
-    /// continue_reload.
-    void apply_reload(ParseResult parsed);
-    /// One slice of the reload's publications (JsonTree::publish_changes), bounded by
-    /// core::config::slice_units; the next one posted, or after a tick while the publish queue
-    /// is half full. Once none is left, end_reload.
-    void continue_reload();
-    /// The heap released, the outcome logged; READY once no other reload is under way; the
-    /// next result that waited applied.
-    void end_reload();
+    /// publish_changes.
+    bool apply(ParseResult parsed, std::vector<std::string>& outcome) override;
+    bool changes_pending() const override;
+    void publish_changes(std::size_t units) override;
+    core::config::PublishQueueRoom queue_room() const override;
+    void ready() override { notifier_.ready(status_line()); }
+    bool stopping() const override { return stopping_; }
+
     /// The live settings of the sections (`next` against config_, before it replaces it):
     /// multicast groups, log level, publish settings, MQTT buffers. False, with nothing
     /// changed, when the multicast groups cannot be joined.
@@ -154,8 +135,8 @@ private:
     void refresh_leading_until();
     /// Whether produced exchanges may send now: always without a pair.
     bool may_produce(core::MonoTime now) const { return !pair_ || pair_->may_produce(now); }
-    /// With `eip.commands.enabled`: the command port and its responder (gateway_commands.cpp).
-    void make_commands();
+    /// A module the configuration makes (null: one it leaves out).
+    void add(std::unique_ptr<Module> module);
     /// The figures the metrics are made of, borrowed for one call.
     MetricsSources metrics_sources(const adapters::mqtt::ClientStats& mqtt,
                                    const history::HistoryStats* history) const;
@@ -204,33 +185,16 @@ private:
     std::unique_ptr<redundancy::PairHistory> pair_history_;
     Exchanges exchanges_;
     std::unique_ptr<adapters::udp::Receiver> receiver_;
-    CommandViewContext command_context_;
-    std::unique_ptr<CommandResponder> commands_;                    ///< with eip.commands.enabled
-    std::unique_ptr<adapters::udp::CommandSocket> command_socket_;  ///< with commands_
+    /// The modules, in dependency order: started and ticked in it, stopped in reverse.
+    std::vector<std::unique_ptr<Module>> modules_;
     std::unique_ptr<adapters::metrics::PrometheusEndpoint> prometheus_;
 
     core::MonoTime started_at_;
     core::MonoTime last_refresh_scan_;
     bool stopping_ = false;
-    /// Results the loop still waits for from reloads_ (or has, waiting in reloads_parsed_),
-    /// and when the last reload started.
-    int reloads_pending_ = 0;
-    core::MonoTime reload_requested_at_;
-    /// The reload being applied, from its result on the loop to end_reload.
-    struct ReloadApply {
-        core::MonoTime applying_from;
-        std::chrono::steady_clock::duration parse_took;
-        std::vector<std::string> outcome;  ///< info lines, logged once it is done
-        bool applied = false;              ///< the heap is released at the end
-        int slices = 0;
-        std::chrono::steady_clock::duration longest_slice{};
-    };
-    std::optional<ReloadApply> reload_apply_;
-    std::deque<ParsedReload> reloads_parsed_;  ///< arrived while reload_apply_ was under way
-    boost::asio::steady_timer reload_timer_;   ///< waits for the publish queue to drain
-    /// Last: its thread is stopped and joined first when the gateway dies, before anything
-    /// its results reach (they are posted to the loop).
-    ReloadWorker reloads_;
+    /// Last: its worker's thread is stopped and joined first when the gateway dies, before
+    /// anything its results reach (they are posted to the loop).
+    reload::ReloadSequence reloads_;
 };
 
 }  // namespace eip2mqtt::app

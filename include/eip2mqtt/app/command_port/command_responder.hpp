@@ -74,6 +74,7 @@ public:
     void flush_log(core::MonoTime now);
 
     const core::command::CommandCounters& counters() const { return counters_; }
+    const CommandPolicy& policy() const { return policy_; }
     /// The token `address` proves itself with at `now`.
     std::uint32_t token_for_test(std::uint32_t address, core::MonoTime now) const {
         return proof_.token(address, now);
