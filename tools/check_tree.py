@@ -6,7 +6,7 @@ app source, file and function lengths. Prints one line per rule, OK or FAIL, its
 offenders (--json: the same as one JSON document).
 
 The exit status is 1 when a rule of the enforced set fails (ENFORCED below, or --enforce), 2
-when the tree cannot be measured (no ctags). Python 3, stdlib only, and Universal Ctags
+when the tree cannot be measured (no ctags) or a rule named is unknown. Python 3, stdlib only, and Universal Ctags
 (Debian's universal-ctags) for the declarations: class members, where member functions are
 defined, where functions end.
 
@@ -574,8 +574,9 @@ def parse_rules(text):
         matched = [rule_id for rule_id, group, _ in RULES
                    if item == rule_id or item == str(group)]
         if not matched:
-            raise SystemExit(f"check_tree.py: no rule {item!r}; rules: " +
-                             ", ".join(rule_id for rule_id, _, _ in RULES))
+            print(f"check_tree.py: no rule {item!r}; rules: " +
+                  ", ".join(rule_id for rule_id, _, _ in RULES), file=sys.stderr)
+            raise SystemExit(2)
         chosen += [m for m in matched if m not in chosen]
     return chosen
 
@@ -596,6 +597,12 @@ def main():
         print("check_tree.py: ctags not found (Debian: universal-ctags)", file=sys.stderr)
         return 2
     tree = Tree(args.root.resolve())
+    try:
+        tree.tags()
+    except subprocess.CalledProcessError as e:
+        print(f"check_tree.py: ctags failed (Universal Ctags needed): {e.stderr.strip()}",
+              file=sys.stderr)
+        return 2
     results = {rule_id: Result(rule_id, group, title) for rule_id, group, title in RULES}
     for check in CHECKS:
         check(tree, results)
