@@ -12,7 +12,7 @@ packages=(
   libgtest-dev libgmock-dev
   mosquitto mosquitto-clients
   clang libclang-rt-14-dev tshark systemd openssl iproute2 iptables
-  python3 python3-jsonschema nodejs
+  python3 python3-jsonschema nodejs universal-ctags
   lintian stress-ng
 )
 

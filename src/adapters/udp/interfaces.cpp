@@ -44,8 +44,8 @@ std::vector<std::uint32_t> local_broadcast_addresses() {
     return addresses;
 }
 
-std::vector<core::command::Subnet> local_subnets(std::uint32_t bind) {
-    std::vector<core::command::Subnet> subnets;
+std::vector<core::net::Subnet> local_subnets(std::uint32_t bind) {
+    std::vector<core::net::Subnet> subnets;
     ifaddrs* list = nullptr;
     if (::getifaddrs(&list) != 0) return subnets;
     for (const ifaddrs* entry = list; entry != nullptr; entry = entry->ifa_next) {
@@ -56,7 +56,7 @@ std::vector<core::command::Subnet> local_subnets(std::uint32_t bind) {
         const auto address = ipv4_of(entry->ifa_addr);
         if (bind != 0 && address != bind) continue;
         const auto mask = ipv4_of(entry->ifa_netmask);
-        const core::command::Subnet subnet{address & mask, prefix_of(mask)};
+        const core::net::Subnet subnet{address & mask, prefix_of(mask)};
         if (std::find(subnets.begin(), subnets.end(), subnet) == subnets.end()) {
             subnets.push_back(subnet);
         }

@@ -312,9 +312,9 @@ void Loader::read_commands(const Node& node, const Mark& at, Config& config) {
              });
 }
 
-std::vector<core::command::Subnet> Loader::subnets(const Node& value, const std::string& key,
-                                                   const Mark& at) {
-    std::vector<core::command::Subnet> out;
+std::vector<core::net::Subnet> Loader::subnets(const Node& value, const std::string& key,
+                                               const Mark& at) {
+    std::vector<core::net::Subnet> out;
     if (!value.is_sequence()) {
         error(at, "expected a list of subnets for " + in_quotes(key) + " (10.20.0.0/24)");
         return out;
@@ -323,7 +323,7 @@ std::vector<core::command::Subnet> Loader::subnets(const Node& value, const std:
         const Node item = value.item(i);
         const auto s = text(item, key, mark(item));
         if (!s) continue;
-        if (const auto subnet = core::command::parse_subnet(*s)) {
+        if (const auto subnet = core::net::parse_subnet(*s)) {
             out.push_back(*subnet);
         } else {
             error(mark(item), key + " " + in_quotes(*s) + " is not an IPv4 subnet (10.20.0.0/24)");

@@ -7,17 +7,17 @@
 #include <string>
 
 #include "app/cli/detail/command_requester.hpp"
+#include "eip2mqtt/adapters/yaml/discovered_skeleton.hpp"
 #include "eip2mqtt/app/cli/commands.hpp"
 #include "eip2mqtt/app/logging.hpp"
-#include "eip2mqtt/core/config/discovered_skeleton.hpp"
 #include "eip2mqtt/core/printable.hpp"
 
 namespace eip2mqtt::app {
 namespace {
 
+using adapters::yaml::DiscoveredExchange;
+using adapters::yaml::DiscoveredNode;
 using core::command::ExchangeMode;
-using core::config::DiscoveredExchange;
-using core::config::DiscoveredNode;
 
 // Every page of the Summary, from index 0 until the node's total or the index's last value.
 void list_exchanges(detail::CommandRequester& requester, const adapters::udp::Endpoint& node,
@@ -144,7 +144,7 @@ int run_discover(const DiscoverOptions& options, std::ostream& out, std::ostream
         all = all && complete(found.back());
         if (!options.yaml) print_node(found.back(), out);
     }
-    if (options.yaml) out << core::config::discovered_skeleton(found);
+    if (options.yaml) out << adapters::yaml::discovered_skeleton(found);
     return all ? 0 : 1;
 }
 

@@ -28,8 +28,8 @@
 #include "eip2mqtt/adapters/udp/interfaces.hpp"
 #include "eip2mqtt/adapters/udp/multicast.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
+#include "eip2mqtt/adapters/yaml/skeleton.hpp"
 #include "eip2mqtt/app/cli/commands.hpp"
-#include "eip2mqtt/core/config/skeleton.hpp"
 #include "eip2mqtt/core/exchange/arrival_stats.hpp"
 #include "eip2mqtt/core/exchange/wire_survey.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
@@ -243,7 +243,7 @@ public:
         for (const auto& exchange : exchanges_) {
             if (exchange.survey) summaries.push_back(exchange.survey->summary());
         }
-        out_ << '\n' << core::config::yaml_skeleton(summaries) << std::flush;
+        out_ << '\n' << adapters::yaml::yaml_skeleton(summaries) << std::flush;
     }
 
 private:

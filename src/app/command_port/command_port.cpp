@@ -13,11 +13,11 @@
 namespace eip2mqtt::app::command_port {
 namespace {
 
-std::string describe(const std::vector<core::command::Subnet>& subnets) {
+std::string describe(const std::vector<core::net::Subnet>& subnets) {
     std::string text;
     for (const auto& subnet : subnets) {
         if (!text.empty()) text += ", ";
-        text += core::command::to_string(subnet);
+        text += core::net::to_string(subnet);
     }
     return text.empty() ? "nobody" : text;
 }

@@ -36,8 +36,8 @@ core::command::ProofKey random_key() {
 
 CommandPolicy command_policy(const core::config::Config& config) {
     const auto& commands = config.eip.commands;
-    CommandPolicy policy{commands.allow.value_or(std::vector<core::command::Subnet>{}),
-                         commands.writes, commands.max_requests_per_s, commands.trusted,
+    CommandPolicy policy{commands.allow.value_or(std::vector<core::net::Subnet>{}), commands.writes,
+                         commands.max_requests_per_s, commands.trusted,
                          commands.max_requests_per_s_per_source};
     if (!commands.allow) {
         policy.allow =
@@ -76,13 +76,13 @@ void CommandResponder::on_datagram(std::span<const std::byte> datagram,
                                    const adapters::udp::Endpoint& from, core::MonoTime now,
                                    core::WallTime wall) {
     // Who may ask comes first, then how often: a source outside `allow` spends no token.
-    if (!core::command::allowed(policy_.allow, from.address)) {
+    if (!core::net::allowed(policy_.allow, from.address)) {
         ++counters_.refused;
         return log("refused a command datagram from a source outside eip.commands.allow", from,
                    now);
     }
     const Asker asker{from,
-                      core::command::allowed(policy_.trusted, from.address) ||
+                      core::net::allowed(policy_.trusted, from.address) ||
                           proof_.proves(datagram, from.address, now),
                       datagram.size()};
     if (!within_limits(asker, now)) return;

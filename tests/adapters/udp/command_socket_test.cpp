@@ -76,8 +76,8 @@ TEST_F(CommandSocketTest, ThePortIsOwned) {
 TEST(LocalSubnets, LoopbackHoldsItsOwnSubnet) {
     const auto subnets = local_subnets(loopback);
     ASSERT_FALSE(subnets.empty());
-    EXPECT_TRUE(core::command::allowed(subnets, loopback));
-    EXPECT_TRUE(core::command::allowed(local_subnets(0), loopback));
+    EXPECT_TRUE(core::net::allowed(subnets, loopback));
+    EXPECT_TRUE(core::net::allowed(local_subnets(0), loopback));
     // 198.51.100.1 (TEST-NET-2) is no interface's.
     EXPECT_TRUE(local_subnets(0xC6336401).empty());
 }

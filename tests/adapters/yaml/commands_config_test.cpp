@@ -58,12 +58,12 @@ TEST(CommandsConfig, EveryKeyIsRead) {
     EXPECT_EQ(commands.port, 17937);
     ASSERT_TRUE(commands.allow.has_value());
     ASSERT_EQ(commands.allow->size(), 2u);
-    EXPECT_EQ(core::command::to_string((*commands.allow)[0]), "10.20.0.0/24");
-    EXPECT_EQ(core::command::to_string((*commands.allow)[1]), "192.168.1.5/32");
+    EXPECT_EQ(core::net::to_string((*commands.allow)[0]), "10.20.0.0/24");
+    EXPECT_EQ(core::net::to_string((*commands.allow)[1]), "192.168.1.5/32");
     EXPECT_TRUE(commands.writes);
     EXPECT_EQ(commands.max_requests_per_s, 20u);
     ASSERT_EQ(commands.trusted.size(), 1u);
-    EXPECT_EQ(core::command::to_string(commands.trusted[0]), "10.20.0.9/32");
+    EXPECT_EQ(core::net::to_string(commands.trusted[0]), "10.20.0.9/32");
     EXPECT_EQ(commands.max_requests_per_s_per_source, 5u);
 }
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/adapters/yaml/discovered_skeleton.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
-#include "eip2mqtt/core/config/discovered_skeleton.hpp"
-#include "eip2mqtt/core/config/skeleton.hpp"
+#include "eip2mqtt/adapters/yaml/skeleton.hpp"
 
 namespace eip2mqtt::adapters::yaml {
 namespace {
@@ -43,7 +43,7 @@ TEST(SkeletonLoad, TheSkeletonOfSniffedExchangesIsAValidConfiguration) {
     bare.datagrams = 1;
     const std::vector<core::exchange::WireSummary> summaries{turbine, bare};
 
-    const auto text = sections + core::config::yaml_skeleton(summaries);
+    const auto text = sections + adapters::yaml::yaml_skeleton(summaries);
     const auto loaded = load_config_text(text, "skeleton.yaml");
     ASSERT_TRUE(loaded.ok()) << dump(loaded.error()) << text;
     const auto plans = core::config::make_plans(loaded.value());
@@ -80,7 +80,7 @@ TEST(SkeletonLoad, AnExchangeWithALengthAndNoTagsIsValidWhateverItsTagsKey) {
 }
 
 TEST(SkeletonLoad, TheSkeletonOfDiscoveredExchangesIsAValidConfiguration) {
-    core::config::DiscoveredNode node;
+    adapters::yaml::DiscoveredNode node;
     node.address = "10.20.0.7:7937";
     node.total = 2;
     for (const std::uint32_t id : {3u, 4u}) {
@@ -93,7 +93,7 @@ TEST(SkeletonLoad, TheSkeletonOfDiscoveredExchangesIsAValidConfiguration) {
         config.destination = 0x0A140001;
         node.exchanges.push_back({{config.key}, config, {}});
     }
-    const auto text = sections + core::config::discovered_skeleton(std::vector{node});
+    const auto text = sections + adapters::yaml::discovered_skeleton(std::vector{node});
     const auto loaded = load_config_text(text, "discovered.yaml");
     ASSERT_TRUE(loaded.ok()) << dump(loaded.error()) << text;
     const auto& exchanges = loaded.value().exchanges;

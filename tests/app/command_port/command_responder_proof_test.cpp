@@ -44,7 +44,7 @@ protected:
 
     CommandPolicy policy(bool writes = false, std::uint32_t rate = 100,
                          std::uint32_t per_source = 0) const {
-        return {{*core::command::parse_subnet("10.20.0.0/24")}, writes, rate, {}, per_source};
+        return {{*core::net::parse_subnet("10.20.0.0/24")}, writes, rate, {}, per_source};
     }
 
     CommandResponder make(CommandPolicy policy) {
@@ -190,7 +190,7 @@ TEST_F(CommandProofTest, AWriteTheValueChecksRefuseGoesToTheWriteHandlerWithItsR
 TEST_F(CommandProofTest, AllowWrittenEmptyAnswersNobody) {
     core::config::Config config;
     config.eip.bind = "127.0.0.1";
-    config.eip.commands.allow = std::vector<core::command::Subnet>{};
+    config.eip.commands.allow = std::vector<core::net::Subnet>{};
     EXPECT_TRUE(command_policy(config).allow.empty());
     auto responder = make(command_policy(config));
     ask(responder, test::from_hex(v::c5_summary_request), 0x7F000001);

@@ -38,7 +38,7 @@ protected:
 
     /// The requester's subnet allowed and trusted (answered without proving its address).
     CommandPolicy policy(bool writes = false, std::uint32_t rate = 100) const {
-        const auto subnet = *core::command::parse_subnet("10.20.0.0/24");
+        const auto subnet = *core::net::parse_subnet("10.20.0.0/24");
         return {{subnet}, writes, rate, {subnet}, 0};
     }
 
@@ -98,7 +98,7 @@ TEST_F(CommandResponderTest, ASourceOutsideAllowGetsNothingAndIsCounted) {
     EXPECT_EQ(responder.counters().refused, 2u);
     // A reload's new allow list applies to the next datagram.
     auto wider = policy();
-    wider.allow.push_back(*core::command::parse_subnet("10.21.0.0/16"));
+    wider.allow.push_back(*core::net::parse_subnet("10.21.0.0/16"));
     responder.set_policy(wider);
     ask(responder, v::c3_capabilities_request, stranger);
     EXPECT_EQ(sent_.size(), 1u);

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "eip2mqtt/core/command/subnet.hpp"
+#include "eip2mqtt/core/net/subnet.hpp"
 
 namespace eip2mqtt::adapters::udp {
 
@@ -17,6 +17,6 @@ std::vector<std::uint32_t> local_broadcast_addresses();
 /// The IPv4 subnet of each interface address `bind` (host byte order) names: the interface
 /// holding that address, or, for 0.0.0.0, every interface that is up. Empty when none does or
 /// the interfaces cannot be read.
-std::vector<core::command::Subnet> local_subnets(std::uint32_t bind);
+std::vector<core::net::Subnet> local_subnets(std::uint32_t bind);
 
 }  // namespace eip2mqtt::adapters::udp

@@ -47,7 +47,7 @@ struct DiscoverOptions {
 /// a table per node (producer id, exchange id, mode, period, length, destination, port,
 /// signature, state), saying which exchanges it could not retrieve and why, and a node that does
 /// not answer as such; with `yaml` instead the skeletons of the exchanges the nodes produce
-/// (core::config::discovered_skeleton), ready for `check`. Returns 0 when every node answered
+/// (adapters::yaml::discovered_skeleton), ready for `check`. Returns 0 when every node answered
 /// and every exchange was retrieved, 1 otherwise, 2 when a host does not resolve.
 int run_discover(const DiscoverOptions& options, std::ostream& out, std::ostream& err);
 
@@ -78,7 +78,7 @@ struct SniffOptions {
 /// configuration it also joins eip.multicast (a socket that joins and receives nothing), so the
 /// groups' traffic reaches the host. Returns when stopped, after `duration_s` or after `count`
 /// datagrams, with a last table; with `yaml`, then the YAML skeleton
-/// (core::config::yaml_skeleton) of every exchange seen that the configuration lacks, its
+/// (adapters::yaml::yaml_skeleton) of every exchange seen that the configuration lacks, its
 /// destinations read from the captured IP headers.
 int run_sniff(const SniffOptions& options, std::ostream& out);
 

@@ -26,8 +26,8 @@
 #include "eip2mqtt/core/command/answer.hpp"
 #include "eip2mqtt/core/command/command_counters.hpp"
 #include "eip2mqtt/core/command/source_limiter.hpp"
-#include "eip2mqtt/core/command/subnet.hpp"
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/net/subnet.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/rate_limiter.hpp"
@@ -36,11 +36,11 @@ namespace eip2mqtt::app {
 
 /// Who is answered, how often, and whether writes are: eip.commands, live on reload.
 struct CommandPolicy {
-    std::vector<core::command::Subnet> allow;  ///< resolved; empty: nobody
+    std::vector<core::net::Subnet> allow;  ///< resolved; empty: nobody
     bool writes = false;
     std::uint32_t max_requests_per_s = 100;
     /// Answered in full without proving their address (docs/protocol.md §9.7).
-    std::vector<core::command::Subnet> trusted;
+    std::vector<core::net::Subnet> trusted;
     std::uint32_t max_requests_per_s_per_source = 0;  ///< 0: no limit per source
 };
 

@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "eip2mqtt/core/command/subnet.hpp"
 #include "eip2mqtt/core/config/diagnostic.hpp"
 #include "eip2mqtt/core/enum_names.hpp"
+#include "eip2mqtt/core/net/subnet.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 
 namespace eip2mqtt::core::config {
@@ -124,10 +124,10 @@ struct CommandsSection {
     /// The requesters answered (an address filter: it authenticates no one). Not written: the
     /// subnets of `eip.bind`'s interfaces (resolved at start, when the interfaces are known);
     /// written empty (`allow: []`): nobody.
-    std::optional<std::vector<command::Subnet>> allow;
+    std::optional<std::vector<net::Subnet>> allow;
     /// Requesters answered in full without proving their address (§9.7): tools that cannot
     /// carry a token. A forged source inside them is answered in full, and may write.
-    std::vector<command::Subnet> trusted;
+    std::vector<net::Subnet> trusted;
     bool writes = false;  ///< Write and Masked Write; off: answered `not_permitted`
     std::uint32_t max_requests_per_s = 100;  ///< beyond: dropped unanswered, and counted
     /// The same for each requester address, so that one cannot spend every other's share.

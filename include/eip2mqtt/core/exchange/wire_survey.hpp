@@ -1,7 +1,7 @@
 #pragma once
 /// What the wire shows of one exchange nobody has configured yet (`sniff --yaml`):
 /// its length, signature, period, destination and producer clock, gathered datagram by datagram
-/// into a summary that core::config::yaml_skeleton turns into configuration. Pure: receive
+/// into a summary that adapters::yaml::yaml_skeleton turns into configuration. Pure: receive
 /// times and destinations are passed in.
 ///
 /// The period is measured from receive times and request ids: the time from the first to the

@@ -233,8 +233,8 @@ private:
     void read_eip(const Node& node, const Mark& at, Config& config);
     void read_commands(const Node& node, const Mark& at, Config& config);
     /// A list of IPv4 subnets (`eip.commands.allow`, `trusted`); each bad item an error.
-    std::vector<core::command::Subnet> subnets(const Node& value, const std::string& key,
-                                               const Mark& at);
+    std::vector<core::net::Subnet> subnets(const Node& value, const std::string& key,
+                                           const Mark& at);
     void read_multicast(const Node& node, const Mark& at, core::config::EipSection& eip);
 
     void read_metrics(const Node& node, const Mark& at, Config& config);

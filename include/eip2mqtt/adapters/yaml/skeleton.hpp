@@ -12,15 +12,15 @@
 
 #include "eip2mqtt/core/exchange/wire_survey.hpp"
 
-namespace eip2mqtt::core::config {
+namespace eip2mqtt::adapters::yaml {
 
 /// The skeleton of `exchanges`, in their order: a comment saying what it is, then
 /// `exchanges:` with one item each (indented by two spaces). With no exchange, only a comment
 /// saying so.
-std::string yaml_skeleton(std::span<const exchange::WireSummary> exchanges);
+std::string yaml_skeleton(std::span<const core::exchange::WireSummary> exchanges);
 
 /// The topic a skeleton proposes for an exchange: `10-20-0-100/50`, the producer's id with
 /// dashes, since some brokers turn a dot into a topic level (RabbitMQ: docs/brokers.md).
-std::string skeleton_topic(const wire::ExchangeKey& key);
+std::string skeleton_topic(const core::wire::ExchangeKey& key);
 
-}  // namespace eip2mqtt::core::config
+}  // namespace eip2mqtt::adapters::yaml

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-namespace eip2mqtt::core::command {
+namespace eip2mqtt::core::net {
 
 struct Subnet {
     std::uint32_t address = 0;  ///< host byte order, first octet high; host bits cleared
@@ -26,4 +26,4 @@ std::string to_string(const Subnet& subnet);
 /// Whether any of `subnets` contains `ip`.
 bool allowed(std::span<const Subnet> subnets, std::uint32_t ip);
 
-}  // namespace eip2mqtt::core::command
+}  // namespace eip2mqtt::core::net

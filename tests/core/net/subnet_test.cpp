@@ -1,10 +1,10 @@
-#include "eip2mqtt/core/command/subnet.hpp"
+#include "eip2mqtt/core/net/subnet.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-namespace eip2mqtt::core::command {
+namespace eip2mqtt::core::net {
 namespace {
 
 std::uint32_t ip(std::string_view dotted) { return parse_subnet(dotted).value().address; }
@@ -41,4 +41,4 @@ TEST(Subnet, AllowedIsAnyOfTheList) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::core::command
+}  // namespace eip2mqtt::core::net

@@ -1,11 +1,11 @@
-#include "eip2mqtt/core/command/subnet.hpp"
+#include "eip2mqtt/core/net/subnet.hpp"
 
 #include <algorithm>
 #include <charconv>
 
 #include "eip2mqtt/core/wire/header.hpp"
 
-namespace eip2mqtt::core::command {
+namespace eip2mqtt::core::net {
 namespace {
 
 std::uint32_t mask_of(std::uint8_t prefix) {
@@ -46,4 +46,4 @@ bool allowed(std::span<const Subnet> subnets, std::uint32_t ip) {
                        [&](const Subnet& subnet) { return subnet.contains(ip); });
 }
 
-}  // namespace eip2mqtt::core::command
+}  // namespace eip2mqtt::core::net

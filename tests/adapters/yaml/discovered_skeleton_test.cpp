@@ -1,12 +1,15 @@
-#include "eip2mqtt/core/config/discovered_skeleton.hpp"
+#include "eip2mqtt/adapters/yaml/discovered_skeleton.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-namespace eip2mqtt::core::config {
+namespace eip2mqtt::adapters::yaml {
 namespace {
+
+namespace command = core::command;
+namespace wire = core::wire;
 
 using command::ExchangeMode;
 
@@ -111,4 +114,4 @@ TEST(DiscoveredSkeleton, WhatANodeToldCannotLeaveItsCommentLine) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::core::config
+}  // namespace eip2mqtt::adapters::yaml

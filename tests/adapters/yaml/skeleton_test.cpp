@@ -1,13 +1,16 @@
 // yaml_skeleton (`sniff --yaml`): the exact YAML of unconfigured exchanges.
 
-#include "eip2mqtt/core/config/skeleton.hpp"
+#include "eip2mqtt/adapters/yaml/skeleton.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-namespace eip2mqtt::core::config {
+namespace eip2mqtt::adapters::yaml {
 namespace {
+
+namespace exchange = core::exchange;
+namespace wire = core::wire;
 
 using namespace std::chrono_literals;
 using exchange::ClockState;
@@ -121,4 +124,4 @@ TEST(YamlSkeleton, BroadcastUnsyncedAndAPeriodOutsideTheRange) {
 }
 
 }  // namespace
-}  // namespace eip2mqtt::core::config
+}  // namespace eip2mqtt::adapters::yaml

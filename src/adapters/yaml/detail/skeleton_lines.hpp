@@ -8,13 +8,13 @@
 #include "eip2mqtt/core/exchange/wire_survey.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
-namespace eip2mqtt::core::config::detail {
+namespace eip2mqtt::adapters::yaml::detail {
 
 /// The first lines of a consumed exchange's item: its name, direction and key.
-void item_head(const wire::ExchangeKey& key, std::string& out);
+void item_head(const core::wire::ExchangeKey& key, std::string& out);
 
 /// Where an exchange's datagrams go, for its `# destination:` line: the group of a multicast
 /// one with the setting that joins it. `kind` is one that names an address (not unknown).
-std::string destination_text(exchange::DestinationKind kind, std::uint32_t address);
+std::string destination_text(core::exchange::DestinationKind kind, std::uint32_t address);
 
-}  // namespace eip2mqtt::core::config::detail
+}  // namespace eip2mqtt::adapters::yaml::detail

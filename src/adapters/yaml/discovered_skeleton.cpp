@@ -1,16 +1,20 @@
-#include "eip2mqtt/core/config/discovered_skeleton.hpp"
+#include "eip2mqtt/adapters/yaml/discovered_skeleton.hpp"
 
 #include <algorithm>
 #include <set>
 #include <string_view>
 
-#include "core/config/detail/skeleton_lines.hpp"
-#include "eip2mqtt/core/config/skeleton.hpp"
+#include "adapters/yaml/detail/skeleton_lines.hpp"
+#include "eip2mqtt/adapters/yaml/skeleton.hpp"
 #include "eip2mqtt/core/printable.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
-namespace eip2mqtt::core::config {
+namespace eip2mqtt::adapters::yaml {
 namespace {
+
+namespace command = core::command;
+namespace exchange = core::exchange;
+namespace wire = core::wire;
 
 using command::DestinationType;
 using command::ExchangeConfig;
@@ -23,7 +27,7 @@ constexpr std::uint16_t max_length = 1400;
 
 // What a node told (a NAK's text...), as it may stand in a comment line: no line break, no
 // byte that would end the comment.
-std::string told(std::string_view text) { return printable_ascii(text, 400); }
+std::string told(std::string_view text) { return core::printable_ascii(text, 400); }
 
 std::string key_text(const wire::ExchangeKey& key) {
     return wire::to_string(key.producer_id) + "/" + std::to_string(key.exchange_id);
@@ -147,4 +151,4 @@ std::string discovered_skeleton(std::span<const DiscoveredNode> nodes) {
     return out;
 }
 
-}  // namespace eip2mqtt::core::config
+}  // namespace eip2mqtt::adapters::yaml

@@ -1,7 +1,10 @@
-#include "core/config/detail/skeleton_lines.hpp"
+#include "adapters/yaml/detail/skeleton_lines.hpp"
 
-namespace eip2mqtt::core::config::detail {
+namespace eip2mqtt::adapters::yaml::detail {
 namespace {
+
+namespace exchange = core::exchange;
+namespace wire = core::wire;
 
 std::string ipv4(std::uint32_t address) { return wire::to_string(wire::ProducerId{address}); }
 
@@ -32,4 +35,4 @@ std::string destination_text(exchange::DestinationKind kind, std::uint32_t addre
     return "unknown";
 }
 
-}  // namespace eip2mqtt::core::config::detail
+}  // namespace eip2mqtt::adapters::yaml::detail

@@ -1,4 +1,4 @@
-#include "eip2mqtt/core/config/skeleton.hpp"
+#include "eip2mqtt/adapters/yaml/skeleton.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,14 @@
 #include <cstdio>
 #include <string_view>
 
-#include "core/config/detail/skeleton_lines.hpp"
+#include "adapters/yaml/detail/skeleton_lines.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
-namespace eip2mqtt::core::config {
+namespace eip2mqtt::adapters::yaml {
 namespace {
+
+namespace exchange = core::exchange;
+namespace wire = core::wire;
 
 using exchange::ClockState;
 using exchange::DestinationKind;
@@ -134,4 +137,4 @@ std::string yaml_skeleton(std::span<const WireSummary> exchanges) {
     return out;
 }
 
-}  // namespace eip2mqtt::core::config
+}  // namespace eip2mqtt::adapters::yaml
