@@ -50,8 +50,9 @@ adapters::udp::ReceiverOptions receiver_options(const core::config::EipSection& 
 
 }  // namespace
 
-Gateway::Gateway(core::config::Config config)
-    : config_(std::move(config)),
+Gateway::Gateway(core::config::Config config, const core::Clock& clock)
+    : clock_(clock),
+      config_(std::move(config)),
       state_dir_(config_.gateway.state_dir,
                  {config_.gateway.id, std::filesystem::absolute(config_.file).string()}),
       availability_topic_(config_.mqtt.base_topic + "/_gateway/" + config_.gateway.id + "/state"),
@@ -61,10 +62,10 @@ Gateway::Gateway(core::config::Config config)
       watchdog_timer_(loop_),
       writes_([this](ExchangeWrite&& write, const WriteReply& reply,
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
-              adapters::clock::system_clock()),
+              clock_),
       exchanges_(loop_.get_executor(), exchanges_options(config_, pair_options()), northbound_,
                  writes_.image_saves()),
-      reloads_(loop_.get_executor(), *this, adapters::clock::system_clock()) {
+      reloads_(loop_.get_executor(), *this, clock_) {
     auto mqtt_options = mqtt_client_options(config_, availability_topic_);
     if (config_.redundancy.enabled()) {
         // The unit's own topics (state, metrics, role) and the exchanges' `_meta` are said by
@@ -85,13 +86,12 @@ Gateway::Gateway(core::config::Config config)
     if (!config_.sparkplug.enabled() || config_.sparkplug.uns) northbound_.add(*json_tree_);
     make_sparkplug();
     make_pair();
-    exchanges_.apply(reload::take_plans(config_), std::chrono::steady_clock::now(),
-                     std::chrono::system_clock::now());
+    exchanges_.apply(reload::take_plans(config_), clock_.monotonic(), clock_.wall());
 
     receiver_ = std::make_unique<adapters::udp::Receiver>(loop_.get_executor(),
                                                           receiver_options(config_.eip));
     add(command_port::make_command_port(config_, loop_.get_executor(), exchanges_, writes_,
-                                        adapters::clock::system_clock()));
+                                        clock_));
     if (!config_.metrics.listen.empty()) {
         prometheus_ =
             std::make_unique<adapters::metrics::PrometheusEndpoint>(config_.metrics.listen);
@@ -138,7 +138,7 @@ int Gateway::run() {
 }
 
 void Gateway::start() {
-    started_at_ = std::chrono::steady_clock::now();
+    started_at_ = clock_.monotonic();
     last_refresh_scan_ = started_at_;
     mqtt_->set_on_connected([this] { on_connected(); });
     if (history_ || pair_history_) {
@@ -147,10 +147,9 @@ void Gateway::start() {
     mqtt_->set_on_message(
         [this](const adapters::mqtt::Incoming& message) { json_tree_->on_message(message); });
     exchanges_.start(started_at_);
-    receiver_->start([this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
-                            bool truncated) {
-        exchanges_.route(bytes, from, truncated, std::chrono::steady_clock::now());
-    });
+    receiver_->start(
+        [this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
+               bool truncated) { exchanges_.route(bytes, from, truncated, clock_.monotonic()); });
     for (auto& module : modules_) module->start(started_at_);
     mqtt_->start();
     start_pair();
@@ -235,14 +234,14 @@ void Gateway::on_connected() {
                  exchanges_.consumers().size() + exchanges_.producers().size());
     republish_exchanges();
     // History goes behind the current state.
-    if (history_) history_->on_connected(std::chrono::steady_clock::now());
+    if (history_) history_->on_connected(clock_.monotonic());
 }
 
 void Gateway::schedule_tick() {
     tick_timer_.expires_after(tick_interval);
     tick_timer_.async_wait([this](const boost::system::error_code& error) {
         if (error) return;
-        loop_watch_.on_tick(tick_timer_.expiry(), std::chrono::steady_clock::now());
+        loop_watch_.on_tick(tick_timer_.expiry(), clock_.monotonic());
         on_tick();
         schedule_tick();
     });
@@ -252,8 +251,8 @@ void Gateway::on_tick() {
     // What arrived in time is taken before any exchange is judged stale (a loop busy with
     // births or a reload may not have read it yet).
     receiver_->read_pending();
-    const auto now = std::chrono::steady_clock::now();
-    const auto wall = std::chrono::system_clock::now();
+    const auto now = clock_.monotonic();
+    const auto wall = clock_.wall();
     if (pair_) {
         pair_->on_connection(pair_mqtt_->connected(), now);
         pair_->tick(now);
@@ -292,8 +291,8 @@ void Gateway::schedule_metrics() {
 
 void Gateway::publish_metrics() {
     const auto stats = mqtt_->stats();
-    const auto uptime = std::chrono::duration_cast<std::chrono::seconds>(
-        std::chrono::steady_clock::now() - started_at_);
+    const auto uptime =
+        std::chrono::duration_cast<std::chrono::seconds>(clock_.monotonic() - started_at_);
     const auto history = history_ ? std::optional(history_->stats()) : std::nullopt;
     northbound_.gateway_metrics(metrics_sources(stats, history ? &*history : nullptr), uptime);
     notifier_.status(status_line());

@@ -38,8 +38,7 @@ std::vector<adapters::udp::MulticastMembership> memberships(const core::config::
 }  // namespace
 
 std::string Gateway::apply_plans(std::vector<core::plan::ExchangePlan> plans) {
-    const auto report = exchanges_.apply(std::move(plans), std::chrono::steady_clock::now(),
-                                         std::chrono::system_clock::now());
+    const auto report = exchanges_.apply(std::move(plans), clock_.monotonic(), clock_.wall());
     writes_.count_cancelled(report.cancelled_writes);
     return fmt::format(
         "configuration applied: {} exchange(s) kept, {} started, {} stopped ({}); {} retained "
@@ -50,7 +49,7 @@ std::string Gateway::apply_plans(std::vector<core::plan::ExchangePlan> plans) {
 
 void Gateway::republish_exchanges() {
     json_tree_->republish_meta();  // nothing when the JSON tree is off (sparkplug.uns: false)
-    exchanges_.republish(std::chrono::steady_clock::now(), std::chrono::system_clock::now());
+    exchanges_.republish(clock_.monotonic(), clock_.wall());
 }
 
 bool Gateway::apply_settings(const core::config::Config& next) {

@@ -21,6 +21,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 #include "eip2mqtt/adapters/state/state_dir_lock.hpp"
@@ -51,8 +52,10 @@ namespace eip2mqtt::app {
 class Gateway final : private reload::ReloadTarget {
 public:
     /// Builds every adapter from a validated configuration; throws std::exception on start-up
-    /// failures (a port that cannot be bound, an unreadable password file).
-    explicit Gateway(core::config::Config config);
+    /// failures (a port that cannot be bound, an unreadable password file). Every part reads
+    /// the time from `clock`.
+    explicit Gateway(core::config::Config config,
+                     const core::Clock& clock = adapters::clock::system_clock());
     ~Gateway();
 
     /// Runs until SIGTERM or SIGINT, then stops cleanly; returns the exit status.
@@ -148,6 +151,7 @@ private:
     std::string status_line() const;
     void wait_signal();
 
+    const core::Clock& clock_;
     core::config::Config config_;
     /// Taken first: a second gateway on the same state directory stops here, before it has
     /// opened a socket or a file.

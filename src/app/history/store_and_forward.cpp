@@ -41,7 +41,7 @@ StoreAndForward::StoreAndForward(std::unique_ptr<adapters::history::Journal> jou
     : writer_(std::move(journal)),
       options_(options),
       first_(sink, std::move(link)),
-      last_durable_(std::chrono::steady_clock::now()) {}
+      last_durable_(options_.clock->monotonic()) {}
 
 StoreAndForward::~StoreAndForward() {
     // The writer commits durably what it is handed before it stops.
@@ -202,7 +202,7 @@ std::string StoreAndForward::unusable(const JournalEntry& entry) {
 bool StoreAndForward::replay_entry(SinkReplay& replay, const JournalEntry& entry) {
     if (const auto problem = unusable(entry); !problem.empty()) {
         ++discarded_;
-        if (const auto count = discard_log_.record(std::chrono::steady_clock::now())) {
+        if (const auto count = discard_log_.record(options_.clock->monotonic())) {
             spdlog::warn(
                 "store and forward: journaled entries of exchange {} cannot be replayed ({}); "
                 "deleted ({} since the last report)",
@@ -219,7 +219,7 @@ bool StoreAndForward::replay_entry(SinkReplay& replay, const JournalEntry& entry
 
 void StoreAndForward::fail(const char* what, const std::exception& error) {
     ++failures_;
-    if (const auto count = failure_log_.record(std::chrono::steady_clock::now())) {
+    if (const auto count = failure_log_.record(options_.clock->monotonic())) {
         spdlog::error("store and forward: {}: {} ({} since the last report); live data goes on",
                       what, error.what(), count);
     }
@@ -238,9 +238,7 @@ HistoryStats StoreAndForward::stats() {
     stats.failures = failures_ + writer_.failures();
     stats.replaying = first_.active();
     for (const auto& replay : extra_) stats.replaying = stats.replaying || replay->active();
-    stats.taken_at_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
-                            std::chrono::system_clock::now().time_since_epoch())
-                            .count();
+    stats.taken_at_ms = options_.clock->wall_ms();
     return stats;
 }
 
