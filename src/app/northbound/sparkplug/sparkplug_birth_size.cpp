@@ -4,7 +4,6 @@
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_birth_size.hpp"
 
 #include <chrono>
-#include <limits>
 #include <string>
 
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
@@ -101,17 +100,6 @@ SparkplugBirthSizes sparkplug_birth_sizes(const SparkplugOptions& options,
         sizes.devices.push_back(publisher.last);
     }
     return sizes;
-}
-
-void SparkplugNode::widen_node_metrics_for_sizing() {
-    for (auto& metric : node_metrics_) {
-        if (metric.type == adapters::sparkplug::DataType::uint64) {
-            metric.value = Value{std::numeric_limits<std::uint64_t>::max()};
-        } else if (metric.type == adapters::sparkplug::DataType::string) {
-            metric.value = std::string(
-                core::exchange::to_string(core::exchange::ConsumeState::signature_mismatch));
-        }
-    }
 }
 
 }  // namespace eip2mqtt::app::northbound::sparkplug

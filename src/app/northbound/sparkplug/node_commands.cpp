@@ -3,15 +3,17 @@
 // type, range, limits, overlapping tags) and reaches the WriteDispatcher as one WriteRequest:
 // all its metrics or none, in one datagram.
 
+#include "eip2mqtt/app/northbound/sparkplug/node_commands.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <utility>
 #include <variant>
 #include <vector>
 
-#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 #include "eip2mqtt/core/printable.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
@@ -45,20 +47,6 @@ WriteInput write_input(const Value& value) {
         value);
 }
 
-std::optional<std::size_t> find_tag(const core::plan::ExchangePlan& plan,
-                                    const adapters::sparkplug::CommandMetric& metric,
-                                    std::uint64_t alias_base) {
-    if (metric.alias && *metric.alias >= alias_base &&
-        *metric.alias - alias_base < plan.tags.size()) {
-        return static_cast<std::size_t>(*metric.alias - alias_base);
-    }
-    if (metric.name.empty()) return std::nullopt;
-    for (std::size_t i = 0; i < plan.tags.size(); ++i) {
-        if (plan.tags[i].spec.name == metric.name) return i;
-    }
-    return std::nullopt;
-}
-
 /// What a throttled line adds when it sums up more than one occurrence.
 std::string in_the_last_minute(std::uint64_t count, std::string_view what) {
     if (count <= 1) return {};
@@ -67,12 +55,12 @@ std::string in_the_last_minute(std::uint64_t count, std::string_view what) {
 
 /// The writes a DCMD's metrics ask of the produced exchange `plan`, or why they are refused.
 std::variant<ExchangeWrite, WriteRejection> device_write(
-    const core::plan::ExchangePlan& plan,
-    const std::vector<adapters::sparkplug::CommandMetric>& metrics, std::uint64_t alias_base) {
+    const Device& device, const std::vector<adapters::sparkplug::CommandMetric>& metrics) {
+    const auto& plan = *device.plan;
     ExchangeWrite write{&plan, {}};
     write.writes.reserve(metrics.size());
     for (const auto& metric : metrics) {
-        const auto tag = find_tag(plan, metric, alias_base);
+        const auto tag = DeviceRegistry::tag_of(device, metric);
         if (!tag) {
             return WriteRejection{
                 WriteError::unknown_tag,
@@ -100,50 +88,64 @@ std::variant<ExchangeWrite, WriteRejection> device_write(
 
 }  // namespace
 
-void SparkplugNode::on_message(const adapters::mqtt::Incoming& message) {
-    if (message.topic == ncmd_topic_) {
-        on_node_command(message);
-    } else if (message.topic.starts_with(dcmd_prefix_)) {
-        // An empty DCMD is a retained one being cleared: nothing is asked.
-        if (message.payload.empty()) return;
-        const auto name = message.topic.substr(dcmd_prefix_.size());
-        const auto found = device_of_name_.find(name);
-        on_device_command(message,
-                          found == device_of_name_.end() ? nullptr : &devices_[found->second]);
-    } else if (!state_topic_.empty() && message.topic == state_topic_) {
-        on_state(message);
-    }
+NodeCommands::NodeCommands(const std::string& group_id, const std::string& edge_node_id,
+                           std::string primary_host_id, WriteHandler& writes, Northbound& origin)
+    : ncmd_topic_("spBv1.0/" + group_id + "/NCMD/" + edge_node_id),
+      dcmd_prefix_("spBv1.0/" + group_id + "/DCMD/" + edge_node_id + "/"),
+      primary_host_id_(std::move(primary_host_id)),
+      writes_(writes),
+      origin_(origin) {
+    if (!primary_host_id_.empty()) state_topic_ = "spBv1.0/STATE/" + primary_host_id_;
 }
 
-void SparkplugNode::on_node_command(const adapters::mqtt::Incoming& message) {
+std::vector<std::string> NodeCommands::subscriptions() const {
+    std::vector<std::string> filters{ncmd_topic_, dcmd_prefix_ + "+"};
+    if (!state_topic_.empty()) filters.push_back(state_topic_);
+    return filters;
+}
+
+NodeCommands::Asked NodeCommands::on_message(const adapters::mqtt::Incoming& message,
+                                             DeviceRegistry& devices, const NodeSession& session) {
+    if (message.topic == ncmd_topic_) return on_node_command(message, session.now());
+    if (message.topic.starts_with(dcmd_prefix_)) {
+        // An empty DCMD is a retained one being cleared: nothing is asked.
+        if (message.payload.empty()) return Asked::nothing;
+        on_device_command(message, devices.find(message.topic.substr(dcmd_prefix_.size())),
+                          session);
+        return Asked::nothing;
+    }
+    if (!state_topic_.empty() && message.topic == state_topic_) return on_state(message, session);
+    return Asked::nothing;
+}
+
+NodeCommands::Asked NodeCommands::on_node_command(const adapters::mqtt::Incoming& message,
+                                                  core::MonoTime now) {
     const auto metrics = adapters::sparkplug::decode_command(message.payload);
     if (!metrics) {
-        if (const auto count = command_log_.record(now_)) {
+        if (const auto count = command_log_.record(now)) {
             spdlog::warn("Sparkplug NCMD ignored: {} ({} ignored)", metrics.error(), count);
         }
-        return;
+        return Asked::nothing;
     }
     for (const auto& metric : metrics.value()) {
         const bool rebirth =
             metric.name == rebirth_name || (metric.name.empty() && metric.alias == rebirth_alias);
         if (rebirth && metric.value && std::holds_alternative<bool>(*metric.value) &&
             std::get<bool>(*metric.value)) {
-            ++stats_.rebirth_requests;
-            publish_counters();
-            if (const auto count = rebirth_log_.record(now_)) {
+            if (const auto count = rebirth_log_.record(now)) {
                 spdlog::info("Sparkplug rebirth requested by NCMD{}",
                              in_the_last_minute(count, "requests"));
             }
-            // A flood of requests makes one pending rebirth, not one each (rebirth_hold).
-            request_birth();
-            return;
+            return Asked::rebirth;
         }
     }
+    return Asked::nothing;
 }
 
-void SparkplugNode::on_device_command(const adapters::mqtt::Incoming& message, Device* device) {
+void NodeCommands::on_device_command(const adapters::mqtt::Incoming& message, const Device* device,
+                                     const NodeSession& session) {
     WriteRequest request;
-    request.reply.origin = this;
+    request.reply.origin = &origin_;
     request.reply.via = WriteOrigin::sparkplug;
     request.target = message.topic;
     const auto refuse = [&](WriteError error, std::string text) {
@@ -151,10 +153,10 @@ void SparkplugNode::on_device_command(const adapters::mqtt::Incoming& message, D
         writes_.on_write(std::move(request));
     };
     const auto device_name = message.topic.substr(dcmd_prefix_.size());
-    if (!born_) {
+    if (!session.born()) {
         // Sparkplug B 3.0: an edge node that is offline (no NBIRTH since its connection, its
         // primary host's STATE, or after its NDEATH) takes no command.
-        if (const auto count = refused_log_.record(now_)) {
+        if (const auto count = refused_log_.record(session.now())) {
             spdlog::warn("Sparkplug DCMD for {} refused: the edge node is offline (not born){}",
                          core::printable(device_name), in_the_last_minute(count, "refused"));
         }
@@ -174,7 +176,7 @@ void SparkplugNode::on_device_command(const adapters::mqtt::Incoming& message, D
     const auto metrics = adapters::sparkplug::decode_command(message.payload);
     if (!metrics) return refuse(WriteError::malformed, "DCMD: " + metrics.error());
     if (metrics.value().empty()) return refuse(WriteError::empty, "a DCMD with no metric");
-    auto write = device_write(plan, metrics.value(), device->alias_base);
+    auto write = device_write(*device, metrics.value());
     if (auto* rejection = std::get_if<WriteRejection>(&write)) {
         return refuse(rejection->error, std::move(rejection->message));
     }
@@ -182,51 +184,59 @@ void SparkplugNode::on_device_command(const adapters::mqtt::Incoming& message, D
     writes_.on_write(std::move(request));
 }
 
-void SparkplugNode::on_state(const adapters::mqtt::Incoming& message) {
+NodeCommands::Asked NodeCommands::on_state(const adapters::mqtt::Incoming& message,
+                                           const NodeSession& session) {
     // Sparkplug B 3.0: {"online": bool, "timestamp": ms}; a STATE older than the last one
     // taken is stale (a retained one delivered after a newer live one) and ignored.
     const auto json = nlohmann::json::parse(message.payload, nullptr, false);
     if (json.is_discarded() || !json.is_object() || !json.contains("online") ||
         !json["online"].is_boolean() || !json.contains("timestamp") ||
         !json["timestamp"].is_number_integer()) {
-        if (const auto count = command_log_.record(now_)) {
+        if (const auto count = command_log_.record(session.now())) {
             spdlog::warn(
                 "Sparkplug STATE of {} ignored: not {{\"online\": bool, \"timestamp\": ms}} "
                 "({} ignored)",
-                core::printable(options_.primary_host_id), count);
+                core::printable(primary_host_id_), count);
         }
-        return;
+        return Asked::nothing;
     }
     const auto timestamp = json["timestamp"].get<std::int64_t>();
-    if (timestamp < host_state_timestamp_) return;
+    if (timestamp < host_state_timestamp_) return Asked::nothing;
     host_state_timestamp_ = timestamp;
     const bool online = json["online"].get<bool>();
-    if (online == host_online_) return;
-    host_online(online);
+    if (online == session.host_online()) return Asked::nothing;
+    return host_changed(online, session.now());
 }
 
-void SparkplugNode::host_online(bool online) {
-    host_online_ = online;
+NodeCommands::Asked NodeCommands::host_changed(bool online, core::MonoTime now) {
     // A host that flaps must not flood the log: the first change, then a summary a minute.
-    if (const auto count = state_log_.record(now_)) {
+    if (const auto count = state_log_.record(now)) {
         const auto changes = in_the_last_minute(count, "changes of its STATE");
         if (online) {
             spdlog::info("Sparkplug primary host {} is online: births{}",
-                         core::printable(options_.primary_host_id), changes);
+                         core::printable(primary_host_id_), changes);
         } else {
             spdlog::warn(
                 "Sparkplug primary host {} is offline: NDEATH, publishing nothing until it is "
                 "back{}",
-                core::printable(options_.primary_host_id), changes);
+                core::printable(primary_host_id_), changes);
         }
     }
-    if (online) {
-        request_birth();
-        return;
+    return online ? Asked::host_online : Asked::host_offline;
+}
+
+void NodeCommands::flush_logs(core::MonoTime now, std::uint64_t node_births, bool host_online) {
+    if (const auto count = rebirth_log_.flush(now)) {
+        spdlog::info("Sparkplug: {} more rebirth requests by NCMD, coalesced ({} NBIRTHs in all)",
+                     count, node_births);
     }
-    rebirth_pending_ = false;
-    // The will's NDEATH, said now: the host's applications see the node go.
-    if (born_) publish_death();
+    if (const auto count = state_log_.flush(now)) {
+        spdlog::info("Sparkplug primary host {}: {} more STATE changes, now {}", primary_host_id_,
+                     count, host_online ? "online" : "offline");
+    }
+    if (const auto count = refused_log_.flush(now)) {
+        spdlog::warn("Sparkplug: {} more DCMDs refused while the edge node is not born", count);
+    }
 }
 
 }  // namespace eip2mqtt::app::northbound::sparkplug
