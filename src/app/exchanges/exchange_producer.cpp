@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <chrono>
 
 #include "eip2mqtt/core/plan/value_codec.hpp"
@@ -11,11 +10,6 @@
 
 namespace eip2mqtt::app {
 namespace {
-
-using namespace std::chrono_literals;
-
-// While saves fail, how often the image is saved again without a write asking for it.
-constexpr auto save_retry_interval = 1s;
 
 std::vector<std::byte> restored_data(const std::optional<ImageHandover>& handover,
                                      const adapters::state::ImageFile& file) {
@@ -38,38 +32,37 @@ ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
     : plan_(std::make_shared<const core::plan::ExchangePlan>(std::move(plan))),
       destination_(destination),
       scheduler_(scheduler),
-      persister_(persister),
-      persist_key_(
-          persister.attach([this](const std::optional<std::string>& error) { on_saved(error); })),
       northbound_(northbound),
+      saves_{persister,
+             persister.attach([this](const std::optional<std::string>& error) { on_saved(error); }),
+             handover ? handover->file : persister.open(*plan_), core::ThrottledLog{}},
       totals_(totals),
-      file_(handover ? handover->file : persister.open(*plan_)),
-      image_(*plan_, restored_data(handover, *file_)),
-      datagram_(core::wire::header_size + plan_->length) {
-    limiters_.reserve(plan_->tags.size());
-    for (const auto& tag : plan_->tags) limiters_.emplace_back(tag.spec.max_writes_per_s());
+      image_(*plan_, restored_data(handover, *saves_.file)),
+      // Written at once unless the file holds exactly this image in the slotted format, so that
+      // the file's blocks exist before the disk fills up. A handed-over image is written all the
+      // same: the file may hold writes the reload cancelled, or have been removed.
+      save_(!handover && saves_.file->in_place()),
+      outgoing_{std::vector<std::byte>(core::wire::header_size + plan_->length), {}} {
+    writes_.limiters.reserve(plan_->tags.size());
+    for (const auto& tag : plan_->tags) writes_.limiters.emplace_back(tag.spec.max_writes_per_s());
     spdlog::info("exchange {}: producing to {} every {} ms, {} image", plan_->spec.name,
                  adapters::udp::to_string(destination_), plan_->spec.period.count(),
                  handover            ? "running"
                  : image_.restored() ? "restored"
                                      : "initial");
-    // Written at once unless the file holds exactly this image in the slotted format, so that
-    // the file's blocks exist before the disk fills up. A handed-over image is written all the
-    // same: the file may hold writes the reload cancelled, or have been removed.
-    saved_ = !handover && file_->in_place();
-    if (!saved_) request_save();
+    if (!save_.saved()) request_save();
 }
 
 ExchangeProducer::~ExchangeProducer() {
     stop();
-    persister_.detach(persist_key_);
+    saves_.persister.detach(saves_.key);
 }
 
 void ExchangeProducer::start(core::MonoTime start, std::size_t index, std::size_t count) {
     id_ = scheduler_.add(
         *this, core::exchange::ProductionSchedule(start, plan_->spec.period, index, count));
     // `_status` at the producer's own phase of the second, as its sends are spread (StatusGrid).
-    if (count > 0) status_grid_.start(start, index, count);
+    if (count > 0) status_.grid.start(start, index, count);
 }
 
 void ExchangeProducer::stop() {
@@ -94,10 +87,7 @@ std::size_t ExchangeProducer::cancel_queued_writes(std::optional<std::string_vie
             "produced here",
             plan_->spec.name, ids.size());
     }
-    // Saved ahead of a production that will not come: the file gets the produced image back.
-    if (ids.front() <= saved_through_) {
-        persister_.save(adapters::state::ImagePersister::unattended, file_, image_.data());
-    }
+    unsave_queued(ids.front());
     return ids.size();
 }
 
@@ -120,39 +110,43 @@ std::vector<WriteRequest> ExchangeProducer::take_queued_writes() {
     spdlog::warn(
         "exchange {}: {} queued write(s) left to the unit that leads next: never produced here",
         plan_->spec.name, batches.size());
-    if (batches.front().id <= saved_through_) {
-        persister_.save(adapters::state::ImagePersister::unattended, file_, image_.data());
-    }
+    unsave_queued(batches.front().id);
     return taken;
+}
+
+void ExchangeProducer::unsave_queued(std::uint64_t first_taken) {
+    // Saved ahead of a production that will not come: the file gets the produced image back.
+    if (!save_.holds(first_taken)) return;
+    saves_.persister.save(adapters::state::ImagePersister::unattended, saves_.file, image_.data());
 }
 
 std::optional<core::write::WriteRejection> ExchangeProducer::stage(
     std::vector<core::write::TagWrite> writes, WriteReply reply, core::MonoTime now) {
     for (const auto& write : writes) {
         const auto& tag = plan_->tags[write.tag_index].spec;
-        if (!limiters_[write.tag_index].allow(now)) {
+        if (!writes_.limiters[write.tag_index].allow(now)) {
             return core::write::WriteRejection{core::write::WriteError::rate_limited,
                                                fmt::format("{}: more than {} writes per second",
                                                            tag.name, tag.max_writes_per_s())};
         }
     }
-    const auto id = next_write_id_++;
+    const auto id = writes_.next_id++;
     if (!image_.stage({id, std::move(writes)})) {
         return core::write::WriteRejection{
             core::write::WriteError::queue_full,
             "write queue of exchange " + plan_->spec.name + " is full; try again"};
     }
-    replies_.emplace(id, std::move(reply));
+    writes_.replies.emplace(id, std::move(reply));
     // Until a save succeeds, a write is saved before it may be produced.
-    if (!saved_) request_save();
+    if (save_.on_staged()) request_save();
     return std::nullopt;
 }
 
 std::span<const std::byte> ExchangeProducer::produce(core::WallTime wall) {
-    carried_.clear();
-    const auto through = saved_ ? core::exchange::ProducedImage::no_limit : saved_through_;
-    const auto size = image_.produce(wall, datagram_, carried_, through);
-    return std::span(datagram_.data(), size);
+    outgoing_.carried.clear();
+    const auto size =
+        image_.produce(wall, outgoing_.datagram, outgoing_.carried, save_.produce_through());
+    return std::span(outgoing_.datagram.data(), size);
 }
 
 void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
@@ -177,23 +171,14 @@ void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
     if (changed) {
         image_.clear_dirty();
         report_echo(wall, false);
-        if (on_image_changed_) on_image_changed_(*this);
+        if (pair_.on_image_changed) pair_.on_image_changed(*this);
     }
-    counters_.writes_applied += carried_.size();
+    counters_.writes_applied += outgoing_.carried.size();
     // docs/mqtt-api.md "Results": a write's result is reported once the datagram carrying it was
-    // sent and the image carrying it is saved. Those saved ahead are answered now; the others
-    // wait for the save their change asks for, or for the one under way, which may hold the
-    // value they wrote (a write that changed nothing).
-    const auto ahead = std::find_if(carried_.begin(), carried_.end(),
-                                    [&](std::uint64_t id) { return id > saved_through_; });
-    report_results(std::span(carried_.begin(), ahead));
-    const std::span waiting(ahead, carried_.end());
-    if ((changed && saved_) || (!waiting.empty() && (save_in_flight_ || save_again_))) {
-        unsaved_.insert(unsaved_.end(), waiting.begin(), waiting.end());
-        request_save();
-        return;
-    }
-    report_results(waiting);
+    // sent and the image carrying it is saved (SaveThenAnswer::on_sent).
+    const auto answer = save_.on_sent(outgoing_.carried, changed);
+    report_results(answer.answer);
+    if (answer.save) request_save();
 }
 
 bool ExchangeProducer::follow_image(std::span<const std::byte> data) {
@@ -204,46 +189,32 @@ bool ExchangeProducer::follow_image(std::span<const std::byte> data) {
 }
 
 void ExchangeProducer::request_save() {
-    if (save_in_flight_) {
-        save_again_ = true;
-        return;
+    if (const auto bytes = save_.request(image_)) {
+        saves_.persister.save(saves_.key, saves_.file, *bytes);
     }
-    save_again_ = false;
-    save_in_flight_ = true;
-    saving_.swap(unsaved_);
-    unsaved_.clear();
-    saving_through_ = image_.project(projection_);
-    persister_.save(persist_key_, file_, projection_);
 }
 
 void ExchangeProducer::on_saved(const std::optional<std::string>& error) {
-    save_in_flight_ = false;
-    const auto answered = std::move(saving_);
-    saving_.clear();
+    const auto saved = save_.on_saved(error);
     if (error) {
-        on_save_failed(*error, answered);
+        on_save_failed(saved);
     } else {
-        saved_through_ = std::max(saved_through_, saving_through_);
-        const bool changed = !saved_;
-        saved_ = true;
-        if (!save_error_.empty()) {
-            spdlog::info("exchange {}: image saved again to {}", plan_->spec.name, file_->path());
-            save_error_.clear();
-            save_log_.reset();
+        if (saved.recovered) {
+            spdlog::info("exchange {}: image saved again to {}", plan_->spec.name,
+                         saves_.file->path());
+            saves_.log.reset();
         }
-        report_results(answered);
-        if (changed) report_status();
+        report_results(saved.answered);
+        if (saved.status_changed) report_status();
     }
-    if (save_again_) request_save();
+    if (save_.again()) request_save();
 }
 
-void ExchangeProducer::on_save_failed(const std::string& error,
-                                      const std::vector<std::uint64_t>& sent) {
+void ExchangeProducer::on_save_failed(const core::exchange::SaveThenAnswer::Saved& saved) {
+    const auto& error = save_.error();
     ++counters_.save_failures;
     ++totals_.failures;
-    saved_ = false;
-    retry_at_.reset();
-    for (const auto id : sent) {
+    for (const auto id : saved.answered) {
         auto reply = take_reply(id);
         if (!reply) continue;
         answer_accepted(id, std::move(*reply), error);
@@ -251,7 +222,7 @@ void ExchangeProducer::on_save_failed(const std::string& error,
     }
     // Queued writes that this save held wait on no other: they are never produced.
     std::vector<std::uint64_t> refused;
-    image_.discard_pending(saved_through_, saving_through_, refused);
+    image_.discard_pending(saved.refuse_after, saved.refuse_through, refused);
     const auto answer = "not saved: " + error;
     for (const auto id : refused) {
         const auto reply = take_reply(id);
@@ -259,19 +230,17 @@ void ExchangeProducer::on_save_failed(const std::string& error,
         northbound_.write_result(*reply, answer);
         ++totals_.writes_not_saved;
     }
-    const bool changed = error != save_error_;
-    save_error_ = error;
-    const auto count = save_log_.record(std::chrono::steady_clock::now());
+    const auto count = saves_.log.record(std::chrono::steady_clock::now());
     if (count == 1) {
         spdlog::error(
             "exchange {}: cannot save its image ({}): {} write(s) sent unsaved, {} queued "
             "write(s) refused; until a save succeeds, each write is saved before it is produced",
-            plan_->spec.name, error, sent.size(), refused.size());
+            plan_->spec.name, error, saved.answered.size(), refused.size());
     } else if (count > 1) {
         spdlog::error("exchange {}: {} image saves failed in the last {} s, the last one: {}",
-                      plan_->spec.name, count, save_log_.interval().count(), error);
+                      plan_->spec.name, count, saves_.log.interval().count(), error);
     }
-    if (changed) report_status();
+    if (saved.status_changed) report_status();
 }
 
 void ExchangeProducer::report_results(std::span<const std::uint64_t> write_ids) {
@@ -286,12 +255,12 @@ void ExchangeProducer::answer_accepted(std::uint64_t write_id, WriteReply reply,
         if (unsaved) return northbound.write_result_unsaved(reply, *unsaved);
         northbound.write_result(reply, std::nullopt);
     };
-    if (!answer_gate_) return answer();
-    answer_gate_(*this, write_id, reply, std::move(answer));
+    if (!pair_.answer_gate) return answer();
+    pair_.answer_gate(*this, write_id, reply, std::move(answer));
 }
 
 std::optional<WriteReply> ExchangeProducer::take_reply(std::uint64_t write_id) {
-    auto node = replies_.extract(write_id);
+    auto node = writes_.replies.extract(write_id);
     if (node.empty()) return std::nullopt;
     return std::move(node.mapped());
 }
@@ -314,30 +283,23 @@ void ExchangeProducer::report_echo(core::WallTime wall, bool all) {
 }
 
 void ExchangeProducer::on_tick(core::MonoTime now) {
-    if (!saved_ && !save_in_flight_) {
-        if (!retry_at_) {
-            retry_at_ = now + save_retry_interval;
-        } else if (now >= *retry_at_) {
-            retry_at_.reset();
-            request_save();
-        }
-    }
+    if (save_.on_tick(now)) request_save();
     // docs/mqtt-api.md "Exchange status": at most once a second while its counters move.
-    if (counters_.sent == last_status_sent_) return;
-    if (!status_grid_.due(now)) return;
-    status_grid_.reported_on_grid(now);
+    if (counters_.sent == status_.last_sent) return;
+    if (!status_.grid.due(now)) return;
+    status_.grid.reported_on_grid(now);
     report_status();
 }
 
 void ExchangeProducer::report_status() {
-    last_status_sent_ = counters_.sent;
+    status_.last_sent = counters_.sent;
     ProducedStatus status;
     status.paused = failing_;
     status.request_id = image_.next_request_id();
     status.counters = counters_;
     status.writes_pending = image_.pending();
-    status.saved = saved_;
-    status.save_error = save_error_;
+    status.saved = save_.saved();
+    status.save_error = save_.error();
     northbound_.produced_status(*plan_, status);
 }
 

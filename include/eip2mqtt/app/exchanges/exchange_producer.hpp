@@ -12,7 +12,8 @@
 /// write is saved before it may be produced, and refused (`not saved: …`) if that save fails.
 /// The one case is the save that fails first: the writes it carried were sent already; they are
 /// answered `saved: false`, and a restart before the next successful save produces the image
-/// from before them.
+/// from before them. core::exchange::SaveThenAnswer holds these rules; the producer does the
+/// saves and the answers it names.
 ///
 /// Threading: the loop only.
 
@@ -33,6 +34,7 @@
 #include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/exchange/produced_image.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
+#include "eip2mqtt/core/exchange/save_then_answer.hpp"
 #include "eip2mqtt/core/exchange/status_grid.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -83,7 +85,7 @@ public:
     std::vector<WriteRequest> take_queued_writes();
     /// The image and its file, for the producer replacing this one (same layout).
     ImageHandover hand_over() const {
-        return {{image_.data().begin(), image_.data().end()}, file_};
+        return {{image_.data().begin(), image_.data().end()}, saves_.file};
     }
 
     /// Queues a validated write; its result is reported after the datagram carrying it is
@@ -104,7 +106,7 @@ public:
     /// Called after a datagram left carrying an image that writes changed (the leader
     /// publishes it for the standby); unset: nothing is called.
     void set_on_image_changed(ImageChanged on_changed) {
-        on_image_changed_ = std::move(on_changed);
+        pair_.on_image_changed = std::move(on_changed);
     }
     /// `write_id`: the write's number in this producer.
     using AnswerGate = std::function<void(const ExchangeProducer& producer, std::uint64_t write_id,
@@ -112,7 +114,7 @@ public:
     /// The leader answers an accepted write (`ok`, or `ok` unsaved) through `gate`, which runs
     /// the answer once the broker has the image carrying it (PairImages::answer_after_image);
     /// unset: at once.
-    void set_answer_gate(AnswerGate gate) { answer_gate_ = std::move(gate); }
+    void set_answer_gate(AnswerGate gate) { pair_.answer_gate = std::move(gate); }
     /// The standby takes the leader's image (the plan's length) as its own and saves it as any
     /// image; returns whether a byte changed. Writes still queued stay queued over it.
     bool follow_image(std::span<const std::byte> data);
@@ -135,7 +137,7 @@ public:
     /// True while sends fail (the status says paused).
     bool paused() const { return failing_; }
     /// True when the file holds the image being produced, or a newer one.
-    bool saved() const { return saved_; }
+    bool saved() const { return save_.saved(); }
     const core::exchange::ProducedImage& image() const { return image_; }
     /// When the last datagram left; nullopt before the first.
     std::optional<core::WallTime> last_sent() const { return last_sent_; }
@@ -143,13 +145,46 @@ public:
     core::WallTime configured_at() const { return configured_at_; }
 
 private:
+    /// Where the image is saved: the persister, this producer's key there, the file, and the
+    /// log of failed saves.
+    struct ImageSaves {
+        adapters::state::ImagePersister& persister;
+        adapters::state::ImagePersister::Key key;
+        std::shared_ptr<adapters::state::ImageFile> file;  ///< shared with the saves under way
+        core::ThrottledLog log;
+    };
+    /// The writes accepted: rate limits, and where each result goes, by write id.
+    struct WriteIntake {
+        std::vector<core::write::RateLimiter> limiters;  ///< one per tag
+        std::unordered_map<std::uint64_t, WriteReply> replies;
+        std::uint64_t next_id = 1;
+    };
+    /// The datagram being produced and the writes it is the first to carry.
+    struct Outgoing {
+        std::vector<std::byte> datagram;
+        std::vector<std::uint64_t> carried;
+    };
+    /// `_status` pacing: at most once a second, at this producer's phase, while it sends.
+    struct StatusPacing {
+        core::exchange::StatusGrid grid;  ///< phase set by start()
+        std::uint64_t last_sent = 0;      ///< counters_.sent when the status was last reported
+    };
+    /// The hooks of a hot-standby pair; unset: none.
+    struct PairHooks {
+        ImageChanged on_image_changed;
+        AnswerGate answer_gate;
+    };
+
     /// Saves the image with every queued write applied, now or once the save under way is done.
     void request_save();
     /// A save is done: the writes it answers get their results, or it failed (below).
     void on_saved(const std::optional<std::string>& error);
     /// Sent writes answered `saved: false`, queued ones it held refused, and the producer saves
     /// ahead of production until a save succeeds.
-    void on_save_failed(const std::string& error, const std::vector<std::uint64_t>& sent);
+    void on_save_failed(const core::exchange::SaveThenAnswer::Saved& saved);
+    /// A queued write saved ahead of its production was taken out: the file gets the image as
+    /// produced again.
+    void unsave_queued(std::uint64_t first_taken);
     void report_echo(core::WallTime wall, bool all);
     void report_status();
     void report_results(std::span<const std::uint64_t> write_ids);
@@ -164,38 +199,20 @@ private:
     adapters::udp::Endpoint destination_;
     ProducerScheduler& scheduler_;
     std::optional<ProducerScheduler::Id> id_;  ///< set by start(), reset by stop()
-    adapters::state::ImagePersister& persister_;
-    adapters::state::ImagePersister::Key persist_key_;
     Northbound& northbound_;
+    ImageSaves saves_;
     ImageSaveTotals& totals_;
-    std::shared_ptr<adapters::state::ImageFile> file_;  ///< shared with the saves under way
     core::exchange::ProducedImage image_;
-    // The image file: at most one save under way, the next one asked for meanwhile.
-    bool saved_ = false;  ///< the file holds image_ (or a newer projection of it)
-    bool save_in_flight_ = false;
-    bool save_again_ = false;
-    std::uint64_t saved_through_ = 0;     ///< the last queued write the file holds
-    std::uint64_t saving_through_ = 0;    ///< the last queued write of the save under way
-    std::vector<std::uint64_t> saving_;   ///< sent writes the save under way answers
-    std::vector<std::uint64_t> unsaved_;  ///< sent writes waiting for the next save
-    std::vector<std::byte> projection_;   ///< what the save under way writes
-    std::string save_error_;              ///< of the last failed save; empty once one succeeds
-    std::optional<core::MonoTime> retry_at_;
-    core::ThrottledLog save_log_;
-    std::vector<std::byte> datagram_;
+    core::exchange::SaveThenAnswer save_;  ///< when the image is saved and writes answered
+    WriteIntake writes_;
+    Outgoing outgoing_;
     std::vector<std::byte> echoed_;  ///< data bytes as last reported
-    std::vector<std::uint64_t> carried_;
-    std::unordered_map<std::uint64_t, WriteReply> replies_;
-    std::vector<core::write::RateLimiter> limiters_;  ///< one per tag
-    core::exchange::StatusGrid status_grid_;          ///< `_status`: phase set by start()
-    std::uint64_t last_status_sent_ = 0;
-    std::uint64_t next_write_id_ = 1;
+    StatusPacing status_;
     core::exchange::ProduceCounters counters_;
     bool failing_ = false;  ///< the last send failed: the status says paused
     std::optional<core::WallTime> last_sent_;
     core::WallTime configured_at_ = std::chrono::system_clock::now();
-    ImageChanged on_image_changed_;
-    AnswerGate answer_gate_;
+    PairHooks pair_;
 };
 
 }  // namespace eip2mqtt::app
