@@ -30,7 +30,7 @@
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/exchanges/exchanges.hpp"
 #include "eip2mqtt/app/exchanges/write_dispatcher.hpp"
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/health/loop_watch.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/app/module.hpp"

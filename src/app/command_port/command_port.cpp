@@ -8,7 +8,7 @@
 #include <string>
 
 #include "eip2mqtt/adapters/udp/interfaces.hpp"
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 
 namespace eip2mqtt::app::command_port {
 namespace {

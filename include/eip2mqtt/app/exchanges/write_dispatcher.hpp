@@ -10,7 +10,7 @@
 #include <optional>
 #include <utility>
 
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/redundancy/lease.hpp"

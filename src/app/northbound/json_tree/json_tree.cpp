@@ -1,6 +1,6 @@
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree_meta.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree_payload.hpp"
 #include "eip2mqtt/core/printable.hpp"

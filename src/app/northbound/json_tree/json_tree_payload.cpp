@@ -5,7 +5,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 

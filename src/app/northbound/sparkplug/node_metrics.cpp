@@ -9,7 +9,7 @@
 #include <span>
 #include <string_view>
 
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_birth_size.hpp"
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 

@@ -2,7 +2,7 @@
 // in its own field, every drop reason and write error is listed even at zero, and the payload
 // is one the documented schema accepts.
 
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 
 #include <algorithm>
 
