@@ -150,9 +150,9 @@ std::unique_ptr<Journal> Journal::open(const JournalOptions& options, std::strin
             problem = e.what();
         }
     }
-    const auto stamp = std::chrono::duration_cast<std::chrono::seconds>(
-                           std::chrono::system_clock::now().time_since_epoch())
-                           .count();
+    const auto stamp =
+        std::chrono::duration_cast<std::chrono::seconds>(options.clock->wall().time_since_epoch())
+            .count();
     const auto aside = options.path + ".damaged-" + std::to_string(stamp);
     std::error_code ec;
     std::filesystem::rename(options.path, aside, ec);

@@ -7,8 +7,11 @@
 
 namespace eip2mqtt::adapters::history {
 
-JournalWriter::JournalWriter(std::unique_ptr<Journal> journal)
-    : journal_(std::move(journal)), last_id_(journal_->last_id()), worker_([this] { run(); }) {}
+JournalWriter::JournalWriter(std::unique_ptr<Journal> journal, const core::Clock& clock)
+    : journal_(std::move(journal)),
+      last_id_(journal_->last_id()),
+      clock_(clock),
+      worker_([this] { run(); }) {}
 
 JournalWriter::~JournalWriter() {
     {
@@ -58,7 +61,7 @@ void JournalWriter::run() {
             last_id_.store(journal_->last_id(), std::memory_order_release);
         } catch (const std::exception& error) {
             failures_.fetch_add(1, std::memory_order_relaxed);
-            if (const auto count = failure_log_.record(std::chrono::steady_clock::now())) {
+            if (const auto count = failure_log_.record(clock_.monotonic())) {
                 spdlog::error(
                     "store and forward: the journal failed: {} ({} since the last report); live "
                     "data goes on",

@@ -38,7 +38,8 @@ double seconds(HealthState::Clock::duration duration) {
 
 }  // namespace
 
-HealthState::HealthState(Clock::duration liveness_timeout) : liveness_timeout_(liveness_timeout) {}
+HealthState::HealthState(Clock::duration liveness_timeout, const core::Clock& clock)
+    : liveness_timeout_(liveness_timeout), clock_(clock) {}
 
 void HealthState::update(const MetricsSnapshot& snapshot, Clock::time_point now) {
     auto reason = not_ready_reason(snapshot);

@@ -292,9 +292,10 @@ struct PrometheusEndpoint::Impl {
 };
 
 PrometheusEndpoint::PrometheusEndpoint(const std::string& listen,
-                                       std::chrono::milliseconds liveness_timeout)
+                                       std::chrono::milliseconds liveness_timeout,
+                                       const core::Clock& clock)
     : impl_(std::make_unique<Impl>()) {
-    impl_->health = std::make_shared<HealthState>(liveness_timeout);
+    impl_->health = std::make_shared<HealthState>(liveness_timeout, clock);
     try {
         impl_->exposer = std::make_unique<prometheus::Exposer>(detail::server_options(listen),
                                                                &detail::health_callbacks());
@@ -313,7 +314,7 @@ PrometheusEndpoint::~PrometheusEndpoint() {
 
 void PrometheusEndpoint::update(const MetricsSnapshot& snapshot) {
     impl_->collectable->set(to_families(snapshot));
-    impl_->health->update(snapshot, HealthState::Clock::now());
+    impl_->health->update(snapshot, impl_->health->clock().monotonic());
 }
 
 std::uint16_t PrometheusEndpoint::port() const {

@@ -14,7 +14,7 @@ void Client::Impl::stop(std::chrono::milliseconds flush_timeout) {
         return;
     }
     stop_loop_work();
-    const auto deadline = Clock::now() + flush_timeout;
+    const auto deadline = options_.clock->monotonic() + flush_timeout;
     if (!connection_.link_alive()) {
         stop_disconnected();
         return;
@@ -53,11 +53,12 @@ void Client::Impl::stop_disconnected() {
 }
 
 void Client::Impl::wait_for_last(const ::mqtt::delivery_token_ptr& last,
-                                 Clock::time_point deadline) {
+                                 core::MonoTime deadline) const {
     if (!last) {
         return;
     }
-    const auto left = std::max(Clock::duration::zero(), deadline - Clock::now());
+    const auto left =
+        std::max(core::MonoTime::duration::zero(), deadline - options_.clock->monotonic());
     try {
         last->wait_for(std::chrono::duration_cast<std::chrono::milliseconds>(left));
     } catch (const ::mqtt::exception&) {

@@ -72,7 +72,8 @@ private:
 Receiver::Receiver(boost::asio::any_io_executor executor, const ReceiverOptions& options)
     : executor_(std::move(executor)),
       receive_buffer_bytes_(options.receive_buffer_bytes),
-      batch_(options.batch == 0 ? 1 : options.batch) {
+      batch_(options.batch == 0 ? 1 : options.batch),
+      clock_(*options.clock) {
     open_unicast(options);
     // The wildcard socket receives every group joined on it; beside it no other socket could
     // bind the port, ours included.
@@ -202,7 +203,7 @@ void Receiver::on_readable(std::size_t socket, const boost::system::error_code& 
     if (error == boost::asio::error::operation_aborted || stopped_) return;
     if (error) {
         ++stats_.errors;
-        if (const auto count = error_log_.record(std::chrono::steady_clock::now())) {
+        if (const auto count = error_log_.record(clock_.monotonic())) {
             spdlog::error("UDP receive wait failed: {} ({} since the last line)", error.message(),
                           count);
         }
@@ -242,7 +243,7 @@ std::size_t Receiver::drain(int fd) {
         if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
             ++stats_.errors;
             const int failure = errno;
-            if (const auto count = error_log_.record(std::chrono::steady_clock::now())) {
+            if (const auto count = error_log_.record(clock_.monotonic())) {
                 spdlog::error("recvmmsg failed: {} ({} since the last line)",
                               std::strerror(failure), count);
             }

@@ -26,6 +26,9 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
+#include "eip2mqtt/core/clock.hpp"
+
 namespace eip2mqtt::adapters::history {
 
 namespace detail {
@@ -36,6 +39,8 @@ struct SpacePlan;
 struct JournalOptions {
     std::string path;  ///< the SQLite file; its directory must exist
     std::uint64_t max_bytes = 256ull << 20;
+    /// Stamps the name of a damaged file set aside; outlives the open.
+    const core::Clock* clock = &adapters::clock::system_clock();
 };
 
 /// One accepted datagram's changes (or a quality change) of one exchange.

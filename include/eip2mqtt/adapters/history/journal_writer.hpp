@@ -18,14 +18,18 @@
 #include <thread>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/history/journal.hpp"
+#include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::adapters::history {
 
 class JournalWriter {
 public:
-    explicit JournalWriter(std::unique_ptr<Journal> journal);
+    /// `clock` (outliving it) times the worker's throttled failure log.
+    explicit JournalWriter(std::unique_ptr<Journal> journal,
+                           const core::Clock& clock = adapters::clock::system_clock());
     /// Appends and commits everything handed over, durably, then joins.
     ~JournalWriter();
     JournalWriter(const JournalWriter&) = delete;
@@ -71,6 +75,7 @@ private:
     bool quit_ = false;
     std::atomic<std::uint64_t> failures_{0};
     std::atomic<std::uint64_t> last_id_{0};
+    const core::Clock& clock_;
     core::ThrottledLog failure_log_;  ///< the worker's
     std::thread worker_;
 };

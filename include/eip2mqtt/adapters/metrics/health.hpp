@@ -9,7 +9,9 @@
 #include <optional>
 #include <string>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
+#include "eip2mqtt/core/clock.hpp"
 
 namespace eip2mqtt::adapters::metrics {
 
@@ -25,7 +27,11 @@ public:
     using Clock = std::chrono::steady_clock;
 
     /// A loop that has not called update() for longer than `liveness_timeout` is not live.
-    explicit HealthState(Clock::duration liveness_timeout);
+    /// `clock` (outliving it) is the time its callers read for the answers and the updates.
+    explicit HealthState(Clock::duration liveness_timeout,
+                         const core::Clock& clock = adapters::clock::system_clock());
+
+    const core::Clock& clock() const { return clock_; }
 
     void update(const MetricsSnapshot& snapshot, Clock::time_point now);
 
@@ -39,6 +45,7 @@ private:
     HealthAnswer liveness_locked(Clock::time_point now) const;
 
     const Clock::duration liveness_timeout_;
+    const core::Clock& clock_;
     mutable std::mutex mutex_;
     std::optional<Clock::time_point> last_update_;
     std::string not_ready_;  ///< empty when ready

@@ -41,6 +41,8 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
+#include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/command/command_counters.hpp"
 #include "eip2mqtt/core/exchange/consume_counters.hpp"
 #include "eip2mqtt/core/exchange/produce_counters.hpp"
@@ -113,10 +115,11 @@ public:
     /// Listens on `listen` (`host:port`; port 0 picks a free one). Throws std::runtime_error
     /// naming the address when it cannot listen (a start-up error). Serves an empty page, and
     /// 503 on /healthz and /readyz, until the first update(); /healthz turns 503 again once no
-    /// update() came for `liveness_timeout`.
+    /// update() came for `liveness_timeout`, measured on `clock` (outliving the endpoint).
     explicit PrometheusEndpoint(
         const std::string& listen,
-        std::chrono::milliseconds liveness_timeout = default_liveness_timeout);
+        std::chrono::milliseconds liveness_timeout = default_liveness_timeout,
+        const core::Clock& clock = adapters::clock::system_clock());
     /// Stops the server; civetweb's listener polls, so this can take up to about 2 s.
     ~PrometheusEndpoint();
     PrometheusEndpoint(const PrometheusEndpoint&) = delete;

@@ -28,8 +28,10 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
+#include "eip2mqtt/core/clock.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
 
@@ -93,6 +95,9 @@ struct ClientOptions {
                                       ///< scans its lists per publish: keep it short)
     std::chrono::milliseconds min_backoff{250};
     std::chrono::milliseconds max_backoff{30000};
+    /// The time the client reads (backoff, throttled logs, stop()'s deadline), from the loop,
+    /// Paho's threads, the sender's and the stopping one: thread-safe; outlives the client.
+    const core::Clock* clock = &adapters::clock::system_clock();
 };
 
 struct ClientStats {

@@ -26,8 +26,10 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
 #include "eip2mqtt/adapters/udp/multicast.hpp"
+#include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
 
 namespace eip2mqtt::adapters::udp {
@@ -38,6 +40,8 @@ struct ReceiverOptions {
     std::vector<MulticastMembership> multicast;
     std::size_t batch = 64;                      ///< datagrams per recvmmsg
     int receive_buffer_bytes = 8 * 1024 * 1024;  ///< SO_RCVBUF request (the kernel may cap it)
+    /// Times the throttled error log; outlives the Receiver.
+    const core::Clock* clock = &adapters::clock::system_clock();
 };
 
 struct ReceiverStats {
@@ -108,6 +112,7 @@ private:
     std::vector<struct ::iovec> iovecs_;
     std::vector<struct ::sockaddr_in> sources_;
     ReceiverStats stats_;
+    const core::Clock& clock_;
     core::ThrottledLog error_log_;  ///< a failing socket fails on every wake-up
     bool stopped_ = false;
 };

@@ -46,7 +46,7 @@ int begin_request(mg_connection* connection) {
     if (path != "/healthz" && path != "/readyz") return 0;
     const auto state = state_for(request->server_port);
     if (!state) return 0;
-    const auto now = HealthState::Clock::now();
+    const auto now = state->clock().monotonic();
     return answer(connection, path == "/healthz" ? state->liveness(now) : state->readiness(now));
 }
 

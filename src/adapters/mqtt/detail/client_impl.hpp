@@ -17,13 +17,12 @@
 #include "adapters/mqtt/detail/sender.hpp"
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
 
 struct Client::Impl : std::enable_shared_from_this<Client::Impl> {
 public:
-    using Clock = std::chrono::steady_clock;
-
     Impl(boost::asio::any_io_executor loop, ClientOptions options);
     ~Impl();
     Impl(const Impl&) = delete;
@@ -48,7 +47,7 @@ private:
     /// No link to flush to: ends the sender, counting what it leaves.
     void stop_disconnected();
     /// Waits for the last of our own publications (`offline` or the will) until `deadline`.
-    static void wait_for_last(const ::mqtt::delivery_token_ptr& last, Clock::time_point deadline);
+    void wait_for_last(const ::mqtt::delivery_token_ptr& last, core::MonoTime deadline) const;
 
     const ClientOptions options_;
     detail::LoopPost loop_;

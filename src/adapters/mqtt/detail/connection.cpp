@@ -4,9 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
-#include <iterator>
-#include <set>
+#include <utility>
 
 #include "adapters/mqtt/detail/connect_options.hpp"
 #include "adapters/mqtt/detail/paho_tokens.hpp"
@@ -19,13 +17,6 @@ namespace paho = ::mqtt;
 namespace {
 
 constexpr auto kConnectTimeout = std::chrono::seconds(10);
-
-std::vector<std::optional<BrokerEndpoint>> parse_broker_urls(const std::vector<std::string>& urls) {
-    std::vector<std::optional<BrokerEndpoint>> endpoints;
-    endpoints.reserve(urls.size());
-    for (const auto& url : urls) endpoints.push_back(parse_broker_url(url));
-    return endpoints;
-}
 
 Incoming to_incoming(const paho::const_message_ptr& msg) {
     Incoming in;
@@ -59,12 +50,6 @@ void Connection::ConnectListener::on_failure(const paho::token& tok) {
         });
 }
 
-void Connection::SubscribeListener::on_failure(const paho::token& tok) {
-    connection_.loop_.post([&c = connection_, reason = describe_failure(tok)] {
-        spdlog::warn("{} subscribe failed on {}: {}", c.options_.log_name, c.url(), reason);
-    });
-}
-
 Connection::Connection(const ClientOptions& options, paho::async_client& paho, const LoopPost& loop,
                        Sender& sender, NagleSwitch& nagle)
     : options_(options),
@@ -72,15 +57,17 @@ Connection::Connection(const ClientOptions& options, paho::async_client& paho, c
       loop_(loop),
       sender_(sender),
       nagle_(nagle),
-      endpoints_(parse_broker_urls(options.urls)),
-      reconnect_timer_(loop.executor()),
-      backoff_(options.min_backoff, options.max_backoff) {
+      brokers_(options.urls),
+      reconnect_(loop, options),
+      diagnosis_(options),
+      subscriptions_(options, paho, loop, brokers_) {
     // The configuration gives every broker of a list the same scheme: the first one's TLS
     // settings are everyone's.
-    configure_connect_options(connect_options_, options_, endpoints_.front(), kConnectTimeout);
-    if (options_.tls && endpoint() && !endpoint()->tls) {
+    configure_connect_options(connect_options_, options_, brokers_.first_endpoint(),
+                              kConnectTimeout);
+    if (options_.tls && brokers_.endpoint() && !brokers_.endpoint()->tls) {
         spdlog::warn("{} url {} is not ssl:// or wss://: mqtt.tls is ignored", options_.log_name,
-                     url());
+                     brokers_.url());
     }
     install_callbacks();
 }
@@ -103,7 +90,7 @@ void Connection::install_callbacks() {
 }
 
 void Connection::on_message_arrived(const paho::const_message_ptr& msg) {
-    received_.fetch_add(1, std::memory_order_relaxed);
+    ConnectionCounters::bump(counters_.received);
     loop_.post([this, in = to_incoming(msg)]() mutable {
         if (on_message_ && state_ != State::stopped) {
             on_message_(std::move(in));
@@ -129,8 +116,7 @@ void Connection::do_connect() {
             Message will = options_.will();
             connect_options_.set_will(
                 paho::will_options(will.topic, will.payload, will.qos, will.retain));
-            std::lock_guard lock(will_mutex_);
-            last_will_ = std::move(will);
+            last_will_.set(std::move(will));
         }
         // One Paho client for every broker of the list: a connect's server list replaces the
         // URI the client was made with (Paho C frees and copies it on each connect). A client
@@ -139,7 +125,7 @@ void Connection::do_connect() {
         // A list of one URL each time: given them all, Paho would walk them from the first on
         // every connect and fail only after the last, where each attempt here goes to the next
         // broker, with the backoff between, and is logged with its URL.
-        connect_options_.set_servers(paho::string_collection::create({url()}));
+        connect_options_.set_servers(paho::string_collection::create({brokers_.url()}));
         connect_token_ = paho_.connect(connect_options_, nullptr, connect_listener_);
     } catch (const paho::exception& e) {
         on_connect(false, e.what());
@@ -163,21 +149,20 @@ void Connection::on_connect(bool ok, std::string reason, int return_code) {
 
 void Connection::on_connected() {
     state_ = State::connected;
-    connected_at_ = Clock::now();
+    diagnosis_.on_connected();
     sender_.set_link_up(true);
-    connected_ = true;
-    connects_.fetch_add(1, std::memory_order_relaxed);
-    backoff_.reset();
+    counters_.connected = true;
+    ConnectionCounters::bump(counters_.connects);
+    reconnect_.reset();
     apply_broker_limits();
-    connect_failure_log_.reset();
-    spdlog::info("{} connected to {}", options_.log_name, url());
+    spdlog::info("{} connected to {}", options_.log_name, brokers_.url());
 
-    if (endpoint()) {
-        nagle_.attach(sockets_connected_to(endpoint()->host, endpoint()->port));
+    if (const auto& endpoint = brokers_.endpoint()) {
+        nagle_.attach(sockets_connected_to(endpoint->host, endpoint->port));
     }
     // Subscribe before announcing `online`: the broker handles one connection's packets in
     // order, so whoever sees `online` can already write to us.
-    renew_subscriptions(subscriptions_);
+    subscriptions_.renew();
     announce_online();
     if (on_connected_) {
         on_connected_();
@@ -227,46 +212,7 @@ void Connection::announce_online() {
 }
 
 void Connection::set_subscriptions(std::vector<std::string> filters) {
-    std::set<std::string> old(subscriptions_.begin(), subscriptions_.end());
-    std::set<std::string> now(filters.begin(), filters.end());
-    std::vector<std::string> added;
-    std::vector<std::string> removed;
-    std::set_difference(now.begin(), now.end(), old.begin(), old.end(), std::back_inserter(added));
-    std::set_difference(old.begin(), old.end(), now.begin(), now.end(),
-                        std::back_inserter(removed));
-    subscriptions_ = std::move(filters);
-    if (state_ != State::connected) {
-        return;  // subscribed on the next connect
-    }
-    renew_subscriptions(added);
-    if (!removed.empty()) {
-        try {
-            paho_.unsubscribe(paho::string_collection::create(removed));
-        } catch (const paho::exception& e) {
-            spdlog::warn("{} unsubscribe failed on {}: {}", options_.log_name, url(), e.what());
-        }
-    }
-}
-
-void Connection::renew_subscriptions(const std::vector<std::string>& filters) {
-    if (filters.empty() || state_ != State::connected) {
-        return;
-    }
-    const bool v5 = options_.version == 5;
-    // no_local: never hear our own publications (unless asked: hear_own). Retain-as-published:
-    // a write published with retain keeps its flag when forwarded live, as it has when a new
-    // subscription fetches it later, so the gateway can refuse retained writes either way.
-    const paho::subscribe_options opt(v5 && !options_.hear_own, v5 && options_.retain_as_published);
-    try {
-        // One SUBSCRIBE per filter: Paho C++ 1.2's many-topic overload crashes inside
-        // MQTTAsync_subscribeMany when given subscribe options, and its one-topic overload is
-        // the only one that passes them on.
-        for (const auto& filter : filters) {
-            paho_.subscribe(filter, 1, nullptr, subscribe_listener_, opt);
-        }
-    } catch (const paho::exception& e) {
-        spdlog::warn("{} subscribe failed on {}: {}", options_.log_name, url(), e.what());
-    }
+    subscriptions_.set(std::move(filters), state_ == State::connected);
 }
 
 }  // namespace eip2mqtt::adapters::mqtt::detail

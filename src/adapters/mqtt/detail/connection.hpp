@@ -5,40 +5,45 @@
 /// renewed on every connect, the will made anew before each, and `online` on the availability
 /// topic. It tells the Sender when it may send and when what was in flight is lost.
 ///
+/// Its parts, each in its own file: the BrokerList (which broker), the ReconnectTimer (the
+/// backoff), the ConnectDiagnosis (what a failure or a loss means), the Subscriptions, the
+/// LastWill and the ConnectionCounters. Its own files: connection.cpp (the way up: connect, the
+/// CONNACK, subscriptions, `online`) and connection_down.cpp (the way down: failed attempts, lost
+/// connections, a session ended on purpose, stop()'s steps).
+///
 /// Threading: every member runs on the loop, but connected() and add_stats() (any thread), and
 /// the stop steps (the stopping thread: the loop may no longer run). Paho's callbacks copy what
-/// they learn and post it to the loop. The last will is kept under will_mutex_, since stop()
-/// reads it off the loop.
+/// they learn and post it to the loop. The last will is thread-safe, since stop() reads it off
+/// the loop.
 ///
 /// Module-private (src/adapters/mqtt/detail).
 
 #include <mqtt/async_client.h>
 
-#include <atomic>
-#include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <cstdint>
 #include <functional>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "adapters/mqtt/detail/broker_url.hpp"
-#include "adapters/mqtt/detail/connection_reasons.hpp"
+#include "adapters/mqtt/detail/broker_list.hpp"
+#include "adapters/mqtt/detail/connect_diagnosis.hpp"
+#include "adapters/mqtt/detail/connection_counters.hpp"
+#include "adapters/mqtt/detail/last_will.hpp"
 #include "adapters/mqtt/detail/loop_post.hpp"
-#include "adapters/mqtt/detail/reconnect_backoff.hpp"
+#include "adapters/mqtt/detail/reconnect_timer.hpp"
 #include "adapters/mqtt/detail/sender.hpp"
+#include "adapters/mqtt/detail/subscriptions.hpp"
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
-#include "eip2mqtt/core/throttled_log.hpp"
+#include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::adapters::mqtt::detail {
 
 class Connection {
 public:
-    using Clock = std::chrono::steady_clock;
     using ConnectedHandler = std::function<void()>;
     using MessageHandler = std::function<void(Incoming)>;
 
@@ -67,7 +72,7 @@ public:
     void end_session();
 
     // --- any thread ------------------------------------------------------------------------
-    bool connected() const { return connected_; }
+    bool connected() const { return counters_.connected; }
     /// Fills the connection fields of `stats`.
     void add_stats(ClientStats& stats) const;
 
@@ -79,10 +84,10 @@ public:
     /// to wait for; none without a will or when Paho refused it.
     ::mqtt::delivery_token_ptr publish_last_will();
     /// Publishes the `offline` availability, if there is one; the token to wait for, if any.
-    ::mqtt::delivery_token_ptr publish_offline(Clock::time_point deadline);
+    ::mqtt::delivery_token_ptr publish_offline(core::MonoTime deadline);
     /// A clean DISCONNECT (the broker then publishes no will).
     void disconnect();
-    void mark_disconnected() { connected_ = false; }
+    void mark_disconnected() { counters_.connected = false; }
 
 private:
     /// `ending`: end_session() asked Paho to disconnect, which has not finished; a start()
@@ -101,14 +106,8 @@ private:
         void on_failure(const ::mqtt::token& tok) override;
         Connection& connection_;
     };
-    struct SubscribeListener final : ::mqtt::iaction_listener {
-        explicit SubscribeListener(Connection& connection) : connection_(connection) {}
-        void on_success(const ::mqtt::token&) override {}
-        void on_failure(const ::mqtt::token& tok) override;
-        Connection& connection_;
-    };
 
-    // connection.cpp: connecting
+    // connection.cpp: the way up
     void install_callbacks();
     void on_message_arrived(const ::mqtt::const_message_ptr& msg);
     void do_connect();
@@ -116,21 +115,13 @@ private:
     void on_connect(bool ok, std::string reason, int return_code = 0);
     /// The connection is up: counts, limits, subscriptions, `online`, the handler, sending.
     void on_connected();
-    /// The URL of the broker being tried or connected to, and what it names.
-    const std::string& url() const { return options_.urls[broker_]; }
-    const std::optional<BrokerEndpoint>& endpoint() const { return endpoints_[broker_]; }
-    /// After a failed attempt or a lost connection: the next attempt goes to the next broker.
-    void move_to_next_broker();
     /// Reads the CONNACK's Receive Maximum and Maximum Packet Size into the Sender.
     void apply_broker_limits();
     void announce_online();
-    void renew_subscriptions(const std::vector<std::string>& filters);
 
-    // connection_failures.cpp: failing and losing
+    // connection_down.cpp: the way down
     /// Logs a failed attempt (throttled), with what the broker's refusal means, and retries.
     void on_connect_failed(std::string reason, int return_code);
-    /// Adds what connect_token_ knows and, over TLS, what to check, to a generic reason.
-    std::string explain_connect_failure(std::string reason) const;
     /// `silent`: Paho gave no cause (no DISCONNECT came; the socket closed or failed).
     void on_connection_lost(std::string cause, bool silent = false);
     /// Paho finished the disconnect of end_session(): idle, or connecting if start() came.
@@ -143,36 +134,24 @@ private:
     const LoopPost& loop_;
     Sender& sender_;
     NagleSwitch& nagle_;
-    /// What each of options_.urls names (nullopt: not a URL parse_broker_url knows).
-    const std::vector<std::optional<BrokerEndpoint>> endpoints_;
+    BrokerList brokers_;
 
     // The loop's.
     State state_ = State::idle;
     bool start_pending_ = false;  ///< start() while ending
-    boost::asio::steady_timer reconnect_timer_;
-    ReconnectBackoff backoff_;
+    ReconnectTimer reconnect_;
+    ConnectDiagnosis diagnosis_;
+    Subscriptions subscriptions_;
     ConnectedHandler on_connected_;
     MessageHandler on_message_;
-    std::vector<std::string> subscriptions_;
-    core::ThrottledLog connect_failure_log_;
-    Clock::time_point connected_at_{};
-    SilentLossPattern silent_losses_;
     ::mqtt::connect_options connect_options_;
     ::mqtt::token_ptr connect_token_;  ///< read for the CONNACK's properties
 
-    mutable std::mutex will_mutex_;
-    std::optional<Message> last_will_;  ///< options_.will's for the current connection
-
-    std::atomic<bool> connected_{false};  ///< the loop's view, for connected() and stats()
-    /// Index in options_.urls of the broker being tried or connected to; written on the loop.
-    std::atomic<std::size_t> broker_{0};
-    std::atomic<std::uint64_t> connects_{0};
-    std::atomic<std::uint64_t> connection_losses_{0};
-    std::atomic<std::uint64_t> received_{0};
+    LastWill last_will_;  ///< options_.will's for the current connection
+    ConnectionCounters counters_;
 
     ConnectListener connect_listener_{*this};
     DisconnectListener disconnect_listener_{*this};
-    SubscribeListener subscribe_listener_{*this};
 };
 
 }  // namespace eip2mqtt::adapters::mqtt::detail

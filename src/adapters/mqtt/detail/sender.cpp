@@ -1,4 +1,5 @@
-// The Sender's front: queueing from any thread, the connection's events, stop()'s steps.
+// The Sender's front: queueing from any thread, the connection's events, the client's own
+// publications, stop()'s steps.
 
 #include "adapters/mqtt/detail/sender.hpp"
 
@@ -27,6 +28,7 @@ Sender::Sender(const ClientOptions& options, ::mqtt::async_client& paho, const L
       hold_timer_(loop.executor()),
       ledger_(options.buffer_max_messages, options.batch_lane_max_messages, options.batch_first,
               options.max_in_flight),
+      log_(options.log_name, *options.clock),
       max_packet_size_(max_mqtt_packet_size) {}
 
 Sender::~Sender() { end_thread(); }
@@ -40,10 +42,10 @@ void Sender::enqueue(Message& message) {
     {
         std::lock_guard lock(mutex_);
         ledger_.push(message);
-        wake = sender_idle_ && ready_to_send();
+        wake = signals_.sleeping() && ready_to_send();
     }
     if (wake) {
-        wake_sender_.notify_one();
+        signals_.wake_one();
     }
 }
 
@@ -58,10 +60,7 @@ void Sender::set_batch_first(bool batch_first) {
 }
 
 void Sender::add_stats(ClientStats& stats) const {
-    stats.published = published_;
-    stats.publish_failures = publish_failures_;
-    stats.refused = refused_;
-    stats.discarded = discarded_;
+    counters_.add_to(stats);
     std::lock_guard lock(mutex_);
     const Outbox& outbox = ledger_.outbox();
     stats.queued = ledger_.queued();
@@ -69,6 +68,8 @@ void Sender::add_stats(ClientStats& stats) const {
     stats.dropped_overflow = outbox.tags().dropped_overflow() + outbox.batch().dropped_overflow();
     stats.coalesced = outbox.tags().coalesced();
 }
+
+// --- the connection's events ---------------------------------------------------------------
 
 void Sender::on_connected(std::size_t receive_maximum, std::optional<std::size_t> max_packet_size) {
     if (max_packet_size) max_packet_size_ = *max_packet_size;
@@ -83,18 +84,90 @@ void Sender::set_sending(bool enabled) {
         sending_ = enabled;
         if (enabled) ledger_.release_hold();
     }
-    wake_sender_.notify_all();
+    signals_.wake_all();
 }
 
-void Sender::wait_for_own_slots(Clock::time_point deadline) {
-    std::unique_lock lock(mutex_);
-    completed_.wait_until(lock, deadline, [this] { return ledger_.own_slots_fit(); });
+void Sender::on_connection_lost() {
+    std::string dropped;
+    {
+        // Whatever Paho did not confirm is either sent again (QoS >= 1, clean session) or
+        // counted as failed. Completions arriving later find nothing and are ignored, so
+        // nothing is counted twice.
+        std::lock_guard lock(mutex_);
+        sending_ = false;
+        if (options_.session_bound) {
+            SenderCounters::bump(counters_.discarded, ledger_.discard_queued());
+        }
+        if (requeue_in_flight_) {
+            ledger_.abandon_in_flight([&](std::uint64_t id, Message&& message) {
+                if (message.qos == 0) {
+                    SenderCounters::bump(counters_.publish_failures);
+                } else if (auto topic = requeue_after_loss(id, std::move(message));
+                           !topic.empty()) {
+                    dropped = std::move(topic);
+                }
+            });
+        }
+    }
+    signals_.completed();
+    if (!dropped.empty()) {
+        log_.dropped_suspect(dropped);
+    }
 }
 
-std::size_t Sender::flush(Clock::time_point deadline) {
-    std::unique_lock lock(mutex_);
-    completed_.wait_until(lock, deadline,
-                          [this] { return !ledger_.has_queued() && ledger_.pending() == 0; });
+void Sender::wait_idle() {
+    SenderSignals::Lock lock(mutex_);
+    signals_.wait_idle(lock);
+}
+
+// --- the client's own publications ---------------------------------------------------------
+
+void Sender::OwnPublicationListener::on_success(const ::mqtt::token& tok) {
+    sender_.release_own_slot(from_context(tok.get_user_context()));
+}
+
+void Sender::OwnPublicationListener::on_failure(const ::mqtt::token& tok) {
+    sender_.release_own_slot(from_context(tok.get_user_context()));
+}
+
+std::uint64_t Sender::reserve_own_slot() {
+    std::lock_guard lock(mutex_);
+    return ledger_.reserve_own_slot();
+}
+
+::mqtt::delivery_token_ptr Sender::publish_own(::mqtt::message_ptr message,
+                                               std::uint64_t generation) {
+    if (message->get_qos() == 0) return paho_.publish(std::move(message));
+    try {
+        return paho_.publish(std::move(message), to_context(generation), own_publication_listener_);
+    } catch (const ::mqtt::exception&) {
+        release_own_slot(generation);
+        throw;
+    }
+}
+
+void Sender::release_own_slot(std::uint64_t generation) {
+    bool wake = false;
+    {
+        std::lock_guard lock(mutex_);
+        if (!ledger_.release_own_slot(generation)) return;
+        wake = signals_.sleeping() && ready_to_send();
+    }
+    if (stopping_) signals_.completed();
+    if (wake) signals_.wake_one();
+}
+
+// --- stop()'s steps ------------------------------------------------------------------------
+
+void Sender::wait_for_own_slots(core::MonoTime deadline) {
+    SenderSignals::Lock lock(mutex_);
+    signals_.wait_completed_until(lock, deadline, [this] { return ledger_.own_slots_fit(); });
+}
+
+std::size_t Sender::flush(core::MonoTime deadline) {
+    SenderSignals::Lock lock(mutex_);
+    signals_.wait_completed_until(
+        lock, deadline, [this] { return !ledger_.has_queued() && ledger_.pending() == 0; });
     return ledger_.queued() + ledger_.pending();
 }
 
@@ -106,9 +179,9 @@ std::size_t Sender::queued() const {
 void Sender::end_thread() {
     {
         std::lock_guard lock(mutex_);
-        quit_ = true;
+        signals_.quit();
     }
-    wake_sender_.notify_all();
+    signals_.wake_all();
     if (thread_.joinable()) {
         thread_.join();
     }

@@ -7,7 +7,13 @@
 /// would neither drain UDP nor keep production deadlines. enqueue() only queues (a short lock)
 /// and wakes the thread when it sleeps.
 ///
-/// Threading: the ledger and the thread's flags are guarded by mutex_, held for the ledger only,
+/// Its parts, each in its own file: the SendLedger (what waits and what is in flight), the
+/// SenderSignals (sleeping and waking), the SenderCounters and the SenderLog (failures). Its
+/// own files: sender.cpp (queueing, the connection's events, the client's own publications,
+/// stop()'s steps) and sender_publish.cpp (a publication's way through Paho: the thread that
+/// hands it over, what Paho answers, the requeue after a lost connection).
+///
+/// Threading: the ledger and the signals are guarded by mutex_, held for the ledger only,
 /// never across a Paho call. enqueue() and the stop steps run on any thread; the thread runs
 /// sender_main; Paho's threads run the listeners (completions, under mutex_); the connection's
 /// events (set_sending, on_connected, on_connection_lost) and the handler and timer run on the
@@ -19,8 +25,6 @@
 
 #include <atomic>
 #include <boost/asio/steady_timer.hpp>
-#include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <mutex>
@@ -32,15 +36,17 @@
 #include "adapters/mqtt/detail/loop_post.hpp"
 #include "adapters/mqtt/detail/paho_tokens.hpp"
 #include "adapters/mqtt/detail/send_ledger.hpp"
+#include "adapters/mqtt/detail/sender_counters.hpp"
+#include "adapters/mqtt/detail/sender_log.hpp"
+#include "adapters/mqtt/detail/sender_signals.hpp"
 #include "adapters/mqtt/detail/tcp_nodelay.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
-#include "eip2mqtt/core/throttled_log.hpp"
+#include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::adapters::mqtt::detail {
 
 class Sender {
 public:
-    using Clock = std::chrono::steady_clock;
     using AcknowledgedHandler = std::function<void(std::uint64_t ack_token)>;
 
     /// `paho`, `loop` and `nagle` outlive it; the thread starts with start_thread().
@@ -56,7 +62,7 @@ public:
     /// Queues `message` in its lane and wakes the thread if it sleeps.
     void enqueue(Message& message);
     /// A publication dropped before it was queued (session-bound, while disconnected).
-    void count_discarded() { discarded_.fetch_add(1, std::memory_order_relaxed); }
+    void count_discarded() { SenderCounters::bump(counters_.discarded); }
     void set_buffer_capacity(std::size_t max_messages);
     void set_batch_first(bool batch_first);
     /// The broker's Maximum Packet Size for the current connection (see Client).
@@ -95,9 +101,9 @@ public:
     /// On the loop: no more hold timer.
     void cancel_hold() { hold_timer_.cancel(); }
     /// Waits until the own publications' reserved slots fit in the window, or `deadline`.
-    void wait_for_own_slots(Clock::time_point deadline);
+    void wait_for_own_slots(core::MonoTime deadline);
     /// Waits until nothing waits or is in flight, or `deadline`; returns how many are left.
-    std::size_t flush(Clock::time_point deadline);
+    std::size_t flush(core::MonoTime deadline);
     /// Publications waiting (dropped by a stop while disconnected).
     std::size_t queued() const;
     /// Ends the thread (idempotent).
@@ -129,7 +135,10 @@ private:
         Sender& sender_;
     };
 
-    // sender_thread.cpp: the thread
+    // sender.cpp
+    void release_own_slot(std::uint64_t generation);
+
+    // sender_publish.cpp: the thread
     bool ready_to_send() const;  ///< under mutex_
     void sender_main();
     void take_burst(std::vector<Taken>& taken);     ///< under mutex_
@@ -137,16 +146,20 @@ private:
     /// Under mutex_: into the window, in order; returns whether the window stopped a backlog.
     bool admit_burst(std::vector<Taken>& taken, std::vector<Outgoing>& burst);
     void send(std::uint64_t id, const ::mqtt::message_ptr& message);
-    /// A synchronous refusal of Paho's (send()).
-    void on_send_refused(std::uint64_t id, const ::mqtt::message_ptr& message,
-                         const ::mqtt::exception& e);
     ::mqtt::message_ptr to_paho(const Message& message) const;
 
-    // sender_completions.cpp: what Paho tells
+    // sender_publish.cpp: what Paho answers
     /// Publication `id` completed with Paho return code `rc` and, when the broker refused it
     /// (MQTT 5), its reason code (>= 0x80).
     void on_publish_done(std::uint64_t id, int rc, int reason_code, const std::string& reason);
-    void release_own_slot(std::uint64_t generation);
+    /// A synchronous refusal of Paho's (send()).
+    void on_send_refused(std::uint64_t id, const ::mqtt::message_ptr& message,
+                         const ::mqtt::exception& e);
+    /// Whether a failure is the broker's own verdict: an MQTT 5 PUBACK with a failure reason
+    /// code on a live connection. MQTT 3.1.1 has none; Paho's own failures carry other codes.
+    bool broker_refused(int rc, int reason_code) const;
+
+    // sender_publish.cpp: the requeue after a loss
     /// Under mutex_: the hold (SendLedger::hold) and a requeued suspect; returns the topic of a
     /// dropped one.
     std::string requeue_after_loss(std::uint64_t id, Message&& message);
@@ -155,12 +168,6 @@ private:
     /// the dying connection and be blamed for a loss it did not cause. Should the connection
     /// survive, the hold ends after kLossHold.
     void hold_for_reconnect();
-    /// Whether a failure is the broker's own verdict: an MQTT 5 PUBACK with a failure reason
-    /// code on a live connection. MQTT 3.1.1 has none; Paho's own failures carry other codes.
-    bool broker_refused(int rc, int reason_code) const;
-    void log_refused(const std::string& topic, const std::string& problem);
-    void log_dropped_suspect(const std::string& topic);
-    void log_publish_failure(const std::string& topic, const std::string& reason);
 
     const ClientOptions& options_;
     ::mqtt::async_client& paho_;
@@ -176,23 +183,15 @@ private:
 
     // Guarded by mutex_.
     mutable std::mutex mutex_;
-    std::condition_variable wake_sender_;  ///< work and room, or quit
-    std::condition_variable completed_;    ///< a pending publication finished (for stop())
+    SenderSignals signals_;
     SendLedger ledger_;
-    bool sending_ = false;      ///< connected and announced
-    bool sender_idle_ = false;  ///< the thread waits on wake_sender_
-    bool idle_wanted_ = false;  ///< wait_idle() waits on completed_ for sender_idle_
-    bool quit_ = false;
-    core::ThrottledLog publish_failure_log_;
-    core::ThrottledLog refused_log_;
+    bool sending_ = false;  ///< connected and announced
 
+    SenderLog log_;
     std::atomic<bool> link_up_{false};
     std::atomic<bool> stopping_{false};
     std::atomic<std::size_t> max_packet_size_;
-    std::atomic<std::uint64_t> published_{0};
-    std::atomic<std::uint64_t> publish_failures_{0};
-    std::atomic<std::uint64_t> refused_{0};
-    std::atomic<std::uint64_t> discarded_{0};
+    SenderCounters counters_;
 
     PublishListener publish_listener_{*this};
     OwnPublicationListener own_publication_listener_{*this};

@@ -1,8 +1,11 @@
-// The Sender's thread: takes bursts from the ledger, builds Paho's messages without the lock,
-// and hands them to Paho.
+// A publication's way through Paho: the sender's thread takes bursts from the ledger, builds
+// Paho's messages without the lock and hands them over; Paho answers (completed, failed,
+// refused); what a lost connection left in flight goes again.
 
 #include <malloc.h>
 #include <pthread.h>
+
+#include <chrono>
 
 #include "adapters/mqtt/detail/publication_check.hpp"
 #include "adapters/mqtt/detail/sender.hpp"
@@ -15,10 +18,15 @@ namespace {
 /// walks every arena: worth it after a burst, not after every message).
 constexpr std::size_t kTrimAfterBacklog = 10000;
 
+/// How long the thread holds after a loss-like failure if the connection does not go meanwhile.
+constexpr auto kLossHold = std::chrono::seconds(1);
+
 }  // namespace
 
+// --- the thread ----------------------------------------------------------------------------
+
 bool Sender::ready_to_send() const {
-    return !quit_ && sending_ && link_up_.load(std::memory_order_relaxed) &&
+    return !signals_.quitting() && sending_ && link_up_.load(std::memory_order_relaxed) &&
            ledger_.ready_to_send();
 }
 
@@ -27,13 +35,9 @@ void Sender::sender_main() {
     ::pthread_setname_np(::pthread_self(), "mqtt-sender");
     std::vector<Taken> taken;
     std::vector<Outgoing> burst;
-    std::unique_lock lock(mutex_);
+    SenderSignals::Lock lock(mutex_);
     for (;;) {
-        sender_idle_ = true;
-        if (idle_wanted_) completed_.notify_all();
-        wake_sender_.wait(lock, [this] { return quit_ || ready_to_send(); });
-        sender_idle_ = false;
-        if (quit_) {
+        if (!signals_.sleep_until_ready(lock, [this] { return ready_to_send(); })) {
             return;
         }
         // The lock is held to move publications between queues, never to build Paho's
@@ -75,10 +79,10 @@ void Sender::take_burst(std::vector<Taken>& taken) {
             return;
         }
         if (options_.may_send && !options_.may_send(next.message)) {
-            discarded_.fetch_add(1, std::memory_order_relaxed);
+            SenderCounters::bump(counters_.discarded);
             ledger_.drop_taken(std::move(next.message));
             taken.pop_back();
-            if (stopping_) completed_.notify_all();  // no longer pending: stop() may be done
+            if (stopping_) signals_.completed();  // no longer pending: stop() may be done
             continue;
         }
         if (next.probe) return;  // a suspect goes alone
@@ -89,8 +93,8 @@ void Sender::prepare_burst(std::vector<Taken>& taken) {
     const std::size_t max_packet_size = max_packet_size_;
     for (auto& next : taken) {
         if (auto problem = publication_problem(next.message, max_packet_size); !problem.empty()) {
-            refused_.fetch_add(1, std::memory_order_relaxed);
-            log_refused(next.message.topic, problem);
+            SenderCounters::bump(counters_.refused);
+            log_.refused(next.message.topic, problem);
             continue;
         }
         // Paho copies topic and payload: the window keeps our Message only for a re-send.
@@ -102,7 +106,7 @@ bool Sender::admit_burst(std::vector<Taken>& taken, std::vector<Outgoing>& burst
     for (auto& next : taken) {
         if (!next.out) {
             ledger_.drop_taken(std::move(next.message));
-            if (stopping_) completed_.notify_all();  // no longer pending: stop() may be done
+            if (stopping_) signals_.completed();  // no longer pending: stop() may be done
             continue;
         }
         const auto id = ledger_.admit(std::move(next.message), next.probe);
@@ -135,9 +139,11 @@ void Sender::send(std::uint64_t id, const ::mqtt::message_ptr& message) {
     }
 }
 
+// --- what Paho answers ----------------------------------------------------------------------
+
 void Sender::on_send_refused(std::uint64_t id, const ::mqtt::message_ptr& message,
                              const ::mqtt::exception& e) {
-    std::unique_lock lock(mutex_);
+    SenderSignals::Lock lock(mutex_);
     auto item = ledger_.complete(id);
     if (!item) {
         return;  // abandoned meanwhile by on_connection_lost
@@ -154,16 +160,104 @@ void Sender::on_send_refused(std::uint64_t id, const ::mqtt::message_ptr& messag
         auto dropped = requeue_after_loss(id, std::move(*item));
         lock.unlock();
         if (!dropped.empty()) {
-            completed_.notify_all();
-            log_dropped_suspect(dropped);
+            signals_.completed();
+            log_.dropped_suspect(dropped);
         }
         return;
     }
     ledger_.settle(id);
-    publish_failures_.fetch_add(1, std::memory_order_relaxed);
+    SenderCounters::bump(counters_.publish_failures);
     lock.unlock();
-    completed_.notify_all();
-    log_publish_failure(message->get_topic(), e.what());
+    signals_.completed();
+    log_.publish_failure(message->get_topic(), e.what());
+}
+
+void Sender::PublishListener::on_success(const ::mqtt::token& tok) {
+    sender_.on_publish_done(from_context(tok.get_user_context()), 0, 0, {});
+}
+
+void Sender::PublishListener::on_failure(const ::mqtt::token& tok) {
+    sender_.on_publish_done(from_context(tok.get_user_context()),
+                            tok.get_return_code() == 0 ? -1 : tok.get_return_code(),
+                            tok.get_reason_code(), describe_failure(tok));
+}
+
+void Sender::on_publish_done(std::uint64_t id, int rc, int reason_code, const std::string& reason) {
+    std::string failed_topic;
+    std::string dropped_topic;
+    bool wake = false;
+    {
+        std::lock_guard lock(mutex_);
+        auto item = ledger_.complete(id);
+        if (!item) {
+            return;  // already re-queued or counted by on_connection_lost
+        }
+        if (rc == 0) {
+            ledger_.settle(id);
+            SenderCounters::bump(counters_.published);
+            if (item->ack_token != 0) {
+                loop_.post([this, token = item->ack_token] {
+                    if (on_acknowledged_) on_acknowledged_(token);
+                });
+            }
+            ledger_.recycle(std::move(*item));
+        } else if (requeue_in_flight_ && item->qos > 0 && !stopping_ &&
+                   !broker_refused(rc, reason_code)) {
+            // No verdict of the broker's: failed because the connection went (Paho may report
+            // that before its connection-lost handler runs). Sent again after the reconnect,
+            // alone; a broker's refusal is final.
+            dropped_topic = requeue_after_loss(id, std::move(*item));
+        } else {
+            ledger_.settle(id);
+            SenderCounters::bump(counters_.publish_failures);
+            failed_topic = std::move(item->topic);
+        }
+        wake = signals_.sleeping() && ready_to_send();
+    }
+    if (stopping_) {
+        signals_.completed();
+    }
+    if (wake) {
+        signals_.wake_one();
+    }
+    if (!failed_topic.empty()) {
+        log_.publish_failure(failed_topic, reason);
+    }
+    if (!dropped_topic.empty()) {
+        log_.dropped_suspect(dropped_topic);
+    }
+}
+
+bool Sender::broker_refused(int rc, int reason_code) const {
+    return options_.version == 5 && rc != MQTTASYNC_DISCONNECTED &&
+           rc != MQTTASYNC_OPERATION_INCOMPLETE && link_up_ && reason_code >= 0x80 &&
+           reason_code <= 0xA2;
+}
+
+// --- the requeue after a loss --------------------------------------------------------------
+
+std::string Sender::requeue_after_loss(std::uint64_t id, Message&& message) {
+    hold_for_reconnect();
+    auto dropped = ledger_.requeue_suspect(id, std::move(message));
+    if (!dropped.empty()) {
+        SenderCounters::bump(counters_.refused);
+    }
+    return dropped;
+}
+
+void Sender::hold_for_reconnect() {
+    if (!ledger_.hold()) return;
+    loop_.post([this] {
+        hold_timer_.expires_after(kLossHold);
+        hold_timer_.async_wait(loop_.guarded([this](const boost::system::error_code& ec) {
+            if (ec) return;
+            {
+                std::lock_guard lock(mutex_);
+                ledger_.release_hold();
+            }
+            signals_.wake_all();
+        }));
+    });
 }
 
 }  // namespace eip2mqtt::adapters::mqtt::detail
