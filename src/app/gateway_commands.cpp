@@ -72,9 +72,9 @@ MetricsSources Gateway::metrics_sources(const adapters::mqtt::ClientStats& mqtt,
             history,
             sparkplug_ ? &sparkplug_->stats() : nullptr,
             commands_ ? &commands_->counters() : nullptr,
-            pair_images_ ? &pair_images_->counters() : nullptr,
-            pair_history_ ? &pair_history_->counters() : nullptr,
-            pair_writes_ ? &pair_writes_->counters() : nullptr};
+            pair_ ? &pair_->image_counters() : nullptr,
+            pair_ ? pair_->history_counters() : nullptr,
+            pair_ ? &pair_->write_counters() : nullptr};
 }
 
 }  // namespace eip2mqtt::app

@@ -1,5 +1,5 @@
 // The whole datagram path of consumed exchanges, router to publisher, wired as the gateway wires
-// it (Gateway::make_pair_history): once warm, a datagram that changes every tag allocates
+// it (redundancy::Pair): once warm, a datagram that changes every tag allocates
 // nothing, with or without a hot-standby pair configured. With one, the FanOut's tap keeps each
 // sample in its exchange's window (PairHistory) and the leader's publications carry the tokens
 // of its watermarks (JsonTree::set_pair); the standby keeps its windows without a word north.
