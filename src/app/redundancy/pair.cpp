@@ -215,7 +215,7 @@ void Pair::settle_left_writes(core::MonoTime now) {
     // What the other unit's images list as answered is not answered again: neither the writes
     // left to it, nor those this unit withheld when it last stood down (answered now if not).
     const auto listed = images_->take_leader_answers();
-    images_->answer_withheld(listed, now);
+    images_->answer_withheld(listed, now, lease_->others_renewed_epoch());
     // The others are settled by the image as it stands: the one the old leader last published.
     for (auto& request : writes_->take_unanswered(now, listed)) {
         const auto* write = std::get_if<ExchangeWrite>(&request.outcome);
