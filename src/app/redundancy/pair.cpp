@@ -124,7 +124,8 @@ void Pair::make_history() {
     history_->set_replay_gate(
         [this] { return lease_->lease().renewed_since_leading(clock_.monotonic()); });
     parts.north.set_tap(*history_);
-    parts.tree.set_pair([this](const SampleBatch& batch) { return history_->token_for(batch); });
+    parts.tree.set_sample_tokens(
+        [this](const SampleBatch& batch) { return history_->token_for(batch); });
     lease_->set_watermarks(
         [this] { return history_->watermarks(); },
         [this](Watermarks&& watermarks) { history_->heard(std::move(watermarks)); });

@@ -2,8 +2,8 @@
 // it (redundancy::Pair): once warm, a datagram that changes every tag allocates
 // nothing, with or without a hot-standby pair configured. With one, the FanOut's tap keeps each
 // sample in its exchange's window (PairHistory) and the leader's publications carry the tokens
-// of its watermarks (JsonTree::set_pair); the standby keeps its windows without a word north.
-// Counted with a replaced operator new, on this thread (tests/support/count_allocations).
+// of its watermarks (JsonTree::set_sample_tokens); the standby keeps its windows without a word
+// north. Counted with a replaced operator new, on this thread (tests/support/count_allocations).
 
 #include <gtest/gtest.h>
 
@@ -68,7 +68,7 @@ public:
         if (pair_ != Pair::none) {
             fan_out_.set_gate([this] { return pair_ == Pair::leader; });
             fan_out_.set_tap(history_);
-            uns_.northbound().set_pair(
+            uns_.northbound().set_sample_tokens(
                 [this](const SampleBatch& batch) { return history_.token_for(batch); });
             router_.set_followed({}, [this](core::MonoTime) { return pair_ != Pair::leader; });
         }
