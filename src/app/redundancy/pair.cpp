@@ -90,7 +90,7 @@ void Pair::wire(PairParts parts) {
                                          [this](core::redundancy::Role role) { on_role(role); });
     lease_->set_on_epoch_raised([this] { publish_images(); });
     if (parts_ref.session.bd_seq) lease_->set_bd_seq_source(parts_ref.session.bd_seq);
-    parts_ref.north.set_gate([this] { return leading(clock_.monotonic()); });
+    parts_ref.north.set_role(*this);
     make_writes();
     make_history();
     spdlog::info("pair {}: standing by until the lease is settled (takeover after {} ms)",

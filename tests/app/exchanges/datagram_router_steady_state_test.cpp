@@ -21,6 +21,7 @@
 #include "tests/support/count_allocations.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
+#include "tests/support/fakes/switched_role.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -66,7 +67,8 @@ public:
     explicit DatagramPath(Pair pair) : pair_(pair) {
         fan_out_.add(uns_.northbound());
         if (pair_ != Pair::none) {
-            fan_out_.set_gate([this] { return pair_ == Pair::leader; });
+            role_.leading = pair_ == Pair::leader;
+            fan_out_.set_role(role_);
             fan_out_.set_tap(history_);
             uns_.northbound().set_sample_tokens(
                 [this](const SampleBatch& batch) { return history_.token_for(batch); });
@@ -122,6 +124,7 @@ private:
     }
 
     Pair pair_;
+    test::SwitchedRole role_;
     northbound::FanOut fan_out_;
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
     std::vector<std::vector<std::byte>> datagrams_;

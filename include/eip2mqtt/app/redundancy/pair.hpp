@@ -28,6 +28,7 @@
 #include "eip2mqtt/app/redundancy/pair_history.hpp"
 #include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/redundancy/pair_writes.hpp"
+#include "eip2mqtt/app/redundancy/unit_role.hpp"
 #include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/redundancy/lease.hpp"
 
@@ -76,7 +77,7 @@ struct PairParts {
     std::function<void()> republish;
 };
 
-class Pair {
+class Pair final : public UnitRole {
 public:
     /// `clock` must outlive the pair and be safe to read from any thread (the sender threads
     /// read it through may_send()).
@@ -115,6 +116,8 @@ public:
 
     /// Whether this unit leads at `now`.
     bool leading(core::MonoTime now) const;
+    /// Whether it leads now, by its clock.
+    bool leads() const override { return leading(clock_.monotonic()); }
     /// Whether on_acknowledged() wants the JSON tree connection's acknowledgements.
     bool hears_acknowledgements() const { return history_ != nullptr; }
     /// An acknowledged publication of the JSON tree's connection; false when it is not one of
