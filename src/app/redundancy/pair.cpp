@@ -53,7 +53,7 @@ std::function<bool(const adapters::mqtt::Message&)> Pair::may_send(
 
 ExchangesOptions Pair::exchanges_options() {
     ExchangesOptions options;
-    options.may_produce = [this](core::MonoTime now) { return lease_->may_produce(now); };
+    options.role = this;
     // Only a leader produces, so only a leader's images change by writes.
     options.on_image_changed = [this](const ExchangeProducer& producer) {
         images_->publish(producer, lease_->lease().epoch());
@@ -73,6 +73,8 @@ std::unique_ptr<adapters::mqtt::Publisher> Pair::leader_only(adapters::mqtt::Pub
 }
 
 bool Pair::leading(core::MonoTime now) const { return lease_->leading(now); }
+
+bool Pair::may_produce(core::MonoTime now) const { return lease_->may_produce(now); }
 
 void Pair::wire(PairParts parts) {
     const auto& parts_ref = parts_.emplace(std::move(parts));

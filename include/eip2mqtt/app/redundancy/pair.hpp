@@ -118,6 +118,7 @@ public:
     bool leading(core::MonoTime now) const;
     /// Whether it leads now, by its clock.
     bool leads() const override { return leading(clock_.monotonic()); }
+    bool may_produce(core::MonoTime now) const override;
     /// Whether on_acknowledged() wants the JSON tree connection's acknowledgements.
     bool hears_acknowledgements() const { return history_ != nullptr; }
     /// An acknowledged publication of the JSON tree's connection; false when it is not one of
