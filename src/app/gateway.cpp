@@ -29,7 +29,7 @@ constexpr auto refresh_scan_interval = 1s;
 // How long a clean stop waits for queued publications before giving up.
 constexpr auto stop_flush_timeout = 3s;
 
-/// `options` holds what the pair sets (Gateway::pair_options).
+/// `options` holds what the pair sets (redundancy::Pair::exchanges_options).
 ExchangesOptions exchanges_options(const core::config::Config& config, ExchangesOptions options) {
     options.sender.bind = config.eip.bind;
     options.sender.multicast_ttl = config.eip.multicast_ttl;
@@ -60,20 +60,25 @@ Gateway::Gateway(core::config::Config config, const core::Clock& clock)
       tick_timer_(loop_),
       metrics_timer_(loop_),
       watchdog_timer_(loop_),
+      pair_(config_.redundancy.enabled()
+                ? std::make_unique<redundancy::Pair>(loop_.get_executor(), clock_)
+                : nullptr),
       writes_([this](ExchangeWrite&& write, const WriteReply& reply,
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
               clock_),
-      exchanges_(loop_.get_executor(), exchanges_options(config_, pair_options()), northbound_,
-                 writes_.image_saves()),
+      exchanges_(
+          loop_.get_executor(),
+          exchanges_options(config_, pair_ ? pair_->exchanges_options() : ExchangesOptions{}),
+          northbound_, writes_.image_saves()),
       reloads_(loop_.get_executor(), *this, clock_) {
     auto mqtt_options = mqtt_client_options(config_, availability_topic_);
-    if (config_.redundancy.enabled()) {
+    if (pair_) {
         // The unit's own topics (state, metrics, role) and the exchanges' `_meta` are said by
         // both units; the tree's retained values, `_values` and a takeover's `_history` replay
         // (its tokens are the pair's) by the leader alone. Store and forward's `_history` goes
         // whoever leads: each unit replays what it journaled.
-        mqtt_options.may_send = pair_may_send([gateway = config_.mqtt.base_topic + "/_gateway/"](
-                                                  const adapters::mqtt::Message& m) {
+        mqtt_options.may_send = pair_->may_send([gateway = config_.mqtt.base_topic + "/_gateway/"](
+                                                    const adapters::mqtt::Message& m) {
             const bool leaders = m.historical ? core::redundancy::AckedWatermarks::owns(m.ack_token)
                                               : m.retain || m.batch_lane;
             return leaders && !m.topic.starts_with(gateway) && !m.topic.ends_with("/_meta");
@@ -127,7 +132,7 @@ int Gateway::run() {
     // The retained topics a reload under way had yet to clear, before the connection ends.
     json_tree_->publish_changes(std::numeric_limits<std::size_t>::max());
     // Nothing is produced any more: the lease goes, its will clearing the leader topic.
-    if (pair_mqtt_) pair_mqtt_->stop(stop_flush_timeout);
+    if (pair_) pair_->stop(stop_flush_timeout);
     // The edge node's NDEATH after its last data, then the JSON tree's `offline`.
     if (sparkplug_mqtt_) sparkplug_mqtt_->stop(stop_flush_timeout);
     mqtt_->stop(stop_flush_timeout);
@@ -141,7 +146,7 @@ void Gateway::start() {
     started_at_ = clock_.monotonic();
     last_refresh_scan_ = started_at_;
     mqtt_->set_on_connected([this] { on_connected(); });
-    if (history_ || pair_history_) {
+    if (history_ || (pair_ && pair_->hears_acknowledgements())) {
         mqtt_->set_on_acknowledged([this](std::uint64_t token) { on_acknowledged(token); });
     }
     mqtt_->set_on_message(
@@ -152,7 +157,7 @@ void Gateway::start() {
                bool truncated) { exchanges_.route(bytes, from, truncated, clock_.monotonic()); });
     for (auto& module : modules_) module->start(started_at_);
     mqtt_->start();
-    start_pair();
+    if (pair_) pair_->start();
     if (sparkplug_mqtt_) {
         sparkplug_mqtt_->set_on_connected([this] {
             on_sparkplug_event(
@@ -194,11 +199,28 @@ MetricsSources Gateway::metrics_sources(const adapters::mqtt::ClientStats& mqtt,
                                         const history::HistoryStats* history) const {
     MetricsSources sources{exchanges_.datagram_counters(), writes_.counters(), mqtt, history};
     sources.sparkplug = sparkplug_ ? &sparkplug_->stats() : nullptr;
-    sources.pair_images = pair_images_ ? &pair_images_->counters() : nullptr;
-    sources.pair_history = pair_history_ ? &pair_history_->counters() : nullptr;
-    sources.pair_writes = pair_writes_ ? &pair_writes_->counters() : nullptr;
+    sources.pair_images = pair_ ? &pair_->image_counters() : nullptr;
+    sources.pair_history = pair_ ? pair_->history_counters() : nullptr;
+    sources.pair_writes = pair_ ? &pair_->write_counters() : nullptr;
     for (const auto& module : modules_) module->add_metrics(sources);
     return sources;
+}
+
+void Gateway::make_pair() {
+    if (!pair_) return;
+    redundancy::SessionHooks session;
+    if (sparkplug_) {
+        session = {[this](std::optional<std::uint8_t> heard) { open_sparkplug_session(heard); },
+                   [this] { end_sparkplug_session(); },
+                   [this] { return sparkplug_->session_bd_seq(); }};
+    }
+    pair_->wire({config_, *mqtt_, *json_tree_, writes_, exchanges_, northbound_, std::move(session),
+                 [this] { republish_exchanges(); }});
+}
+
+void Gateway::on_acknowledged(std::uint64_t token) {
+    if (pair_ && pair_->on_acknowledged(token)) return;
+    if (history_) history_->on_acknowledged(token);
 }
 
 void Gateway::wait_signal() {
@@ -253,15 +275,11 @@ void Gateway::on_tick() {
     receiver_->read_pending();
     const auto now = clock_.monotonic();
     const auto wall = clock_.wall();
-    if (pair_) {
-        pair_->on_connection(pair_mqtt_->connected(), now);
-        pair_->tick(now);
-        refresh_leading_until();
-    }
+    if (pair_) pair_->tick(now);
     const bool refresh_scan = now - last_refresh_scan_ >= refresh_scan_interval;
     // Before the metrics: figures showing a datagram accepted then show it journaled for good.
     if (history_) history_->on_tick(now);
-    if (pair_history_) pair_history_->on_tick();
+    if (pair_) pair_->tick_replay();
     // A pending rebirth may be born here: the node's replay of history starts with it.
     if (sparkplug_) on_sparkplug_event(false, [&] { sparkplug_->tick(now); });
     if (refresh_scan) {

@@ -66,7 +66,7 @@ void Gateway::on_sparkplug_event(bool connection, const std::function<void()>& e
     const bool was_born = !connection && sparkplug_->born();
     event();
     if (history_ && sparkplug_->born() && !was_born) {
-        history_->on_connected(*sparkplug_, std::chrono::steady_clock::now());
+        history_->on_connected(*sparkplug_, clock_.monotonic());
     }
 }
 

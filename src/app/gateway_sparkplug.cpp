@@ -16,26 +16,23 @@ void Gateway::make_sparkplug() {
     if (!config_.sparkplug.enabled()) return;
     auto options = sparkplug_client_options(config_, [this] { return sparkplug_->next_will(); });
     // In a pair the node's session is the leader's: all of it (its NDEATH goes another way).
-    if (config_.redundancy.enabled()) options.may_send = pair_may_send(nullptr);
+    if (pair_) options.may_send = pair_->may_send(nullptr);
     sparkplug_mqtt_ =
         std::make_unique<adapters::mqtt::Client>(loop_.get_executor(), std::move(options));
     adapters::mqtt::Publisher* node_mqtt = sparkplug_mqtt_.get();
-    if (config_.redundancy.enabled()) {
-        // Asked only once make_pair() made the pair: nothing is published before start().
-        sparkplug_leader_ = std::make_unique<redundancy::LeaderPublisher>(
-            *sparkplug_mqtt_, [this] { return pair_->leading(std::chrono::steady_clock::now()); });
+    if (pair_) {
+        sparkplug_leader_ = pair_->leader_only(*sparkplug_mqtt_);
         node_mqtt = sparkplug_leader_.get();
     }
     sparkplug_ = std::make_unique<northbound::sparkplug::SparkplugNode>(
-        northbound::sparkplug::sparkplug_options(config_), *node_mqtt, writes_,
-        adapters::clock::system_clock());
+        northbound::sparkplug::sparkplug_options(config_), *node_mqtt, writes_, clock_);
     northbound_.add(*sparkplug_);
     add_sparkplug_history();
 }
 
-void Gateway::open_sparkplug_session() {
+void Gateway::open_sparkplug_session(std::optional<std::uint8_t> heard_bd_seq) {
     if (!sparkplug_) return;
-    sparkplug_->begin_session(pair_->heard_bd_seq());
+    sparkplug_->begin_session(heard_bd_seq);
     sparkplug_mqtt_->start();  // the CONNECT's will, made now, takes the session's bdSeq
     if (const auto bd_seq = sparkplug_->session_bd_seq()) {
         spdlog::info("Sparkplug: the edge node's session opens with bdSeq {}", *bd_seq);

@@ -5,7 +5,6 @@
 /// Members are declared in dependency order so that handlers may capture `this`.
 
 #include <array>
-#include <atomic>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
@@ -30,19 +29,15 @@
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/exchanges/exchanges.hpp"
 #include "eip2mqtt/app/exchanges/write_dispatcher.hpp"
-#include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/health/loop_watch.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/history/store_and_forward.hpp"
 #include "eip2mqtt/app/module.hpp"
 #include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
-#include "eip2mqtt/app/redundancy/leader_publisher.hpp"
-#include "eip2mqtt/app/redundancy/pair_history.hpp"
-#include "eip2mqtt/app/redundancy/pair_images.hpp"
-#include "eip2mqtt/app/redundancy/pair_lease.hpp"
-#include "eip2mqtt/app/redundancy/pair_writes.hpp"
+#include "eip2mqtt/app/redundancy/pair.hpp"
 #include "eip2mqtt/app/reload/reload_sequence.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/throttled_log.hpp"
@@ -101,43 +96,16 @@ private:
     /// multicast groups, log level, publish settings, MQTT buffers. False, with nothing
     /// changed, when the multicast groups cannot be joined.
     bool apply_settings(const core::config::Config& next);
-    /// With `redundancy:`, the pair's lease on a connection of its own, and the gates it
-    /// keeps: the tag tree, production and writes (gateway_pair.cpp).
+    /// With `redundancy:`, the pair wired to the parts it gates (redundancy::Pair).
     void make_pair();
-    /// The options of the exchanges that a pair sets: the gate of production, the images the
-    /// leader publishes and the request ids the standby follows; none without `redundancy:`.
-    ExchangesOptions pair_options();
-    /// The writes a standby leaves to the leader, the answers it listens for on the JSON
-    /// tree's connection, and how it settles the unanswered once it leads (make_pair).
-    void make_pair_writes();
-    /// Taking the lead: the writes left to the old leader and the answers this unit withheld.
-    void settle_left_writes(core::MonoTime now);
-    /// Stepping down: the answers and the queued writes of this unit as leader.
-    void step_down_writes(core::MonoTime now);
-    /// With the JSON tree among the northbounds: the pair's history (make_pair).
-    void make_pair_history();
-    /// The leader: every produced image, under its epoch.
-    void publish_images();
-    void start_pair();
-    void on_role(core::redundancy::Role role);
     /// With `sparkplug:`, the leader's session of the one edge node (gateway_sparkplug.cpp):
     /// opened when this unit takes the lead, with a bdSeq other than the pair's last one, ended
     /// (its NDEATH said, what waited dropped) when it steps down.
-    void open_sparkplug_session();
+    void open_sparkplug_session(std::optional<std::uint8_t> heard_bd_seq);
     void end_sparkplug_session();
     /// An acknowledged publication of the JSON tree's connection: a pair's sample, else a
     /// journal entry of store and forward.
     void on_acknowledged(std::uint64_t token);
-    /// ClientOptions::may_send of a pair's connections, asked on their sender threads: what only
-    /// a leader says (`leader_only`, every publication when null) goes only while this unit
-    /// leads, by the lease as the loop last saw it (leading_until_). So what waited when the
-    /// lease lapsed (a leader cut off from the broker, or resumed after SIGSTOP) is never said.
-    std::function<bool(const adapters::mqtt::Message&)> pair_may_send(
-        std::function<bool(const adapters::mqtt::Message&)> leader_only);
-    /// After each event of the lease: leading_until_ from it.
-    void refresh_leading_until();
-    /// Whether produced exchanges may send now: always without a pair.
-    bool may_produce(core::MonoTime now) const { return !pair_ || pair_->may_produce(now); }
     /// A module the configuration makes (null: one it leaves out).
     void add(std::unique_ptr<Module> module);
     /// The figures the metrics are made of, borrowed for one call.
@@ -165,6 +133,8 @@ private:
     boost::asio::steady_timer metrics_timer_;
     boost::asio::steady_timer watchdog_timer_;
     adapters::systemd::Notifier notifier_;
+    /// With `redundancy:`; before what it gates, whose connections and options ask it.
+    std::unique_ptr<redundancy::Pair> pair_;
     std::unique_ptr<adapters::mqtt::Client> mqtt_;
     WriteDispatcher writes_;
     std::unique_ptr<northbound::json_tree::JsonTree> json_tree_;
@@ -172,21 +142,10 @@ private:
     /// pair, connected only while this unit leads.
     std::unique_ptr<adapters::mqtt::Client> sparkplug_mqtt_;
     /// In a pair, between the node and its connection: nothing passes unless this unit leads.
-    std::unique_ptr<redundancy::LeaderPublisher> sparkplug_leader_;
+    std::unique_ptr<adapters::mqtt::Publisher> sparkplug_leader_;
     std::unique_ptr<northbound::sparkplug::SparkplugNode> sparkplug_;
     std::unique_ptr<history::StoreAndForward> history_;  ///< with mqtt.store_and_forward
     northbound::FanOut northbound_;  ///< every northbound: what the exchanges report to
-    std::unique_ptr<adapters::mqtt::Client> pair_mqtt_;  ///< with redundancy:
-    std::unique_ptr<redundancy::PairLease> pair_;        ///< with pair_mqtt_
-    /// The instant (steady clock, in its ticks) this unit's lease lapses while it leads; the
-    /// least there is while it does not. Written on the loop, read by the sender threads.
-    std::atomic<std::chrono::steady_clock::rep> leading_until_{
-        std::chrono::steady_clock::time_point::min().time_since_epoch().count()};
-    std::unique_ptr<redundancy::PairImages> pair_images_;  ///< with pair_mqtt_
-    /// With pair_mqtt_: the writes left to the leader, until it answers them.
-    std::unique_ptr<redundancy::PairWrites> pair_writes_;
-    /// With pair_mqtt_ and the JSON tree: the samples a takeover replays on `_history`.
-    std::unique_ptr<redundancy::PairHistory> pair_history_;
     Exchanges exchanges_;
     std::unique_ptr<adapters::udp::Receiver> receiver_;
     /// The modules, in dependency order: started and ticked in it, stopped in reverse.

@@ -137,7 +137,7 @@ std::unique_ptr<ExchangeProducer> Exchanges::make_producer(core::plan::ExchangeP
     if (!sender_) {
         sender_ = std::make_unique<adapters::udp::Sender>(loop_, options_.sender);
         scheduler_ = std::make_unique<ProducerScheduler>(loop_, *sender_);
-        if (options_.may_produce) scheduler_->set_gate(options_.may_produce);
+        scheduler_->set_role(*options_.role);
         persister_ = std::make_unique<adapters::state::ImagePersister>(image_store_, loop_);
     }
     auto producer =

@@ -53,7 +53,7 @@ void ProducerScheduler::on_wake() {
     queue_.take_due(now, due_);
     // Asked at the moment of sending: a process resumed after SIGSTOP is fenced here, whatever
     // its timers did not run while it was stopped.
-    if (may_produce_ && !may_produce_(now)) due_.clear();
+    if (!role_->may_produce(now)) due_.clear();
     // Each datagram carries the UTC time of the deadline it serves (SamplingClock), so that
     // its consumers see whole periods however late the loop woke.
     sampling_clock_.observe(now, clock_.wall());

@@ -156,7 +156,6 @@ void PairImages::heard_back(const std::string& topic, std::uint64_t seq, LeaseNo
 }
 
 void PairImages::other_leads(std::uint64_t epoch) {
-    others_led_ = std::max(others_led_, epoch);
     if (withheld_.empty() || epoch == 0) return;
     std::deque<Waiting> still;
     for (auto& waiting : withheld_) {
@@ -175,7 +174,8 @@ void PairImages::withhold(Waiting&& waiting) {
     withheld_.push_back(std::move(waiting));
 }
 
-void PairImages::answer_withheld(std::span<const std::uint64_t> listed, core::MonoTime now) {
+void PairImages::answer_withheld(std::span<const std::uint64_t> listed, core::MonoTime now,
+                                 std::uint64_t others_led) {
     std::unordered_map<std::uint64_t, std::size_t> answered;
     for (const auto key : listed) ++answered[key];
     auto withheld = std::move(withheld_);
@@ -183,7 +183,7 @@ void PairImages::answer_withheld(std::span<const std::uint64_t> listed, core::Mo
     for (auto& waiting : withheld) {
         // Older than the horizon, with the other unit having led since: it forgot the write,
         // and whether it settled it, too. Had it not led, nobody answered the write.
-        if (now - waiting.since > answers_kept_ && others_led_ > waiting.epoch) continue;
+        if (now - waiting.since > answers_kept_ && others_led > waiting.epoch) continue;
         const auto found = answered.find(waiting.key);
         if (found != answered.end() && found->second > 0) {
             --found->second;

@@ -1,9 +1,9 @@
 // The whole datagram path of consumed exchanges, router to publisher, wired as the gateway wires
-// it (Gateway::make_pair_history): once warm, a datagram that changes every tag allocates
+// it (redundancy::Pair): once warm, a datagram that changes every tag allocates
 // nothing, with or without a hot-standby pair configured. With one, the FanOut's tap keeps each
 // sample in its exchange's window (PairHistory) and the leader's publications carry the tokens
-// of its watermarks (JsonTree::set_pair); the standby keeps its windows without a word north.
-// Counted with a replaced operator new, on this thread (tests/support/count_allocations).
+// of its watermarks (JsonTree::set_sample_tokens); the standby keeps its windows without a word
+// north. Counted with a replaced operator new, on this thread (tests/support/count_allocations).
 
 #include <gtest/gtest.h>
 
@@ -21,6 +21,7 @@
 #include "tests/support/count_allocations.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
+#include "tests/support/fakes/switched_role.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -66,9 +67,10 @@ public:
     explicit DatagramPath(Pair pair) : pair_(pair) {
         fan_out_.add(uns_.northbound());
         if (pair_ != Pair::none) {
-            fan_out_.set_gate([this] { return pair_ == Pair::leader; });
+            role_.leading = pair_ == Pair::leader;
+            fan_out_.set_role(role_);
             fan_out_.set_tap(history_);
-            uns_.northbound().set_pair(
+            uns_.northbound().set_sample_tokens(
                 [this](const SampleBatch& batch) { return history_.token_for(batch); });
             router_.set_followed({}, [this](core::MonoTime) { return pair_ != Pair::leader; });
         }
@@ -122,6 +124,7 @@ private:
     }
 
     Pair pair_;
+    test::SwitchedRole role_;
     northbound::FanOut fan_out_;
     std::vector<std::unique_ptr<ExchangeConsumer>> consumers_;
     std::vector<std::vector<std::byte>> datagrams_;

@@ -15,6 +15,7 @@
 
 #include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/recording_producible.hpp"
+#include "tests/support/fakes/switched_role.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -151,12 +152,10 @@ TEST_F(ProducerSchedulerTest, AWallClockStepIsFollowedFromTheNextWakeUp) {
 
 TEST_F(ProducerSchedulerTest, AClosedGatePassesTheDeadlinesWithoutProducingAnything) {
     RecordingProducible a("a", 1001, log_);
-    bool open = false;
-    int asked = 0;
-    scheduler_.set_gate([&](core::MonoTime) {
-        ++asked;
-        return open;
-    });
+    test::SwitchedRole role;
+    bool& open = role.leading;
+    int& asked = role.asked;
+    scheduler_.set_role(role);
     // Due every millisecond: the closed gate is asked at several wake-ups.
     const auto id = scheduler_.add(a, due_now(1ms));
     const auto give_up = std::chrono::steady_clock::now() + 10s;

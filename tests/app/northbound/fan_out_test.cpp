@@ -7,6 +7,7 @@
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
+#include "tests/support/fakes/switched_role.hpp"
 
 namespace eip2mqtt::app::northbound {
 namespace {
@@ -49,8 +50,9 @@ TEST(FanOut, AClosedGateStopsWhatTheExchangesSayButNotTheRunningSetOrTheResultsN
     test::RecordingNorthbound northbound;
     FanOut fan_out;
     fan_out.add(northbound);
-    bool open = false;
-    fan_out.set_gate([&] { return open; });
+    test::SwitchedRole role;
+    bool& open = role.leading;
+    fan_out.set_role(role);
 
     const auto plan = e1_plan();
     const std::vector<TagSample> samples{{0, core::plan::Value{true}}};

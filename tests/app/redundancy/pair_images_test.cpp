@@ -258,7 +258,7 @@ TEST_F(PairImagesTest, AClaimBeforeTheImageThatDidNotStandLetsTheAnswerGoWhenALa
     EXPECT_EQ(answered, 1);
     EXPECT_EQ(images_.counters().answers_late, 1u);
     images_.other_leads(10);
-    images_.answer_withheld({}, t0_ + 1s);
+    images_.answer_withheld({}, t0_ + 1s, 10);
     EXPECT_EQ(answered, 1);
 }
 
@@ -267,7 +267,7 @@ TEST_F(PairImagesTest, TheClaimThatCameBeforeTheImageStandingTheAnswerIsTheOther
     owe_then_stand_down(answered);
     hear_back(false, 8);
     images_.other_leads(8);  // it led without having read the image: it settled the write
-    images_.answer_withheld({}, t0_ + 1s);
+    images_.answer_withheld({}, t0_ + 1s, 8);
     EXPECT_EQ(answered, 0);
 }
 
@@ -296,11 +296,11 @@ TEST_F(PairImagesTest, LeadingAgainAnswersWhatItWithheldUnlessTheOtherUnitAnswer
     hear_back(false, 8);
     EXPECT_TRUE(answered.empty());
     // The other unit led meanwhile and answered `b` (settled it by its image: it lists it).
-    images_.answer_withheld(std::vector<std::uint64_t>{key("b")}, t0_ + 5s);
+    images_.answer_withheld(std::vector<std::uint64_t>{key("b")}, t0_ + 5s, 0);
     EXPECT_EQ(answered, (std::vector<std::string>{"a", "c"}));
     EXPECT_EQ(images_.counters().answers_late, 2u);
     // Given once: leading again later answers nothing more.
-    images_.answer_withheld({}, t0_ + 6s);
+    images_.answer_withheld({}, t0_ + 6s, 0);
     EXPECT_EQ(answered.size(), 2u);
 }
 
@@ -309,7 +309,7 @@ TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsNotGivenLateOnceTheOthe
     owe_then_stand_down(answered);
     hear_back(false, 8);
     images_.other_leads(8);
-    images_.answer_withheld({}, t0_ + 11s);
+    images_.answer_withheld({}, t0_ + 11s, 8);
     EXPECT_EQ(answered, 0);
 }
 
@@ -320,7 +320,7 @@ TEST_F(PairImagesTest, AnAnswerWithheldBeyondTheHorizonIsGivenWhenNobodyElseLedS
     owe_then_stand_down(answered);
     hear_back(false, 8);
     images_.other_leads(6);  // an old renewal, from before this unit led
-    images_.answer_withheld({}, t0_ + 11s);
+    images_.answer_withheld({}, t0_ + 11s, 6);
     EXPECT_EQ(answered, 1);
 }
 

@@ -25,6 +25,7 @@
 #include "eip2mqtt/app/exchanges/exchange_producer.hpp"
 #include "eip2mqtt/app/exchanges/producer_scheduler.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
+#include "eip2mqtt/app/redundancy/unit_role.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/time.hpp"
 
@@ -34,8 +35,9 @@ struct ExchangesOptions {
     adapters::udp::SenderOptions sender;  ///< the socket produced datagrams leave from
     std::uint16_t port = 18246;           ///< eip.port: a destination's port when it names none
     std::string state_dir;                ///< where produced images are saved
-    /// Whether produced exchanges may send now (ProducerScheduler::set_gate); unset: always.
-    std::function<bool(core::MonoTime now)> may_produce;
+    /// Whether produced exchanges may send now (ProducerScheduler::set_role); must outlive the
+    /// exchanges.
+    const redundancy::UnitRole* role = &redundancy::always_leads();
     /// A pair's leader: each producer's image changed by writes, once the datagram carrying it
     /// left (ExchangeProducer::set_on_image_changed); unset: not called.
     ExchangeProducer::ImageChanged on_image_changed;

@@ -22,6 +22,7 @@
 
 #include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/udp/sender.hpp"
+#include "eip2mqtt/app/redundancy/unit_role.hpp"
 #include "eip2mqtt/core/exchange/production_queue.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
 #include "eip2mqtt/core/exchange/sampling_clock.hpp"
@@ -72,12 +73,10 @@ public:
     Id add(Producible& producer, const core::exchange::ProductionSchedule& schedule);
     /// Stops producing and forgets the producer: nothing reaches it any more.
     void remove(Id id);
-    /// Whether datagrams may leave at a wake-up (the standby of a pair: docs/redundancy.md).
-    /// While it says no, the due deadlines pass and nothing is produced: no image takes its
-    /// queued writes, no request id is spent. Unset: always.
-    void set_gate(std::function<bool(core::MonoTime now)> may_produce) {
-        may_produce_ = std::move(may_produce);
-    }
+    /// Whether datagrams may leave at a wake-up: `role` (docs/redundancy.md), which must
+    /// outlive the scheduler, says so. While it says no, the due deadlines pass and nothing is
+    /// produced: no image takes its queued writes, no request id is spent. Unset: always.
+    void set_role(const redundancy::UnitRole& role) { role_ = &role; }
 
 private:
     void arm();
@@ -90,7 +89,7 @@ private:
     std::unordered_map<Id, Producible*> producers_;
     std::optional<core::MonoTime> armed_for_;
     core::exchange::SamplingClock sampling_clock_;
-    std::function<bool(core::MonoTime)> may_produce_;
+    const redundancy::UnitRole* role_ = &redundancy::always_leads();
     // Reused at every wake-up, so a steady batch allocates nothing.
     std::vector<core::exchange::ProductionQueue::Due> due_;
     std::vector<Producible*> batch_producers_;

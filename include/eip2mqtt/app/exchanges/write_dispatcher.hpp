@@ -31,8 +31,8 @@ public:
 
     void on_write(WriteRequest&& request) override;
 
-    /// What a unit of a hot-standby pair (docs/redundancy.md) asks of the writes that reach it.
-    struct PairAdmission {
+    /// What this unit's role (docs/redundancy.md) asks of the writes that reach it.
+    struct WriteAdmission {
         /// Whether this unit takes a write now (unset: every write is).
         std::function<core::redundancy::WritePolicy()> policy;
         /// Takes each write left to the leader (redundancy::PairWrites); unset: dropped.
@@ -43,7 +43,7 @@ public:
     /// A write the leader answers is left to it here unanswered (counted); one that no live
     /// leader will answer is refused `standby`. Writes on the command port go to this unit's
     /// own address, which no leader answers: they are refused whenever this unit does not lead.
-    void set_admission(PairAdmission admission) { admission_ = std::move(admission); }
+    void set_admission(WriteAdmission admission) { admission_ = std::move(admission); }
     /// A write that the leader this unit took over from was left, and never answered: it died,
     /// hung or was cut off from the broker first, or never had it. Refused as its northbound
     /// refused it; taken as this leader takes any write when the image already holds what it
@@ -66,7 +66,7 @@ private:
 
     StageWrite stage_;
     const core::Clock& clock_;
-    PairAdmission admission_;
+    WriteAdmission admission_;
     WriteCounters counters_;
     core::ThrottledLog log_;
 };

@@ -5,11 +5,10 @@
 ///
 /// Threading: the loop only.
 
-#include <functional>
-#include <utility>
 #include <vector>
 
 #include "eip2mqtt/app/northbound/northbound.hpp"
+#include "eip2mqtt/app/redundancy/unit_role.hpp"
 
 namespace eip2mqtt::app::northbound {
 
@@ -17,13 +16,14 @@ class FanOut final : public Northbound {
 public:
     /// `northbound` must outlive the fan-out's use of it.
     void add(Northbound& northbound) { northbounds_.push_back(&northbound); }
-    /// The standby of a pair (docs/redundancy.md) says nothing of the exchanges: while `open`
-    /// says no, samples, statuses and exchange states stop here. The running set, write results
-    /// and the gateway's own metrics still pass. Unset: everything passes.
-    void set_gate(std::function<bool()> open) { open_ = std::move(open); }
+    /// A unit that does not lead (docs/redundancy.md) says nothing of the exchanges: while
+    /// `role` (which must outlive the fan-out) says it does not, samples, statuses and
+    /// exchange states stop here. The running set, write results and the gateway's own
+    /// metrics still pass. Unset: the unit always leads, everything passes.
+    void set_role(const redundancy::UnitRole& role) { role_ = &role; }
     /// What sees the running set and every sample, gate open or closed, ahead of the
-    /// northbounds: a pair's window of samples (app/redundancy/pair_history), which the standby
-    /// keeps so that it can publish what the leader missed once it takes over.
+    /// northbounds: the window of samples of a redundant unit (app/redundancy/pair_history),
+    /// kept while it does not lead so that it can publish what was missed once it does.
     void set_tap(Northbound& tap) { tap_ = &tap; }
 
     void exchanges_changed(const ExchangeSet& running,
@@ -39,10 +39,10 @@ public:
     void gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) override;
 
 private:
-    bool closed() const { return open_ && !open_(); }
+    bool closed() const { return !role_->leads(); }
 
     std::vector<Northbound*> northbounds_;
-    std::function<bool()> open_;
+    const redundancy::UnitRole* role_ = &redundancy::always_leads();
     Northbound* tap_ = nullptr;
 };
 

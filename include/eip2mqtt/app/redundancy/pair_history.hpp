@@ -61,7 +61,7 @@ public:
     /// Keeps each sample a batch names (SampleBatch::key) in its exchange's window.
     void tag_samples(const SampleBatch& batch) override;
 
-    /// The token the publication of `batch`'s sample carries (JsonTree::set_pair).
+    /// The token the publication of `batch`'s sample carries (JsonTree::set_sample_tokens).
     std::uint64_t token_for(const SampleBatch& batch);
     /// An acknowledged token of the JSON tree's connection; false when it is not one of this.
     bool on_acknowledged(std::uint64_t token);

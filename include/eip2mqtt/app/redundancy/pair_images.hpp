@@ -132,8 +132,10 @@ public:
     /// This unit takes the lead again: the answers it withheld are given, but for the writes
     /// the other unit's images list as answered (`listed`, from take_leader_answers(); each
     /// listing stands for one write), and those older than the horizon at `now` if the other
-    /// unit led since (its images no longer say whether it settled them).
-    void answer_withheld(std::span<const std::uint64_t> listed, core::MonoTime now);
+    /// unit led since (its images no longer say whether it settled them): `others_led` is the
+    /// highest epoch the other unit was heard leading under (PairLease::others_renewed_epoch).
+    void answer_withheld(std::span<const std::uint64_t> listed, core::MonoTime now,
+                         std::uint64_t others_led);
     /// The leader settled a write left to the old one by refusing it (WriteDispatcher::settle):
     /// its images list that answer too, `key`, so that no unit answers the write again.
     void list_refusal(const core::plan::ExchangePlan& plan, std::uint64_t key, core::MonoTime now);
@@ -206,7 +208,6 @@ private:
     std::unordered_map<std::string, std::deque<Answered>> answers_;  ///< image topic: answers
     std::uint64_t epoch_ = 0;  ///< of the last image published
     std::uint64_t stand_downs_ = 0;
-    std::uint64_t others_led_ = 0;  ///< the highest epoch the other unit was heard leading
     /// The standby: image topic -> the answers of the other unit's newest image of it.
     std::unordered_map<std::string, std::vector<std::uint64_t>> heard_answers_;
 };

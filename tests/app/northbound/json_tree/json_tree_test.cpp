@@ -94,7 +94,7 @@ TEST_F(JsonTreeBatchTest, AConsumedBatchAddsOneValuesMessageTheEchoOfAProducedOn
 
 TEST_F(JsonTreeBatchTest, WithAPairEachNamedSampleOnValuesCarriesItsTokenAndARepublishIsNot) {
     std::vector<core::redundancy::SampleKey> asked;
-    uns_.northbound().set_pair([&](const SampleBatch& batch) {
+    uns_.northbound().set_sample_tokens([&](const SampleBatch& batch) {
         asked.push_back(*batch.key);
         return std::uint64_t{100 + asked.size()};
     });
@@ -114,7 +114,7 @@ TEST_F(JsonTreeBatchTest, WithAPairEachNamedSampleOnValuesCarriesItsTokenAndARep
 }
 
 TEST_F(JsonTreeTest, WithAPairAndNoBatchTheLastTagTopicOfASampleCarriesItsToken) {
-    uns_.northbound().set_pair([](const SampleBatch&) { return std::uint64_t{42}; });
+    uns_.northbound().set_sample_tokens([](const SampleBatch&) { return std::uint64_t{42}; });
     named_sample();
     ASSERT_EQ(published().size(), 2u);
     EXPECT_EQ(published()[0].ack_token, 0u);

@@ -69,12 +69,12 @@ public:
         repeat_on_values_ = false;
     }
     using SampleToken = std::function<std::uint64_t(const SampleBatch& batch)>;
-    /// With a pair (docs/redundancy.md): `token` gives the acknowledgement token of the
+    /// With redundancy (docs/redundancy.md): `token` gives the acknowledgement token of the
     /// publication of each sample a batch names (SampleBatch::key): its `_values`, or without
     /// mqtt.batch the last of its tag topics, so that the leader learns which samples the broker
     /// has (app/redundancy/pair_history). And, as with store and forward, a republish (a
     /// takeover) does not repeat `_values`: the new leader's `_history` carries what it missed.
-    void set_pair(SampleToken token) {
+    void set_sample_tokens(SampleToken token) {
         sample_token_ = std::move(token);
         repeat_on_values_ = false;
     }

@@ -1,0 +1,166 @@
+#pragma once
+/// A hot-standby pair (docs/redundancy.md), one object: the lease on a connection of its own,
+/// and the three gates it keeps, one each: what the exchanges say north (the FanOut), what they
+/// produce (the ProducerScheduler, through Exchanges' options) and the writes (the
+/// WriteDispatcher). And what lets a takeover go on where the leader stopped: its images,
+/// published by the leader and followed by the standby (PairImages), its request ids, heard by
+/// the standby (DatagramRouter::set_followed), its samples: the new leader publishes on
+/// `_history` those the old one had not had acknowledged (PairHistory), and the Sparkplug
+/// session of the one edge node, held by the leader alone (SessionHooks).
+///
+/// Built in two steps, as its gates are: constructed before the parts it gates (may_send()
+/// goes into their connections' options, exchanges_options() into the exchanges'), then
+/// wire()d to them once they exist. Nothing runs before start().
+///
+/// Threading: the loop, but for the functions that may_send() returns (the sender threads).
+
+#include <atomic>
+#include <boost/asio/any_io_executor.hpp>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include "eip2mqtt/adapters/mqtt/message.hpp"
+#include "eip2mqtt/adapters/mqtt/publisher.hpp"
+#include "eip2mqtt/app/exchanges/exchanges.hpp"
+#include "eip2mqtt/app/redundancy/pair_history.hpp"
+#include "eip2mqtt/app/redundancy/pair_images.hpp"
+#include "eip2mqtt/app/redundancy/pair_writes.hpp"
+#include "eip2mqtt/app/redundancy/unit_role.hpp"
+#include "eip2mqtt/core/clock.hpp"
+#include "eip2mqtt/core/redundancy/lease.hpp"
+
+namespace eip2mqtt::core::config {
+struct Config;
+}
+namespace eip2mqtt::adapters::mqtt {
+class Client;
+}
+namespace eip2mqtt::app {
+class WriteDispatcher;
+}
+namespace eip2mqtt::app::northbound {
+class FanOut;
+}
+namespace eip2mqtt::app::northbound::json_tree {
+class JsonTree;
+}
+
+namespace eip2mqtt::app::redundancy {
+
+class PairLease;
+
+/// The session of the one Sparkplug edge node, which only the leader holds; every hook empty
+/// without `sparkplug:`.
+struct SessionHooks {
+    /// Opens the session, with a bdSeq other than `heard_bd_seq` (the pair's last one).
+    std::function<void(std::optional<std::uint8_t> heard_bd_seq)> open;
+    /// Ends it: its NDEATH said, what waited dropped.
+    std::function<void()> end;
+    /// The bdSeq of the open session; nullopt while none is.
+    std::function<std::optional<std::uint8_t>()> bd_seq;
+};
+
+/// What the pair wires, borrowed: each must outlive the Pair's use of it (until stop()).
+struct PairParts {
+    const core::config::Config& config;
+    adapters::mqtt::Client& tree_client;  ///< the JSON tree's connection
+    northbound::json_tree::JsonTree& tree;
+    WriteDispatcher& writes;
+    Exchanges& exchanges;
+    northbound::FanOut& north;  ///< every northbound
+    SessionHooks session;
+    /// Every running exchange's retained state again, and the JSON tree's `_meta` topics: a
+    /// new leader says all of it at once.
+    std::function<void()> republish;
+};
+
+class Pair final : public UnitRole {
+public:
+    /// `clock` must outlive the pair and be safe to read from any thread (the sender threads
+    /// read it through may_send()).
+    Pair(boost::asio::any_io_executor loop, const core::Clock& clock);
+    ~Pair();
+    Pair(const Pair&) = delete;
+    Pair& operator=(const Pair&) = delete;
+
+    /// ClientOptions::may_send of the connections whose publications the pair fences, asked on
+    /// their sender threads: what only a leader says (`leader_only`, every publication when
+    /// null) goes only while this unit leads, by the lease as the loop last saw it. So what
+    /// waited when the lease lapsed (a leader cut off from the broker, or resumed after
+    /// SIGSTOP) is never said. The pair must outlive the connection.
+    std::function<bool(const adapters::mqtt::Message&)> may_send(
+        std::function<bool(const adapters::mqtt::Message&)> leader_only);
+    /// The options of the exchanges that a pair sets: the gate of production, the images the
+    /// leader publishes and the request ids the standby follows. Each is called only once
+    /// wire() made the lease: exchanges run from start() on.
+    ExchangesOptions exchanges_options();
+    /// Between a connection and its publisher: nothing passes unless this unit leads (the
+    /// Sparkplug node's, whose session is the leader's).
+    std::unique_ptr<adapters::mqtt::Publisher> leader_only(adapters::mqtt::Publisher& inner);
+
+    /// The lease on its own connection, the images, the writes left to the leader, the
+    /// history (with the JSON tree among the northbounds), and the gates they keep.
+    void wire(PairParts parts);
+    /// The connection started, its handlers set.
+    void start();
+    /// Before the other parts' ticks: the lease's claims, renewals and fence.
+    void tick(core::MonoTime now);
+    /// After store and forward's tick: the replay of a takeover goes on.
+    void tick_replay();
+    /// The lease goes, its will clearing the leader topic, once queued publications went or
+    /// `flush_timeout` passed.
+    void stop(std::chrono::milliseconds flush_timeout);
+
+    /// Whether this unit leads at `now`.
+    bool leading(core::MonoTime now) const;
+    /// Whether it leads now, by its clock.
+    bool leads() const override { return leading(clock_.monotonic()); }
+    bool may_produce(core::MonoTime now) const override;
+    /// Whether on_acknowledged() wants the JSON tree connection's acknowledgements.
+    bool hears_acknowledgements() const { return history_ != nullptr; }
+    /// An acknowledged publication of the JSON tree's connection; false when it is not one of
+    /// the pair's samples (a journal entry of store and forward).
+    bool on_acknowledged(std::uint64_t token);
+
+    const PairImageCounters& image_counters() const { return images_->counters(); }
+    /// Null without history (no JSON tree among the northbounds).
+    const PairHistoryCounters* history_counters() const {
+        return history_ ? &history_->counters() : nullptr;
+    }
+    const PairWriteCounters& write_counters() const { return writes_->counters(); }
+
+private:
+    void make_writes();
+    void make_history();
+    /// The leader: every produced image, under its epoch.
+    void publish_images();
+    void on_message(const adapters::mqtt::Incoming& message);
+    void on_pair_acknowledged(std::uint64_t token);
+    void on_role(core::redundancy::Role role);
+    /// Taking the lead: the writes left to the old leader and the answers this unit withheld.
+    void settle_left_writes(core::MonoTime now);
+    /// Stepping down: the answers and the queued writes of this unit as leader.
+    void step_down_writes(core::MonoTime now);
+    /// After each event of the lease: leading_until_ from it.
+    void refresh_leading_until();
+
+    boost::asio::any_io_executor loop_;
+    const core::Clock& clock_;
+    std::optional<PairParts> parts_;
+    std::unique_ptr<adapters::mqtt::Client> client_;
+    std::unique_ptr<PairLease> lease_;
+    std::unique_ptr<PairImages> images_;
+    /// The writes left to the leader, until it answers them.
+    std::unique_ptr<PairWrites> writes_;
+    /// With the JSON tree: the samples a takeover replays on `_history`.
+    std::unique_ptr<PairHistory> history_;
+    /// The instant (steady clock, in its ticks) this unit's lease lapses while it leads; the
+    /// least there is while it does not. Written on the loop, read by the sender threads.
+    std::atomic<core::MonoTime::rep> leading_until_{
+        core::MonoTime::min().time_since_epoch().count()};
+};
+
+}  // namespace eip2mqtt::app::redundancy

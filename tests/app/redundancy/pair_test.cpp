@@ -1,0 +1,48 @@
+// The pair's own logic outside its parts: the fence its connections' sender threads ask
+// (Pair::may_send). Its parts are tested on their own (pair_lease_test, pair_images_test,
+// pair_writes_test, pair_history_test), the pair's role changes end to end
+// (tests/integration/*hot_standby*).
+
+#include "eip2mqtt/app/redundancy/pair.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/asio/io_context.hpp>
+
+#include "tests/support/fakes/fake_clock.hpp"
+
+namespace eip2mqtt::app::redundancy {
+namespace {
+
+adapters::mqtt::Message message(bool retain) {
+    adapters::mqtt::Message m;
+    m.topic = "acme/turbine/e1/speed";
+    m.retain = retain;
+    return m;
+}
+
+class PairTest : public ::testing::Test {
+protected:
+    boost::asio::io_context loop_;
+    test::FakeClock clock_;
+    Pair pair_{loop_.get_executor(), clock_};
+};
+
+TEST_F(PairTest, BeforeItLeadsNothingOnlyALeaderSaysPasses) {
+    const auto every = pair_.may_send(nullptr);
+    EXPECT_FALSE(every(message(false)));
+    EXPECT_FALSE(every(message(true)));
+}
+
+TEST_F(PairTest, WhatALeaderAloneSaysIsFencedTheRestPasses) {
+    // As the JSON tree's connection: its retained values are the leader's, the rest both units'.
+    const auto retained_only =
+        pair_.may_send([](const adapters::mqtt::Message& m) { return m.retain; });
+    EXPECT_TRUE(retained_only(message(false)));
+    EXPECT_FALSE(retained_only(message(true)));
+    clock_.advance(std::chrono::hours(24 * 365));  // no time opens the fence: only a lease
+    EXPECT_FALSE(retained_only(message(true)));
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app::redundancy
