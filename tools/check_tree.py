@@ -70,6 +70,7 @@ ENFORCED = (
     "core-yaml",
     "file-lines",
     "function-lines",
+    "gateway-atomic",
 )
 
 GATEWAY_CLASS = "eip2mqtt::app::Gateway"

@@ -2,7 +2,7 @@
 /// The parse of a reload, on a thread of its own: a SIGHUP's file is read and checked there, so
 /// that the loop goes on receiving, producing and feeding /healthz while it parses (a file of
 /// 100,000 inline tags takes seconds, one of 64 MiB tens of seconds). The loop is handed the
-/// result and only applies it (Gateway::apply_reload).
+/// result and only applies it (reload::ReloadSequence, Gateway::apply).
 
 #include <condition_variable>
 #include <functional>
@@ -20,7 +20,7 @@
 namespace eip2mqtt::app {
 
 /// A configuration file read and checked whole, with the plans of its exchanges (whose
-/// configs it no longer holds: Gateway::take_plans).
+/// configs it no longer holds: reload::take_plans).
 struct ParsedConfig {
     core::config::Config config;
     std::vector<core::plan::ExchangePlan> plans;
