@@ -67,7 +67,7 @@ void Validator::check_exchange(const ExchangeConfig& exchange) {
               what + " period_ms " + std::to_string(period) + " is outside 2..3600000");
     }
     check_direction(exchange, what);
-    check_tags(exchange, check_exchange_topic(exchange, what));
+    tags_.run(exchange, check_exchange_topic(exchange, what), out_);
 }
 
 void Validator::check_direction(const ExchangeConfig& exchange, const std::string& what) {

@@ -1,6 +1,8 @@
 // The checks of each tag: its name and topic, its address against its type and the exchange's
 // length, and its values against its type's range.
 
+#include "core/config/detail/tag_checks.hpp"
+
 #include <algorithm>
 #include <variant>
 
@@ -30,7 +32,8 @@ double as_double(const plan::Value& value) {
 
 }  // namespace
 
-void Validator::check_tags(const ExchangeConfig& exchange, std::size_t topic_bytes) {
+void TagChecks::run(const ExchangeConfig& exchange, std::size_t topic_bytes, Diagnostics& out) {
+    out_ = &out;
     const auto& spec = exchange.spec;
     const std::size_t limit = spec.length ? *spec.length : wire::max_data_size;
     // Messages are built only for tags in error: a configuration may hold 100,000 tags.
@@ -82,7 +85,7 @@ void Validator::check_tags(const ExchangeConfig& exchange, std::size_t topic_byt
     }
 }
 
-void Validator::find_repeated_names(const ExchangeConfig& exchange) {
+void TagChecks::find_repeated_names(const ExchangeConfig& exchange) {
     by_name_.clear();
     for (std::size_t i = 0; i < exchange.tags.size(); ++i) {
         const auto& name = exchange.tags[i].spec.name;
@@ -99,7 +102,7 @@ void Validator::find_repeated_names(const ExchangeConfig& exchange) {
     }
 }
 
-void Validator::check_values(const ExchangeConfig& exchange, const TagConfig& tag) {
+void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& tag) {
     const auto& t = tag.spec;
     const auto& marks = tag.marks;
     // Built only for a tag in error: a configuration may hold 100,000 tags.

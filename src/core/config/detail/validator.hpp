@@ -1,8 +1,8 @@
 #pragma once
 /// The semantic checks of a configuration (config.hpp's validate): one Validator walks the
-/// model and collects every problem. Its checks are in three files: validator.cpp (the run and
-/// the gateway and mqtt sections), exchange_checks.cpp (each exchange's keys and topic) and
-/// tag_checks.cpp (each tag's name, address and values).
+/// model and collects every problem. Its checks are in two files: validator.cpp (the run and
+/// the gateway and mqtt sections) and exchange_checks.cpp (each exchange's keys and topic); those
+/// of each tag (its name, address and values) are TagChecks' (tag_checks.hpp).
 ///
 /// Module-private to src/core/config.
 
@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/config/detail/tag_checks.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/plan/topic_rules.hpp"
 
@@ -59,21 +60,11 @@ private:
     /// already too long (its tags' topics are then not checked for length).
     std::size_t check_exchange_topic(const ExchangeConfig& exchange, const std::string& what);
 
-    /// `topic_bytes`: the length of the exchange's topic, whose tags' topics are checked for
-    /// length; 0: they are not.
-    void check_tags(const ExchangeConfig& exchange, std::size_t topic_bytes);
-    /// Fills first_with_name_: for each tag of `exchange`, the index of the first tag with the
-    /// same (valid) name, or -1. Sorting views of the names costs less than a hash-map node per
-    /// tag (a configuration may hold 100,000 tags).
-    void find_repeated_names(const ExchangeConfig& exchange);
-    void check_values(const ExchangeConfig& exchange, const TagConfig& tag);
-
     const Config& config_;
     Diagnostics out_;
     bool id_ok_ = false;    ///< gateway.id is a valid topic level
     bool base_ok_ = false;  ///< base_topic is a valid topic, short enough for some under it
-    std::vector<std::pair<std::string_view, std::size_t>> by_name_;  ///< find_repeated_names
-    std::vector<int> first_with_name_;
+    TagChecks tags_;
 };
 
 }  // namespace eip2mqtt::core::config::detail
