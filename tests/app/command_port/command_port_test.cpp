@@ -14,7 +14,7 @@
 #include <future>
 #include <thread>
 
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 #include "tests/support/command_client.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"

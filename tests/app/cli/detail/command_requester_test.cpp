@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "eip2mqtt/app/command_port/command_port.hpp"
-#include "eip2mqtt/app/health/gateway_metrics.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
 #include "tests/support/fakes/recording_write_handler.hpp"
