@@ -12,10 +12,10 @@ namespace {
 
 using namespace test_support;
 
-ClientOptions session_bound(ClientOptions options, std::atomic<int>& wills) {
+ClientOptions session_bound(ClientOptions options, WillCount wills) {
     options.availability_topic.clear();
     options.session_bound = true;
-    options.will = [&wills] { return msg("gw/will", std::to_string(++wills), 1, false, false); };
+    options.will = numbered_will(std::move(wills));
     return options;
 }
 
@@ -29,7 +29,7 @@ std::size_t count_on(const std::vector<Received>& all, const std::string& topic,
 TEST_F(ClientFixture, AnEndedSessionSaysItsWillLastAndConnectsAgainOnlyWhenStarted) {
     Mosquitto broker;
     MqttRecorder recorder(broker.url(), {"gw/#"}, "end-recorder");
-    std::atomic<int> wills{0};
+    auto wills = std::make_shared<std::atomic<int>>(0);
     make_client(session_bound(options_for(broker), wills));
     on_loop([&] {
         client_->set_subscriptions({"gw/cmd"});
@@ -51,7 +51,7 @@ TEST_F(ClientFixture, AnEndedSessionSaysItsWillLastAndConnectsAgainOnlyWhenStart
 
     on_loop([&] { client_->start(); });
     ASSERT_TRUE(wait_connected_count(2));
-    const auto new_will = std::to_string(wills.load());
+    const auto new_will = std::to_string(wills->load());
     EXPECT_NE(new_will, "1");
     recorder.publish("gw/cmd", "x");
     ASSERT_TRUE(wait_incoming(1));  // its subscriptions renewed on the new connection
@@ -84,7 +84,7 @@ TEST_F(ClientFixture, AnEndedSessionDropsWhatWaitedInsteadOfFlushingIt) {
     Mosquitto broker;
     test::TcpProxy proxy(broker.port());
     MqttRecorder recorder(broker.url(), {"gw/#"}, "drop-recorder");
-    std::atomic<int> wills{0};
+    auto wills = std::make_shared<std::atomic<int>>(0);
     auto options = session_bound(options_for(broker), wills);
     const auto window = options.max_in_flight;
     ASSERT_TRUE(start_through(std::move(options), proxy.port()));

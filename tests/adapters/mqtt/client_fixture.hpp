@@ -16,7 +16,9 @@
 #include <condition_variable>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <future>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <thread>
@@ -43,6 +45,15 @@ inline Message msg(std::string topic, std::string payload, int qos = 1, bool ret
     m.retain = retain;
     m.coalesce = coalesce;
     return m;
+}
+
+/// How many wills a client asked for. Shared with the will itself: the client outlives the test
+/// body's locals (the fixture stops it in TearDown) and may reconnect, and ask again, in between.
+using WillCount = std::shared_ptr<std::atomic<int>>;
+
+/// A will on `topic` whose payload is its number, counted in `wills`.
+inline std::function<Message()> numbered_will(WillCount wills, std::string topic = "gw/will") {
+    return [wills, topic] { return msg(topic, std::to_string(++*wills), 1, false, false); };
 }
 
 /// A Client driven by an io_context on its own thread, as the gateway drives it.

@@ -17,10 +17,11 @@ TEST_F(ClientFixture, WhatMaySendNoLongerAllowsIsDroppedWhenTakenEvenIfItWaitedB
     Mosquitto broker;
     test::TcpProxy proxy(broker.port());
     MqttRecorder recorder(broker.url(), {"gw/#"}, "may-send-recorder");
-    std::atomic<bool> leading{true};
+    // Shared with the client, which outlives the test body's locals until TearDown stops it.
+    auto leading = std::make_shared<std::atomic<bool>>(true);
     auto options = options_for(broker);
-    options.may_send = [&leading](const Message& message) {
-        return message.topic != "gw/tag" || leading.load();
+    options.may_send = [leading](const Message& message) {
+        return message.topic != "gw/tag" || leading->load();
     };
     const auto window = options.max_in_flight;
     ASSERT_TRUE(start_through(std::move(options), proxy.port()));
@@ -29,7 +30,7 @@ TEST_F(ClientFixture, WhatMaySendNoLongerAllowsIsDroppedWhenTakenEvenIfItWaitedB
     proxy.stall();
     constexpr std::size_t published = 1000;
     publish_numbered("gw/tag", published);
-    leading = false;
+    *leading = false;
     on_loop([&] { client_->publish(msg("gw/own", "still said", 1, false, false)); });
     proxy.resume();
     ASSERT_TRUE(recorder.wait_for_message("gw/own", [](auto& p) { return p == "still said"; }));

@@ -74,12 +74,12 @@ TEST_F(ClientFixture, ASessionBoundClientMakesAWillPerConnectAndDropsWhatAConnec
     auto options = options_for(broker);
     options.availability_topic.clear();
     options.session_bound = true;
-    std::atomic<int> wills{0};
-    options.will = [&wills] { return msg("gw/will", std::to_string(++wills), 1, false, false); };
+    auto wills = std::make_shared<std::atomic<int>>(0);
+    options.will = numbered_will(wills);
     make_client(std::move(options));
     on_loop([&] { client_->start(); });
     ASSERT_TRUE(wait_connected_count(1));
-    EXPECT_EQ(wills.load(), 1);
+    EXPECT_EQ(wills->load(), 1);
 
     broker.stop();
     ASSERT_TRUE(wait_disconnected());
@@ -92,8 +92,8 @@ TEST_F(ClientFixture, ASessionBoundClientMakesAWillPerConnectAndDropsWhatAConnec
     ASSERT_TRUE(wait_connected_count(2));
     // A new will for every CONNECT sent: the one that succeeded, and any tried before the broker
     // listened again (how many depends on how fast it came back).
-    const auto last_will = std::to_string(wills.load());
-    EXPECT_GE(wills.load(), 2);
+    const auto last_will = std::to_string(wills->load());
+    EXPECT_GE(wills->load(), 2);
     on_loop([&] { client_->publish(msg("gw/seq", "fresh", 1, false, false)); });
 
     // A clean stop says the last will itself, after everything queued.
