@@ -6,9 +6,12 @@
 ///
 /// Threading: every member is called on the loop.
 
+#include <cstddef>
+#include <optional>
 #include <string_view>
 
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/config/reload_slice.hpp"
 #include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::app {
@@ -32,10 +35,25 @@ public:
     virtual void tick(const TickTimes& /*times*/) {}
     /// Its sockets closed, before the modules it depends on stop.
     virtual void stop() {}
-    /// The live settings of a reloaded configuration, already validated whole.
+    /// Whether it can take a reloaded configuration, already validated whole; false refuses
+    /// the whole reload (logged by the module), before any module applied it. A module that
+    /// said yes may already have taken it (a multicast group joined): only one refuses so far.
+    virtual bool prepare(const core::config::Config& /*next*/) { return true; }
+    /// The live settings of a reloaded configuration, which every module accepted.
     virtual void apply(const core::config::Config& /*next*/) {}
-    /// Its counters, for the metrics (borrowed for one call).
-    virtual void add_metrics(MetricsSources& /*sources*/) const {}
+    /// After the reload's exchanges were applied: what it publishes again because of them.
+    virtual void applied() {}
+    /// What a reload left it to publish (retained topics cleared, new descriptions), made
+    /// `units` at a time while its queue has room.
+    virtual bool changes_pending() const { return false; }
+    virtual void publish_changes(std::size_t /*units*/) {}
+    /// The room in the publication queue a reload's slices wait on; nullopt: it has none.
+    virtual std::optional<core::config::PublishQueueRoom> queue_room() const {
+        return std::nullopt;
+    }
+    /// Its counters, for the metrics: borrowed until the next call (a module may keep a
+    /// snapshot of figures it computes).
+    virtual void add_metrics(MetricsSources& /*sources*/) {}
 
 protected:
     Module() = default;

@@ -86,7 +86,7 @@ void CommandPort::apply(const core::config::Config& next) {
     responder_.set_policy(command_policy(next));
 }
 
-void CommandPort::add_metrics(MetricsSources& sources) const {
+void CommandPort::add_metrics(MetricsSources& sources) {
     sources.commands = &responder_.counters();
 }
 

@@ -90,4 +90,11 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     return snapshot;
 }
 
+std::string status_line(const MetricsSources& sources) {
+    return std::to_string(sources.datagrams.datagrams) + " datagrams, " +
+           std::to_string(sources.datagrams.accepted) + " accepted, " +
+           std::to_string(sources.mqtt.published) + " published, MQTT " +
+           (sources.mqtt.connected ? "connected" : "disconnected");
+}
+
 }  // namespace eip2mqtt::app

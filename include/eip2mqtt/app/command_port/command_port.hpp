@@ -28,7 +28,7 @@ public:
     void tick(const TickTimes& times) override;
     void stop() override;
     void apply(const core::config::Config& next) override;
-    void add_metrics(MetricsSources& sources) const override;
+    void add_metrics(MetricsSources& sources) override;
 
 private:
     const Exchanges& exchanges_;

@@ -32,7 +32,8 @@ using core::write::WriteCounters;
 struct MetricsSources {
     const DatagramCounters& datagrams;
     const WriteCounters& writes;
-    const adapters::mqtt::ClientStats& mqtt;
+    /// The gateway's main connection (the JSON tree's), taken when the metrics are made.
+    adapters::mqtt::ClientStats mqtt;
     const history::HistoryStats* history = nullptr;                    ///< with store and forward
     const northbound::sparkplug::SparkplugStats* sparkplug = nullptr;  ///< with `sparkplug:`
     const core::command::CommandCounters* commands = nullptr;       ///< with eip.commands enabled
@@ -40,6 +41,10 @@ struct MetricsSources {
     const redundancy::PairHistoryCounters* pair_history = nullptr;  ///< with pair_images
     const redundancy::PairWriteCounters* pair_writes = nullptr;     ///< with pair_images
 };
+
+/// The one line systemd shows for the service (sd_notify STATUS=): datagrams, publications and
+/// the main connection.
+std::string status_line(const MetricsSources& sources);
 
 /// Store and forward's figures for Prometheus and the metrics topic.
 adapters::metrics::HistoryMetrics history_metrics(const history::HistoryStats& stats);

@@ -1,0 +1,69 @@
+#pragma once
+/// The Sparkplug B edge node as a module of the gateway (docs/sparkplug.md): the node on a
+/// connection of its own, whose will is its NDEATH, and its replay of store and forward's
+/// journal once it is born. Its session opens when the gateway starts, or, when the role says
+/// so (redundancy::Role::sessions_follow_role), when this unit takes the role: the one edge
+/// node of several units is held by one of them at a time.
+///
+/// Threading: the loop only.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/app/module.hpp"
+#include "eip2mqtt/app/northbound/northbounds.hpp"
+#include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
+
+namespace eip2mqtt::app::history {
+class StoreAndForward;
+}
+
+namespace eip2mqtt::app::northbound::sparkplug {
+
+class SparkplugModule final : public Module {
+public:
+    /// `history`, when not null, replays on the node's connection too. Throws std::exception
+    /// when the connection's options cannot be made (an unreadable password file).
+    SparkplugModule(const core::config::Config& config, const NorthboundParts& parts,
+                    history::StoreAndForward* history);
+
+    SparkplugNode& node() { return *node_; }
+
+    /// Opens the node's session, with a bdSeq other than `heard_bd_seq` (the last one another
+    /// unit used), and connects with its NDEATH as the will.
+    void open_session(std::optional<std::uint8_t> heard_bd_seq);
+    /// Ends it: what waited dropped, its NDEATH said last.
+    void end_session();
+    std::optional<std::uint8_t> session_bd_seq() const { return node_->session_bd_seq(); }
+
+    void start(core::MonoTime now) override;
+    void tick(const TickTimes& times) override;
+    /// The node's NDEATH after its last data.
+    void stop() override;
+    void apply(const core::config::Config& next) override;
+    void add_metrics(MetricsSources& sources) override;
+
+private:
+    /// Runs `event` (the connection, a message or an acknowledgement on it, a tick); once the
+    /// node is born by it, its replay of history starts.
+    void on_event(bool connection, const std::function<void()>& event);
+    void add_history();
+
+    const core::Clock& clock_;
+    history::StoreAndForward* history_;
+    bool opens_at_start_;
+    std::unique_ptr<adapters::mqtt::Client> client_;
+    /// Between the node and its connection when the session follows the role.
+    std::unique_ptr<adapters::mqtt::Publisher> gate_;
+    std::unique_ptr<SparkplugNode> node_;
+};
+
+/// The edge node of `config`'s `sparkplug:`, else null.
+std::unique_ptr<SparkplugModule> make_sparkplug(const core::config::Config& config,
+                                                const NorthboundParts& parts,
+                                                history::StoreAndForward* history);
+
+}  // namespace eip2mqtt::app::northbound::sparkplug

@@ -1,0 +1,80 @@
+#include "eip2mqtt/app/history/store_and_forward_module.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <string>
+
+#include "eip2mqtt/app/health/metrics.hpp"
+#include "eip2mqtt/app/northbound/json_tree/json_tree_module.hpp"
+
+namespace eip2mqtt::app::history {
+namespace {
+
+/// The journal's link: the JSON tree's connection. The journal and the tree ask it whether it
+/// is up at the same moment on the same loop, so every sample goes either live or to the
+/// journal.
+LinkProbe tree_link(adapters::mqtt::Client& client) {
+    return {[&client] { return client.connected(); },
+            [&client] {
+                const auto stats = client.stats();
+                return stats.queued + stats.in_flight;
+            }};
+}
+
+}  // namespace
+
+StoreAndForwardModule::StoreAndForwardModule(std::unique_ptr<adapters::history::Journal> journal,
+                                             const core::config::Config& config,
+                                             const northbound::NorthboundParts& parts,
+                                             northbound::json_tree::JsonTreeModule& tree)
+    : store_(std::move(journal),
+             StoreAndForwardOptions{config.mqtt.store_and_forward.replay_rate,
+                                    config.mqtt.store_and_forward.fsync_interval,
+                                    {},
+                                    &parts.clock},
+             tree_link(tree.client()), tree.tree()) {
+    auto& client = tree.client();
+    tree.tree().set_store_and_forward([&client] { return client.connected(); });
+    tree.on_connected([this](core::MonoTime now) { store_.on_connected(now); });
+    tree.take_acknowledgements([this](std::uint64_t token) {
+        store_.on_acknowledged(token);
+        return true;
+    });
+}
+
+void StoreAndForwardModule::add_metrics(MetricsSources& sources) {
+    stats_ = store_.stats();
+    sources.history = &*stats_;
+}
+
+std::unique_ptr<StoreAndForwardModule> make_store_and_forward(
+    const core::config::Config& config, const northbound::NorthboundParts& parts,
+    northbound::json_tree::JsonTreeModule& tree) {
+    const auto& settings = config.mqtt.store_and_forward;
+    if (!settings.enabled) return nullptr;
+    adapters::history::JournalOptions options;
+    options.path = (std::filesystem::path(config.gateway.state_dir) / "history.sqlite").string();
+    options.max_bytes = settings.max_mb << 20;
+    options.clock = &parts.clock;
+    std::unique_ptr<adapters::history::Journal> journal;
+    try {
+        std::filesystem::create_directories(config.gateway.state_dir);
+        std::string set_aside;
+        journal = adapters::history::Journal::open(options, set_aside);
+        if (!set_aside.empty()) spdlog::warn("store and forward: {}", set_aside);
+    } catch (const std::exception& error) {
+        spdlog::error(
+            "store and forward is off: the journal {} cannot be opened ({}); check that "
+            "gateway.state_dir is writable by the service",
+            options.path, error.what());
+        return nullptr;
+    }
+    auto module = std::make_unique<StoreAndForwardModule>(std::move(journal), config, parts, tree);
+    const auto stats = module->store().stats();
+    spdlog::info("store and forward: journal {} ({} entries, bound {} MB)", options.path,
+                 stats.journal.entries, settings.max_mb);
+    return module;
+}
+
+}  // namespace eip2mqtt::app::history

@@ -1,0 +1,115 @@
+#include "eip2mqtt/app/northbound/json_tree/json_tree_module.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <limits>
+#include <string>
+
+#include "eip2mqtt/app/exchanges/exchanges.hpp"
+#include "eip2mqtt/app/exchanges/write_dispatcher.hpp"
+#include "eip2mqtt/app/health/metrics.hpp"
+#include "eip2mqtt/app/northbound/mqtt_settings.hpp"
+#include "eip2mqtt/app/redundancy/role.hpp"
+#include "eip2mqtt/core/redundancy/acked_watermarks.hpp"
+
+namespace eip2mqtt::app::northbound::json_tree {
+namespace {
+
+using namespace std::chrono_literals;
+
+// How long a clean stop waits for queued publications before giving up.
+constexpr auto stop_flush_timeout = 3s;
+
+/// What only the unit holding the role says: the plant's retained values, `_values`, and a
+/// takeover's `_history` replay (its tokens are the role's, core::redundancy::AckedWatermarks).
+/// Never the unit's own topics (state, metrics, role) nor the exchanges' `_meta`, which every
+/// unit says; store and forward's `_history` goes whoever holds the role: each unit replays
+/// what it journaled.
+redundancy::Role::MaySend role_topics(const std::string& base_topic) {
+    return [gateway = base_topic + "/_gateway/"](const adapters::mqtt::Message& m) {
+        const bool role_held = m.historical ? core::redundancy::AckedWatermarks::owns(m.ack_token)
+                                            : m.retain || m.batch_lane;
+        return role_held && !m.topic.starts_with(gateway) && !m.topic.ends_with("/_meta");
+    };
+}
+
+adapters::mqtt::ClientOptions client_options(const core::config::Config& config,
+                                             redundancy::Role& role) {
+    auto options = mqtt_client_options(
+        config, config.mqtt.base_topic + "/_gateway/" + config.gateway.id + "/state");
+    options.may_send = role.may_send(role_topics(config.mqtt.base_topic));
+    return options;
+}
+
+}  // namespace
+
+JsonTreeModule::JsonTreeModule(const core::config::Config& config, const NorthboundParts& parts)
+    : clock_(parts.clock),
+      exchanges_(parts.exchanges),
+      buffer_max_messages_(config.mqtt.buffer_max_messages),
+      client_(
+          std::make_unique<adapters::mqtt::Client>(parts.loop, client_options(config, parts.role))),
+      tree_(json_tree_options(config), *client_, parts.writes) {}
+
+void JsonTreeModule::republish() {
+    tree_.republish_meta();
+    exchanges_.republish(clock_.monotonic(), clock_.wall());
+}
+
+void JsonTreeModule::start(core::MonoTime /*now*/) {
+    client_->set_on_connected([this] { connected(); });
+    if (!takers_.empty()) {
+        client_->set_on_acknowledged([this](std::uint64_t token) { acknowledged(token); });
+    }
+    client_->set_on_message(
+        [this](const adapters::mqtt::Incoming& message) { tree_.on_message(message); });
+    client_->start();
+}
+
+void JsonTreeModule::connected() {
+    spdlog::info("republishing retained state of {} exchange(s)",
+                 exchanges_.consumers().size() + exchanges_.producers().size());
+    republish();
+    // History goes behind the current state.
+    for (const auto& listener : connected_) listener(clock_.monotonic());
+}
+
+void JsonTreeModule::acknowledged(std::uint64_t token) {
+    for (const auto& taker : takers_) {
+        if (taker(token)) return;
+    }
+}
+
+void JsonTreeModule::tick(const TickTimes& /*times*/) { tree_.publish_due_meta(); }
+
+void JsonTreeModule::stop() {
+    tree_.publish_changes(std::numeric_limits<std::size_t>::max());
+    client_->stop(stop_flush_timeout);
+}
+
+void JsonTreeModule::apply(const core::config::Config& next) {
+    client_->set_buffer_capacity(next.mqtt.buffer_max_messages);
+    client_->set_batch_first(next.mqtt.batch_first);
+    buffer_max_messages_ = next.mqtt.buffer_max_messages;
+    auto options = json_tree_options(next);
+    republish_due_ = options.publish != tree_.options().publish;
+    // Response topics and the like take effect at once; tags are published in the new form
+    // from their next sample, and their retained state once the reload is applied.
+    tree_.set_options(std::move(options));
+}
+
+void JsonTreeModule::applied() {
+    if (!republish_due_) return;
+    republish_due_ = false;
+    republish();
+}
+
+std::optional<core::config::PublishQueueRoom> JsonTreeModule::queue_room() const {
+    const auto stats = client_->stats();
+    return core::config::PublishQueueRoom{stats.queued, buffer_max_messages_, stats.connected};
+}
+
+void JsonTreeModule::add_metrics(MetricsSources& sources) { sources.mqtt = client_->stats(); }
+
+}  // namespace eip2mqtt::app::northbound::json_tree
