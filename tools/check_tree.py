@@ -71,6 +71,7 @@ ENFORCED = (
     "file-lines",
     "function-lines",
     "gateway-atomic",
+    "test-function-lines",
 )
 
 GATEWAY_CLASS = "eip2mqtt::app::Gateway"

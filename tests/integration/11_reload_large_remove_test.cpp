@@ -25,6 +25,58 @@ bool in_plant(const Received& message) { return message.topic.starts_with(plant_
 const std::string removed = "configuration applied: 2 exchange(s) kept, 0 started, 1000 stopped";
 const std::string restarted = "configuration applied: 2 exchange(s) kept, 1 started, 0 stopped";
 
+/// Prints the gateway's own account of each reload: how long the loop applied, in how many
+/// slices.
+void print_reload_accounts(const std::string& log) {
+    for (auto at = log.find("reload: parsed in"); at != std::string::npos;
+         at = log.find("reload: parsed in", at + 1)) {
+        std::printf("%s\n", log.substr(at, log.find('\n', at) - at).c_str());
+    }
+}
+
+/// The second SIGHUP came while the first reload applied; it was applied after it.
+void expect_the_second_reload_after_the_clears(const std::string& out) {
+    const auto second_sighup = out.find("SIGHUP: reloading", out.find("SIGHUP: reloading") + 1);
+    ASSERT_NE(out.find(removed), std::string::npos) << out;
+    EXPECT_LT(second_sighup, out.find(removed)) << out;
+    EXPECT_LT(out.find(removed), out.find(restarted)) << out;
+    // 1,000 exchanges of 100 tags, a `_status` and a `_meta` each.
+    EXPECT_NE(out.find("102000 retained topic(s) cleared"), std::string::npos) << out;
+}
+
+/// Each topic of the plant was cleared once, after the `before` messages there were before.
+void expect_every_plant_topic_cleared(MqttRecorder& recorder, std::size_t before) {
+    std::size_t cleared = 0;
+    std::size_t next = before;
+    EXPECT_TRUE(recorder.wait_for(
+        [&](const std::vector<Received>& all) {
+            for (; next < all.size(); ++next) {
+                cleared += in_plant(all[next]) && all[next].payload.empty();
+            }
+            return cleared >= 102000;
+        },
+        60s))
+        << cleared << " of 102000 cleared";
+}
+
+/// A new subscriber finds no retained topic of the plant but c0's, and those of `kept`.
+template <class Topic>
+void expect_retained_of_the_plant_only_c0s(const std::string& broker_url, const Topic& topic) {
+    MqttRecorder fresh(broker_url, {topic("#")});
+    fresh.publish(topic("marker"), "after the retained ones");
+    ASSERT_TRUE(fresh.wait_for_message(topic("marker"), nullptr, 10s));
+    std::vector<std::string> plant_retained;
+    std::size_t kept_retained = 0;
+    for (const auto& message : fresh.messages()) {
+        if (!message.retained) continue;
+        if (in_plant(message)) plant_retained.push_back(message.topic);
+        kept_retained += message.topic.starts_with(topic("kept/"));
+    }
+    std::sort(plant_retained.begin(), plant_retained.end());
+    EXPECT_EQ(plant_retained, (std::vector<std::string>{topic("c0/_meta"), topic("c0/_status")}));
+    EXPECT_GT(kept_retained, 0u);
+}
+
 TEST_F(ReloadLargeTest, ProductionGoesOnWhileTheRetainedTopicsOf100000TagsAreCleared) {
     GatewayOptions options;
     // The recorder takes every publication (Mosquitto drops beyond 1,000 queued by default).
@@ -61,53 +113,19 @@ TEST_F(ReloadLargeTest, ProductionGoesOnWhileTheRetainedTopicsOf100000TagsAreCle
         "reloads seen for %lld ms: %zu produced datagram(s) inside, the longest gap %lld ms\n",
         static_cast<long long>((ended - started) / 1ms), inside,
         static_cast<long long>(capture_.longest_gap(started, ended) / 1ms));
-    // The gateway's own account of each reload: how long the loop applied, in how many slices.
-    const auto log = gateway_->output();
-    for (auto at = log.find("reload: parsed in"); at != std::string::npos;
-         at = log.find("reload: parsed in", at + 1)) {
-        std::printf("%s\n", log.substr(at, log.find('\n', at) - at).c_str());
-    }
+    print_reload_accounts(gateway_->output());
     EXPECT_GT(inside, 0u);
     EXPECT_TRUE(health.failures().empty()) << health.failures().front();
 
-    // The second SIGHUP came while the first reload applied; it was applied after it.
-    const auto out = gateway_->output();
-    const auto second_sighup = out.find("SIGHUP: reloading", out.find("SIGHUP: reloading") + 1);
-    ASSERT_NE(out.find(removed), std::string::npos) << out;
-    EXPECT_LT(second_sighup, out.find(removed)) << out;
-    EXPECT_LT(out.find(removed), out.find(restarted)) << out;
-    // 1,000 exchanges of 100 tags, a `_status` and a `_meta` each.
-    EXPECT_NE(out.find("102000 retained topic(s) cleared"), std::string::npos) << out;
+    expect_the_second_reload_after_the_clears(gateway_->output());
 
     // Each topic was cleared once, after what was there before.
-    std::size_t cleared = 0;
-    std::size_t next = before;
-    EXPECT_TRUE(recorder_->wait_for(
-        [&](const std::vector<Received>& all) {
-            for (; next < all.size(); ++next) {
-                cleared += in_plant(all[next]) && all[next].payload.empty();
-            }
-            return cleared >= 102000;
-        },
-        60s))
-        << cleared << " of 102000 cleared";
+    expect_every_plant_topic_cleared(*recorder_, before);
     EXPECT_TRUE(recorder_->wait_for_message(
         topic("c0/_status"), [](auto& p) { return !p.empty(); }, 10s, before));
 
-    // A new subscriber finds no retained topic of the plant but c0's, and those of `kept`.
-    MqttRecorder fresh(broker_->url(), {topic("#")});
-    fresh.publish(topic("marker"), "after the retained ones");
-    ASSERT_TRUE(fresh.wait_for_message(topic("marker"), nullptr, 10s));
-    std::vector<std::string> plant_retained;
-    std::size_t kept_retained = 0;
-    for (const auto& message : fresh.messages()) {
-        if (!message.retained) continue;
-        if (in_plant(message)) plant_retained.push_back(message.topic);
-        kept_retained += message.topic.starts_with(topic("kept/"));
-    }
-    std::sort(plant_retained.begin(), plant_retained.end());
-    EXPECT_EQ(plant_retained, (std::vector<std::string>{topic("c0/_meta"), topic("c0/_status")}));
-    EXPECT_GT(kept_retained, 0u);
+    expect_retained_of_the_plant_only_c0s(
+        broker_->url(), [this](const std::string& suffix) { return topic(suffix); });
     EXPECT_TRUE(gateway_->running());
 }
 

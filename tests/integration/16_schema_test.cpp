@@ -214,18 +214,18 @@ std::string produced_exchange(std::uint16_t capture_port) {
         .str();
 }
 
-TEST_F(SchemaTest, WriteRequestsResultsEchoAndProducedStatusMatchTheirSchemas) {
-    UdpClient capture;  // where the produced exchange goes
-    start(produced_exchange(capture.port()));
-    struct Write {
-        std::string topic;  ///< under the base topic
-        std::string payload;
-        bool valid_request;  ///< the request schema accepts it
-        bool ok;             ///< the gateway accepts it
-        bool retain = false;
-    };
+/// A write to the produced exchange and what should become of it.
+struct Write {
+    std::string topic;  ///< under the base topic
+    std::string payload;
+    bool valid_request;  ///< the request schema accepts it
+    bool ok;             ///< the gateway accepts it
+    bool retain = false;
+};
+
+std::vector<Write> writes_to_try() {
     const std::string big(300 * 1024, ' ');
-    const std::vector<Write> writes = {
+    return {
         {"sp/SPEED_SP/set", "3100.5", true, true},
         {"sp/LEVEL/set", R"({"value":-300})", true, true},
         {"sp/START/set", "true", true, true},
@@ -243,6 +243,12 @@ TEST_F(SchemaTest, WriteRequestsResultsEchoAndProducedStatusMatchTheirSchemas) {
         {"sp/set", R"({"SPEED_SP":100,"LEVEL":70000})", true, false},  // out of range
         {"sp/LEVEL/set", big + "1", true, false},                      // too large
     };
+}
+
+TEST_F(SchemaTest, WriteRequestsResultsEchoAndProducedStatusMatchTheirSchemas) {
+    UdpClient capture;  // where the produced exchange goes
+    start(produced_exchange(capture.port()));
+    const auto writes = writes_to_try();
     for (const auto& w : writes) {
         const bool exchange_write = w.topic == "sp/set";
         const auto schema =
@@ -283,22 +289,55 @@ TEST_F(SchemaTest, WriteRequestsResultsEchoAndProducedStatusMatchTheirSchemas) {
     EXPECT_GT(checked.at("metrics.json").back()["writes_rejected"]["too_large"].get<int>(), 0);
 }
 
-// The schemas are strict enough to catch the mistakes a change of the gateway could make: each
-// payload below breaks one rule of docs/mqtt-api.md.
-TEST(Schemas, RefusePayloadsThatBreakTheDocumentedFormat) {
-    const std::string status_ok =
-        R"({"state":"ok","request_id":7,"received":1,"accepted":1,"missed":0,"duplicates":0,)"
-        R"("out_of_order":0,"signature_mismatches":0,"length_mismatches":0,"timeouts":0,)"
-        R"("restarts":0,"last_seen":1695231678000,"clock":"synced","clock_offset_ms":-3})";
-    const std::string produced =
-        R"({"state":"producing","request_id":1,"sent":0,"send_errors":0,"skipped_deadlines":0,)"
-        R"("writes_applied":0,"writes_pending":0,"saved":true,"save_failures":0,"save_error":null})";
-    struct Case {
-        std::string schema;
-        std::string payload;
-        bool valid;
+/// A payload and whether its schema takes it.
+struct Case {
+    std::string schema;
+    std::string payload;
+    bool valid;
+};
+
+const std::string consumed_status =
+    R"({"state":"ok","request_id":7,"received":1,"accepted":1,"missed":0,"duplicates":0,)"
+    R"("out_of_order":0,"signature_mismatches":0,"length_mismatches":0,"timeouts":0,)"
+    R"("restarts":0,"last_seen":1695231678000,"clock":"synced","clock_offset_ms":-3})";
+const std::string produced_status =
+    R"({"state":"producing","request_id":1,"sent":0,"send_errors":0,"skipped_deadlines":0,)"
+    R"("writes_applied":0,"writes_pending":0,"saved":true,"save_failures":0,"save_error":null})";
+
+/// Payloads of `_status`: those marked false break one rule each.
+std::vector<Case> status_cases() {
+    return {
+        {"status.json", consumed_status, true},
+        {"status.json", produced_status, true},
+        {"status.json", R"({"state":"ok"})", false},
+        {"status.json", std::string(consumed_status).replace(10, 2, "fine"), false},
+        {"status.json",
+         std::string(consumed_status).replace(consumed_status.find("\"synced"), 7, "\"late"),
+         false},
+        {"status.json", std::string(consumed_status).replace(consumed_status.find("7,"), 1, "null"),
+         false},
+        {"status.json",
+         std::string(consumed_status).replace(consumed_status.size() - 1, 1, R"(,"x":1})"), false},
+        {"status.json", std::string(produced_status).replace(10, 9, "ok"), false},
+        {"status.json",
+         std::string(produced_status).replace(produced_status.find("1,"), 1, "70000"), false},
+        {"status.json",
+         std::string(produced_status)
+             .replace(produced_status.find("true"), 4, "false")
+             .replace(produced_status.find("null") + 1, 4, R"("write x: Input/output error")"),
+         true},
+        {"status.json",
+         std::string(produced_status)
+             .replace(produced_status.find("null"), 4, R"("write x: I/O error")"),
+         false},  // a failed save leaves the image unsaved
+        {"status.json",
+         std::string(produced_status).replace(produced_status.find(",\"saved"), 13, ""), false},
     };
-    const std::vector<Case> cases = {
+}
+
+/// The tag values and `_values` (before), the write requests and results (after).
+std::vector<Case> value_cases() {
+    return {
         {"tag-value.json", R"({"value":90,"timestamp":1695231678000,"quality":"good"})", true},
         {"tag-value.json", R"({"value":"NaN","timestamp":1695231678000,"quality":"bad"})", true},
         {"tag-value.json", R"({"value":90,"timestamp":1695231678000})", false},
@@ -311,26 +350,6 @@ TEST(Schemas, RefusePayloadsThatBreakTheDocumentedFormat) {
         {"tag-value-raw.json", "-273.15", true},
         {"tag-value-raw.json", "\"Infinity\"", true},
         {"tag-value-raw.json", "null", false},
-        {"status.json", status_ok, true},
-        {"status.json", produced, true},
-        {"status.json", R"({"state":"ok"})", false},
-        {"status.json", std::string(status_ok).replace(10, 2, "fine"), false},
-        {"status.json", std::string(status_ok).replace(status_ok.find("\"synced"), 7, "\"late"),
-         false},
-        {"status.json", std::string(status_ok).replace(status_ok.find("7,"), 1, "null"), false},
-        {"status.json", std::string(status_ok).replace(status_ok.size() - 1, 1, R"(,"x":1})"),
-         false},
-        {"status.json", std::string(produced).replace(10, 9, "ok"), false},
-        {"status.json", std::string(produced).replace(produced.find("1,"), 1, "70000"), false},
-        {"status.json",
-         std::string(produced)
-             .replace(produced.find("true"), 4, "false")
-             .replace(produced.find("null") + 1, 4, R"("write x: Input/output error")"),
-         true},
-        {"status.json",
-         std::string(produced).replace(produced.find("null"), 4, R"("write x: I/O error")"),
-         false},  // a failed save leaves the image unsaved
-        {"status.json", std::string(produced).replace(produced.find(",\"saved"), 13, ""), false},
         {"values.json", R"({"timestamp":1,"quality":"good","values":{"A":1,"B":true}})", true},
         {"values.json", R"({"timestamp":1,"quality":"good","values":{}})", false},
         {"values.json", R"({"timestamp":1,"quality":"good","values":{"A":[1]}})", false},
@@ -352,6 +371,14 @@ TEST(Schemas, RefusePayloadsThatBreakTheDocumentedFormat) {
         {"exchange-write-request.json", R"({"SPEED_SP":null})", false},
         {"metrics.json", "{}", false},
     };
+}
+
+// The schemas are strict enough to catch the mistakes a change of the gateway could make: each
+// payload below breaks one rule of docs/mqtt-api.md.
+TEST(Schemas, RefusePayloadsThatBreakTheDocumentedFormat) {
+    auto cases = value_cases();
+    const auto status = status_cases();
+    cases.insert(cases.end(), status.begin(), status.end());
     std::vector<SchemaCheck> checks;
     for (const auto& c : cases) checks.push_back({schema_file(c.schema), c.payload});
     const auto problems = schema_problems(checks);

@@ -102,35 +102,22 @@ std::size_t throttled_lines_at_most(std::chrono::steady_clock::time_point since)
     return 2 + static_cast<std::size_t>((std::chrono::steady_clock::now() - since) / 60s);
 }
 
-TEST_F(SparkplugStormTest, AFloodOfRebirthRequestsNeitherStalesNorMissesADatagram) {
-    GatewayOptions options;
-    options.sections = "sparkplug:\n  group_id: plant1\n";
-    start(storm_exchanges(), "", options);
-    Producer producer([this](const std::vector<std::byte>& d) { send(d); });
-    for (std::uint32_t e = 1; e <= exchanges; ++e) {
-        expect_field(topic("ex" + std::to_string(e) + "/_status"), "state", "\"ok\"");
-    }
-    const auto rebirth = tahu_encode({{"timestamp", 1700000000000},
-                                      {"metrics", json::array({{{"name", "Node Control/Rebirth"},
-                                                                {"type", "Boolean"},
-                                                                {"value", true}}})}});
-    // 1,000 requests over 5 s or more (each waits for the broker's PUBACK), some 30 bytes each
-    // asking for ~90 kB of births.
-    constexpr int requests = 1000;
-    const auto storm_start = std::chrono::steady_clock::now();
-    for (int i = 0; i < requests; ++i) {
-        recorder_->publish(node_topic("NCMD"), rebirth);
-        std::this_thread::sleep_until(storm_start + i * 5ms);
-    }
-    const auto storm = std::chrono::duration_cast<std::chrono::milliseconds>(
-        std::chrono::steady_clock::now() - storm_start);
-    // Every exchange reports at least two seconds of datagrams after the storm.
-    const auto after = producer.rounds() + 20;
+/// An NCMD asking for a rebirth, as a host sends it.
+std::string rebirth_request() {
+    return tahu_encode({{"timestamp", 1700000000000},
+                        {"metrics", json::array({{{"name", "Node Control/Rebirth"},
+                                                  {"type", "Boolean"},
+                                                  {"value", true}}})}});
+}
+
+/// Every exchange reports a request id of at least `after` on its `_status` within 60 s.
+template <class Topic>
+void expect_every_exchange_reports_from(MqttRecorder& recorder, int after, const Topic& topic) {
     const auto deadline = std::chrono::steady_clock::now() + 60s;
     for (std::uint32_t e = 1; e <= exchanges; ++e) {
         const auto status = topic("ex" + std::to_string(e) + "/_status");
-        EXPECT_TRUE(recorder_
-                        ->wait_for_message(
+        EXPECT_TRUE(recorder
+                        .wait_for_message(
                             status,
                             [&](const std::string& payload) {
                                 const auto s = json::parse(payload, nullptr, false);
@@ -143,9 +130,11 @@ TEST_F(SparkplugStormTest, AFloodOfRebirthRequestsNeitherStalesNorMissesADatagra
                         .has_value())
             << status;
     }
-    producer.stop();
-    // No exchange went stale, none missed a datagram: nothing waited unread.
-    for (const auto& m : recorder_->messages()) {
+}
+
+/// No exchange's `_status` in `messages` went stale or counts a timeout or a missed datagram.
+void expect_no_status_stale_or_missed(const std::vector<Received>& messages) {
+    for (const auto& m : messages) {
         if (!m.topic.ends_with("/_status")) continue;
         const auto s = json::parse(m.payload, nullptr, false);
         ASSERT_TRUE(s.is_object()) << m.payload;
@@ -153,6 +142,34 @@ TEST_F(SparkplugStormTest, AFloodOfRebirthRequestsNeitherStalesNorMissesADatagra
         EXPECT_EQ(s.value("timeouts", -1), 0) << m.topic << " " << m.payload;
         EXPECT_EQ(s.value("missed", -1), 0) << m.topic << " " << m.payload;
     }
+}
+
+TEST_F(SparkplugStormTest, AFloodOfRebirthRequestsNeitherStalesNorMissesADatagram) {
+    GatewayOptions options;
+    options.sections = "sparkplug:\n  group_id: plant1\n";
+    start(storm_exchanges(), "", options);
+    Producer producer([this](const std::vector<std::byte>& d) { send(d); });
+    for (std::uint32_t e = 1; e <= exchanges; ++e) {
+        expect_field(topic("ex" + std::to_string(e) + "/_status"), "state", "\"ok\"");
+    }
+    const auto rebirth = rebirth_request();
+    // 1,000 requests over 5 s or more (each waits for the broker's PUBACK), some 30 bytes each
+    // asking for ~90 kB of births.
+    constexpr int requests = 1000;
+    const auto storm_start = std::chrono::steady_clock::now();
+    for (int i = 0; i < requests; ++i) {
+        recorder_->publish(node_topic("NCMD"), rebirth);
+        std::this_thread::sleep_until(storm_start + i * 5ms);
+    }
+    const auto storm = std::chrono::duration_cast<std::chrono::milliseconds>(
+        std::chrono::steady_clock::now() - storm_start);
+    // Every exchange reports at least two seconds of datagrams after the storm.
+    const auto after = producer.rounds() + 20;
+    expect_every_exchange_reports_from(*recorder_, after,
+                                       [this](const std::string& suffix) { return topic(suffix); });
+    producer.stop();
+    // No exchange went stale, none missed a datagram: nothing waited unread.
+    expect_no_status_stale_or_missed(recorder_->messages());
     for (const auto& m : recorder_->messages()) {
         EXPECT_EQ(m.topic.find("/DDEATH/"), std::string::npos) << m.topic;
     }
@@ -197,70 +214,39 @@ std::vector<std::pair<std::string, std::string>> host_messages(const std::string
     return messages;
 }
 
-TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth) {
-    UdpClient capture;
-    GatewayOptions options;
-    options.sections = "sparkplug:\n  group_id: plant1\n  primary_host_id: scada\n  qos: 0\n";
-    start(ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture.port()))
-              .period_ms(100)
-              .tag("SPEED_SP", "0.0", "real", "writable: true")
-              .str(),
-          "", options);
-    // The host: MQTT 3.1.1 at QoS 1, so the broker holds at most 20 of its QoS 1 messages in
-    // flight and queues the rest, where a QoS 0 one could pass them.
-    // Its lines as they come (stdbuf): the test reads them while it runs.
-    ChildProcess host({"/usr/bin/stdbuf", "-oL", "/usr/bin/mosquitto_sub", "-d", "-h", "127.0.0.1",
-                       "-p", std::to_string(broker_->port()), "-q", "1", "-t", "spBv1.0/plant1/#",
-                       "-F", "%t %x"});
-    ASSERT_TRUE(host.wait_for_output("SUBACK", 20s)) << host.output();
-    recorder_->publish("spBv1.0/STATE/scada", R"({"online":true,"timestamp":1})", true);
-    ASSERT_TRUE(recorder_->wait_for_message(node_topic("NBIRTH"), nullptr, 20s).has_value());
-
-    // 4,000 changes of its STATE as fast as the broker takes them, ending online.
-    const auto flaps_start = std::chrono::steady_clock::now();
-    constexpr int flaps = 4000;
+/// `flaps` + 1 STATE payloads, one a line, online and offline in turn from online.
+std::string state_lines(int flaps) {
     std::string lines;
     for (int i = 0; i <= flaps; ++i) {
         lines += std::string(R"({"online":)") + (i % 2 == 0 ? "true" : "false") +
                  R"(,"timestamp":)" + std::to_string(2 + i) + "}\n";
     }
-    const auto file = dir_.write("flaps.txt", lines);
-    const auto pub = run_command(
-        {"/bin/sh", "-c",
-         "exec /usr/bin/mosquitto_pub -h 127.0.0.1 -p " + std::to_string(broker_->port()) +
-             " -t spBv1.0/STATE/scada -q 1 -r -l < " + file},
-        120s);
-    ASSERT_EQ(pub.status, 0) << pub.output;
-    // The broker hands the node its messages in order: once it has read an NCMD sent after
-    // them (one it logs and ignores: a rebirth would add births of its own), it has taken every
-    // STATE.
-    recorder_->publish(node_topic("NCMD"), std::string("\xff\xff\xff", 3));
-    ASSERT_TRUE(gateway_->wait_for_output("Sparkplug NCMD ignored", 120s));
-    // A clean stop ends with an NDEATH. A QoS 1 message after it reaches the host after
-    // everything the node said (QoS 0 messages are never queued behind QoS 1 ones).
-    gateway_->signal(SIGTERM);
-    ASSERT_EQ(gateway_->wait(20s), 0);
-    recorder_->publish("spBv1.0/plant1/end", "end");
-    ASSERT_TRUE(host.wait_for_output("spBv1.0/plant1/end", 60s));
-    auto received = host_messages(host.output());
-    // What the node said: not the test's own rebirth request.
+    return lines;
+}
+
+/// What the node said, of what the host `received`: not the test's own rebirth request, nor
+/// the end marker and what came after it.
+std::vector<std::pair<std::string, std::string>> node_messages(
+    std::vector<std::pair<std::string, std::string>> received) {
     std::erase_if(received, [](const auto& m) { return m.first == node_topic("NCMD"); });
     const auto end = std::find_if(received.begin(), received.end(),
                                   [](const auto& m) { return m.first == "spBv1.0/plant1/end"; });
     received.erase(end, received.end());
-    std::cout << flaps << " STATE changes: the host received " << received.size()
-              << " messages of the node\n";
-    // The log says so in a line and a summary a minute, not a line a change.
-    EXPECT_LE(lines_with(gateway_->output(), "Sparkplug primary host scada"),
-              throttled_lines_at_most(flaps_start))
-        << gateway_->output();
+    return received;
+}
 
-    // Births and deaths alternate (the clean stop's NDEATH may follow another), each death with
-    // the bdSeq of the birth before it, and seq counts on from each NBIRTH.
-    std::vector<std::string> payloads;
-    for (const auto& [topic, payload] : received) payloads.push_back(payload);
-    const auto decoded = tahu_decode_all(payloads);
-    ASSERT_EQ(decoded.size(), received.size());
+/// What check_births_and_deaths() found.
+struct BirthsAndDeaths {
+    std::vector<std::string> problems;
+    bool born = false;  ///< the last of them was an NBIRTH
+};
+
+/// Births and deaths alternate (the clean stop's NDEATH may follow another), each death with
+/// the bdSeq of the birth before it, and seq counts on from each NBIRTH; `decoded`: the
+/// payloads of `received` as Tahu decodes them.
+BirthsAndDeaths check_births_and_deaths(
+    const std::vector<std::pair<std::string, std::string>>& received,
+    const std::vector<json>& decoded) {
     std::vector<std::string> problems;
     bool born = false;
     std::string bd_seq;
@@ -295,6 +281,64 @@ TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth
             problem("seq " + payload.value("seq", json()).dump() + ", not " + expected);
         }
     }
+    return {problems, born};
+}
+
+TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth) {
+    UdpClient capture;
+    GatewayOptions options;
+    options.sections = "sparkplug:\n  group_id: plant1\n  primary_host_id: scada\n  qos: 0\n";
+    start(ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture.port()))
+              .period_ms(100)
+              .tag("SPEED_SP", "0.0", "real", "writable: true")
+              .str(),
+          "", options);
+    // The host: MQTT 3.1.1 at QoS 1, so the broker holds at most 20 of its QoS 1 messages in
+    // flight and queues the rest, where a QoS 0 one could pass them.
+    // Its lines as they come (stdbuf): the test reads them while it runs.
+    ChildProcess host({"/usr/bin/stdbuf", "-oL", "/usr/bin/mosquitto_sub", "-d", "-h", "127.0.0.1",
+                       "-p", std::to_string(broker_->port()), "-q", "1", "-t", "spBv1.0/plant1/#",
+                       "-F", "%t %x"});
+    ASSERT_TRUE(host.wait_for_output("SUBACK", 20s)) << host.output();
+    recorder_->publish("spBv1.0/STATE/scada", R"({"online":true,"timestamp":1})", true);
+    ASSERT_TRUE(recorder_->wait_for_message(node_topic("NBIRTH"), nullptr, 20s).has_value());
+
+    // 4,000 changes of its STATE as fast as the broker takes them, ending online.
+    const auto flaps_start = std::chrono::steady_clock::now();
+    constexpr int flaps = 4000;
+    const auto file = dir_.write("flaps.txt", state_lines(flaps));
+    const auto pub = run_command(
+        {"/bin/sh", "-c",
+         "exec /usr/bin/mosquitto_pub -h 127.0.0.1 -p " + std::to_string(broker_->port()) +
+             " -t spBv1.0/STATE/scada -q 1 -r -l < " + file},
+        120s);
+    ASSERT_EQ(pub.status, 0) << pub.output;
+    // The broker hands the node its messages in order: once it has read an NCMD sent after
+    // them (one it logs and ignores: a rebirth would add births of its own), it has taken every
+    // STATE.
+    recorder_->publish(node_topic("NCMD"), std::string("\xff\xff\xff", 3));
+    ASSERT_TRUE(gateway_->wait_for_output("Sparkplug NCMD ignored", 120s));
+    // A clean stop ends with an NDEATH. A QoS 1 message after it reaches the host after
+    // everything the node said (QoS 0 messages are never queued behind QoS 1 ones).
+    gateway_->signal(SIGTERM);
+    ASSERT_EQ(gateway_->wait(20s), 0);
+    recorder_->publish("spBv1.0/plant1/end", "end");
+    ASSERT_TRUE(host.wait_for_output("spBv1.0/plant1/end", 60s));
+    const auto received = node_messages(host_messages(host.output()));
+    std::cout << flaps << " STATE changes: the host received " << received.size()
+              << " messages of the node\n";
+    // The log says so in a line and a summary a minute, not a line a change.
+    EXPECT_LE(lines_with(gateway_->output(), "Sparkplug primary host scada"),
+              throttled_lines_at_most(flaps_start))
+        << gateway_->output();
+
+    // Births and deaths alternate (the clean stop's NDEATH may follow another), each death with
+    // the bdSeq of the birth before it, and seq counts on from each NBIRTH.
+    std::vector<std::string> payloads;
+    for (const auto& [topic, payload] : received) payloads.push_back(payload);
+    const auto decoded = tahu_decode_all(payloads);
+    ASSERT_EQ(decoded.size(), received.size());
+    const auto [problems, born] = check_births_and_deaths(received, decoded);
     EXPECT_GE(received.size(), 4u);
     EXPECT_TRUE(problems.empty()) << problems.size() << " problems, the first: " << problems.front()
                                   << (problems.size() > 1 ? "; " + problems[1] : "");

@@ -213,6 +213,97 @@ private:
     int fd_;
 };
 
+/// The soak exchange's datagram; the test writes its request id.
+std::vector<std::byte> soak_datagram() {
+    return DatagramBuilder("10.0.0.9", 9, 16)
+        .set("0.0", TagType::word, std::uint64_t{1234})
+        .set("4.0", TagType::real, 1.5f)
+        .set("8.0", TagType::dint, std::int64_t{-7})
+        .build();
+}
+
+/// Sends `batch` (emptied) closed by the sentinel datagram `sentinel`, counting both in
+/// `reference`, and waits for the sentinel's value on `sentinel_topic`: once it is on MQTT, the
+/// gateway has read the whole batch.
+void send_closed_batch(std::vector<std::vector<std::byte>>& batch, std::uint16_t sentinel,
+                       Reference& reference, BatchSender& sender, MqttRecorder& recorder,
+                       const std::string& sentinel_topic) {
+    for (const auto& d : batch) reference.on_datagram(d);
+    batch.push_back(DatagramBuilder("10.0.0.9", 10, 2)
+                        .request_id(sentinel)
+                        .set("0.0", TagType::word, std::uint64_t{sentinel})
+                        .build());
+    reference.on_datagram(batch.back());
+    const auto from = recorder.count();
+    sender.send(batch);
+    batch.clear();
+    const auto seen = recorder.wait_for_message(
+        sentinel_topic, [&](const std::string& p) { return json::parse(p)["value"] == sentinel; },
+        std::chrono::seconds(30), from);
+    ASSERT_TRUE(seen.has_value()) << "sentinel " << sentinel << " never published";
+}
+
+/// The gateway's metrics match the reference exactly and add up.
+void expect_metrics_add_up(const json& metrics, const Reference& reference) {
+    std::uint64_t dropped_sum = 0;
+    for (const auto reason : core::wire::all_drop_reasons) {
+        const auto name = std::string(core::wire::to_string(reason));
+        EXPECT_EQ(metrics["dropped"][name], reference.dropped[static_cast<std::size_t>(reason)])
+            << name;
+        dropped_sum += metrics["dropped"][name].get<std::uint64_t>();
+    }
+    EXPECT_EQ(metrics["accepted"], reference.accepted);
+    EXPECT_EQ(metrics["datagrams"].get<std::uint64_t>(),
+              metrics["accepted"].get<std::uint64_t>() + dropped_sum);
+}
+
+/// The soak exchange's `_status` matches the reference's counters, which add up.
+void expect_status_adds_up(const json& status, const core::exchange::ConsumeCounters& expected) {
+    EXPECT_EQ(status["accepted"], expected.accepted);
+    EXPECT_EQ(status["missed"], expected.missed);
+    EXPECT_EQ(status["duplicates"], expected.duplicates);
+    EXPECT_EQ(status["out_of_order"], expected.out_of_order);
+    EXPECT_EQ(status["length_mismatches"], expected.length_mismatches);
+    // Every datagram of the exchange was accepted or dropped for one counted reason.
+    EXPECT_EQ(expected.accepted + expected.duplicates + expected.out_of_order +
+                  expected.length_mismatches + expected.signature_mismatches + expected.no_data,
+              expected.received);
+}
+
+/// The faults really happened, at their configured rates.
+void expect_the_faults_happened(const FaultChain& faults, const Reference& reference) {
+    const auto& expected = reference.soak();
+    const auto& injected = faults.first().counters();
+    EXPECT_EQ(injected.in, total_datagrams);
+    EXPECT_GT(expected.missed, 10000u);
+    EXPECT_GT(expected.duplicates, 5000u);
+    EXPECT_GT(expected.out_of_order, 5000u);
+    EXPECT_GT(reference.dropped[static_cast<std::size_t>(core::wire::DropReason::not_data_pdu)],
+              1000u);
+    EXPECT_GT(reference.dropped[static_cast<std::size_t>(core::wire::DropReason::unknown_exchange)],
+              1000u);
+}
+
+/// The gateway's resident memory at the start, at 10 % and at the end of the run, in kB.
+struct Rss {
+    long start;
+    long at_10;
+    long at_100;
+};
+
+/// Prints the run and records its figures as properties of the test.
+void report(std::uint64_t datagrams, double elapsed, const Rss& rss, const json& metrics,
+            const json& status) {
+    std::cout << "soak: " << datagrams << " datagrams (" << total_datagrams << " before faults) in "
+              << elapsed << " s; gateway VmRSS " << rss.start << " kB at start, " << rss.at_10
+              << " kB at 10 %, " << rss.at_100 << " kB at 100 %\n"
+              << "soak: metrics " << metrics.dump() << "\nsoak: status " << status.dump() << "\n";
+    testing::Test::RecordProperty("datagrams", std::to_string(datagrams));
+    testing::Test::RecordProperty("seconds", std::to_string(elapsed));
+    testing::Test::RecordProperty("rss_10_kb", std::to_string(rss.at_10));
+    testing::Test::RecordProperty("rss_100_kb", std::to_string(rss.at_100));
+}
+
 class SoakTest : public GatewayTest {};
 
 TEST_F(SoakTest, MillionFaultyDatagramsKeepMemoryFlatAndCountersAddUp) {
@@ -224,11 +315,7 @@ TEST_F(SoakTest, MillionFaultyDatagramsKeepMemoryFlatAndCountersAddUp) {
     const pid_t pid = gateway_->pid();
     const long rss_start = rss_kb(pid);
 
-    auto soak = DatagramBuilder("10.0.0.9", 9, 16)
-                    .set("0.0", TagType::word, std::uint64_t{1234})
-                    .set("4.0", TagType::real, 1.5f)
-                    .set("8.0", TagType::dint, std::int64_t{-7})
-                    .build();
+    auto soak = soak_datagram();
     FaultChain faults(2024);
     Reference reference;
     BatchSender sender(udp_port_);
@@ -239,24 +326,6 @@ TEST_F(SoakTest, MillionFaultyDatagramsKeepMemoryFlatAndCountersAddUp) {
     std::uint16_t sentinel = 0;
     long rss_10 = -1;
     std::uint64_t pushed = 0;
-    const auto send_batch = [&] {
-        for (const auto& d : batch) reference.on_datagram(d);
-        // The sentinel closes the batch: once its value is on MQTT, the gateway has read all.
-        ++sentinel;
-        batch.push_back(DatagramBuilder("10.0.0.9", 10, 2)
-                            .request_id(sentinel)
-                            .set("0.0", TagType::word, std::uint64_t{sentinel})
-                            .build());
-        reference.on_datagram(batch.back());
-        const auto from = recorder_->count();
-        sender.send(batch);
-        batch.clear();
-        const auto seen = recorder_->wait_for_message(
-            topic("sentinel/MARKER"),
-            [&](const std::string& p) { return json::parse(p)["value"] == sentinel; },
-            std::chrono::seconds(30), from);
-        ASSERT_TRUE(seen.has_value()) << "sentinel " << sentinel << " never published";
-    };
     while (pushed < total_datagrams) {
         soak[2] = static_cast<std::byte>(pushed & 0xFF);  // request id, wrapping every 65536
         soak[3] = static_cast<std::byte>(pushed >> 8 & 0xFF);
@@ -264,7 +333,8 @@ TEST_F(SoakTest, MillionFaultyDatagramsKeepMemoryFlatAndCountersAddUp) {
         ++pushed;
         if (pushed == total_datagrams) faults.flush(batch);
         if (batch.size() >= batch_size || pushed == total_datagrams) {
-            send_batch();
+            send_closed_batch(batch, ++sentinel, reference, sender, *recorder_,
+                              topic("sentinel/MARKER"));
             if (HasFatalFailure()) return;
         }
         if (rss_10 < 0 && pushed >= total_datagrams / 10) rss_10 = rss_kb(pid);
@@ -279,16 +349,7 @@ TEST_F(SoakTest, MillionFaultyDatagramsKeepMemoryFlatAndCountersAddUp) {
         std::chrono::seconds(15));
     ASSERT_TRUE(metrics_message.has_value());
     const auto metrics = json::parse(metrics_message->payload);
-    std::uint64_t dropped_sum = 0;
-    for (const auto reason : core::wire::all_drop_reasons) {
-        const auto name = std::string(core::wire::to_string(reason));
-        EXPECT_EQ(metrics["dropped"][name], reference.dropped[static_cast<std::size_t>(reason)])
-            << name;
-        dropped_sum += metrics["dropped"][name].get<std::uint64_t>();
-    }
-    EXPECT_EQ(metrics["accepted"], reference.accepted);
-    EXPECT_EQ(metrics["datagrams"].get<std::uint64_t>(),
-              metrics["accepted"].get<std::uint64_t>() + dropped_sum);
+    expect_metrics_add_up(metrics, reference);
 
     const auto& expected = reference.soak();
     const auto status_message = recorder_->wait_for_message(
@@ -297,35 +358,11 @@ TEST_F(SoakTest, MillionFaultyDatagramsKeepMemoryFlatAndCountersAddUp) {
         std::chrono::seconds(15));
     ASSERT_TRUE(status_message.has_value());
     const auto status = json::parse(status_message->payload);
-    EXPECT_EQ(status["accepted"], expected.accepted);
-    EXPECT_EQ(status["missed"], expected.missed);
-    EXPECT_EQ(status["duplicates"], expected.duplicates);
-    EXPECT_EQ(status["out_of_order"], expected.out_of_order);
-    EXPECT_EQ(status["length_mismatches"], expected.length_mismatches);
-    // Every datagram of the exchange was accepted or dropped for one counted reason.
-    EXPECT_EQ(expected.accepted + expected.duplicates + expected.out_of_order +
-                  expected.length_mismatches + expected.signature_mismatches + expected.no_data,
-              expected.received);
-    // The faults really happened, at their configured rates.
-    const auto& injected = faults.first().counters();
-    EXPECT_EQ(injected.in, total_datagrams);
-    EXPECT_GT(expected.missed, 10000u);
-    EXPECT_GT(expected.duplicates, 5000u);
-    EXPECT_GT(expected.out_of_order, 5000u);
-    EXPECT_GT(reference.dropped[static_cast<std::size_t>(core::wire::DropReason::not_data_pdu)],
-              1000u);
-    EXPECT_GT(reference.dropped[static_cast<std::size_t>(core::wire::DropReason::unknown_exchange)],
-              1000u);
+    expect_status_adds_up(status, expected);
+    expect_the_faults_happened(faults, reference);
 
     // Memory: flat from 10 % to the end.
-    std::cout << "soak: " << reference.datagrams << " datagrams (" << total_datagrams
-              << " before faults) in " << elapsed << " s; gateway VmRSS " << rss_start
-              << " kB at start, " << rss_10 << " kB at 10 %, " << rss_100 << " kB at 100 %\n"
-              << "soak: metrics " << metrics.dump() << "\nsoak: status " << status.dump() << "\n";
-    RecordProperty("datagrams", std::to_string(reference.datagrams));
-    RecordProperty("seconds", std::to_string(elapsed));
-    RecordProperty("rss_10_kb", std::to_string(rss_10));
-    RecordProperty("rss_100_kb", std::to_string(rss_100));
+    report(reference.datagrams, elapsed, {rss_start, rss_10, rss_100}, metrics, status);
     ASSERT_GT(rss_10, 0);
     EXPECT_LT(rss_100 - rss_10, max_rss_growth_kb);
     EXPECT_TRUE(gateway_->running());

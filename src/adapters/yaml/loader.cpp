@@ -1,4 +1,4 @@
-// The loader's run (parse, read, validate, sort the diagnostics) and its scalar readers.
+// The loader's run: parse, read each section, validate, sort the diagnostics.
 
 #include "adapters/yaml/detail/loader.hpp"
 
@@ -8,8 +8,14 @@
 #include <tuple>
 #include <utility>
 
+#include "adapters/yaml/detail/sections.hpp"
+
 namespace eip2mqtt::adapters::yaml::detail {
 namespace {
+
+/// The top level's keys: the sections.
+constexpr std::array<std::string_view, 7> top_keys{"gateway",   "mqtt",       "eip",      "metrics",
+                                                   "sparkplug", "redundancy", "exchanges"};
 
 /// The 1-based line and column of the first tab in a line's indentation, up to line `last`
 /// (0-based, where the parser stopped) and the line after it; blank lines do not count.
@@ -46,12 +52,12 @@ core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
     Config config;
     config.file = file_;
     const auto cancelled = [this] {
-        error({file_, 0, 0}, "the load was given up: the gateway is stopping");
+        reader_.error({file_, 0, 0}, "the load was given up: the gateway is stopping");
         return core::fail(std::move(diagnostics_));
     };
     if (const auto nul = first_nul(text)) {
-        error({file_, nul->first, nul->second},
-              "YAML syntax error: a NUL byte (\\x00) in the file; YAML allows none");
+        reader_.error({file_, nul->first, nul->second},
+                      "YAML syntax error: a NUL byte (\\x00) in the file; YAML allows none");
         return core::fail(std::move(diagnostics_));
     }
     try {
@@ -59,11 +65,11 @@ core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
         if (stop_.stop_requested()) return cancelled();
         const Node root = tree.root();
         if (!root.is_defined() || root.is_null()) {
-            error({file_, 1, 1}, "the configuration is empty");
+            reader_.error({file_, 1, 1}, "the configuration is empty");
             return core::fail(std::move(diagnostics_));
         }
         if (!root.is_map()) {
-            error(mark(root), "expected a mapping at the top level");
+            reader_.error(reader_.mark(root), "expected a mapping at the top level");
         } else {
             read_root(root, config);
         }
@@ -71,12 +77,13 @@ core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
         // yaml-cpp's words for a tab ("illegal map value", "end of map not found") never say
         // tab, and a tab looks like spaces in most editors: name it.
         if (const auto tab = first_indenting_tab(text, e.mark.line + 1)) {
-            error({file_, tab->first, tab->second},
-                  "YAML syntax error: this line is indented with a tab; YAML indents with spaces "
-                  "only (the parser said: " +
-                      e.msg + ")");
+            reader_.error(
+                {file_, tab->first, tab->second},
+                "YAML syntax error: this line is indented with a tab; YAML indents with spaces "
+                "only (the parser said: " +
+                    e.msg + ")");
         } else {
-            error(mark(e.mark), "YAML syntax error: " + e.msg);
+            reader_.error(reader_.mark(e.mark), "YAML syntax error: " + e.msg);
         }
         return core::fail(std::move(diagnostics_));
     } catch (const Tree::Cancelled&) {
@@ -98,43 +105,18 @@ core::Result<Config, Diagnostics> Loader::load(const std::string& text) {
     return core::fail(std::move(diagnostics_));
 }
 
-std::optional<std::string> Loader::text(const Node& value, const std::string& key, const Mark& at) {
-    if (value.is_null()) return std::string();
-    if (!value.is_scalar()) {
-        error(at, "expected a string for " + in_quotes(key));
-        return std::nullopt;
-    }
-    return std::string(value.scalar());
-}
-
-std::optional<core::plan::TimestampSource> Loader::timestamp_source(const Node& value,
-                                                                    const std::string& key,
-                                                                    const Mark& at) {
-    return parsed(value, key, at, core::plan::parse_timestamp_source,
-                  "is not one of auto, producer, receive");
-}
-
-std::optional<bool> Loader::boolean(const Node& value, const std::string& key, const Mark& at) {
-    if (value.is_scalar()) {
-        const auto word = lower(value.scalar());
-        if (word == "true" || word == "yes" || word == "on") return true;
-        if (word == "false" || word == "no" || word == "off") return false;
-    }
-    error(at, "expected true or false for " + in_quotes(key));
-    return std::nullopt;
-}
-
 void Loader::read_root(const Node& root, Config& config) {
-    walk(root, mark(root), "configuration", "at the top level", top_keys,
-         [&](const std::string& key, const Node& value, const Mark& at) {
-             if (key == "gateway") read_gateway(value, at, config);
-             if (key == "mqtt") read_mqtt(value, at, config);
-             if (key == "eip") read_eip(value, at, config);
-             if (key == "metrics") read_metrics(value, at, config);
-             if (key == "sparkplug") read_sparkplug(value, at, config);
-             if (key == "redundancy") read_redundancy(value, at, config);
-             if (key == "exchanges") read_exchanges(value, at, config);
-         });
+    reader_.walk(root, reader_.mark(root), "configuration", "at the top level", top_keys,
+                 [&](const std::string& key, const Node& value, const Mark& at) {
+                     if (key == "gateway") read_gateway(reader_, value, at, config);
+                     if (key == "mqtt") read_mqtt(reader_, value, at, config);
+                     if (key == "eip") read_eip(reader_, value, at, config);
+                     if (key == "metrics") read_metrics(reader_, value, at, config);
+                     if (key == "sparkplug") read_sparkplug(reader_, value, at, config);
+                     if (key == "redundancy") read_redundancy(reader_, value, at, config);
+                     if (key == "exchanges")
+                         read_exchanges(reader_, point_lists_, value, at, config);
+                 });
 }
 
 }  // namespace eip2mqtt::adapters::yaml::detail

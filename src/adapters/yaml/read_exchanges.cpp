@@ -3,8 +3,7 @@
 #include <cmath>
 
 #include "adapters/yaml/detail/key_readers.hpp"
-#include "adapters/yaml/detail/loader.hpp"
-#include "adapters/yaml/detail/read_file.hpp"
+#include "adapters/yaml/detail/sections.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
@@ -13,6 +12,24 @@ namespace eip2mqtt::adapters::yaml::detail {
 namespace {
 
 namespace keys = core::config::keys;
+
+/// An exchange while its keys are read.
+struct ExchangeDraft {
+    core::plan::ExchangeSpec& spec;
+    std::string label;    ///< how messages name it
+    bool broken = false;  ///< an identity key is missing or bad: leave it out of the model
+    std::optional<Node> tags_node;
+    std::string points;
+    bool topic_written = false;
+};
+
+/// A tag while its keys are read.
+struct TagDraft {
+    core::plan::TagSpec& spec;
+    bool broken = false;  ///< a value failed to parse: leave the tag out of the model
+    std::optional<Node> initial;
+    Mark initial_mark;
+};
 
 /// The keys whose bad value leaves their exchange out of the model (what names it on the wire).
 bool is_identity_key(std::string_view key) {
@@ -171,107 +188,21 @@ constexpr KeyReader<TagDraft> tag_rows[]{
 };
 constexpr auto tag_readers = bind_keys(keys::tag, tag_rows);
 
-}  // namespace
-
-void Loader::read_exchanges(const Node& node, const Mark& at, Config& config) {
-    if (node.is_null()) return;
-    if (!node.is_sequence()) {
-        error(at, "expected a list for 'exchanges'");
-        return;
-    }
-    int index = 0;
-    for (std::size_t i = 0; i < node.size(); ++i) {
-        const Node item = node.item(i);
-        ++index;
-        read_exchange(item, index, config);
-    }
-}
-
-void Loader::read_exchange(const Node& node, int index, Config& config) {
-    ExchangeConfig exchange;
-    auto& spec = exchange.spec;
-    ExchangeDraft draft{spec, "exchange #" + std::to_string(index)};
-    if (const Node name = node.find("name"); name.is_scalar()) {
-        draft.label = "exchange " + in_quotes(name.scalar());
-    }
-    const auto& label = draft.label;
-    const std::string where = "in " + label;
-
-    const auto failed = [&](std::string_view key) {
-        draft.broken = draft.broken || is_identity_key(key);
-    };
-    exchange.marks = read_keys(node, mark(node), label, where, exchange_readers, draft, failed);
-    if (!node.is_map()) return;
-    for (const std::string_view required : {"name", "producer_id", "exchange_id"}) {
-        if (!exchange.marks.contains(required)) {
-            error(exchange.marks.node, label + " lacks " + in_quotes(required));
-            draft.broken = true;
-        }
-    }
-    if (!draft.topic_written) spec.topic = spec.name;
-    spec.points = draft.points;
-
-    if (draft.tags_node && !draft.tags_node->is_null()) {
-        if (!draft.tags_node->is_sequence()) {
-            error(exchange.marks.of("tags"), "expected a list for 'tags'");
-        } else {
-            // Sized once: vectors doubling per tag left freed blocks of every size among
-            // the tags, where the long-lived plans then landed
-            // (docs/decisions/0001-configurations-of-100000-tags.md).
-            exchange.tags.reserve(draft.tags_node->size());
-            for (std::size_t i = 0; i < draft.tags_node->size(); ++i) {
-                const Node item = draft.tags_node->item(i);
-                if (auto tag = read_tag(item, label)) exchange.tags.push_back(std::move(*tag));
-            }
-        }
-    }
-    if (!draft.points.empty()) read_points(draft.points, exchange);
-    if (!draft.broken) config.exchanges.push_back(std::move(exchange));
-}
-
-std::optional<TagConfig> Loader::read_tag(const Node& node, const std::string& exchange_label) {
-    TagConfig tag;
-    auto& spec = tag.spec;
-    TagDraft draft{spec};
-    const auto label = [&] {
-        const Node name = node.find("name");
-        return (name.is_scalar() ? "tag " + in_quotes(name.scalar()) : std::string("a tag")) +
-               " of " + exchange_label;
-    };
-    tag.marks = read_keys(
-        node, mark(node), "tag", [&] { return "in " + label(); }, tag_readers, draft,
-        [&](std::string_view) { draft.broken = true; });
-    if (!node.is_map()) return std::nullopt;
-    for (const std::string_view required : {"name", "address", "type"}) {
-        if (!tag.marks.contains(required)) {
-            error(tag.marks.node, label() + " lacks " + in_quotes(required));
-            draft.broken = true;
-        }
-    }
-    if (draft.initial && !draft.broken) {
-        if (auto value = read_initial(*draft.initial, spec.type, draft.initial_mark)) {
-            spec.mutable_extras().initial = *value;
-        } else {
-            draft.broken = true;
-        }
-    }
-    if (draft.broken) return std::nullopt;
-    return tag;
-}
-
-std::optional<core::plan::Value> Loader::read_initial(const Node& value, TagType type,
-                                                      const Mark& at) {
+/// `initial` as the tag's type holds it. Out-of-range values are kept (as int64 or double)
+/// for validate() to report against the type's range.
+std::optional<core::plan::Value> read_initial(Reader& reader, const Node& value, TagType type,
+                                              const Mark& at) {
     const std::string_view text = value.scalar();
     switch (type) {
         case TagType::bit: {
             if (text == "0") return core::plan::Value{false};
             if (text == "1") return core::plan::Value{true};
-            if (const auto b = boolean(value, "initial", at)) return core::plan::Value{*b};
+            if (const auto b = reader.boolean(value, "initial", at)) return core::plan::Value{*b};
             return std::nullopt;
         }
         case TagType::real:
         case TagType::lreal: {
-            const auto d = number(value, "initial", at);
+            const auto d = reader.number(value, "initial", at);
             if (!d) return std::nullopt;
             if (type == TagType::real && std::fabs(*d) <= std::numeric_limits<float>::max()) {
                 return core::plan::Value{static_cast<float>(*d)};
@@ -288,33 +219,50 @@ std::optional<core::plan::Value> Loader::read_initial(const Node& value, TagType
             if (const auto n = parse_integer<std::uint64_t>(text)) {
                 return core::plan::Value{*n};
             }
-            error(at, "expected an integer for 'initial'");
+            reader.error(at, "expected an integer for 'initial'");
             return std::nullopt;
         }
     }
 }
 
-void Loader::read_points(const std::string& points, ExchangeConfig& exchange) {
-    const Mark& at = exchange.marks.of("points");
-    const std::filesystem::path path = dir_ / points;
-    const std::string key = path.lexically_normal().string();
-    auto it = point_lists_.find(key);
-    if (it == point_lists_.end()) {
-        auto text = read_file(path.string(), "point list " + in_quotes(path.string()));
-        if (!text) {
-            error(at, text.error());
-            point_lists_.emplace(key, nullptr);
-            return;
+std::optional<TagConfig> read_tag(Reader& reader, const Node& node,
+                                  const std::string& exchange_label) {
+    TagConfig tag;
+    auto& spec = tag.spec;
+    TagDraft draft{spec};
+    const auto label = [&] {
+        const Node name = node.find("name");
+        return (name.is_scalar() ? "tag " + in_quotes(name.scalar()) : std::string("a tag")) +
+               " of " + exchange_label;
+    };
+    tag.marks = reader.read_keys(
+        node, reader.mark(node), "tag", [&] { return "in " + label(); }, tag_readers, draft,
+        [&](std::string_view) { draft.broken = true; });
+    if (!node.is_map()) return std::nullopt;
+    for (const std::string_view required : {"name", "address", "type"}) {
+        if (!tag.marks.contains(required)) {
+            reader.error(tag.marks.node, label() + " lacks " + in_quotes(required));
+            draft.broken = true;
         }
-        auto loaded = std::make_unique<LoadedPoints>(
-            core::config::parse_point_list(text.value(), path.string()));
-        // Errors of a file shared by several exchanges are reported once.
-        diagnostics_.insert(diagnostics_.end(), loaded->list.errors.begin(),
-                            loaded->list.errors.end());
-        it = point_lists_.emplace(key, std::move(loaded)).first;
     }
-    if (!it->second) return;
-    const auto& [list, index] = *it->second;
+    if (draft.initial && !draft.broken) {
+        if (auto value = read_initial(reader, *draft.initial, spec.type, draft.initial_mark)) {
+            spec.mutable_extras().initial = *value;
+        } else {
+            draft.broken = true;
+        }
+    }
+    if (draft.broken) return std::nullopt;
+    return tag;
+}
+
+/// docs/protocol.md §6: the rows of the point list whose Node is this exchange.
+void read_points(Reader& reader, PointLists& point_lists, const std::string& points,
+                 ExchangeConfig& exchange) {
+    const Mark& at = exchange.marks.of("points");
+    const LoadedPoints* loaded = point_lists.find(points, at, reader);
+    if (!loaded) return;
+    const auto& [list, index] = *loaded;
     const auto rows = index.rows_of(exchange.spec.name);
     exchange.tags.reserve(exchange.tags.size() + rows.size());
     for (const auto row_index : rows) {
@@ -326,8 +274,70 @@ void Loader::read_points(const std::string& points, ExchangeConfig& exchange) {
         exchange.tags.push_back(std::move(tag));
     }
     if (rows.empty() && list.errors.empty()) {
-        error(at, "point list " + in_quotes(points) + " has no rows whose Node is " +
-                      in_quotes(exchange.spec.name));
+        reader.error(at, "point list " + in_quotes(points) + " has no rows whose Node is " +
+                             in_quotes(exchange.spec.name));
+    }
+}
+
+void read_exchange(Reader& reader, PointLists& point_lists, const Node& node, int index,
+                   Config& config) {
+    ExchangeConfig exchange;
+    auto& spec = exchange.spec;
+    ExchangeDraft draft{spec, "exchange #" + std::to_string(index)};
+    if (const Node name = node.find("name"); name.is_scalar()) {
+        draft.label = "exchange " + in_quotes(name.scalar());
+    }
+    const auto& label = draft.label;
+    const std::string where = "in " + label;
+
+    const auto failed = [&](std::string_view key) {
+        draft.broken = draft.broken || is_identity_key(key);
+    };
+    exchange.marks =
+        reader.read_keys(node, reader.mark(node), label, where, exchange_readers, draft, failed);
+    if (!node.is_map()) return;
+    for (const std::string_view required : {"name", "producer_id", "exchange_id"}) {
+        if (!exchange.marks.contains(required)) {
+            reader.error(exchange.marks.node, label + " lacks " + in_quotes(required));
+            draft.broken = true;
+        }
+    }
+    if (!draft.topic_written) spec.topic = spec.name;
+    spec.points = draft.points;
+
+    if (draft.tags_node && !draft.tags_node->is_null()) {
+        if (!draft.tags_node->is_sequence()) {
+            reader.error(exchange.marks.of("tags"), "expected a list for 'tags'");
+        } else {
+            // Sized once: vectors doubling per tag left freed blocks of every size among
+            // the tags, where the long-lived plans then landed
+            // (docs/decisions/0001-configurations-of-100000-tags.md).
+            exchange.tags.reserve(draft.tags_node->size());
+            for (std::size_t i = 0; i < draft.tags_node->size(); ++i) {
+                const Node item = draft.tags_node->item(i);
+                if (auto tag = read_tag(reader, item, label))
+                    exchange.tags.push_back(std::move(*tag));
+            }
+        }
+    }
+    if (!draft.points.empty()) read_points(reader, point_lists, draft.points, exchange);
+    if (!draft.broken) config.exchanges.push_back(std::move(exchange));
+}
+
+}  // namespace
+
+void read_exchanges(Reader& reader, PointLists& point_lists, const Node& node, const Mark& at,
+                    Config& config) {
+    if (node.is_null()) return;
+    if (!node.is_sequence()) {
+        reader.error(at, "expected a list for 'exchanges'");
+        return;
+    }
+    int index = 0;
+    for (std::size_t i = 0; i < node.size(); ++i) {
+        const Node item = node.item(i);
+        ++index;
+        read_exchange(reader, point_lists, item, index, config);
     }
 }
 

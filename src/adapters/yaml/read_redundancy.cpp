@@ -1,7 +1,7 @@
 // The redundancy section of the configuration: a hot-standby pair.
 
 #include "adapters/yaml/detail/key_readers.hpp"
-#include "adapters/yaml/detail/loader.hpp"
+#include "adapters/yaml/detail/sections.hpp"
 
 namespace eip2mqtt::adapters::yaml::detail {
 namespace {
@@ -26,12 +26,12 @@ constexpr auto redundancy_readers = bind_keys(keys::redundancy, redundancy_rows)
 
 }  // namespace
 
-void Loader::read_redundancy(const Node& node, const Mark& at, Config& config) {
+void read_redundancy(Reader& reader, const Node& node, const Mark& at, Config& config) {
     auto& redundancy = config.redundancy;
     redundancy.marks =
-        read_keys(node, at, "redundancy", "in redundancy", redundancy_readers, redundancy);
+        reader.read_keys(node, at, "redundancy", "in redundancy", redundancy_readers, redundancy);
     if (!node.is_null() && node.is_defined() && !redundancy.marks.contains("pair")) {
-        error(redundancy.marks.node, "redundancy lacks 'pair' (the name both units share)");
+        reader.error(redundancy.marks.node, "redundancy lacks 'pair' (the name both units share)");
     }
 }
 

@@ -1,18 +1,12 @@
-// The gateway, mqtt, eip, metrics and sparkplug sections of the configuration.
+// The gateway, mqtt, metrics and sparkplug sections of the configuration.
 
 #include "adapters/yaml/detail/key_readers.hpp"
-#include "adapters/yaml/detail/loader.hpp"
+#include "adapters/yaml/detail/sections.hpp"
 
 namespace eip2mqtt::adapters::yaml::detail {
 namespace {
 
 namespace keys = core::config::keys;
-
-/// The text itself when it is an IPv4 address: an address is kept as written, for the socket.
-std::optional<std::string> ipv4_text(std::string_view text) {
-    if (!parse_ipv4(text)) return std::nullopt;
-    return std::string(text);
-}
 
 /// How each key of `gateway` is read.
 constexpr KeyReader<GatewaySection> gateway_rows[]{
@@ -211,139 +205,28 @@ constexpr auto sparkplug_readers = bind_keys(keys::sparkplug, sparkplug_rows);
 
 }  // namespace
 
-void Loader::read_gateway(const Node& node, const Mark& at, Config& config) {
+void read_gateway(Reader& reader, const Node& node, const Mark& at, Config& config) {
     config.gateway.marks =
-        read_keys(node, at, "gateway", "in gateway", gateway_readers, config.gateway);
+        reader.read_keys(node, at, "gateway", "in gateway", gateway_readers, config.gateway);
 }
 
-void Loader::read_mqtt(const Node& node, const Mark& at, Config& config) {
-    config.mqtt.marks = read_keys(node, at, "mqtt", "in mqtt", mqtt_readers, config.mqtt);
+void read_mqtt(Reader& reader, const Node& node, const Mark& at, Config& config) {
+    config.mqtt.marks = reader.read_keys(node, at, "mqtt", "in mqtt", mqtt_readers, config.mqtt);
 }
 
-void Loader::read_eip(const Node& node, const Mark& at, Config& config) {
-    auto& eip = config.eip;
-    eip.marks = walk(
-        node, at, "eip", "in eip", eip_keys,
-        [&](const std::string& key, const Node& value, const Mark& k) {
-            if (key == "bind") {
-                if (auto s = parsed(value, key, k, ipv4_text, "is not an IPv4 address")) {
-                    eip.bind = std::move(*s);
-                }
-            } else if (key == "port") {
-                if (const auto n = integer<std::uint16_t>(value, key, k)) eip.port = *n;
-            } else if (key == "multicast_ttl") {
-                if (const auto n = integer<int>(value, key, k, 0, 255)) eip.multicast_ttl = *n;
-            } else if (key == "multicast_interface") {
-                if (auto s = parsed(value, key, k, ipv4_text, "is not an IPv4 address")) {
-                    eip.multicast_interface = std::move(*s);
-                }
-            } else if (key == "link_mbps") {
-                const auto mbps = number(value, key, k);
-                if (mbps && !(*mbps > 0 && *mbps <= core::config::max_link_mbps)) {
-                    error(k, "link_mbps must be more than 0 and at most " +
-                                 std::to_string(static_cast<int>(core::config::max_link_mbps)));
-                } else if (mbps) {
-                    eip.link_mbps = *mbps;
-                }
-            } else if (key == "commands") {
-                read_commands(value, k, config);
-            } else if (key == "multicast") {
-                read_multicast(value, k, eip);
-            }
-        });
-}
-
-void Loader::read_multicast(const Node& value, const Mark& k, core::config::EipSection& eip) {
-    if (value.is_null()) return;
-    if (!value.is_sequence()) {
-        error(k, "expected a list for 'multicast'");
-        return;
-    }
-    for (std::size_t i = 0; i < value.size(); ++i) {
-        const Node item = value.item(i);
-        core::config::MulticastGroup group;
-        const auto item_marks =
-            walk(item, mark(item), "multicast", "in a multicast entry", multicast_keys,
-                 [&](const std::string& key, const Node& v, const Mark& at) {
-                     const auto s = text(v, key, at);
-                     if (!s) return;
-                     if (key == "interface") group.interface = *s;
-                     if (key != "group") return;
-                     group.group = *s;
-                     const auto ip = parse_ipv4(*s);
-                     if (!ip || (*ip >> 28) != 0xE) {
-                         error(at, "multicast group " + in_quotes(*s) +
-                                       " is not an IPv4 multicast address "
-                                       "(224.0.0.0-239.255.255.255)");
-                     }
-                 });
-        if (!item_marks.contains("group")) {
-            error(item_marks.node, "multicast entry lacks 'group'");
-        }
-        eip.multicast.push_back(std::move(group));
-    }
-}
-
-void Loader::read_commands(const Node& node, const Mark& at, Config& config) {
-    auto& commands = config.eip.commands;
-    commands.marks =
-        walk(node, at, "commands", "in eip.commands", commands_keys,
-             [&](const std::string& key, const Node& value, const Mark& k) {
-                 if (key == "enabled") {
-                     if (const auto b = boolean(value, key, k)) commands.enabled = *b;
-                 } else if (key == "writes") {
-                     if (const auto b = boolean(value, key, k)) commands.writes = *b;
-                 } else if (key == "port") {
-                     if (const auto n = integer<std::uint16_t>(value, key, k, 1))
-                         commands.port = *n;
-                 } else if (key == "max_requests_per_s") {
-                     if (const auto n = integer<std::uint32_t>(value, key, k, 1, 100000)) {
-                         commands.max_requests_per_s = *n;
-                     }
-                 } else if (key == "max_requests_per_s_per_source") {
-                     if (const auto n = integer<std::uint32_t>(value, key, k, 1, 100000)) {
-                         commands.max_requests_per_s_per_source = *n;
-                     }
-                 } else if (key == "allow") {
-                     commands.allow = subnets(value, key, k);
-                 } else if (key == "trusted") {
-                     commands.trusted = subnets(value, key, k);
-                 }
-             });
-}
-
-std::vector<core::net::Subnet> Loader::subnets(const Node& value, const std::string& key,
-                                               const Mark& at) {
-    std::vector<core::net::Subnet> out;
-    if (!value.is_sequence()) {
-        error(at, "expected a list of subnets for " + in_quotes(key) + " (10.20.0.0/24)");
-        return out;
-    }
-    for (std::size_t i = 0; i < value.size(); ++i) {
-        const Node item = value.item(i);
-        const auto s = text(item, key, mark(item));
-        if (!s) continue;
-        if (const auto subnet = core::net::parse_subnet(*s)) {
-            out.push_back(*subnet);
-        } else {
-            error(mark(item), key + " " + in_quotes(*s) + " is not an IPv4 subnet (10.20.0.0/24)");
-        }
-    }
-    return out;
-}
-
-void Loader::read_metrics(const Node& node, const Mark& at, Config& config) {
+void read_metrics(Reader& reader, const Node& node, const Mark& at, Config& config) {
     config.metrics.marks =
-        read_keys(node, at, "metrics", "in metrics", metrics_readers, config.metrics);
+        reader.read_keys(node, at, "metrics", "in metrics", metrics_readers, config.metrics);
 }
 
-void Loader::read_sparkplug(const Node& node, const Mark& at, Config& config) {
+void read_sparkplug(Reader& reader, const Node& node, const Mark& at, Config& config) {
     auto& sparkplug = config.sparkplug;
     sparkplug.marks =
-        read_keys(node, at, "sparkplug", "in sparkplug", sparkplug_readers, sparkplug);
+        reader.read_keys(node, at, "sparkplug", "in sparkplug", sparkplug_readers, sparkplug);
     if (!node.is_null() && node.is_defined() && sparkplug.group_id.empty() &&
         !sparkplug.marks.contains("group_id")) {
-        error(sparkplug.marks.node, "sparkplug lacks 'group_id' (required to enable Sparkplug B)");
+        reader.error(sparkplug.marks.node,
+                     "sparkplug lacks 'group_id' (required to enable Sparkplug B)");
     }
 }
 

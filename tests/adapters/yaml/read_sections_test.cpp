@@ -1,4 +1,4 @@
-// The loader's sections (read_sections.cpp): their keys, defaults and limits.
+// The loader's sections (read_sections.cpp, read_eip.cpp): their keys, defaults and limits.
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -25,53 +25,55 @@ TEST(LoadConfig, Defaults) {
     EXPECT_FALSE(config.exchanges[0].spec.timeout.has_value());
 }
 
-TEST(LoadConfig, EverySection) {
-    const auto config = good(
-        "gateway: { id: gw1, state_dir: /tmp/s, log_level: debug }\n"
-        "mqtt:\n"
-        "  url: ssl://broker:8883\n"
-        "  version: 3.1.1\n"
-        "  client_id: me\n"
-        "  username: u\n"
-        "  password_file: /etc/pw\n"
-        "  tls: { ca_file: ca.pem, cert_file: c.pem, key_file: k.pem, verify: false }\n"
-        "  base_topic: a/b\n"
-        "  qos: 2\n"
-        "  retain: false\n"
-        "  payload: raw\n"
-        "  buffer: { max_messages: 10 }\n"
-        "  batch: true\n"
-        "  keepalive_s: 15\n"
-        "  metrics_interval_s: 5\n"
-        "eip:\n"
-        "  bind: 127.0.0.1\n"
-        "  port: 0\n"
-        "  multicast: [ { group: 224.0.7.1, interface: eth0 }, { group: 224.0.7.2 } ]\n"
-        "metrics: { listen: 127.0.0.1:9108 }\n"
-        "exchanges:\n"
-        "  - name: ex\n"
-        "    producer_id: 10.0.0.1\n"
-        "    exchange_id: 4294967295\n"
-        "    length: 200\n"
-        "    signature: \"2.5\"\n"
-        "    period_ms: 50\n"
-        "    timeout_ms: 0\n"
-        "    source: 10.0.0.9\n"
-        "    topic: area/ex\n"
-        "    tags:\n"
-        "      - name: T\n"
-        "        address: 126\n"
-        "        type: WORD\n"
-        "        unit: bar\n"
-        "        deadband: 0.5\n"
-        "        refresh_s: 10\n"
-        "        min: 1\n"
-        "        max: 2.5\n"
-        "        description: free text, ignored\n"
-        "  - { name: out, direction: produce, producer_id: 10.0.0.1, exchange_id: 4,\n"
-        "      destination: 10.0.0.255, tags: [ { name: B, address: 0.3, type: bool,\n"
-        "      writable: yes, initial: true }, { name: R, address: 4.0, type: real, writable:\n"
-        "      true, initial: -1.5 }, { name: W, address: 8.0, type: udint, initial: 7 } ] }\n");
+/// A configuration that writes every key of every section but sparkplug's and redundancy's.
+constexpr const char* every_section =
+    "gateway: { id: gw1, state_dir: /tmp/s, log_level: debug }\n"
+    "mqtt:\n"
+    "  url: ssl://broker:8883\n"
+    "  version: 3.1.1\n"
+    "  client_id: me\n"
+    "  username: u\n"
+    "  password_file: /etc/pw\n"
+    "  tls: { ca_file: ca.pem, cert_file: c.pem, key_file: k.pem, verify: false }\n"
+    "  base_topic: a/b\n"
+    "  qos: 2\n"
+    "  retain: false\n"
+    "  payload: raw\n"
+    "  buffer: { max_messages: 10 }\n"
+    "  batch: true\n"
+    "  keepalive_s: 15\n"
+    "  metrics_interval_s: 5\n"
+    "eip:\n"
+    "  bind: 127.0.0.1\n"
+    "  port: 0\n"
+    "  multicast: [ { group: 224.0.7.1, interface: eth0 }, { group: 224.0.7.2 } ]\n"
+    "metrics: { listen: 127.0.0.1:9108 }\n"
+    "exchanges:\n"
+    "  - name: ex\n"
+    "    producer_id: 10.0.0.1\n"
+    "    exchange_id: 4294967295\n"
+    "    length: 200\n"
+    "    signature: \"2.5\"\n"
+    "    period_ms: 50\n"
+    "    timeout_ms: 0\n"
+    "    source: 10.0.0.9\n"
+    "    topic: area/ex\n"
+    "    tags:\n"
+    "      - name: T\n"
+    "        address: 126\n"
+    "        type: WORD\n"
+    "        unit: bar\n"
+    "        deadband: 0.5\n"
+    "        refresh_s: 10\n"
+    "        min: 1\n"
+    "        max: 2.5\n"
+    "        description: free text, ignored\n"
+    "  - { name: out, direction: produce, producer_id: 10.0.0.1, exchange_id: 4,\n"
+    "      destination: 10.0.0.255, tags: [ { name: B, address: 0.3, type: bool,\n"
+    "      writable: yes, initial: true }, { name: R, address: 4.0, type: real, writable:\n"
+    "      true, initial: -1.5 }, { name: W, address: 8.0, type: udint, initial: 7 } ] }\n";
+
+void expect_gateway_and_mqtt_of_every_section(const core::config::Config& config) {
     EXPECT_EQ(config.gateway.id, "gw1");
     EXPECT_EQ(config.gateway.state_dir, "/tmp/s");
     EXPECT_EQ(config.gateway.log_level, "debug");
@@ -91,12 +93,18 @@ TEST(LoadConfig, EverySection) {
     EXPECT_TRUE(config.mqtt.batch);
     EXPECT_EQ(config.mqtt.keepalive, std::chrono::seconds(15));
     EXPECT_EQ(config.mqtt.metrics_interval, std::chrono::seconds(5));
+}
+
+void expect_eip_and_metrics_of_every_section(const core::config::Config& config) {
     EXPECT_EQ(config.eip.bind, "127.0.0.1");
     EXPECT_EQ(config.eip.port, 0);
     ASSERT_EQ(config.eip.multicast.size(), 2u);
     EXPECT_EQ(config.eip.multicast[0].interface, "eth0");
     EXPECT_EQ(config.eip.multicast[1].group, "224.0.7.2");
     EXPECT_EQ(config.metrics.listen, "127.0.0.1:9108");
+}
+
+void expect_exchanges_of_every_section(const core::config::Config& config) {
     ASSERT_EQ(config.exchanges.size(), 2u);
     const auto& ex = config.exchanges[0].spec;
     EXPECT_EQ(ex.exchange_id, 4294967295u);
@@ -121,6 +129,13 @@ TEST(LoadConfig, EverySection) {
     EXPECT_EQ(out.tags[0].spec.initial(), core::plan::Value{true});
     EXPECT_EQ(out.tags[1].spec.initial(), core::plan::Value{-1.5f});
     EXPECT_EQ(out.tags[2].spec.initial(), core::plan::Value{std::uint64_t{7}});
+}
+
+TEST(LoadConfig, EverySection) {
+    const auto config = good(every_section);
+    expect_gateway_and_mqtt_of_every_section(config);
+    expect_eip_and_metrics_of_every_section(config);
+    expect_exchanges_of_every_section(config);
 }
 
 TEST(LoadConfig, MqttVersionSpellings) {

@@ -6,19 +6,12 @@
 
 #include <gtest/gtest.h>
 
-#include <boost/asio/executor_work_guard.hpp>
-#include <boost/asio/io_context.hpp>
-#include <boost/asio/post.hpp>
 #include <chrono>
 #include <functional>
-#include <future>
-#include <thread>
+#include <utility>
 
-#include "eip2mqtt/app/health/metrics.hpp"
+#include "tests/app/support/running_command_port.hpp"
 #include "tests/support/command_client.hpp"
-#include "tests/support/fakes/fake_clock.hpp"
-#include "tests/support/fakes/recording_northbound.hpp"
-#include "tests/support/fakes/recording_write_handler.hpp"
 #include "tests/support/free_port.hpp"
 
 namespace eip2mqtt::app::command_port {
@@ -27,68 +20,22 @@ namespace {
 using namespace std::chrono_literals;
 using core::command::PduType;
 
-core::config::Config commands_config(std::uint16_t port, const char* allow) {
-    core::config::Config config;
-    config.eip.bind = "127.0.0.1";
-    config.eip.commands.enabled = true;
-    config.eip.commands.port = port;
-    config.eip.commands.allow = std::vector<core::net::Subnet>{*core::net::parse_subnet(allow)};
-    return config;
-}
+using test::commands_config;
 
 class CommandPortTest : public testing::Test {
 protected:
-    ~CommandPortTest() override {
-        if (port_) on_loop([this] { port_->stop(); });
-        guard_.reset();
-        if (thread_.joinable()) thread_.join();
-    }
-    void start(const core::config::Config& config) {
-        port_ = make_command_port(config, loop_.get_executor(), exchanges_, writes_, clock_);
-        ASSERT_NE(port_, nullptr);
-        port_->start(clock_.monotonic());
-        thread_ = std::thread([this] { loop_.run(); });
-    }
-    /// Runs `work` on the loop and waits for it.
-    void on_loop(std::function<void()> work) {
-        std::promise<void> done;
-        boost::asio::post(loop_, [&] {
-            work();
-            done.set_value();
-        });
-        ASSERT_EQ(done.get_future().wait_for(10s), std::future_status::ready);
-    }
-    std::uint64_t refused() {
-        std::uint64_t count = 0;
-        on_loop([&] {
-            DatagramCounters datagrams;
-            WriteCounters writes;
-            adapters::mqtt::ClientStats mqtt;
-            MetricsSources sources{datagrams, writes, mqtt};
-            port_->add_metrics(sources);
-            count = sources.commands->refused;
-        });
-        return count;
-    }
+    void start(const core::config::Config& config) { rig_.start(config); }
+    void on_loop(std::function<void()> work) { rig_.on_loop(std::move(work)); }
+    std::uint64_t refused() { return rig_.counters().refused; }
 
-    boost::asio::io_context loop_;
-    boost::asio::executor_work_guard<boost::asio::io_context::executor_type> guard_{
-        loop_.get_executor()};
-    test::RecordingNorthbound northbound_;
-    ImageSaveTotals totals_;
-    Exchanges exchanges_{loop_.get_executor(), ExchangesOptions{}, northbound_, totals_};
-    test::RecordingWriteHandler writes_;
-    test::FakeClock clock_;
-    std::unique_ptr<Module> port_;
-    std::thread thread_;
+    test::RunningCommandPort rig_;
     std::uint16_t commands_port_ = test::free_udp_port();
 };
 
 TEST_F(CommandPortTest, NoPortUnlessEnabled) {
     auto config = commands_config(commands_port_, "127.0.0.0/8");
     config.eip.commands.enabled = false;
-    EXPECT_EQ(make_command_port(config, loop_.get_executor(), exchanges_, writes_, clock_),
-              nullptr);
+    EXPECT_EQ(rig_.make(config), nullptr);
 }
 
 TEST_F(CommandPortTest, OnceStartedItAnswersAsTheNodeOfItsBindAddress) {
@@ -106,7 +53,7 @@ TEST_F(CommandPortTest, OnceStartedItAnswersAsTheNodeOfItsBindAddress) {
 
 TEST_F(CommandPortTest, ANewPolicyRefusesWhomItNoLongerAllows) {
     start(commands_config(commands_port_, "127.0.0.0/8"));
-    on_loop([this] { port_->apply(commands_config(commands_port_, "127.0.0.2/32")); });
+    on_loop([this] { rig_.port().apply(commands_config(commands_port_, "127.0.0.2/32")); });
     test::CommandClient refused_client;  // 127.0.0.1
     refused_client.udp().send_to(commands_port_,
                                  refused_client.request(PduType::capabilities_request,

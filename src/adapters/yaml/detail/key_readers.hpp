@@ -1,5 +1,5 @@
 #pragma once
-/// How each key of a mapping is read into its field: one table per mapping, beside the loader
+/// How each key of a mapping is read into its field: one table per mapping, beside the reader
 /// code that walks it. A table lists the keys of core/config/config_keys.hpp in their order (a
 /// table that names another key, or leaves one out, does not compile), so that each key is
 /// written once for its reload rule and once with its reading, and the two cannot drift apart.
@@ -14,43 +14,43 @@
 #include <string_view>
 #include <vector>
 
-#include "adapters/yaml/detail/loader.hpp"
+#include "adapters/yaml/detail/reader.hpp"
 
 namespace eip2mqtt::adapters::yaml::detail {
 
-/// One key's value while a table's reader reads it: the loader's scalar readers, each reporting
+/// One key's value while a table's reader reads it: the Reader's scalar readers, each reporting
 /// a value that does not parse at the key's mark, as "<problem> for '<key>'".
 class KeyValue {
 public:
-    KeyValue(Loader& loader, const std::string& key, const Node& value, const Mark& at)
-        : loader_(loader), key_(key), value_(value), at_(at) {}
+    KeyValue(Reader& reader, const std::string& key, const Node& value, const Mark& at)
+        : reader_(reader), key_(key), value_(value), at_(at) {}
 
     const std::string& key() const { return key_; }
     const Node& node() const { return value_; }
     const Mark& at() const { return at_; }
 
-    void error(std::string message) { loader_.error(at_, std::move(message)); }
+    void error(std::string message) { reader_.error(at_, std::move(message)); }
 
     /// The value as a string (empty for a null value).
-    std::optional<std::string> text() { return loader_.text(value_, key_, at_); }
-    std::optional<bool> boolean() { return loader_.boolean(value_, key_, at_); }
-    std::optional<double> number() { return loader_.number(value_, key_, at_); }
+    std::optional<std::string> text() { return reader_.text(value_, key_, at_); }
+    std::optional<bool> boolean() { return reader_.boolean(value_, key_, at_); }
+    std::optional<double> number() { return reader_.number(value_, key_, at_); }
     std::optional<core::plan::TimestampSource> timestamp_source() {
-        return loader_.timestamp_source(value_, key_, at_);
+        return reader_.timestamp_source(value_, key_, at_);
     }
 
     /// An integer within `min`..`max` (as the type `T` reads it: a message names its range).
     template <class T>
     std::optional<T> integer(T min = std::numeric_limits<T>::min(),
                              T max = std::numeric_limits<T>::max()) {
-        return loader_.integer<T>(value_, key_, at_, min, max);
+        return reader_.integer<T>(value_, key_, at_, min, max);
     }
 
     /// A string read by `parse` (returning an optional); reported as "<key> '<text>' <problem>"
     /// when it does not parse.
     template <class Parse>
     auto parsed(Parse parse, std::string_view problem) {
-        return loader_.parsed(value_, key_, at_, parse, problem);
+        return reader_.parsed(value_, key_, at_, parse, problem);
     }
 
     /// The value as a string or a list of strings (`url: a` or `url: [a, b]`), each item read
@@ -66,15 +66,15 @@ public:
         bool read = true;
         for (std::size_t i = 0; i < value_.size(); ++i) {
             const Node item = value_.item(i);
-            marks.push_back(loader_.mark(item));
-            auto s = loader_.text(item, key_, marks.back());
+            marks.push_back(reader_.mark(item));
+            auto s = reader_.text(item, key_, marks.back());
             read = read && s.has_value();
             out.push_back(s.value_or(std::string()));
         }
         return read ? std::optional(std::move(out)) : std::nullopt;
     }
     /// Reports `message` at `at` (an item's mark, from texts()).
-    void error_at(const Mark& at, std::string message) { loader_.error(at, std::move(message)); }
+    void error_at(const Mark& at, std::string message) { reader_.error(at, std::move(message)); }
 
     /// Each of these stores the value in `field` (converted to the field's type: an integer to
     /// a duration) and returns true; false, the field untouched, when it did not read.
@@ -91,7 +91,7 @@ public:
     /// ("unknown key 'x' in mqtt.tls"); the marks of its keys.
     template <class Into, std::size_t N>
     Marks mapping(const std::string& where, const KeyReaders<Into, N>& readers, Into& into) {
-        return loader_.read_keys(value_, at_, key_, where, readers, into);
+        return reader_.read_keys(value_, at_, key_, where, readers, into);
     }
 
 private:
@@ -101,7 +101,7 @@ private:
         return value.has_value();
     }
 
-    Loader& loader_;
+    Reader& reader_;
     const std::string& key_;
     const Node& value_;
     const Mark& at_;
@@ -116,7 +116,7 @@ struct KeyReader {
     bool (*read)(KeyValue& value, Into& into);
 };
 
-/// A table found to list its config_keys.hpp keys in their order (the loader walks these names).
+/// A table found to list its config_keys.hpp keys in their order (the Reader walks these names).
 template <class Into, std::size_t N>
 struct KeyReaders {
     std::array<std::string_view, N> names;
@@ -141,7 +141,7 @@ consteval KeyReaders<Into, N> bind_keys(const std::array<core::config::ConfigKey
 }
 
 template <class Into, std::size_t N, class Where, class Failed>
-Marks Loader::read_keys(const Node& node, const Mark& at, const std::string& what,
+Marks Reader::read_keys(const Node& node, const Mark& at, const std::string& what,
                         const Where& where, const KeyReaders<Into, N>& readers, Into& into,
                         const Failed& failed) {
     return walk_indexed(
