@@ -9,6 +9,7 @@
 #include "app/detail/release_heap.hpp"
 #include "eip2mqtt/app/command_port/command_port.hpp"
 #include "eip2mqtt/app/health/metrics_module.hpp"
+#include "eip2mqtt/app/health/watchdog.hpp"
 #include "eip2mqtt/app/logging.hpp"
 #include "eip2mqtt/app/northbound/mqtt_settings.hpp"
 #include "eip2mqtt/app/northbound/northbounds.hpp"
@@ -30,9 +31,8 @@ Gateway::Gateway(core::config::Config config, const core::Clock& clock, const Co
                  {config_.gateway.id, std::filesystem::absolute(config_.file).string()}),
       signals_(loop_, SIGINT, SIGTERM, SIGHUP),
       ticker_(loop_.get_executor(), clock_),
-      watchdog_timer_(loop_),
       reloads_(loop_.get_executor(), *this, clock_) {
-    modules_ = compose(*this, loop_, exchanges_);
+    modules_ = ModuleList(compose(*this, loop_, exchanges_));
     exchanges_->apply_plans(reload::take_plans(config_));
     detail::release_heap();
 }
@@ -62,6 +62,7 @@ std::vector<std::unique_ptr<Module>> Gateway::compose(ExchangesModule*& exchange
     modules.push_back(std::move(south));
     if (commands) modules.push_back(std::move(commands));
     modules.push_back(std::move(metrics));
+    modules.push_back(std::make_unique<Watchdog>(loop, notifier_));
     return modules;
 }
 
@@ -83,7 +84,7 @@ int Gateway::run() {
     reloads_.stop();
     ticker_.cancel();
     spdlog::info("stopping: flushing publications and publishing offline");
-    for (auto it = modules_.rbegin(); it != modules_.rend(); ++it) (*it)->stop();
+    modules_.stop();
     const auto sources = metrics_sources();
     spdlog::info("stopped: {} datagrams received, {} publications made, {} still queued",
                  sources.datagrams.datagrams, sources.mqtt.published, sources.mqtt.queued);
@@ -92,19 +93,9 @@ int Gateway::run() {
 
 void Gateway::start() {
     const auto now = clock_.monotonic();
-    std::size_t started = 0;
-    try {
-        for (; started < modules_.size(); ++started) modules_[started]->start(now);
-    } catch (...) {
-        // What started stops, in reverse, before the failure goes on up.
-        while (started > 0) modules_[--started]->stop();
-        throw;
-    }
-    ticker_.start(now, [this](const TickTimes& times) {
-        for (auto& module : modules_) module->tick(times);
-    });
+    modules_.start(now);
+    ticker_.start(now, [this](const TickTimes& times) { modules_.tick(times); });
     wait_signal();
-    schedule_watchdog();
     spdlog::info(
         "eip2mqtt {} listening on UDP {}:{}: {} consumed and {} produced exchange(s); MQTT {}",
         config_.gateway.id, config_.eip.bind, exchanges_->local_port(),
@@ -117,7 +108,7 @@ void Gateway::start() {
 MetricsSources Gateway::metrics_sources() {
     MetricsSources sources{exchanges_->exchanges().datagram_counters(),
                            exchanges_->writes().counters()};
-    for (auto& module : modules_) module->add_metrics(sources);
+    modules_.add_metrics(sources);
     return sources;
 }
 
@@ -136,27 +127,13 @@ void Gateway::wait_signal() {
     });
 }
 
-void Gateway::schedule_watchdog() {
-    const auto interval = notifier_.watchdog_interval();
-    if (!interval) return;
-    // Pinged from the loop that does the work: a wedged loop stops the pings and systemd
-    // restarts the service.
-    notifier_.watchdog();
-    watchdog_timer_.expires_after(*interval);
-    watchdog_timer_.async_wait([this](const boost::system::error_code& error) {
-        if (!error) schedule_watchdog();
-    });
-}
-
 bool Gateway::apply(ParseResult parsed, std::vector<std::string>& outcome) {
     const auto changes = reload::accept(parsed, config_, exchanges_->exchanges().running_plans());
     if (!changes) return false;
     auto& next = parsed.value();
-    for (auto& module : modules_) {
-        if (!module->prepare(next.config)) return false;
-    }
+    if (!modules_.prepare(next.config)) return false;
     set_log_level(next.config.gateway.log_level);
-    for (auto& module : modules_) module->apply(next.config);
+    modules_.apply(next.config);
     config_ = std::move(next.config);
     try {
         outcome.push_back(exchanges_->apply_plans(std::move(next.plans)));
@@ -165,29 +142,20 @@ bool Gateway::apply(ParseResult parsed, std::vector<std::string>& outcome) {
         stop_loop();
         return false;
     }
-    for (auto& module : modules_) module->applied();
+    modules_.applied();
     outcome.push_back(changes->empty()
                           ? "reload: no key changed"
                           : "reload: applied " + changes->describe(core::config::ReloadRule::live));
     return true;
 }
 
-bool Gateway::changes_pending() const {
-    for (const auto& module : modules_) {
-        if (module->changes_pending()) return true;
-    }
-    return false;
-}
+bool Gateway::changes_pending() const { return modules_.changes_pending(); }
 
-void Gateway::publish_changes(std::size_t units) {
-    for (auto& module : modules_) module->publish_changes(units);
-}
+void Gateway::publish_changes(std::size_t units) { modules_.publish_changes(units); }
 
 core::config::PublishQueueRoom Gateway::queue_room() const {
-    for (const auto& module : modules_) {
-        if (auto room = module->queue_room()) return *room;
-    }
-    return {0, config_.mqtt.buffer_max_messages, true};
+    return modules_.queue_room().value_or(
+        core::config::PublishQueueRoom{0, config_.mqtt.buffer_max_messages, true});
 }
 
 }  // namespace eip2mqtt::app

@@ -7,96 +7,24 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <condition_variable>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
-#include <mutex>
-#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
-#include "eip2mqtt/app/redundancy/unit_role.hpp"
+#include "tests/support/fakes/fake_module.hpp"
 
 namespace eip2mqtt::app {
 namespace {
 
 using namespace std::chrono_literals;
 
-/// What the modules were asked, in order, from the loop's thread and the test's.
-class Journal {
-public:
-    void add(std::string event) {
-        {
-            std::lock_guard lock(mutex_);
-            events_.push_back(std::move(event));
-        }
-        changed_.notify_all();
-    }
-    /// True once `event` was added, within 30 s.
-    bool wait_for(const std::string& event) {
-        std::unique_lock lock(mutex_);
-        return changed_.wait_for(lock, 30s, [&] {
-            return std::find(events_.begin(), events_.end(), event) != events_.end();
-        });
-    }
-    /// The events that start with one of `prefixes`, in order.
-    std::vector<std::string> only(std::initializer_list<std::string_view> prefixes) {
-        std::lock_guard lock(mutex_);
-        std::vector<std::string> out;
-        for (const auto& event : events_) {
-            for (auto prefix : prefixes) {
-                if (event.starts_with(prefix)) out.push_back(event);
-            }
-        }
-        return out;
-    }
-
-private:
-    std::mutex mutex_;
-    std::condition_variable changed_;
-    std::vector<std::string> events_;
-};
-
-struct FakeBehaviour {
-    bool fail_start = false;
-    bool refuse = false;
-};
-
-class FakeModule final : public Module {
-public:
-    FakeModule(std::string name, Journal& journal, FakeBehaviour behaviour = {})
-        : name_(std::move(name)), journal_(journal), behaviour_(behaviour) {}
-
-    void start(core::MonoTime) override {
-        if (behaviour_.fail_start) throw std::runtime_error(name_ + " cannot start");
-        journal_.add("start " + name_);
-    }
-    void tick(const TickTimes&) override {
-        if (ticks_ < 2) journal_.add("tick " + name_ + " " + std::to_string(++ticks_));
-    }
-    void stop() override { journal_.add("stop " + name_); }
-    bool prepare(const core::config::Config& next) override {
-        journal_.add("prepare " + name_ + " " + next.gateway.log_level);
-        return !behaviour_.refuse;
-    }
-    void apply(const core::config::Config& next) override {
-        journal_.add("apply " + name_ + " " + next.gateway.log_level);
-    }
-    void applied() override { journal_.add("applied " + name_); }
-    void add_metrics(MetricsSources& sources) override { sources.commands = &commands_; }
-
-    core::command::CommandCounters commands_;
-
-private:
-    std::string name_;
-    Journal& journal_;
-    FakeBehaviour behaviour_;
-    int ticks_ = 0;
-};
+using test::FakeBehaviour;
+using test::FakeModule;
+using test::ModuleJournal;
 
 constexpr auto exchange_yaml =
     "exchanges:\n  - name: a\n    direction: consume\n    producer_id: 10.0.0.1\n"
@@ -149,7 +77,7 @@ protected:
     }
 
     std::filesystem::path dir_;
-    Journal journal_;
+    ModuleJournal journal_;
 };
 
 TEST_F(GatewayTest, StartsAndTicksInOrderAndStopsInReverse) {
@@ -179,7 +107,7 @@ TEST_F(GatewayTest, TheMetricsGatherEveryModulesCounters) {
 }
 
 /// Runs `gateway`, reloads the file once it started, and stops once `last` was seen.
-void reload_then_stop(Gateway& gateway, Journal& journal, const std::string& last) {
+void reload_then_stop(Gateway& gateway, ModuleJournal& journal, const std::string& last) {
     std::thread runner([&] { EXPECT_EQ(gateway.run(), 0); });
     ASSERT_TRUE(journal.wait_for("tick B 1"));
     ::kill(::getpid(), SIGHUP);  // the gateway's signal set takes it on its loop

@@ -7,7 +7,6 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
-#include <boost/asio/steady_timer.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,6 +18,7 @@
 #include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/health/tick_timer.hpp"
 #include "eip2mqtt/app/module.hpp"
+#include "eip2mqtt/app/module_list.hpp"
 #include "eip2mqtt/app/reload/reload_sequence.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 
@@ -40,7 +40,7 @@ public:
     ~Gateway();
 
     /// Runs until SIGTERM or SIGINT, then stops cleanly; returns the exit status. A module
-    /// that fails to start throws on: those started before it are stopped first.
+    /// that fails to start throws on (ModuleList::start).
     int run();
     /// Stops the loop from any thread (tests, signal handling).
     void request_stop();
@@ -52,7 +52,6 @@ private:
     void start();
     void stop_loop();
     void wait_signal();
-    void schedule_watchdog();
     // reload::ReloadTarget
     const std::string& file() const override { return config_.file; }
     void reloading() override { notifier_.reloading(); }
@@ -73,10 +72,8 @@ private:
     boost::asio::io_context loop_;
     boost::asio::signal_set signals_;
     TickTimer ticker_;
-    boost::asio::steady_timer watchdog_timer_;
     adapters::systemd::Notifier notifier_;
-    /// In dependency order: started and ticked in it, stopped in reverse.
-    std::vector<std::unique_ptr<Module>> modules_;
+    ModuleList modules_;
     ExchangesModule* exchanges_ = nullptr;  ///< among modules_
     bool stopping_ = false;
     /// Last: its worker's thread is stopped and joined first when the gateway dies, before
