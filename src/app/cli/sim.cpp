@@ -14,24 +14,21 @@
 #include <vector>
 
 #include "app/cli/detail/run_until_stopped.hpp"
-#include "eip2mqtt/adapters/udp/command_socket.hpp"
+#include "app/cli/detail/simulator.hpp"
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/udp/interfaces.hpp"
-#include "eip2mqtt/adapters/udp/sender.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
-#include "eip2mqtt/app/cli/commands.hpp"
-#include "eip2mqtt/app/command_port/command_responder.hpp"
 #include "eip2mqtt/app/command_port/command_views.hpp"
 #include "eip2mqtt/app/logging.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/encode.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace detail {
 
 using core::plan::TagType;
 using core::plan::Value;
 
-/// The simulated value of a tag at `cycle`: bits toggle, integers ramp, reals follow a wave.
 Value simulated_value(const core::plan::TagSpec& tag, std::uint64_t cycle, std::size_t index) {
     const std::uint64_t step = cycle + index * 7;
     switch (tag.type) {
@@ -58,24 +55,6 @@ Value simulated_value(const core::plan::TagSpec& tag, std::uint64_t cycle, std::
     return false;
 }
 
-struct SimulatedExchange {
-    core::plan::ExchangePlan plan;
-    std::vector<std::byte> data;
-    std::vector<std::byte> datagram;
-    core::wire::Header header;
-    std::uint64_t cycle = 0;
-    std::unique_ptr<boost::asio::steady_timer> timer;
-    std::chrono::steady_clock::time_point deadline;
-    std::uint64_t sent = 0;
-};
-
-/// The simulated PLC's command port: its socket, and the responder that describes the
-/// exchanges it sends as produced ones, never written.
-struct SimCommands {
-    std::unique_ptr<adapters::udp::CommandSocket> socket;
-    std::unique_ptr<CommandResponder> responder;
-};
-
 core::command::ExchangeView sim_view(const SimulatedExchange& sim,
                                      const adapters::udp::Endpoint& target,
                                      std::span<const std::uint32_t> broadcasts,
@@ -100,14 +79,14 @@ core::command::ExchangeView sim_view(const SimulatedExchange& sim,
 
 SimCommands start_commands(boost::asio::io_context& loop, const core::config::Config& config,
                            std::uint16_t port, const std::vector<SimulatedExchange>& exchanges,
-                           const adapters::udp::Endpoint& target) {
+                           const adapters::udp::Endpoint& target, const core::Clock& clock) {
     SimCommands commands;
     commands.socket =
         std::make_unique<adapters::udp::CommandSocket>(loop.get_executor(), config.eip.bind, port);
     core::command::NodeInfo node;
     node.producer_id = exchanges.front().plan.spec.producer_id;
     node.identification = "eip2mqtt sim " EIP2MQTT_VERSION;
-    const auto started = std::chrono::system_clock::now();
+    const auto started = clock.wall();
     auto* socket = commands.socket.get();
     commands.responder = std::make_unique<CommandResponder>(
         command_policy(config), node,
@@ -121,25 +100,22 @@ SimCommands start_commands(boost::asio::io_context& loop, const core::config::Co
         [socket](std::span<const std::byte> bytes, const adapters::udp::Endpoint& to) {
             return socket->send_to(bytes, to);
         },
-        nullptr);
+        nullptr, clock);
     auto* responder = commands.responder.get();
     commands.socket->start(
-        [responder](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from) {
-            responder->on_datagram(bytes, from, std::chrono::steady_clock::now(),
-                                   std::chrono::system_clock::now());
+        [responder, &clock](std::span<const std::byte> bytes, const adapters::udp::Endpoint& from) {
+            responder->on_datagram(bytes, from, clock.monotonic(), clock.wall());
         });
     spdlog::info("answering the command protocol on UDP {}:{}", config.eip.bind,
                  commands.socket->local_port());
     return commands;
 }
 
-/// The command port `options` and `config` choose; 0: none.
 std::uint16_t commands_port(const SimOptions& options, const core::config::Config& config) {
     if (options.commands_port >= 0) return static_cast<std::uint16_t>(options.commands_port);
     return config.eip.commands.enabled ? config.eip.commands.port : 0;
 }
 
-/// The consumed exchanges of `config`, each with its timer on `loop`, ready to send.
 std::vector<SimulatedExchange> simulated_exchanges(const core::config::Config& config,
                                                    boost::asio::io_context& loop) {
     std::vector<SimulatedExchange> exchanges;
@@ -158,60 +134,56 @@ std::vector<SimulatedExchange> simulated_exchanges(const core::config::Config& c
     return exchanges;
 }
 
-/// Sends each exchange on its period, with changing values.
-class Production {
-public:
-    Production(adapters::udp::Sender& sender, adapters::udp::Endpoint target)
-        : sender_(sender), target_(target) {}
-
-    /// Spreads the first sends over each period so exchanges do not leave in one burst.
-    void start(std::vector<SimulatedExchange>& exchanges) {
-        const auto start = std::chrono::steady_clock::now();
-        for (std::size_t i = 0; i < exchanges.size(); ++i) {
-            auto& sim = exchanges[i];
-            sim.deadline = start + sim.plan.spec.period * static_cast<long>(i) /
-                                       static_cast<long>(exchanges.size());
-            schedule(sim);
-            spdlog::info(
-                "simulating exchange {} (producer {}, exchange {}, {} bytes, every {} ms) to {}",
-                sim.plan.spec.name, core::wire::to_string(sim.plan.spec.producer_id),
-                sim.plan.spec.exchange_id, sim.plan.length, sim.plan.spec.period.count(),
-                adapters::udp::to_string(target_));
-        }
+std::span<const std::byte> next_datagram(SimulatedExchange& sim, core::WallTime wall) {
+    for (std::size_t i = 0; i < sim.plan.tags.size(); ++i) {
+        const auto& tag = sim.plan.tags[i].spec;
+        core::plan::encode_value(sim.data, tag.type, tag.address,
+                                 simulated_value(tag, sim.cycle, i));
     }
+    const auto ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(wall.time_since_epoch()).count();
+    sim.header.time_s = static_cast<std::uint32_t>(ns / 1000000000);
+    sim.header.time_ns = static_cast<std::uint32_t>(ns % 1000000000);
+    const auto size = core::wire::encode_datagram(sim.header, sim.data, sim.datagram);
+    ++sim.header.request_id;  // wraps 65535 -> 0
+    ++sim.cycle;
+    return std::span(sim.datagram.data(), size);
+}
 
-private:
-    void schedule(SimulatedExchange& sim) {
-        sim.timer->expires_at(sim.deadline);
-        sim.timer->async_wait([this, p = &sim](const boost::system::error_code& error) {
-            if (!error) send(*p);
-        });
-    }
+Production::Production(adapters::udp::Sender& sender, adapters::udp::Endpoint target,
+                       const core::Clock& clock)
+    : sender_(sender), target_(target), clock_(clock) {}
 
-    void send(SimulatedExchange& sim) {
-        for (std::size_t i = 0; i < sim.plan.tags.size(); ++i) {
-            const auto& tag = sim.plan.tags[i].spec;
-            core::plan::encode_value(sim.data, tag.type, tag.address,
-                                     simulated_value(tag, sim.cycle, i));
-        }
-        const auto wall = std::chrono::system_clock::now().time_since_epoch();
-        const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(wall).count();
-        sim.header.time_s = static_cast<std::uint32_t>(ns / 1000000000);
-        sim.header.time_ns = static_cast<std::uint32_t>(ns % 1000000000);
-        const auto size = core::wire::encode_datagram(sim.header, sim.data, sim.datagram);
-        if (sender_.send_to(std::span(sim.datagram.data(), size), target_)) ++sim.sent;
-        ++sim.header.request_id;  // wraps 65535 -> 0
-        ++sim.cycle;
-        // docs/protocol.md §5: absolute deadlines, so the period never drifts.
-        sim.deadline += sim.plan.spec.period;
+void Production::start(std::vector<SimulatedExchange>& exchanges) {
+    const auto start = clock_.monotonic();
+    for (std::size_t i = 0; i < exchanges.size(); ++i) {
+        auto& sim = exchanges[i];
+        sim.deadline = start + sim.plan.spec.period * static_cast<long>(i) /
+                                   static_cast<long>(exchanges.size());
         schedule(sim);
+        spdlog::info(
+            "simulating exchange {} (producer {}, exchange {}, {} bytes, every {} ms) to {}",
+            sim.plan.spec.name, core::wire::to_string(sim.plan.spec.producer_id),
+            sim.plan.spec.exchange_id, sim.plan.length, sim.plan.spec.period.count(),
+            adapters::udp::to_string(target_));
     }
+}
 
-    adapters::udp::Sender& sender_;
-    adapters::udp::Endpoint target_;
-};
+void Production::schedule(SimulatedExchange& sim) {
+    sim.timer->expires_at(sim.deadline);
+    sim.timer->async_wait([this, p = &sim](const boost::system::error_code& error) {
+        if (!error) send(*p);
+    });
+}
 
-}  // namespace
+void Production::send(SimulatedExchange& sim) {
+    if (sender_.send_to(next_datagram(sim, clock_.wall()), target_)) ++sim.sent;
+    // docs/protocol.md §5: absolute deadlines, so the period never drifts.
+    sim.deadline += sim.plan.spec.period;
+    schedule(sim);
+}
+
+}  // namespace detail
 
 int run_sim(const SimOptions& options) {
     setup_logging(options.log_level);
@@ -229,18 +201,19 @@ int run_sim(const SimOptions& options) {
         return 1;
     }
 
+    const auto& clock = adapters::clock::system_clock();
     boost::asio::io_context loop;
     adapters::udp::Sender sender(loop.get_executor(), {});
-    auto exchanges = simulated_exchanges(config, loop);
+    auto exchanges = detail::simulated_exchanges(config, loop);
     if (exchanges.empty()) {
         spdlog::error("{} has no consumed exchange to simulate", options.config_path);
         return 1;
     }
-    Production production(sender, *target);
+    detail::Production production(sender, *target, clock);
     production.start(exchanges);
-    SimCommands commands;
-    if (const auto commands_at = commands_port(options, config); commands_at != 0) {
-        commands = start_commands(loop, config, commands_at, exchanges, *target);
+    detail::SimCommands commands;
+    if (const auto commands_at = detail::commands_port(options, config); commands_at != 0) {
+        commands = detail::start_commands(loop, config, commands_at, exchanges, *target, clock);
     }
 
     detail::run_until_stopped(loop, options.duration_s);

@@ -24,6 +24,8 @@
 #include "app/cli/detail/network_load_report.hpp"
 #include "app/cli/detail/run_until_stopped.hpp"
 #include "app/cli/detail/sniff_capture.hpp"
+#include "app/cli/detail/sniffer.hpp"
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
 #include "eip2mqtt/adapters/udp/interfaces.hpp"
 #include "eip2mqtt/adapters/udp/multicast.hpp"
@@ -39,40 +41,11 @@
 #include "eip2mqtt/core/wire/drop_reason.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace detail {
 
-using Clock = std::chrono::steady_clock;
 using core::wire::ExchangeKey;
 
-/// One exchange seen on the wire, configured or not.
-struct SniffedExchange {
-    std::string label;                               ///< configured name, else producer/exchange
-    const core::plan::ExchangePlan* plan = nullptr;  ///< nullptr when not configured
-    core::exchange::ArrivalStats arrivals;
-    bool synchronised = false;
-    std::uint16_t last_rid = 0;
-    std::uint64_t received = 0;
-    std::uint64_t missed = 0;
-    std::uint64_t duplicates = 0;
-    std::uint64_t out_of_order = 0;
-    /// With --yaml, for an exchange the configuration lacks: what its skeleton says.
-    std::optional<core::exchange::WireSurvey> survey;
-};
-
-/// What --yaml needs besides the datagrams: the local broadcast addresses (to tell a
-/// subnet-directed broadcast) and the tolerance of a synced producer clock.
-struct YamlSettings {
-    std::vector<std::uint32_t> broadcast_addresses;
-    std::chrono::milliseconds clock_tolerance{2000};
-};
-
-/// What became of a datagram under docs/protocol.md §4 rule 6.
-enum class Sequence { sample, duplicate, out_of_order };
-
-/// §4 rule 6: d = (rid - last) mod 65536; 0 duplicate, 1..32767 new sample (d - 1 missed),
-/// >= 32768 late or reordered. The first datagram, and with a configuration the first after a
-/// silence longer than the exchange's timeout, resynchronises without counting.
-Sequence apply_sequence(SniffedExchange& exchange, std::uint16_t rid, Clock::time_point now) {
+Sequence apply_sequence(SniffedExchange& exchange, std::uint16_t rid, core::MonoTime now) {
     if (exchange.synchronised && exchange.plan != nullptr && exchange.plan->timeout.count() > 0 &&
         exchange.arrivals.last_arrival() &&
         now - *exchange.arrivals.last_arrival() > exchange.plan->timeout) {
@@ -97,8 +70,7 @@ Sequence apply_sequence(SniffedExchange& exchange, std::uint16_t rid, Clock::tim
     return Sequence::sample;
 }
 
-/// Local wall time as tcpdump prints it: HH:MM:SS.uuuuuu.
-std::string local_time(std::chrono::system_clock::time_point now) {
+std::string local_time(core::WallTime now) {
     const auto since_epoch = now.time_since_epoch();
     const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(since_epoch);
     const auto micros =
@@ -110,7 +82,6 @@ std::string local_time(std::chrono::system_clock::time_point now) {
                        micros);
 }
 
-/// The producer's time stamp in UTC (ISO 8601), or `none` for 0.
 std::string producer_time(const core::wire::Header& header) {
     if (!header.has_timestamp()) return "none";
     const time_t t = static_cast<time_t>(header.time_s);
@@ -121,205 +92,171 @@ std::string producer_time(const core::wire::Header& header) {
                        header.time_ns);
 }
 
+namespace {
+
 std::string milliseconds(std::optional<double> seconds) {
     return seconds ? fmt::format("{:.3f}", *seconds * 1000.0) : "-";
 }
 
-class Sniffer {
-public:
-    /// `yaml`: gather the skeletons of unconfigured exchanges (print_skeleton).
-    Sniffer(std::ostream& out, std::vector<core::plan::ExchangePlan> plans,
-            std::chrono::nanoseconds interval, std::optional<YamlSettings> yaml)
-        : out_(out),
-          plans_(std::move(plans)),
-          configured_(core::plan::configured_rate(plans_)),
-          interval_(interval),
-          yaml_(std::move(yaml)) {}
+}  // namespace
 
-    /// `destination`: the address the datagram was sent to (0: unknown).
-    void on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
-                     std::uint32_t destination) {
-        const auto now = Clock::now();
-        const auto wall = std::chrono::system_clock::now();
-        ++wire_.datagrams;
-        wire_.bytes += core::plan::wire_bytes_of_datagram(bytes.size());
-        std::string line = fmt::format("{} {}", local_time(wall), adapters::udp::to_string(from));
-        auto decoded = core::wire::decode_datagram(bytes);
-        if (!decoded) {
-            ++dropped_[decoded.error()];
-            line += fmt::format(" dropped={} length={}", core::wire::to_string(decoded.error()),
-                                bytes.size());
-            out_ << line << std::endl;
-            return;
-        }
-        const auto& datagram = decoded.value();
-        const auto& header = datagram.header;
-        auto& exchange = find_or_add(header.key());
-        ++exchange.received;
-        const auto sequence = apply_sequence(exchange, header.request_id, now);
-        if (sequence == Sequence::sample) exchange.arrivals.on_arrival(now);
-        if (exchange.survey) {
-            const auto receive_ms =
-                std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch())
-                    .count();
-            exchange.survey->on_datagram(
-                header, datagram.data.size(),
-                core::exchange::classify_destination(destination, yaml_->broadcast_addresses), now,
-                receive_ms);
-        }
+Sniffer::Sniffer(std::ostream& out, std::vector<core::plan::ExchangePlan> plans,
+                 std::chrono::nanoseconds interval, std::optional<YamlSettings> yaml,
+                 const core::Clock& clock)
+    : out_(out),
+      clock_(clock),
+      plans_(std::move(plans)),
+      configured_(core::plan::configured_rate(plans_)),
+      window_start_(clock.monotonic()),
+      interval_(interval),
+      yaml_(std::move(yaml)) {}
 
-        const auto signature = core::wire::Signature::from_wire(header.signature);
-        line +=
-            fmt::format(" rid={} producer={} exchange={} time={} status={} signature={} length={}",
+void Sniffer::on_datagram(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
+                          std::uint32_t destination) {
+    const auto now = clock_.monotonic();
+    const auto wall = clock_.wall();
+    ++wire_.datagrams;
+    wire_.bytes += core::plan::wire_bytes_of_datagram(bytes.size());
+    std::string line = fmt::format("{} {}", local_time(wall), adapters::udp::to_string(from));
+    auto decoded = core::wire::decode_datagram(bytes);
+    if (!decoded) {
+        ++dropped_[decoded.error()];
+        line += fmt::format(" dropped={} length={}", core::wire::to_string(decoded.error()),
+                            bytes.size());
+        out_ << line << std::endl;
+        return;
+    }
+    const auto& datagram = decoded.value();
+    const auto& header = datagram.header;
+    auto& exchange = find_or_add(header.key());
+    ++exchange.received;
+    const auto sequence = apply_sequence(exchange, header.request_id, now);
+    if (sequence == Sequence::sample) exchange.arrivals.on_arrival(now);
+    if (exchange.survey) {
+        const auto receive_ms =
+            std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch()).count();
+        exchange.survey->on_datagram(
+            header, datagram.data.size(),
+            core::exchange::classify_destination(destination, yaml_->broadcast_addresses), now,
+            receive_ms);
+    }
+
+    const auto signature = core::wire::Signature::from_wire(header.signature);
+    line += fmt::format(" rid={} producer={} exchange={} time={} status={} signature={} length={}",
                         header.request_id, core::wire::to_string(header.producer_id),
                         header.exchange_id, producer_time(header), header.status,
                         core::wire::to_string(signature), datagram.data.size());
-        if (sequence == Sequence::duplicate) line += " duplicate";
-        if (sequence == Sequence::out_of_order) line += " out_of_order";
-        if (exchange.plan != nullptr) {
-            line += " [" + exchange.label + "]";
-            for (const auto& tag : exchange.plan->tags) {
-                const auto& spec = tag.spec;
-                // A datagram shorter than configured (length mismatch) lacks some tags.
-                if (spec.address.byte + core::plan::size_of(spec.type) > datagram.data.size()) {
-                    line += fmt::format(" {}=?", spec.name);
-                    continue;
-                }
-                const auto value = core::plan::decode_value(datagram.data, spec.type, spec.address);
-                line += fmt::format(" {}={}", spec.name, core::plan::to_json(value));
+    if (sequence == Sequence::duplicate) line += " duplicate";
+    if (sequence == Sequence::out_of_order) line += " out_of_order";
+    if (exchange.plan != nullptr) {
+        line += " [" + exchange.label + "]";
+        for (const auto& tag : exchange.plan->tags) {
+            const auto& spec = tag.spec;
+            // A datagram shorter than configured (length mismatch) lacks some tags.
+            if (spec.address.byte + core::plan::size_of(spec.type) > datagram.data.size()) {
+                line += fmt::format(" {}=?", spec.name);
+                continue;
             }
+            const auto value = core::plan::decode_value(datagram.data, spec.type, spec.address);
+            line += fmt::format(" {}={}", spec.name, core::plan::to_json(value));
         }
-        out_ << line << std::endl;
     }
+    out_ << line << std::endl;
+}
 
-    /// The per-exchange table, rates over the last interval; `fragments`: IP fragments the
-    /// capture saw and could not decode; `kernel_drops`: frames the capture was too slow for.
-    void print_statistics(std::uint64_t fragments, std::uint64_t kernel_drops) {
-        const auto now = Clock::now();
-        if (exchanges_.empty() && dropped_.empty() && fragments == 0 && kernel_drops == 0) return;
-        std::size_t width = 8;
-        for (const auto& exchange : exchanges_) width = std::max(width, exchange.label.size());
-        out_ << fmt::format("-- statistics at {} --\n",
-                            local_time(std::chrono::system_clock::now()));
-        if (!exchanges_.empty()) {
-            out_ << fmt::format("{:<{}} {:>9} {:>9} {:>10} {:>10} {:>8} {:>10} {:>12}\n",
-                                "exchange", width, "received", "rate/s", "period_ms", "jitter_ms",
-                                "missed", "duplicates", "out_of_order");
-        }
-        for (const auto& exchange : exchanges_) {
-            const auto& arrivals = exchange.arrivals;
-            const auto mean = arrivals.mean_period();
-            out_ << fmt::format(
-                "{:<{}} {:>9} {:>9.1f} {:>10} {:>10} {:>8} {:>10} {:>12}\n", exchange.label, width,
-                exchange.received, arrivals.rate(now),
-                milliseconds(mean ? std::optional(mean->count()) : std::nullopt),
-                milliseconds(arrivals.count() > 1 ? std::optional(arrivals.jitter().count())
-                                                  : std::nullopt),
-                exchange.missed, exchange.duplicates, exchange.out_of_order);
-        }
-        if (!dropped_.empty()) {
-            std::string line = "dropped:";
-            for (const auto& [reason, count] : dropped_) {
-                line += fmt::format(" {}={}", core::wire::to_string(reason), count);
-            }
-            out_ << line << '\n';
-        }
-        if (fragments != 0) {
-            out_ << fmt::format("ip fragments: {} (not decoded: EIP datagrams fit one frame)\n",
-                                fragments);
-        }
-        if (kernel_drops != 0) {
-            // The capture's own loss, not the network's: the gateway may well have them all.
-            out_ << fmt::format("capture dropped: {} (sniff could not keep up)\n", kernel_drops);
-        }
-        print_load(now);
-        out_ << std::flush;
+void Sniffer::print_statistics(std::uint64_t fragments, std::uint64_t kernel_drops) {
+    const auto now = clock_.monotonic();
+    if (exchanges_.empty() && dropped_.empty() && fragments == 0 && kernel_drops == 0) return;
+    std::size_t width = 8;
+    for (const auto& exchange : exchanges_) width = std::max(width, exchange.label.size());
+    out_ << fmt::format("-- statistics at {} --\n", local_time(clock_.wall()));
+    if (!exchanges_.empty()) {
+        out_ << fmt::format("{:<{}} {:>9} {:>9} {:>10} {:>10} {:>8} {:>10} {:>12}\n", "exchange",
+                            width, "received", "rate/s", "period_ms", "jitter_ms", "missed",
+                            "duplicates", "out_of_order");
     }
-
-    /// With --yaml: the skeleton of every exchange seen that the configuration lacks.
-    void print_skeleton() {
-        if (!yaml_) return;
-        std::vector<core::exchange::WireSummary> summaries;
-        for (const auto& exchange : exchanges_) {
-            if (exchange.survey) summaries.push_back(exchange.survey->summary());
-        }
-        out_ << '\n' << adapters::yaml::yaml_skeleton(summaries) << std::flush;
-    }
-
-private:
-    /// Datagrams seen, and the bytes they take on an Ethernet link.
-    struct WireTotals {
-        std::uint64_t datagrams = 0;
-        std::uint64_t bytes = 0;
-    };
-
-    /// With a configuration: the load measured since the last table beside the one the
-    /// configuration puts on the link, every datagram counted as Ethernet carries it.
-    void print_load(Clock::time_point now) {
-        if (plans_.empty()) return;
-        const std::chrono::duration<double> window = now - window_start_;
-        std::string measured = "-";
-        if (window.count() > 0) {
-            const auto datagrams = static_cast<double>(wire_.datagrams - window_.datagrams);
-            const auto bits = static_cast<double>(wire_.bytes - window_.bytes) * 8;
-            measured = detail::rate(datagrams / window.count(), bits / window.count());
-        }
+    for (const auto& exchange : exchanges_) {
+        const auto& arrivals = exchange.arrivals;
+        const auto mean = arrivals.mean_period();
         out_ << fmt::format(
-            "load: measured {} ({} datagrams, {} bytes on the wire since start); configured {} "
-            "(every configured exchange at its period)\n",
-            measured, wire_.datagrams, wire_.bytes,
-            detail::rate(configured_.datagrams_per_s, configured_.bits_per_s));
-        window_ = wire_;
-        window_start_ = now;
+            "{:<{}} {:>9} {:>9.1f} {:>10} {:>10} {:>8} {:>10} {:>12}\n", exchange.label, width,
+            exchange.received, arrivals.rate(now),
+            milliseconds(mean ? std::optional(mean->count()) : std::nullopt),
+            milliseconds(arrivals.count() > 1 ? std::optional(arrivals.jitter().count())
+                                              : std::nullopt),
+            exchange.missed, exchange.duplicates, exchange.out_of_order);
     }
-
-    SniffedExchange& find_or_add(const ExchangeKey& key) {
-        const auto found = index_.find(key);
-        if (found != index_.end()) return exchanges_[found->second];
-        const core::plan::ExchangePlan* plan = nullptr;
-        for (const auto& candidate : plans_) {
-            if (candidate.key() == key) {
-                plan = &candidate;
-                break;
-            }
+    if (!dropped_.empty()) {
+        std::string line = "dropped:";
+        for (const auto& [reason, count] : dropped_) {
+            line += fmt::format(" {}={}", core::wire::to_string(reason), count);
         }
-        std::optional<std::chrono::nanoseconds> expected;
-        if (plan != nullptr) expected = plan->spec.period;
-        exchanges_.push_back(SniffedExchange{
-            .label = plan != nullptr ? plan->spec.name
-                                     : fmt::format("{}/{}", core::wire::to_string(key.producer_id),
-                                                   key.exchange_id),
-            .plan = plan,
-            .arrivals = core::exchange::ArrivalStats(expected, interval_),
-        });
-        if (yaml_ && plan == nullptr) exchanges_.back().survey.emplace(key, yaml_->clock_tolerance);
-        index_.emplace(key, exchanges_.size() - 1);
-        return exchanges_.back();
+        out_ << line << '\n';
     }
+    if (fragments != 0) {
+        out_ << fmt::format("ip fragments: {} (not decoded: EIP datagrams fit one frame)\n",
+                            fragments);
+    }
+    if (kernel_drops != 0) {
+        // The capture's own loss, not the network's: the gateway may well have them all.
+        out_ << fmt::format("capture dropped: {} (sniff could not keep up)\n", kernel_drops);
+    }
+    print_load(now);
+    out_ << std::flush;
+}
 
-    std::ostream& out_;
-    std::vector<core::plan::ExchangePlan> plans_;  ///< never resized: exchanges_ points into it
-    core::plan::Rate configured_;
-    WireTotals wire_;
-    WireTotals window_;  ///< wire_ at the last table
-    Clock::time_point window_start_ = Clock::now();
-    std::chrono::nanoseconds interval_;
-    std::optional<YamlSettings> yaml_;
-    std::vector<SniffedExchange> exchanges_;  ///< in order of first sight
-    std::map<ExchangeKey, std::size_t> index_;
-    std::map<core::wire::DropReason, std::uint64_t> dropped_;
-};
+void Sniffer::print_skeleton() {
+    if (!yaml_) return;
+    std::vector<core::exchange::WireSummary> summaries;
+    for (const auto& exchange : exchanges_) {
+        if (exchange.survey) summaries.push_back(exchange.survey->summary());
+    }
+    out_ << '\n' << adapters::yaml::yaml_skeleton(summaries) << std::flush;
+}
 
-/// What sniff takes from its options and configuration.
-struct SniffSetup {
-    std::uint16_t port = 18246;
-    std::vector<core::plan::ExchangePlan> plans;
-    std::vector<adapters::udp::MulticastMembership> groups;
-    std::optional<YamlSettings> yaml;
-};
+void Sniffer::print_load(core::MonoTime now) {
+    if (plans_.empty()) return;
+    const std::chrono::duration<double> window = now - window_start_;
+    std::string measured = "-";
+    if (window.count() > 0) {
+        const auto datagrams = static_cast<double>(wire_.datagrams - window_.datagrams);
+        const auto bits = static_cast<double>(wire_.bytes - window_.bytes) * 8;
+        measured = detail::rate(datagrams / window.count(), bits / window.count());
+    }
+    out_ << fmt::format(
+        "load: measured {} ({} datagrams, {} bytes on the wire since start); configured {} "
+        "(every configured exchange at its period)\n",
+        measured, wire_.datagrams, wire_.bytes,
+        detail::rate(configured_.datagrams_per_s, configured_.bits_per_s));
+    window_ = wire_;
+    window_start_ = now;
+}
 
-/// nullopt when the configuration does not load (its errors printed on stderr).
-std::optional<SniffSetup> load_setup(const SniffOptions& options) {
+SniffedExchange& Sniffer::find_or_add(const ExchangeKey& key) {
+    const auto found = index_.find(key);
+    if (found != index_.end()) return exchanges_[found->second];
+    const core::plan::ExchangePlan* plan = nullptr;
+    for (const auto& candidate : plans_) {
+        if (candidate.key() == key) {
+            plan = &candidate;
+            break;
+        }
+    }
+    std::optional<std::chrono::nanoseconds> expected;
+    if (plan != nullptr) expected = plan->spec.period;
+    exchanges_.push_back(SniffedExchange{
+        .label = plan != nullptr ? plan->spec.name
+                                 : fmt::format("{}/{}", core::wire::to_string(key.producer_id),
+                                               key.exchange_id),
+        .plan = plan,
+        .arrivals = core::exchange::ArrivalStats(expected, interval_),
+    });
+    if (yaml_ && plan == nullptr) exchanges_.back().survey.emplace(key, yaml_->clock_tolerance);
+    index_.emplace(key, exchanges_.size() - 1);
+    return exchanges_.back();
+}
+
+std::optional<SniffSetup> load_setup(const SniffOptions& options, std::ostream& err) {
     SniffSetup setup;
     if (options.yaml) {
         setup.yaml.emplace();
@@ -329,7 +266,7 @@ std::optional<SniffSetup> load_setup(const SniffOptions& options) {
         auto loaded = adapters::yaml::load_config(options.config_path);
         if (!loaded) {
             for (const auto& diagnostic : loaded.error()) {
-                std::cerr << diagnostic.to_string() << '\n';
+                err << diagnostic.to_string() << '\n';
             }
             return std::nullopt;
         }
@@ -347,14 +284,14 @@ std::optional<SniffSetup> load_setup(const SniffOptions& options) {
     return setup;
 }
 
-}  // namespace
+}  // namespace detail
 
 int run_sniff(const SniffOptions& options, std::ostream& out) {
     if (!(options.interval_s > 0)) {
         std::cerr << "eip2mqtt sniff: --interval must be positive\n";
         return 2;
     }
-    auto setup = load_setup(options);
+    auto setup = detail::load_setup(options, std::cerr);
     if (!setup) return 1;
     const auto port = setup->port;
 
@@ -366,7 +303,8 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
 
     const auto interval = std::chrono::duration_cast<std::chrono::nanoseconds>(
         std::chrono::duration<double>(options.interval_s));
-    Sniffer sniffer(out, std::move(setup->plans), interval, std::move(setup->yaml));
+    const auto& clock = adapters::clock::system_clock();
+    detail::Sniffer sniffer(out, std::move(setup->plans), interval, std::move(setup->yaml), clock);
     std::uint64_t seen = 0;
     capture->start([&](const adapters::capture::UdpFrame& frame) {
         if (options.count != 0 && seen >= options.count) return;
@@ -378,7 +316,7 @@ int run_sniff(const SniffOptions& options, std::ostream& out) {
         << std::endl;
 
     boost::asio::steady_timer tick(loop);
-    auto deadline = Clock::now() + interval;
+    auto deadline = clock.monotonic() + interval;
     std::function<void()> schedule = [&] {
         tick.expires_at(deadline);
         tick.async_wait([&](const boost::system::error_code& error) {

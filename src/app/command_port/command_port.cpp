@@ -68,7 +68,7 @@ CommandPort::CommandPort(const core::config::Config& config, boost::asio::any_io
           [this](std::span<const std::byte> datagram, const adapters::udp::Endpoint& to) {
               return socket_.send_to(datagram, to);
           },
-          &writes) {
+          &writes, clock_) {
     log_policy(config, responder_.policy(), socket_.local_port());
 }
 

@@ -47,12 +47,13 @@ CommandPolicy command_policy(const core::config::Config& config) {
 }
 
 CommandResponder::CommandResponder(CommandPolicy policy, core::command::NodeInfo node, Views views,
-                                   Send send, WriteHandler* writes)
+                                   Send send, WriteHandler* writes, const core::Clock& clock)
     : policy_(std::move(policy)),
       node_(std::move(node)),
       views_(std::move(views)),
       send_(std::move(send)),
       writes_(writes),
+      clock_(clock),
       proof_(random_key()),
       sources_(policy_.max_requests_per_s_per_source),
       limiter_(policy_.max_requests_per_s),
@@ -192,7 +193,7 @@ void CommandResponder::write_result(const WriteReply& reply_to,
                         : staging_ ? CommandStatus::rejected
                                    : CommandStatus::failed;
     if (status != CommandStatus::success) ++counters_.errors;
-    const auto wall = std::chrono::system_clock::now();
+    const auto wall = clock_.wall();
     reply(
         core::command::write_response(found->second.request, status, core::wire_time(wall).seconds,
                                       core::wire_time(wall).nanoseconds),

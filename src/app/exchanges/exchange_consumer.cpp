@@ -18,12 +18,14 @@ std::int64_t to_ms(core::WallTime wall) {
 
 }  // namespace
 
-ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, Northbound& northbound)
+ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, Northbound& northbound,
+                                   const core::Clock& clock)
     : plan_(std::move(plan)),
       northbound_(northbound),
       exchange_(plan_),
       clock_(plan_.timestamp, plan_.clock_tolerance),
-      pacer_(plan_.spec.period) {
+      pacer_(plan_.spec.period),
+      configured_at_(clock.wall()) {
     filters_.resize(plan_.tags.size());
 }
 

@@ -42,7 +42,8 @@ ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
       // the file's blocks exist before the disk fills up. A handed-over image is written all the
       // same: the file may hold writes the reload cancelled, or have been removed.
       save_(!handover && saves_.file->in_place()),
-      outgoing_{std::vector<std::byte>(core::wire::header_size + plan_->length), {}} {
+      outgoing_{std::vector<std::byte>(core::wire::header_size + plan_->length), {}},
+      configured_at_(scheduler.clock().wall()) {
     writes_.limiters.reserve(plan_->tags.size());
     for (const auto& tag : plan_->tags) writes_.limiters.emplace_back(tag.spec.max_writes_per_s());
     spdlog::info("exchange {}: producing to {} every {} ms, {} image", plan_->spec.name,
@@ -230,7 +231,7 @@ void ExchangeProducer::on_save_failed(const core::exchange::SaveThenAnswer::Save
         northbound_.write_result(*reply, answer);
         ++totals_.writes_not_saved;
     }
-    const auto count = saves_.log.record(std::chrono::steady_clock::now());
+    const auto count = saves_.log.record(scheduler_.clock().monotonic());
     if (count == 1) {
         spdlog::error(
             "exchange {}: cannot save its image ({}): {} write(s) sent unsaved, {} queued "

@@ -33,11 +33,12 @@ std::optional<ImageHandover> handover_for(
 }  // namespace
 
 Exchanges::Exchanges(boost::asio::any_io_executor loop, ExchangesOptions options,
-                     Northbound& northbound, ImageSaveTotals& totals)
+                     Northbound& northbound, ImageSaveTotals& totals, const core::Clock& clock)
     : loop_(std::move(loop)),
       options_(std::move(options)),
       northbound_(northbound),
       totals_(totals),
+      clock_(clock),
       image_store_(options_.state_dir) {}
 
 Exchanges::~Exchanges() = default;
@@ -78,7 +79,8 @@ ApplyReport Exchanges::apply(std::vector<core::plan::ExchangePlan> plans, core::
         }
         report.started.push_back(plan.spec.name);
         if (plan.spec.direction == core::plan::Direction::consume) {
-            consumers_.push_back(std::make_unique<ExchangeConsumer>(std::move(plan), northbound_));
+            consumers_.push_back(
+                std::make_unique<ExchangeConsumer>(std::move(plan), northbound_, clock_));
             built.consumers.push_back(consumers_.back().get());
             continue;
         }
@@ -136,7 +138,7 @@ std::unique_ptr<ExchangeProducer> Exchanges::make_producer(core::plan::ExchangeP
     }
     if (!sender_) {
         sender_ = std::make_unique<adapters::udp::Sender>(loop_, options_.sender);
-        scheduler_ = std::make_unique<ProducerScheduler>(loop_, *sender_);
+        scheduler_ = std::make_unique<ProducerScheduler>(loop_, *sender_, clock_);
         scheduler_->set_role(*options_.role);
         persister_ = std::make_unique<adapters::state::ImagePersister>(image_store_, loop_);
     }

@@ -44,7 +44,8 @@ ExchangesModule::ExchangesModule(const core::config::Config& config,
       writes_([this](ExchangeWrite&& write, const WriteReply& reply,
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
               clock),
-      exchanges_(loop, with_socket(config, std::move(options)), north_, writes_.image_saves()),
+      exchanges_(loop, with_socket(config, std::move(options)), north_, writes_.image_saves(),
+                 clock),
       receiver_(loop, receiver_options(config.eip, clock)) {}
 
 std::string ExchangesModule::apply_plans(std::vector<core::plan::ExchangePlan> plans) {

@@ -12,6 +12,7 @@
 #include "tests/app/support/test_plan.hpp"
 #include "tests/core/command/command_vectors.hpp"
 #include "tests/core/vectors.hpp"
+#include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/log_capture.hpp"
 #include "tests/support/fakes/recording_write_handler.hpp"
 
@@ -176,6 +177,25 @@ TEST_F(CommandResponderTest, AWriteIsAnsweredOnlyWhenItsResultComes) {
     // A result for a write it no longer waits for changes nothing.
     request.reply.origin->write_result(request.reply, std::nullopt);
     EXPECT_EQ(sent_.size(), 1u);
+}
+
+TEST_F(CommandResponderTest, AWriteIsAnsweredWithItsClocksTimeWhenItsResultComes) {
+    test::FakeClock clock;
+    CommandResponder responder(
+        policy(true), {}, [this](core::MonoTime, core::WallTime) { return views_; },
+        [this](std::span<const std::byte> bytes, const adapters::udp::Endpoint& to) {
+            sent_.push_back({{bytes.begin(), bytes.end()}, to});
+            return true;
+        },
+        &writes_, clock);
+    ask(responder, v::c11_write_request);
+    ASSERT_EQ(writes_.requests.size(), 1u);
+    clock.advance(1500ms);  // the result comes later: the answer says when
+    const auto& request = writes_.requests[0];
+    request.reply.origin->write_result(request.reply, std::nullopt);
+    const auto& pdu = std::get<core::command::DataPdu>(last().body);
+    EXPECT_EQ(pdu.time_s, core::wire_time(clock.wall()).seconds);
+    EXPECT_EQ(pdu.time_ns, 500000000u);
 }
 
 TEST_F(CommandResponderTest, AWriteRefusedWhenStagedIsRejectedAndOneLostLaterFailed) {

@@ -20,8 +20,10 @@
 #include <unordered_map>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/udp/endpoint.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
+#include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/command/address_proof.hpp"
 #include "eip2mqtt/core/command/answer.hpp"
 #include "eip2mqtt/core/command/command_counters.hpp"
@@ -58,9 +60,11 @@ public:
         std::function<bool(std::span<const std::byte> datagram, const adapters::udp::Endpoint& to)>;
 
     /// `writes` takes the writes (nullptr: none are ever staged, whatever the policy says);
-    /// `node.writes` is taken from the policy.
+    /// `node.writes` is taken from the policy. `clock` stamps the answer of a write when its
+    /// result comes; it must outlive the responder.
     CommandResponder(CommandPolicy policy, core::command::NodeInfo node, Views views, Send send,
-                     WriteHandler* writes);
+                     WriteHandler* writes,
+                     const core::Clock& clock = adapters::clock::system_clock());
 
     /// One datagram received on the command port.
     void on_datagram(std::span<const std::byte> datagram, const adapters::udp::Endpoint& from,
@@ -118,6 +122,7 @@ private:
     Views views_;
     Send send_;
     WriteHandler* writes_;
+    const core::Clock& clock_;
     core::command::AddressProof proof_;
     core::command::SourceLimiter sources_;
     core::write::RateLimiter limiter_;           ///< requesters proven or trusted

@@ -16,7 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
+#include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/exchange/arrival_stats.hpp"
 #include "eip2mqtt/core/exchange/change_log.hpp"
 #include "eip2mqtt/core/exchange/change_pacer.hpp"
@@ -31,8 +33,9 @@ namespace eip2mqtt::app {
 
 class ExchangeConsumer {
 public:
-    /// `northbound` must outlive the consumer.
-    ExchangeConsumer(core::plan::ExchangePlan plan, Northbound& northbound);
+    /// `northbound` must outlive the consumer; `clock` tells when it was configured.
+    ExchangeConsumer(core::plan::ExchangePlan plan, Northbound& northbound,
+                     const core::Clock& clock = adapters::clock::system_clock());
 
     /// A datagram whose key matched this exchange.
     core::exchange::ConsumeOutcome on_datagram(const core::wire::Datagram& datagram,
@@ -115,7 +118,7 @@ private:
     core::exchange::ClockState reported_clock_ = core::exchange::ClockState::none;
     core::exchange::ChangePacer pacer_;
     core::exchange::ChangeLog change_log_;
-    core::WallTime configured_at_ = std::chrono::system_clock::now();
+    core::WallTime configured_at_;
 };
 
 }  // namespace eip2mqtt::app

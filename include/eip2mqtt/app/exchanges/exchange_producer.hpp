@@ -57,7 +57,7 @@ class ExchangeProducer final : public Producible {
 public:
     /// The image is `handover`'s when given, else restored through `persister` when a file of
     /// the same layout exists. `scheduler`, `persister`, `northbound` and `totals` must outlive
-    /// the producer.
+    /// the producer; it reads the scheduler's clock.
     ExchangeProducer(core::plan::ExchangePlan plan, adapters::udp::Endpoint destination,
                      ProducerScheduler& scheduler, adapters::state::ImagePersister& persister,
                      Northbound& northbound, ImageSaveTotals& totals,
@@ -211,7 +211,7 @@ private:
     core::exchange::ProduceCounters counters_;
     bool failing_ = false;  ///< the last send failed: the status says paused
     std::optional<core::WallTime> last_sent_;
-    core::WallTime configured_at_ = std::chrono::system_clock::now();
+    core::WallTime configured_at_;
     PairHooks pair_;
 };
 

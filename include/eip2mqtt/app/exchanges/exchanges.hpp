@@ -17,6 +17,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/state/image_persister.hpp"
 #include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/adapters/udp/sender.hpp"
@@ -26,6 +27,7 @@
 #include "eip2mqtt/app/exchanges/producer_scheduler.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/app/redundancy/unit_role.hpp"
+#include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/time.hpp"
 
@@ -65,9 +67,10 @@ struct ApplyReport {
 
 class Exchanges {
 public:
-    /// `northbound` and `totals` must outlive the exchanges.
+    /// `northbound`, `totals` and `clock` (which every exchange reads) must outlive the
+    /// exchanges.
     Exchanges(boost::asio::any_io_executor loop, ExchangesOptions options, Northbound& northbound,
-              ImageSaveTotals& totals);
+              ImageSaveTotals& totals, const core::Clock& clock = adapters::clock::system_clock());
     ~Exchanges();
     Exchanges(const Exchanges&) = delete;
     Exchanges& operator=(const Exchanges&) = delete;
@@ -132,6 +135,7 @@ private:
     ExchangesOptions options_;
     Northbound& northbound_;
     ImageSaveTotals& totals_;
+    const core::Clock& clock_;
     adapters::state::ImageStore image_store_;
     std::unique_ptr<adapters::udp::Sender> sender_;
     std::unique_ptr<ProducerScheduler> scheduler_;                ///< with sender_

@@ -78,6 +78,9 @@ public:
     /// produced: no image takes its queued writes, no request id is spent. Unset: always.
     void set_role(const redundancy::UnitRole& role) { role_ = &role; }
 
+    /// The clock it reads, which its producers read too.
+    const core::Clock& clock() const { return clock_; }
+
 private:
     void arm();
     void on_wake();
