@@ -54,8 +54,8 @@ public:
     /// must outlive their use here: call again before destroying any.
     void set_consumers(std::span<const std::unique_ptr<ExchangeConsumer>> consumers);
 
-    /// The producers whose datagrams `role` may hear from another unit (UnitRole::
-    /// hears_produced): one of their exchanges heard is counted, and while
+    /// The producers whose datagrams `role` may hear from another unit
+    /// (UnitRole::hears_produced): one of their exchanges heard is counted, and while
     /// `role.follows_produced(now)` the producer's request ids continue after the one heard
     /// (docs/redundancy.md). Without a call, or when the role hears none, such datagrams are
     /// unknown ones. They and `role` must outlive their use here: call again before destroying

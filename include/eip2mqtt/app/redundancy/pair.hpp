@@ -4,11 +4,11 @@
 /// FanOut), what they produce (the ProducerScheduler, through Exchanges' options), the images
 /// that writes changed and when a write is answered (each ExchangeProducer), and the writes
 /// (the WriteDispatcher, as PairAdmission takes them). And what lets a takeover go on where the
-/// leader stopped: its images, published by the leader and followed by the standby (PairImages),
-/// its request ids, heard by the standby (UnitRole::follows_produced), its samples: the new leader
-/// publishes on
-/// `_history` those the old one had not had acknowledged (PairHistory), and the Sparkplug
-/// session of the one edge node, held by the leader alone (SessionHooks).
+/// leader stopped: its images, published by the leader and followed by the standby
+/// (PairImages), its request ids, heard by the standby (UnitRole::follows_produced), its
+/// samples: the new leader publishes on `_history` those the old one had not had acknowledged
+/// (PairHistory), and the Sparkplug session of the one edge node, held by the leader alone
+/// (SessionHooks).
 ///
 /// Built in two steps, as its gates are: constructed before the parts it gates (may_send()
 /// goes into their connections' options, exchanges_options() into the exchanges'), then

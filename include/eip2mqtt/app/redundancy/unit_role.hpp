@@ -2,8 +2,8 @@
 /// This unit's role, as the parts it gates ask it (docs/redundancy.md): one interface, which
 /// the pair implements (redundancy::Pair) and, for a single unit, AlwaysLeads, so that no caller
 /// asks whether there is a pair. The parts ask it: the FanOut (what goes north), the
-/// ProducerScheduler (may I produce now), the DatagramRouter (whose request ids to follow) and
-/// each ExchangeProducer (which images changed, when a write is answered), and the
+/// ProducerScheduler (may I produce now), the DatagramRouter (whose request ids to follow),
+/// each ExchangeProducer (which images changed, when a write is answered) and the
 /// WriteDispatcher (what happens to this write: WriteRole).
 ///
 /// Threading: the loop only.
