@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "app/cli/detail/network_load_report.hpp"
@@ -16,6 +17,7 @@
 #include "eip2mqtt/app/cli/commands.hpp"
 #include "eip2mqtt/app/northbound/mqtt_settings.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_birth_size.hpp"
+#include "eip2mqtt/app/redundancy/section_summary.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/config/placeholders.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
@@ -79,9 +81,9 @@ void print_overlaps(const ExchangePlan& plan, std::ostream& out) {
     spans.reserve(plan.tags.size());
     for (const auto& tag : plan.tags) spans.push_back(core::plan::bit_span(tag.spec));
     const auto overlaps = core::plan::find_overlaps(spans, max_listed);
-    for (const auto& pair : overlaps.pairs) {
-        out << "  note: " << described(plan.tags[pair.second]) << " overlaps "
-            << described(plan.tags[pair.first]) << "\n";
+    for (const auto& [first, second] : overlaps.pairs) {
+        out << "  note: " << described(plan.tags[second]) << " overlaps "
+            << described(plan.tags[first]) << "\n";
     }
     if (overlaps.total > overlaps.pairs.size()) {
         out << "  note: and " << overlaps.total - overlaps.pairs.size()
@@ -113,8 +115,8 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
     std::vector<const TagPlan*> tags;
     for (const auto& tag : plan.tags) tags.push_back(&tag);
     std::stable_sort(tags.begin(), tags.end(), [](const TagPlan* a, const TagPlan* b) {
-        return std::make_pair(a->spec.address.byte, a->spec.address.bit) <
-               std::make_pair(b->spec.address.byte, b->spec.address.bit);
+        return std::tuple(a->spec.address.byte, a->spec.address.bit) <
+               std::tuple(b->spec.address.byte, b->spec.address.bit);
     });
     for (const auto* tag : tags) {
         const auto address = core::plan::to_string(tag->spec.address);
@@ -192,12 +194,7 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     if (config->mqtt.urls.size() > 1) {
         out << "brokers, tried in turn: " << broker_list(config->mqtt.urls) << "\n";
     }
-    if (const auto& pair = config->redundancy; pair.enabled()) {
-        out << "redundancy: pair " << pair.pair << ", takeover after " << pair.takeover.count()
-            << " ms, the lease renewed every " << (pair.takeover / 4).count() << " ms"
-            << (pair.priority ? ", priority " + std::to_string(*pair.priority) : std::string())
-            << "\n";
-    }
+    out << redundancy::section_summary(config->redundancy);
     print_placeholders(config_path, out);
     print_commands(config->eip.commands, out);
     const core::plan::WarningContext context{config->mqtt.version == 3};

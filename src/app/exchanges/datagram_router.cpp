@@ -13,10 +13,10 @@ void DatagramRouter::set_consumers(std::span<const std::unique_ptr<ExchangeConsu
 }
 
 void DatagramRouter::set_followed(std::span<const std::unique_ptr<ExchangeProducer>> producers,
-                                  std::function<bool(core::MonoTime)> follows) {
+                                  const redundancy::UnitRole& role) {
     produced_.clear();
-    follows_ = std::move(follows);
-    if (!follows_) return;
+    role_ = &role;
+    if (!role.hears_produced()) return;
     for (const auto& producer : producers) {
         produced_.emplace(producer->plan().key(), producer.get());
     }
@@ -27,9 +27,8 @@ bool DatagramRouter::heard_produced(const core::wire::Header& header, core::Mono
     const auto it = produced_.find(header.key());
     if (it == produced_.end()) return false;
     ++counters_.produced_heard;
-    // The other unit's datagram, while this one stands by: its first datagram as leader goes
-    // on from the leader's last, so consumers see one producer, not a restart.
-    if (follows_(now)) it->second->continue_after(header.request_id);
+    // The other unit's datagram, while the role follows it (UnitRole::follows_produced).
+    if (role_->follows_produced(now)) it->second->continue_after(header.request_id);
     return true;
 }
 

@@ -195,13 +195,14 @@ void ExchangeConsumer::republish(core::MonoTime now) {
     pacer_.on_revert();
     report_tags(now, true);
     // After the samples, as on a datagram: a Sparkplug node that learns here that the
-    // exchange is up (a new leader's) is born with them.
+    // exchange is up (as after a takeover) is born with them.
     northbound_.exchange_state(plan_, exchange_.state());
     report_status(now);
 }
 
 void ExchangeConsumer::report_quality_change(core::MonoTime now) {
-    // Both units of a pair find it after the same datagram: it is named after that one.
+    // Every unit that hears the exchange finds it after the same datagram: it is named after
+    // that one.
     ++key_.change;
     report_tags(now, false, key_);
 }

@@ -100,7 +100,7 @@ std::vector<WriteRequest> ExchangeProducer::take_queued_writes() {
     for (auto& batch : batches) {
         auto reply = take_reply(batch.id);
         if (!reply) continue;
-        // Answered on `{set topic}/result`, or on its response topic (PairWrites tells them so).
+        // Answered on `{set topic}/result`, or on its response topic (the role tells them so).
         auto target = reply->topic;
         if (target.ends_with("/result")) target.resize(target.size() - 7);
         taken.push_back({std::move(*reply),
@@ -172,7 +172,7 @@ void ExchangeProducer::on_sent(bool sent, core::WallTime wall) {
     if (changed) {
         image_.clear_dirty();
         report_echo(wall, false);
-        if (pair_.on_image_changed) pair_.on_image_changed(*this);
+        role_->image_changed(*this);
     }
     counters_.writes_applied += outgoing_.carried.size();
     // docs/mqtt-api.md "Results": a write's result is reported once the datagram carrying it was
@@ -256,8 +256,7 @@ void ExchangeProducer::answer_accepted(std::uint64_t write_id, WriteReply reply,
         if (unsaved) return northbound.write_result_unsaved(reply, *unsaved);
         northbound.write_result(reply, std::nullopt);
     };
-    if (!pair_.answer_gate) return answer();
-    pair_.answer_gate(*this, write_id, reply, std::move(answer));
+    role_->answer_write(*this, write_id, reply, std::move(answer));
 }
 
 std::optional<WriteReply> ExchangeProducer::take_reply(std::uint64_t write_id) {

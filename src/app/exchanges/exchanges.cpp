@@ -94,7 +94,7 @@ ApplyReport Exchanges::apply(std::vector<core::plan::ExchangePlan> plans, core::
     // (the JSON tree's `set` subscriptions), before the stopped ones die with old_*.
     northbound_.exchanges_changed(running(), diff.cleared);
     router_.set_consumers(consumers_);
-    router_.set_followed(producers_, options_.follows_produced);
+    router_.set_followed(producers_, *options_.role);
     by_handle_.clear();
     for (const auto& producer : producers_) by_handle_.emplace(&producer->plan(), producer.get());
     start_built(built, now, wall);
@@ -145,8 +145,7 @@ std::unique_ptr<ExchangeProducer> Exchanges::make_producer(core::plan::ExchangeP
     auto producer =
         std::make_unique<ExchangeProducer>(std::move(plan), *destination, *scheduler_, *persister_,
                                            northbound_, totals_, std::move(handover));
-    producer->set_on_image_changed(options_.on_image_changed);
-    producer->set_answer_gate(options_.answer_gate);
+    producer->set_role(*options_.role);
     return producer;
 }
 

@@ -17,28 +17,27 @@ WriteDispatcher::WriteDispatcher(StageWrite stage, const core::Clock& clock)
     : stage_(std::move(stage)), clock_(clock) {}
 
 bool WriteDispatcher::admitted(WriteRequest& request) {
-    using core::redundancy::WritePolicy;
-    const auto policy = admission_.policy ? admission_.policy() : WritePolicy::apply;
-    if (policy == WritePolicy::apply) return true;
-    if (policy == WritePolicy::leave_to_leader && request.reply.via != WriteOrigin::commands) {
-        ++counters_.writes_left_to_leader;
-        if (admission_.leave) admission_.leave(std::move(request));
-        return false;
+    using redundancy::WriteTurn;
+    switch (role_->admit_write(request, counters_)) {
+        case WriteTurn::apply:
+            return true;
+        case WriteTurn::taken:
+            return false;
+        case WriteTurn::refused:
+            break;
     }
-    reject(request, {core::write::WriteError::standby, "standby"});
+    reject(request, role_->refusal());
     return false;
 }
 
 bool WriteDispatcher::settle(WriteRequest&& request) {
-    const auto* write = std::get_if<ExchangeWrite>(&request.outcome);
-    if (write && !(admission_.holds && admission_.holds(*write))) {
-        ++counters_.writes_settled_standby;
-        reject(request, {core::write::WriteError::standby, "standby"});
+    if (role_->settle_write(request, counters_) == redundancy::WriteTurn::refused) {
+        reject(request, role_->refusal());
         return false;
     }
-    if (write) ++counters_.writes_settled_applied;
+    const bool write = std::holds_alternative<ExchangeWrite>(request.outcome);
     on_write(std::move(request));
-    return write != nullptr;
+    return write;
 }
 
 void WriteDispatcher::on_write(WriteRequest&& request) {

@@ -102,22 +102,8 @@ adapters::mqtt::ClientOptions sparkplug_client_options(
     options.clean_start = true;
     options.will = std::move(will);
     options.session_bound = true;
-    options.hear_own = true;  // a claim heard back confirms it (core/redundancy/lease.hpp)
-    return options;
-}
-
-adapters::mqtt::ClientOptions pair_client_options(const core::config::Config& config,
-                                                  adapters::mqtt::Message will) {
-    auto options = mqtt_client_options(config, {});
-    options.client_id += "-pair";
-    options.log_name = "MQTT (pair)";
-    options.session_expiry = std::chrono::seconds(0);
-    options.clean_start = true;
-    options.will = [will = std::move(will)] { return will; };
-    options.session_bound = true;
-    options.hear_own = true;  // a claim heard back confirms it (core/redundancy/lease.hpp)
-    // An image heard back live, not fetched from the store, gives a late answer (PairImages).
-    options.retain_as_published = false;
+    // Hears its own publications back (ClientOptions::hear_own).
+    options.hear_own = true;
     return options;
 }
 

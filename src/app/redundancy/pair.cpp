@@ -35,6 +35,25 @@ std::chrono::milliseconds write_horizon(const core::config::Config& config) {
     return 2 * config.redundancy.takeover + 2 * longest_produced_period(config);
 }
 
+/// Options of the lease's connection (docs/redundancy.md): the same broker, credentials and
+/// TLS, client id `{client id}-pair`, a clean session, session-bound (a renewal queued while
+/// disconnected would be stale when sent), `will` its last will. Its own connection, so that a
+/// renewal never waits behind the tag tree's queue.
+adapters::mqtt::ClientOptions pair_client_options(const core::config::Config& config,
+                                                  adapters::mqtt::Message will) {
+    auto options = mqtt_client_options(config, {});
+    options.client_id += "-pair";
+    options.log_name = "MQTT (pair)";
+    options.session_expiry = std::chrono::seconds(0);
+    options.clean_start = true;
+    options.will = [will = std::move(will)] { return will; };
+    options.session_bound = true;
+    options.hear_own = true;  // a claim heard back confirms it (core/redundancy/lease.hpp)
+    // An image heard back live, not fetched from the store, gives a late answer (PairImages).
+    options.retain_as_published = false;
+    return options;
+}
+
 }  // namespace
 
 Pair::Pair(boost::asio::any_io_executor loop, const core::Clock& clock)
@@ -54,17 +73,29 @@ std::function<bool(const adapters::mqtt::Message&)> Pair::may_send(
 ExchangesOptions Pair::exchanges_options() {
     ExchangesOptions options;
     options.role = this;
-    // Only a leader produces, so only a leader's images change by writes.
-    options.on_image_changed = [this](const ExchangeProducer& producer) {
-        images_->publish(producer, lease_->lease().epoch());
-    };
-    options.answer_gate = [this](const ExchangeProducer& producer, std::uint64_t write_id,
-                                 const WriteReply& reply, std::function<void()> answer) {
-        images_->answer_after_image(producer, write_id, reply, clock_.monotonic(),
-                                    std::move(answer));
-    };
-    options.follows_produced = [this](core::MonoTime now) { return !lease_->leading(now); };
     return options;
+}
+
+WriteTurn Pair::admit_write(WriteRequest& request, core::write::WriteCounters& counters) {
+    return admission_->admit_write(request, counters);
+}
+
+WriteTurn Pair::settle_write(const WriteRequest& request, core::write::WriteCounters& counters) {
+    return admission_->settle_write(request, counters);
+}
+
+core::write::WriteRejection Pair::refusal() const { return admission_->refusal(); }
+
+bool Pair::follows_produced(core::MonoTime now) const { return !lease_->leading(now); }
+
+void Pair::image_changed(const ExchangeProducer& producer) {
+    // Only a leader produces, so only a leader's images change by writes.
+    images_->publish(producer, lease_->lease().epoch());
+}
+
+void Pair::answer_write(const ExchangeProducer& producer, std::uint64_t write_id,
+                        const WriteReply& reply, std::function<void()> answer) {
+    images_->answer_after_image(producer, write_id, reply, clock_.monotonic(), std::move(answer));
 }
 
 std::unique_ptr<adapters::mqtt::Publisher> Pair::leader_only(adapters::mqtt::Publisher& inner) {
@@ -106,10 +137,11 @@ void Pair::make_writes() {
     parts.tree.set_answer_listener(
         [this](const adapters::mqtt::Incoming& answer) { writes_->heard(answer); },
         [this] { return writes_->response_topics(); });
-    parts.writes.set_admission(
-        {[this] { return lease_->writes(clock_.monotonic()); },
-         [this](WriteRequest&& request) { writes_->leave(std::move(request), clock_.monotonic()); },
-         [this](const ExchangeWrite& write) { return parts_->exchanges.holds(write); }});
+    admission_ = std::make_unique<PairAdmission>(PairAdmission::Hooks{
+        [this] { return lease_->writes(clock_.monotonic()); },
+        [this](WriteRequest&& request) { writes_->leave(std::move(request), clock_.monotonic()); },
+        [this](const ExchangeWrite& write) { return parts_->exchanges.holds(write); }});
+    parts.writes.set_role(*this);
 }
 
 void Pair::make_history() {

@@ -2,8 +2,8 @@
 
 namespace eip2mqtt::app::redundancy {
 
-const UnitRole& always_leads() {
-    static const AlwaysLeads role;
+UnitRole& always_leads() {
+    static AlwaysLeads role;
     return role;
 }
 

@@ -17,6 +17,7 @@
 #include "tests/app/support/test_plan.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
+#include "tests/support/fakes/switched_role.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -45,11 +46,13 @@ protected:
     test::RecordingNorthbound northbound_;
     std::vector<std::unique_ptr<ExchangeProducer>> producers_;
     DatagramRouter router_;
+    test::SwitchedRole role_;
     core::MonoTime now_ = core::MonoTime{} + 1h;
 };
 
 TEST_F(DatagramRouterFollowedTest, AStandbyContinuesAfterTheLastRequestIdItHeard) {
-    router_.set_followed(producers_, [](core::MonoTime) { return true; });
+    role_.leading = false;  // a standby: it follows
+    router_.set_followed(producers_, role_);
     route(10, 500);
     route(10, 501);
     EXPECT_EQ(next_id(), 502);
@@ -66,20 +69,20 @@ TEST_F(DatagramRouterFollowedTest, AStandbyContinuesAfterTheLastRequestIdItHeard
 }
 
 TEST_F(DatagramRouterFollowedTest, ALeaderHearingItsOwnDatagramsKeepsItsIds) {
-    bool standing_by = false;
-    router_.set_followed(producers_, [&](core::MonoTime) { return standing_by; });
+    role_.leading = true;  // it does not follow
+    router_.set_followed(producers_, role_);
     const auto own = next_id();
     route(10, 900);
     EXPECT_EQ(next_id(), own);
     EXPECT_EQ(router_.counters().produced_heard, 1u);
     EXPECT_EQ(router_.counters().dropped_for(DropReason::unknown_exchange), 0u);
-    standing_by = true;
+    role_.leading = false;
     route(10, 901);
     EXPECT_EQ(next_id(), 902);
 }
 
 TEST_F(DatagramRouterFollowedTest, WithoutAPairAProducedExchangeHeardIsUnknown) {
-    router_.set_followed(producers_, nullptr);
+    router_.set_followed(producers_, app::redundancy::always_leads());
     const auto own = next_id();
     route(10, 900);
     EXPECT_EQ(next_id(), own);

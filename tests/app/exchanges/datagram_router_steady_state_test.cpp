@@ -72,7 +72,7 @@ public:
             fan_out_.set_tap(history_);
             uns_.northbound().set_sample_tokens(
                 [this](const SampleBatch& batch) { return history_.token_for(batch); });
-            router_.set_followed({}, [this](core::MonoTime) { return pair_ != Pair::leader; });
+            router_.set_followed({}, role_);  // follows while it does not lead
         }
         ExchangeSet running;
         for (std::uint32_t id = 1; id <= kExchanges; ++id) {

@@ -32,6 +32,7 @@
 #include "eip2mqtt/core/wire/header.hpp"
 #include "tests/app/support/json_tree_recorder.hpp"
 #include "tests/app/support/test_plan.hpp"
+#include "tests/support/fakes/switched_role.hpp"
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app {
@@ -209,13 +210,15 @@ TEST_F(ExchangeProducerTest, QueuedWritesTakenForThePairAreUnansweredAndCarryWha
 TEST_F(ExchangeProducerTest, AnAnswerGateHoldsOkUntilItRunsTheAnswer) {
     std::vector<std::function<void()>> held;
     std::vector<std::uint64_t> gated;
-    producer_->set_answer_gate([&](const ExchangeProducer& producer, std::uint64_t write_id,
-                                   const WriteReply& reply, std::function<void()> answer) {
+    test::SwitchedRole role;
+    role.on_answer = [&](const ExchangeProducer& producer, std::uint64_t write_id,
+                         const WriteReply& reply, std::function<void()> answer) {
         EXPECT_EQ(&producer, producer_.get());
         EXPECT_EQ(reply.topic, "reply/a");
         gated.push_back(write_id);
         held.push_back(std::move(answer));
-    });
+    };
+    producer_->set_role(role);
     write("a", 5);
     produce_once();
     persister_->flush();

@@ -23,6 +23,7 @@
 #include "eip2mqtt/app/exchanges/drop_log.hpp"
 #include "eip2mqtt/app/exchanges/exchange_consumer.hpp"
 #include "eip2mqtt/app/exchanges/exchange_producer.hpp"
+#include "eip2mqtt/app/redundancy/unit_role.hpp"
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/wire/drop_reason.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
@@ -33,8 +34,9 @@ struct DatagramCounters {
     std::uint64_t datagrams = 0;  ///< every datagram read
     std::uint64_t accepted = 0;   ///< applied by their exchange
     std::array<std::uint64_t, core::wire::drop_reason_count> dropped{};
-    /// With a pair: datagrams of exchanges this unit produces, from the other unit (or its own,
-    /// looped back); not dropped, and not accepted unless a consumer of the same key took them.
+    /// With a role that hears them (UnitRole::hears_produced): datagrams of exchanges this unit
+    /// produces, from the other unit (or its own, looped back); not dropped, and not accepted
+    /// unless a consumer of the same key took them.
     std::uint64_t produced_heard = 0;
 
     std::uint64_t dropped_for(core::wire::DropReason reason) const {
@@ -52,12 +54,14 @@ public:
     /// must outlive their use here: call again before destroying any.
     void set_consumers(std::span<const std::unique_ptr<ExchangeConsumer>> consumers);
 
-    /// The producers whose datagrams a standby of a pair follows: when one of their exchanges
-    /// is heard while `follows(now)` says so, the producer's request ids continue after the
-    /// one heard (docs/redundancy.md). Without a call, such datagrams are unknown as before.
-    /// They must outlive their use here: call again before destroying any.
+    /// The producers whose datagrams `role` may hear from another unit
+    /// (UnitRole::hears_produced): one of their exchanges heard is counted, and while
+    /// `role.follows_produced(now)` the producer's request ids continue after the one heard
+    /// (docs/redundancy.md). Without a call, or when the role hears none, such datagrams are
+    /// unknown ones. They and `role` must outlive their use here: call again before destroying
+    /// any.
     void set_followed(std::span<const std::unique_ptr<ExchangeProducer>> producers,
-                      std::function<bool(core::MonoTime now)> follows);
+                      const redundancy::UnitRole& role);
 
     /// One datagram as read from `from`; `truncated`: it did not fit the receive buffer.
     void route(std::span<const std::byte> bytes, const adapters::udp::Endpoint& from,
@@ -79,7 +83,7 @@ private:
         by_key_;
     std::unordered_map<core::wire::ExchangeKey, ExchangeProducer*, core::wire::ExchangeKeyHash>
         produced_;
-    std::function<bool(core::MonoTime)> follows_;
+    const redundancy::UnitRole* role_ = nullptr;  ///< set with produced_
     const core::Clock& clock_;
     DatagramCounters counters_;
     DropLog drop_log_;

@@ -32,6 +32,7 @@
 #include "eip2mqtt/app/exchanges/producer_scheduler.hpp"
 #include "eip2mqtt/app/exchanges/write_reply.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
+#include "eip2mqtt/app/redundancy/unit_role.hpp"
 #include "eip2mqtt/core/exchange/produced_image.hpp"
 #include "eip2mqtt/core/exchange/production_schedule.hpp"
 #include "eip2mqtt/core/exchange/save_then_answer.hpp"
@@ -101,20 +102,12 @@ public:
     /// Reports every tag's value and the status again (after a reconnect).
     void republish(core::WallTime wall);
 
-    // --- A hot-standby pair (docs/redundancy.md) ------------------------------------------
-    using ImageChanged = std::function<void(const ExchangeProducer& producer)>;
-    /// Called after a datagram left carrying an image that writes changed (the leader
-    /// publishes it for the standby); unset: nothing is called.
-    void set_on_image_changed(ImageChanged on_changed) {
-        pair_.on_image_changed = std::move(on_changed);
-    }
-    /// `write_id`: the write's number in this producer.
-    using AnswerGate = std::function<void(const ExchangeProducer& producer, std::uint64_t write_id,
-                                          const WriteReply& reply, std::function<void()> answer)>;
-    /// The leader answers an accepted write (`ok`, or `ok` unsaved) through `gate`, which runs
-    /// the answer once the broker has the image carrying it (PairImages::answer_after_image);
-    /// unset: at once.
-    void set_answer_gate(AnswerGate gate) { pair_.answer_gate = std::move(gate); }
+    // --- This unit's role (app/redundancy/unit_role.hpp, docs/redundancy.md) --------------
+    /// Told of each image that writes changed once a datagram carrying it left
+    /// (UnitRole::image_changed), and asked to answer each accepted write (`ok`, or `ok`
+    /// unsaved: UnitRole::answer_write). Without a call: a single unit's (always_leads()).
+    /// `role` must outlive the producer.
+    void set_role(redundancy::UnitRole& role) { role_ = &role; }
     /// The standby takes the leader's image (the plan's length) as its own and saves it as any
     /// image; returns whether a byte changed. Writes still queued stay queued over it.
     bool follow_image(std::span<const std::byte> data);
@@ -169,11 +162,6 @@ private:
         core::exchange::StatusGrid grid;  ///< phase set by start()
         std::uint64_t last_sent = 0;      ///< counters_.sent when the status was last reported
     };
-    /// The hooks of a hot-standby pair; unset: none.
-    struct PairHooks {
-        ImageChanged on_image_changed;
-        AnswerGate answer_gate;
-    };
 
     /// Saves the image with every queued write applied, now or once the save under way is done.
     void request_save();
@@ -212,7 +200,7 @@ private:
     bool failing_ = false;  ///< the last send failed: the status says paused
     std::optional<core::WallTime> last_sent_;
     core::WallTime configured_at_;
-    PairHooks pair_;
+    redundancy::UnitRole* role_ = &redundancy::always_leads();
 };
 
 }  // namespace eip2mqtt::app

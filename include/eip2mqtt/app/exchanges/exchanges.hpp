@@ -37,19 +37,10 @@ struct ExchangesOptions {
     adapters::udp::SenderOptions sender;  ///< the socket produced datagrams leave from
     std::uint16_t port = 18246;           ///< eip.port: a destination's port when it names none
     std::string state_dir;                ///< where produced images are saved
-    /// Whether produced exchanges may send now (ProducerScheduler::set_role); must outlive the
-    /// exchanges.
-    const redundancy::UnitRole* role = &redundancy::always_leads();
-    /// A pair's leader: each producer's image changed by writes, once the datagram carrying it
-    /// left (ExchangeProducer::set_on_image_changed); unset: not called.
-    ExchangeProducer::ImageChanged on_image_changed;
-    /// A pair's leader: how each producer answers an accepted write
-    /// (ExchangeProducer::set_answer_gate); unset: at once.
-    ExchangeProducer::AnswerGate answer_gate;
-    /// A pair's standby: whether a datagram heard of an exchange this unit produces sets its
-    /// producer's next request id (DatagramRouter::set_followed); unset: such datagrams are
-    /// unknown ones.
-    std::function<bool(core::MonoTime now)> follows_produced;
+    /// This unit's role, asked whether produced exchanges may send now (ProducerScheduler),
+    /// whose request ids to follow (DatagramRouter), and by each producer about its changed
+    /// images and its answers (ExchangeProducer::set_role); must outlive the exchanges.
+    redundancy::UnitRole* role = &redundancy::always_leads();
 };
 
 /// What apply() did, by exchange name, in the order of the plans (stopped: of the exchanges

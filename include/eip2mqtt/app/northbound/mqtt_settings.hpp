@@ -43,11 +43,4 @@ adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& co
 adapters::mqtt::ClientOptions sparkplug_client_options(
     const core::config::Config& config, std::function<adapters::mqtt::Message()> will);
 
-/// Options of a pair's lease connection (docs/redundancy.md): the same broker, credentials and
-/// TLS, client id `{client id}-pair`, a clean session, session-bound (a renewal queued while
-/// disconnected would be stale when sent), `will` its last will. Its own connection, so that a
-/// renewal never waits behind the tag tree's queue.
-adapters::mqtt::ClientOptions pair_client_options(const core::config::Config& config,
-                                                  adapters::mqtt::Message will);
-
 }  // namespace eip2mqtt::app

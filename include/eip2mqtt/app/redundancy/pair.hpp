@@ -1,12 +1,14 @@
 #pragma once
 /// A hot-standby pair (docs/redundancy.md), one object: the lease on a connection of its own,
-/// and the three gates it keeps, one each: what the exchanges say north (the FanOut), what they
-/// produce (the ProducerScheduler, through Exchanges' options) and the writes (the
-/// WriteDispatcher). And what lets a takeover go on where the leader stopped: its images,
-/// published by the leader and followed by the standby (PairImages), its request ids, heard by
-/// the standby (DatagramRouter::set_followed), its samples: the new leader publishes on
-/// `_history` those the old one had not had acknowledged (PairHistory), and the Sparkplug
-/// session of the one edge node, held by the leader alone (SessionHooks).
+/// and the role (UnitRole) that the parts it gates ask: what the exchanges say north (the
+/// FanOut), what they produce (the ProducerScheduler, through Exchanges' options), the images
+/// that writes changed and when a write is answered (each ExchangeProducer), and the writes
+/// (the WriteDispatcher, as PairAdmission takes them). And what lets a takeover go on where the
+/// leader stopped: its images, published by the leader and followed by the standby
+/// (PairImages), its request ids, heard by the standby (UnitRole::follows_produced), its
+/// samples: the new leader publishes on `_history` those the old one had not had acknowledged
+/// (PairHistory), and the Sparkplug session of the one edge node, held by the leader alone
+/// (SessionHooks).
 ///
 /// Built in two steps, as its gates are: constructed before the parts it gates (may_send()
 /// goes into their connections' options, exchanges_options() into the exchanges'), then
@@ -25,6 +27,7 @@
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/app/exchanges/exchanges.hpp"
+#include "eip2mqtt/app/redundancy/pair_admission.hpp"
 #include "eip2mqtt/app/redundancy/pair_history.hpp"
 #include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/redundancy/pair_writes.hpp"
@@ -93,9 +96,9 @@ public:
     /// SIGSTOP) is never said. The pair must outlive the connection.
     std::function<bool(const adapters::mqtt::Message&)> may_send(
         std::function<bool(const adapters::mqtt::Message&)> leader_only);
-    /// The options of the exchanges that a pair sets: the gate of production, the images the
-    /// leader publishes and the request ids the standby follows. Each is called only once
-    /// wire() made the lease: exchanges run from start() on.
+    /// The options of the exchanges that a pair sets: the role they ask (this pair) about
+    /// production, the images the leader publishes, its answers and the request ids the standby
+    /// follows. It is asked only once wire() made the lease: exchanges run from start() on.
     ExchangesOptions exchanges_options();
     /// Between a connection and its publisher: nothing passes unless this unit leads (the
     /// Sparkplug node's, whose session is the leader's).
@@ -119,6 +122,21 @@ public:
     /// Whether it leads now, by its clock.
     bool leads() const override { return leading(clock_.monotonic()); }
     bool may_produce(core::MonoTime now) const override;
+    /// The other unit sends what this one produces while this one stands by.
+    bool hears_produced() const override { return true; }
+    /// A standby follows the leader's request ids.
+    bool follows_produced(core::MonoTime now) const override;
+    /// The leader publishes the changed image for the standby (PairImages).
+    void image_changed(const ExchangeProducer& producer) override;
+    /// The leader answers once the broker has the image carrying the write
+    /// (PairImages::answer_after_image).
+    void answer_write(const ExchangeProducer& producer, std::uint64_t write_id,
+                      const WriteReply& reply, std::function<void()> answer) override;
+    /// The writes as PairAdmission takes them (wire() made it).
+    WriteTurn admit_write(WriteRequest& request, core::write::WriteCounters& counters) override;
+    WriteTurn settle_write(const WriteRequest& request,
+                           core::write::WriteCounters& counters) override;
+    core::write::WriteRejection refusal() const override;
     /// Whether on_acknowledged() wants the JSON tree connection's acknowledgements.
     bool hears_acknowledgements() const { return history_ != nullptr; }
     /// An acknowledged publication of the JSON tree's connection; false when it is not one of
@@ -153,6 +171,8 @@ private:
     std::unique_ptr<adapters::mqtt::Client> client_;
     std::unique_ptr<PairLease> lease_;
     std::unique_ptr<PairImages> images_;
+    /// What becomes of the writes that reach this unit.
+    std::unique_ptr<PairAdmission> admission_;
     /// The writes left to the leader, until it answers them.
     std::unique_ptr<PairWrites> writes_;
     /// With the JSON tree: the samples a takeover replays on `_history`.

@@ -141,8 +141,8 @@ void JsonTree::tag_samples(const SampleBatch& batch) {
     const auto& settings = options_.publish;
     const auto& plan = batch.exchange;
     const bool values = values_due(batch);
-    // The publication whose acknowledgement tells the leader of a pair that the broker has the
-    // sample: its `_values`, or without mqtt.batch its last tag topic.
+    // The publication whose acknowledgement tells the sample token's owner that the broker has
+    // the sample: its `_values`, or without mqtt.batch its last tag topic.
     const bool acknowledged = sample_token_ && batch.key && (values || !settings.batch);
     const auto token = acknowledged && !batch.samples.empty() ? sample_token_(batch) : 0;
     for (const auto& sample : batch.samples) {

@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "eip2mqtt/app/health/metrics.hpp"
+#include "eip2mqtt/app/northbound/json_tree/counter_json.hpp"
+#include "eip2mqtt/app/redundancy/role_metrics.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 
@@ -123,26 +125,6 @@ std::string format_write_result_unsaved(std::string_view reason) {
     return result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-namespace {
-
-/// A gateway-wide counter set's fields on the metrics topic: a number, or an object by key.
-template <class Fields, class Counters>
-void add_counter_set(nlohmann::json& into, const Fields& fields, const Counters& counters) {
-    for (const auto& field : fields) {
-        if (!field.in(core::in_metrics_topic)) continue;
-        auto& value = into[std::string(field.name)];
-        core::for_each_count(field, counters, [&](std::string_view key, std::uint64_t count) {
-            if (key.empty()) {
-                value = count;
-            } else {
-                value[std::string(key)] = count;
-            }
-        });
-    }
-}
-
-}  // namespace
-
 std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime) {
     const auto& mqtt = sources.mqtt;
     nlohmann::json metrics = {
@@ -159,15 +141,7 @@ std::string metrics_json(const MetricsSources& sources, std::chrono::seconds upt
         {"broker", mqtt.broker},
     };
     add_counter_set(metrics, core::write::write_counter_fields, sources.writes);
-    if (sources.pair_images) {
-        add_counter_set(
-            metrics["pair"], redundancy::pair_counter_fields,
-            redundancy::PairCounters{
-                *sources.pair_images, sources.datagrams.produced_heard,
-                sources.pair_history ? *sources.pair_history : redundancy::PairHistoryCounters{},
-                mqtt.discarded,
-                sources.pair_writes ? *sources.pair_writes : redundancy::PairWriteCounters{}});
-    }
+    redundancy::add_role_metrics(metrics, sources);
     if (sources.commands) {
         add_counter_set(metrics[std::string(core::command::command_counters_name)],
                         core::command::command_counter_fields, *sources.commands);

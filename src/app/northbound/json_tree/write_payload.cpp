@@ -200,7 +200,7 @@ core::Result<WriteInput, WriteRejection> parse_tag_write(std::string_view payloa
     return tag_value(json.value());
 }
 
-core::Result<std::vector<std::pair<std::string, WriteInput>>, WriteRejection> parse_exchange_write(
+core::Result<std::vector<NamedWrite>, WriteRejection> parse_exchange_write(
     std::string_view payload) {
     const auto parsed = parse(payload);
     if (!parsed) return core::fail(parsed.error());
@@ -211,7 +211,7 @@ core::Result<std::vector<std::pair<std::string, WriteInput>>, WriteRejection> pa
                    "expected a JSON object of tag names and values, e.g. {\"SPEED_SP\": 3100}"));
     }
     if (json->empty()) return core::fail(reject(WriteError::empty, "no tag to write"));
-    std::vector<std::pair<std::string, WriteInput>> writes;
+    std::vector<NamedWrite> writes;
     writes.reserve(json->size());
     for (const auto& [name, value] : json->items()) {
         auto input = tag_value(value);

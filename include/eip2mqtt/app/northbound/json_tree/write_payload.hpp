@@ -20,10 +20,12 @@ namespace eip2mqtt::app::northbound::json_tree {
 core::Result<core::write::WriteInput, core::write::WriteRejection> parse_tag_write(
     std::string_view payload);
 
+/// One tag's name with its input.
+using NamedWrite = std::pair<std::string, core::write::WriteInput>;
+
 /// A multi-tag write: tag names with their inputs, in payload order. A non-object, an empty
 /// object, or any value that is not a scalar or {"value": scalar} fails the whole write.
-core::Result<std::vector<std::pair<std::string, core::write::WriteInput>>,
-             core::write::WriteRejection>
-parse_exchange_write(std::string_view payload);
+core::Result<std::vector<NamedWrite>, core::write::WriteRejection> parse_exchange_write(
+    std::string_view payload);
 
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -1,7 +1,10 @@
-// The standby of a pair and the writes that reach it (docs/redundancy.md): left to a live
-// leader unanswered, refused `standby` when no leader answers, always refused on the command
-// port (this unit's own address), and taken as ever by the leader; at a takeover, those the old
-// leader never answered are settled: taken when the image holds what they write, else refused.
+// The standby of a pair and the writes that reach it (docs/redundancy.md), through the
+// WriteDispatcher that asks the pair's PairAdmission: left to a live leader unanswered, refused
+// `standby` when no leader answers, always refused on the command port (this unit's own
+// address), and taken as ever by the leader; at a takeover, those the old leader never answered
+// are settled: taken when the image holds what they write, else refused.
+
+#include "eip2mqtt/app/redundancy/pair_admission.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,14 +22,9 @@ using core::redundancy::WritePolicy;
 using core::write::WriteError;
 using core::write::WriteRejection;
 
-class WriteDispatcherStandbyTest : public ::testing::Test {
+class PairAdmissionTest : public ::testing::Test {
 protected:
-    WriteDispatcherStandbyTest() {
-        dispatcher_.set_admission(
-            {[this] { return policy_; },
-             [this](WriteRequest&& request) { left_.push_back(std::move(request)); },
-             [this](const ExchangeWrite&) { return holds_; }});
-    }
+    PairAdmissionTest() { dispatcher_.set_role(admission_); }
     WriteRequest write(WriteOrigin via = WriteOrigin::mqtt) {
         WriteRequest request{{"reply/topic", "id", &origin_},
                              "acme/t1/out/set",
@@ -58,6 +56,10 @@ protected:
     WritePolicy policy_ = WritePolicy::apply;
     std::vector<WriteRequest> left_;
     bool holds_ = false;
+    redundancy::PairAdmission admission_{
+        {[this] { return policy_; },
+         [this](WriteRequest&& request) { left_.push_back(std::move(request)); },
+         [this](const ExchangeWrite&) { return holds_; }}};
     WriteDispatcher dispatcher_{[this](ExchangeWrite&&, const WriteReply&,
                                        core::MonoTime) -> std::optional<WriteRejection> {
                                     ++staged_;
@@ -66,13 +68,13 @@ protected:
                                 clock_};
 };
 
-TEST_F(WriteDispatcherStandbyTest, TheLeaderStagesAsEver) {
+TEST_F(PairAdmissionTest, TheLeaderStagesAsEver) {
     dispatcher_.on_write(write());
     EXPECT_EQ(staged_, 1);
     EXPECT_TRUE(origin_.results.empty());
 }
 
-TEST_F(WriteDispatcherStandbyTest, AStandbyWithALiveLeaderDropsTheWriteUnansweredAndCountsIt) {
+TEST_F(PairAdmissionTest, AStandbyWithALiveLeaderDropsTheWriteUnansweredAndCountsIt) {
     policy_ = WritePolicy::leave_to_leader;
     dispatcher_.on_write(write());
     dispatcher_.on_write(write(WriteOrigin::sparkplug));
@@ -82,7 +84,7 @@ TEST_F(WriteDispatcherStandbyTest, AStandbyWithALiveLeaderDropsTheWriteUnanswere
     EXPECT_EQ(refused_standby(), 0u);
 }
 
-TEST_F(WriteDispatcherStandbyTest, AStandbyWithoutALiveLeaderRefusesStandby) {
+TEST_F(PairAdmissionTest, AStandbyWithoutALiveLeaderRefusesStandby) {
     policy_ = WritePolicy::refuse;
     dispatcher_.on_write(write());
     EXPECT_EQ(staged_, 0);
@@ -91,7 +93,7 @@ TEST_F(WriteDispatcherStandbyTest, AStandbyWithoutALiveLeaderRefusesStandby) {
     EXPECT_EQ(refused_standby(), 1u);
 }
 
-TEST_F(WriteDispatcherStandbyTest, TheCommandPortOfAStandbyRefusesEvenBesideALiveLeader) {
+TEST_F(PairAdmissionTest, TheCommandPortOfAStandbyRefusesEvenBesideALiveLeader) {
     policy_ = WritePolicy::leave_to_leader;
     dispatcher_.on_write(write(WriteOrigin::commands));
     EXPECT_EQ(staged_, 0);
@@ -99,7 +101,7 @@ TEST_F(WriteDispatcherStandbyTest, TheCommandPortOfAStandbyRefusesEvenBesideALiv
     EXPECT_EQ(origin_.results[0].error, "standby");
 }
 
-TEST_F(WriteDispatcherStandbyTest, AStandbyAnswersEvenAnInvalidWriteOnlyWhenNoLeaderDoes) {
+TEST_F(PairAdmissionTest, AStandbyAnswersEvenAnInvalidWriteOnlyWhenNoLeaderDoes) {
     policy_ = WritePolicy::leave_to_leader;
     auto invalid = write();
     invalid.outcome = WriteRejection{WriteError::read_only, "read-only"};
@@ -107,7 +109,7 @@ TEST_F(WriteDispatcherStandbyTest, AStandbyAnswersEvenAnInvalidWriteOnlyWhenNoLe
     EXPECT_TRUE(origin_.results.empty());
 }
 
-TEST_F(WriteDispatcherStandbyTest, AWriteLeftToTheLeaderIsHandedOverUnanswered) {
+TEST_F(PairAdmissionTest, AWriteLeftToTheLeaderIsHandedOverUnanswered) {
     policy_ = WritePolicy::leave_to_leader;
     dispatcher_.on_write(write());
     ASSERT_EQ(left_.size(), 1u);
@@ -116,7 +118,7 @@ TEST_F(WriteDispatcherStandbyTest, AWriteLeftToTheLeaderIsHandedOverUnanswered) 
     EXPECT_TRUE(origin_.results.empty());
 }
 
-TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageHoldsIsTakenAsTheLeaderTakesAny) {
+TEST_F(PairAdmissionTest, ASettledWriteTheImageHoldsIsTakenAsTheLeaderTakesAny) {
     leave_then_settle(true);
     EXPECT_TRUE(taken_);
     EXPECT_EQ(staged_, 1);  // answered `ok` once produced, by the producer
@@ -125,7 +127,7 @@ TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageHoldsIsTakenAsTheLeaderT
     EXPECT_EQ(dispatcher_.counters().writes_ok, 1u);
 }
 
-TEST_F(WriteDispatcherStandbyTest, ASettledWriteTheImageDoesNotHoldIsRefusedStandbyUnapplied) {
+TEST_F(PairAdmissionTest, ASettledWriteTheImageDoesNotHoldIsRefusedStandbyUnapplied) {
     leave_then_settle(false);
     EXPECT_FALSE(taken_);
     EXPECT_EQ(staged_, 0);
