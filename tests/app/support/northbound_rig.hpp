@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
 #include <chrono>
 #include <filesystem>
@@ -95,6 +96,9 @@ protected:
 
     std::filesystem::path dir_;
     boost::asio::io_context loop_;
+    /// The loop waits for the connections' events even while nothing is pending on it.
+    boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_ =
+        boost::asio::make_work_guard(loop_);
     core::config::Config config_;
     std::unique_ptr<app::redundancy::Role> role_;
     std::unique_ptr<app::ExchangesModule> south_;
