@@ -62,15 +62,24 @@ import sys
 from collections import defaultdict
 from pathlib import Path
 
-# The rules that hold on the tree and must keep holding: ctest runs this script with this set
-# and fails when one of them breaks. The others are being brought under it: a change that makes
-# one hold adds it here, in the same commit.
+# The rules that must keep holding: ctest runs this script with this set and fails when one of
+# them breaks. Every rule holds on the tree today, so every rule is here.
 ENFORCED = (
+    "gateway-members",
+    "gateway-lines",
+    "gateway-files",
+    "gateway-atomic",
+    "gateway-names",
+    "pair-words",
+    "app-root",
+    "data-members",
+    "class-files",
     "config-includes",
     "core-yaml",
+    "clock-calls",
+    "app-tests",
     "file-lines",
     "function-lines",
-    "gateway-atomic",
     "test-function-lines",
 )
 

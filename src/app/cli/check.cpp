@@ -81,13 +81,12 @@ void print_overlaps(const ExchangePlan& plan, std::ostream& out) {
     spans.reserve(plan.tags.size());
     for (const auto& tag : plan.tags) spans.push_back(core::plan::bit_span(tag.spec));
     const auto overlaps = core::plan::find_overlaps(spans, max_listed);
-    for (const auto& [first, second] : overlaps.pairs) {
+    for (const auto& [first, second] : overlaps.listed) {
         out << "  note: " << described(plan.tags[second]) << " overlaps "
             << described(plan.tags[first]) << "\n";
     }
-    if (overlaps.total > overlaps.pairs.size()) {
-        out << "  note: and " << overlaps.total - overlaps.pairs.size()
-            << " more overlapping pairs\n";
+    if (overlaps.total > overlaps.listed.size()) {
+        out << "  note: and " << overlaps.total - overlaps.listed.size() << " more overlaps\n";
     }
 }
 

@@ -23,7 +23,7 @@ void LoopWatch::emit(std::uint64_t count) {
     if (count == 1) {
         spdlog::warn(
             "loop: held {} ms (an overloaded machine, a stopped process or a long handler): "
-            "leases, staleness checks and production ran that late",
+            "every timer (staleness checks, production, the role's renewals) ran that late",
             longest_.count());
     } else {
         spdlog::warn("loop: held {} more time(s), the longest {} ms", count, longest_.count());

@@ -28,8 +28,8 @@ Overlaps find_overlaps(std::span<const BitSpan> spans, std::size_t limit) {
         const auto after = std::partition_point(
             it + 1, order.end(), [&](std::size_t i) { return spans[i].first < end; });
         found.total += static_cast<std::size_t>(after - (it + 1));
-        for (auto other = it + 1; other != after && found.pairs.size() < limit; ++other) {
-            found.pairs.push_back({*it, *other});
+        for (auto other = it + 1; other != after && found.listed.size() < limit; ++other) {
+            found.listed.push_back({*it, *other});
         }
     }
     return found;

@@ -179,8 +179,8 @@ std::optional<WriteRejection> overlap_rejection(const plan::ExchangePlan& plan,
     for (const auto& write : writes)
         spans.push_back(plan::bit_span(plan.tags[write.tag_index].spec));
     const auto overlaps = plan::find_overlaps(spans, 1);
-    if (overlaps.pairs.empty()) return std::nullopt;
-    const auto& pair = overlaps.pairs.front();
+    if (overlaps.listed.empty()) return std::nullopt;
+    const auto& pair = overlaps.listed.front();
     return WriteRejection{WriteError::overlapping_tags,
                           "tags " + plan.tags[writes[pair.first].tag_index].spec.name + " and " +
                               plan.tags[writes[pair.second].tag_index].spec.name +

@@ -34,14 +34,14 @@ TEST(FindOverlaps, AWordAndItsBits) {
                           tag(1, 7, TagType::bit), tag(2, 0, TagType::bit)});
     const auto found = find_overlaps(s, 10);
     EXPECT_EQ(found.total, 2u);
-    EXPECT_EQ(found.pairs, (std::vector<OverlapPair>{{1, 0}, {1, 2}}));
+    EXPECT_EQ(found.listed, (std::vector<OverlapPair>{{1, 0}, {1, 2}}));
 }
 
 TEST(FindOverlaps, ADintAndItsHalves) {
     const auto s = spans({tag(0, 0, TagType::dint), tag(0, 0, TagType::int_),
                           tag(2, 0, TagType::int_), tag(4, 0, TagType::dint)});
     const auto found = find_overlaps(s, 10);
-    EXPECT_EQ(found.pairs, (std::vector<OverlapPair>{{0, 1}, {0, 2}}));
+    EXPECT_EQ(found.listed, (std::vector<OverlapPair>{{0, 1}, {0, 2}}));
     EXPECT_EQ(found.total, 2u);
 }
 
@@ -57,7 +57,7 @@ TEST(FindOverlaps, NeighboursAndDifferentBitsOfOneByteDoNotOverlap) {
 TEST(FindOverlaps, ListsAtMostTheLimitButCountsEveryPair) {
     std::vector<TagSpec> tags(2000, tag(0, 0, TagType::int_));
     const auto found = find_overlaps(spans(tags), 5);
-    EXPECT_EQ(found.pairs.size(), 5u);
+    EXPECT_EQ(found.listed.size(), 5u);
     EXPECT_EQ(found.total, 2000u * 1999u / 2u);
     EXPECT_EQ(find_overlaps(spans(tags), 0).pairs.size(), 0u);
 }

@@ -31,8 +31,8 @@ struct OverlapPair {
 };
 
 struct Overlaps {
-    std::vector<OverlapPair> pairs;  ///< at most `limit`, by where they start
-    std::size_t total = 0;           ///< every overlapping pair, counted without listing
+    std::vector<OverlapPair> listed;  ///< at most `limit`, by where they start
+    std::size_t total = 0;            ///< every overlapping pair, counted without listing
 };
 
 /// Finds the pairs of spans (none empty) that share a bit in O(n log n + limit): 10,000 tags on
