@@ -51,7 +51,7 @@ TEST(FindOverlaps, NeighboursAndDifferentBitsOfOneByteDoNotOverlap) {
     EXPECT_EQ(find_overlaps(s, 10).total, 0u);
     // The same bit twice does.
     const auto same = spans({tag(4, 1, TagType::bit), tag(4, 1, TagType::bit)});
-    EXPECT_EQ(find_overlaps(same, 10).pairs, (std::vector<OverlapPair>{{0, 1}}));
+    EXPECT_EQ(find_overlaps(same, 10).listed, (std::vector<OverlapPair>{{0, 1}}));
 }
 
 TEST(FindOverlaps, ListsAtMostTheLimitButCountsEveryPair) {
@@ -59,7 +59,7 @@ TEST(FindOverlaps, ListsAtMostTheLimitButCountsEveryPair) {
     const auto found = find_overlaps(spans(tags), 5);
     EXPECT_EQ(found.listed.size(), 5u);
     EXPECT_EQ(found.total, 2000u * 1999u / 2u);
-    EXPECT_EQ(find_overlaps(spans(tags), 0).pairs.size(), 0u);
+    EXPECT_EQ(find_overlaps(spans(tags), 0).listed.size(), 0u);
 }
 
 }  // namespace
