@@ -60,7 +60,7 @@ std::vector<std::unique_ptr<Module>> Gateway::compose(ExchangesModule*& exchange
     auto modules = std::move(north.modules);
     modules.push_back(std::move(role));
     modules.push_back(std::move(south));
-    if (commands) modules.push_back(std::move(commands));
+    modules.push_back(std::move(commands));  // null without eip.commands: the list drops it
     modules.push_back(std::move(metrics));
     modules.push_back(std::make_unique<Watchdog>(loop, notifier_));
     return modules;

@@ -2,6 +2,12 @@
 
 namespace eip2mqtt::app {
 
+ModuleList::ModuleList(std::vector<std::unique_ptr<Module>> modules) {
+    for (auto& module : modules) {
+        if (module) modules_.push_back(std::move(module));
+    }
+}
+
 void ModuleList::start(core::MonoTime now) {
     std::size_t started = 0;
     try {

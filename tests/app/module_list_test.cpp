@@ -52,6 +52,18 @@ TEST(ModuleList, APreparationStopsAtTheFirstRefusal) {
               (std::vector<std::string>{"prepare A debug", "prepare B debug"}));
 }
 
+TEST(ModuleList, AModuleLeftOutIsDropped) {
+    ModuleJournal journal;
+    std::vector<std::unique_ptr<Module>> modules;
+    modules.push_back(std::make_unique<FakeModule>("A", journal));
+    modules.push_back(nullptr);
+    ModuleList list(std::move(modules));
+    EXPECT_EQ(list.size(), 1u);
+    list.start(core::MonoTime{});
+    list.stop();
+    EXPECT_EQ(journal.only({"start", "stop"}), (std::vector<std::string>{"start A", "stop A"}));
+}
+
 TEST(ModuleList, ModulesWithoutAQueueHaveNoRoomAndNoChanges) {
     ModuleJournal journal;
     auto list = three(journal);

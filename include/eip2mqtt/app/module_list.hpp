@@ -17,8 +17,8 @@ namespace eip2mqtt::app {
 class ModuleList {
 public:
     ModuleList() = default;
-    explicit ModuleList(std::vector<std::unique_ptr<Module>> modules)
-        : modules_(std::move(modules)) {}
+    /// A null module is one the configuration leaves out (its factory returned null): dropped.
+    explicit ModuleList(std::vector<std::unique_ptr<Module>> modules);
 
     /// Each in order. One that throws: those started before it stop, in reverse, and the
     /// exception goes on.
