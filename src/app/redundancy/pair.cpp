@@ -5,11 +5,9 @@
 #include <algorithm>
 #include <utility>
 
-#include "eip2mqtt/adapters/mqtt/client.hpp"
 #include "eip2mqtt/app/exchanges/write_dispatcher.hpp"
 #include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
-#include "eip2mqtt/app/northbound/mqtt_settings.hpp"
 #include "eip2mqtt/app/redundancy/leader_publisher.hpp"
 #include "eip2mqtt/app/redundancy/pair_lease.hpp"
 #include "eip2mqtt/core/config/config.hpp"
@@ -35,29 +33,13 @@ std::chrono::milliseconds write_horizon(const core::config::Config& config) {
     return 2 * config.redundancy.takeover + 2 * longest_produced_period(config);
 }
 
-/// Options of the lease's connection (docs/redundancy.md): the same broker, credentials and
-/// TLS, client id `{client id}-pair`, a clean session, session-bound (a renewal queued while
-/// disconnected would be stale when sent), `will` its last will. Its own connection, so that a
-/// renewal never waits behind the tag tree's queue.
-adapters::mqtt::ClientOptions pair_client_options(const core::config::Config& config,
-                                                  adapters::mqtt::Message will) {
-    auto options = mqtt_client_options(config, {});
-    options.client_id += "-pair";
-    options.log_name = "MQTT (pair)";
-    options.session_expiry = std::chrono::seconds(0);
-    options.clean_start = true;
-    options.will = [will = std::move(will)] { return will; };
-    options.session_bound = true;
-    options.hear_own = true;  // a claim heard back confirms it (core/redundancy/lease.hpp)
-    // An image heard back live, not fetched from the store, gives a late answer (PairImages).
-    options.retain_as_published = false;
-    return options;
-}
-
 }  // namespace
 
 Pair::Pair(boost::asio::any_io_executor loop, const core::Clock& clock)
-    : loop_(std::move(loop)), clock_(clock) {}
+    : Pair(clock, mqtt_pair_connector(std::move(loop))) {}
+
+Pair::Pair(const core::Clock& clock, PairConnector connect)
+    : clock_(clock), connect_(std::move(connect)) {}
 
 Pair::~Pair() = default;
 
@@ -112,8 +94,7 @@ void Pair::wire(PairParts parts) {
     const auto& config = parts_ref.config;
     const auto& section = config.redundancy;
     auto topics = pair_topics(config.mqtt.base_topic, section.pair, config.gateway.id);
-    client_ = std::make_unique<adapters::mqtt::Client>(
-        loop_, pair_client_options(config, pair_will(topics)));
+    client_ = connect_(config, pair_will(topics));
     images_ = std::make_unique<PairImages>(topics.images, config.gateway.id, *client_,
                                            write_horizon(config));
     core::redundancy::LeaseSettings settings{config.gateway.id, section.priority.value_or(0),
@@ -150,11 +131,7 @@ void Pair::make_history() {
     if (parts.config.sparkplug.enabled() && !parts.config.sparkplug.uns) return;
     history_ = std::make_unique<PairHistory>(
         PairHistoryOptions{parts.config.redundancy.takeover}, parts.tree,
-        [this] {
-            const auto stats = parts_->tree_client.stats();
-            return stats.queued + stats.in_flight;
-        },
-        clock_);
+        [this] { return parts_->tree_backlog(); }, clock_);
     history_->set_replay_gate(
         [this] { return lease_->lease().renewed_since_leading(clock_.monotonic()); });
     parts.north.set_tap(*history_);

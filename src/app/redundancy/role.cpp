@@ -53,9 +53,12 @@ public:
 
     void wire(RoleParts parts) override {
         auto& tree = *parts.northbounds.tree;
-        pair_.wire({parts.config, tree.client(), tree.tree(), parts.writes, parts.exchanges,
-                    parts.north, session_hooks(parts.northbounds.node),
-                    [&tree] { tree.republish(); }});
+        const auto backlog = [&tree] {
+            const auto stats = tree.client().stats();
+            return stats.queued + stats.in_flight;
+        };
+        pair_.wire({parts.config, backlog, tree.tree(), parts.writes, parts.exchanges, parts.north,
+                    session_hooks(parts.northbounds.node), [&tree] { tree.republish(); }});
         // Before store and forward's journal entries: the pair's samples are its own tokens.
         if (pair_.hears_acknowledgements()) {
             tree.take_acknowledgements_first(

@@ -28,6 +28,7 @@
 #include "eip2mqtt/adapters/mqtt/publisher.hpp"
 #include "eip2mqtt/app/exchanges/exchanges.hpp"
 #include "eip2mqtt/app/redundancy/pair_admission.hpp"
+#include "eip2mqtt/app/redundancy/pair_connection.hpp"
 #include "eip2mqtt/app/redundancy/pair_history.hpp"
 #include "eip2mqtt/app/redundancy/pair_images.hpp"
 #include "eip2mqtt/app/redundancy/pair_writes.hpp"
@@ -37,9 +38,6 @@
 
 namespace eip2mqtt::core::config {
 struct Config;
-}
-namespace eip2mqtt::adapters::mqtt {
-class Client;
 }
 namespace eip2mqtt::app {
 class WriteDispatcher;
@@ -69,7 +67,8 @@ struct SessionHooks {
 /// What the pair wires, borrowed: each must outlive the Pair's use of it (until stop()).
 struct PairParts {
     const core::config::Config& config;
-    adapters::mqtt::Client& tree_client;  ///< the JSON tree's connection
+    /// The publications of the JSON tree's connection queued and in flight.
+    std::function<std::uint64_t()> tree_backlog;
     northbound::json_tree::JsonTree& tree;
     WriteDispatcher& writes;
     Exchanges& exchanges;
@@ -83,8 +82,10 @@ struct PairParts {
 class Pair final : public UnitRole {
 public:
     /// `clock` must outlive the pair and be safe to read from any thread (the sender threads
-    /// read it through may_send()).
+    /// read it through may_send()). Its connection is an MQTT client on `loop`.
     Pair(boost::asio::any_io_executor loop, const core::Clock& clock);
+    /// Its connection is the one `connect` makes in wire() (a test's fake broker).
+    Pair(const core::Clock& clock, PairConnector connect);
     ~Pair();
     Pair(const Pair&) = delete;
     Pair& operator=(const Pair&) = delete;
@@ -165,10 +166,10 @@ private:
     /// After each event of the lease: leading_until_ from it.
     void refresh_leading_until();
 
-    boost::asio::any_io_executor loop_;
     const core::Clock& clock_;
+    PairConnector connect_;
     std::optional<PairParts> parts_;
-    std::unique_ptr<adapters::mqtt::Client> client_;
+    std::unique_ptr<PairConnection> client_;
     std::unique_ptr<PairLease> lease_;
     std::unique_ptr<PairImages> images_;
     /// What becomes of the writes that reach this unit.
