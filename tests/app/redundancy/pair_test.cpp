@@ -1,7 +1,7 @@
 // The pair's own logic outside its parts: the fence its connections' sender threads ask
 // (Pair::may_send). Its parts are tested on their own (pair_lease_test, pair_images_test,
-// pair_writes_test, pair_history_test), the pair's role changes end to end
-// (tests/integration/*hot_standby*).
+// pair_writes_test, pair_history_test), the pair's role changes against a fake broker
+// (pair_role_test) and end to end (tests/integration/*hot_standby*).
 
 #include "eip2mqtt/app/redundancy/pair.hpp"
 
