@@ -14,8 +14,7 @@ namespace {
 struct RoleMetricsTest : ::testing::Test {
     DatagramCounters datagrams;
     WriteCounters writes;
-    adapters::mqtt::ClientStats mqtt;
-    MetricsSources sources{datagrams, writes, mqtt};
+    MetricsSources sources{datagrams, writes};  // the main connection's stats: sources.mqtt
 };
 
 TEST_F(RoleMetricsTest, ASingleUnitAddsNothing) {
@@ -29,7 +28,7 @@ TEST_F(RoleMetricsTest, APairAddsItsObjectWithTheHeardDatagramsAndTheFencedPubli
     images.published = 3;
     images.ignored[1] = 2;
     datagrams.produced_heard = 5;
-    mqtt.discarded = 7;
+    sources.mqtt.discarded = 7;
     sources.pair_images = &images;
     nlohmann::json metrics = nlohmann::json::object();
     add_role_metrics(metrics, sources);

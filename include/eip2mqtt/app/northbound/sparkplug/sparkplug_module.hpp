@@ -39,12 +39,14 @@ public:
     void end_session();
     std::optional<std::uint8_t> session_bd_seq() const { return node_->session_bd_seq(); }
 
+    /// Connects, unless its session follows the role.
     void start(core::MonoTime now) override;
-    void tick(const TickTimes& times) override;
     /// The node's NDEATH after its last data.
     void stop() override;
-    void apply(const core::config::Config& next) override;
+    void tick(const TickTimes& times) override;
     void add_metrics(MetricsSources& sources) override;
+    /// The connection's buffer settings.
+    void apply(const core::config::Config& next) override;
 
 private:
     /// Runs `event` (the connection, a message or an acknowledgement on it, a tick); once the
