@@ -193,7 +193,8 @@ TEST_F(CommandResponderTest, AWriteIsAnsweredWithItsClocksTimeWhenItsResultComes
     clock.advance(1500ms);  // the result comes later: the answer says when
     const auto& request = writes_.requests[0];
     request.reply.origin->write_result(request.reply, std::nullopt);
-    const auto& pdu = std::get<core::command::DataPdu>(last().body);
+    const auto response = last();  // held: the PDU is a part of it
+    const auto& pdu = std::get<core::command::DataPdu>(response.body);
     EXPECT_EQ(pdu.time_s, core::wire_time(clock.wall()).seconds);
     EXPECT_EQ(pdu.time_ns, 500000000u);
 }
