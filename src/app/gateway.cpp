@@ -53,7 +53,7 @@ std::vector<std::unique_ptr<Module>> Gateway::compose(ExchangesModule*& exchange
     auto metrics = std::make_unique<MetricsModule>(
         config_, loop, clock_, south->exchanges(), south->north(),
         [this] { return metrics_sources(); },
-        [this] { notifier_.status(status_line(metrics_sources())); });
+        [this](const MetricsSources& sources) { notifier_.status(status_line(sources)); });
     exchanges = south.get();
     // Stopped in reverse: the inputs first, the lease before the connections it fences, the
     // gateway's main connection (its `offline`) last.

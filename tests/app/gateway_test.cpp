@@ -8,14 +8,13 @@
 #include <unistd.h>
 
 #include <csignal>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "tests/support/fakes/fake_module.hpp"
+#include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::app {
 namespace {
@@ -33,23 +32,15 @@ constexpr auto exchange_yaml =
 
 class GatewayTest : public ::testing::Test {
 protected:
-    GatewayTest() : dir_(std::filesystem::temp_directory_path() / unique_name()) {
-        std::filesystem::create_directories(dir_);
-        write_config("info");
-    }
-    ~GatewayTest() override { std::filesystem::remove_all(dir_); }
+    GatewayTest() { write_config("info"); }
 
-    static std::string unique_name() {
-        return "eip2mqtt-gateway-test-" + std::to_string(::getpid()) + "-" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    }
-    std::string file() const { return (dir_ / "gateway.yaml").string(); }
+    std::string file() const { return dir_.path() + "/gateway.yaml"; }
     void write_config(const std::string& level) {
-        std::ofstream(file()) << "gateway:\n  id: gw\n  state_dir: " << (dir_ / "state").string()
-                              << "\n  log_level: " << level
-                              << "\nmqtt:\n  url: tcp://127.0.0.1:1\neip:\n  bind: 127.0.0.1\n"
-                              << "  port: 0\n"
-                              << exchange_yaml;
+        dir_.write("gateway.yaml", "gateway:\n  id: gw\n  state_dir: " + dir_.path() +
+                                       "/state\n  log_level: " + level +
+                                       "\nmqtt:\n  url: tcp://127.0.0.1:1\neip:\n  bind: "
+                                       "127.0.0.1\n  port: 0\n" +
+                                       exchange_yaml);
     }
 
     /// A gateway of the file's configuration made of fake modules A and B around the real,
@@ -76,7 +67,7 @@ protected:
         return std::move(loaded).value();
     }
 
-    std::filesystem::path dir_;
+    test::TempDir dir_;
     ModuleJournal journal_;
 };
 

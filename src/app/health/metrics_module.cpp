@@ -21,7 +21,7 @@ std::unique_ptr<adapters::metrics::PrometheusEndpoint> make_endpoint(
 
 MetricsModule::MetricsModule(const core::config::Config& config, boost::asio::any_io_executor loop,
                              const core::Clock& clock, const Exchanges& exchanges,
-                             Northbound& north, Sources sources, std::function<void()> published)
+                             Northbound& north, Sources sources, Published published)
     : clock_(clock),
       exchanges_(exchanges),
       north_(north),
@@ -60,8 +60,9 @@ void MetricsModule::schedule() {
 void MetricsModule::publish() {
     const auto uptime =
         std::chrono::duration_cast<std::chrono::seconds>(clock_.monotonic() - started_at_);
-    north_.gateway_metrics(sources_(), uptime);
-    published_();
+    const auto sources = sources_();
+    north_.gateway_metrics(sources, uptime);
+    published_(sources);
 }
 
 }  // namespace eip2mqtt::app

@@ -26,17 +26,9 @@ using core::plan::Direction;
 using core::plan::TagType;
 
 core::plan::ExchangePlan plan(std::string name, Direction direction, std::uint32_t exchange_id) {
-    core::plan::ExchangeSpec spec;
-    spec.name = name;
-    spec.topic = std::move(name);
-    spec.direction = direction;
-    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
-    spec.exchange_id = exchange_id;
-    spec.length = 4;
-    spec.destination = "127.0.0.1";
-    spec.period = 1h;  // a produced exchange is never due while the test runs
-    spec.tags = {test::test_tag("VALUE", 0, TagType::dint, direction == Direction::produce)};
-    return core::plan::make_exchange_plan(std::move(spec), "acme");
+    return test::test_exchange(
+        std::move(name), direction, exchange_id,
+        test::test_tag("VALUE", 0, TagType::dint, direction == Direction::produce));
 }
 
 class ExchangesClockTest : public ::testing::Test {

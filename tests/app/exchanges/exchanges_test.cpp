@@ -29,17 +29,7 @@ using Names = std::vector<std::string>;
 
 core::plan::ExchangePlan plan(std::string name, Direction direction, std::uint32_t exchange_id,
                               core::plan::TagSpec tag) {
-    core::plan::ExchangeSpec spec;
-    spec.name = name;
-    spec.topic = std::move(name);
-    spec.direction = direction;
-    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
-    spec.exchange_id = exchange_id;
-    spec.length = 4;
-    spec.destination = "127.0.0.1";
-    spec.period = 1h;  // a produced exchange is never due while the test runs
-    spec.tags = {std::move(tag)};
-    return core::plan::make_exchange_plan(std::move(spec), "acme");
+    return test::test_exchange(std::move(name), direction, exchange_id, std::move(tag));
 }
 
 core::plan::ExchangePlan consumed(std::string name, std::uint32_t exchange_id,

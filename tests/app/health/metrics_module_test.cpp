@@ -52,7 +52,7 @@ protected:
                 ++asked_;
                 return MetricsSources{datagrams_, writes_, mqtt_};
             },
-            [this] { ++published_; });
+            [this](const MetricsSources&) { ++published_; });
     }
     /// Runs the loop until `published` publications were made; false after 30 s.
     bool run_until_published(int published) {

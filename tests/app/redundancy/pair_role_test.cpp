@@ -31,6 +31,7 @@
 #include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/fake_pair_connection.hpp"
 #include "tests/support/fakes/recording_publisher.hpp"
+#include "tests/support/fakes/tag_message.hpp"
 
 namespace eip2mqtt::app::redundancy {
 namespace {
@@ -46,12 +47,8 @@ constexpr auto claim_after = 1500ms;   // T - R
 constexpr auto renewal = 500ms;        // R
 constexpr auto fenced_after = 1250ms;  // T - 3R / 2
 
-adapters::mqtt::Message any_message() {
-    adapters::mqtt::Message m;
-    m.topic = "acme/turbine/e1/speed";
-    m.retain = true;
-    return m;
-}
+/// A publication only the role's holder says (retained).
+adapters::mqtt::Message any_message() { return test::tag_message(true); }
 
 class PairRoleTest : public ::testing::Test {
 protected:

@@ -10,16 +10,12 @@
 #include <boost/asio/io_context.hpp>
 
 #include "tests/support/fakes/fake_clock.hpp"
+#include "tests/support/fakes/tag_message.hpp"
 
 namespace eip2mqtt::app::redundancy {
 namespace {
 
-adapters::mqtt::Message message(bool retain) {
-    adapters::mqtt::Message m;
-    m.topic = "acme/turbine/e1/speed";
-    m.retain = retain;
-    return m;
-}
+using test::tag_message;
 
 class PairTest : public ::testing::Test {
 protected:
@@ -30,18 +26,18 @@ protected:
 
 TEST_F(PairTest, BeforeItLeadsNothingOnlyALeaderSaysPasses) {
     const auto every = pair_.may_send(nullptr);
-    EXPECT_FALSE(every(message(false)));
-    EXPECT_FALSE(every(message(true)));
+    EXPECT_FALSE(every(tag_message(false)));
+    EXPECT_FALSE(every(tag_message(true)));
 }
 
 TEST_F(PairTest, WhatALeaderAloneSaysIsFencedTheRestPasses) {
     // As the JSON tree's connection: its retained values are the leader's, the rest both units'.
     const auto retained_only =
         pair_.may_send([](const adapters::mqtt::Message& m) { return m.retain; });
-    EXPECT_TRUE(retained_only(message(false)));
-    EXPECT_FALSE(retained_only(message(true)));
+    EXPECT_TRUE(retained_only(tag_message(false)));
+    EXPECT_FALSE(retained_only(tag_message(true)));
     clock_.advance(std::chrono::hours(24 * 365));  // no time opens the fence: only a lease
-    EXPECT_FALSE(retained_only(message(true)));
+    EXPECT_FALSE(retained_only(tag_message(true)));
 }
 
 }  // namespace

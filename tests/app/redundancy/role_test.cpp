@@ -10,16 +10,12 @@
 
 #include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/recording_publisher.hpp"
+#include "tests/support/fakes/tag_message.hpp"
 
 namespace eip2mqtt::app::redundancy {
 namespace {
 
-adapters::mqtt::Message message(bool retain) {
-    adapters::mqtt::Message m;
-    m.topic = "acme/turbine/e1/speed";
-    m.retain = retain;
-    return m;
-}
+using test::tag_message;
 
 Role::MaySend retained_only() {
     return [](const adapters::mqtt::Message& m) { return m.retain; };
@@ -53,11 +49,11 @@ TEST_F(RoleTest, APairFencesWhatItIsGivenUntilItLeads) {
     auto role = make("turbine");
     const auto fenced = role->may_send(retained_only());
     ASSERT_NE(fenced, nullptr);
-    EXPECT_TRUE(fenced(message(false)));  // not fenced: passes
-    EXPECT_FALSE(fenced(message(true)));  // fenced, and this unit holds no lease
+    EXPECT_TRUE(fenced(tag_message(false)));  // not fenced: passes
+    EXPECT_FALSE(fenced(tag_message(true)));  // fenced, and this unit holds no lease
     const auto everything = role->may_send(nullptr);
     ASSERT_NE(everything, nullptr);
-    EXPECT_FALSE(everything(message(false)));
+    EXPECT_FALSE(everything(tag_message(false)));
 }
 
 TEST_F(RoleTest, APairsSessionsFollowTheRoleAndItSetsTheExchangesOptions) {

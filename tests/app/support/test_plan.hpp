@@ -38,6 +38,23 @@ inline core::plan::ExchangePlan test_plan(std::string name, core::plan::Directio
     return core::plan::make_exchange_plan(std::move(spec), "acme");
 }
 
+/// Exchange `name` (producer 10.0.0.1, `exchange_id`, 4 data bytes) of one `tag`, whose
+/// period (an hour) never comes due while a test runs: tests of the running set (Exchanges).
+inline core::plan::ExchangePlan test_exchange(std::string name, core::plan::Direction direction,
+                                              std::uint32_t exchange_id, core::plan::TagSpec tag) {
+    core::plan::ExchangeSpec spec;
+    spec.name = name;
+    spec.topic = std::move(name);
+    spec.direction = direction;
+    spec.producer_id = *core::wire::parse_producer_id("10.0.0.1");
+    spec.exchange_id = exchange_id;
+    spec.length = 4;
+    spec.destination = "127.0.0.1";
+    spec.period = std::chrono::hours(1);
+    spec.tags = {std::move(tag)};
+    return core::plan::make_exchange_plan(std::move(spec), "acme");
+}
+
 /// Produced exchange `sp` (producer 10.0.0.1, exchange 10) of one writable dint VALUE at byte 0,
 /// whose period (an hour) never comes due in a unit test: a producer's own tests and those of
 /// what hears or follows it. `length` 0: the end of VALUE.

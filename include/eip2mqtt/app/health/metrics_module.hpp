@@ -25,11 +25,13 @@ public:
     /// Everything the metrics are made of, asked when they are made.
     using Sources = std::function<MetricsSources()>;
 
-    /// Listens with `metrics.listen`; throws std::exception when it cannot. `published` is
-    /// called after each publication of the metrics.
+    /// After each publication of the metrics, with the sources they were made of.
+    using Published = std::function<void(const MetricsSources& sources)>;
+
+    /// Listens with `metrics.listen`; throws std::exception when it cannot.
     MetricsModule(const core::config::Config& config, boost::asio::any_io_executor loop,
                   const core::Clock& clock, const Exchanges& exchanges, Northbound& north,
-                  Sources sources, std::function<void()> published);
+                  Sources sources, Published published);
 
     void start(core::MonoTime now) override;
     void tick(const TickTimes& times) override;
@@ -45,7 +47,7 @@ private:
     const Exchanges& exchanges_;
     Northbound& north_;
     Sources sources_;
-    std::function<void()> published_;
+    Published published_;
     std::chrono::seconds interval_;
     boost::asio::steady_timer timer_;
     std::unique_ptr<adapters::metrics::PrometheusEndpoint> prometheus_;  ///< with metrics.listen
