@@ -16,7 +16,11 @@ How each rule is measured, where a word needs a definition:
 - gateway-*: the class eip2mqtt::app::Gateway, include/eip2mqtt/app/gateway.hpp and
   src/app/gateway.cpp. A data member is a non-static `member` ctags reports in its own scope
   (not those of its nested structs). The names JsonTree and SparkplugNode and std::atomic are
-  looked for in the code text of the two files.
+  looked for in the code text of the two files. gateway-branches: the condition of every `if`,
+  `while`, `switch` and `?:` in the code text of the two files (a `?:` condition runs back from
+  the `?` to the nearest `(`, `,`, `=`, `{`, `;` or `return`) may not name a member of an
+  identifier containing `config` (`config_.sparkplug`, `next.config.metrics`) nor have one of
+  FEATURE_WORDS as an identifier's part (`sparkplug_`, `has_history`).
 - pair-words: pair, lease, leader, standby (and their plurals, `paired`, `leased`) as an
   identifier's part, split at underscores and at camel-case humps (`pair_`, `PairLease`,
   `is_leader`), or as a word of a comment or a string; `release` or `repair` are not them.
@@ -70,6 +74,7 @@ ENFORCED = (
     "gateway-files",
     "gateway-atomic",
     "gateway-names",
+    "gateway-branches",
     "pair-words",
     "app-root",
     "data-members",
@@ -104,6 +109,12 @@ PAIR_WORDS = {
     "standbys",
 }
 PAIR_ALLOWED = ("src/app/redundancy/*", GATEWAY_CPP)
+# What a branch on an optional feature would test: one of the features' words as an identifier's
+# part, or a member of a configuration object.
+FEATURE_WORDS = {
+    "sparkplug", "history", "store", "forward", "journal", "redundancy", "pair", "role",
+    "command", "commands", "port", "metrics", "prometheus", "tree", "tls", "watchdog",
+}
 CLOCKS = ("steady_clock", "system_clock", "high_resolution_clock")
 
 # (id, group, title): the group is the item of the list the rules come from, for --enforce N.
@@ -113,6 +124,7 @@ RULES = (
     ("gateway-files", 1, "no src/app/**/gateway_*.cpp"),
     ("gateway-atomic", 1, "no std::atomic in Gateway"),
     ("gateway-names", 1, "Gateway names neither JsonTree nor SparkplugNode"),
+    ("gateway-branches", 1, "no branch in Gateway on an optional feature"),
     ("pair-words", 2, "pair/lease/leader/standby only in src/app/redundancy and gateway.cpp"),
     ("app-root", 3, f"<= {MAX_APP_ROOT_FILES} files directly in src/app"),
     ("data-members", 4, f"no class over {MAX_DATA_MEMBERS} data members"),
@@ -349,6 +361,49 @@ def check_gateway(tree, results):
     r.offenders = hits
 
 
+def balanced_after(code, start):
+    """The text inside the parentheses that open at code[start] (or the rest of the code)."""
+    depth = 0
+    for i in range(start, len(code)):
+        depth += {"(": 1, ")": -1}.get(code[i], 0)
+        if depth == 0:
+            return code[start + 1:i]
+    return code[start + 1:]
+
+
+def branch_conditions(code):
+    """(offset, condition) of each if/while/switch and ?: in a file's code text."""
+    found = []
+    for m in re.finditer(r"\b(?:if|while|switch)\s*(?:constexpr\s*)?\(", code):
+        found.append((m.start(), balanced_after(code, m.end() - 1)))
+    for m in re.finditer(r"\?(?![?:])", code):
+        head = code[:m.start()]
+        cut = max(head.rfind(c) for c in "(,={;")
+        cut = max(cut, head.rfind("return") + len("return") - 1)
+        found.append((m.start(), head[cut + 1:]))
+    return found
+
+
+def names_a_feature(condition):
+    if re.search(r"\w*config\w*\s*(?:\.|->)\s*\w+", condition):
+        return True
+    return any(part in FEATURE_WORDS for word in re.findall(r"[A-Za-z_]\w*", condition)
+               for part in identifier_parts(word))
+
+
+def check_gateway_branches(tree, results):
+    r = results["gateway-branches"]
+    hits = []
+    for f in (GATEWAY_HPP, GATEWAY_CPP):
+        if (tree.root / f).is_file():
+            code = tree.code(f)
+            hits += [f"{f}:{line_of(code, at)} ({' '.join(cond.split())})"
+                     for at, cond in branch_conditions(code) if names_a_feature(cond)]
+    r.figure = f"{len(hits)} branches on a feature"
+    r.ok = not hits
+    r.offenders = hits
+
+
 def check_pair_words(tree, results):
     r = results["pair-words"]
     hits = []
@@ -568,7 +623,7 @@ def check_sizes(tree, results):
         r.offenders = [f"{path}:{line} {name} {n}" for n, path, line, name in over]
 
 
-CHECKS = (check_gateway, check_pair_words, check_app_root, check_data_members,
+CHECKS = (check_gateway, check_gateway_branches, check_pair_words, check_app_root, check_data_members,
           check_class_files, check_core_config, check_clock_calls, check_app_tests,
           check_sizes)
 

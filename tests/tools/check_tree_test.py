@@ -37,6 +37,7 @@ GOOD = {
         "// The modules: the exchanges, the pair (the composition root may name it).\n"
         "void Gateway::start() {\n"
         "    if (m0_ == 0) m1_ = 1;\n"
+        "    m2_ = m0_ > 1 ? 2 : 3;\n"
         "}\n"
         "}  // namespace eip2mqtt::app\n"),
     "tests/app/gateway_test.cpp": "TEST(Gateway, Starts) {\n    EXPECT_TRUE(true);\n}\n",
@@ -90,6 +91,8 @@ BREAKS = {
         "    int m0_ = 0;\n", "    std::atomic<int> m0_{0};\n")},
     "gateway-names": {"src/app/gateway.cpp": lambda t: t.replace(
         "    if (m0_", "    JsonTree* tree = nullptr;\n    if (m0_")},
+    "gateway-branches": {"src/app/gateway.cpp": lambda t: t.replace(
+        "m0_ > 1 ?", "config_.sparkplug.enabled ?")},
     "pair-words": {"src/app/exchanges/router.cpp": lambda t: t.replace(
         "counts it", "leaves it to the standby_")},
     "app-root": {f"src/app/part{i}.cpp": (lambda t: "int x = 0;\n") for i in range(4)},

@@ -29,10 +29,9 @@ StoreAndForwardModule::StoreAndForwardModule(std::unique_ptr<adapters::history::
                                              const northbound::NorthboundParts& parts,
                                              northbound::json_tree::JsonTreeModule& tree)
     : store_(std::move(journal),
-             StoreAndForwardOptions{config.mqtt.store_and_forward.replay_rate,
-                                    config.mqtt.store_and_forward.fsync_interval,
-                                    {},
-                                    &parts.clock},
+             StoreAndForwardOptions{.replay_rate = config.mqtt.store_and_forward.replay_rate,
+                                    .fsync_interval = config.mqtt.store_and_forward.fsync_interval,
+                                    .clock = &parts.clock},
              tree_link(tree.client()), tree.tree()) {
     auto& client = tree.client();
     tree.tree().set_store_and_forward([&client] { return client.connected(); });

@@ -58,6 +58,21 @@ TEST_F(StoreAndForwardModuleTest, AJournalThatCannotBeOpenedIsLoggedAndLeftOut) 
     EXPECT_NE(off->find("gateway.state_dir"), std::string::npos) << *off;
 }
 
+TEST_F(StoreAndForwardModuleTest, ItTakesTheSectionsRateAndFsyncAndKeepsTheDefaultReplayBudget) {
+    make("tcp://127.0.0.1:1",
+         std::string(store_and_forward_on) + "    replay_rate: 5000\n    fsync_interval_ms: 250\n");
+    auto module = make_store_and_forward(config_, *parts_, *tree_);
+    ASSERT_NE(module, nullptr);
+    const auto& options = module->store().options();
+    EXPECT_EQ(options.replay_rate, 5000u);
+    EXPECT_EQ(options.fsync_interval, std::chrono::milliseconds(250));
+    EXPECT_EQ(options.clock, &clock());
+    // A tick's replay gets its loop time: with none, one entry a tick went (about 100 a second
+    // at any replay_rate).
+    EXPECT_EQ(options.replay_budget, StoreAndForwardOptions{}.replay_budget);
+    EXPECT_GT(options.replay_budget.count(), 0);
+}
+
 TEST_F(StoreAndForwardModuleTest, ItJoinsTheTreesConnectionItsReplayAndItsAcknowledgements) {
     test::Mosquitto broker;
     make(broker.url(), store_and_forward_on);

@@ -91,6 +91,7 @@ public:
     /// acknowledged entries, replays what the rate allows.
     void on_tick(core::MonoTime now);
     HistoryStats stats();
+    const StoreAndForwardOptions& options() const { return options_; }
 
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
