@@ -264,6 +264,11 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
     return out;
 }
 
+}  // namespace
+
+// Named, not anonymous: PrometheusEndpoint::Impl holds one.
+namespace detail {
+
 /// Serves the families built by the last update; scrapes copy them under the lock.
 class SnapshotCollectable : public prometheus::Collectable {
 public:
@@ -282,10 +287,11 @@ private:
     std::vector<MetricFamily> families_;
 };
 
-}  // namespace
+}  // namespace detail
 
 struct PrometheusEndpoint::Impl {
-    std::shared_ptr<SnapshotCollectable> collectable = std::make_shared<SnapshotCollectable>();
+    std::shared_ptr<detail::SnapshotCollectable> collectable =
+        std::make_shared<detail::SnapshotCollectable>();
     std::shared_ptr<HealthState> health;
     std::unique_ptr<prometheus::Exposer> exposer;
     std::vector<int> ports;

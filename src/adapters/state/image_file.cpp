@@ -18,17 +18,17 @@ namespace eip2mqtt::adapters::state {
 namespace {
 
 /// "what: the system's reason".
-std::string failure(std::string what, int error) {
+std::string io_failure(std::string what, int error) {
     what += ": ";
     what += std::strerror(error);
     return what;
 }
 
-std::string failure(std::string_view step, const std::string& file, int error) {
+std::string io_failure(std::string_view step, const std::string& file, int error) {
     std::string what(step);  // appended, not `+`: GCC 12 warns on the latter (-Wrestrict)
     what += ' ';
     what += file;
-    return failure(std::move(what), error);
+    return io_failure(std::move(what), error);
 }
 
 /// Reads up to `limit` + 1 bytes from the start of `fd`, so that an oversized file shows as
@@ -133,7 +133,7 @@ void ImageFile::read_existing() {
         fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     }
     if (fd < 0) {
-        if (errno != ENOENT) return ignored(failure("open", path_, errno));
+        if (errno != ENOENT) return ignored(io_failure("open", path_, errno));
         spdlog::info("exchange {}: no saved image in {}; initial values apply", exchange_, path_);
         return;
     }
@@ -142,7 +142,7 @@ void ImageFile::read_existing() {
     if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         ignored("not a regular file");
     } else if (bytes = read_head(fd, detail::slotted_file_size); !bytes) {
-        ignored(failure("read", path_, errno));
+        ignored(io_failure("read", path_, errno));
     }
     core::Result<Found, std::string> found = core::fail(std::string());
     if (bytes) {
@@ -183,9 +183,9 @@ std::optional<std::string> ImageFile::save_in_place(std::span<const std::byte> d
     std::array<std::byte, detail::slot_size> bytes{};
     detail::encode_slot(sequence_ + 1, fingerprint_, data, bytes);
     if (!write_at(fd_, bytes, static_cast<off_t>(slot * detail::slot_size))) {
-        return failure("write", path_, errno);
+        return io_failure("write", path_, errno);
     }
-    if (::fdatasync(fd_) != 0) return failure("fdatasync", path_, errno);
+    if (::fdatasync(fd_) != 0) return io_failure("fdatasync", path_, errno);
     struct stat st {};
     if (::fstat(fd_, &st) == 0 && st.st_nlink == 0) {
         // Removed while open (a state directory cleaned by hand): this save reached no file a
@@ -206,7 +206,7 @@ std::optional<std::string> ImageFile::create(std::span<const std::byte> data) {
                         std::span(bytes).first(detail::slot_size));
     const std::span<const std::byte> parts[] = {bytes};
     if (const auto failed = write_file_atomically(path_, parts, 0644)) {
-        return failure(failed->step, failed->error);
+        return io_failure(failed->step, failed->error);
     }
     ++sequence_;
     newest_ = 0;

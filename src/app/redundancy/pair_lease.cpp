@@ -10,7 +10,7 @@
 namespace eip2mqtt::app::redundancy {
 namespace {
 
-using core::redundancy::Role;
+using LeaseRole = core::redundancy::Role;
 
 /// A publication's acknowledgement token is the time it was sent: the lease counts a renewal
 /// as of then. Never 0 (which means none): the steady clock is far past its epoch.
@@ -98,17 +98,17 @@ void PairLease::tick(core::MonoTime now) {
 
 void PairLease::follow_role(core::MonoTime now) {
     const auto role = lease_.role(now);
-    if (role == Role::leader && role_ == Role::leader && lease_.epoch() != led_epoch_) {
+    if (role == LeaseRole::leader && role_ == LeaseRole::leader && lease_.epoch() != led_epoch_) {
         led_epoch_ = lease_.epoch();
         spdlog::warn("pair: a stale claim renewed over, leading on under epoch {}", led_epoch_);
         if (on_epoch_raised_) on_epoch_raised_();
     }
     if (role == role_) {
-        if (role == Role::leader) led_until_ = lease_.leading_until();
+        if (role == LeaseRole::leader) led_until_ = lease_.leading_until();
         return;
     }
     role_ = role;
-    if (role == Role::leader) {
+    if (role == LeaseRole::leader) {
         led_epoch_ = lease_.epoch();
         led_until_ = lease_.leading_until();
         spdlog::info("pair: leading, epoch {}", lease_.epoch());
@@ -128,7 +128,7 @@ void PairLease::follow_role(core::MonoTime now) {
     if (on_role_) on_role_(role);
 }
 
-void PairLease::publish_role(Role role) {
+void PairLease::publish_role(LeaseRole role) {
     message_.topic = topics_.role;
     message_.payload = std::string(core::redundancy::to_string(role));
     message_.qos = 1;
