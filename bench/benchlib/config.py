@@ -54,8 +54,8 @@ def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, promet
     if prometheus:
         lines.append(f"metrics: {{ listen: {HOST}:{prometheus} }}")
     if sparkplug:
-        # Sparkplug alone (uns: false), at the scenario's QoS.
-        lines.append(f"sparkplug: {{ group_id: bench, uns: false, qos: {qos} }}")
+        # Sparkplug alone (uns: false); its births and data are QoS 0, the specification's.
+        lines.append("sparkplug: { group_id: bench, uns: false }")
     if redundancy:
         lines.append(f"redundancy: {flow_map(redundancy)}")
     return lines

@@ -84,7 +84,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     NullPublisher publisher;
     CheckingWrites writes(produced);
     const FixedClock clock;
-    app::northbound::sparkplug::SparkplugNode node({"g", "n", "host", 0}, publisher, writes, clock);
+    app::northbound::sparkplug::SparkplugNode node({"g", "n", "host", 0, std::nullopt}, publisher,
+                                                   writes, clock, [] {});
     node.exchanges_changed({{&consumed}, {&produced}}, {});
     node.next_will();
     node.on_connected();

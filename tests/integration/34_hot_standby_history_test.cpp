@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <thread>
 
 #include "eip2mqtt/core/time.hpp"
 #include "tests/support/datagram_builder.hpp"
@@ -21,6 +22,7 @@
 #include "tests/support/paced_producer.hpp"
 #include "tests/support/pair_fixture.hpp"
 #include "tests/support/schema_check.hpp"
+#include "tests/support/tahu.hpp"
 #include "tests/support/tcp_proxy.hpp"
 
 namespace eip2mqtt::test {
@@ -61,9 +63,9 @@ protected:
         broker_ = std::make_unique<Mosquitto>();
         before_start();
         recorder_ = std::make_unique<MqttRecorder>(
-            broker_->url(),
-            std::vector<std::string>{values_topic, history_topic, leader_topic,
-                                     "test/_gateway/+/role", "test/_gateway/+/metrics"});
+            broker_->url(), std::vector<std::string>{values_topic, history_topic, leader_topic,
+                                                     "test/_gateway/+/role",
+                                                     "test/_gateway/+/metrics", "spBv1.0/#"});
         const auto exchange = ExchangeYaml::consume("line", "10.0.0.2", 7)
                                   .length(4)
                                   .period_ms(20)
@@ -71,10 +73,11 @@ protected:
                                   .tag("COUNTER", "0.0", "udint")
                                   .str();
         start_units([&](const std::string& id, std::uint16_t port) {
-            return unit_config(id, broker_url(id), port, exchange, ", batch: true");
+            return unit_config(id, broker_url(id), port, exchange, ", batch: true", sections());
         });
     }
     virtual void before_start() {}
+    virtual std::string sections() const { return ""; }
     virtual std::string broker_url(const std::string&) const { return broker_->url(); }
     void TearDown() override {
         producer_.reset();
@@ -143,6 +146,17 @@ protected:
             },
             10s))
             << "nothing on _history";
+    }
+    /// A leader (`old`) and its standby, the counter running, `_values` past 50 and a renewal
+    /// naming the counter's watermark.
+    void count_under_a_leader(std::string& old, std::string& standby) {
+        old = first_leader();
+        ASSERT_FALSE(old.empty()) << "nobody leads";
+        standby = other(old);
+        ASSERT_TRUE(says(standby, "standby"));
+        start_counter();
+        ASSERT_TRUE(values_reach(50));
+        ASSERT_TRUE(renewal_with_watermark(old).has_value());
     }
     /// Every `_history` message says it is history (MQTT 5 user property).
     static void expect_historical(const std::vector<Received>& all) {
@@ -214,6 +228,46 @@ TEST_F(HotStandbyHistoryTest, EveryValueArrivesOnceAcrossAKillOfTheLeader) {
     expect_counted(standby, history.size());
 }
 
+/// The pair is a Sparkplug edge node as well.
+class SparkplugHistoryTest : public HotStandbyHistoryTest {
+protected:
+    std::string sections() const override { return "sparkplug: { group_id: plant1 }\n"; }
+};
+
+TEST_F(SparkplugHistoryTest, TheTakeoversReplayReachesSparkplugHostsAsHistoricalDdataInOrder) {
+    std::string old, standby;
+    ASSERT_NO_FATAL_FAILURE(count_under_a_leader(old, standby));
+    std::uint64_t last = 0;
+    ASSERT_NO_FATAL_FAILURE(kill_while_counting(old, standby, last));
+    const auto history = counters_on(recorder_->messages(), history_topic);
+    ASSERT_FALSE(history.empty());
+    // The new leader's node says the same samples, once it is born: historical DDATA, read by
+    // Tahu, in the order of `_history`.
+    const std::string ddata = "spBv1.0/plant1/DDATA/turbine/line";
+    const auto historical_now = [&] {
+        std::vector<std::string> payloads;
+        for (const auto& m : recorder_->messages()) {
+            if (m.topic == ddata) payloads.push_back(m.payload);
+        }
+        std::vector<std::uint64_t> values;
+        for (const auto& payload : tahu_decode_all(payloads)) {
+            for (const auto& metric : payload.at("metrics")) {
+                if (metric.value("isHistorical", false)) {
+                    values.push_back(std::stoull(metric.at("value").dump()));
+                }
+            }
+        }
+        return values;
+    };
+    // Bounded polling: one run of Node.js a look, not one a message.
+    auto historical = historical_now();
+    for (int look = 0; look < 40 && historical.size() < history.size(); ++look) {
+        std::this_thread::sleep_for(500ms);
+        historical = historical_now();
+    }
+    EXPECT_EQ(historical, history);
+}
+
 /// The standby reaches the broker through a proxy the test cuts in one direction: what it
 /// sends goes nowhere, what the broker sends it still comes.
 class CutOffHistoryTest : public HotStandbyHistoryTest {
@@ -230,13 +284,8 @@ protected:
 };
 
 TEST_F(CutOffHistoryTest, AUnitThatLedCutOffNeverReplaysOnceThePathIsBack) {
-    const auto old = first_leader();
-    ASSERT_FALSE(old.empty()) << "nobody leads";
-    const auto standby = other(old);
-    ASSERT_TRUE(says(standby, "standby"));
-    start_counter();
-    ASSERT_TRUE(values_reach(50));
-    ASSERT_TRUE(renewal_with_watermark(old).has_value());
+    std::string old, standby;
+    ASSERT_NO_FATAL_FAILURE(count_under_a_leader(old, standby));
 
     const auto killed = recorder_->count();
     gateways_[old]->signal(SIGKILL);

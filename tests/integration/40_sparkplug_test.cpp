@@ -289,10 +289,14 @@ TEST_F(SparkplugTest, BirthsWaitForThePrimaryHostAndFollowItAcrossABrokerRestart
     send_plant(2, 7, 1.0f);
     EXPECT_EQ(next_on(device_topic("DDATA", "plant"), 0)["metrics"][0]["value"], 7);
 
-    // The host goes offline: the node says NDEATH and publishes nothing more.
+    // The host goes offline: the node says NDEATH, leaves the broker and connects again (the
+    // list has one), with a new will; births once the host is back.
     const auto from = recorder_->count();
     recorder_->publish("spBv1.0/STATE/scada", R"({"online":false,"timestamp":3})", true);
     EXPECT_EQ(metric(next_on(node_topic("NDEATH"), from), "bdSeq")["value"], "1");
+    EXPECT_TRUE(gateway_->wait_for_output("MQTT (Sparkplug) session ended with", 10s));
+    recorder_->publish("spBv1.0/STATE/scada", R"({"online":true,"timestamp":4})", true);
+    EXPECT_EQ(metric(next_on(node_topic("NBIRTH"), from, 30s), "bdSeq")["value"], "2");
 }
 
 TEST_F(SparkplugTest, ACleanStopEndsWithNdeathAndAKillLeavesTheWill) {
@@ -306,6 +310,9 @@ TEST_F(SparkplugTest, ACleanStopEndsWithNdeathAndAKillLeavesTheWill) {
 
     start_gateway();
     const auto second = next_on(node_topic("NBIRTH"), from);
+    // The state directory keeps the bdSeq: the new process's first will takes the next one.
+    EXPECT_EQ(std::stoi(metric(second, "bdSeq")["value"].get<std::string>()),
+              std::stoi(metric(nbirth, "bdSeq")["value"].get<std::string>()) + 1);
     from = recorder_->count();
     ::kill(gateway_->pid(), SIGKILL);
     gateway_->wait(10s);

@@ -140,10 +140,12 @@ TEST_F(StoreAndForwardTest, AReconnectDuringTheReplayResumesWhereItStopped) {
 
 TEST_F(StoreAndForwardTest, WithSparkplugTheHistoryIsAlsoHistoricalDdata) {
     // 20 a second: the edge node, on a connection of its own, is born again long before the
-    // replay of one second of outage ends. QoS 1: the broker keeps the DDATA for the test's
-    // subscriber while it reconnects (QoS 0 would be dropped for it meanwhile).
+    // replay of one second of outage ends. Its DDATA are QoS 0, which the broker drops for a
+    // subscriber away: the node has a primary host, whose STATE says online once the test's
+    // subscriber is back, and the node is born (and replays) only then.
     start_gateway_with("    enabled: true\n    replay_rate: 20\n", false,
-                       "sparkplug:\n  group_id: plant\n  qos: 1\n");
+                       "sparkplug:\n  group_id: plant\n  primary_host_id: scada\n");
+    recorder_->publish("spBv1.0/STATE/scada", R"({"online":true,"timestamp":1})", true);
     const std::string ddata = "spBv1.0/plant/DDATA/test-gw/line";
     ASSERT_TRUE(recorder_->wait_for_message(ddata, nullptr, 10s));
     stop_broker();
@@ -153,6 +155,7 @@ TEST_F(StoreAndForwardTest, WithSparkplugTheHistoryIsAlsoHistoricalDdata) {
     const auto from = recorder_->count();
     broker_->start();
     wait_online(from);
+    recorder_->publish("spBv1.0/STATE/scada", R"({"online":true,"timestamp":2})", true);
     ASSERT_TRUE(wait_all_received(last)) << gateway_->output();
     const auto history = values_on("_history");
     ASSERT_FALSE(history.empty());

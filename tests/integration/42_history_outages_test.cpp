@@ -230,10 +230,9 @@ TEST_F(HistoryOutagesTest, AFullDiskKeepsTheNewestThroughTwoOutagesAndARestart) 
 /// primary host, store and forward replaying at `replay_rate`.
 class HistoryOutagesSparkplugTest : public HistoryOutagesTest {
 protected:
-    void start_line(int qos, int replay_rate) {
+    void start_line(int replay_rate) {
         auto options = broker_keeping_everything();
-        options.sections = "sparkplug:\n  group_id: plant\n  qos: " + std::to_string(qos) +
-                           "\n  primary_host_id: scada\n";
+        options.sections = "sparkplug:\n  group_id: plant\n  primary_host_id: scada\n";
         start(ExchangeYaml::consume("line", "10.0.0.2", 7)
                   .length(4)
                   .period_ms(10)
@@ -324,7 +323,7 @@ TEST_F(HistoryOutagesSparkplugTest, ThreeOutagesHaveEveryJournaledSample) {
     // The node's births wait for its primary host, which says it is online again only once the
     // JSON tree has replayed the outage: the node's own replay must wait for its births, and the
     // journal keep each entry until the node has it too.
-    start_line(1, 500);
+    start_line(500);
     for (int outage = 0; outage < 3; ++outage) {
         outage_with_the_host_offline();
         host(true);
@@ -335,11 +334,11 @@ TEST_F(HistoryOutagesSparkplugTest, ThreeOutagesHaveEveryJournaledSample) {
 }
 
 TEST_F(HistoryOutagesSparkplugTest, AnNdeathInTheMiddleOfTheReplayLosesNothing) {
-    // The node's connection carries two owners' acknowledgements: the journal's (its historical
-    // DDATA) and the node's own (the NDEATH it says when the host goes offline, whose PUBACK the
-    // next births wait for). Each must reach its owner: the births come without waiting out the
-    // NDEATH's deadline, the replay goes on after them, and the journal empties.
-    start_line(0, 200);
+    // The host goes offline in the middle of the replay: the node says its NDEATH, leaves the
+    // broker and connects again (the broker says the NDEATH too, as the will its DISCONNECT
+    // asks for). What the replay had not had acknowledged goes again after the next births, and
+    // the journal empties.
+    start_line(200);
     outage_with_the_host_offline();
     producer_->pause();  // from here, every DDATA is history: 5 s of it, 2.5 s of replay
     const auto from = recorder_->count();
@@ -363,9 +362,12 @@ TEST_F(HistoryOutagesSparkplugTest, AnNdeathInTheMiddleOfTheReplayLosesNothing) 
             node_messages.push_back(all[i].topic);
         }
     }
-    EXPECT_EQ(node_messages, (std::vector<std::string>{death, "spBv1.0/plant/NBIRTH/test-gw"}));
-    EXPECT_EQ(gateway_->output().find("did not acknowledge the NDEATH"), std::string::npos)
-        << gateway_->output();
+    // The NDEATH once or twice (the node's, then the broker's), then the next NBIRTH.
+    ASSERT_GE(node_messages.size(), 2u);
+    EXPECT_EQ(node_messages.back(), "spBv1.0/plant/NBIRTH/test-gw");
+    node_messages.pop_back();
+    EXPECT_LE(node_messages.size(), 2u);
+    for (const auto& topic_name : node_messages) EXPECT_EQ(topic_name, death);
     expect_every_journaled_sample_as_sparkplug_history(300);
 }
 

@@ -86,7 +86,10 @@ private:
     std::thread thread_;
 };
 
-using SparkplugStormTest = GatewayTest;
+class SparkplugStormTest : public GatewayTest {
+protected:
+    bool took_every_state(const ChildProcess& host);
+};
 
 /// How many lines of `output` contain `text`.
 std::size_t lines_with(const std::string& output, const std::string& text) {
@@ -173,12 +176,12 @@ TEST_F(SparkplugStormTest, AFloodOfRebirthRequestsNeitherStalesNorMissesADatagra
     for (const auto& m : recorder_->messages()) {
         EXPECT_EQ(m.topic.find("/DDEATH/"), std::string::npos) << m.topic;
     }
-    // One rebirth in progress and one pending: a rebirth a second, not one a request.
+    // The first request answered at once, the rest by one rebirth a second, not one a request.
     const auto nbirths = recorder_->messages_on(node_topic("NBIRTH")).size();
     std::cout << requests << " rebirth requests in " << storm.count() << " ms: " << nbirths
               << " NBIRTHs, the connection's included\n";
-    // The connection's, one a second of the storm (a part started counts), and the one pending
-    // at its end.
+    // The connection's, the first request's, one a second of the storm (a part started
+    // counts), and the one waiting at its end.
     EXPECT_GE(nbirths, 2u);
     EXPECT_LE(nbirths, static_cast<std::size_t>(storm / 1s) + 4) << storm.count() << " ms";
     // The log says so in a line and a summary a minute, not a line a request.
@@ -241,9 +244,10 @@ struct BirthsAndDeaths {
     bool born = false;  ///< the last of them was an NBIRTH
 };
 
-/// Births and deaths alternate (the clean stop's NDEATH may follow another), each death with
-/// the bdSeq of the birth before it, and seq counts on from each NBIRTH; `decoded`: the
-/// payloads of `received` as Tahu decodes them.
+/// Births and deaths alternate, each death with the bdSeq of the birth before it (a death may
+/// come twice: the node says it, then the broker, as the will its DISCONNECT with reason 0x04
+/// asks for), and seq counts on from each NBIRTH; `decoded`: the payloads of `received` as Tahu
+/// decodes them.
 BirthsAndDeaths check_births_and_deaths(
     const std::vector<std::pair<std::string, std::string>>& received,
     const std::vector<json>& decoded) {
@@ -263,9 +267,7 @@ BirthsAndDeaths check_births_and_deaths(
         }
         const bool birth = topic == node_topic("NBIRTH");
         if (birth || topic == node_topic("NDEATH")) {
-            if (birth == born && !(i + 1 == received.size() && !birth)) {
-                problem(born ? "a second NBIRTH without an NDEATH" : "an NDEATH after an NDEATH");
-            }
+            if (birth && born) problem("a second NBIRTH without an NDEATH");
             born = birth;
             const auto value = payload["metrics"].empty()
                                    ? std::string("none")
@@ -284,10 +286,30 @@ BirthsAndDeaths check_births_and_deaths(
     return {problems, born};
 }
 
+/// The flaps are over for the node once it is born again on a connection made after the last
+/// STATE (retained: online), which `host` sees as an NBIRTH after the first NDEATH: an offline
+/// STATE made it leave its connection, and while it connects again it hears none of the rest.
+/// Then it reads an NCMD sent after them (one it logs and ignores: a rebirth would add births
+/// of its own).
+bool SparkplugStormTest::took_every_state(const ChildProcess& host) {
+    const auto deadline = std::chrono::steady_clock::now() + 60s;
+    const auto births = [&] {
+        const auto received = host_messages(host.output());
+        return std::count_if(received.begin(), received.end(),
+                             [](const auto& m) { return m.first == node_topic("NBIRTH"); });
+    };
+    while (births() < 2) {
+        if (std::chrono::steady_clock::now() > deadline) return false;
+        std::this_thread::sleep_for(100ms);  // bounded polling of the host's output
+    }
+    recorder_->publish(node_topic("NCMD"), std::string("\xff\xff\xff", 3));
+    return gateway_->wait_for_output("Sparkplug NCMD ignored", 30s);
+}
+
 TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth) {
     UdpClient capture;
     GatewayOptions options;
-    options.sections = "sparkplug:\n  group_id: plant1\n  primary_host_id: scada\n  qos: 0\n";
+    options.sections = "sparkplug:\n  group_id: plant1\n  primary_host_id: scada\n";
     start(ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture.port()))
               .period_ms(100)
               .tag("SPEED_SP", "0.0", "real", "writable: true")
@@ -313,11 +335,7 @@ TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth
              " -t spBv1.0/STATE/scada -q 1 -r -l < " + file},
         120s);
     ASSERT_EQ(pub.status, 0) << pub.output;
-    // The broker hands the node its messages in order: once it has read an NCMD sent after
-    // them (one it logs and ignores: a rebirth would add births of its own), it has taken every
-    // STATE.
-    recorder_->publish(node_topic("NCMD"), std::string("\xff\xff\xff", 3));
-    ASSERT_TRUE(gateway_->wait_for_output("Sparkplug NCMD ignored", 120s));
+    ASSERT_TRUE(took_every_state(host)) << gateway_->output() << host.output();
     // A clean stop ends with an NDEATH. A QoS 1 message after it reaches the host after
     // everything the node said (QoS 0 messages are never queued behind QoS 1 ones).
     gateway_->signal(SIGTERM);
@@ -332,8 +350,8 @@ TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth
               throttled_lines_at_most(flaps_start))
         << gateway_->output();
 
-    // Births and deaths alternate (the clean stop's NDEATH may follow another), each death with
-    // the bdSeq of the birth before it, and seq counts on from each NBIRTH.
+    // Births and deaths alternate, each death with the bdSeq of the birth before it, and seq
+    // counts on from each NBIRTH.
     std::vector<std::string> payloads;
     for (const auto& [topic, payload] : received) payloads.push_back(payload);
     const auto decoded = tahu_decode_all(payloads);

@@ -77,6 +77,8 @@ void Client::start() { impl_->connection().start(); }
 
 void Client::end_session() { impl_->connection().end_session(); }
 
+void Client::leave_broker() { impl_->connection().leave_broker(); }
+
 void Client::publish(Message&& message) {
     if (!impl_->connection().accepts_publications()) {
         impl_->sender().count_discarded();

@@ -71,41 +71,54 @@ void set_property(ProtoPayload::PropertySet& set, const Property& property) {
     set_value(value, property.type, property.value);
 }
 
-/// A command metric's value, read as its datatype says; nullopt for a kind we do not take.
-std::optional<Value> read_value(const ProtoPayload::Metric& metric, DataType type) {
-    using Metric = ProtoPayload::Metric;
-    switch (metric.value_case()) {
-        case Metric::kIntValue: {
-            const auto raw = metric.int_value();
-            if (is_signed_small(type)) return Value{std::int64_t{static_cast<std::int32_t>(raw)}};
-            if (is_unsigned_small(type) || type == DataType::uint32) {
-                return Value{std::uint64_t{raw}};
-            }
-            return std::nullopt;
+/// The value of a command metric's field, read as `type` says; nullopt for a kind we do not
+/// take.
+std::optional<Value> read_value(const WireValue& wire, DataType type) {
+    if (const auto* field = std::get_if<IntField>(&wire)) {
+        if (is_signed_small(type))
+            return Value{std::int64_t{static_cast<std::int32_t>(field->raw)}};
+        if (is_unsigned_small(type) || type == DataType::uint32) {
+            return Value{std::uint64_t{field->raw}};
         }
+        return std::nullopt;
+    }
+    if (const auto* field = std::get_if<LongField>(&wire)) {
+        if (type == DataType::int64) return Value{static_cast<std::int64_t>(field->raw)};
+        if (type == DataType::uint32) {
+            if (field->raw > std::numeric_limits<std::uint32_t>::max()) return std::nullopt;
+            return Value{std::uint64_t{field->raw}};
+        }
+        if (type == DataType::uint64) return Value{std::uint64_t{field->raw}};
+        return std::nullopt;
+    }
+    if (const auto* v = std::get_if<float>(&wire)) {
+        return type == DataType::float32 ? std::optional<Value>(Value{*v}) : std::nullopt;
+    }
+    if (const auto* v = std::get_if<double>(&wire)) {
+        return type == DataType::float64 ? std::optional<Value>(Value{*v}) : std::nullopt;
+    }
+    if (const auto* v = std::get_if<bool>(&wire)) {
+        return type == DataType::boolean ? std::optional<Value>(Value{*v}) : std::nullopt;
+    }
+    return std::nullopt;
+}
+
+WireValue wire_value(const ProtoPayload::Metric& metric) {
+    using Metric = ProtoPayload::Metric;
+    if (metric.is_null()) return std::monostate{};
+    switch (metric.value_case()) {
+        case Metric::kIntValue:
+            return IntField{metric.int_value()};
         case Metric::kLongValue:
-            if (type == DataType::int64) {
-                return Value{static_cast<std::int64_t>(metric.long_value())};
-            }
-            if (type == DataType::uint32) {
-                if (metric.long_value() > std::numeric_limits<std::uint32_t>::max()) {
-                    return std::nullopt;
-                }
-                return Value{std::uint64_t{metric.long_value()}};
-            }
-            if (type == DataType::uint64) return Value{std::uint64_t{metric.long_value()}};
-            return std::nullopt;
+            return LongField{metric.long_value()};
         case Metric::kFloatValue:
-            return type == DataType::float32 ? std::optional<Value>(Value{metric.float_value()})
-                                             : std::nullopt;
+            return metric.float_value();
         case Metric::kDoubleValue:
-            return type == DataType::float64 ? std::optional<Value>(Value{metric.double_value()})
-                                             : std::nullopt;
+            return metric.double_value();
         case Metric::kBooleanValue:
-            return type == DataType::boolean ? std::optional<Value>(Value{metric.boolean_value()})
-                                             : std::nullopt;
+            return metric.boolean_value();
         default:
-            return std::nullopt;
+            return std::monostate{};
     }
 }
 
@@ -159,6 +172,8 @@ std::string encode(const Payload& payload) {
     return proto.SerializeAsString();
 }
 
+std::optional<Value> CommandMetric::value_as(DataType type) const { return read_value(wire, type); }
+
 core::Result<std::vector<CommandMetric>, std::string> decode_command(std::string_view bytes) {
     if (bytes.size() > max_command_bytes) {
         return core::fail("a command of " + std::to_string(bytes.size()) + " bytes (limit " +
@@ -181,7 +196,8 @@ core::Result<std::vector<CommandMetric>, std::string> decode_command(std::string
                 metric.datatype = static_cast<DataType>(type);
             }
         }
-        if (!m.is_null() && metric.datatype) metric.value = read_value(m, *metric.datatype);
+        metric.wire = wire_value(m);
+        if (metric.datatype) metric.value = metric.value_as(*metric.datatype);
         metrics.push_back(std::move(metric));
     }
     return metrics;

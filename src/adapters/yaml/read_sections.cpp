@@ -194,7 +194,16 @@ constexpr KeyReader<SparkplugSection> sparkplug_rows[]{
     {"primary_host_id",
      [](KeyValue& v, SparkplugSection& s) { return v.text_to(s.primary_host_id); }},
     {"uns", [](KeyValue& v, SparkplugSection& s) { return v.boolean_to(s.uns); }},
-    {"qos", [](KeyValue& v, SparkplugSection& s) { return v.integer_to<int>(s.qos, 0, 1); }},
+    {"qos",
+     [](KeyValue& v, SparkplugSection& s) {
+         if (!v.integer_to<int>(s.qos)) return false;
+         if (s.qos != 0) {
+             v.error("sparkplug qos " + std::to_string(s.qos) +
+                     ": Sparkplug B 3.0 publishes births and data at QoS 0 only (hosts judge an "
+                     "edge node by it); remove the key");
+         }
+         return true;
+     }},
     // MQTT's own limit is 268,435,460 bytes; 0: none of ours.
     {"max_packet_bytes",
      [](KeyValue& v, SparkplugSection& s) {

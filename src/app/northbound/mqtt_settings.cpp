@@ -101,6 +101,8 @@ adapters::mqtt::ClientOptions sparkplug_client_options(
     options.session_expiry = std::chrono::seconds(0);
     options.clean_start = true;
     options.will = std::move(will);
+    // Sparkplug B 3.0 over MQTT 5: a DISCONNECT says the NDEATH too.
+    options.disconnect_with_will = true;
     options.session_bound = true;
     // Hears its own publications back (ClientOptions::hear_own).
     options.hear_own = true;

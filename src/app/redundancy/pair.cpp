@@ -134,6 +134,10 @@ void Pair::make_history() {
         [this] { return parts_->tree_backlog(); }, clock_);
     history_->set_replay_gate(
         [this] { return lease_->lease().renewed_since_leading(clock_.monotonic()); });
+    if (parts.session.history != nullptr) {
+        history_->add_session_sink(*parts.session.history, parts.session.history_ready,
+                                   parts.session.history_backlog);
+    }
     parts.north.set_tap(*history_);
     parts.tree.set_sample_tokens(
         [this](const SampleBatch& batch) { return history_->token_for(batch); });

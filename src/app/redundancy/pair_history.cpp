@@ -39,10 +39,19 @@ void PairHistory::exchanges_changed(const ExchangeSet& running,
         old->second->window.set_bounds(bounds, now);
         kept.insert(exchanges_.extract(old));
     }
-    // What a stopped exchange had due goes with it (its plan dies after this call).
-    due_.erase(due_.begin(), due_.begin() + static_cast<std::ptrdiff_t>(next_due_));
-    next_due_ = 0;
-    std::erase_if(due_, [&](const Due& due) { return !kept.contains(due.exchange->plan); });
+    // What a stopped exchange had due goes with it (its plan dies after this call); each
+    // sink's place moves back by what went before it.
+    std::vector<Due> left;
+    std::size_t json_place = 0, session_place = 0;
+    for (std::size_t i = 0; i < due_.size(); ++i) {
+        if (!kept.contains(due_[i].exchange->plan)) continue;
+        if (i < next_due_) ++json_place;
+        if (session_ && i < session_->next_due) ++session_place;
+        left.push_back(std::move(due_[i]));
+    }
+    due_ = std::move(left);
+    next_due_ = json_place;
+    if (session_) session_->next_due = session_place;
     for (const auto& [plan, stopped] : exchanges_) acked_.forget(stopped->id);
     exchanges_ = std::move(kept);
 }
@@ -94,6 +103,7 @@ std::size_t PairHistory::take_due(Exchange& exchange, core::MonoTime now, bool& 
 void PairHistory::took_over(core::MonoTime now) {
     due_.clear();
     next_due_ = 0;
+    if (session_) session_->next_due = 0;
     acked_.clear();
     std::size_t samples = 0;
     std::size_t unmatched = 0;
@@ -108,8 +118,8 @@ void PairHistory::took_over(core::MonoTime now) {
         return a.sample.arrived < b.sample.arrived;
     });
     spdlog::info(
-        "pair: taking over, {} sample(s) the leader had not had acknowledged go on _history{}",
-        samples,
+        "pair: taking over, {} sample(s) the leader had not had acknowledged go on _history{}{}",
+        samples, session_ ? " and to the Sparkplug hosts, once the edge node is born" : "",
         unmatched == 0 ? std::string()
                        : " (" + std::to_string(unmatched) +
                              " exchange(s) without their watermark's sample in the window: "
@@ -123,11 +133,17 @@ void PairHistory::stood_by() {
     for (auto& [topic, key] : watermarks()) heard_.insert_or_assign(topic, key);
     due_.clear();
     next_due_ = 0;
+    if (session_) session_->next_due = 0;
     acked_.clear();
 }
 
+void PairHistory::add_session_sink(history::HistorySink& sink, std::function<bool()> ready,
+                                   std::function<std::uint64_t()> backlog) {
+    session_ = SessionSink{&sink, std::move(ready), std::move(backlog), 0};
+}
+
 void PairHistory::replay_some() {
-    if (next_due_ == due_.size() || (gate_ && !gate_())) return;
+    if (gate_ && !gate_()) return;
     std::size_t handed = 0;
     while (next_due_ < due_.size() && handed < replay_per_call &&
            (!backlog_ || backlog_() < options_.max_backlog)) {
@@ -140,10 +156,31 @@ void PairHistory::replay_some() {
         }
         ++handed;
     }
-    if (next_due_ == due_.size()) {
-        due_.clear();
-        next_due_ = 0;
+    replay_to_session();
+    drop_replayed();
+}
+
+void PairHistory::replay_to_session() {
+    if (!session_ || !session_->ready()) return;
+    auto& session = *session_;
+    std::size_t handed = 0;
+    while (session.next_due < due_.size() && handed < replay_per_call &&
+           session.backlog() < options_.max_backlog) {
+        const auto& due = due_[session.next_due++];
+        const auto& sample = due.sample;
+        const SampleBatch batch{*due.exchange->plan, sample.quality, sample.timestamp_ms, false,
+                                sample.tags,         sample.key};
+        // No token: the watermarks are the JSON tree's alone.
+        if (session.sink->replay(batch, 0)) ++session_replayed_;
+        ++handed;
     }
+}
+
+void PairHistory::drop_replayed() {
+    if (next_due_ < due_.size() || (session_ && session_->next_due < due_.size())) return;
+    due_.clear();
+    next_due_ = 0;
+    if (session_) session_->next_due = 0;
 }
 
 }  // namespace eip2mqtt::app::redundancy

@@ -36,7 +36,11 @@ public:
 SessionHooks session_hooks(northbound::sparkplug::SparkplugModule* node) {
     if (node == nullptr) return {};
     return {[node](std::optional<std::uint8_t> heard) { node->open_session(heard); },
-            [node] { node->end_session(); }, [node] { return node->session_bd_seq(); }};
+            [node] { node->end_session(); },
+            [node] { return node->session_bd_seq(); },
+            &node->node(),
+            [node] { return node->node().may_send_data(); },
+            [node] { return node->backlog(); }};
 }
 
 class PairRole final : public Role {

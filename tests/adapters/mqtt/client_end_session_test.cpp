@@ -19,13 +19,6 @@ ClientOptions session_bound(ClientOptions options, WillCount wills) {
     return options;
 }
 
-std::size_t count_on(const std::vector<Received>& all, const std::string& topic,
-                     const std::string& payload) {
-    std::size_t count = 0;
-    for (const auto& r : all) count += r.topic == topic && r.payload == payload ? 1 : 0;
-    return count;
-}
-
 TEST_F(ClientFixture, AnEndedSessionSaysItsWillLastAndConnectsAgainOnlyWhenStarted) {
     Mosquitto broker;
     MqttRecorder recorder(broker.url(), {"gw/#"}, "end-recorder");

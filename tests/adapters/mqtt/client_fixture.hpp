@@ -56,6 +56,14 @@ inline std::function<Message()> numbered_will(WillCount wills, std::string topic
     return [wills, topic] { return msg(topic, std::to_string(++*wills), 1, false, false); };
 }
 
+/// How many of `all` are on `topic` with `payload`.
+inline std::size_t count_on(const std::vector<Received>& all, const std::string& topic,
+                            const std::string& payload) {
+    std::size_t count = 0;
+    for (const auto& r : all) count += r.topic == topic && r.payload == payload ? 1 : 0;
+    return count;
+}
+
 /// A Client driven by an io_context on its own thread, as the gateway drives it.
 class ClientFixture : public ::testing::Test {
 protected:

@@ -105,6 +105,27 @@ TEST(SparkplugPayload, TahuReadsEveryDatatypeAsWritten) {
     EXPECT_EQ(properties["max"]["value"], -7);
 }
 
+TEST(SparkplugPayload, TahuReadsNoValueFromADataMetricWithoutItsDatatype) {
+    // Why DDATA and NDATA keep each metric's datatype, which Sparkplug B 3.0 recommends leaving
+    // out (docs/sparkplug.md, "Conformance"): Tahu's decoder, and the hosts built on it, read a
+    // value by the datatype it comes with, and find none without it.
+    org::eclipse::tahu::protobuf::Payload proto;
+    proto.set_timestamp(1700000000000);
+    proto.set_seq(1);
+    auto& typed = *proto.add_metrics();
+    typed.set_alias(3);
+    typed.set_datatype(static_cast<std::uint32_t>(DataType::int32));
+    typed.set_int_value(42);
+    auto& untyped = *proto.add_metrics();
+    untyped.set_alias(4);
+    untyped.set_int_value(42);
+    const auto tahu = test::tahu_decode(proto.SerializeAsString());
+    ASSERT_EQ(tahu["metrics"].size(), 2u);
+    EXPECT_EQ(tahu["metrics"][0]["value"], 42);
+    const auto& untyped_read = tahu["metrics"][1];
+    EXPECT_TRUE(!untyped_read.contains("value") || untyped_read["value"].is_null()) << untyped_read;
+}
+
 TEST(SparkplugCommand, MetricsAreReadByTheirDatatypeWithNameOrAlias) {
     Payload command;
     command.metrics = {metric("PRESSURE", 3, DataType::int16, Value{std::int64_t{-5}}),
@@ -139,6 +160,35 @@ TEST(SparkplugCommand, AValueOfAnotherKindThanItsDatatypeSaysIsNoValue) {
     EXPECT_FALSE(decoded.value()[0].value.has_value());
     EXPECT_FALSE(decoded.value()[1].datatype.has_value());
     EXPECT_FALSE(decoded.value()[1].value.has_value());
+}
+
+TEST(SparkplugCommand, AMetricWithoutADatatypeIsReadAsTheDatatypeItIsGiven) {
+    // Sparkplug B 3.0 recommends commands without datatypes: the birth said them.
+    org::eclipse::tahu::protobuf::Payload proto;
+    proto.add_metrics()->set_int_value(0xFFFFFFFB);  // -5 as an Int8, Int16 or Int32
+    proto.add_metrics()->set_long_value(5000000000);
+    proto.add_metrics()->set_boolean_value(true);
+    auto& null = *proto.add_metrics();
+    null.set_is_null(true);
+    null.set_double_value(1.0);
+    const auto decoded = decode_command(proto.SerializeAsString());
+    ASSERT_TRUE(decoded.ok());
+    const auto& metrics = decoded.value();
+    ASSERT_EQ(metrics.size(), 4u);
+    for (const auto& metric : metrics) {
+        EXPECT_FALSE(metric.datatype.has_value());
+        EXPECT_FALSE(metric.value.has_value());  // nothing says what it is yet
+    }
+    EXPECT_TRUE(
+        core::plan::same_value(*metrics[0].value_as(DataType::int16), Value{std::int64_t{-5}}));
+    EXPECT_TRUE(core::plan::same_value(*metrics[0].value_as(DataType::uint32),
+                                       Value{std::uint64_t{0xFFFFFFFB}}));
+    EXPECT_TRUE(core::plan::same_value(*metrics[1].value_as(DataType::uint64),
+                                       Value{std::uint64_t{5000000000}}));
+    EXPECT_FALSE(metrics[1].value_as(DataType::uint32).has_value());   // over its range
+    EXPECT_FALSE(metrics[1].value_as(DataType::float32).has_value());  // another kind
+    EXPECT_TRUE(core::plan::same_value(*metrics[2].value_as(DataType::boolean), Value{true}));
+    EXPECT_FALSE(metrics[3].value_as(DataType::float64).has_value());  // is_null
 }
 
 TEST(SparkplugCommand, HostileBytesAreAnErrorNotACrash) {

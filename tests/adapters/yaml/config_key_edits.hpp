@@ -124,6 +124,9 @@ struct Edit {
     std::string to;
     /// What the plan names; empty: the key itself, changed.
     std::vector<std::pair<std::string, Kind>> named = {};
+    /// The key takes one value only (kept so that older files load): any other is refused, with
+    /// this text in the message.
+    std::string refused = {};
 };
 
 inline const std::vector<Edit> edits = {
@@ -188,7 +191,7 @@ inline const std::vector<Edit> edits = {
     {"sparkplug.edge_node_id", "node-a", "node-b"},
     {"sparkplug.primary_host_id", "scada-a", "scada-b"},
     {"sparkplug.uns", "uns: true", "uns: false"},
-    {"sparkplug.qos", "qos: 0", "qos: 1"},
+    {"sparkplug.qos", "qos: 0", "qos: 1", {}, "sparkplug qos 1: Sparkplug B 3.0 publishes"},
     {"sparkplug.max_packet_bytes", "max_packet_bytes: 65536", "max_packet_bytes: 32768"},
     {"redundancy.pair", "pair: turbine-gw", "pair: boiler-gw"},
     {"redundancy.takeover_ms", "takeover_ms: 2000", "takeover_ms: 3000"},

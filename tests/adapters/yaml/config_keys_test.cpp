@@ -114,6 +114,14 @@ TEST_F(ConfigKeys, AChangeToAnyKeyIsNamedAloneWithItsRule) {
         ASSERT_EQ(complete.find(edit.from, at + 1), std::string::npos) << "found twice";
         auto text = complete;
         text.replace(at, edit.from.size(), edit.to);
+        if (!edit.refused.empty()) {
+            const auto result = load_config_text(text, dir_.path() + "/gateway.yaml");
+            ASSERT_FALSE(result.ok());
+            std::string errors;
+            for (const auto& d : result.error()) errors += d.to_string() + "\n";
+            EXPECT_NE(errors.find(edit.refused), std::string::npos) << errors;
+            continue;
+        }
 
         const auto changes = plan(running, load(text));
         const auto found = rules.find(edit.key);

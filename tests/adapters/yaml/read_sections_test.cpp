@@ -161,14 +161,14 @@ TEST(LoadConfig, SparkplugSectionWithItsDefaults) {
     EXPECT_TRUE(config.sparkplug.primary_host_id.empty());
     EXPECT_EQ(config.sparkplug.max_packet_bytes, 0u);
     const auto full = good(
-        "sparkplug: { group_id: g, edge_node_id: n, primary_host_id: scada, uns: false, qos: 1, "
+        "sparkplug: { group_id: g, edge_node_id: n, primary_host_id: scada, uns: false, qos: 0, "
         "max_packet_bytes: 131072 }\n" +
         minimal_exchange);
     EXPECT_EQ(full.sparkplug.max_packet_bytes, 131072u);
     EXPECT_EQ(core::config::sparkplug_node_id(full), "n");
     EXPECT_EQ(full.sparkplug.primary_host_id, "scada");
     EXPECT_FALSE(full.sparkplug.uns);
-    EXPECT_EQ(full.sparkplug.qos, 1);
+    EXPECT_EQ(full.sparkplug.qos, 0);
     EXPECT_FALSE(good(minimal_exchange).sparkplug.enabled());
 }
 
@@ -200,7 +200,10 @@ TEST(LoadConfig, SparkplugIdsFollowTheTopicElementRules) {
     EXPECT_NE(text.find("test.yaml:3:3: sparkplug edge_node_id 'gw+'"), std::string::npos) << text;
     EXPECT_NE(text.find("test.yaml:4:3: sparkplug primary_host_id 'sc#ada'"), std::string::npos)
         << text;
-    EXPECT_NE(text.find("test.yaml:5:"), std::string::npos) << text;  // qos 0 or 1
+    EXPECT_NE(text.find("test.yaml:5:3: sparkplug qos 2: Sparkplug B 3.0 publishes births and "
+                        "data at QoS 0 only"),
+              std::string::npos)
+        << text;
     EXPECT_NE(text.find("test.yaml:6:"), std::string::npos) << text;  // not a boolean
     EXPECT_NE(text.find("test.yaml:8:"), std::string::npos) << text;  // not a size
     EXPECT_NE(text.find("unknown key 'grop_id' in sparkplug (did you mean 'group_id'?)"),
@@ -208,6 +211,11 @@ TEST(LoadConfig, SparkplugIdsFollowTheTopicElementRules) {
         << text;
     EXPECT_NE(text.find("exchange name (a Sparkplug device ID) 'area/ex'"), std::string::npos)
         << text;
+    // QoS 1 was allowed by earlier releases: refused now, with the reason.
+    EXPECT_NE(dump(bad("sparkplug: { group_id: g, qos: 1 }\n" + minimal_exchange))
+                  .find("sparkplug qos 1: Sparkplug B 3.0 publishes births and data at QoS 0 only "
+                        "(hosts judge an edge node by it); remove the key"),
+              std::string::npos);
     // Without group_id there is no Sparkplug: say so rather than ignore the section.
     EXPECT_NE(dump(bad("sparkplug: { edge_node_id: n }\n" + minimal_exchange))
                   .find("sparkplug lacks 'group_id'"),

@@ -111,6 +111,35 @@ TEST_F(PairHistoryTest, TheReplayWaitsWhileTheConnectionIsBacklogged) {
     EXPECT_FALSE(history_.replaying());
 }
 
+TEST_F(PairHistoryTest, TheSessionsSinkGetsTheSameReplayInOrderOnceItIsReady) {
+    test::RecordingHistorySink node;
+    bool born = false;
+    std::uint64_t node_backlog = 0;
+    history_.add_session_sink(
+        node, [&] { return born; }, [&] { return node_backlog; });
+    for (std::uint16_t n = 1; n <= 3; ++n) report(line_, n);
+    report(tank_, 1);
+    history_.heard({{"line", SampleKey{1}}});
+    history_.took_over(clock_.monotonic());
+    EXPECT_EQ(replayed().size(), 3u);    // the JSON tree's at once
+    EXPECT_TRUE(node.replayed.empty());  // the node is not born yet
+    EXPECT_TRUE(history_.replaying());   // kept for it
+    born = true;
+    node_backlog = 1000;  // its connection is full: it waits
+    history_.on_tick();
+    EXPECT_TRUE(node.replayed.empty());
+    node_backlog = 0;
+    history_.on_tick();
+    ASSERT_EQ(node.replayed.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(node.replayed[i].exchange, sink_.replayed[i].exchange);
+        EXPECT_EQ(node.replayed[i].samples, sink_.replayed[i].samples);
+        EXPECT_EQ(node.replayed[i].token, 0u);  // the watermarks are the JSON tree's alone
+    }
+    EXPECT_EQ(history_.session_replayed(), 3u);
+    EXPECT_FALSE(history_.replaying());
+}
+
 TEST_F(PairHistoryTest, SteppingDownEndsTheReplayAndForgetsItsWatermarks) {
     report(line_, 1);
     history_.on_acknowledged(history_.token_for(sample(line_, 1)));

@@ -34,7 +34,7 @@ protected:
                 std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
                 std::to_string(::getpid()))) {
         std::filesystem::remove_all(dir_);
-        std::filesystem::create_directories(dir_);
+        std::filesystem::create_directories(dir_ / "state");
     }
     ~NorthboundRig() override { std::filesystem::remove_all(dir_); }
 

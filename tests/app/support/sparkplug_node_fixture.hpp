@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,15 @@ inline std::string command(std::vector<adapters::sparkplug::Metric> metrics) {
     return adapters::sparkplug::encode(payload);
 }
 
+/// `command(metrics)` with no datatype on any metric: the form Sparkplug B 3.0 recommends for
+/// NCMD and DCMD (a host that uses aliases sends alias and value alone).
+inline std::string untyped_command(std::vector<adapters::sparkplug::Metric> metrics) {
+    SparkplugProto proto;
+    EXPECT_TRUE(proto.ParseFromString(command(std::move(metrics))));
+    for (auto& metric : *proto.mutable_metrics()) metric.clear_datatype();
+    return proto.SerializeAsString();
+}
+
 inline adapters::sparkplug::Metric by_name(std::string name, adapters::sparkplug::DataType type,
                                            core::plan::Value value) {
     return {std::move(name), std::nullopt, now_ms, type, value, false, {}};
@@ -55,10 +65,10 @@ protected:
     using Value = core::plan::Value;
     using Quality = core::quality::Quality;
 
-    explicit SparkplugNodeTest(std::string primary_host = "", int qos = 0,
-                               std::size_t max_packet_bytes = 0)
-        : node_({"plant1", "gw1", std::move(primary_host), qos, max_packet_bytes}, publisher_,
-                *this, wall_clock_) {
+    explicit SparkplugNodeTest(std::string primary_host = "", std::size_t max_packet_bytes = 0,
+                               std::optional<std::uint8_t> last_bd_seq = std::nullopt)
+        : node_({"plant1", "gw1", std::move(primary_host), max_packet_bytes, last_bd_seq},
+                publisher_, *this, wall_clock_, [this] { ++brokers_left_; }) {
         node_.exchanges_changed({{&consumed_}, {&produced_}}, {});
         node_.tick(clock_);
     }
@@ -122,12 +132,13 @@ protected:
     /// Starts a day into the steady clock, as a gateway's does.
     core::MonoTime clock_ = core::MonoTime{} + std::chrono::hours(24);
     FakeClock wall_clock_{core::WallTime{std::chrono::milliseconds(now_ms)}};
+    int brokers_left_ = 0;  ///< the node's leave_broker() calls
     app::northbound::sparkplug::SparkplugNode node_;
 };
 
 class SparkplugPrimaryHostTest : public SparkplugNodeTest {
 protected:
-    explicit SparkplugPrimaryHostTest(int qos = 0) : SparkplugNodeTest("scada", qos) {}
+    SparkplugPrimaryHostTest() : SparkplugNodeTest("scada") {}
     void state(std::string payload) {
         adapters::mqtt::Incoming in;
         in.topic = "spBv1.0/STATE/scada";

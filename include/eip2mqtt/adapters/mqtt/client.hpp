@@ -68,6 +68,10 @@ struct ClientOptions {
     /// bdSeq that changes with each connection); a clean stop() publishes the last one made,
     /// after the queue was flushed. Use it or availability_topic, not both.
     std::function<Message()> will;
+    /// MQTT 5: every DISCONNECT carries the reason code Disconnect with Will Message (0x04), so
+    /// that the broker says the will as well, after the client said it (Sparkplug B 3.0's rule
+    /// for the NDEATH). Off, a clean DISCONNECT discards the will.
+    bool disconnect_with_will = false;
     /// What was published for one connection means nothing on the next (Sparkplug: sequence
     /// numbers and aliases start again with every birth). Publications made while disconnected
     /// are dropped, and so is what was queued or in flight when the connection went: the
@@ -156,6 +160,10 @@ public:
     /// reconnect until start() again, whose connection makes a new will. An attempt in
     /// progress is cancelled. Returns without waiting for the broker. Nothing when not started.
     void end_session();
+    /// For a session_bound client: ends the session as end_session() does, then connects to
+    /// the next broker of the list (the same when the list has one), with a new will. A
+    /// Sparkplug node whose primary host went offline looks for it there.
+    void leave_broker();
 
     /// Publishes `offline`, waits up to `flush_timeout` for queued and in-flight publications,
     /// then disconnects and ends the sender thread. Blocks the calling thread: call it after

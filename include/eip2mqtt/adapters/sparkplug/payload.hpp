@@ -66,13 +66,33 @@ struct Payload {
 /// The protobuf bytes of `payload`.
 std::string encode(const Payload& payload);
 
-/// A metric of a host's command (NCMD, DCMD): what it names and the value it carries, read as
-/// its datatype says. Values of other kinds than ours (strings, datasets) are refused.
+/// A command metric's value as the payload carries it, before a datatype gives it a meaning:
+/// which field holds it (int_value and long_value are both unsigned on the wire).
+struct IntField {
+    std::uint32_t raw = 0;
+    friend bool operator==(const IntField&, const IntField&) = default;
+};
+struct LongField {
+    std::uint64_t raw = 0;
+    friend bool operator==(const LongField&, const LongField&) = default;
+};
+using WireValue = std::variant<std::monostate, IntField, LongField, float, double, bool>;
+
+/// A metric of a host's command (NCMD, DCMD): what it names and the value it carries. Values of
+/// other kinds than ours (strings, datasets) are refused.
 struct CommandMetric {
     std::string name;
     std::optional<std::uint64_t> alias;
     std::optional<DataType> datatype;
-    std::optional<core::plan::Value> value;  ///< nullopt: is_null or no value
+    /// Read as `datatype` says; nullopt: is_null, no value, a value of another kind, or no
+    /// datatype (value_as then).
+    std::optional<core::plan::Value> value;
+    WireValue wire;  ///< monostate: is_null or no value of a kind we read
+
+    /// The value read as `type` says. Sparkplug B 3.0 recommends commands without datatypes
+    /// (a host that uses aliases sends alias and value alone): the datatype is then that of the
+    /// metric it names, in the birth.
+    std::optional<core::plan::Value> value_as(DataType type) const;
 };
 
 /// The metrics of a command; an error text for bytes that are not a Sparkplug payload.

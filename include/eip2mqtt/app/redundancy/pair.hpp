@@ -62,6 +62,12 @@ struct SessionHooks {
     std::function<void()> end;
     /// The bdSeq of the open session; nullopt while none is.
     std::function<std::optional<std::uint8_t>()> bd_seq;
+    /// Where the session takes history (the edge node's historical DDATA): what the old leader
+    /// had not had acknowledged reaches its hosts too after a takeover, once `history_ready`
+    /// (the node is born), at the pace of its connection (`history_backlog`). Null: none.
+    history::HistorySink* history = nullptr;
+    std::function<bool()> history_ready;
+    std::function<std::uint64_t()> history_backlog;
 };
 
 /// What the pair wires, borrowed: each must outlive the Pair's use of it (until stop()).

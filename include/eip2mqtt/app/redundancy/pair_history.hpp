@@ -12,6 +12,10 @@
 ///   every windowed sample newer than its exchange's watermark, oldest first: at once as far as
 ///   the connection's backlog allows, the rest on the next ticks. Its own watermarks start at
 ///   those it heard.
+/// - The same samples, in the same order, go to the session's sink too when there is one (the
+///   Sparkplug edge node: historical DDATA), from when it may take them (born) on, at its own
+///   pace (add_session_sink). The watermarks stay the JSON tree's: the one record of what the
+///   old leader had delivered.
 ///
 /// Threading: the loop only.
 
@@ -20,6 +24,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -74,6 +79,10 @@ public:
     /// leads was acknowledged, so it led, reaching the broker, after it took over): a unit cut
     /// off as it takes the lead hands nothing to a connection that carries nothing.
     void set_replay_gate(std::function<bool()> gate) { gate_ = std::move(gate); }
+    /// Replays to `sink` as well, with no acknowledgement token, while `ready` says it may take
+    /// history and its connection holds fewer than max_backlog publications (`backlog`).
+    void add_session_sink(history::HistorySink& sink, std::function<bool()> ready,
+                          std::function<std::uint64_t()> backlog);
     /// This unit leads from `now` on: the replay of what the leader had not had acknowledged.
     void took_over(core::MonoTime now);
     /// This unit stands by: nothing more is replayed, no watermark is its own; those it had
@@ -82,6 +91,8 @@ public:
     /// Every tick: the replay goes on.
     void on_tick() { replay_some(); }
     bool replaying() const { return !due_.empty(); }
+    /// Samples the session's sink published after taking over.
+    std::uint64_t session_replayed() const { return session_replayed_; }
 
     const PairHistoryCounters& counters() const { return counters_; }
 
@@ -100,6 +111,10 @@ private:
     /// The windowed samples of `exchange` newer than its heard watermark, onto due_; how many.
     std::size_t take_due(Exchange& exchange, core::MonoTime now, bool& found);
     void replay_some();
+    /// The session sink's part of replay_some().
+    void replay_to_session();
+    /// Empties due_ once every sink has replayed it.
+    void drop_replayed();
 
     PairHistoryOptions options_;
     history::HistorySink& sink_;
@@ -115,6 +130,14 @@ private:
     std::vector<Due> due_;  ///< oldest first, from next_due_ on
     std::size_t next_due_ = 0;
     PairHistoryCounters counters_;
+    struct SessionSink {
+        history::HistorySink* sink = nullptr;
+        std::function<bool()> ready;
+        std::function<std::uint64_t()> backlog;
+        std::size_t next_due = 0;  ///< its own place in due_
+    };
+    std::optional<SessionSink> session_;
+    std::uint64_t session_replayed_ = 0;
 };
 
 }  // namespace eip2mqtt::app::redundancy

@@ -170,7 +170,9 @@ struct SparkplugSection {
     std::string edge_node_id;  ///< default: sparkplug_node_id()
     std::string primary_host_id;
     bool uns = true;  ///< keep the JSON topic tree as well
-    /// QoS of births and data; the specification says 0 (the NDEATH will is always 1).
+    /// Always 0: Sparkplug B 3.0 sends births and data at QoS 0 (the NDEATH will at 1). The key
+    /// stays so that configurations of earlier releases that set `qos: 0` still load; 1 is
+    /// refused (docs/sparkplug.md, "Conformance").
     int qos = 0;
     /// The largest message the broker takes, for one that does not say (MQTT 5 CONNACK's Maximum
     /// Packet Size); 0: the broker's alone. `check` warns of a birth larger than this (or

@@ -70,6 +70,8 @@ public:
     void on_stopped();
     /// Client::end_session: back to idle, what waits dropped, the will said, DISCONNECT.
     void end_session();
+    /// Client::leave_broker: end_session(), then a connect to the next broker of the list.
+    void leave_broker();
 
     // --- any thread ------------------------------------------------------------------------
     bool connected() const { return counters_.connected; }
@@ -85,7 +87,7 @@ public:
     ::mqtt::delivery_token_ptr publish_last_will();
     /// Publishes the `offline` availability, if there is one; the token to wait for, if any.
     ::mqtt::delivery_token_ptr publish_offline(core::MonoTime deadline);
-    /// A clean DISCONNECT (the broker then publishes no will).
+    /// A clean DISCONNECT (the broker then publishes no will, unless disconnect_with_will).
     void disconnect();
     void mark_disconnected() { counters_.connected = false; }
 
@@ -126,6 +128,9 @@ private:
     void on_connection_lost(std::string cause, bool silent = false);
     /// Paho finished the disconnect of end_session(): idle, or connecting if start() came.
     void on_session_ended();
+    /// A DISCONNECT's options: its timeout, and with ClientOptions::disconnect_with_will over
+    /// MQTT 5 the reason code that makes the broker say the will.
+    ::mqtt::disconnect_options disconnect_options(std::chrono::seconds timeout) const;
     /// Arms the backoff timer; returns the delay.
     std::chrono::milliseconds schedule_reconnect();
 

@@ -7,6 +7,19 @@
 
 #include "adapters/mqtt/detail/connection.hpp"
 
+namespace mqtt {
+
+// Paho C++ 1.2.0 fills its disconnect options as version 0 of Paho C's structure, which Paho C
+// reads without a reason code (MQTTAsync_disconnect1 takes it from version 1 on), and has no
+// setter for the version: a reason set is never sent. The class it names a friend for its own
+// tests is the one way to the field.
+class disconnect_options_test {
+public:
+    static void send_reason_code(disconnect_options& options) { options.opts_.struct_version = 1; }
+};
+
+}  // namespace mqtt
+
 namespace eip2mqtt::adapters::mqtt::detail {
 
 namespace paho = ::mqtt;
@@ -33,6 +46,12 @@ void Connection::on_connect_failed(std::string reason, int return_code) {
 }
 
 void Connection::on_connection_lost(std::string cause, bool silent) {
+    // A connection ended on purpose and lost before Paho finished its DISCONNECT (the broker
+    // went meanwhile): Paho may never answer that DISCONNECT, and the session is over anyway.
+    if (state_ == State::ending) {
+        on_session_ended();
+        return;
+    }
     if (state_ != State::connected) {
         return;
     }
@@ -90,13 +109,33 @@ void Connection::end_session() {
         try {
             // Paho sends the will before the DISCONNECT (waiting up to the timeout for its
             // PUBACK), and cancels an attempt in progress. Nothing here waits for it.
-            paho_.disconnect(std::chrono::seconds(1), nullptr, disconnect_listener_);
+            const auto token = paho_.disconnect(disconnect_options(std::chrono::seconds(1)));
             state_ = State::ending;
+            // Paho takes no listener with options: one set after a disconnect that completed
+            // meanwhile is never called, so that case is answered here (on_session_ended()
+            // runs once: the second finds the state moved on).
+            token->set_action_callback(disconnect_listener_);
+            if (token->is_complete()) loop_.post([this] { on_session_ended(); });
         } catch (const paho::exception& e) {
             spdlog::warn("{} disconnect failed: {}", options_.log_name, e.what());
         }
     }
     spdlog::info("{} session ended with {}", options_.log_name, brokers_.url());
+}
+
+void Connection::leave_broker() {
+    end_session();
+    brokers_.move_to_next();
+    start();
+}
+
+paho::disconnect_options Connection::disconnect_options(std::chrono::seconds timeout) const {
+    paho::disconnect_options options(timeout);
+    if (options_.disconnect_with_will && options_.version == 5) {
+        options.set_reason_code(paho::ReasonCode::DISCONNECT_WITH_WILL_MESSAGE);
+        paho::disconnect_options_test::send_reason_code(options);
+    }
+    return options;
 }
 
 void Connection::on_session_ended() {
@@ -158,7 +197,7 @@ paho::delivery_token_ptr Connection::publish_offline(core::MonoTime deadline) {
 
 void Connection::disconnect() {
     try {
-        paho_.disconnect(paho::disconnect_options(std::chrono::seconds(1)))
+        paho_.disconnect(disconnect_options(std::chrono::seconds(1)))
             ->wait_for(std::chrono::seconds(2));
     } catch (const paho::exception& e) {
         spdlog::warn("{} disconnect failed: {}", options_.log_name, e.what());

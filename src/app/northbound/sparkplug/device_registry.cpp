@@ -29,6 +29,7 @@ void DeviceRegistry::exchanges_changed(const ExchangeSet& running) {
             device = std::move(devices_[old->second]);
         } else {
             device.values.resize(plan->tags.size());
+            device.reported.resize(plan->tags.size());
             device.timestamps.resize(plan->tags.size(), 0);
         }
         device.plan = plan;
@@ -82,9 +83,10 @@ std::optional<std::size_t> DeviceRegistry::tag_of(
     return std::nullopt;
 }
 
-void DeviceRegistry::fill_birth(const Device& device, adapters::sparkplug::Payload& payload,
+void DeviceRegistry::fill_birth(Device& device, adapters::sparkplug::Payload& payload,
                                 std::int64_t now_ms) {
     const auto& plan = *device.plan;
+    device.reported = device.values;
     payload.metrics.clear();
     payload.metrics.reserve(plan.tags.size());
     for (std::size_t i = 0; i < plan.tags.size(); ++i) {
@@ -115,12 +117,17 @@ void DeviceRegistry::fill_birth(const Device& device, adapters::sparkplug::Paylo
     }
 }
 
-void DeviceRegistry::fill_data(const Device& device, const SampleBatch& batch, bool historical,
+void DeviceRegistry::fill_data(Device& device, const SampleBatch& batch, bool historical,
                                adapters::sparkplug::Payload& payload) {
     payload.metrics.resize(batch.samples.size());
-    for (std::size_t i = 0; i < batch.samples.size(); ++i) {
-        const auto& sample = batch.samples[i];
-        auto& metric = payload.metrics[i];
+    std::size_t filled = 0;
+    for (const auto& sample : batch.samples) {
+        if (!historical) {
+            auto& reported = device.reported[sample.tag];
+            if (reported && core::plan::same_value(*reported, sample.value)) continue;
+            reported = sample.value;
+        }
+        auto& metric = payload.metrics[filled++];
         metric.name.clear();
         metric.alias = device.alias_base + sample.tag;
         metric.timestamp_ms = static_cast<std::uint64_t>(batch.timestamp_ms);
@@ -130,6 +137,7 @@ void DeviceRegistry::fill_data(const Device& device, const SampleBatch& batch, b
         metric.historical = historical;
         metric.properties.clear();
     }
+    payload.metrics.resize(filled);
 }
 
 }  // namespace eip2mqtt::app::northbound::sparkplug

@@ -25,7 +25,15 @@ using core::write::WriteInput;
 using core::write::WriteRejection;
 
 constexpr std::string_view rebirth_name = "Node Control/Rebirth";
-constexpr std::uint64_t rebirth_alias = 1;
+
+/// A rebirth request: `Node Control/Rebirth` by name (it has no alias) set to true, with its
+/// datatype or without (the form the specification recommends for a command).
+bool asks_rebirth(const adapters::sparkplug::CommandMetric& metric) {
+    if (metric.name != rebirth_name) return false;
+    const auto value =
+        metric.datatype ? metric.value : metric.value_as(adapters::sparkplug::DataType::boolean);
+    return value && std::holds_alternative<bool>(*value) && std::get<bool>(*value);
+}
 
 /// A command's value as a JSON write's would be: integers exactly, a float or double that holds
 /// an integer as that integer (WriteInput's contract), others as double.
@@ -70,11 +78,15 @@ std::variant<ExchangeWrite, WriteRejection> device_write(
                     " in exchange " + plan.spec.name};
         }
         const auto& spec = plan.tags[*tag].spec;
-        if (!metric.value) {
+        // Without a datatype (by alias, as hosts that use aliases send it), the tag's own.
+        const auto given = metric.datatype
+                               ? metric.value
+                               : metric.value_as(adapters::sparkplug::datatype_of(spec.type));
+        if (!given) {
             return WriteRejection{WriteError::wrong_type,
                                   spec.name + ": no value of a datatype the gateway takes"};
         }
-        auto value = core::write::validate_write(spec, write_input(*metric.value));
+        auto value = core::write::validate_write(spec, write_input(*given));
         if (!value) {
             return WriteRejection{value.error().error, spec.name + ": " + value.error().message};
         }
@@ -128,10 +140,7 @@ NodeCommands::Asked NodeCommands::on_node_command(const adapters::mqtt::Incoming
         return Asked::nothing;
     }
     for (const auto& metric : metrics.value()) {
-        const bool rebirth =
-            metric.name == rebirth_name || (metric.name.empty() && metric.alias == rebirth_alias);
-        if (rebirth && metric.value && std::holds_alternative<bool>(*metric.value) &&
-            std::get<bool>(*metric.value)) {
+        if (asks_rebirth(metric)) {
             if (const auto count = rebirth_log_.record(now)) {
                 spdlog::info("Sparkplug rebirth requested by NCMD{}",
                              in_the_last_minute(count, "requests"));
@@ -217,8 +226,8 @@ NodeCommands::Asked NodeCommands::host_changed(bool online, core::MonoTime now) 
                          core::printable(primary_host_id_), changes);
         } else {
             spdlog::warn(
-                "Sparkplug primary host {} is offline: NDEATH, publishing nothing until it is "
-                "back{}",
+                "Sparkplug primary host {} is offline: a born node says its NDEATH, leaves its "
+                "broker for the next of mqtt.url and waits there for the host{}",
                 core::printable(primary_host_id_), changes);
         }
     }

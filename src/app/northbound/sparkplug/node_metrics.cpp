@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -56,6 +57,14 @@ std::string exchange_base(const core::plan::ExchangePlan& exchange) {
     return "Exchanges/" + exchange.spec.name + "/";
 }
 
+/// A node metric's alias is its place in the NBIRTH, but for `Node Control/Rebirth`: Sparkplug B
+/// 3.0 forbids an alias on it, so that a host may always ask for a rebirth by its name, even one
+/// that lost the aliases.
+std::optional<std::uint64_t> alias_of(std::size_t index) {
+    if (index == rebirth_metric) return std::nullopt;
+    return index;
+}
+
 }  // namespace
 
 NodeMetrics::NodeMetrics() {
@@ -75,7 +84,8 @@ std::size_t NodeMetrics::add(const std::string& name, DataType type) {
     if (added) {
         MetricValue initial =
             type == DataType::string ? MetricValue{std::string()} : MetricValue{counter(0)};
-        metrics_.push_back({name, type, std::move(initial), false});
+        auto reported = initial;
+        metrics_.push_back({name, type, std::move(initial), false, std::move(reported)});
     }
     return it->second;
 }
@@ -154,8 +164,10 @@ void NodeMetrics::fill_birth(adapters::sparkplug::Payload& payload, std::uint8_t
     payload.metrics.clear();
     for (std::size_t i = 0; i < metrics_.size(); ++i) {
         auto& metric = metrics_[i];
-        payload.metrics.push_back({metric.name, i, now_ms, metric.type, metric.value, false, {}});
+        payload.metrics.push_back(
+            {metric.name, alias_of(i), now_ms, metric.type, metric.value, false, {}});
         metric.changed = false;
+        metric.reported = metric.value;
     }
 }
 
@@ -164,8 +176,17 @@ void NodeMetrics::fill_changes(adapters::sparkplug::Payload& payload, std::uint6
     for (std::size_t i = 0; i < metrics_.size(); ++i) {
         auto& metric = metrics_[i];
         if (!metric.changed) continue;
-        payload.metrics.push_back({{}, i, now_ms, metric.type, metric.value, false, {}});
         metric.changed = false;
+        if (metric.value == metric.reported) continue;
+        metric.reported = metric.value;
+        const auto alias = alias_of(i);
+        payload.metrics.push_back({alias ? std::string() : metric.name,
+                                   alias,
+                                   now_ms,
+                                   metric.type,
+                                   metric.value,
+                                   false,
+                                   {}});
     }
 }
 

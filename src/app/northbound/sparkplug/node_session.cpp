@@ -1,5 +1,5 @@
-// The edge node's session: bdSeq across wills and connections, and the rules that order births
-// after the NDEATH they follow.
+// The edge node's session: bdSeq across wills, connections and restarts, and when births may
+// start.
 
 #include "eip2mqtt/app/northbound/sparkplug/node_session.hpp"
 
@@ -10,8 +10,12 @@
 
 namespace eip2mqtt::app::northbound::sparkplug {
 
-NodeSession::NodeSession(std::string death_topic, bool primary_host)
-    : death_topic_(std::move(death_topic)), primary_host_(primary_host) {}
+NodeSession::NodeSession(std::string death_topic, bool primary_host,
+                         std::optional<std::uint8_t> last_bd_seq)
+    : death_topic_(std::move(death_topic)),
+      primary_host_(primary_host),
+      // 255 is followed by 0.
+      next_bd_seq_(last_bd_seq ? static_cast<std::uint8_t>(*last_bd_seq + 1) : 0) {}
 
 std::uint8_t NodeSession::next_will() {
     // A CONNECT that made no connection registered no will a host could have seen: its bdSeq
@@ -35,7 +39,6 @@ void NodeSession::end_session() {
     session_open_ = false;
     host_online_ = false;
     rebirth_pending_ = false;
-    death_unacknowledged_ = 0;
 }
 
 adapters::mqtt::Message NodeSession::death_message(std::int64_t wall_ms) const {
@@ -61,9 +64,6 @@ void NodeSession::connected() {
     connected_ = true;
     will_connected_ = true;
     born_ = false;
-    // What waited on the last connection is moot: its NDEATH was answered or went with it (the
-    // will said it then), and this connection's births come now or with the host's STATE.
-    death_unacknowledged_ = 0;
     rebirth_pending_ = false;
     // Whatever the host said before this connection may be old: its retained STATE comes
     // again right after our SUBSCRIBE, and births wait for it.
@@ -72,16 +72,9 @@ void NodeSession::connected() {
 
 void NodeSession::set_host_online(bool online) {
     host_online_ = online;
-    if (!online) rebirth_pending_ = false;
-}
-
-bool NodeSession::birth_may_start() const {
-    // A host takes an NDEATH carrying the current NBIRTH's bdSeq for the node's death, and on
-    // one connection every NBIRTH has the same bdSeq: an NDEATH overtaken by the next NBIRTH
-    // would leave the node dead. The NDEATH is QoS 1 and births may be QoS 0, which MQTT does
-    // not keep in order with it: births wait for its PUBACK.
-    const bool death_settled = death_unacknowledged_ == 0 || now_ >= death_deadline_;
-    return may_publish() && death_settled && now_ >= birth_hold_until_;
+    if (online) return;
+    born_ = false;
+    rebirth_pending_ = false;
 }
 
 bool NodeSession::request_birth() {
@@ -90,32 +83,12 @@ bool NodeSession::request_birth() {
     return false;
 }
 
-NodeSession::BirthStart NodeSession::begin_birth() {
+bool NodeSession::begin_birth(bool requested) {
     rebirth_pending_ = false;
-    if (!may_publish()) return BirthStart::refused;
-    // birth_may_start() let it go at the deadline when the NDEATH is still unacknowledged: a
-    // host may see this NBIRTH before the NDEATH, and take the node for dead.
-    const bool unacknowledged = death_unacknowledged_ != 0;
-    death_unacknowledged_ = 0;
-    // In progress from now: another request waits for the hold to end.
-    birth_hold_until_ = now_ + rebirth_hold;
+    if (!may_publish()) return false;
+    if (requested) birth_hold_until_ = now_ + rebirth_hold;
     born_ = false;
-    return unacknowledged ? BirthStart::started_unacknowledged : BirthStart::started;
-}
-
-std::uint64_t NodeSession::death_said() {
-    death_unacknowledged_ = sparkplug_own_token | ++next_ack_token_;
-    death_deadline_ = now_ + death_acknowledgement_timeout;
-    born_ = false;
-    return death_unacknowledged_;
-}
-
-NodeSession::Acknowledged NodeSession::acknowledged(std::uint64_t ack_token) {
-    if ((ack_token & sparkplug_own_token) == 0) return Acknowledged::not_ours;
-    // Not the one births wait for: an NDEATH of an earlier connection.
-    if (ack_token != death_unacknowledged_) return Acknowledged::ours;
-    death_unacknowledged_ = 0;
-    return birth_due() ? Acknowledged::birth_due : Acknowledged::ours;
+    return true;
 }
 
 }  // namespace eip2mqtt::app::northbound::sparkplug

@@ -7,9 +7,9 @@
 
 namespace eip2mqtt::app::northbound::sparkplug {
 
-SeqPublisher::SeqPublisher(adapters::mqtt::Publisher& mqtt, const core::Clock& clock, int qos,
+SeqPublisher::SeqPublisher(adapters::mqtt::Publisher& mqtt, const core::Clock& clock,
                            std::size_t max_packet_bytes)
-    : mqtt_(mqtt), clock_(clock), qos_(qos), configured_max_packet_bytes_(max_packet_bytes) {}
+    : mqtt_(mqtt), clock_(clock), configured_max_packet_bytes_(max_packet_bytes) {}
 
 void SeqPublisher::connected(std::size_t broker_max_packet_bytes) {
     max_packet_bytes_ = configured_max_packet_bytes_ == 0
@@ -30,7 +30,7 @@ bool SeqPublisher::publish(const std::string& topic, adapters::sparkplug::Payloa
         return false;
     }
     seq_ = static_cast<std::uint8_t>(seq_ + 1);
-    message_.qos = qos_;
+    message_.qos = 0;
     message_.retain = false;
     // Every message counts in seq: none may replace another.
     message_.coalesce = false;

@@ -75,7 +75,7 @@ SparkplugBirthSizes sparkplug_birth_sizes(const SparkplugOptions& options,
     measured.primary_host_id.clear();
     measured.max_packet_bytes = 0;
     const WidestClock clock;
-    SparkplugNode node(std::move(measured), publisher, writes, clock);
+    SparkplugNode node(std::move(measured), publisher, writes, clock, [] {});
     ExchangeSet running;
     for (const auto& plan : plans) {
         (plan.spec.direction == core::plan::Direction::produce ? running.produced

@@ -1,8 +1,8 @@
-// The edge node's births and deaths: NBIRTH and DBIRTH, DDEATH and the NDEATH said on the
-// connection, and what brings them. A connection and a reload bring births at once; a host's
-// rebirth request and its return online go through request_birth(), which coalesces a flood
-// of them (NodeSession). A birth over the largest packet the broker takes is not published:
-// the node or the device is then not born.
+// The edge node's births and deaths: NBIRTH and DBIRTH, DDEATH, and what brings them. A
+// connection, a reload and the primary host online bring births at once; a host's rebirth
+// request goes through request_birth(), which answers the first at once and coalesces a flood
+// (NodeSession). A birth over the largest packet the broker takes is not published: the node
+// or the device is then not born. The host offline makes the node leave its broker.
 
 #include <spdlog/spdlog.h>
 
@@ -11,39 +11,17 @@
 namespace eip2mqtt::app::northbound::sparkplug {
 
 void SparkplugNode::request_birth() {
-    if (session_.request_birth()) birth();
+    if (session_.request_birth()) birth(true);
 }
 
 void SparkplugNode::tick(core::MonoTime now) {
     session_.tick(now);
-    if (session_.birth_due()) birth();
+    if (session_.birth_due()) birth(true);
     commands_.flush_logs(now, stats_.node_births, session_.host_online());
 }
 
-bool SparkplugNode::on_acknowledged(std::uint64_t ack_token) {
-    switch (session_.acknowledged(ack_token)) {
-        case NodeSession::Acknowledged::not_ours:
-            return false;
-        case NodeSession::Acknowledged::birth_due:
-            birth();
-            return true;
-        case NodeSession::Acknowledged::ours:
-            return true;
-    }
-    return true;
-}
-
-void SparkplugNode::birth() {
-    const auto start = session_.begin_birth();
-    if (start == NodeSession::BirthStart::refused) return;
-    if (start == NodeSession::BirthStart::started_unacknowledged) {
-        // NodeSession let it go at the deadline: a host may see this NBIRTH before the NDEATH,
-        // and take the node for dead.
-        spdlog::warn(
-            "Sparkplug: the broker did not acknowledge the NDEATH within {} s; births go on "
-            "without it",
-            death_acknowledgement_timeout.count());
-    }
+void SparkplugNode::birth(bool requested) {
+    if (!session_.begin_birth(requested)) return;
     for (auto& device : devices_.devices()) device.born = false;
     out_.restart_seq();  // NBIRTH is seq 0; every message after it counts on
     metrics_.fill_birth(payload_, session_.bd_seq(), static_cast<std::uint64_t>(clock_.wall_ms()));
@@ -95,20 +73,18 @@ void SparkplugNode::birth_refused(const std::string& topic, bool& logged) {
 }
 
 void SparkplugNode::host_online(bool online) {
+    const bool was_born = session_.born();
     session_.set_host_online(online);
     if (online) {
-        request_birth();
+        birth(false);
         return;
     }
-    // The will's NDEATH, said now: the host's applications see the node go.
-    if (session_.born()) publish_death();
-}
-
-void SparkplugNode::publish_death() {
-    auto death = session_.death_message(clock_.wall_ms());
-    death.ack_token = session_.death_said();
-    out_.publish_unsequenced(std::move(death));
     for (auto& device : devices_.devices()) device.born = false;
+    // Sparkplug B 3.0: the node ends its session with this broker (its NDEATH, the will, then
+    // DISCONNECT) and looks for the host on the next one. A node not born yet waits here.
+    if (!was_born) return;
+    session_.left();
+    leave_broker_();
 }
 
 }  // namespace eip2mqtt::app::northbound::sparkplug

@@ -22,26 +22,44 @@ constexpr auto stop_flush_timeout = 3s;
 
 SparkplugModule::SparkplugModule(const core::config::Config& config, const NorthboundParts& parts,
                                  history::StoreAndForward* history)
-    : clock_(parts.clock), history_(history), opens_at_start_(!parts.role.sessions_follow_role()) {
-    auto options = sparkplug_client_options(config, [this] { return node_->next_will(); });
+    : clock_(parts.clock),
+      history_(history),
+      opens_at_start_(!parts.role.sessions_follow_role()),
+      bd_seq_file_(config.gateway.state_dir + "/" + std::string(bd_seq_file_name)) {
+    auto options = sparkplug_client_options(config, [this] { return next_will(); });
     // A session held with the role is the role holder's: all of it (its NDEATH goes another
     // way).
     options.may_send = parts.role.may_send(nullptr);
     client_ = std::make_unique<adapters::mqtt::Client>(parts.loop, std::move(options));
     gate_ = parts.role.session_gate(*client_);
     adapters::mqtt::Publisher& publisher = gate_ ? *gate_ : *client_;
-    node_ =
-        std::make_unique<SparkplugNode>(sparkplug_options(config), publisher, parts.writes, clock_);
+    auto node_options = sparkplug_options(config);
+    node_options.last_bd_seq = kept_bd_seq_ = bd_seq_file_.read();
+    // The primary host offline: the node's session with this broker ends, the next is tried.
+    node_ = std::make_unique<SparkplugNode>(std::move(node_options), publisher, parts.writes,
+                                            clock_, [this] { client_->leave_broker(); });
     add_history();
+}
+
+adapters::mqtt::Message SparkplugModule::next_will() {
+    auto will = node_->next_will();
+    // Before the CONNECT that carries it: a restart goes on from it, whatever came after.
+    if (kept_bd_seq_ != node_->bd_seq()) {
+        kept_bd_seq_ = node_->bd_seq();
+        bd_seq_file_.write(*kept_bd_seq_);
+    }
+    return will;
+}
+
+std::uint64_t SparkplugModule::backlog() const {
+    const auto stats = client_->stats();
+    return stats.queued + stats.in_flight;
 }
 
 void SparkplugModule::add_history() {
     if (history_ == nullptr) return;
-    history::LinkProbe link{[this] { return client_->connected() && node_->born(); },
-                            [this] {
-                                const auto stats = client_->stats();
-                                return stats.queued + stats.in_flight;
-                            }};
+    history::LinkProbe link{[this] { return client_->connected() && node_->may_send_data(); },
+                            [this] { return backlog(); }};
     // Its acknowledgements come through the node's handler (start()), which shares the
     // connection's tokens with the node's own NDEATH.
     history_->add_sink(*node_, std::move(link));
@@ -50,14 +68,11 @@ void SparkplugModule::add_history() {
 void SparkplugModule::start(core::MonoTime /*now*/) {
     client_->set_on_connected(
         [this] { on_event(true, [this] { node_->on_connected(client_->max_packet_size()); }); });
-    // One handler for both owners of the tokens on the node's connection: the node's own
-    // NDEATH (whose acknowledgement may let a pending birth go), else a journal entry.
-    client_->set_on_acknowledged([this](std::uint64_t token) {
-        on_event(false, [&] {
-            if (!node_->on_acknowledged(token) && history_)
-                history_->on_acknowledged(*node_, token);
-        });
-    });
+    // The tokens on the node's connection are the journal entries of its historical DDATA.
+    if (history_) {
+        client_->set_on_acknowledged(
+            [this](std::uint64_t token) { history_->on_acknowledged(*node_, token); });
+    }
     client_->set_on_message([this](const adapters::mqtt::Incoming& message) {
         on_event(false, [&] { node_->on_message(message); });
     });
@@ -70,10 +85,10 @@ void SparkplugModule::tick(const TickTimes& times) {
 }
 
 void SparkplugModule::on_event(bool connection, const std::function<void()>& event) {
-    // Born by this event (a connection without a primary host, the host's STATE online, the
-    // PUBACK of an NDEATH a birth waited for, or a pending rebirth on a tick): the node replays
-    // on the births' heels. Every birth comes from one of these, and what the node was handed
-    // while it was born before and had not had acknowledged goes again.
+    // Born by this event (a connection without a primary host, the host's STATE online, or a
+    // waiting rebirth on a tick): the node replays on the births' heels. Every birth comes from one
+    // of these, and what the node was handed while it was born before and had not had acknowledged
+    // goes again.
     const bool was_born = !connection && node_->born();
     event();
     if (history_ && node_->born() && !was_born) history_->on_connected(*node_, clock_.monotonic());

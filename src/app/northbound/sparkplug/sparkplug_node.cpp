@@ -16,17 +16,19 @@ constexpr std::string_view namespace_prefix = "spBv1.0/";
 SparkplugOptions sparkplug_options(const core::config::Config& config) {
     const auto& section = config.sparkplug;
     return {section.group_id, core::config::sparkplug_node_id(config), section.primary_host_id,
-            section.qos, section.max_packet_bytes};
+            section.max_packet_bytes, std::nullopt};
 }
 
 SparkplugNode::SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt,
-                             WriteHandler& writes, const core::Clock& clock)
+                             WriteHandler& writes, const core::Clock& clock,
+                             std::function<void()> leave_broker)
     : options_(std::move(options)),
       clock_(clock),
-      session_(node_topic("NDEATH"), !options_.primary_host_id.empty()),
-      out_(mqtt, clock, options_.qos, options_.max_packet_bytes),
+      session_(node_topic("NDEATH"), !options_.primary_host_id.empty(), options_.last_bd_seq),
+      out_(mqtt, clock, options_.max_packet_bytes),
       devices_(options_.group_id, options_.edge_node_id),
-      commands_(options_.group_id, options_.edge_node_id, options_.primary_host_id, writes, *this) {
+      commands_(options_.group_id, options_.edge_node_id, options_.primary_host_id, writes, *this),
+      leave_broker_(std::move(leave_broker)) {
     mqtt.set_subscriptions(commands_.subscriptions());
 }
 
@@ -50,7 +52,7 @@ void SparkplugNode::on_connected(std::size_t max_packet_bytes) {
     session_.connected();
     out_.connected(max_packet_bytes);
     commands_.connected();
-    birth();
+    birth(false);
 }
 
 void SparkplugNode::on_message(const adapters::mqtt::Incoming& message) {
@@ -60,7 +62,7 @@ void SparkplugNode::on_message(const adapters::mqtt::Incoming& message) {
         case NodeCommands::Asked::rebirth:
             ++stats_.rebirth_requests;
             publish_counters();
-            // A flood of requests makes one pending rebirth, not one each (rebirth_hold).
+            // Answered at once; a flood of them after it makes one rebirth a second.
             request_birth();
             return;
         case NodeCommands::Asked::host_online:
@@ -76,7 +78,7 @@ void SparkplugNode::exchanges_changed(const ExchangeSet& running, std::span<cons
     // Node metrics are listed in NBIRTH: those of exchanges are rebuilt, then all are born again.
     metrics_.exchanges_changed(running);
     devices_.exchanges_changed(running);
-    if (session_.born()) birth();
+    if (session_.born()) birth(false);
 }
 
 void SparkplugNode::tag_samples(const SampleBatch& batch) {
@@ -88,7 +90,7 @@ void SparkplugNode::tag_samples(const SampleBatch& batch) {
     }
     // A batch of every tag is the JSON tree's republication after its reconnect: the births
     // hold these values already.
-    if (!session_.born() || !device->born || batch.all_tags ||
+    if (!session_.may_send_data() || !device->born || batch.all_tags ||
         batch.quality != core::quality::Quality::good) {
         return;
     }
@@ -96,18 +98,21 @@ void SparkplugNode::tag_samples(const SampleBatch& batch) {
 }
 
 bool SparkplugNode::replay(const SampleBatch& batch, std::uint64_t ack_token) {
-    const auto* device = devices_.find(&batch.exchange);
+    auto* device = devices_.find(&batch.exchange);
     if (device == nullptr) return false;
-    if (!session_.born() || !device->born || batch.quality != core::quality::Quality::good) {
+    if (!session_.may_send_data() || !device->born ||
+        batch.quality != core::quality::Quality::good) {
         return false;
     }
     // Refused for its size, it never will be published: the journal must not wait for it.
     return publish_data(*device, batch, true, ack_token);
 }
 
-bool SparkplugNode::publish_data(const Device& device, const SampleBatch& batch, bool historical,
+bool SparkplugNode::publish_data(Device& device, const SampleBatch& batch, bool historical,
                                  std::uint64_t ack_token) {
     DeviceRegistry::fill_data(device, batch, historical, payload_);
+    // Nothing changed since it was last reported (a republication of the JSON tree's).
+    if (payload_.metrics.empty()) return true;
     if (out_.publish(device.data_topic, payload_, ack_token)) return true;
     data_refused();
     return false;
@@ -134,7 +139,7 @@ void SparkplugNode::produced_status(const core::plan::ExchangePlan& exchange,
 
 void SparkplugNode::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
     metrics_.gateway_metrics(sources, uptime);
-    if (!session_.born()) return;
+    if (!session_.may_send_data()) return;
     metrics_.fill_changes(payload_, static_cast<std::uint64_t>(clock_.wall_ms()));
     if (!payload_.metrics.empty() && !out_.publish(node_topic("NDATA"), payload_)) {
         data_refused();

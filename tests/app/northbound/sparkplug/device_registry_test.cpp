@@ -82,7 +82,7 @@ TEST_F(DeviceRegistryTest, ACommandsMetricFindsItsTagByAliasElseByName) {
 }
 
 TEST_F(DeviceRegistryTest, DdataIsFilledByAliasWithoutAllocatingOnceAsLarge) {
-    const auto& in = *registry_.find(&in_);
+    auto& in = *registry_.find(&in_);
     const std::vector<TagSample> two{{0, Value{std::int64_t{7}}}, {2, Value{std::int64_t{9}}}};
     const std::vector<TagSample> one{{1, Value{2.5f}}};
     Payload payload;

@@ -1,4 +1,4 @@
-// What hosts send, read by NodeCommands alone: NCMD rebirth by name or alias, the primary
+// What hosts send, read by NodeCommands alone: NCMD rebirth by name, typed or not, the primary
 // host's STATE (stale ones ignored, only changes told), and a DCMD handed on as one
 // WriteRequest naming the node as its origin.
 
@@ -20,6 +20,7 @@ using core::plan::Value;
 using test::by_name;
 using test::command;
 using test::sparkplug_plan;
+using test::untyped_command;
 using Asked = NodeCommands::Asked;
 
 class NodeCommandsTest : public ::testing::Test, public WriteHandler, public Northbound {
@@ -47,7 +48,7 @@ protected:
     void born() {
         session_.connected();
         session_.set_host_online(true);
-        ASSERT_NE(session_.begin_birth(), NodeSession::BirthStart::refused);
+        ASSERT_TRUE(session_.begin_birth(false));
         session_.set_born();
     }
 
@@ -69,15 +70,23 @@ TEST_F(NodeCommandsTest, SubscribesToNcmdEveryDcmdAndTheHostsState) {
               Asked::nothing);
 }
 
-TEST_F(NodeCommandsTest, AnNcmdRebirthByNameOrAliasAsksARebirth) {
+TEST_F(NodeCommandsTest, AnNcmdRebirthByNameWithOrWithoutItsDatatypeAsksARebirth) {
     const auto ncmd = [&](std::string payload) {
         return commands_.on_message(message("spBv1.0/plant1/NCMD/gw1", std::move(payload)),
                                     devices_, session_);
     };
     EXPECT_EQ(ncmd(command({by_name("Node Control/Rebirth", DataType::boolean, Value{true})})),
               Asked::rebirth);
+    EXPECT_EQ(
+        ncmd(untyped_command({by_name("Node Control/Rebirth", DataType::boolean, Value{true})})),
+        Asked::rebirth);
+    // The metric has no alias (Sparkplug B 3.0): alias 1 is no rebirth, nor a value of another
+    // kind than boolean.
     EXPECT_EQ(ncmd(command({{"", 1, 0, DataType::boolean, Value{true}, false, {}}})),
-              Asked::rebirth);
+              Asked::nothing);
+    EXPECT_EQ(ncmd(untyped_command(
+                  {by_name("Node Control/Rebirth", DataType::int32, Value{std::int64_t{1}})})),
+              Asked::nothing);
     EXPECT_EQ(ncmd(command({by_name("Node Control/Rebirth", DataType::boolean, Value{false})})),
               Asked::nothing);
     EXPECT_EQ(ncmd("not protobuf \xff"), Asked::nothing);
@@ -130,6 +139,30 @@ TEST_F(NodeCommandsTest, ADcmdIsOneWriteRequestFromTheNodeOrARefusal) {
     EXPECT_EQ(write.writes[1].tag_index, 1u);
     EXPECT_EQ(error(2), core::write::WriteError::read_only);
     EXPECT_EQ(error(3), core::write::WriteError::unknown_tag);
+}
+
+TEST_F(NodeCommandsTest, ADcmdWithoutDatatypesTakesEachTagsOwn) {
+    born();
+    const auto alias = devices_.find(&out_)->alias_base;
+    const auto dcmd = [&](const adapters::sparkplug::Metric& metric) {
+        commands_.on_message(message("spBv1.0/plant1/DCMD/gw1/out", untyped_command({metric})),
+                             devices_, session_);
+    };
+    // By alias alone, as a host that uses aliases sends it: A is a dint (Int32), B a real.
+    dcmd({"", alias, 0, DataType::int32, Value{std::int64_t{-7}}, false, {}});
+    dcmd({"", alias + 1, 0, DataType::float32, Value{2.5f}, false, {}});
+    // A value of another kind than the tag's datatype says is refused, not converted.
+    dcmd({"", alias, 0, DataType::float32, Value{2.5f}, false, {}});
+    ASSERT_EQ(writes_.size(), 3u);
+    const auto& a = std::get<ExchangeWrite>(writes_[0].outcome);
+    ASSERT_EQ(a.writes.size(), 1u);
+    EXPECT_EQ(a.writes[0].tag_index, 0u);
+    EXPECT_EQ(a.writes[0].value, (Value{std::int64_t{-7}}));
+    const auto& b = std::get<ExchangeWrite>(writes_[1].outcome);
+    ASSERT_EQ(b.writes.size(), 1u);
+    EXPECT_EQ(b.writes[0].tag_index, 1u);
+    EXPECT_EQ(std::get<core::write::WriteRejection>(writes_[2].outcome).error,
+              core::write::WriteError::wrong_type);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// The edge node's metrics alone: bdSeq and Rebirth first, each metric's index its alias, every
-// one in a birth and only the changed ones after it, and those of exchanges rebuilt with the
-// running exchanges.
+// The edge node's metrics alone: bdSeq and Rebirth first, each metric's index its alias (Rebirth
+// has none), every one in a birth and only what changed since the last report after it, and
+// those of exchanges rebuilt with the running exchanges.
 
 #include "eip2mqtt/app/northbound/sparkplug/node_metrics.hpp"
 
@@ -49,8 +49,12 @@ TEST_F(NodeMetricsTest, ABirthListsEveryMetricByNameAndIndexBdSeqAndRebirthFirst
     EXPECT_EQ(payload_.metrics[0].value, adapters::sparkplug::MetricValue{Value{std::int64_t{7}}});
     EXPECT_EQ(all[1], "Node Control/Rebirth");
     EXPECT_EQ(payload_.metrics[1].value, adapters::sparkplug::MetricValue{Value{false}});
+    // Each alias is the metric's index, but Rebirth has none (Sparkplug B 3.0).
+    EXPECT_FALSE(payload_.metrics[1].alias.has_value());
     for (std::size_t i = 0; i < payload_.metrics.size(); ++i) {
-        EXPECT_EQ(payload_.metrics[i].alias, i);
+        if (i != 1) {
+            EXPECT_EQ(payload_.metrics[i].alias, i);
+        }
         EXPECT_EQ(payload_.metrics[i].timestamp_ms, 1000u);
     }
     EXPECT_TRUE(has(all, "Gateway/uptime_s"));
@@ -85,6 +89,19 @@ TEST_F(NodeMetricsTest, OnlyWhatChangedSinceTheLastFillIsSentByAlias) {
     EXPECT_EQ(payload_.metrics[1].value, adapters::sparkplug::MetricValue{std::string("paused")});
     metrics_.stats(stats);  // the same again: no change
     metrics_.fill_changes(payload_, 3000);
+    EXPECT_TRUE(payload_.metrics.empty());
+}
+
+TEST_F(NodeMetricsTest, AValueSetAwayAndBackBetweenTwoFillsIsNoChange) {
+    metrics_.exchanges_changed({{&in_}, {&out_}});
+    ProducedStatus status;
+    metrics_.produced_status(out_, status);
+    metrics_.fill_birth(payload_, 0, 1000);  // producing
+    status.paused = true;
+    metrics_.produced_status(out_, status);
+    status.paused = false;
+    metrics_.produced_status(out_, status);  // producing again, as the birth said
+    metrics_.fill_changes(payload_, 2000);
     EXPECT_TRUE(payload_.metrics.empty());
 }
 

@@ -1,6 +1,5 @@
-// The edge node's session alone, time passed in: bdSeq from will to will, whether it may
-// publish, and when a birth may start after a rebirth in progress and an NDEATH the broker has
-// not acknowledged yet.
+// The edge node's session alone, time passed in: bdSeq from will to will and from the last
+// process's, whether it may publish, and when a host's rebirth requests are answered.
 
 #include "eip2mqtt/app/northbound/sparkplug/node_session.hpp"
 
@@ -11,9 +10,6 @@
 namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
 
-using Acknowledged = NodeSession::Acknowledged;
-using BirthStart = NodeSession::BirthStart;
-
 constexpr auto t0 = core::MonoTime{} + std::chrono::hours(24);
 
 class NodeSessionTest : public ::testing::Test {
@@ -23,7 +19,7 @@ protected:
     void born() {
         session_.next_will();
         session_.connected();
-        ASSERT_EQ(session_.begin_birth(), BirthStart::started);
+        ASSERT_TRUE(session_.begin_birth(false));
         session_.set_born();
     }
     NodeSession session_{"spBv1.0/g/NDEATH/n", false};
@@ -38,6 +34,13 @@ TEST_F(NodeSessionTest, EachConnectionMadeTakesTheNextBdSeqAndAFailedAttemptKeep
     EXPECT_EQ(session_.session_bd_seq(), 1);
     session_.end_session();
     EXPECT_EQ(session_.session_bd_seq(), std::nullopt);
+}
+
+TEST_F(NodeSessionTest, TheFirstWillGoesOnFromTheLastProcesssBdSeq) {
+    NodeSession restarted("spBv1.0/g/NDEATH/n", false, 41);
+    EXPECT_EQ(restarted.next_will(), 42);
+    NodeSession wrapped("spBv1.0/g/NDEATH/n", false, 255);
+    EXPECT_EQ(wrapped.next_will(), 0);
 }
 
 TEST_F(NodeSessionTest, TheNdeathCarriesTheBdSeqAtQos1) {
@@ -57,65 +60,61 @@ TEST_F(NodeSessionTest, TheNdeathCarriesTheBdSeqAtQos1) {
 }
 
 TEST_F(NodeSessionTest, NoBirthBeforeTheConnectionNorWithAPrimaryHostOffline) {
-    EXPECT_EQ(session_.begin_birth(), BirthStart::refused);
+    EXPECT_FALSE(session_.begin_birth(false));
     NodeSession hosted("spBv1.0/g/NDEATH/n", true);
     hosted.connected();
     EXPECT_FALSE(hosted.may_publish());
-    EXPECT_EQ(hosted.begin_birth(), BirthStart::refused);
+    EXPECT_FALSE(hosted.begin_birth(false));
     hosted.set_host_online(true);
     EXPECT_TRUE(hosted.may_publish());
-    EXPECT_EQ(hosted.begin_birth(), BirthStart::started);
+    EXPECT_TRUE(hosted.begin_birth(false));
 }
 
-TEST_F(NodeSessionTest, ARebirthAskedDuringTheHoldIsPendingUntilItEnds) {
+TEST_F(NodeSessionTest, TheFirstRequestAfterTheConnectionsBirthIsAnsweredAtOnce) {
+    born();  // at t0, not asked for
+    EXPECT_TRUE(session_.request_birth());
+    EXPECT_TRUE(session_.may_send_data());
+}
+
+TEST_F(NodeSessionTest, RequestsWithinTheHoldOfAnAnsweredOneWaitForItsEndAndStopData) {
     born();
+    ASSERT_TRUE(session_.request_birth());
+    ASSERT_TRUE(session_.begin_birth(true));
+    session_.set_born();
+    EXPECT_TRUE(session_.may_send_data());
     EXPECT_FALSE(session_.request_birth());
-    EXPECT_FALSE(session_.birth_due());
+    EXPECT_FALSE(session_.request_birth());  // one rebirth for both
+    EXPECT_FALSE(session_.may_send_data());  // DATA stops at the request
+    EXPECT_TRUE(session_.born());
     session_.tick(t0 + rebirth_hold - std::chrono::milliseconds(1));
     EXPECT_FALSE(session_.birth_due());
     session_.tick(t0 + rebirth_hold);
     EXPECT_TRUE(session_.birth_due());
-    EXPECT_EQ(session_.begin_birth(), BirthStart::started);
-    EXPECT_FALSE(session_.birth_due());  // the one pending is this one
+    EXPECT_TRUE(session_.begin_birth(true));
+    EXPECT_FALSE(session_.birth_due());  // the one waiting is this one
     EXPECT_FALSE(session_.born());       // until its NBIRTH is published
-}
-
-TEST_F(NodeSessionTest, BirthsWaitForTheNdeathsAcknowledgementOrItsDeadline) {
-    born();
-    session_.tick(t0 + rebirth_hold);
-    const auto token = session_.death_said();
-    EXPECT_NE(token & sparkplug_own_token, 0u);
-    EXPECT_FALSE(session_.born());
-    EXPECT_FALSE(session_.request_birth());
-    EXPECT_EQ(session_.acknowledged(token & ~sparkplug_own_token), Acknowledged::not_ours);
-    EXPECT_EQ(session_.acknowledged(token + 1), Acknowledged::ours);  // not the one waited for
-    EXPECT_FALSE(session_.birth_due());
-    EXPECT_EQ(session_.acknowledged(token), Acknowledged::birth_due);
-    EXPECT_EQ(session_.begin_birth(), BirthStart::started);
-
-    // Never acknowledged: the births go on at the deadline, and say so.
     session_.set_born();
-    session_.tick(t0 + rebirth_hold * 2);
-    session_.death_said();
+    EXPECT_TRUE(session_.may_send_data());
+    // It was asked for too: the next request within its hold waits.
     EXPECT_FALSE(session_.request_birth());
-    session_.tick(t0 + rebirth_hold * 2 + death_acknowledgement_timeout);
-    EXPECT_TRUE(session_.birth_due());
-    EXPECT_EQ(session_.begin_birth(), BirthStart::started_unacknowledged);
 }
 
-TEST_F(NodeSessionTest, TheHostGoingOfflineOrANewConnectionDropsAPendingRebirth) {
+TEST_F(NodeSessionTest, TheHostGoingOfflineEndsTheBirthsAndAWaitingRebirth) {
     NodeSession hosted("spBv1.0/g/NDEATH/n", true);
     hosted.tick(t0);
     hosted.connected();
     hosted.set_host_online(true);
-    ASSERT_EQ(hosted.begin_birth(), BirthStart::started);
+    ASSERT_TRUE(hosted.begin_birth(true));
+    hosted.set_born();
     EXPECT_FALSE(hosted.request_birth());
     hosted.set_host_online(false);
+    EXPECT_FALSE(hosted.born());
+    EXPECT_FALSE(hosted.may_publish());
     hosted.set_host_online(true);
     hosted.tick(t0 + rebirth_hold);
     EXPECT_FALSE(hosted.birth_due());
 
-    ASSERT_EQ(hosted.begin_birth(), BirthStart::started);
+    ASSERT_TRUE(hosted.begin_birth(true));
     EXPECT_FALSE(hosted.request_birth());
     hosted.connected();
     EXPECT_FALSE(hosted.host_online());

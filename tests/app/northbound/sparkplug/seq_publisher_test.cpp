@@ -1,6 +1,6 @@
 // The edge node's publications alone: seq counts only what was published, a message over the
 // largest packet the broker takes (or max_packet_bytes) never leaves, and each carries the
-// qos, the time and the ack_token it is given.
+// QoS 0, retain off, the time and the ack_token it is given.
 
 #include "eip2mqtt/app/northbound/sparkplug/seq_publisher.hpp"
 
@@ -41,7 +41,7 @@ protected:
 };
 
 TEST_F(SeqPublisherTest, SeqCountsOnlyWhatWasPublished) {
-    SeqPublisher out(mqtt_, clock_, 1, 0);
+    SeqPublisher out(mqtt_, clock_, 0);
     out.connected(1000);
     auto small = of_size(10);
     auto large = of_size(2000);
@@ -53,7 +53,8 @@ TEST_F(SeqPublisherTest, SeqCountsOnlyWhatWasPublished) {
     EXPECT_EQ(seq_of(mqtt_.published[0]), 0u);
     EXPECT_EQ(seq_of(mqtt_.published[1]), 1u);
     EXPECT_EQ(mqtt_.published[1].topic, "t/c");
-    EXPECT_EQ(mqtt_.published[1].qos, 1);
+    EXPECT_EQ(mqtt_.published[1].qos, 0);  // Sparkplug B 3.0: births and data at QoS 0
+    EXPECT_FALSE(mqtt_.published[1].retain);
     EXPECT_EQ(mqtt_.published[1].ack_token, 42u);
     EXPECT_FALSE(mqtt_.published[1].coalesce);
     EXPECT_EQ(small.timestamp_ms, static_cast<std::uint64_t>(now_ms));
@@ -63,7 +64,7 @@ TEST_F(SeqPublisherTest, SeqCountsOnlyWhatWasPublished) {
 }
 
 TEST_F(SeqPublisherTest, SeqRunsTo255ThenStartsAgain) {
-    SeqPublisher out(mqtt_, clock_, 0, 0);
+    SeqPublisher out(mqtt_, clock_, 0);
     out.connected(adapters::mqtt::max_mqtt_packet_bytes);
     auto payload = of_size(1);
     for (int i = 0; i < 257; ++i) ASSERT_TRUE(out.publish("t", payload));
@@ -72,13 +73,13 @@ TEST_F(SeqPublisherTest, SeqRunsTo255ThenStartsAgain) {
 }
 
 TEST_F(SeqPublisherTest, TheConfiguredLimitLowersTheBrokersAndNeverRaisesIt) {
-    SeqPublisher configured(mqtt_, clock_, 0, 500);
+    SeqPublisher configured(mqtt_, clock_, 500);
     configured.connected(1000);
     EXPECT_EQ(configured.max_packet_bytes(), 500u);
     EXPECT_TRUE(configured.limit_configured());
     configured.connected(300);
     EXPECT_EQ(configured.max_packet_bytes(), 300u);
-    SeqPublisher unconfigured(mqtt_, clock_, 0, 0);
+    SeqPublisher unconfigured(mqtt_, clock_, 0);
     unconfigured.connected(1000);
     EXPECT_EQ(unconfigured.max_packet_bytes(), 1000u);
     EXPECT_FALSE(unconfigured.limit_configured());

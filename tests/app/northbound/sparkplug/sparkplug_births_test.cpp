@@ -116,7 +116,8 @@ TEST_F(SparkplugNodePacketSizeTest, AnNbirthOverTheLimitLeavesTheWholeNodeUnborn
 }
 
 TEST_F(SparkplugNodePacketSizeTest, MaxPacketBytesLowersTheBrokersLimit) {
-    SparkplugNode node({"plant1", "gw1", "", 0, 4000}, publisher_, *this, wall_clock_);
+    SparkplugNode node({"plant1", "gw1", "", 4000, std::nullopt}, publisher_, *this, wall_clock_,
+                       [] {});
     node.exchanges_changed({{&big_}, {}}, {});
     node.next_will();
     node.on_connected();  // the broker says nothing: MQTT's own limit
@@ -134,7 +135,8 @@ TEST_F(SparkplugNodePacketSizeTest, AHistoricalDdataOverTheLimitIsRefusedAndNotW
     }
     const auto wide =
         test::test_plan("wide", core::plan::Direction::consume, 8 * big_tags, std::move(tags));
-    SparkplugNode node({"plant1", "gw1", "", 0, 0}, publisher_, *this, wall_clock_);
+    SparkplugNode node({"plant1", "gw1", "", 0, std::nullopt}, publisher_, *this, wall_clock_,
+                       [] {});
     node.exchanges_changed({{&wide}, {}}, {});
     node.tag_samples({wide, Quality::good, now_ms, false, every_tag(big_tags, 0)});
     node.exchange_state(wide, ConsumeState::ok);

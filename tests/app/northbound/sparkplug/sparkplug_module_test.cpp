@@ -6,10 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "sparkplug_b.pb.h"
 #include "tests/app/support/northbound_rig.hpp"
 #include "tests/support/mosquitto.hpp"
 #include "tests/support/mqtt_recorder.hpp"
@@ -105,6 +107,31 @@ TEST_F(SparkplugModuleTest, WithARoleItsSessionsFollowItConnectsOnlyOnceTheSessi
     EXPECT_FALSE(node->session_bd_seq().has_value());
     witness->stop();
     node->stop();
+}
+
+TEST_F(SparkplugModuleTest, TheBdSeqGoesOnFromTheStateDirectoryAfterARestart) {
+    make_parts_of(nullptr);
+    const auto bd_seq_of_nbirth = [&](std::size_t index) {
+        const auto births = recorder_.messages_on("spBv1.0/plant1/NBIRTH/n1");
+        org::eclipse::tahu::protobuf::Payload proto;
+        EXPECT_TRUE(proto.ParseFromString(births.at(index).payload));
+        EXPECT_EQ(proto.metrics(0).name(), "bdSeq");
+        return proto.metrics(0).long_value();
+    };
+    for (std::size_t process = 0; process < 2; ++process) {
+        auto node = make("n1", *parts_);
+        ASSERT_NE(node, nullptr);
+        node->start(clock().monotonic());
+        ASSERT_TRUE(run_until(
+            [&] { return recorder_.messages_on("spBv1.0/plant1/NBIRTH/n1").size() > process; }));
+        node->stop();
+    }
+    EXPECT_EQ(bd_seq_of_nbirth(0), 0u);
+    EXPECT_EQ(bd_seq_of_nbirth(1), 1u);  // the second process's first will
+    std::ifstream kept(config_.gateway.state_dir + "/" + std::string(bd_seq_file_name));
+    std::string line;
+    EXPECT_TRUE(std::getline(kept, line));
+    EXPECT_EQ(line, "1");
 }
 
 }  // namespace

@@ -70,7 +70,10 @@ TEST_F(SparkplugNodeTest, NbirthListsRebirthAndTheNodeCounters) {
     EXPECT_NE(std::find(names.begin(), names.end(), "Gateway/accepted"), names.end());
     EXPECT_NE(std::find(names.begin(), names.end(), "Exchanges/in/state"), names.end());
     EXPECT_NE(std::find(names.begin(), names.end(), "Exchanges/out/sent"), names.end());
+    // Each metric's alias is its place, but Rebirth's: Sparkplug B 3.0 forbids one on it.
+    EXPECT_FALSE(birth.metrics(1).has_alias());
     for (int i = 0; i < birth.metrics_size(); ++i) {
+        if (i == 1) continue;
         EXPECT_EQ(birth.metrics(i).alias(), static_cast<std::uint64_t>(i)) << names[i];
     }
 }
@@ -127,6 +130,23 @@ TEST_F(SparkplugNodeTest, DdataCarriesTheChangedTagsByAliasWithTheirTimestamp) {
     // The JSON tree's republication of every tag is no news to a Sparkplug host.
     const std::vector<TagSample> all{{0, Value{std::int64_t{7}}}, {1, Value{2.5f}}};
     node_.tag_samples({consumed_, Quality::good, now_ms + 200, true, all});
+    EXPECT_EQ(publisher_.published.size(), 1u);
+}
+
+TEST_F(SparkplugNodeTest, DdataCarriesOnlyWhatChangedSinceTheBirthOrTheLastDdata) {
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();  // born with A 7, B 1.5, C 0
+    publisher_.published.clear();
+    // The JSON tree's republication after `refresh_s` (B unchanged), with A changed.
+    const std::vector<TagSample> refreshed{{0, Value{std::int64_t{8}}}, {1, Value{1.5f}}};
+    node_.tag_samples({consumed_, Quality::good, now_ms + 100, false, refreshed});
+    ASSERT_EQ(publisher_.published.size(), 1u);
+    const auto data = decoded(publisher_.published[0]);
+    ASSERT_EQ(data.metrics_size(), 1);
+    EXPECT_EQ(data.metrics(0).int_value(), 8u);
+    // Nothing changed at all: no DDATA.
+    node_.tag_samples({consumed_, Quality::good, now_ms + 200, false, refreshed});
     EXPECT_EQ(publisher_.published.size(), 1u);
 }
 
@@ -216,7 +236,7 @@ TEST_F(SparkplugNodeTest, NcmdRebirthBringsEveryBirthAgainFromSeq0) {
     first_datagram();
     first_production();
     publisher_.published.clear();
-    advance(rebirth_hold);  // the connection's births are no longer in progress
+    // At once, however soon after the connection's births.
     adapters::mqtt::Incoming ncmd;
     ncmd.topic = "spBv1.0/plant1/NCMD/gw1";
     ncmd.payload = command({by_name("Node Control/Rebirth", DataType::boolean, Value{true})});
@@ -308,17 +328,32 @@ TEST_F(SparkplugPrimaryHostTest, BirthsWaitForThePrimaryHostToBeOnline) {
     state(R"({"online":false,"timestamp":150})");  // older than the last: ignored
     EXPECT_EQ(publisher_.published.size(), 2u);
     state(R"({"online":false,"timestamp":300})");
-    ASSERT_EQ(publisher_.published.size(), 3u);
-    EXPECT_EQ(topics().back(), "spBv1.0/plant1/NDEATH/gw1");
+    EXPECT_EQ(brokers_left_, 1);  // its NDEATH is the connection's will
     const std::vector<TagSample> changed{{0, Value{std::int64_t{9}}}};
     node_.tag_samples({consumed_, Quality::good, now_ms, false, changed});
-    EXPECT_EQ(publisher_.published.size(), 3u);  // nothing while the host is away
+    EXPECT_EQ(publisher_.published.size(), 2u);  // nothing while the host is away
+    node_.next_will();
+    node_.on_connected();
     state(R"({"online":true,"timestamp":400})");
-    // Once the broker has the NDEATH, and a second after the last births.
-    node_.on_acknowledged(publisher_.published[2].ack_token);
+    EXPECT_EQ(topics().at(2), "spBv1.0/plant1/NBIRTH/gw1");
+    EXPECT_EQ(decoded(publisher_.published.at(3)).metrics(0).int_value(), 9u);
+}
+
+TEST_F(SparkplugNodeTest, ARebirthRequestStopsDataUntilItsBirths) {
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();
+    rebirth_request();  // answered at once
+    publisher_.published.clear();
+    rebirth_request();  // within the hold: waits for its end
+    const std::vector<TagSample> changed{{0, Value{std::int64_t{9}}}};
+    node_.tag_samples({consumed_, Quality::good, now_ms, false, changed});
+    EXPECT_TRUE(publisher_.published.empty());  // no DDATA meanwhile
     advance(rebirth_hold);
-    EXPECT_EQ(topics().at(3), "spBv1.0/plant1/NBIRTH/gw1");
-    EXPECT_EQ(decoded(publisher_.published.at(4)).metrics(0).int_value(), 9u);
+    EXPECT_EQ(topics(), (std::vector<std::string>{"spBv1.0/plant1/NBIRTH/gw1",
+                                                  "spBv1.0/plant1/DBIRTH/gw1/in"}));
+    // The births carry the value the DDATA held back would have.
+    EXPECT_EQ(decoded(publisher_.published.at(1)).metrics(0).int_value(), 9u);
 }
 
 }  // namespace

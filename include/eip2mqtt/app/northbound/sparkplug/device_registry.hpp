@@ -27,6 +27,9 @@ struct Device {
     std::uint64_t alias_base = 0;  ///< a tag's alias is alias_base + its index
     std::vector<std::optional<core::plan::Value>> values;
     std::vector<std::int64_t> timestamps;
+    /// What the last DBIRTH or live DDATA said of each tag: a DDATA carries only what changed
+    /// since (a republication of the JSON tree's `refresh_s` is no change).
+    std::vector<std::optional<core::plan::Value>> reported;
     std::size_t known = 0;              ///< values that are set
     bool up = false;                    ///< consumed: state ok; produced: every value known
     bool born = false;                  ///< DBIRTH sent since the last NBIRTH
@@ -58,12 +61,13 @@ public:
     static std::optional<std::size_t> tag_of(const Device& device,
                                              const adapters::sparkplug::CommandMetric& metric);
     /// `device`'s DBIRTH metrics: every tag by name and alias, with its last value (null if
-    /// none yet, stamped `now_ms`) and its properties.
-    static void fill_birth(const Device& device, adapters::sparkplug::Payload& payload,
+    /// none yet, stamped `now_ms`) and its properties; what it says is what was reported.
+    static void fill_birth(Device& device, adapters::sparkplug::Payload& payload,
                            std::int64_t now_ms);
-    /// DDATA metrics of `batch`'s samples by alias, live or `historical`; allocates nothing once
-    /// `payload` has held a batch as large.
-    static void fill_data(const Device& device, const SampleBatch& batch, bool historical,
+    /// DDATA metrics of `batch`'s samples by alias: live, those whose value differs from what
+    /// was reported (none: an empty payload, nothing to publish); `historical`, every one.
+    /// Allocates nothing once `payload` has held a batch as large.
+    static void fill_data(Device& device, const SampleBatch& batch, bool historical,
                           adapters::sparkplug::Payload& payload);
 
 private:

@@ -48,7 +48,10 @@ private:
         std::string name;
         adapters::sparkplug::DataType type;
         adapters::sparkplug::MetricValue value;
-        bool changed = false;  ///< since the last NBIRTH or NDATA
+        bool changed = false;  ///< set since the last NBIRTH or NDATA
+        /// What the last NBIRTH or NDATA said: a value set away and back between two NDATA
+        /// is no change to report.
+        adapters::sparkplug::MetricValue reported;
     };
 
     std::size_t add(const std::string& name, adapters::sparkplug::DataType type);

@@ -22,9 +22,10 @@ namespace eip2mqtt::app::northbound::sparkplug {
 class SeqPublisher {
 public:
     /// `mqtt` (the node's connection) and `clock` (the payloads' timestamps) must outlive it.
-    /// `qos`: of every message published; `max_packet_bytes`: the largest PUBLISH packet to
-    /// send, below the broker's own limit (0: the broker's alone).
-    SeqPublisher(adapters::mqtt::Publisher& mqtt, const core::Clock& clock, int qos,
+    /// `max_packet_bytes`: the largest PUBLISH packet to send, below the broker's own limit
+    /// (0: the broker's alone). Every message goes at QoS 0, retain off: Sparkplug B 3.0's rule
+    /// for births, data and deaths of devices.
+    SeqPublisher(adapters::mqtt::Publisher& mqtt, const core::Clock& clock,
                  std::size_t max_packet_bytes);
 
     /// A connection to a broker taking packets of up to `broker_max_packet_bytes`.
@@ -50,7 +51,6 @@ public:
 private:
     adapters::mqtt::Publisher& mqtt_;
     const core::Clock& clock_;
-    int qos_;
     std::size_t configured_max_packet_bytes_;
     std::size_t max_packet_bytes_ = adapters::mqtt::max_mqtt_packet_bytes;
     std::size_t last_packet_bytes_ = 0;

@@ -11,8 +11,10 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string_view>
 
 #include "eip2mqtt/adapters/mqtt/client.hpp"
+#include "eip2mqtt/adapters/state/bd_seq_file.hpp"
 #include "eip2mqtt/app/module.hpp"
 #include "eip2mqtt/app/northbound/northbounds.hpp"
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
@@ -38,6 +40,8 @@ public:
     /// Ends it: what waited dropped, its NDEATH said last.
     void end_session();
     std::optional<std::uint8_t> session_bd_seq() const { return node_->session_bd_seq(); }
+    /// The publications its connection holds, queued and in flight.
+    std::uint64_t backlog() const;
 
     /// Connects, unless its session follows the role.
     void start(core::MonoTime now) override;
@@ -49,10 +53,12 @@ public:
     void apply(const core::config::Config& next) override;
 
 private:
-    /// Runs `event` (the connection, a message or an acknowledgement on it, a tick); once the
-    /// node is born by it, its replay of history starts.
+    /// Runs `event` (the connection, a message on it, a tick); once the node is born by it,
+    /// its replay of history starts.
     void on_event(bool connection, const std::function<void()>& event);
     void add_history();
+    /// The node's will for the next CONNECT; its bdSeq kept in the state directory.
+    adapters::mqtt::Message next_will();
 
     const core::Clock& clock_;
     history::StoreAndForward* history_;
@@ -61,7 +67,12 @@ private:
     /// Between the node and its connection when the session follows the role.
     std::unique_ptr<adapters::mqtt::Publisher> gate_;
     std::unique_ptr<SparkplugNode> node_;
+    adapters::state::BdSeqFile bd_seq_file_;
+    std::optional<std::uint8_t> kept_bd_seq_;  ///< what bd_seq_file_ holds
 };
+
+/// The file of the state directory that keeps the node's bdSeq across restarts.
+inline constexpr std::string_view bd_seq_file_name = "sparkplug-bdseq";
 
 /// The edge node of `config`'s `sparkplug:`, else null.
 std::unique_ptr<SparkplugModule> make_sparkplug(const core::config::Config& config,

@@ -1,15 +1,17 @@
 #pragma once
 /// The gateway as a Sparkplug B 3.0 edge node (docs/sparkplug.md): every exchange a
 /// device named after it, its tags the device's metrics. NBIRTH with the node's counters and
-/// `Node Control/Rebirth`, DBIRTH per device with every tag (name, alias, datatype, value,
-/// properties), DDATA by exception with the changed tags by alias, DDEATH when a consumed
+/// `Node Control/Rebirth` (no alias), DBIRTH per device with every tag (name, alias, datatype,
+/// value, properties), DDATA by exception with the changed tags by alias, DDEATH when a consumed
 /// exchange goes stale or mismatches and DBIRTH again at its first good datagram; NDEATH is the
-/// connection's will (next_will(), a new bdSeq for every connection made). A host's NCMD
-/// `Node Control/Rebirth` brings every birth again, at most one rebirth in progress and one
-/// pending (rebirth_hold); its DCMD to a produced exchange's device is one write, decoded into
-/// a WriteRequest, and its echo is the DDATA of the datagram that carried it; a DCMD while the
-/// node is not born is refused (`offline`). With a primary host, births wait for its STATE to
-/// say online, and after an NDEATH for the broker's acknowledgement of it.
+/// connection's will (next_will(), a new bdSeq for every connection made, on from the last
+/// process's). A host's NCMD `Node Control/Rebirth` stops DATA and brings every birth again at
+/// once; requests within rebirth_hold after it share one rebirth at the hold's end. Its DCMD to
+/// a produced exchange's device is one write, decoded into a WriteRequest, and its echo is the
+/// DDATA of the datagram that carried it; a DCMD while the node is not born is refused
+/// (`offline`). With a primary host, births wait for its STATE to say online; when it says
+/// offline, the node leaves its broker (leave_broker: its NDEATH, DISCONNECT, the next broker
+/// of the list) and waits there for the host again.
 ///
 /// No message goes out that the broker would refuse (over its Maximum Packet Size, or
 /// `max_packet_bytes`): `seq` counts only what was published, and a device (or the node) whose
@@ -27,6 +29,7 @@
 /// Threading: the loop only.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -52,10 +55,11 @@ struct SparkplugOptions {
     std::string group_id;
     std::string edge_node_id;
     std::string primary_host_id;  ///< empty: publish without waiting for a host
-    int qos = 0;                  ///< births and data; NDEATH is QoS 1
     /// The largest message to publish, in bytes of its PUBLISH packet, below the broker's own
     /// Maximum Packet Size (0: the broker's alone); for brokers that do not announce theirs.
     std::size_t max_packet_bytes = 0;
+    /// The bdSeq of the last will before this process: the first will takes the next one.
+    std::optional<std::uint8_t> last_bd_seq;
 };
 
 /// The options of `config`'s `sparkplug:` section.
@@ -64,9 +68,10 @@ SparkplugOptions sparkplug_options(const core::config::Config& config);
 class SparkplugNode final : public Northbound, public history::HistorySink {
 public:
     /// `mqtt` (the node's own connection), `writes` and `clock` (the payloads' timestamps)
-    /// must outlive the node.
+    /// must outlive the node. `leave_broker` ends the connection's session (its will, the
+    /// NDEATH, then DISCONNECT) and connects to the next broker of the list.
     SparkplugNode(SparkplugOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes,
-                  const core::Clock& clock);
+                  const core::Clock& clock, std::function<void()> leave_broker);
 
     /// The NDEATH for the next CONNECT's will; the NBIRTH that follows that connection carries
     /// the same bdSeq. Each connection made takes the next bdSeq (0-255, then 0 again); an
@@ -87,11 +92,7 @@ public:
     void on_connected(std::size_t max_packet_bytes = adapters::mqtt::max_mqtt_packet_bytes);
     /// NCMD, DCMD or the primary host's STATE; anything else is ignored.
     void on_message(const adapters::mqtt::Incoming& message);
-    /// The broker acknowledged the publication that carried `ack_token`. True when the token
-    /// is the node's own (its NDEATH); false when it is another owner's, the journal entry of a
-    /// historical DDATA (replay()): the node's connection carries both.
-    bool on_acknowledged(std::uint64_t ack_token);
-    /// The gateway's tick: a pending rebirth whose time has come, and the summaries of
+    /// The gateway's tick: a waiting rebirth whose time has come, and the summaries of
     /// throttled logs.
     void tick(core::MonoTime now);
 
@@ -112,6 +113,8 @@ public:
     bool replay(const SampleBatch& batch, std::uint64_t ack_token) override;
 
     bool born() const { return session_.born(); }
+    /// DDATA may go out, live or historical: born, and no rebirth a host asked for waits.
+    bool may_send_data() const { return session_.may_send_data(); }
     std::uint8_t bd_seq() const { return session_.bd_seq(); }
     const SparkplugStats& stats() const { return stats_; }
     /// Every counter at its largest and every state at its longest, so that the next NBIRTH is
@@ -119,11 +122,10 @@ public:
     void widen_node_metrics_for_sizing();
 
 private:
-    /// A rebirth asked for (NCMD, the primary host online): now, or pending until the one in
-    /// progress ends and the broker acknowledged the last NDEATH.
+    /// A rebirth a host asked for: now, or when the hold after the last one ends.
     void request_birth();
-    /// NBIRTH, then DBIRTH for every device that is up.
-    void birth();
+    /// NBIRTH, then DBIRTH for every device that is up; `requested`: by a host (rebirth_hold).
+    void birth(bool requested);
     void device_birth(Device& device);
     void device_death(Device& device);
     /// A birth that publish() refused: counted, logged once for each device or the node.
@@ -133,14 +135,11 @@ private:
     void publish_counters();
     /// DDATA of `batch`'s samples by alias, live or historical (with the journal entry's
     /// token); false when it was refused for its size (counted in data_refused).
-    bool publish_data(const Device& device, const SampleBatch& batch, bool historical,
+    bool publish_data(Device& device, const SampleBatch& batch, bool historical,
                       std::uint64_t ack_token = 0);
     std::string node_topic(std::string_view type) const;
-    /// The primary host's STATE changed: births (request_birth), or the NDEATH.
+    /// The primary host's STATE changed: births, or the node leaves its broker.
     void host_online(bool online);
-    /// NDEATH now, on this connection (the host went offline): no birth before the broker
-    /// acknowledges it.
-    void publish_death();
 
     SparkplugOptions options_;
     const core::Clock& clock_;
@@ -150,6 +149,7 @@ private:
     NodeMetrics metrics_;
     NodeCommands commands_;
     SparkplugStats stats_;
+    std::function<void()> leave_broker_;
     bool node_birth_refused_logged_ = false;
     adapters::sparkplug::Payload payload_;  ///< filled again for every message
 };
