@@ -31,7 +31,8 @@ bool write_all(int fd, const char* data, std::size_t size) {
 
 }  // namespace
 
-TcpProxy::TcpProxy(std::uint16_t upstream_port) : upstream_port_(upstream_port) {
+TcpProxy::TcpProxy(std::uint16_t upstream_port, Tap tap)
+    : upstream_port_(upstream_port), tap_(std::move(tap)) {
     listener_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
     auto address = loopback(0);
     if (listener_ < 0 ||
@@ -128,8 +129,7 @@ void TcpProxy::accept_one() {
     for (const int fd : {client, server}) {
         ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof timeout);
     }
-    links_.push_back({client, server, {}});
-    ++connections_;
+    links_.push_back({connections_++, client, server, {}});
 }
 
 bool TcpProxy::read(Link& link, Direction direction) {
@@ -138,8 +138,14 @@ bool TcpProxy::read(Link& link, Direction direction) {
     const int from = direction == Direction::to_server ? link.client : link.server;
     std::vector<char> buffer(16384);
     const auto n = ::recv(from, buffer.data(), buffer.size(), MSG_DONTWAIT);
-    if (n == 0) return false;
+    if (n == 0) {
+        if (tap_) tap_(link.id, direction, {}, true);
+        return false;
+    }
     if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK;
+    if (tap_)
+        tap_(link.id, direction, std::string_view(buffer.data(), static_cast<std::size_t>(n)),
+             false);
     if (mode == Mode::cut) return true;
     buffer.resize(static_cast<std::size_t>(n));
     const std::chrono::milliseconds delay(delays_ms_[index(direction)]);

@@ -5,13 +5,17 @@
 /// on with what waited. Each direction can also be set on its own, at run time: delayed (what
 /// it reads is written that much later, in order), stalled (nothing read, so what waits reaches
 /// the other end when it is resumed) or cut (what it reads is thrown away: neither end hears of
-/// it, and nothing of it ever arrives). A thread of its own, ended by the destructor.
+/// it, and nothing of it ever arrives). A tap, when given, is told every byte read and every
+/// close, for a relay that records what passes (mqtt_relay.hpp). A thread of its own, ended by
+/// the destructor.
 
 #include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <functional>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -19,8 +23,16 @@ namespace eip2mqtt::test {
 
 class TcpProxy {
 public:
+    /// to_server: from the clients to the upstream server; to_client: back.
+    enum class Direction : std::uint8_t { to_server, to_client };
+    /// Told on the proxy's thread of the bytes read in `direction` of connection `link`
+    /// (numbered from 0 in the order taken), before any mode applies; and of its end, with
+    /// `closed` set and no bytes: `direction`'s sender closed it (to_server: the client).
+    using Tap = std::function<void(std::size_t link, Direction direction, std::string_view bytes,
+                                   bool closed)>;
+
     /// Listens on an ephemeral port of 127.0.0.1.
-    explicit TcpProxy(std::uint16_t upstream_port);
+    explicit TcpProxy(std::uint16_t upstream_port, Tap tap = nullptr);
     /// Takes `listener`, a socket already bound and listening (made inside a test's network
     /// namespace, say: the proxy's own connections upstream are made in the test's namespace).
     TcpProxy(std::uint16_t upstream_port, int listener);
@@ -45,8 +57,6 @@ public:
     /// Connections taken since the start.
     std::size_t connections() const { return connections_; }
 
-    /// to_server: from the clients to the upstream server; to_client: back.
-    enum class Direction : std::uint8_t { to_server, to_client };
     enum class Mode : std::uint8_t { pass, stall, cut };
     void set_mode(Direction direction, Mode mode) { modes_[index(direction)] = mode; }
     /// What is read in `direction` from now on is written `delay` later (0: at once).
@@ -61,6 +71,7 @@ private:
         std::vector<char> bytes;
     };
     struct Link {
+        std::size_t id = 0;
         int client = -1;
         int server = -1;
         std::array<std::deque<Pending>, 2> pending;  ///< per direction, oldest first
@@ -78,6 +89,7 @@ private:
 
     int listener_ = -1;
     std::uint16_t upstream_port_;
+    Tap tap_;
     std::uint16_t port_ = 0;
     std::atomic<bool> stalled_{false};
     std::array<std::atomic<Mode>, 2> modes_{Mode::pass, Mode::pass};
