@@ -59,7 +59,8 @@ private:
 /// when present; skips the rest by their types.
 std::optional<std::uint32_t> read_properties(Body& body) {
     const auto length = body.varint();
-    Body properties(body.take(length));
+    const auto bytes = body.take(length);  // outlives the cursor over it
+    Body properties(bytes);
     std::optional<std::uint32_t> session_expiry;
     while (!properties.done()) {
         const auto id = properties.varint();
