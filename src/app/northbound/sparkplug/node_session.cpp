@@ -34,11 +34,9 @@ void NodeSession::begin_session(std::optional<std::uint8_t> heard) {
 }
 
 void NodeSession::end_session() {
-    connected_ = false;
-    born_ = false;
+    left();
     session_open_ = false;
     host_online_ = false;
-    rebirth_pending_ = false;
 }
 
 adapters::mqtt::Message NodeSession::death_message(std::int64_t wall_ms) const {
