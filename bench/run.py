@@ -43,6 +43,8 @@ def parse_args():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
     parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-14)")
+    parser.add_argument("--rounds", type=int, default=0, metavar="N",
+                        help="paired rounds of the repeated scenarios (default 3, 1 with --quick)")
     parser.add_argument("--against-binary", default="", metavar="PATH",
                         help="an earlier build's eip2mqtt, run beside this one in every "
                              "scenario (bench/run.sh --against REV builds it)")
@@ -55,6 +57,7 @@ def command_line(args):
     """The run as bench/run.sh's command line, for the report."""
     return ("bench/run.sh" + (" --quick" if args.quick else "") +
             (f" --only {args.only}" if args.only else "") +
+            (f" --rounds {args.rounds}" if args.rounds else "") +
             (f" --against {args.against_label or args.against_binary}"
              if args.against_binary else ""))
 
@@ -83,11 +86,13 @@ def run_scenarios(bench):
 def main():
     args = parse_args()
     only = {int(x) for x in args.only.split(",") if x}
+    if args.rounds < 0:
+        sys.exit("--rounds: a count of rounds, at least 1")
     check_programs(args, only)
     against = None
     if args.against_binary:
         against = (args.against_label or args.against_binary, args.against_binary)
-    bench = Bench(args.quick, only, against)
+    bench = Bench(args.quick, only, against, args.rounds)
     try:
         bench.start_broker()
         run_scenarios(bench)

@@ -11,13 +11,14 @@ from benchlib.util import GATEWAY
 
 
 class Bench(Processes, Gateways, Measures, Report):
-    def __init__(self, quick, only, against=None):
-        """against: (label, gateway binary) of an earlier build to run beside this one."""
+    def __init__(self, quick, only, against=None, rounds=0):
+        """against: (label, gateway binary) of an earlier build to run beside this one;
+        rounds: the repeated scenarios' paired rounds, 0 for the default."""
         self.quick = quick
         self.only = only
         # Scenarios whose figures the host's other work moves most (2, 3, 5, 7, and the loss of
         # 1) repeat their baseline and gateway runs in turn, and report the median round.
-        self.rounds = 1 if quick else 3
+        self.rounds = rounds or (1 if quick else 3)
         self.tmp = tempfile.mkdtemp(prefix="eip2mqtt-bench-")
         self.rows = []
         self.cpu_rows = []  # (figure, run, [CpuSampler.per_publication of each round])
