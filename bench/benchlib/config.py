@@ -12,9 +12,14 @@ from benchlib.util import HOST
 LOOPBACK_MBPS = 400000
 
 
-def tag_lines(tags, writable):
+# What every consumed tag carries with `scaled`: a linear scale with its range's limit check,
+# the costliest path of a publication (engineering values, docs/configuration.md).
+SCALE = ", scale: { raw: [0, 1000000], eu: [0, 100] }"
+
+
+def tag_lines(tags, writable, scaled=False):
     """Tag 0 is the lint "ts", tags 1.. dints (load_generator's layout)."""
-    w = ", writable: true" if writable else ""
+    w = (", writable: true" if writable else "") + (SCALE if scaled else "")
     out = [f'      - {{ name: ts, address: "0.0", type: lint{w} }}']
     for t in range(1, tags):
         out.append(f'      - {{ name: t{t}, address: "{8 + 4 * (t - 1)}.0", type: dint{w} }}')
@@ -61,7 +66,7 @@ def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, promet
     return lines
 
 
-def consumed_lines(name, consumed, point_list):
+def consumed_lines(name, consumed, point_list, scaled=False):
     """The consumed exchanges' YAML, and the point list's CSV rows (with point_list)."""
     lines = []
     rows = ["TagName,Node,Address,DataType,AccessType"]
@@ -81,7 +86,7 @@ def consumed_lines(name, consumed, point_list):
             rows.append(f"ts,e{exchange_id},0.0,Long,Read")
             rows += [f"t{t},e{exchange_id},{8 + 4 * (t - 1)}.0,DInt,Read" for t in range(1, tags)]
         else:
-            lines += ["    tags:"] + tag_lines(tags, False)
+            lines += ["    tags:"] + tag_lines(tags, False, scaled)
     return lines, rows
 
 
@@ -104,7 +109,7 @@ def produced_lines(produced):
 def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=False,
                  udp_port=0, point_list=False, sparkplug=False, prometheus=0,
                  store_and_forward=None, log_level="warn", state_suffix="", commands=None,
-                 link_mbps=None, redundancy=None):
+                 link_mbps=None, redundancy=None, scaled=False):
     """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
     destination). With point_list, the consumed tags are rows of one CSV ({name}.csv, a SCADA
     point list whose Node column names the exchange) that every consumed exchange names in
@@ -112,14 +117,15 @@ def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=
     state_suffix: the state directory's, so that each build keeps its own. commands: the
     `eip.commands` keys ({key: YAML text}), for the command responder. link_mbps: the
     `eip.link_mbps` to write (None: none). redundancy: the `redundancy` keys ({key: YAML
-    text}), for a unit of a hot-standby pair."""
+    text}), for a unit of a hot-standby pair. scaled: every consumed tag written inline gets
+    SCALE."""
     path = os.path.join(tmp, name + ".yaml")
     state = os.path.join(tmp, name + "-state" + state_suffix)
     os.makedirs(state, exist_ok=True)
     lines = head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
                        store_and_forward, log_level, commands, link_mbps, redundancy)
     lines.append("exchanges:")
-    consumed_yaml, rows = consumed_lines(name, consumed, point_list)
+    consumed_yaml, rows = consumed_lines(name, consumed, point_list, scaled)
     lines += consumed_yaml + produced_lines(produced)
     if point_list:
         with open(os.path.join(tmp, name + ".csv"), "w") as f:

@@ -125,9 +125,10 @@ class Measures:
                      tags=TAGS, build=None, sample=False, datagrams=None, threads=False):
         """`build`'s gateway offered 1.5 x `ceiling` tag updates/s (or `datagrams`/s): the
         counter's JSON, with the run's CPU per publication as "cpu" when `sample` (the
-        gateway's thread by thread too with `threads`)."""
-        gw, udp_port = self.launch_gateway(name, consumed_list(exchanges, tags),
-                                           qos, batch=batch, sparkplug=sparkplug, build=build)
+        gateway's thread by thread too with `threads`); `scaled`: every tag with an engineering
+        scale."""
+        gw, udp_port = self.launch_gateway(name, consumed_list(exchanges, tags), qos, batch=batch,
+                                           sparkplug=sparkplug, build=build, scaled=scaled)
         counter = self.rate_counter(qos, batch, sparkplug)
         per_datagram = max(1, round(change * tags))
         gen, sampler = self.run_load(

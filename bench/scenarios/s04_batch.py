@@ -1,7 +1,8 @@
 """Scenario 4: tag updates/s carried in batch mode (`_values`) and by Sparkplug B DDATA,
 against the gateway's per-tag figure of scenario 2."""
 
-from benchlib.util import SHAPES, TAGS
+from benchlib.report import ratios_text
+from benchlib.util import SHAPES, TAGS, median, median_round
 
 
 def updates_shown(got):
@@ -52,6 +53,37 @@ def sparkplug_rows(bench):
                   "yes" if ratio >= 10 else "no", against_cells(bench, runs))
 
 
+def scaled_row(bench):
+    """`_values` with every tag scaled against the same exchanges unscaled, in paired rounds
+    (unscaled first in even rounds), this build only: an earlier one may lack `scale`."""
+    print("[4] batch mode, every tag scaled, QoS 1", flush=True)
+    per_tag = bench.ceilings.get(("gw", 1)) or bench.paho_ceiling(1)
+    exchanges, tags = SHAPES[1]
+    rounds = []
+    for r in range(bench.rounds):
+        got = {}
+        for scaled in ((False, True) if r % 2 == 0 else (True, False)):
+            got[scaled] = bench.gateway_rate(
+                f"g4v{'s' if scaled else 'u'}", 1, 1.0, 20 * per_tag / 1.5, batch=True,
+                exchanges=exchanges, tags=tags, sample=True, scaled=scaled)
+        rounds.append(got)
+    ratios = [g[True]["update_rate"] / g[False]["update_rate"] for g in rounds
+              if g[False]["update_rate"]]
+    middle = median_round([(ratio, g) for ratio, g in zip(ratios, rounds)]) if ratios else None
+    ratio, got = middle if middle else (0.0, rounds[0])
+    cpu = [g[True]["cpu"]["gateway"] / g[False]["cpu"]["gateway"] for g in rounds
+           if g[True]["cpu"] and g[False]["cpu"] and g[False]["cpu"].get("gateway")]
+    cpu_note = f"; gateway CPU/update {median(cpu):.2f} x unscaled" if cpu else ""
+    bench.row(f"tag updates/s carried in batch mode (_values), every tag scaled (linear), QoS 1, "
+              f"{exchanges} x {tags} tags{bench.rounds_label()}",
+              updates_shown(got[True]) + cpu_note,
+              f"{updates_shown(got[False])} (the same exchanges unscaled, same run)",
+              ratios_text(ratios) if ratios else "-", ">= 0.95",
+              "yes" if ratio >= 0.95 else "no",
+              bench.versus([{bench.build: got[True]}], lambda g: g["update_rate"]))
+
+
 def run(bench):
     batch_rows(bench)
+    scaled_row(bench)
     sparkplug_rows(bench)

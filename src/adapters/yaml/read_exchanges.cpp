@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "adapters/yaml/detail/key_readers.hpp"
+#include "adapters/yaml/detail/read_engineering.hpp"
 #include "adapters/yaml/detail/sections.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
@@ -29,6 +30,7 @@ struct TagDraft {
     bool broken = false;  ///< a value failed to parse: leave the tag out of the model
     std::optional<Node> initial;
     Mark initial_mark;
+    EngineeringDraft engineering;
 };
 
 /// The keys whose bad value leaves their exchange out of the model (what names it on the wire).
@@ -112,6 +114,7 @@ constexpr KeyReader<ExchangeDraft> exchange_rows[]{
          return v.text_to(d.spec.topic);
      }},
     {"points", [](KeyValue& v, ExchangeDraft& d) { return v.text_to(d.points); }},
+    {"publish_raw", [](KeyValue& v, ExchangeDraft& d) { return v.boolean_to(d.spec.publish_raw); }},
     {"tags",
      [](KeyValue& v, ExchangeDraft& d) {
          d.tags_node.emplace(v.node());
@@ -156,7 +159,8 @@ constexpr KeyReader<TagDraft> tag_rows[]{
     {"type", read_type},
     {"unit",
      [](KeyValue& v, TagDraft& d) { return extra_to(d, v.text(), &core::plan::TagExtras::unit); }},
-    {"deadband", [](KeyValue& v, TagDraft& d) { return v.number_to(d.spec.deadband); }},
+    {"deadband",
+     [](KeyValue& v, TagDraft& d) { return read_deadband(v, d.spec.deadband, d.engineering); }},
     {"refresh_s",
      [](KeyValue& v, TagDraft& d) { return v.integer_to<long long>(d.spec.refresh, 0); }},
     {"writable", [](KeyValue& v, TagDraft& d) { return v.boolean_to(d.spec.writable); }},
@@ -184,6 +188,12 @@ constexpr KeyReader<TagDraft> tag_rows[]{
              return false;
          }
          return extra_to(d, rate, &core::plan::TagExtras::max_writes_per_s);
+     }},
+    {"scale", [](KeyValue& v, TagDraft& d) { return read_scale(v, d.engineering); }},
+    {"type_eu", [](KeyValue& v, TagDraft& d) { return read_type_eu(v, d.engineering); }},
+    {"publish_raw",
+     [](KeyValue& v, TagDraft& d) {
+         return extra_to(d, v.boolean(), &core::plan::TagExtras::publish_raw);
      }},
 };
 constexpr auto tag_readers = bind_keys(keys::tag, tag_rows);
@@ -245,8 +255,12 @@ std::optional<TagConfig> read_tag(Reader& reader, const Node& node,
             draft.broken = true;
         }
     }
+    if (!draft.broken && !finish_engineering(reader, draft.engineering, tag)) draft.broken = true;
     if (draft.initial && !draft.broken) {
-        if (auto value = read_initial(reader, *draft.initial, spec.type, draft.initial_mark)) {
+        const auto& scale = spec.scale();
+        if (auto value =
+                scale ? read_initial_eu(reader, *draft.initial, *scale, spec.type, draft.initial_mark)
+                      : read_initial(reader, *draft.initial, spec.type, draft.initial_mark)) {
             spec.mutable_extras().initial = *value;
         } else {
             draft.broken = true;
@@ -321,6 +335,11 @@ void read_exchange(Reader& reader, PointLists& point_lists, const Node& node, in
         }
     }
     if (!draft.points.empty()) read_points(reader, point_lists, draft.points, exchange);
+    if (spec.publish_raw) {
+        for (auto& tag : exchange.tags) {
+            if (!tag.marks.contains("publish_raw")) tag.spec.mutable_extras().publish_raw = true;
+        }
+    }
     if (!draft.broken) config.exchanges.push_back(std::move(exchange));
 }
 

@@ -1,5 +1,7 @@
 // `eip2mqtt check -c FILE`: every configuration error, or each exchange's byte map and topics.
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstddef>
 #include <fstream>
@@ -34,6 +36,19 @@ using core::plan::Direction;
 using core::plan::ExchangePlan;
 using core::plan::TagPlan;
 using core::plan::TagType;
+
+/// A scaled tag's scale on its byte-map line: `scale 0..32000 -> 0..100 %, clamped`,
+/// `scale sqrt 0..65535 -> 0..500 m3/h`, `scale x 0.1 + -40 degC`.
+std::string scale_text(const core::plan::TagSpec& tag) {
+    const auto& s = *tag.scale();
+    const std::string unit = tag.unit().empty() ? "" : " " + tag.unit();
+    if (s.kind == core::plan::ScaleKind::gain_offset) {
+        return fmt::format("scale x {} + {}{}", s.gain, s.offset, unit);
+    }
+    return fmt::format("scale {}{}..{} -> {}..{}{}{}",
+                       s.kind == core::plan::ScaleKind::square_root ? "sqrt " : "", s.raw.lo,
+                       s.raw.hi, s.eu.lo, s.eu.hi, unit, s.clamp ? ", clamped" : "");
+}
 
 std::string size_text(TagType type) {
     if (type == TagType::bit) return "1 bit";
@@ -123,6 +138,7 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
             << std::left << std::setw(7) << core::plan::to_string(tag->spec.type) << std::setw(9)
             << size_text(tag->spec.type) << plan.tag_topic(*tag);
         if (tag->spec.writable) out << "  writable";
+        if (tag->spec.scale()) out << "  " << scale_text(tag->spec);
         out << std::right << "\n";
     }
     print_overlaps(plan, out);

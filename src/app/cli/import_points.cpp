@@ -1,6 +1,8 @@
 // `eip2mqtt import-points FILE.csv`: a SCADA point list (docs/protocol.md §6) as a complete
 // configuration, one exchange per Node, that `check` accepts once its placeholders are reviewed.
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -112,6 +114,14 @@ std::string topic_of(std::string_view node) {
     return topic;
 }
 
+/// A point list's scale (ranges only: point lists carry no gain) as a YAML flow mapping.
+std::string scale_yaml(const core::plan::Scaling& scale) {
+    return fmt::format("{{ raw: [{}, {}], eu: [{}, {}]{}{} }}", scale.raw.lo, scale.raw.hi,
+                       scale.eu.lo, scale.eu.hi,
+                       scale.kind == core::plan::ScaleKind::square_root ? ", sqrt: true" : "",
+                       scale.clamp ? ", clamp: true" : "");
+}
+
 void write_exchange(const Node& node, std::size_t exchange_id, std::ostream& out) {
     const bool produce = node.rows.front()->write;
     core::plan::ExchangeSpec spec;
@@ -144,6 +154,8 @@ void write_exchange(const Node& node, std::size_t exchange_id, std::ostream& out
         out << "      - { name: " << yaml_scalar(tag.name) << ", address: \""
             << core::plan::to_string(tag.address)
             << "\", type: " << core::plan::to_string(tag.type);
+        if (!tag.unit().empty()) out << ", unit: " << yaml_scalar(tag.unit());
+        if (tag.scale()) out << ", scale: " << scale_yaml(*tag.scale());
         if (row->write) out << ", writable: true";
         out << " }\n";
     }

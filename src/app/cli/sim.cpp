@@ -11,10 +11,12 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <optional>
 #include <vector>
 
 #include "app/cli/detail/run_until_stopped.hpp"
 #include "app/cli/detail/simulator.hpp"
+#include "eip2mqtt/core/plan/scaling.hpp"
 #include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/udp/interfaces.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
@@ -29,8 +31,20 @@ namespace detail {
 using core::plan::TagType;
 using core::plan::Value;
 
+/// A scaled tag's raw value for an engineering value sweeping most of its span, so that the
+/// demo shows units; nullopt for a scale without a span (gain and offset).
+std::optional<Value> simulated_scaled(const core::plan::TagSpec& tag, std::uint64_t step) {
+    const auto span = tag.scale() ? core::plan::eu_span(*tag.scale()) : std::nullopt;
+    if (!span) return std::nullopt;
+    const double eu =
+        span->lo + (span->hi - span->lo) * (0.5 + 0.45 * std::sin(static_cast<double>(step) / 20.0));
+    auto raw = core::plan::to_raw(eu, *tag.scale(), tag.type);
+    return raw ? std::optional(std::move(raw).value()) : std::nullopt;
+}
+
 Value simulated_value(const core::plan::TagSpec& tag, std::uint64_t cycle, std::size_t index) {
     const std::uint64_t step = cycle + index * 7;
+    if (auto scaled = simulated_scaled(tag, step)) return *scaled;
     switch (tag.type) {
         case TagType::bit:
             return (step / 10 + tag.address.bit) % 2 == 0;

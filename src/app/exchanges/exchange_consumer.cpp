@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "eip2mqtt/core/plan/published_value.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
 
 namespace eip2mqtt::app {
@@ -216,13 +217,15 @@ void ExchangeConsumer::report_tags(core::MonoTime now, bool all,
     for (std::size_t i = 0; i < plan_.tags.size(); ++i) {
         const auto& tag = plan_.tags[i];
         auto& filter = filters_[i];
-        const auto value = core::plan::decode_value(image, tag.spec.type, tag.spec.address);
+        const auto raw = core::plan::decode_value(image, tag.spec.type, tag.spec.address);
+        // The deadband is of what is published: a scaled tag's engineering value.
+        const auto value = core::plan::published_value(tag.spec, raw).value;
         if (!all &&
             !filter.should_publish(value, *quality, now, tag.spec.deadband, tag.spec.refresh)) {
             continue;
         }
         filter.published(value, *quality, now);
-        samples.push_back({i, value});
+        samples.push_back({i, raw});
     }
     if (samples.empty()) return;
     northbound_.tag_samples({plan_, *quality, timestamp_ms_, all, samples, key});

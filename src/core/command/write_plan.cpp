@@ -29,18 +29,6 @@ bool intersects(const Bits& written, const plan::TagSpec& tag) {
     return false;
 }
 
-write::WriteInput input_of(const plan::Value& value) {
-    return std::visit(
-        [](auto v) -> write::WriteInput {
-            if constexpr (std::is_same_v<decltype(v), float>) {
-                return static_cast<double>(v);
-            } else {
-                return v;
-            }
-        },
-        value);
-}
-
 }  // namespace
 
 Result<std::vector<write::TagWrite>, WriteRefusal> plan_write(const plan::ExchangePlan& plan,
@@ -72,7 +60,7 @@ Result<std::vector<write::TagWrite>, WriteRefusal> plan_write(const plan::Exchan
         const auto& tag = plan.tags[index].spec;
         if (!tag.writable || !intersects(written, tag)) continue;
         const auto value = plan::decode_value(next, tag.type, tag.address);
-        auto checked = write::validate_write(tag, input_of(value));
+        auto checked = write::validate_raw_write(tag, value);
         if (!checked) return fail(WriteRefusal{CommandStatus::rejected, checked.error()});
         writes.push_back({index, std::move(checked).value()});
     }

@@ -5,18 +5,16 @@
 #include <cctype>
 #include <optional>
 
+#include "core/config/detail/csv_field.hpp"
+#include "core/config/detail/point_columns.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 
 namespace eip2mqtt::core::config {
 namespace {
 
-struct Field {
-    std::string_view text;  ///< into the line, or into `unquoted` for a quoted field
-    std::string unquoted;   ///< a quoted field without its quotes and with "" read as "
-    int column = 1;         ///< 1-based column where the field starts
-    bool quoted = false;
-};
+using Field = detail::CsvField;
+using detail::equals_lower;
 
 bool blank(char c) { return c == ' ' || c == '\t'; }
 
@@ -26,11 +24,6 @@ std::string_view trim(std::string_view text) {
     while (!text.empty() && blank(text.front())) text.remove_prefix(1);
     while (!text.empty() && blank(text.back())) text.remove_suffix(1);
     return text;
-}
-
-bool equals_lower(std::string_view text, std::string_view lower_case) {
-    return std::equal(text.begin(), text.end(), lower_case.begin(), lower_case.end(),
-                      [](unsigned char a, unsigned char b) { return std::tolower(a) == b; });
 }
 
 /// Splits one CSV line into `fields` (reused from line to line: a list of 100,000 rows would
@@ -144,10 +137,15 @@ constexpr std::array<std::string_view, 5> column_names{"tagname", "node", "addre
                                                        "accesstype"};
 enum Column : std::size_t { tag_name, node, address, data_type, access_type };
 
-using ColumnIndex = std::array<std::size_t, column_names.size()>;
+/// The required columns' places; the optional ones are PointColumns'.
+struct ColumnIndex {
+    std::array<std::size_t, column_names.size()> required{};
+    detail::PointColumns optional;
+};
 
 /// Finds each column in the header row; returns the names of those it lacks, comma-separated.
 std::string read_header(const std::vector<Field>& fields, ColumnIndex& index) {
+    index.optional.find(fields);
     std::string missing;
     for (std::size_t c = 0; c < column_names.size(); ++c) {
         const auto it = std::find_if(fields.begin(), fields.end(), [&](const Field& f) {
@@ -156,7 +154,7 @@ std::string read_header(const std::vector<Field>& fields, ColumnIndex& index) {
         if (it == fields.end()) {
             missing += (missing.empty() ? "" : ", ") + std::string(column_names[c]);
         } else {
-            index[c] = static_cast<std::size_t>(it - fields.begin());
+            index.required[c] = static_cast<std::size_t>(it - fields.begin());
         }
     }
     return missing;
@@ -165,7 +163,7 @@ std::string read_header(const std::vector<Field>& fields, ColumnIndex& index) {
 /// One data row; nullopt, with its errors added, when a field is bad.
 std::optional<PointRow> read_row(const std::vector<Field>& fields, const ColumnIndex& index,
                                  const FileName& file, int line_number, Diagnostics& errors) {
-    const auto field = [&](Column c) -> const Field& { return fields[index[c]]; };
+    const auto field = [&](Column c) -> const Field& { return fields[index.required[c]]; };
     const auto at = [&](Column c) { return Mark{file, line_number, field(c).column}; };
 
     PointRow row;
@@ -212,6 +210,7 @@ std::optional<PointRow> read_row(const std::vector<Field>& fields, const ColumnI
                                                "Read/Write or RW)"});
         ok = false;
     }
+    ok = index.optional.read(fields, row.mark, row.tag, errors) && ok;
     if (!ok) return std::nullopt;
     return row;
 }
@@ -230,7 +229,8 @@ std::optional<ColumnIndex> header_of(const std::vector<Field>& fields, const Mar
 /// Adds the data row of `fields` to `list`, or its errors.
 void add_row(const std::vector<Field>& fields, const ColumnIndex& index, const FileName& file,
              int line_number, PointList& list) {
-    const std::size_t needed = *std::max_element(index.begin(), index.end()) + 1;
+    const std::size_t needed =
+        *std::max_element(index.required.begin(), index.required.end()) + 1;
     if (fields.size() < needed) {
         list.errors.push_back({Mark{file, line_number, 1},
                                "row has " + std::to_string(fields.size()) +

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "eip2mqtt/core/plan/overlap.hpp"
+#include "eip2mqtt/core/plan/scaling.hpp"
 
 namespace eip2mqtt::core::write {
 namespace {
@@ -147,6 +148,48 @@ std::partial_ordering compare(const plan::Value& value, const WriteInput& input,
     return plan::to_double(value) <=> limit;
 }
 
+WriteInput raw_input(const plan::Value& value) {
+    return std::visit(
+        [](auto v) -> WriteInput {
+            if constexpr (std::is_same_v<decltype(v), float>) {
+                return static_cast<double>(v);
+            } else {
+                return v;
+            }
+        },
+        value);
+}
+
+/// A scaled tag's engineering value against its min and max; nullopt within them.
+std::optional<WriteRejection> outside_limits(const plan::TagSpec& tag, double eu) {
+    if (const auto& min = tag.min(); min && eu < *min) {
+        return reject(WriteError::below_min, "below min " + shortest(*min));
+    }
+    if (const auto& max = tag.max(); max && eu > *max) {
+        return reject(WriteError::above_max, "above max " + shortest(*max));
+    }
+    return std::nullopt;
+}
+
+/// A write in engineering units: checked against min and max, then made raw.
+Result<plan::Value, WriteRejection> to_scaled_tag(const plan::TagSpec& tag,
+                                                  const WriteInput& input) {
+    if (std::holds_alternative<bool>(input)) {
+        return fail(reject(WriteError::wrong_type, "expected a number"));
+    }
+    const double eu = std::visit([](auto v) { return static_cast<double>(v); }, input);
+    if (auto outside = outside_limits(tag, eu)) return fail(std::move(*outside));
+    auto raw = plan::to_raw(eu, *tag.scale(), tag.type);
+    if (raw) return std::move(raw).value();
+    if (raw.error() == plan::RawRefusal::below_zero) {
+        return fail(reject(WriteError::out_of_range,
+                           "below the square root's zero: no raw value reads as it"));
+    }
+    auto refusal = out_of_range(tag.type);
+    refusal.message = "raw value " + refusal.message;
+    return fail(std::move(refusal));
+}
+
 }  // namespace
 
 Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
@@ -155,6 +198,7 @@ Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
     if (const auto* d = std::get_if<double>(&input); d != nullptr && !std::isfinite(*d)) {
         return fail(reject(WriteError::not_finite, "not a finite number"));
     }
+    if (tag.scale()) return to_scaled_tag(tag, input);
 
     auto converted = tag.type == TagType::bit     ? to_bit_tag(input)
                      : plan::is_integer(tag.type) ? to_integer_tag(tag.type, input)
@@ -169,6 +213,18 @@ Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
         return fail(reject(WriteError::above_max, "above max " + shortest(*max)));
     }
     return converted;
+}
+
+Result<plan::Value, WriteRejection> validate_raw_write(const plan::TagSpec& tag,
+                                                       const plan::Value& raw) {
+    if (!tag.scale()) return validate_write(tag, raw_input(raw));
+    if (!tag.writable) return fail(reject(WriteError::read_only, "tag is read-only"));
+    if (!std::isfinite(plan::to_double(raw))) {
+        return fail(reject(WriteError::not_finite, "not a finite number"));
+    }
+    const double eu = plan::to_double(plan::to_engineering(raw, *tag.scale()).value);
+    if (auto outside = outside_limits(tag, eu)) return fail(std::move(*outside));
+    return raw;
 }
 
 std::optional<WriteRejection> overlap_rejection(const plan::ExchangePlan& plan,

@@ -99,6 +99,7 @@ exchanges:
     exchange_id: 2
     period_ms: 200
     destination: 10.0.0.3:18246
+    publish_raw: true
     tags:
       - name: VALUE
         address: 8.0
@@ -112,6 +113,9 @@ exchanges:
         initial: 5
         description: a setpoint
         max_writes_per_s: 10
+        scale: { gain: 1, offset: 0 }
+        type_eu: lreal
+        publish_raw: false
   - { name: spare, direction: consume, producer_id: 10.0.0.4, exchange_id: 4, length: 2 }
 )";
 
@@ -256,6 +260,11 @@ inline const std::vector<Edit> edits = {
      "points-a.csv",
      "points-b.csv",
      {{"exchanges[consumed].points", Kind::changed}}},
+    // VALUE says its own publish_raw: only the exchange's key changes.
+    {"exchanges[].publish_raw",
+     "publish_raw: true",
+     "publish_raw: false",
+     {{"exchanges[produced].publish_raw", Kind::changed}}},
     {"exchanges[].tags[].name",
      "name: VALUE",
      "name: VALUE2",
@@ -277,6 +286,10 @@ inline const std::vector<Edit> tag_edits = {
     {"initial", "initial: 5", "initial: 6"},
     {"description", "a setpoint", "the setpoint"},
     {"max_writes_per_s", "max_writes_per_s: 10", "max_writes_per_s: 20"},
+    // `initial: 5` stays raw 5 (5 / 1.01 rounds to 5): only the scale changes.
+    {"scale", "gain: 1,", "gain: 1.01,"},
+    {"type_eu", "type_eu: lreal", "type_eu: dint"},
+    {"publish_raw", "publish_raw: false", "publish_raw: true"},
 };
 
 inline std::vector<Edit> every_edit() {

@@ -1,4 +1,5 @@
-// `check` names the brokers of a list, in the order the gateway tries them.
+// `check` names the brokers of a list, in the order the gateway tries them, and shows a scaled
+// tag's scale in its byte map.
 
 #include <gtest/gtest.h>
 
@@ -33,6 +34,30 @@ TEST(CheckBrokers, AListIsPrintedInItsOrder) {
 TEST(CheckBrokers, OneBrokerAddsNoLine) {
     const auto out = checked("tcp://a:1883");
     EXPECT_EQ(out.find("tried in turn"), std::string::npos) << out;
+}
+
+TEST(CheckByteMap, AScaledTagShowsItsScaleOnItsLine) {
+    test::TempDir dir;
+    const auto path = dir.write(
+        "scaled.yaml",
+        "exchanges:\n"
+        "  - name: ex\n"
+        "    producer_id: 10.0.0.1\n"
+        "    exchange_id: 1\n"
+        "    tags:\n"
+        "      - { name: L, address: 0.0, type: int, unit: '%',\n"
+        "          scale: { raw: [0, 32000], eu: [0, 100], clamp: true } }\n"
+        "      - { name: F, address: 2.0, type: word, scale: { raw: [0, 65535], eu: [0, 500],"
+        " sqrt: true } }\n"
+        "      - { name: T, address: 4.0, type: dint, unit: degC, scale: { gain: 0.1, offset: -40 "
+        "} }\n");
+    std::ostringstream out;
+    std::ostringstream err;
+    ASSERT_EQ(run_check(path, out, err), 0) << err.str();
+    const auto text = out.str();
+    EXPECT_NE(text.find("scale 0..32000 -> 0..100 %, clamped\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("scale sqrt 0..65535 -> 0..500\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("scale x 0.1 + -40 degC\n"), std::string::npos) << text;
 }
 
 }  // namespace

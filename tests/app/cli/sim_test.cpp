@@ -83,6 +83,22 @@ TEST(SimValues, IntegersRampAndWrapRealsFollowAWave) {
     EXPECT_EQ(simulated_value(tag(TagType::real), 10, 0), Value{123.971f});  // 100 + 50 sin(0.5)
 }
 
+TEST(SimValues, AScaledTagSweepsItsEngineeringSpanInRawValues) {
+    auto level = test::test_tag("L", 0, TagType::int_);
+    level.mutable_extras().scale = core::plan::Scaling{
+        core::plan::ScaleKind::linear, {0, 32000}, {0, 100}, 1, 0, false, std::nullopt};
+    EXPECT_EQ(simulated_value(level, 0, 0), Value{std::int64_t{16000}});  // 50 %
+    for (std::uint64_t cycle = 0; cycle < 200; ++cycle) {
+        const auto raw = std::get<std::int64_t>(simulated_value(level, cycle, 0));
+        EXPECT_GE(raw, 1600) << cycle;  // 5 %
+        EXPECT_LE(raw, 30400) << cycle;  // 95 %
+    }
+    auto oil = test::test_tag("O", 0, TagType::int_);  // no span: the raw ramp
+    oil.mutable_extras().scale = core::plan::Scaling{
+        core::plan::ScaleKind::gain_offset, {}, {}, 0.1, -40, false, std::nullopt};
+    EXPECT_EQ(simulated_value(oil, 0, 0), Value{std::int64_t{-1000}});
+}
+
 class SimTest : public ::testing::Test {
 protected:
     SimTest() { clock_.advance(1500ms); }  // 2026-01-01T00:00:01.5Z

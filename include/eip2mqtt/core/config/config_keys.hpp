@@ -169,7 +169,7 @@ inline constexpr std::array<ConfigKey<RedundancySection>, 3> redundancy{{
 
 /// An exchange's keys restart that exchange (its name is what matches it: a new name is another
 /// exchange, started, and the old one stopped).
-inline constexpr std::array<ConfigKey<plan::ExchangeSpec>, 15> exchange{{
+inline constexpr std::array<ConfigKey<plan::ExchangeSpec>, 16> exchange{{
     {"name", live, differs<&plan::ExchangeSpec::name>},
     {"direction", live, differs<&plan::ExchangeSpec::direction>},
     {"producer_id", live, differs<&plan::ExchangeSpec::producer_id>},
@@ -184,17 +184,21 @@ inline constexpr std::array<ConfigKey<plan::ExchangeSpec>, 15> exchange{{
     {"destination", live, differs<&plan::ExchangeSpec::destination>},
     {"topic", live, differs<&plan::ExchangeSpec::topic>},
     {"points", live, differs<&plan::ExchangeSpec::points>},
+    {"publish_raw", live, differs<&plan::ExchangeSpec::publish_raw>},
     {"tags", live, nullptr},
 }};
 
 /// A tag's keys restart its exchange (a tag is matched by name, as exchanges are). The rows of
 /// a point list are tags too: a changed row shows as the keys it changed.
-inline constexpr std::array<ConfigKey<plan::TagSpec>, 12> tag{{
+inline constexpr std::array<ConfigKey<plan::TagSpec>, 15> tag{{
     {"name", live, differs<&plan::TagSpec::name>},
     {"address", live, differs<&plan::TagSpec::address>},
     {"type", live, differs<&plan::TagSpec::type>},
     {"unit", live, differs<&plan::TagSpec::unit>},
-    {"deadband", live, differs<&plan::TagSpec::deadband>},
+    {"deadband", live,
+     [](const plan::TagSpec& a, const plan::TagSpec& b) {
+         return a.deadband != b.deadband || a.deadband_percent() != b.deadband_percent();
+     }},
     {"refresh_s", live, differs<&plan::TagSpec::refresh>},
     {"writable", live, differs<&plan::TagSpec::writable>},
     {"min", live, differs<&plan::TagSpec::min>},
@@ -202,6 +206,39 @@ inline constexpr std::array<ConfigKey<plan::TagSpec>, 12> tag{{
     {"initial", live, differs<&plan::TagSpec::initial>},
     {"description", live, differs<&plan::TagSpec::description>},
     {"max_writes_per_s", live, differs<&plan::TagSpec::max_writes_per_s>},
+    // `type_eu` is kept in the scale, but named as its own key.
+    {"scale", live,
+     [](const plan::TagSpec& a, const plan::TagSpec& b) {
+         const auto without_type = [](const plan::TagSpec& t) {
+             auto scale = t.scale();
+             if (scale) scale->eu_type.reset();
+             return scale;
+         };
+         return without_type(a) != without_type(b);
+     }},
+    {"type_eu", live,
+     [](const plan::TagSpec& a, const plan::TagSpec& b) {
+         const auto eu_type = [](const plan::TagSpec& t) {
+             return t.scale() ? t.scale()->eu_type : std::nullopt;
+         };
+         return eu_type(a) != eu_type(b);
+     }},
+    {"publish_raw", live, differs<&plan::TagSpec::publish_raw>},
+}};
+
+/// A tag's `scale`, compared whole by the tag's `scale` key.
+inline constexpr std::array<ConfigKey<plan::Scaling>, 6> scale{{
+    {"raw", live, differs<&plan::Scaling::raw>},
+    {"eu", live, differs<&plan::Scaling::eu>},
+    {"sqrt", live, differs<&plan::Scaling::kind>},
+    {"clamp", live, differs<&plan::Scaling::clamp>},
+    {"gain", live, differs<&plan::Scaling::gain>},
+    {"offset", live, differs<&plan::Scaling::offset>},
+}};
+
+/// A tag's `deadband` written as a mapping.
+inline constexpr std::array<ConfigKey<plan::TagExtras>, 1> deadband{{
+    {"percent", live, differs<&plan::TagExtras::deadband_percent>},
 }};
 
 /// The names of `table`'s keys, in its order (the loader's lists of known keys).

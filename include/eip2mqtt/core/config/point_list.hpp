@@ -1,9 +1,10 @@
 #pragma once
 /// SCADA point lists (docs/protocol.md §6): CSV with the columns TagName, Node, Address, DataType,
-/// AccessType. The header row is required; columns may come in any order and their names are
-/// case-insensitive; fields may be double-quoted, within their line (a quoted field that runs
-/// onto the next line is an error); blank lines and lines starting with `#` are skipped. Pure:
-/// the caller reads the file.
+/// AccessType, and optionally Units, ScaleType, ScaleRawLow, ScaleRawHigh, ScaleEULow,
+/// ScaleEUHigh and Clamp. The header row is required; columns may come in any order and their
+/// names are case-insensitive; fields may be double-quoted, within their line (a quoted field
+/// that runs onto the next line is an error); blank lines and lines starting with `#` are
+/// skipped. Pure: the caller reads the file.
 
 #include <string>
 #include <string_view>

@@ -60,6 +60,7 @@ struct ExchangeSpec {
     std::string destination;  ///< produce: host or host:port
     std::string topic;        ///< under base_topic
     std::string points;       ///< point-list CSV file, relative to the config file
+    bool publish_raw = false;  ///< what a tag that does not say takes (TagExtras::publish_raw)
     std::vector<TagSpec> tags;
 
     friend bool operator==(const ExchangeSpec&, const ExchangeSpec&) = default;

@@ -7,6 +7,7 @@
 
 #include "eip2mqtt/core/out_of_line.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
+#include "eip2mqtt/core/plan/scaling.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
 
@@ -20,6 +21,13 @@ struct TagExtras {
     std::optional<double> max;
     std::optional<Value> initial;  ///< produced exchanges: value when no image is persisted
     double max_writes_per_s = 0;   ///< writes accepted per second (burst of 1 s); 0: no limit
+    /// `scale`: the published value is this engineering value of the wire's, and writes are
+    /// in its units (`min`, `max` and `initial` too; `initial` is kept here in its raw form).
+    std::optional<Scaling> scale;
+    /// `deadband: {percent: P}`: P % of the engineering span. TagSpec::deadband holds the
+    /// absolute band it makes, which is what reports compare against.
+    std::optional<double> deadband_percent;
+    bool publish_raw = false;  ///< JSON payloads add the wire's value as "raw"
 
     friend bool operator==(const TagExtras&, const TagExtras&) = default;
 };
@@ -41,6 +49,11 @@ struct TagSpec {
     const std::optional<double>& max() const { return extras_.get().max; }
     const std::optional<Value>& initial() const { return extras_.get().initial; }
     double max_writes_per_s() const { return extras_.get().max_writes_per_s; }
+    const std::optional<Scaling>& scale() const { return extras_.get().scale; }
+    const std::optional<double>& deadband_percent() const {
+        return extras_.get().deadband_percent;
+    }
+    bool publish_raw() const { return extras_.get().publish_raw; }
 
     /// The rarely set settings to write (loaders and tests), allocated on first use.
     TagExtras& mutable_extras() { return extras_.mutable_get(); }

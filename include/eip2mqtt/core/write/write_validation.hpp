@@ -65,9 +65,16 @@ struct WriteRejection {
 };
 
 /// Checks `input` against the tag (writable, type, the type's range, min/max) and converts it
-/// to the tag's Value. Bits take true/false, and also 0/1.
+/// to the tag's Value. Bits take true/false, and also 0/1. A scaled tag takes its value in
+/// engineering units: checked against min and max, then made raw (plan::to_raw), refused
+/// where it has no raw form.
 Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
                                                    const WriteInput& input);
+
+/// A raw value for the tag, as the command port writes bytes: the type's range, and min and
+/// max (of a scaled tag, against the engineering value the raw one reads as).
+Result<plan::Value, WriteRejection> validate_raw_write(const plan::TagSpec& tag,
+                                                       const plan::Value& raw);
 
 /// One tag's validated new value, by index into the exchange plan's tags.
 struct TagWrite {

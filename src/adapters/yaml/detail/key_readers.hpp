@@ -73,6 +73,17 @@ public:
         }
         return read ? std::optional(std::move(out)) : std::nullopt;
     }
+    /// The value as a list of two numbers (`raw: [0, 32000]`), each reported at its own mark.
+    std::optional<std::array<double, 2>> number_pair() {
+        if (!value_.is_sequence() || value_.size() != 2) {
+            error("expected two numbers for " + in_quotes(key_) + ", as [low, high]");
+            return std::nullopt;
+        }
+        const auto first = reader_.number(value_.item(0), key_, reader_.mark(value_.item(0)));
+        const auto second = reader_.number(value_.item(1), key_, reader_.mark(value_.item(1)));
+        if (!first || !second) return std::nullopt;
+        return std::array<double, 2>{*first, *second};
+    }
     /// Reports `message` at `at` (an item's mark, from texts()).
     void error_at(const Mark& at, std::string message) { reader_.error(at, std::move(message)); }
 

@@ -151,7 +151,11 @@ local function add_tags(root, buf, ex, data_length)
   local tree = root:add(hf.exchange, buf(32), ex.name)
   for _, tag in ipairs(ex.tags) do
     if tag.offset + tag.size <= data_length then
-      tree:add_le(tag.field, buf(32 + tag.offset, tag.size))
+      local range = buf(32 + tag.offset, tag.size)
+      tree:add_le(tag.field, range)
+      if tag.scale then
+        tree:add(tag.eu_field, range, engineering(tag.scale, raw_number(range, tag.type)))
+      end
     end
   end
 end

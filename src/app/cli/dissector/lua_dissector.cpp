@@ -1,5 +1,7 @@
 #include "eip2mqtt/app/cli/dissector/lua_dissector.hpp"
 
+#include <fmt/format.h>
+
 #include <string_view>
 
 #include "app/cli/dissector/detail/lua_runtime.hpp"
@@ -16,8 +18,29 @@ using core::plan::ExchangePlan;
 const std::unordered_set<std::string> reserved_exchange_parts{"expert"};
 
 std::string tag_label(const core::plan::TagSpec& tag) {
+    if (tag.scale()) return tag.name + " (raw)";
     if (tag.unit().empty()) return tag.name;
     return tag.name + " (" + tag.unit() + ")";
+}
+
+std::string lua_number(double value) {
+    // %.17g reads back as the same double; Lua 5.2 reads numbers as doubles.
+    return fmt::format("{:.17g}", value);
+}
+
+/// The scale's Lua table and its engineering field's label, as arguments of `tag(...)`.
+std::string scale_arguments(const core::plan::TagSpec& tag) {
+    const auto& s = *tag.scale();
+    std::string table = "{ kind = \"" + std::string(core::plan::to_string(s.kind)) + "\"";
+    if (s.kind == core::plan::ScaleKind::gain_offset) {
+        table += ", gain = " + lua_number(s.gain) + ", offset = " + lua_number(s.offset);
+    } else {
+        table += ", raw = { " + lua_number(s.raw.lo) + ", " + lua_number(s.raw.hi) +
+                 " }, eu = { " + lua_number(s.eu.lo) + ", " + lua_number(s.eu.hi) + " }" +
+                 (s.clamp ? ", clamp = true" : "");
+    }
+    const std::string label = tag.unit().empty() ? tag.name : tag.name + " (" + tag.unit() + ")";
+    return ", " + table + " }, " + lua_string(label);
 }
 
 /// The key the plugin looks exchanges up by: "producer id/exchange id", as its dissector
@@ -52,7 +75,8 @@ void append_exchange(const ExchangePlan& plan, const std::string& part, std::str
         out += "  tag(" + lua_string("eip2mqtt." + part + "." + tag_parts.unique(spec.name)) +
                ", " + lua_string(tag_label(spec)) + ", \"" +
                std::string(core::plan::to_string(spec.type)) + "\", " +
-               std::to_string(spec.address.byte) + ", " + std::to_string(spec.address.bit) + ")\n";
+               std::to_string(spec.address.byte) + ", " + std::to_string(spec.address.bit) +
+               (spec.scale() ? scale_arguments(spec) : std::string()) + ")\n";
     }
     out += "end)\n";
 }

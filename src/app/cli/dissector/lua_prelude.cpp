@@ -72,18 +72,50 @@ local tag_types = {
   lreal = { size = 8, make = ProtoField.double },
 }
 
+-- A scaled tag's raw value as a Lua number (lint through Int64, to the nearest double, as the
+-- gateway scales it).
+local raw_readers = {
+  byte = "le_uint", int = "le_int", word = "le_uint", dint = "le_int", udint = "le_uint",
+  real = "le_float", lreal = "le_float",
+}
+local function raw_number(range, type)
+  if type == "lint" then return range:le_int64():tonumber() end
+  return range[raw_readers[type]](range)
+end
+
+-- The engineering value of `raw` by the tag's scale (docs/configuration.md "Engineering
+-- values"): gain and offset, or linear or square root between two ranges, exact at their ends.
+local function engineering(s, raw)
+  if s.kind == "gain" then return raw * s.gain + s.offset end
+  local t = (raw - s.raw[1]) / (s.raw[2] - s.raw[1])
+  if t < 0 then
+    if s.clamp or s.kind == "sqrt" then t = 0 end
+  elseif t > 1 and s.clamp then
+    t = 1
+  end
+  if s.kind == "sqrt" then t = math.sqrt(t) end
+  if t == 1 then return s.eu[2] end
+  return s.eu[1] + t * (s.eu[2] - s.eu[1])
+end
+
 -- Configured exchanges by "producer id/exchange id"; the first of two with one key decodes it.
+-- A scaled tag shows its raw field and, beside it, its engineering value (`<field>.eu`).
 local exchanges = {}
 local function exchange(ex, define_tags)
   ex.tags = {}
-  define_tags(function(abbr, label, type, offset, bit)
+  define_tags(function(abbr, label, type, offset, bit, scale, eu_label)
     local f
     if type == "bit" then
       f = ProtoField.bool(abbr, label, 8, nil, 2 ^ bit)
     else
       f = tag_types[type].make(abbr, label)
     end
-    ex.tags[#ex.tags + 1] = { field = field(f), offset = offset, size = tag_types[type].size }
+    local tag = { field = field(f), offset = offset, size = tag_types[type].size, type = type }
+    if scale then
+      tag.scale = scale
+      tag.eu_field = field(ProtoField.double(abbr .. ".eu", eu_label))
+    end
+    ex.tags[#ex.tags + 1] = tag
   end)
   if exchanges[ex.key] == nil then exchanges[ex.key] = ex end
 end

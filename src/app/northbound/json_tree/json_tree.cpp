@@ -149,8 +149,8 @@ void JsonTree::tag_samples(const SampleBatch& batch) {
         // Filled in place and handed over: the publisher gives back buffers of an earlier
         // publication, so a tag's publication allocates nothing here.
         plan.tag_topic_into(plan.tags[sample.tag], message_.topic);
-        format_tag_payload(message_.payload, sample.value, batch.quality, batch.timestamp_ms,
-                           settings.format);
+        format_tag_payload(message_.payload, plan.tags[sample.tag].spec, sample.value,
+                           batch.quality, batch.timestamp_ms, settings.format);
         message_.qos = settings.qos;
         message_.retain = settings.retain;
         if (!values && &sample == &batch.samples.back()) message_.ack_token = token;

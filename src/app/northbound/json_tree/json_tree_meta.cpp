@@ -53,6 +53,35 @@ void append_number(std::string& out, std::optional<double> value) {
     if (out.find_first_of(".eE", start) == std::string::npos) out += ".0";
 }
 
+void append_range(std::string& out, const core::plan::ScaleRange& range) {
+    out += '[';
+    append_number(out, range.lo);
+    out += ',';
+    append_number(out, range.hi);
+    out += ']';
+}
+
+/// `"scale":{"kind":"linear","raw":[0.0,32000.0],"eu":[0.0,100.0],"clamp":true,"type_eu":"lreal"}`,
+/// or with `"gain"` and `"offset"` for kind gain.
+void append_scale(std::string& out, const core::plan::Scaling& scale) {
+    fmt::format_to(std::back_inserter(out), R"(,"scale":{{"kind":"{}")",
+                   core::plan::to_string(scale.kind));
+    if (scale.kind == core::plan::ScaleKind::gain_offset) {
+        out += R"(,"gain":)";
+        append_number(out, scale.gain);
+        out += R"(,"offset":)";
+        append_number(out, scale.offset);
+    } else {
+        out += R"(,"raw":)";
+        append_range(out, scale.raw);
+        out += R"(,"eu":)";
+        append_range(out, scale.eu);
+        out += scale.clamp ? R"(,"clamp":true)" : R"(,"clamp":false)";
+    }
+    fmt::format_to(std::back_inserter(out), R"(,"type_eu":"{}"}})",
+                   core::plan::to_string(scale.eu_type.value_or(core::plan::TagType::lreal)));
+}
+
 void append_tag(std::string& out, const core::plan::TagPlan& tag) {
     const auto& spec = tag.spec;
     append_text(out, spec.name);
@@ -67,6 +96,12 @@ void append_tag(std::string& out, const core::plan::TagPlan& tag) {
     append_number(out, spec.max());
     out += R"(,"deadband":)";
     append_number(out, spec.deadband);
+    if (spec.deadband_percent()) {
+        out += R"(,"deadband_percent":)";
+        append_number(out, spec.deadband_percent());
+    }
+    if (spec.scale()) append_scale(out, *spec.scale());
+    if (spec.publish_raw()) out += R"(,"publish_raw":true)";
     out += '}';
 }
 

@@ -8,19 +8,28 @@
 #include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/northbound/json_tree/counter_json.hpp"
 #include "eip2mqtt/app/redundancy/role_metrics.hpp"
+#include "eip2mqtt/core/plan/published_value.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 
-void format_tag_payload(std::string& out, const core::plan::Value& value,
-                        core::quality::Quality quality, std::int64_t timestamp_ms,
-                        core::config::PayloadFormat format) {
+void format_tag_payload(std::string& out, const core::plan::TagSpec& tag,
+                        const core::plan::Value& raw, core::quality::Quality quality,
+                        std::int64_t timestamp_ms, core::config::PayloadFormat format) {
     out.clear();
+    const auto published = core::plan::published_value(tag, raw);
     if (format == core::config::PayloadFormat::raw) {
-        out = core::plan::to_json(value);
+        out = core::plan::to_json(published.value);
         return;
     }
-    fmt::format_to(std::back_inserter(out), R"({{"value":{},"timestamp":{},"quality":"{}"}})",
-                   core::plan::to_json(value), timestamp_ms, core::quality::to_string(quality));
+    auto to = std::back_inserter(out);
+    fmt::format_to(to, R"({{"value":{},"timestamp":{},"quality":"{}")",
+                   core::plan::to_json(published.value), timestamp_ms,
+                   core::quality::to_string(quality));
+    if (published.limit != core::plan::Limit::none) {
+        fmt::format_to(to, R"(,"limit":"{}")", core::plan::to_string(published.limit));
+    }
+    if (tag.publish_raw()) fmt::format_to(to, R"(,"raw":{})", core::plan::to_json(raw));
+    out += '}';
 }
 
 void format_values_payload(std::string& out, const SampleBatch& batch) {
@@ -33,7 +42,8 @@ void format_values_payload(std::string& out, const SampleBatch& batch) {
         first = false;
         append_json_string(out, batch.exchange.tags[sample.tag].spec.name);
         out += ':';
-        out += core::plan::to_json(sample.value);
+        const auto& tag = batch.exchange.tags[sample.tag].spec;
+        out += core::plan::to_json(core::plan::published_value(tag, sample.value).value);
     }
     out += "}}";
 }

@@ -5,12 +5,49 @@
 
 #include <utility>
 
+#include "eip2mqtt/core/plan/published_value.hpp"
+
 namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
 
 using adapters::sparkplug::DataType;
 using adapters::sparkplug::Metric;
 using core::plan::Value;
+
+DataType datatype_of(const core::plan::TagSpec& spec) {
+    return adapters::sparkplug::datatype_of(core::plan::published_type(spec));
+}
+
+/// What the metric carries for the raw value `raw`: the tag's published value; is_null where a
+/// NaN of a real has no form in the integer type_eu it is published as.
+std::optional<adapters::sparkplug::MetricValue> metric_value(const core::plan::TagSpec& spec,
+                                                             const Value& raw) {
+    auto published = core::plan::published_value(spec, raw).value;
+    if (std::holds_alternative<double>(published) &&
+        core::plan::is_integer(core::plan::published_type(spec))) {
+        return std::nullopt;
+    }
+    return adapters::sparkplug::MetricValue{std::move(published)};
+}
+
+/// Ignition's names where Ignition has one (engUnit, engLow, engHigh, Documentation).
+void add_properties(Metric& metric, const core::plan::TagSpec& spec, bool produced) {
+    if (!spec.unit().empty()) {
+        metric.properties.push_back({"engUnit", DataType::string, spec.unit()});
+    }
+    if (const auto span = spec.scale() ? core::plan::eu_span(*spec.scale()) : std::nullopt) {
+        metric.properties.push_back({"engLow", DataType::float64, Value{span->lo}});
+        metric.properties.push_back({"engHigh", DataType::float64, Value{span->hi}});
+    }
+    if (!spec.description().empty()) {
+        metric.properties.push_back({"Documentation", DataType::string, spec.description()});
+    }
+    if (produced) {
+        metric.properties.push_back({"writable", DataType::boolean, Value{spec.writable}});
+        if (spec.min()) metric.properties.push_back({"min", DataType::float64, Value{*spec.min()}});
+        if (spec.max()) metric.properties.push_back({"max", DataType::float64, Value{*spec.max()}});
+    }
+}
 
 }  // namespace
 
@@ -94,25 +131,12 @@ void DeviceRegistry::fill_birth(Device& device, adapters::sparkplug::Payload& pa
         Metric metric{spec.name,
                       device.alias_base + i,
                       static_cast<std::uint64_t>(device.values[i] ? device.timestamps[i] : now_ms),
-                      adapters::sparkplug::datatype_of(spec.type),
+                      datatype_of(spec),
                       std::nullopt,
                       false,
                       {}};
-        if (device.values[i]) metric.value = *device.values[i];
-        // Ignition's names where Ignition has one (engUnit, Documentation).
-        if (!spec.unit().empty()) {
-            metric.properties.push_back({"engUnit", DataType::string, spec.unit()});
-        }
-        if (!spec.description().empty()) {
-            metric.properties.push_back({"Documentation", DataType::string, spec.description()});
-        }
-        if (device.produced) {
-            metric.properties.push_back({"writable", DataType::boolean, Value{spec.writable}});
-            if (spec.min())
-                metric.properties.push_back({"min", DataType::float64, Value{*spec.min()}});
-            if (spec.max())
-                metric.properties.push_back({"max", DataType::float64, Value{*spec.max()}});
-        }
+        if (device.values[i]) metric.value = metric_value(spec, *device.values[i]);
+        add_properties(metric, spec, device.produced);
         payload.metrics.push_back(std::move(metric));
     }
 }
@@ -131,9 +155,9 @@ void DeviceRegistry::fill_data(Device& device, const SampleBatch& batch, bool hi
         metric.name.clear();
         metric.alias = device.alias_base + sample.tag;
         metric.timestamp_ms = static_cast<std::uint64_t>(batch.timestamp_ms);
-        metric.datatype =
-            adapters::sparkplug::datatype_of(batch.exchange.tags[sample.tag].spec.type);
-        metric.value = sample.value;
+        const auto& spec = batch.exchange.tags[sample.tag].spec;
+        metric.datatype = datatype_of(spec);
+        metric.value = metric_value(spec, sample.value);
         metric.historical = historical;
         metric.properties.clear();
     }

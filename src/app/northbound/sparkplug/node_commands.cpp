@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "eip2mqtt/core/plan/published_value.hpp"
 #include "eip2mqtt/core/printable.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
@@ -78,10 +79,11 @@ std::variant<ExchangeWrite, WriteRejection> device_write(
                     " in exchange " + plan.spec.name};
         }
         const auto& spec = plan.tags[*tag].spec;
-        // Without a datatype (by alias, as hosts that use aliases send it), the tag's own.
-        const auto given = metric.datatype
-                               ? metric.value
-                               : metric.value_as(adapters::sparkplug::datatype_of(spec.type));
+        // Without a datatype (by alias, as hosts that use aliases send it), the one the tag's
+        // metric was born with.
+        const auto given = metric.datatype ? metric.value
+                                           : metric.value_as(adapters::sparkplug::datatype_of(
+                                                 core::plan::published_type(spec)));
         if (!given) {
             return WriteRejection{WriteError::wrong_type,
                                   spec.name + ": no value of a datatype the gateway takes"};

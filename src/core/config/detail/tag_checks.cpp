@@ -7,8 +7,10 @@
 #include <variant>
 
 #include "core/config/detail/config_names.hpp"
+#include "core/config/detail/engineering_checks.hpp"
 #include "core/config/detail/validator.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
+#include "eip2mqtt/core/plan/scaling.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 
 namespace eip2mqtt::core::config::detail {
@@ -119,7 +121,18 @@ void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& ta
     const double lo = plan::type_min(t.type);
     const double hi = plan::type_max(t.type);
     const auto type = [&] { return std::string(plan::to_string(t.type)); };
+    check_engineering(tag, what, *out_);
+    const auto& scale = t.scale();
     const auto in_range = [&](std::string_view key, double value) {
+        // A scaled tag's limits are engineering values; its initial is kept raw.
+        if (scale && key != "initial") {
+            const auto outside = outside_eu_range(*scale, value);
+            if (!outside.empty()) {
+                error(marks.of(key), what() + " " + std::string(key) + " " +
+                                         format_number(value) + outside);
+            }
+            return outside.empty();
+        }
         if (value < lo || value > hi) {
             error(marks.of(key), what() + " " + std::string(key) + " " + format_number(value) +
                                      " is outside the range of " + type() + " (" +
@@ -137,8 +150,10 @@ void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& ta
               what() + " has min " + format_number(*min) + " above max " + format_number(*max));
     }
     if (t.initial()) {
-        const double initial = as_double(*t.initial());
-        if (in_range("initial", initial)) {
+        const double raw = as_double(*t.initial());
+        const double initial =
+            scale ? plan::to_double(plan::to_engineering(*t.initial(), *scale).value) : raw;
+        if (in_range("initial", raw)) {
             if (min && initial < *min) {
                 error(marks.of("initial"), what() + " initial " + format_number(initial) +
                                                " is below min " + format_number(*min));

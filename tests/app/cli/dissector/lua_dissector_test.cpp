@@ -39,6 +39,28 @@ TEST(LuaDissector, DeclaresEachTagAsATypedFieldWithItsUnitInTheLabel) {
     EXPECT_TRUE(contains(lua, "tag(\"eip2mqtt.turbine1.COUNT\", \"COUNT\", \"lint\", 8, 0)"));
 }
 
+TEST(LuaDissector, AScaledTagPassesItsScaleAndLabelsBothFields) {
+    auto level = test_tag("LEVEL", 0, TagType::int_);
+    level.mutable_extras().unit = "%";
+    level.mutable_extras().scale = core::plan::Scaling{
+        core::plan::ScaleKind::square_root, {0, 32000}, {0, 100}, 1, 0, true, std::nullopt};
+    auto oil = test_tag("OIL", 2, TagType::dint);
+    oil.mutable_extras().scale = core::plan::Scaling{
+        core::plan::ScaleKind::gain_offset, {}, {}, 0.1, -40, false, std::nullopt};
+    const auto lua =
+        lua_dissector({test_plan("tank", Direction::consume, 8, {level, oil})}, {});
+    EXPECT_TRUE(contains(lua,
+                         "tag(\"eip2mqtt.tank.LEVEL\", \"LEVEL (raw)\", \"int\", 0, 0, "
+                         "{ kind = \"sqrt\", raw = { 0, 32000 }, eu = { 0, 100 }, clamp = true }, "
+                         "\"LEVEL (%)\")"))
+        << lua;
+    EXPECT_TRUE(contains(lua,
+                         "tag(\"eip2mqtt.tank.OIL\", \"OIL (raw)\", \"dint\", 2, 0, "
+                         "{ kind = \"gain\", gain = 0.10000000000000001, offset = -40 }, "
+                         "\"OIL\")"))
+        << lua;
+}
+
 TEST(LuaDissector, KeysTheExchangeByProducerAndExchangeIdWithItsRules) {
     auto plan = turbine();
     plan.timeout = std::chrono::milliseconds(3000);

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/app/support/test_plan.hpp"
+#include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 namespace {
@@ -95,6 +96,35 @@ TEST(JsonTreeMeta, IsWrittenAsAJsonLibraryWritesItAndNeverCarriesABrokenByte) {
     EXPECT_EQ(s["deadband"], 2.0);
     EXPECT_EQ(s["min"], -1.5e-7);
     EXPECT_EQ(s["max"], 1e21);
+}
+
+TEST(JsonTreeMeta, AScaledTagSaysItsScaleAndPercentDeadband) {
+    auto level = test::test_tag("LEVEL", 0, TagType::int_);
+    level.deadband = 0.5;
+    auto& extras = level.mutable_extras();
+    extras.scale = core::plan::Scaling{core::plan::ScaleKind::linear, {0, 32000}, {0, 100}, 1, 0,
+                                       true, std::nullopt};
+    extras.deadband_percent = 0.5;
+    extras.publish_raw = true;
+    auto oil = test::test_tag("OIL", 2, TagType::dint);
+    oil.mutable_extras().scale = core::plan::Scaling{
+        core::plan::ScaleKind::gain_offset, {}, {}, 0.1, -40, false, TagType::real};
+    const auto plan = test::test_plan("tank", Direction::consume, 8, {level, oil});
+    const auto text = format_meta_payload(plan);
+    EXPECT_EQ(test::schema_problem(test::schema_file("meta.json"), text), "") << text;
+    const auto meta = json::parse(text);
+    const auto& l = meta["tags"]["LEVEL"];
+    EXPECT_EQ(l["type"], "int");
+    EXPECT_EQ(l["deadband"], 0.5);
+    EXPECT_EQ(l["deadband_percent"], 0.5);
+    EXPECT_EQ(l["publish_raw"], true);
+    EXPECT_EQ(l["scale"], json::parse(R"({"kind":"linear","raw":[0.0,32000.0],"eu":[0.0,100.0],)"
+                                      R"("clamp":true,"type_eu":"lreal"})"));
+    const auto& o = meta["tags"]["OIL"];
+    EXPECT_EQ(o["scale"],
+              json::parse(R"({"kind":"gain","gain":0.1,"offset":-40.0,"type_eu":"real"})"));
+    EXPECT_FALSE(o.contains("deadband_percent"));
+    EXPECT_FALSE(o.contains("publish_raw"));
 }
 
 }  // namespace

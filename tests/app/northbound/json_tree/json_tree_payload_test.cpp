@@ -76,5 +76,54 @@ TEST(WriteResult, AppliedButUnsavedSaysSo) {
     EXPECT_EQ(test::schema_problem(test::schema_file("write-result.json"), payload), "") << payload;
 }
 
+using core::plan::Scaling;
+using core::plan::ScaleKind;
+using core::plan::TagType;
+using core::plan::Value;
+using core::quality::Quality;
+
+core::plan::TagSpec level_tag(bool publish_raw) {
+    core::plan::TagSpec tag;
+    tag.name = "level";
+    tag.type = TagType::int_;
+    tag.mutable_extras().scale =
+        Scaling{ScaleKind::linear, {0, 32000}, {0, 100}, 1, 0, true, std::nullopt};
+    tag.mutable_extras().publish_raw = publish_raw;
+    return tag;
+}
+
+std::string tag_payload(const core::plan::TagSpec& tag, const Value& raw,
+                        core::config::PayloadFormat format = core::config::PayloadFormat::json) {
+    std::string out = "left over";
+    format_tag_payload(out, tag, raw, Quality::good, 1700000000000, format);
+    return out;
+}
+
+TEST(TagPayload, AScaledTagPublishesItsEngineeringValue) {
+    const auto tag = level_tag(false);
+    EXPECT_EQ(tag_payload(tag, Value{std::int64_t{8000}}),
+              R"({"value":25.0,"timestamp":1700000000000,"quality":"good"})");
+    EXPECT_EQ(tag_payload(tag, Value{std::int64_t{8000}}, core::config::PayloadFormat::raw),
+              "25.0");
+}
+
+TEST(TagPayload, ALimitIsFlaggedAndPublishRawAddsTheWiresValue) {
+    const auto payload = tag_payload(level_tag(true), Value{std::int64_t{32767}});
+    EXPECT_EQ(payload,
+              R"({"value":100.0,"timestamp":1700000000000,"quality":"good","limit":"high",)"
+              R"("raw":32767})");
+    EXPECT_EQ(test::schema_problem(test::schema_file("tag-value.json"), payload), "") << payload;
+    EXPECT_EQ(tag_payload(level_tag(true), Value{std::int64_t{-1}}),
+              R"({"value":0.0,"timestamp":1700000000000,"quality":"good","limit":"low",)"
+              R"("raw":-1})");
+}
+
+TEST(TagPayload, AnUnscaledTagIsAsBefore) {
+    core::plan::TagSpec tag;
+    tag.type = TagType::real;
+    EXPECT_EQ(tag_payload(tag, Value{1.5f}),
+              R"({"value":1.5,"timestamp":1700000000000,"quality":"good"})");
+}
+
 }  // namespace
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -7,9 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "tests/app/support/sparkplug_node_fixture.hpp"
+#include "tests/app/support/test_plan.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
 namespace {
@@ -116,6 +118,46 @@ TEST_F(DeviceRegistryTest, ADbirthNamesEveryTagWithItsPropertiesAndANullForAnUnk
     std::vector<std::string> keys;
     for (const auto& property : payload.metrics[0].properties) keys.push_back(property.key);
     EXPECT_EQ(keys, (std::vector<std::string>{"engUnit", "writable", "max"}));
+}
+
+TEST(DeviceRegistryScaled, AScaledTagIsBornAndReportedInUnitsWithItsRange) {
+    using core::plan::ScaleKind;
+    using core::plan::Scaling;
+    using core::plan::TagType;
+    auto level = test::test_tag("LEVEL", 0, TagType::int_);
+    level.mutable_extras().unit = "%";
+    level.mutable_extras().scale =
+        Scaling{ScaleKind::linear, {0, 32000}, {0, 100}, 1, 0, false, std::nullopt};
+    auto counts = test::test_tag("COUNTS", 2, TagType::real);
+    counts.mutable_extras().scale =
+        Scaling{ScaleKind::gain_offset, {}, {}, 2, 0, false, TagType::dint};
+    const auto plan = test::test_plan("tank", Direction::consume, 8, {level, counts});
+    DeviceRegistry registry{"plant1", "gw1"};
+    registry.exchanges_changed({{&plan}, {}});
+    auto& device = *registry.find(&plan);
+    const std::vector<TagSample> samples{
+        {0, Value{std::int64_t{8000}}},
+        {1, Value{std::numeric_limits<float>::quiet_NaN()}}};
+    DeviceRegistry::record(device, {plan, Quality::good, 10, false, samples});
+    Payload birth;
+    DeviceRegistry::fill_birth(device, birth, 99);
+    ASSERT_EQ(birth.metrics.size(), 2u);
+    EXPECT_EQ(birth.metrics[0].datatype, adapters::sparkplug::DataType::float64);
+    EXPECT_EQ(birth.metrics[0].value, adapters::sparkplug::MetricValue{Value{25.0}});
+    std::vector<std::string> keys;
+    for (const auto& property : birth.metrics[0].properties) keys.push_back(property.key);
+    EXPECT_EQ(keys, (std::vector<std::string>{"engUnit", "engLow", "engHigh"}));
+    EXPECT_EQ(birth.metrics[0].properties[2].value, adapters::sparkplug::MetricValue{Value{100.0}});
+    // An integer type_eu: the metric's datatype; a NaN has no integer, so is_null.
+    EXPECT_EQ(birth.metrics[1].datatype, adapters::sparkplug::DataType::int32);
+    EXPECT_FALSE(birth.metrics[1].value.has_value());
+
+    const std::vector<TagSample> next{{1, Value{3.0f}}};
+    Payload data;
+    DeviceRegistry::fill_data(device, {plan, Quality::good, 20, false, next}, false, data);
+    ASSERT_EQ(data.metrics.size(), 1u);
+    EXPECT_EQ(data.metrics[0].datatype, adapters::sparkplug::DataType::int32);
+    EXPECT_EQ(data.metrics[0].value, adapters::sparkplug::MetricValue{Value{std::int64_t{6}}});
 }
 
 }  // namespace

@@ -17,13 +17,15 @@
 
 namespace eip2mqtt::app::northbound::json_tree {
 
-/// `{"value":90,"timestamp":1695231678000,"quality":"good"}`, or `90` with payload: raw.
-void format_tag_payload(std::string& out, const core::plan::Value& value,
-                        core::quality::Quality quality, std::int64_t timestamp_ms,
-                        core::config::PayloadFormat format);
+/// `{"value":90,"timestamp":1695231678000,"quality":"good"}`, or `90` with payload: raw, for
+/// the raw sample `raw` of `tag`: a scaled tag's value is its engineering value, followed by
+/// `"limit":"low"|"high"` when the raw value left its range and by `"raw":…` with publish_raw.
+void format_tag_payload(std::string& out, const core::plan::TagSpec& tag,
+                        const core::plan::Value& raw, core::quality::Quality quality,
+                        std::int64_t timestamp_ms, core::config::PayloadFormat format);
 
 /// Batch mode's `_values`: `{"timestamp":…,"quality":"good","values":{"A":1,"B":2.5}}` with the
-/// batch's samples, in `out` (cleared first).
+/// batch's samples as published (engineering values), in `out` (cleared first).
 void format_values_payload(std::string& out, const SampleBatch& batch);
 
 /// `{"state":"ok","request_id":…,"received":…,"missed":…,"duplicates":…,"out_of_order":…,

@@ -1,0 +1,98 @@
+// The checks of a tag's scale and percent deadband.
+
+#include "core/config/detail/engineering_checks.hpp"
+
+#include <cmath>
+
+#include "eip2mqtt/core/plan/scaling.hpp"
+#include "eip2mqtt/core/plan/tag_type.hpp"
+
+namespace eip2mqtt::core::config::detail {
+namespace {
+
+using plan::ScaleKind;
+using plan::ScaleRange;
+
+std::string number(double value) {
+    std::string text = std::to_string(value);
+    if (text.find('.') != std::string::npos) {
+        text.erase(text.find_last_not_of('0') + 1);
+        if (text.back() == '.') text.pop_back();
+    }
+    return text;
+}
+
+std::string range_text(const ScaleRange& r) { return number(r.lo) + ".." + number(r.hi); }
+
+bool finite(const ScaleRange& r) { return std::isfinite(r.lo) && std::isfinite(r.hi); }
+
+void check_ranges(const TagConfig& tag, const plan::Scaling& s,
+                  const std::function<std::string()>& what, Diagnostics& out) {
+    const auto& marks = tag.marks;
+    if (!finite(s.raw)) {
+        out.push_back({marks.of("scale.raw"), what() + ": scale raw ends must be finite numbers"});
+    } else if (s.raw.lo == s.raw.hi) {
+        out.push_back({marks.of("scale.raw"),
+                       what() + ": scale raw ends are equal (" + range_text(s.raw) +
+                           "): no span to scale from"});
+    } else if (s.kind == ScaleKind::square_root && (s.raw.lo < 0 || s.raw.hi < 0)) {
+        out.push_back({marks.of("scale.raw"),
+                       what() + ": a square-root scale takes raw ends of 0 or more (" +
+                           range_text(s.raw) + "): a negative count has no root"});
+    }
+    if (!finite(s.eu)) {
+        out.push_back({marks.of("scale.eu"), what() + ": scale eu ends must be finite numbers"});
+    } else if (s.eu.lo == s.eu.hi) {
+        out.push_back({marks.of("scale.eu"),
+                       what() + ": scale eu ends are equal (" + range_text(s.eu) +
+                           "): every raw value would read the same, and writes have no raw form"});
+    }
+}
+
+void check_scale(const TagConfig& tag, const std::function<std::string()>& what,
+                 Diagnostics& out) {
+    const auto& s = *tag.spec.scale();
+    const auto& marks = tag.marks;
+    if (tag.spec.type == plan::TagType::bit) {
+        out.push_back({marks.of("scale"), what() + " is a bit: a bit has no scale"});
+        return;
+    }
+    if (s.kind != ScaleKind::gain_offset) {
+        check_ranges(tag, s, what, out);
+        return;
+    }
+    if (!std::isfinite(s.gain) || s.gain == 0) {
+        out.push_back({marks.of("scale.gain"),
+                       what() + ": scale gain " + number(s.gain) +
+                           " must be a finite number other than 0 (writes divide by it)"});
+    }
+    if (!std::isfinite(s.offset)) {
+        out.push_back({marks.of("scale.offset"), what() + ": scale offset must be finite"});
+    }
+}
+
+}  // namespace
+
+std::string outside_eu_range(const plan::Scaling& scale, double value) {
+    const auto span = plan::eu_span(scale);
+    if (!span || (value >= span->lo && value <= span->hi)) return {};
+    return " is outside the engineering range " + range_text(*span);
+}
+
+void check_engineering(const TagConfig& tag, const std::function<std::string()>& what,
+                       Diagnostics& out) {
+    const auto& spec = tag.spec;
+    if (spec.scale()) check_scale(tag, what, out);
+    const auto& percent = spec.deadband_percent();
+    if (!percent) return;
+    if (!std::isfinite(*percent) || *percent < 0) {
+        out.push_back({tag.marks.of("deadband.percent"),
+                       what() + " has a deadband percent that is not 0 or more"});
+    } else if (!(spec.scale() && plan::eu_span(*spec.scale())) && !(spec.min() && spec.max())) {
+        out.push_back({tag.marks.of("deadband"),
+                       what() + " has a percent deadband but no span to take it of: give it a "
+                                "scale with eu, or min and max"});
+    }
+}
+
+}  // namespace eip2mqtt::core::config::detail
