@@ -3,6 +3,8 @@
 // percent deadband, writes in units carried as raw bytes, and Sparkplug births read by Eclipse
 // Tahu carrying the units and the range.
 
+#include <signal.h>
+
 #include <nlohmann/json.hpp>
 
 #include "eip2mqtt/core/plan/published_value.hpp"
@@ -93,6 +95,29 @@ TEST_F(EngineeringValuesTest, APercentDeadbandIsOfTheSpan) {
     std::vector<double> levels;
     for (const auto& p : payloads_on("tank/LEVEL")) levels.push_back(p["value"].get<double>());
     EXPECT_EQ(levels, (std::vector<double>{25.0, 25.625}));
+}
+
+TEST_F(EngineeringValuesTest, AReloadedScaleAppliesToTheNextPublication) {
+    start(tank_exchange());
+    send_tank(1, 8000, 0, 650);
+    expect_field(topic("tank/LEVEL"), "value", "25.0");
+    auto rescaled = tank_exchange();
+    const std::string from = "eu: [0, 100]";
+    rescaled.replace(rescaled.find(from), from.size(), "eu: [0, 200]");
+    rewrite_exchanges(rescaled);
+    const auto meta_from = recorder_->count();
+    gateway_->signal(SIGHUP);
+    ASSERT_TRUE(gateway_->wait_for_output("configuration applied", 10s)) << gateway_->output();
+    // `_meta` says the new range, and the same raw value now reads twice as much.
+    const auto meta = recorder_->wait_for_message(
+        topic("tank/_meta"),
+        [](const std::string& p) {
+            return !p.empty() && json::parse(p)["tags"]["LEVEL"]["scale"]["eu"][1] == 200.0;
+        },
+        10s, meta_from);
+    EXPECT_TRUE(meta.has_value());
+    send_tank(2, 8000, 0, 650);
+    expect_field(topic("tank/LEVEL"), "value", "50.0");
 }
 
 class EngineeringWritesTest : public GatewayTest {
