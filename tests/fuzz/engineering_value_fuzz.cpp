@@ -40,7 +40,7 @@ bool acceptable(const Scaling& s) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size < 3) return 0;
-    constexpr TagType wires[] = {TagType::byte, TagType::int_, TagType::word, TagType::dint,
+    constexpr TagType wires[] = {TagType::byte,  TagType::int_, TagType::word, TagType::dint,
                                  TagType::udint, TagType::real, TagType::lint, TagType::lreal};
     const TagType wire = wires[data[0] % 8];
     Scaling s;

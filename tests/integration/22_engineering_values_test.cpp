@@ -88,13 +88,14 @@ TEST_F(EngineeringValuesTest, RawValuesArePublishedInUnits) {
 
 TEST_F(EngineeringValuesTest, APercentDeadbandIsOfTheSpan) {
     start(tank_exchange());
-    send_tank(1, 8000, 0, 0);     // 25.0
-    send_tank(2, 8100, 0, 0);     // 25.3125: within 0.5 % of 100
-    send_tank(3, 8200, 0, 0);     // 25.625: beyond it
-    send_tank(4, 8300, 0, 0);     // 25.9375: within it of 25.625
+    // Raw values of 125 x k read exactly k / 2.56 %: the comparisons are of exact doubles.
+    send_tank(1, 8000, 0, 0);  // 25.0
+    send_tank(2, 8125, 0, 0);  // 25.390625: within 0.5 % of 100
+    send_tank(3, 8250, 0, 0);  // 25.78125: beyond it
+    send_tank(4, 8375, 0, 0);  // 26.171875: within it of 25.78125
     std::vector<double> levels;
     for (const auto& p : payloads_on("tank/LEVEL")) levels.push_back(p["value"].get<double>());
-    EXPECT_EQ(levels, (std::vector<double>{25.0, 25.625}));
+    EXPECT_EQ(levels, (std::vector<double>{25.0, 25.78125}));
 }
 
 TEST_F(EngineeringValuesTest, AReloadedScaleAppliesToTheNextPublication) {
@@ -193,8 +194,8 @@ TEST_F(EngineeringValuesTest, SparkplugBirthsCarryUnitsAndTheRangeAsDoubles) {
     options.sections = "sparkplug:\n  group_id: plant1\n";
     start(tank_exchange(), "", options);
     send(tank(1, 8000, 0, 650));
-    const auto birth = recorder_->wait_for_message("spBv1.0/plant1/DBIRTH/test-gw/tank", nullptr,
-                                                   10s);
+    const auto birth =
+        recorder_->wait_for_message("spBv1.0/plant1/DBIRTH/test-gw/tank", nullptr, 10s);
     ASSERT_TRUE(birth.has_value());
     const auto decoded = tahu_decode(birth->payload);
     json level;

@@ -69,20 +69,21 @@ TEST_F(DissectorEngineering, TsharkShowsRawAndEngineeringValuesAsTheGatewayPubli
     const char* const names[] = {"LEVEL", "FLOW", "OIL", "TEMP"};
     std::vector<std::string> fields{"eip2mqtt.tank.LEVEL"};
     for (const auto* name : names) fields.push_back(std::string("eip2mqtt.tank.") + name + ".eu");
-    const auto decoded = tshark_fields(write_dissector(config_path_, dir_.path()), pcap_path,
-                                       fields);
+    const auto decoded =
+        tshark_fields(write_dissector(config_path_, dir_.path()), pcap_path, fields);
     ASSERT_EQ(decoded.status, 0) << decoded.output;
     ASSERT_EQ(decoded.rows.size(), std::size(raws)) << decoded.output;
     for (std::size_t i = 0; i < std::size(raws); ++i) {
         const auto& row = decoded.rows[i];
-        EXPECT_EQ(row[0], std::to_string(raws[i].level)) << "raw LEVEL in datagram " << i;
+        // Column 0 is the frame's; the fields follow in the order asked.
+        EXPECT_EQ(row[1], std::to_string(raws[i].level)) << "raw LEVEL in datagram " << i;
         for (std::size_t t = 0; t < std::size(names); ++t) {
             // Every value differs from the one before: message i is datagram i's.
             const auto messages = recorder_->messages_on(topic(std::string("tank/") + names[t]));
             ASSERT_GT(messages.size(), i) << names[t];
             const auto published = json::parse(messages[i].payload);
-            EXPECT_TRUE(agree(TagType::lreal, row[1 + t], published.at("value")))
-                << names[t] << " in datagram " << i << ": tshark " << row[1 + t] << ", gateway "
+            EXPECT_TRUE(agree(TagType::lreal, row[2 + t], published.at("value")))
+                << names[t] << " in datagram " << i << ": tshark " << row[2 + t] << ", gateway "
                 << published.dump();
         }
     }

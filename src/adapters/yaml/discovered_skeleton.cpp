@@ -20,9 +20,7 @@ using command::DestinationType;
 using command::ExchangeConfig;
 using command::ExchangeMode;
 
-// The period_ms and length the validation accepts (config.cpp).
-constexpr std::uint32_t min_period_ms = 2;
-constexpr std::uint32_t max_period_ms = 3600000;
+// The length the validation accepts (config.cpp).
 constexpr std::uint16_t max_length = 1400;
 
 // What a node told (a NAK's text...), as it may stand in a comment line: no line break, no
@@ -58,7 +56,7 @@ void period_line(const ExchangeConfig& c, std::string& out) {
             "never produced); the default\n";
         return;
     }
-    const auto period = std::clamp(c.period_ms, min_period_ms, max_period_ms);
+    const auto period = std::clamp(c.period_ms, detail::min_period_ms, detail::max_period_ms);
     out += "    period_ms: " + std::to_string(period) + "  # as the node told";
     if (period != c.period_ms) out += " (" + std::to_string(c.period_ms) + "; 2 to 3600000)";
     out += "\n";

@@ -259,8 +259,9 @@ std::optional<TagConfig> read_tag(Reader& reader, const Node& node,
     if (draft.initial && !draft.broken) {
         const auto& scale = spec.scale();
         if (auto value =
-                scale ? read_initial_eu(reader, *draft.initial, *scale, spec.type, draft.initial_mark)
-                      : read_initial(reader, *draft.initial, spec.type, draft.initial_mark)) {
+                scale
+                    ? read_initial_eu(reader, *draft.initial, *scale, spec.type, draft.initial_mark)
+                    : read_initial(reader, *draft.initial, spec.type, draft.initial_mark)) {
             spec.mutable_extras().initial = *value;
         } else {
             draft.broken = true;

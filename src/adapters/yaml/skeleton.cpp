@@ -19,9 +19,6 @@ using exchange::ClockState;
 using exchange::DestinationKind;
 using exchange::WireSummary;
 
-// The period_ms the validation accepts (config.cpp).
-constexpr long min_period_ms = 2;
-constexpr long max_period_ms = 3600000;
 constexpr long default_period_ms = 1000;
 
 std::string three_decimals(double value) {
@@ -65,16 +62,17 @@ void period_line(const WireSummary& s, std::string& out) {
         return;
     }
     const long rounded = std::lround(*s.period_ms);
-    const long period = rounded < min_period_ms   ? min_period_ms
-                        : rounded > max_period_ms ? max_period_ms
-                                                  : rounded;
+    const long min_period = detail::min_period_ms;
+    const long max_period = detail::max_period_ms;
+    const long period = rounded < min_period   ? min_period
+                        : rounded > max_period ? max_period
+                                               : rounded;
     out += "    period_ms: " + std::to_string(period) + "  # measured " +
            three_decimals(*s.period_ms) +
            " ms: time between receive times per request-id step, over " +
            plural(s.period_steps, "step", "steps");
     if (period != rounded) {
-        out += "; period_ms is " + std::to_string(min_period_ms) + " to " +
-               std::to_string(max_period_ms);
+        out += "; period_ms is " + std::to_string(min_period) + " to " + std::to_string(max_period);
     }
     out += "\n";
 }

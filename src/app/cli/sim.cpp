@@ -16,12 +16,12 @@
 
 #include "app/cli/detail/run_until_stopped.hpp"
 #include "app/cli/detail/simulator.hpp"
-#include "eip2mqtt/core/plan/scaling.hpp"
 #include "eip2mqtt/adapters/clock/system_clock.hpp"
 #include "eip2mqtt/adapters/udp/interfaces.hpp"
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 #include "eip2mqtt/app/command_port/command_views.hpp"
 #include "eip2mqtt/app/logging.hpp"
+#include "eip2mqtt/core/plan/scaling.hpp"
 #include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/encode.hpp"
 
@@ -36,8 +36,8 @@ using core::plan::Value;
 std::optional<Value> simulated_scaled(const core::plan::TagSpec& tag, std::uint64_t step) {
     const auto span = tag.scale() ? core::plan::eu_span(*tag.scale()) : std::nullopt;
     if (!span) return std::nullopt;
-    const double eu =
-        span->lo + (span->hi - span->lo) * (0.5 + 0.45 * std::sin(static_cast<double>(step) / 20.0));
+    const double eu = span->lo + (span->hi - span->lo) *
+                                     (0.5 + 0.45 * std::sin(static_cast<double>(step) / 20.0));
     auto raw = core::plan::to_raw(eu, *tag.scale(), tag.type);
     return raw ? std::optional(std::move(raw).value()) : std::nullopt;
 }

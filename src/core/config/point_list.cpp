@@ -229,8 +229,7 @@ std::optional<ColumnIndex> header_of(const std::vector<Field>& fields, const Mar
 /// Adds the data row of `fields` to `list`, or its errors.
 void add_row(const std::vector<Field>& fields, const ColumnIndex& index, const FileName& file,
              int line_number, PointList& list) {
-    const std::size_t needed =
-        *std::max_element(index.required.begin(), index.required.end()) + 1;
+    const std::size_t needed = *std::max_element(index.required.begin(), index.required.end()) + 1;
     if (fields.size() < needed) {
         list.errors.push_back({Mark{file, line_number, 1},
                                "row has " + std::to_string(fields.size()) +

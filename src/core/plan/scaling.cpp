@@ -67,7 +67,8 @@ Engineering as_eu_type(Engineering eu, std::optional<TagType> type) {
     if (*type == TagType::real) {
         const double max = std::numeric_limits<float>::max();
         if (d > max || d < -max) {
-            return {Value{static_cast<float>(d < 0 ? -max : max)}, d < 0 ? Limit::low : Limit::high};
+            return {Value{static_cast<float>(d < 0 ? -max : max)},
+                    d < 0 ? Limit::low : Limit::high};
         }
         return {Value{static_cast<float>(d)}, eu.limit};
     }

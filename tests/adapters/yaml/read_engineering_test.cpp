@@ -23,8 +23,7 @@ std::string with_tags(const std::string& tags, const std::string& exchange_keys 
            "    exchange_id: 1\n"
            "    destination: 127.0.0.1\n"
            "    length: 32\n" +
-           exchange_keys +
-           "    tags:\n" + tags;
+           exchange_keys + "    tags:\n" + tags;
 }
 
 const core::plan::TagSpec& only_tag(const Config& config) {
@@ -55,13 +54,13 @@ TEST(ReadEngineering, TheIssuesExampleLoads) {
     EXPECT_EQ(oil.scale()->gain, 0.1);
     EXPECT_EQ(oil.scale()->offset, -40);
     EXPECT_EQ(oil.min(), -40);  // engineering values: outside no scale's range
-    EXPECT_EQ(tags.at(2).marks.of("scale.gain").line, 14);
+    EXPECT_EQ(tags.at(2).marks.of("scale.gain").line, 15);
 }
 
 TEST(ReadEngineering, APercentDeadbandTakesMinAndMaxWithoutAScale) {
-    const auto config = good(with_tags(
-        "      - { name: t, address: 0.0, type: real, min: -50, max: 150, "
-        "deadband: { percent: 1 } }\n"));
+    const auto config =
+        good(with_tags("      - { name: t, address: 0.0, type: real, min: -50, max: 150, "
+                       "deadband: { percent: 1 } }\n"));
     EXPECT_DOUBLE_EQ(only_tag(config).deadband, 2.0);
 }
 
@@ -79,9 +78,9 @@ TEST(ReadEngineering, TypeEuAndPublishRaw) {
 }
 
 TEST(ReadEngineering, InitialIsInEngineeringUnitsAndKeptRaw) {
-    const auto config = good(with_tags(
-        "      - { name: t, address: 0.0, type: dint, writable: true, initial: 25.2,\n"
-        "          scale: { gain: 0.1, offset: -40 } }\n"));
+    const auto config = good(
+        with_tags("      - { name: t, address: 0.0, type: dint, writable: true, initial: 25.2,\n"
+                  "          scale: { gain: 0.1, offset: -40 } }\n"));
     EXPECT_EQ(only_tag(config).initial(), core::plan::Value{std::int64_t{652}});
 }
 
@@ -101,10 +100,12 @@ void expect_error(const std::string& tags, int line, int column, const std::stri
 
 TEST(ReadEngineering, BadScalesAreRefusedAtTheirLineAndColumn) {
     // Lines count from 1; the tags start on line 9.
-    expect_error("      - { name: t, address: 0.0, type: int, scale: { raw: [5, 5], eu: [0, 1] } }\n",
-                 9, 54, "raw ends are equal");
-    expect_error("      - { name: t, address: 0.0, type: int, scale: { raw: [0, 5], eu: [2, 2] } }\n",
-                 9, 67, "eu ends are equal");
+    expect_error(
+        "      - { name: t, address: 0.0, type: int, scale: { raw: [5, 5], eu: [0, 1] } }\n", 9, 54,
+        "raw ends are equal");
+    expect_error(
+        "      - { name: t, address: 0.0, type: int, scale: { raw: [0, 5], eu: [2, 2] } }\n", 9, 67,
+        "eu ends are equal");
     expect_error(
         "      - { name: t, address: 0.0, type: int,\n"
         "          scale: { raw: [-100, 5], eu: [0, 1], sqrt: true } }\n",
@@ -113,15 +114,16 @@ TEST(ReadEngineering, BadScalesAreRefusedAtTheirLineAndColumn) {
                  "a bit has no scale");
     expect_error("      - { name: t, address: 0.0, type: int, scale: { gain: 0 } }\n", 9, 54,
                  "other than 0");
-    expect_error("      - { name: t, address: 0.0, type: int, scale: { raw: [0, 5] } }\n", 9, 52,
+    expect_error("      - { name: t, address: 0.0, type: int, scale: { raw: [0, 5] } }\n", 9, 45,
                  "lacks 'eu'");
     expect_error(
-        "      - { name: t, address: 0.0, type: int, scale: { raw: [0, 5], eu: [0, 1], gain: 2 } }\n",
-        9, 52, "not both");
+        "      - { name: t, address: 0.0, type: int, scale: { raw: [0, 5], eu: [0, 1], gain: 2 } "
+        "}\n",
+        9, 45, "not both");
     expect_error("      - { name: t, address: 0.0, type: int, scale: { gain: 2, clamp: true } }\n",
-                 9, 52, "'clamp' needs");
-    expect_error("      - { name: t, address: 0.0, type: int, scale: { raw: 5, eu: [0, 1] } }\n",
-                 9, 59, "expected two numbers");
+                 9, 45, "'clamp' needs");
+    expect_error("      - { name: t, address: 0.0, type: int, scale: { raw: 5, eu: [0, 1] } }\n", 9,
+                 54, "expected two numbers");
     expect_error("      - { name: t, address: 0.0, type: int, scale: { rwa: [0, 1] } }\n", 9, 54,
                  "did you mean 'raw'");
 }
@@ -132,34 +134,34 @@ TEST(ReadEngineering, BadDeadbandsTypeEuAndLimitsAreRefused) {
     expect_error(
         "      - { name: t, address: 0.0, type: int, scale: { gain: 2 }, deadband: { percent: 2 } "
         "}\n",
-        9, 66, "no span");
-    expect_error("      - { name: t, address: 0.0, type: int, type_eu: dint }\n", 9, 54,
+        9, 65, "no span");
+    expect_error("      - { name: t, address: 0.0, type: int, type_eu: dint }\n", 9, 45,
                  "add 'scale'");
     expect_error("      - { name: t, address: 0.0, type: int, scale: { gain: 2 }, type_eu: bit }\n",
-                 9, 75, "'type_eu' 'bit'");
+                 9, 65, "'type_eu' 'bit'");
     expect_error(
         "      - { name: t, address: 0.0, type: int, writable: true, max: 101,\n"
         "          scale: { raw: [0, 32000], eu: [0, 100] } }\n",
-        9, 66, "outside the engineering range 0..100");
+        9, 61, "outside the engineering range 0..100");
     expect_error(
         "      - { name: t, address: 0.0, type: int, writable: true, initial: 200,\n"
         "          scale: { raw: [0, 32000], eu: [0, 100] } }\n",
-        9, 70, "raw form is outside the range of int");
+        9, 61, "raw form is outside the range of int");
     expect_error(
         "      - { name: t, address: 0.0, type: word, writable: true, initial: -1,\n"
         "          scale: { raw: [0, 32000], eu: [0, 100], sqrt: true } }\n",
-        9, 71, "below the square root's zero");
+        9, 62, "below the square root's zero");
 }
 
 TEST(ReadEngineering, ALargeValueBeyondTheTypeStaysAnEngineeringValue) {
     // max 3000 is no int16 limit here: it is of the engineering range.
-    const auto config = good(with_tags(
-        "      - { name: t, address: 0.0, type: int, writable: true, min: 0, max: 3000,\n"
-        "          scale: { raw: [0, 30000], eu: [0, 3000] } }\n"));
+    const auto config = good(
+        with_tags("      - { name: t, address: 0.0, type: int, writable: true, min: 0, max: 3000,\n"
+                  "          scale: { raw: [0, 30000], eu: [0, 3000] } }\n"));
     EXPECT_EQ(only_tag(config).max(), 3000);
-    const auto large = good(with_tags(
-        "      - { name: t, address: 0.0, type: byte, writable: true, max: 100000,\n"
-        "          scale: { gain: 1000 } }\n"));
+    const auto large =
+        good(with_tags("      - { name: t, address: 0.0, type: byte, writable: true, max: 100000,\n"
+                       "          scale: { gain: 1000 } }\n"));
     EXPECT_EQ(only_tag(large).max(), 100000);
 }
 

@@ -90,7 +90,7 @@ TEST(SimValues, AScaledTagSweepsItsEngineeringSpanInRawValues) {
     EXPECT_EQ(simulated_value(level, 0, 0), Value{std::int64_t{16000}});  // 50 %
     for (std::uint64_t cycle = 0; cycle < 200; ++cycle) {
         const auto raw = std::get<std::int64_t>(simulated_value(level, cycle, 0));
-        EXPECT_GE(raw, 1600) << cycle;  // 5 %
+        EXPECT_GE(raw, 1600) << cycle;   // 5 %
         EXPECT_LE(raw, 30400) << cycle;  // 95 %
     }
     auto oil = test::test_tag("O", 0, TagType::int_);  // no span: the raw ramp

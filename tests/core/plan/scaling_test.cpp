@@ -46,7 +46,7 @@ TEST(Scaling, LinearIsExactAtTheEndsAndBetween) {
 TEST(Scaling, LinearBeyondTheRawRangeGoesOnAndIsFlagged) {
     EXPECT_EQ(eu_of(i(-3200), level), -10.0);
     EXPECT_EQ(limit_of(i(-3200), level), Limit::low);
-    EXPECT_EQ(eu_of(i(32767), level), 32767.0 / 320.0);
+    EXPECT_DOUBLE_EQ(eu_of(i(32767), level), 32767.0 / 320.0);
     EXPECT_EQ(limit_of(i(32767), level), Limit::high);
 }
 

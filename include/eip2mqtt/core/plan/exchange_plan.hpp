@@ -56,10 +56,10 @@ struct ExchangeSpec {
     std::optional<TimestampSource> timestamp;          ///< consume; default: the gateway's
     std::optional<std::chrono::milliseconds> clock_tolerance;  ///< consume; default: the gateway's
     std::optional<std::uint32_t>
-        source;               ///< consume: IPv4 (host order) the datagrams must come from
-    std::string destination;  ///< produce: host or host:port
-    std::string topic;        ///< under base_topic
-    std::string points;       ///< point-list CSV file, relative to the config file
+        source;                ///< consume: IPv4 (host order) the datagrams must come from
+    std::string destination;   ///< produce: host or host:port
+    std::string topic;         ///< under base_topic
+    std::string points;        ///< point-list CSV file, relative to the config file
     bool publish_raw = false;  ///< what a tag that does not say takes (TagExtras::publish_raw)
     std::vector<TagSpec> tags;
 

@@ -50,9 +50,7 @@ struct TagSpec {
     const std::optional<Value>& initial() const { return extras_.get().initial; }
     double max_writes_per_s() const { return extras_.get().max_writes_per_s; }
     const std::optional<Scaling>& scale() const { return extras_.get().scale; }
-    const std::optional<double>& deadband_percent() const {
-        return extras_.get().deadband_percent;
-    }
+    const std::optional<double>& deadband_percent() const { return extras_.get().deadband_percent; }
     bool publish_raw() const { return extras_.get().publish_raw; }
 
     /// The rarely set settings to write (loaders and tests), allocated on first use.

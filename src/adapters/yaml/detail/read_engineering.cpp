@@ -66,7 +66,8 @@ constexpr KeyReader<std::optional<double>> deadband_rows[]{
 constexpr auto deadband_readers = bind_keys(keys::deadband, deadband_rows);
 
 void keep_marks(EngineeringDraft& d, std::string_view key, const Marks& inner) {
-    for (const auto& [name, at] : inner.keys) d.marks.emplace_back(std::string(key) + "." + name, at);
+    for (const auto& [name, at] : inner.keys)
+        d.marks.emplace_back(std::string(key) + "." + name, at);
 }
 
 /// The scale's kind follows its keys: gain and offset, or raw and eu (with sqrt, a square
@@ -75,8 +76,9 @@ bool pick_kind(KeyValue& v, const Marks& marks, Scaling& s) {
     const bool by_gain = marks.contains("gain") || marks.contains("offset");
     const bool by_ranges = marks.contains("raw") || marks.contains("eu") || marks.contains("sqrt");
     if (by_gain && by_ranges) {
-        v.error("'scale' takes raw and eu (with sqrt for a square root), or gain and offset, "
-                "not both");
+        v.error(
+            "'scale' takes raw and eu (with sqrt for a square root), or gain and offset, "
+            "not both");
         return false;
     }
     if (by_gain) {
@@ -103,7 +105,10 @@ bool read_scale(KeyValue& v, EngineeringDraft& d) {
     if (v.node().is_null()) return true;
     ScaleDraft draft;
     const Marks marks = v.mapping("in 'scale'", scale_readers, draft);
-    if (!v.node().is_map() || draft.broken || !pick_kind(v, marks, draft.scaling)) return false;
+    // A key that was unknown or repeated is reported already: what the scale lacks then says
+    // nothing more.
+    const bool every_key_read = v.node().is_map() && marks.keys.size() == v.node().size();
+    if (!every_key_read || draft.broken || !pick_kind(v, marks, draft.scaling)) return false;
     keep_marks(d, "scale", marks);
     d.scale = draft.scaling;
     return true;

@@ -10,6 +10,10 @@
 
 namespace eip2mqtt::adapters::yaml::detail {
 
+/// The period_ms the validation accepts (config.cpp), which a skeleton's period is held within.
+inline constexpr std::uint32_t min_period_ms = 2;
+inline constexpr std::uint32_t max_period_ms = 3600000;
+
 /// The first lines of a consumed exchange's item: its name, direction and key.
 void item_head(const core::wire::ExchangeKey& key, std::string& out);
 

@@ -35,8 +35,8 @@ std::string scale_arguments(const core::plan::TagSpec& tag) {
     if (s.kind == core::plan::ScaleKind::gain_offset) {
         table += ", gain = " + lua_number(s.gain) + ", offset = " + lua_number(s.offset);
     } else {
-        table += ", raw = { " + lua_number(s.raw.lo) + ", " + lua_number(s.raw.hi) +
-                 " }, eu = { " + lua_number(s.eu.lo) + ", " + lua_number(s.eu.hi) + " }" +
+        table += ", raw = { " + lua_number(s.raw.lo) + ", " + lua_number(s.raw.hi) + " }, eu = { " +
+                 lua_number(s.eu.lo) + ", " + lua_number(s.eu.hi) + " }" +
                  (s.clamp ? ", clamp = true" : "");
     }
     const std::string label = tag.unit().empty() ? tag.name : tag.name + " (" + tag.unit() + ")";

@@ -32,13 +32,12 @@ void check_ranges(const TagConfig& tag, const plan::Scaling& s,
     if (!finite(s.raw)) {
         out.push_back({marks.of("scale.raw"), what() + ": scale raw ends must be finite numbers"});
     } else if (s.raw.lo == s.raw.hi) {
-        out.push_back({marks.of("scale.raw"),
-                       what() + ": scale raw ends are equal (" + range_text(s.raw) +
-                           "): no span to scale from"});
+        out.push_back({marks.of("scale.raw"), what() + ": scale raw ends are equal (" +
+                                                  range_text(s.raw) + "): no span to scale from"});
     } else if (s.kind == ScaleKind::square_root && (s.raw.lo < 0 || s.raw.hi < 0)) {
-        out.push_back({marks.of("scale.raw"),
-                       what() + ": a square-root scale takes raw ends of 0 or more (" +
-                           range_text(s.raw) + "): a negative count has no root"});
+        out.push_back(
+            {marks.of("scale.raw"), what() + ": a square-root scale takes raw ends of 0 or more (" +
+                                        range_text(s.raw) + "): a negative count has no root"});
     }
     if (!finite(s.eu)) {
         out.push_back({marks.of("scale.eu"), what() + ": scale eu ends must be finite numbers"});
@@ -49,8 +48,7 @@ void check_ranges(const TagConfig& tag, const plan::Scaling& s,
     }
 }
 
-void check_scale(const TagConfig& tag, const std::function<std::string()>& what,
-                 Diagnostics& out) {
+void check_scale(const TagConfig& tag, const std::function<std::string()>& what, Diagnostics& out) {
     const auto& s = *tag.spec.scale();
     const auto& marks = tag.marks;
     if (tag.spec.type == plan::TagType::bit) {

@@ -89,8 +89,9 @@ bool PointColumns::read(const std::vector<CsvField>& fields, const Mark& at, pla
         // Reported at the first of the scale's columns the row has: one of them is set.
         for (const Column c : {type, raw_low, raw_high, eu_low, eu_high}) {
             if (field(fields, c)) {
-                return error(c, "a scale needs ScaleRawLow, ScaleRawHigh, ScaleEULow and "
-                                "ScaleEUHigh");
+                return error(c,
+                             "a scale needs ScaleRawLow, ScaleRawHigh, ScaleEULow and "
+                             "ScaleEUHigh");
             }
         }
     }

@@ -128,8 +128,8 @@ void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& ta
         if (scale && key != "initial") {
             const auto outside = outside_eu_range(*scale, value);
             if (!outside.empty()) {
-                error(marks.of(key), what() + " " + std::string(key) + " " +
-                                         format_number(value) + outside);
+                error(marks.of(key),
+                      what() + " " + std::string(key) + " " + format_number(value) + outside);
             }
             return outside.empty();
         }

@@ -47,8 +47,7 @@ TEST(LuaDissector, AScaledTagPassesItsScaleAndLabelsBothFields) {
     auto oil = test_tag("OIL", 2, TagType::dint);
     oil.mutable_extras().scale = core::plan::Scaling{
         core::plan::ScaleKind::gain_offset, {}, {}, 0.1, -40, false, std::nullopt};
-    const auto lua =
-        lua_dissector({test_plan("tank", Direction::consume, 8, {level, oil})}, {});
+    const auto lua = lua_dissector({test_plan("tank", Direction::consume, 8, {level, oil})}, {});
     EXPECT_TRUE(contains(lua,
                          "tag(\"eip2mqtt.tank.LEVEL\", \"LEVEL (raw)\", \"int\", 0, 0, "
                          "{ kind = \"sqrt\", raw = { 0, 32000 }, eu = { 0, 100 }, clamp = true }, "

@@ -102,8 +102,8 @@ TEST(JsonTreeMeta, AScaledTagSaysItsScaleAndPercentDeadband) {
     auto level = test::test_tag("LEVEL", 0, TagType::int_);
     level.deadband = 0.5;
     auto& extras = level.mutable_extras();
-    extras.scale = core::plan::Scaling{core::plan::ScaleKind::linear, {0, 32000}, {0, 100}, 1, 0,
-                                       true, std::nullopt};
+    extras.scale = core::plan::Scaling{
+        core::plan::ScaleKind::linear, {0, 32000}, {0, 100}, 1, 0, true, std::nullopt};
     extras.deadband_percent = 0.5;
     extras.publish_raw = true;
     auto oil = test::test_tag("OIL", 2, TagType::dint);

@@ -76,8 +76,8 @@ TEST(WriteResult, AppliedButUnsavedSaysSo) {
     EXPECT_EQ(test::schema_problem(test::schema_file("write-result.json"), payload), "") << payload;
 }
 
-using core::plan::Scaling;
 using core::plan::ScaleKind;
+using core::plan::Scaling;
 using core::plan::TagType;
 using core::plan::Value;
 using core::quality::Quality;

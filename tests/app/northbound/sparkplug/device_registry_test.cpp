@@ -135,9 +135,8 @@ TEST(DeviceRegistryScaled, AScaledTagIsBornAndReportedInUnitsWithItsRange) {
     DeviceRegistry registry{"plant1", "gw1"};
     registry.exchanges_changed({{&plan}, {}});
     auto& device = *registry.find(&plan);
-    const std::vector<TagSample> samples{
-        {0, Value{std::int64_t{8000}}},
-        {1, Value{std::numeric_limits<float>::quiet_NaN()}}};
+    const std::vector<TagSample> samples{{0, Value{std::int64_t{8000}}},
+                                         {1, Value{std::numeric_limits<float>::quiet_NaN()}}};
     DeviceRegistry::record(device, {plan, Quality::good, 10, false, samples});
     Payload birth;
     DeviceRegistry::fill_birth(device, birth, 99);

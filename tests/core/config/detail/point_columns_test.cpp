@@ -43,9 +43,10 @@ TEST(PointColumns, RowsCarryUnitsAndTheirScale) {
 }
 
 TEST(PointColumns, AListWithoutThemIsAsBefore) {
-    const auto list = parse_point_list("TagName,Node,Address,DataType,AccessType\n"
-                                       "A,ex,0.0,Word,Read\n",
-                                       "points.csv");
+    const auto list = parse_point_list(
+        "TagName,Node,Address,DataType,AccessType\n"
+        "A,ex,0.0,Word,Read\n",
+        "points.csv");
     ASSERT_TRUE(list.errors.empty());
     EXPECT_FALSE(list.rows.at(0).tag.scale());
     EXPECT_EQ(list.rows.at(0).tag.unit(), "");
