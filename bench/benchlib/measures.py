@@ -122,7 +122,8 @@ class Measures:
         return self.start_counter("b/+/+", qos)
 
     def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1, sparkplug=False,
-                     tags=TAGS, build=None, sample=False, datagrams=None, threads=False):
+                     tags=TAGS, build=None, sample=False, datagrams=None, threads=False,
+                     scaled=False):
         """`build`'s gateway offered 1.5 x `ceiling` tag updates/s (or `datagrams`/s): the
         counter's JSON, with the run's CPU per publication as "cpu" when `sample` (the
         gateway's thread by thread too with `threads`); `scaled`: every tag with an engineering

@@ -55,32 +55,36 @@ def sparkplug_rows(bench):
 
 def scaled_row(bench):
     """`_values` with every tag scaled against the same exchanges unscaled, in paired rounds
-    (unscaled first in even rounds), this build only: an earlier one may lack `scale`."""
+    (unscaled first in even rounds); the earlier build, where it knows `scale`, runs the scaled
+    configuration beside this one."""
     print("[4] batch mode, every tag scaled, QoS 1", flush=True)
     per_tag = bench.ceilings.get(("gw", 1)) or bench.paho_ceiling(1)
     exchanges, tags = SHAPES[1]
-    rounds = []
+
+    def measure(scaled, build=None):
+        return bench.gateway_rate(f"g4v{'s' if scaled else 'u'}", 1, 1.0, 20 * per_tag / 1.5,
+                                  batch=True, exchanges=exchanges, tags=tags, sample=True,
+                                  scaled=scaled, build=build)
+
+    rounds = []  # (this build unscaled, {build: scaled})
     for r in range(bench.rounds):
-        got = {}
-        for scaled in ((False, True) if r % 2 == 0 else (True, False)):
-            got[scaled] = bench.gateway_rate(
-                f"g4v{'s' if scaled else 'u'}", 1, 1.0, 20 * per_tag / 1.5, batch=True,
-                exchanges=exchanges, tags=tags, sample=True, scaled=scaled)
-        rounds.append(got)
-    ratios = [g[True]["update_rate"] / g[False]["update_rate"] for g in rounds
-              if g[False]["update_rate"]]
-    middle = median_round([(ratio, g) for ratio, g in zip(ratios, rounds)]) if ratios else None
-    ratio, got = middle if middle else (0.0, rounds[0])
-    cpu = [g[True]["cpu"]["gateway"] / g[False]["cpu"]["gateway"] for g in rounds
-           if g[True]["cpu"] and g[False]["cpu"] and g[False]["cpu"].get("gateway")]
+        unscaled = measure(False) if r % 2 == 0 else None
+        scaled = bench.per_build(r, lambda build: measure(True, build))
+        rounds.append((unscaled or measure(False), scaled))
+    ratios = [s[bench.build]["update_rate"] / u["update_rate"] for u, s in rounds
+              if u["update_rate"]]
+    middle = median_round([(ratio, r) for ratio, r in zip(ratios, rounds)]) if ratios else None
+    ratio, (unscaled, scaled) = middle if middle else (0.0, rounds[0])
+    cpu = [s[bench.build]["cpu"]["gateway"] / u["cpu"]["gateway"] for u, s in rounds
+           if s[bench.build]["cpu"] and u["cpu"] and u["cpu"].get("gateway")]
     cpu_note = f"; gateway CPU/update {median(cpu):.2f} x unscaled" if cpu else ""
     bench.row(f"tag updates/s carried in batch mode (_values), every tag scaled (linear), QoS 1, "
               f"{exchanges} x {tags} tags{bench.rounds_label()}",
-              updates_shown(got[True]) + cpu_note,
-              f"{updates_shown(got[False])} (the same exchanges unscaled, same run)",
+              updates_shown(scaled[bench.build]) + cpu_note,
+              f"{updates_shown(unscaled)} (the same exchanges unscaled, same run)",
               ratios_text(ratios) if ratios else "-", ">= 0.95",
               "yes" if ratio >= 0.95 else "no",
-              bench.versus([{bench.build: got[True]}], lambda g: g["update_rate"]))
+              bench.versus([s for _, s in rounds], lambda g: g["update_rate"]))
 
 
 def run(bench):
