@@ -13,16 +13,7 @@ namespace {
 using plan::ScaleKind;
 using plan::ScaleRange;
 
-std::string number(double value) {
-    std::string text = std::to_string(value);
-    if (text.find('.') != std::string::npos) {
-        text.erase(text.find_last_not_of('0') + 1);
-        if (text.back() == '.') text.pop_back();
-    }
-    return text;
-}
-
-std::string range_text(const ScaleRange& r) { return number(r.lo) + ".." + number(r.hi); }
+std::string range_text(const ScaleRange& r) { return number_text(r.lo) + ".." + number_text(r.hi); }
 
 bool finite(const ScaleRange& r) { return std::isfinite(r.lo) && std::isfinite(r.hi); }
 
@@ -61,7 +52,7 @@ void check_scale(const TagConfig& tag, const std::function<std::string()>& what,
     }
     if (!std::isfinite(s.gain) || s.gain == 0) {
         out.push_back({marks.of("scale.gain"),
-                       what() + ": scale gain " + number(s.gain) +
+                       what() + ": scale gain " + number_text(s.gain) +
                            " must be a finite number other than 0 (writes divide by it)"});
     }
     if (!std::isfinite(s.offset)) {
@@ -70,6 +61,15 @@ void check_scale(const TagConfig& tag, const std::function<std::string()>& what,
 }
 
 }  // namespace
+
+std::string number_text(double value) {
+    std::string text = std::to_string(value);
+    if (text.find('.') != std::string::npos) {
+        text.erase(text.find_last_not_of('0') + 1);
+        if (text.back() == '.') text.pop_back();
+    }
+    return text;
+}
 
 std::string outside_eu_range(const plan::Scaling& scale, double value) {
     const auto span = plan::eu_span(scale);

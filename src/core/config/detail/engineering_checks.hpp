@@ -12,6 +12,9 @@
 
 namespace eip2mqtt::core::config::detail {
 
+/// A limit or a range end as messages write it: `4000`, `0.5`, `-40` (six decimals at most).
+std::string number_text(double value);
+
 /// Adds the problems of `tag`'s scale and percent deadband to `out`; `what` names the tag.
 void check_engineering(const TagConfig& tag, const std::function<std::string()>& what,
                        Diagnostics& out);

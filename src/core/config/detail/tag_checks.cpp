@@ -19,15 +19,6 @@ namespace {
 using plan::Direction;
 using plan::TagType;
 
-std::string format_number(double value) {
-    std::string text = std::to_string(value);
-    if (text.find('.') != std::string::npos) {
-        text.erase(text.find_last_not_of('0') + 1);
-        if (text.back() == '.') text.pop_back();
-    }
-    return text;
-}
-
 double as_double(const plan::Value& value) {
     return std::visit([](auto v) { return static_cast<double>(v); }, value);
 }
@@ -129,14 +120,14 @@ void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& ta
             const auto outside = outside_eu_range(*scale, value);
             if (!outside.empty()) {
                 error(marks.of(key),
-                      what() + " " + std::string(key) + " " + format_number(value) + outside);
+                      what() + " " + std::string(key) + " " + number_text(value) + outside);
             }
             return outside.empty();
         }
         if (value < lo || value > hi) {
-            error(marks.of(key), what() + " " + std::string(key) + " " + format_number(value) +
-                                     " is outside the range of " + type() + " (" +
-                                     format_number(lo) + ".." + format_number(hi) + ")");
+            error(marks.of(key), what() + " " + std::string(key) + " " + number_text(value) +
+                                     " is outside the range of " + type() + " (" + number_text(lo) +
+                                     ".." + number_text(hi) + ")");
             return false;
         }
         return true;
@@ -147,7 +138,7 @@ void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& ta
     const bool max_ok = !max || in_range("max", *max);
     if (min && max && min_ok && max_ok && *min > *max) {
         error(marks.of("max"),
-              what() + " has min " + format_number(*min) + " above max " + format_number(*max));
+              what() + " has min " + number_text(*min) + " above max " + number_text(*max));
     }
     if (t.initial()) {
         const double raw = as_double(*t.initial());
@@ -155,11 +146,11 @@ void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& ta
             scale ? plan::to_double(plan::to_engineering(*t.initial(), *scale).value) : raw;
         if (in_range("initial", raw)) {
             if (min && initial < *min) {
-                error(marks.of("initial"), what() + " initial " + format_number(initial) +
-                                               " is below min " + format_number(*min));
+                error(marks.of("initial"), what() + " initial " + number_text(initial) +
+                                               " is below min " + number_text(*min));
             } else if (max && initial > *max) {
-                error(marks.of("initial"), what() + " initial " + format_number(initial) +
-                                               " is above max " + format_number(*max));
+                error(marks.of("initial"), what() + " initial " + number_text(initial) +
+                                               " is above max " + number_text(*max));
             }
         }
     }
