@@ -42,6 +42,8 @@ double fraction(double raw, const ScaleRange& range) {
 
 Engineering along_range(double raw, const Scaling& s) {
     double t = fraction(raw, s.raw);
+    // NaN stays NaN: std::lerp gives an end of the range for a NaN t when that range falls.
+    if (std::isnan(t)) return {Value{t}, Limit::none};
     Limit limit = Limit::none;
     if (t < 0.0) {
         limit = Limit::low;

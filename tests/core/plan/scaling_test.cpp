@@ -100,6 +100,11 @@ TEST(Scaling, NanStaysNanAndInfinitiesFollowTheLine) {
     EXPECT_EQ(limit_of(nan, level), Limit::none);
     EXPECT_TRUE(std::isnan(eu_of(nan, square_root({0, 1}, {0, 1}))));
     EXPECT_TRUE(std::isnan(eu_of(nan, gain_offset(2, 1))));
+    // A falling range, where std::lerp of a NaN fraction gives its far end (found by fuzzing).
+    auto falling = linear({-4e149, -6e153}, {-6e150, -6e153});
+    falling.eu_type = TagType::byte;
+    EXPECT_TRUE(std::isnan(eu_of(Value{std::numeric_limits<double>::quiet_NaN()}, falling)));
+    EXPECT_EQ(limit_of(Value{std::numeric_limits<double>::quiet_NaN()}, falling), Limit::none);
     EXPECT_EQ(eu_of(Value{inf}, level), inf);
     EXPECT_EQ(limit_of(Value{inf}, level), Limit::high);
     EXPECT_EQ(eu_of(Value{-inf}, level), -inf);
