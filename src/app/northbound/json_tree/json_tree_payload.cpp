@@ -40,9 +40,9 @@ void format_values_payload(std::string& out, const SampleBatch& batch) {
     for (const auto& sample : batch.samples) {
         if (!first) out += ',';
         first = false;
-        append_json_string(out, batch.exchange.tags[sample.tag].spec.name);
-        out += ':';
         const auto& tag = batch.exchange.tags[sample.tag].spec;
+        append_json_string(out, tag.name);
+        out += ':';
         out += core::plan::to_json(core::plan::published_value(tag, sample.value).value);
     }
     out += "}}";
