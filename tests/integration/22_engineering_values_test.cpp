@@ -145,12 +145,11 @@ protected:
         return result ? json::parse(result->payload) : json();
     }
 
-    /// The last datagram the gateway sent so far (a write's result follows its datagram).
+    /// The gateway's current image (a write's result follows its datagram).
     std::vector<std::byte> last_sent() {
-        std::vector<std::byte> last;
-        while (auto bytes = capture_->receive(0ms)) last = std::move(*bytes);
-        EXPECT_FALSE(last.empty());
-        return last;
+        auto last = capture_->latest(5s);
+        EXPECT_TRUE(last.has_value());
+        return last.value_or(std::vector<std::byte>{});
     }
 
     Value raw_at(const std::vector<std::byte>& bytes, std::uint16_t byte, TagType type) {

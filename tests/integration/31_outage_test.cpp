@@ -111,10 +111,7 @@ protected:
 
     /// The latest produced datagram.
     std::vector<std::byte> latest() {
-        std::vector<std::byte> last;
-        while (auto bytes = capture_->receive(0ms)) last = std::move(*bytes);
-        if (last.empty()) last = capture_->receive(5s).value_or(std::vector<std::byte>(64));
-        return last;
+        return capture_->latest(5s).value_or(std::vector<std::byte>(64));
     }
 
     /// Publishes a write until it is answered, and returns the answer. Right after a connect

@@ -44,6 +44,12 @@ std::optional<std::vector<std::byte>> UdpClient::receive(std::chrono::millisecon
     return std::move(received->bytes);
 }
 
+std::optional<std::vector<std::byte>> UdpClient::latest(std::chrono::milliseconds timeout) {
+    std::optional<std::vector<std::byte>> last;
+    while (auto bytes = receive(std::chrono::milliseconds{0})) last = std::move(bytes);
+    return last ? last : receive(timeout);
+}
+
 std::optional<UdpDatagram> UdpClient::receive_from(std::chrono::milliseconds timeout) {
     pollfd pfd{fd_, POLLIN, 0};
     if (::poll(&pfd, 1, static_cast<int>(timeout.count())) <= 0) return std::nullopt;

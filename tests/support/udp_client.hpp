@@ -31,6 +31,9 @@ public:
     std::optional<std::vector<std::byte>> receive(std::chrono::milliseconds timeout);
     /// The same, with the sender's port.
     std::optional<UdpDatagram> receive_from(std::chrono::milliseconds timeout);
+    /// The newest of the datagrams queued so far or, when none is, the next one within
+    /// `timeout`: a producer's current image whether or not its queue was drained before.
+    std::optional<std::vector<std::byte>> latest(std::chrono::milliseconds timeout);
 
 private:
     int fd_ = -1;
