@@ -235,9 +235,9 @@ std::vector<Write> writes_to_try() {
         {"sp/NOPE/set", "1", true, false},                             // unknown tag
         {"sp/LIMIT/set", "1", true, false},                            // read-only
         {"sp/SPEED_SP/set", "100", true, false, true},                 // retained
-        {"sp/START/set", "\"on\"", false, false},                      // a string
+        {"sp/START/set", "\"on\"", true, false},                       // a string, not a bit
         {"sp/LEVEL/set", "{\"value\":", false, false},                 // not JSON
-        {"sp/LEVEL/set", "[1]", false, false},                         // an array
+        {"sp/LEVEL/set", "[1]", true, false},                          // an array, not a scalar
         {"sp/LEVEL/set", R"({"value":1,"unit":"cm"})", false, false},  // another key
         {"sp/set", "{}", false, false},                                // empty
         {"sp/set", R"({"SPEED_SP":100,"LEVEL":70000})", true, false},  // out of range
@@ -299,7 +299,8 @@ struct Case {
 const std::string consumed_status =
     R"({"state":"ok","request_id":7,"received":1,"accepted":1,"missed":0,"duplicates":0,)"
     R"("out_of_order":0,"signature_mismatches":0,"length_mismatches":0,"timeouts":0,)"
-    R"("restarts":0,"last_seen":1695231678000,"clock":"synced","clock_offset_ms":-3})";
+    R"("restarts":0,"beyond_raw_range":0,"last_seen":1695231678000,"clock":"synced",)"
+    R"("clock_offset_ms":-3})";
 const std::string produced_status =
     R"({"state":"producing","request_id":1,"sent":0,"send_errors":0,"skipped_deadlines":0,)"
     R"("writes_applied":0,"writes_pending":0,"saved":true,"save_failures":0,"save_error":null})";
@@ -345,14 +346,17 @@ std::vector<Case> value_cases() {
         {"tag-value.json", R"({"value":90,"timestamp":1695231678000000,"quality":"good"})", false},
         {"tag-value.json", R"({"value":90,"timestamp":"1695231678000","quality":"good"})", false},
         {"tag-value.json", R"({"value":NaN,"timestamp":1695231678000,"quality":"good"})", false},
-        {"tag-value.json", R"({"value":"90","timestamp":1695231678000,"quality":"good"})", false},
+        {"tag-value.json", R"({"value":"B-17","timestamp":1695231678000,"quality":"good"})", true},
+        {"tag-value.json", R"({"value":[[1]],"timestamp":1,"quality":"good"})", false},
         {"tag-value.json", R"({"value":1,"timestamp":1,"quality":"good","unit":"bar"})", false},
         {"tag-value-raw.json", "-273.15", true},
         {"tag-value-raw.json", "\"Infinity\"", true},
         {"tag-value-raw.json", "null", false},
+        {"tag-value-raw.json", "[[1]]", false},
         {"values.json", R"({"timestamp":1,"quality":"good","values":{"A":1,"B":true}})", true},
         {"values.json", R"({"timestamp":1,"quality":"good","values":{}})", false},
-        {"values.json", R"({"timestamp":1,"quality":"good","values":{"A":[1]}})", false},
+        {"values.json", R"({"timestamp":1,"quality":"good","values":{"A":[1,2],"B":"x"}})", true},
+        {"values.json", R"({"timestamp":1,"quality":"good","values":{"A":[[1]]}})", false},
         {"write-result.json", R"({"ok":true})", true},
         {"write-result.json", R"({"ok":false,"error":"above max 4000"})", true},
         {"write-result.json", R"({"ok":false})", false},
@@ -365,7 +369,10 @@ std::vector<Case> value_cases() {
         {"write-result.json", R"({"ok":true,"saved":false})", false},
         {"write-request.json", "42", true},
         {"write-request.json", R"({"value":true})", true},
-        {"write-request.json", "\"42\"", false},
+        {"write-request.json", "\"B-17\"", true},
+        {"write-request.json", R"({"index":2,"value":71.5})", true},
+        {"write-request.json", "[[1]]", false},
+        {"write-request.json", R"({"index":-1,"value":1})", false},
         {"write-request.json", R"({"value":{"value":1}})", false},
         {"exchange-write-request.json", R"({"SPEED_SP":3100,"START":{"value":true}})", true},
         {"exchange-write-request.json", R"({"SPEED_SP":null})", false},

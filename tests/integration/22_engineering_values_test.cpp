@@ -84,6 +84,8 @@ TEST_F(EngineeringValuesTest, RawValuesArePublishedInUnits) {
     EXPECT_EQ(high["limit"], "high");
     EXPECT_EQ(high["raw"], 32767);
     expect_field(topic("tank/FLOW"), "value", "0.0");
+    // Counted: one publication beyond the raw range, in the exchange's status.
+    expect_field(topic("tank/_status"), "beyond_raw_range", "1");
 }
 
 TEST_F(EngineeringValuesTest, APercentDeadbandIsOfTheSpan) {
@@ -137,12 +139,8 @@ protected:
     }
 
     json write(const std::string& tag, const std::string& payload) {
-        const auto from = recorder_->count();
-        recorder_->publish(topic("sp/" + tag + "/set"), payload);
-        const auto result =
-            recorder_->wait_for_message(topic("sp/" + tag + "/set/result"), nullptr, 10s, from);
-        EXPECT_TRUE(result.has_value());
-        return result ? json::parse(result->payload) : json();
+        const auto result = write_result("sp/" + tag + "/set", payload);
+        return result.empty() ? json() : json::parse(result);
     }
 
     /// The gateway's current image (a write's result follows its datagram).

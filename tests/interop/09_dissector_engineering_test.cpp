@@ -1,6 +1,7 @@
 // Interop: a scaled tag in the generated Wireshark plugin shows its raw field and, beside it,
 // its engineering value, and tshark's engineering value agrees with what the gateway published
-// for the same datagrams (linear with clamp, square root, gain and offset).
+// for the same datagrams (linear with clamp, square root, gain and offset). An array shows
+// each element, a string its Latin-1 text.
 
 #include <ctime>
 #include <nlohmann/json.hpp>
@@ -87,6 +88,54 @@ TEST_F(DissectorEngineering, TsharkShowsRawAndEngineeringValuesAsTheGatewayPubli
                 << published.dump();
         }
     }
+}
+
+TEST_F(DissectorEngineering, TsharkShowsEachElementOfAnArrayAndTheTextOfAString) {
+    start(ExchangeYaml::consume("line", "10.1.2.3", 78)
+              .length(24)
+              .timeout_ms(0)
+              .tag("TEMPS", "0.0", "real", "count: 3")
+              .tag("BATCH", "12.0", "string", "length: 6")
+              .tag("FLAGS", "18.6", "bit", "count: 3")
+              .tag("LEVELS", "20.0", "int", "count: 2, scale: { raw: [0, 100], eu: [0, 10] }")
+              .str());
+    const auto now_s = static_cast<std::uint32_t>(std::time(nullptr));
+    DatagramBuilder builder("10.1.2.3", 78, 24);
+    builder.request_id(1).timestamp(now_s, 0);
+    builder.set("0.0", TagType::real, Value{71.5f})
+        .set("4.0", TagType::real, Value{-2.25f})
+        .set("8.0", TagType::real, Value{0.0f})
+        .set("20.0", TagType::int_, Value{std::int64_t{50}})
+        .set("22.0", TagType::int_, Value{std::int64_t{100}});
+    const std::string batch("Caf\xE9", 4);  // Latin-1, NUL-padded to 6
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+        builder.data()[12 + i] = static_cast<std::byte>(batch[i]);
+    }
+    builder.data()[18] = std::byte{0x80};  // 18.7 set: the second element
+    builder.data()[19] = std::byte{0x01};  // 19.0 set: the third
+    const auto bytes = builder.build();
+    send(bytes);
+    const auto published =
+        json::parse(expect_field(topic("line/BATCH"), "value", "\"Caf\xC3\xA9\"").payload);
+    EXPECT_EQ(published["value"], "Caf\xC3\xA9");
+    const std::string pcap_path = dir_.path() + "/line.pcap";
+    PcapWriter pcap(pcap_path);
+    pcap.add(bytes, std::uint64_t{now_s} * 1000000, udp_port_);
+    ASSERT_TRUE(pcap.close());
+
+    const auto decoded =
+        tshark_fields(write_dissector(config_path_, dir_.path()), pcap_path,
+                      {"eip2mqtt.line.TEMPS", "eip2mqtt.line.BATCH", "eip2mqtt.line.FLAGS",
+                       "eip2mqtt.line.LEVELS", "eip2mqtt.line.LEVELS.eu"});
+    ASSERT_EQ(decoded.status, 0) << decoded.output;
+    ASSERT_EQ(decoded.rows.size(), 1u) << decoded.output;
+    const auto& row = decoded.rows[0];
+    // Column 0 is the frame's; each occurrence of a field is one element, in order.
+    EXPECT_EQ(row[1], "71.5,-2.25,0") << decoded.output;
+    EXPECT_EQ(row[2], "Caf\xC3\xA9") << decoded.output;
+    EXPECT_EQ(row[3], "0,1,1") << decoded.output;
+    EXPECT_EQ(row[4], "50,100") << decoded.output;
+    EXPECT_EQ(row[5], "5,10") << decoded.output;
 }
 
 }  // namespace

@@ -103,6 +103,15 @@ void GatewayTest::TearDown() {
     broker_.reset();
 }
 
+std::string GatewayTest::write_result(const std::string& set_suffix, const std::string& payload) {
+    const auto from = recorder_->count();
+    recorder_->publish(topic(set_suffix), payload);
+    const auto result = recorder_->wait_for_message(topic(set_suffix + "/result"), nullptr,
+                                                    std::chrono::seconds(10), from);
+    EXPECT_TRUE(result.has_value()) << "no result on " << set_suffix << "/result";
+    return result ? result->payload : std::string();
+}
+
 Received GatewayTest::expect_field(const std::string& topic, const std::string& field,
                                    const std::string& expected, std::size_t from) {
     const auto message = recorder_->wait_for_message(

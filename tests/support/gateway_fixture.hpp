@@ -77,6 +77,9 @@ protected:
     /// `field` equal to the JSON text `expected`; fails the test on timeout.
     Received expect_field(const std::string& topic, const std::string& field,
                           const std::string& expected, std::size_t from = 0);
+    /// Publishes a write on `{base}/{set_suffix}` and returns the payload of its `/result`;
+    /// empty, the test failed, when none comes within 10 s.
+    std::string write_result(const std::string& set_suffix, const std::string& payload);
 
     TempDir dir_;
     std::unique_ptr<Mosquitto> broker_;

@@ -7,10 +7,14 @@
 
 #include <limits>
 
+#include "adapters/sparkplug/detail/array_bytes.hpp"
 #include "sparkplug_b.pb.h"
 
 namespace eip2mqtt::adapters::sparkplug {
 namespace {
+
+using detail::as_int64;
+using detail::as_uint64;
 
 using ProtoPayload = org::eclipse::tahu::protobuf::Payload;
 using core::plan::TagType;
@@ -27,18 +31,18 @@ bool is_unsigned_small(DataType type) {
     return type == DataType::uint8 || type == DataType::uint16;
 }
 
-std::int64_t as_int64(const Value& value) {
-    return std::visit([](auto v) { return static_cast<std::int64_t>(v); }, value);
-}
-
-std::uint64_t as_uint64(const Value& value) {
-    return std::visit([](auto v) { return static_cast<std::uint64_t>(v); }, value);
-}
-
 /// Sets the value of a metric or a property (same field names in both messages).
 template <class Proto>
 void set_value(Proto& proto, DataType type, const Value& value) {
-    if (is_signed_small(type)) {
+    if (const auto* text = std::get_if<core::plan::Text>(&value)) {
+        proto.set_string_value(**text);
+    } else if (const auto element = element_of(type)) {
+        // Only a metric has bytes_value; properties are never arrays.
+        if constexpr (requires { proto.set_bytes_value(std::string()); }) {
+            const auto* items = core::plan::list_items(value);
+            proto.set_bytes_value(items != nullptr ? detail::array_bytes(*element, *items) : "");
+        }
+    } else if (is_signed_small(type)) {
         proto.set_int_value(static_cast<std::uint32_t>(static_cast<std::int32_t>(as_int64(value))));
     } else if (is_unsigned_small(type)) {
         proto.set_int_value(static_cast<std::uint32_t>(as_uint64(value)));
@@ -124,7 +128,22 @@ WireValue wire_value(const ProtoPayload::Metric& metric) {
 
 }  // namespace
 
-DataType datatype_of(TagType type) {
+DataType array_of(DataType element) {
+    if (element == DataType::boolean) return DataType::boolean_array;
+    if (element == DataType::string) return DataType::string;
+    const auto n = static_cast<std::uint32_t>(element);
+    return static_cast<DataType>(static_cast<std::uint32_t>(DataType::int8_array) + n - 1);
+}
+
+std::optional<DataType> element_of(DataType array) {
+    const auto n = static_cast<std::uint32_t>(array);
+    const auto first = static_cast<std::uint32_t>(DataType::int8_array);
+    if (n < first || n > static_cast<std::uint32_t>(DataType::boolean_array)) return std::nullopt;
+    return static_cast<DataType>(n - first + 1);
+}
+
+DataType datatype_of(TagType type, bool array) {
+    if (array) return array_of(datatype_of(type));
     switch (type) {
         case TagType::bit:
             return DataType::boolean;
@@ -144,6 +163,8 @@ DataType datatype_of(TagType type) {
             return DataType::float32;
         case TagType::lreal:
             return DataType::float64;
+        case TagType::string:
+            return DataType::string;
     }
     return DataType::boolean;
 }

@@ -4,6 +4,7 @@
 
 #include "adapters/yaml/detail/key_readers.hpp"
 #include "adapters/yaml/detail/read_engineering.hpp"
+#include "adapters/yaml/detail/read_initial.hpp"
 #include "adapters/yaml/detail/sections.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
@@ -134,7 +135,8 @@ bool read_type(KeyValue& v, TagDraft& d) {
         if (const auto hint = core::plan::tag_type_hint(*s)) {
             message += " (did you mean " + in_quotes(*hint) + "?)";
         }
-        v.error(message + "; expected bit, byte, int, word, dint, udint, real, lint or lreal, " +
+        v.error(message +
+                "; expected bit, byte, int, word, dint, udint, real, lint, lreal or string, " +
                 "or the aliases " + std::string(core::plan::tag_type_aliases));
     }
     return type.has_value();
@@ -195,45 +197,16 @@ constexpr KeyReader<TagDraft> tag_rows[]{
      [](KeyValue& v, TagDraft& d) {
          return extra_to(d, v.boolean(), &core::plan::TagExtras::publish_raw);
      }},
+    // Both are the tag's count: of elements, or of a string's bytes. Their ranges by type are
+    // the core's to check.
+    {"count",
+     [](KeyValue& v, TagDraft& d) { return v.integer_to<std::uint16_t>(d.spec.count, 1); }},
+    {"length",
+     [](KeyValue& v, TagDraft& d) { return v.integer_to<std::uint16_t>(d.spec.count, 0); }},
+    {"trim", [](KeyValue& v,
+                TagDraft& d) { return extra_to(d, v.boolean(), &core::plan::TagExtras::trim); }},
 };
 constexpr auto tag_readers = bind_keys(keys::tag, tag_rows);
-
-/// `initial` as the tag's type holds it. Out-of-range values are kept (as int64 or double)
-/// for validate() to report against the type's range.
-std::optional<core::plan::Value> read_initial(Reader& reader, const Node& value, TagType type,
-                                              const Mark& at) {
-    const std::string_view text = value.scalar();
-    switch (type) {
-        case TagType::bit: {
-            if (text == "0") return core::plan::Value{false};
-            if (text == "1") return core::plan::Value{true};
-            if (const auto b = reader.boolean(value, "initial", at)) return core::plan::Value{*b};
-            return std::nullopt;
-        }
-        case TagType::real:
-        case TagType::lreal: {
-            const auto d = reader.number(value, "initial", at);
-            if (!d) return std::nullopt;
-            if (type == TagType::real && std::fabs(*d) <= std::numeric_limits<float>::max()) {
-                return core::plan::Value{static_cast<float>(*d)};
-            }
-            return core::plan::Value{*d};
-        }
-        default: {
-            if (const auto n = parse_integer<std::int64_t>(text)) {
-                if (core::plan::type_min(type) >= 0 && *n >= 0) {
-                    return core::plan::Value{static_cast<std::uint64_t>(*n)};
-                }
-                return core::plan::Value{*n};
-            }
-            if (const auto n = parse_integer<std::uint64_t>(text)) {
-                return core::plan::Value{*n};
-            }
-            reader.error(at, "expected an integer for 'initial'");
-            return std::nullopt;
-        }
-    }
-}
 
 std::optional<TagConfig> read_tag(Reader& reader, const Node& node,
                                   const std::string& exchange_label) {
@@ -257,12 +230,8 @@ std::optional<TagConfig> read_tag(Reader& reader, const Node& node,
     }
     if (!draft.broken && !finish_engineering(reader, draft.engineering, tag)) draft.broken = true;
     if (draft.initial && !draft.broken) {
-        const auto& scale = spec.scale();
-        if (auto value =
-                scale
-                    ? read_initial_eu(reader, *draft.initial, *scale, spec.type, draft.initial_mark)
-                    : read_initial(reader, *draft.initial, spec.type, draft.initial_mark)) {
-            spec.mutable_extras().initial = *value;
+        if (auto value = read_tag_initial(reader, *draft.initial, spec, draft.initial_mark)) {
+            spec.mutable_extras().initial = std::move(*value);
         } else {
             draft.broken = true;
         }

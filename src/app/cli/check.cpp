@@ -27,6 +27,7 @@
 #include "eip2mqtt/core/plan/overlap.hpp"
 #include "eip2mqtt/core/plan/plan_warnings.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::app {
@@ -50,10 +51,14 @@ std::string scale_text(const core::plan::TagSpec& tag) {
                        s.raw.hi, s.eu.lo, s.eu.hi, unit, s.clamp ? ", clamped" : "");
 }
 
-std::string size_text(TagType type) {
-    if (type == TagType::bit) return "1 bit";
-    const auto size = core::plan::size_of(type);
-    return std::to_string(size) + (size == 1 ? " byte" : " bytes");
+std::string size_text(const core::plan::TagSpec& tag) {
+    if (tag.type == TagType::bit) {
+        return tag.count == 1 ? "1 bit" : std::to_string(tag.count) + " bits";
+    }
+    const auto size = core::plan::tag_size(tag);
+    auto text = std::to_string(size) + (size == 1 ? " byte" : " bytes");
+    if (tag.is_array()) text += " (" + std::to_string(tag.count) + " elements)";
+    return text;
 }
 
 /// "bytes 0-118, 121-125 unused", or "no unused bytes".
@@ -62,7 +67,7 @@ std::string unused_ranges(const ExchangePlan& plan) {
     for (const auto& tag : plan.tags) {
         const std::size_t first = tag.spec.address.byte;
         const std::size_t end =
-            std::min<std::size_t>(first + core::plan::size_of(tag.spec.type), plan.length);
+            std::min<std::size_t>(first + core::plan::tag_size(tag.spec), plan.length);
         for (std::size_t b = first; b < end; ++b) used[b] = true;
     }
     std::string ranges;
@@ -136,7 +141,7 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
         const auto address = core::plan::to_string(tag->spec.address);
         out << "  " << address << std::string(address.size() < 7 ? 7 - address.size() : 1, ' ')
             << std::left << std::setw(7) << core::plan::to_string(tag->spec.type) << std::setw(9)
-            << size_text(tag->spec.type) << plan.tag_topic(*tag);
+            << size_text(tag->spec) << plan.tag_topic(*tag);
         if (tag->spec.writable) out << "  writable";
         if (tag->spec.scale()) out << "  " << scale_text(tag->spec);
         out << std::right << "\n";

@@ -154,6 +154,11 @@ void write_exchange(const Node& node, std::size_t exchange_id, std::ostream& out
         out << "      - { name: " << yaml_scalar(tag.name) << ", address: \""
             << core::plan::to_string(tag.address)
             << "\", type: " << core::plan::to_string(tag.type);
+        if (tag.type == core::plan::TagType::string) {
+            out << ", length: " << tag.count;
+        } else if (tag.count != 1) {
+            out << ", count: " << tag.count;
+        }
         if (!tag.unit().empty()) out << ", unit: " << yaml_scalar(tag.unit());
         if (tag.scale()) out << ", scale: " << scale_yaml(*tag.scale());
         if (row->write) out << ", writable: true";

@@ -42,8 +42,7 @@ std::optional<Value> simulated_scaled(const core::plan::TagSpec& tag, std::uint6
     return raw ? std::optional(std::move(raw).value()) : std::nullopt;
 }
 
-Value simulated_value(const core::plan::TagSpec& tag, std::uint64_t cycle, std::size_t index) {
-    const std::uint64_t step = cycle + index * 7;
+Value simulated_scalar(const core::plan::TagSpec& tag, std::uint64_t step) {
     if (auto scaled = simulated_scaled(tag, step)) return *scaled;
     switch (tag.type) {
         case TagType::bit:
@@ -65,8 +64,25 @@ Value simulated_value(const core::plan::TagSpec& tag, std::uint64_t cycle, std::
             return static_cast<std::int64_t>(step) * 1000000 - 500000000;
         case TagType::lreal:
             return 1000.0 + 0.5 * static_cast<double>(step);
+        case TagType::string: {
+            // A batch number that moves on every 50 cycles, cut to the field.
+            auto text = "BATCH-" + std::to_string(1000 + step / 50);
+            text.resize(std::min<std::size_t>(text.size(), tag.count));
+            return core::plan::make_text(std::move(text));
+        }
     }
     return false;
+}
+
+Value simulated_value(const core::plan::TagSpec& tag, std::uint64_t cycle, std::size_t index) {
+    const std::uint64_t step = cycle + index * 7;
+    if (!tag.is_array()) return simulated_scalar(tag, step);
+    // Each element its own phase, so that an array's elements differ.
+    std::vector<Value> items;
+    items.reserve(tag.count);
+    for (std::size_t i = 0; i < tag.count; ++i)
+        items.push_back(simulated_scalar(tag, step + i * 3));
+    return core::plan::make_list(std::move(items));
 }
 
 core::command::ExchangeView sim_view(const SimulatedExchange& sim,
@@ -151,8 +167,7 @@ std::vector<SimulatedExchange> simulated_exchanges(const core::config::Config& c
 std::span<const std::byte> next_datagram(SimulatedExchange& sim, core::WallTime wall) {
     for (std::size_t i = 0; i < sim.plan.tags.size(); ++i) {
         const auto& tag = sim.plan.tags[i].spec;
-        core::plan::encode_value(sim.data, tag.type, tag.address,
-                                 simulated_value(tag, sim.cycle, i));
+        core::plan::encode_tag(sim.data, tag, simulated_value(tag, sim.cycle, i));
     }
     const auto ns =
         std::chrono::duration_cast<std::chrono::nanoseconds>(wall.time_since_epoch()).count();

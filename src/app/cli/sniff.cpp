@@ -153,11 +153,11 @@ void Sniffer::on_datagram(std::span<const std::byte> bytes, const adapters::udp:
         for (const auto& tag : exchange.plan->tags) {
             const auto& spec = tag.spec;
             // A datagram shorter than configured (length mismatch) lacks some tags.
-            if (spec.address.byte + core::plan::size_of(spec.type) > datagram.data.size()) {
+            if (spec.address.byte + core::plan::tag_size(spec) > datagram.data.size()) {
                 line += fmt::format(" {}=?", spec.name);
                 continue;
             }
-            const auto value = core::plan::decode_value(datagram.data, spec.type, spec.address);
+            const auto value = core::plan::decode_tag(datagram.data, spec);
             line += fmt::format(" {}={}", spec.name, core::plan::to_json(value));
         }
     }

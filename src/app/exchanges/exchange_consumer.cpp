@@ -217,14 +217,15 @@ void ExchangeConsumer::report_tags(core::MonoTime now, bool all,
     for (std::size_t i = 0; i < plan_.tags.size(); ++i) {
         const auto& tag = plan_.tags[i];
         auto& filter = filters_[i];
-        const auto raw = core::plan::decode_value(image, tag.spec.type, tag.spec.address);
+        const auto raw = core::plan::decode_tag(image, tag.spec);
         // The deadband is of what is published: a scaled tag's engineering value.
-        const auto value = core::plan::published_value(tag.spec, raw).value;
-        if (!all &&
-            !filter.should_publish(value, *quality, now, tag.spec.deadband, tag.spec.refresh)) {
+        const auto published = core::plan::published_value(tag.spec, raw);
+        if (!all && !filter.should_publish(published.value, *quality, now, tag.spec.deadband,
+                                           tag.spec.refresh)) {
             continue;
         }
-        filter.published(value, *quality, now);
+        filter.published(published.value, *quality, now);
+        if (published.limit != core::plan::Limit::none) exchange_.count_beyond_raw_range();
         samples.push_back({i, raw});
     }
     if (samples.empty()) return;

@@ -270,9 +270,9 @@ void ExchangeProducer::report_echo(core::WallTime wall, bool all) {
     auto& samples = sample_buffer();
     for (std::size_t i = 0; i < plan_->tags.size(); ++i) {
         const auto& tag = plan_->tags[i].spec;
-        const auto value = core::plan::decode_value(data, tag.type, tag.address);
+        const auto value = core::plan::decode_tag(data, tag);
         if (!all && echoed_.size() == data.size()) {
-            const auto old = core::plan::decode_value(echoed_, tag.type, tag.address);
+            const auto old = core::plan::decode_tag(echoed_, tag);
             if (core::plan::same_value(old, value)) continue;
         }
         samples.push_back({i, value});

@@ -13,10 +13,13 @@ using Bits = std::vector<std::uint8_t>;  // one byte of bits per data byte
 // The bits a tag occupies, OR-ed into `bits`.
 void mark_tag(Bits& bits, const plan::TagSpec& tag) {
     if (tag.type == plan::TagType::bit) {
-        bits[tag.address.byte] |= static_cast<std::uint8_t>(1u << tag.address.bit);
+        for (std::size_t i = 0; i < tag.count; ++i) {
+            const auto at = plan::element_address(tag, i);
+            if (at.byte < bits.size()) bits[at.byte] |= static_cast<std::uint8_t>(1u << at.bit);
+        }
         return;
     }
-    const auto end = std::min<std::size_t>(tag.address.byte + plan::size_of(tag.type), bits.size());
+    const auto end = std::min<std::size_t>(tag.address.byte + plan::tag_size(tag), bits.size());
     for (std::size_t i = tag.address.byte; i < end; ++i) bits[i] = 0xFF;
 }
 
@@ -59,7 +62,8 @@ Result<std::vector<write::TagWrite>, WriteRefusal> plan_write(const plan::Exchan
     for (std::size_t index = 0; index < plan.tags.size(); ++index) {
         const auto& tag = plan.tags[index].spec;
         if (!tag.writable || !intersects(written, tag)) continue;
-        const auto value = plan::decode_value(next, tag.type, tag.address);
+        // A string as its bytes are, padding too: the command port writes raw bytes.
+        const auto value = plan::decode_tag(next, tag, plan::Padding::keep);
         auto checked = write::validate_raw_write(tag, value);
         if (!checked) return fail(WriteRefusal{CommandStatus::rejected, checked.error()});
         writes.push_back({index, std::move(checked).value()});

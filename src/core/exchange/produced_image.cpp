@@ -23,7 +23,7 @@ ProducedImage::ProducedImage(const plan::ExchangePlan& plan, std::span<const std
     // A missing image, or one saved under another length, starts from zeros plus `initial`.
     for (const auto& tag : plan.tags) {
         if (const auto& initial = tag.spec.initial()) {
-            plan::encode_value(data_, tag.spec.type, tag.spec.address, *initial);
+            plan::encode_tag(data_, tag.spec, *initial);
         }
     }
 }
@@ -59,10 +59,20 @@ bool ProducedImage::apply(const write::WriteBatch& batch, std::span<std::byte> d
     for (const auto& write : batch.writes) {
         assert(write.tag_index < plan_->tags.size());
         const auto& tag = plan_->tags[write.tag_index].spec;
-        const auto bytes = data.subspan(tag.address.byte, plan::size_of(tag.type));
-        std::array<std::byte, 8> before{};
+        const auto bytes = data.subspan(tag.address.byte, plan::tag_size(tag));
+        // A scalar's bytes on the stack; an array's or a string's (at most 1,400) on the heap.
+        std::array<std::byte, 8> small{};
+        std::vector<std::byte> large;
+        if (bytes.size() > small.size()) large.resize(bytes.size());
+        const std::span<std::byte> before =
+            large.empty() ? std::span(small).first(bytes.size()) : std::span(large);
         std::copy(bytes.begin(), bytes.end(), before.begin());
-        plan::encode_value(data, tag.type, tag.address, write.value);
+        if (write.element) {
+            plan::encode_value(data, tag.type, plan::element_address(tag, *write.element),
+                               write.value);
+        } else {
+            plan::encode_tag(data, tag, write.value);
+        }
         if (!std::equal(bytes.begin(), bytes.end(), before.begin())) changed = true;
     }
     return changed;

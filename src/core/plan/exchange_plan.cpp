@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "eip2mqtt/core/plan/value_codec.hpp"
+
 namespace eip2mqtt::core::plan {
 namespace {
 
@@ -20,7 +22,7 @@ std::uint16_t resolved_length(const ExchangeSpec& spec) {
     if (spec.length) return *spec.length;
     std::size_t end = 0;
     for (const auto& tag : spec.tags) {
-        end = std::max(end, std::size_t{tag.address.byte} + size_of(tag.type));
+        end = std::max(end, std::size_t{tag.address.byte} + tag_size(tag));
     }
     return static_cast<std::uint16_t>(
         std::min<std::size_t>(end, std::numeric_limits<std::uint16_t>::max()));

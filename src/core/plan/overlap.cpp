@@ -4,13 +4,14 @@
 #include <numeric>
 
 #include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 
 namespace eip2mqtt::core::plan {
 
 BitSpan bit_span(const TagSpec& tag) {
     const std::size_t byte_bit = std::size_t{tag.address.byte} * 8;
-    if (tag.type == TagType::bit) return {byte_bit + (tag.address.bit & 7u), 1};
-    return {byte_bit, size_of(tag.type) * 8};
+    if (tag.type == TagType::bit) return {byte_bit + (tag.address.bit & 7u), tag.count};
+    return {byte_bit, tag_size(tag) * 8};
 }
 
 Overlaps find_overlaps(std::span<const BitSpan> spans, std::size_t limit) {

@@ -82,6 +82,18 @@ Engineering as_eu_type(Engineering eu, std::optional<TagType> type) {
 }  // namespace
 
 Engineering to_engineering(const Value& raw, const Scaling& scaling) {
+    if (const auto* items = list_items(raw)) {
+        // An array's limit is the first element's beyond the raw range, high before low.
+        std::vector<Value> values;
+        values.reserve(items->size());
+        Limit limit = Limit::none;
+        for (const auto& item : *items) {
+            auto eu = to_engineering(item, scaling);
+            if (eu.limit == Limit::high || limit == Limit::none) limit = eu.limit;
+            values.push_back(std::move(eu.value));
+        }
+        return {make_list(std::move(values)), limit};
+    }
     const double r = to_double(raw);
     Engineering eu{Value{r * scaling.gain + scaling.offset}, Limit::none};
     if (scaling.kind != ScaleKind::gain_offset) eu = along_range(r, scaling);

@@ -22,7 +22,7 @@ bool equals_lower(std::string_view text, std::string_view lower_case) {
                       [](unsigned char a, char b) { return std::tolower(a) == b; });
 }
 
-constexpr std::array<std::pair<std::string_view, TagType>, 14> yaml_names{{
+constexpr std::array<std::pair<std::string_view, TagType>, 15> yaml_names{{
     {"bit", TagType::bit},
     {"bool", TagType::bit},
     {"byte", TagType::byte},
@@ -37,10 +37,11 @@ constexpr std::array<std::pair<std::string_view, TagType>, 14> yaml_names{{
     {"lint", TagType::lint},
     {"long", TagType::lint},
     {"lreal", TagType::lreal},
+    {"string", TagType::string},
 }};
 
 /// Names other languages and vendors give the §3 types, all lower case.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 16> foreign_names{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 18> foreign_names{{
     {"float", "real"},
     {"float32", "real"},
     {"single", "real"},
@@ -57,6 +58,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 16> foreign_
     {"int64", "lint"},
     {"longlong", "lint"},
     {"uint8", "byte"},
+    {"text", "string"},
+    {"char", "string"},
 }};
 
 }  // namespace
@@ -88,6 +91,7 @@ std::size_t size_of(TagType type) {
     switch (type) {
         case TagType::bit:
         case TagType::byte:
+        case TagType::string:
             return 1;
         case TagType::int_:
         case TagType::word:
@@ -104,7 +108,8 @@ std::size_t size_of(TagType type) {
 }
 
 bool is_integer(TagType type) {
-    return type != TagType::bit && type != TagType::real && type != TagType::lreal;
+    return type != TagType::bit && type != TagType::real && type != TagType::lreal &&
+           type != TagType::string;
 }
 
 double type_min(TagType type) {
@@ -113,6 +118,7 @@ double type_min(TagType type) {
         case TagType::byte:
         case TagType::word:
         case TagType::udint:
+        case TagType::string:
             return 0.0;
         case TagType::int_:
             return std::numeric_limits<std::int16_t>::min();
@@ -132,6 +138,8 @@ double type_max(TagType type) {
     switch (type) {
         case TagType::bit:
             return 1.0;
+        case TagType::string:
+            return 0.0;
         case TagType::byte:
             return std::numeric_limits<std::uint8_t>::max();
         case TagType::int_:

@@ -1,11 +1,15 @@
 #include "eip2mqtt/core/plan/value_codec.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <variant>
+
+#include "eip2mqtt/core/plan/latin1.hpp"
 
 namespace eip2mqtt::core::plan {
 namespace {
@@ -42,9 +46,11 @@ Int float_to_int(double value) {
 template <class Int>
 Int to_int(const Value& value) {
     return std::visit(
-        [](auto v) -> Int {
-            using V = decltype(v);
-            if constexpr (std::is_floating_point_v<V>) {
+        [](const auto& v) -> Int {
+            using V = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<V, Text> || std::is_same_v<V, List>) {
+                return 0;
+            } else if constexpr (std::is_floating_point_v<V>) {
                 return float_to_int<Int>(static_cast<double>(v));
             } else {
                 return static_cast<Int>(v);
@@ -55,7 +61,7 @@ Int to_int(const Value& value) {
 
 template <class Float>
 Float to_float(const Value& value) {
-    return std::visit([](auto v) { return static_cast<Float>(v); }, value);
+    return static_cast<Float>(to_double(value));
 }
 
 }  // namespace
@@ -85,6 +91,8 @@ Value decode_value(std::span<const std::byte> data, TagType type, Address addres
             return static_cast<std::int64_t>(load_le(data, at, 8));
         case TagType::lreal:
             return std::bit_cast<double>(load_le(data, at, 8));
+        case TagType::string:
+            return make_text(latin1_to_utf8(data.subspan(at, 1), true));
     }
     return false;
 }
@@ -95,7 +103,7 @@ void encode_value(std::span<std::byte> data, TagType type, Address address, cons
     switch (type) {
         case TagType::bit: {
             // §3: producers write a bit by read-modify-write of its byte.
-            const bool set = std::visit([](auto v) { return v != 0; }, value);
+            const bool set = to_int<std::uint64_t>(value) != 0;
             const auto mask = static_cast<std::byte>(1U << address.bit);
             data[at] = set ? (data[at] | mask) : (data[at] & ~mask);
             return;
@@ -124,6 +132,60 @@ void encode_value(std::span<std::byte> data, TagType type, Address address, cons
         case TagType::lreal:
             store_le(data, at, 8, std::bit_cast<std::uint64_t>(to_float<double>(value)));
             return;
+        case TagType::string: {
+            TagSpec one_byte;
+            one_byte.address = address;
+            one_byte.type = TagType::string;
+            encode_tag(data, one_byte, value);
+            return;
+        }
+    }
+}
+
+std::size_t tag_size(const TagSpec& tag) {
+    if (tag.type == TagType::bit) return (std::size_t{tag.address.bit & 7u} + tag.count + 7) / 8;
+    return size_of(tag.type) * tag.count;
+}
+
+Address element_address(const TagSpec& tag, std::size_t index) {
+    if (tag.type == TagType::bit) {
+        const std::size_t bit = tag.address.bit + index;
+        return {static_cast<std::uint16_t>(tag.address.byte + bit / 8),
+                static_cast<std::uint8_t>(bit % 8)};
+    }
+    return {static_cast<std::uint16_t>(tag.address.byte + index * size_of(tag.type)), 0};
+}
+
+Value decode_tag(std::span<const std::byte> data, const TagSpec& tag, Padding padding) {
+    if (tag.type == TagType::string) {
+        const bool trim = padding == Padding::as_tag && tag.trim();
+        return make_text(latin1_to_utf8(data.subspan(tag.address.byte, tag.count), trim));
+    }
+    if (tag.count <= 1) return decode_value(data, tag.type, tag.address);
+    std::vector<Value> items;
+    items.reserve(tag.count);
+    for (std::size_t i = 0; i < tag.count; ++i) {
+        items.push_back(decode_value(data, tag.type, element_address(tag, i)));
+    }
+    return make_list(std::move(items));
+}
+
+void encode_tag(std::span<std::byte> data, const TagSpec& tag, const Value& value) {
+    if (tag.type == TagType::string) {
+        const auto field = data.subspan(tag.address.byte, tag.count);
+        std::fill(field.begin(), field.end(), std::byte{0});
+        const auto* text = std::get_if<Text>(&value);
+        const auto bytes = text != nullptr ? utf8_to_latin1(**text) : std::nullopt;
+        if (bytes) std::memcpy(field.data(), bytes->data(), std::min(field.size(), bytes->size()));
+        return;
+    }
+    const auto* items = list_items(value);
+    if (items == nullptr) {
+        encode_value(data, tag.type, tag.address, value);
+        return;
+    }
+    for (std::size_t i = 0; i < std::min<std::size_t>(items->size(), tag.count); ++i) {
+        encode_value(data, tag.type, element_address(tag, i), (*items)[i]);
     }
 }
 

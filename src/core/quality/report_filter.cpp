@@ -6,10 +6,19 @@
 namespace eip2mqtt::core::quality {
 namespace {
 
-// Deadband applies to numbers only: a bool changes or it does not, and a NaN on either side
-// makes the difference NaN, which would hide the change.
+// Deadband applies to numbers only: a bool or a text changes or it does not, and a NaN on
+// either side makes the difference NaN, which would hide the change. An array moves when any
+// element moves beyond the band.
 bool moved(const plan::Value& now, const plan::Value& before, double deadband) {
-    if (deadband <= 0.0 || std::holds_alternative<bool>(now)) {
+    if (const auto* items = plan::list_items(now)) {
+        const auto* old = plan::list_items(before);
+        if (old == nullptr || old->size() != items->size()) return true;
+        for (std::size_t i = 0; i < items->size(); ++i) {
+            if (moved((*items)[i], (*old)[i], deadband)) return true;
+        }
+        return false;
+    }
+    if (deadband <= 0.0 || std::holds_alternative<bool>(now) || plan::is_composite(now)) {
         return !plan::same_value(now, before);
     }
     const double a = plan::to_double(now);

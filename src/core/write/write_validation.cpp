@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/write/detail/composite_writes.hpp"
 #include "eip2mqtt/core/plan/overlap.hpp"
 #include "eip2mqtt/core/plan/scaling.hpp"
 
@@ -82,7 +83,7 @@ Result<plan::Value, WriteRejection> integer_value(TagType type, Int v) {
     return plan::Value{static_cast<std::uint64_t>(v)};
 }
 
-Result<plan::Value, WriteRejection> to_integer_tag(TagType type, const WriteInput& input) {
+Result<plan::Value, WriteRejection> to_integer_tag(TagType type, const ScalarInput& input) {
     if (const auto* v = std::get_if<std::int64_t>(&input)) return integer_value(type, *v);
     if (const auto* v = std::get_if<std::uint64_t>(&input)) return integer_value(type, *v);
     if (const auto* d = std::get_if<double>(&input)) {
@@ -95,7 +96,7 @@ Result<plan::Value, WriteRejection> to_integer_tag(TagType type, const WriteInpu
     return fail(reject(WriteError::wrong_type, "expected a number"));
 }
 
-Result<plan::Value, WriteRejection> to_bit_tag(const WriteInput& input) {
+Result<plan::Value, WriteRejection> to_bit_tag(const ScalarInput& input) {
     if (const auto* b = std::get_if<bool>(&input)) return plan::Value{*b};
     // Bits also take the integers 0 and 1; any other integer is outside a bit's range, and a
     // float (even 1.0) is not how anyone writes a bit.
@@ -110,7 +111,7 @@ Result<plan::Value, WriteRejection> to_bit_tag(const WriteInput& input) {
     return fail(reject(WriteError::wrong_type, "expected true or false"));
 }
 
-Result<plan::Value, WriteRejection> to_float_tag(TagType type, const WriteInput& input) {
+Result<plan::Value, WriteRejection> to_float_tag(TagType type, const ScalarInput& input) {
     if (std::holds_alternative<bool>(input)) {
         return fail(reject(WriteError::wrong_type, "expected a number"));
     }
@@ -136,7 +137,7 @@ std::partial_ordering compare(std::int64_t v, double limit) {
 
 /// The value compared with a tag's min or max. Integer values are compared exactly; the input,
 /// not its binary32 rounding, is what a real's limits are checked against.
-std::partial_ordering compare(const plan::Value& value, const WriteInput& input, double limit) {
+std::partial_ordering compare(const plan::Value& value, const ScalarInput& input, double limit) {
     if (const auto* v = std::get_if<std::int64_t>(&value)) return compare(*v, limit);
     if (const auto* v = std::get_if<std::uint64_t>(&value)) {
         // Unsigned tags end at udint: every value fits an int64.
@@ -148,11 +149,14 @@ std::partial_ordering compare(const plan::Value& value, const WriteInput& input,
     return plan::to_double(value) <=> limit;
 }
 
-WriteInput raw_input(const plan::Value& value) {
+ScalarInput raw_input(const plan::Value& value) {
     return std::visit(
-        [](auto v) -> WriteInput {
-            if constexpr (std::is_same_v<decltype(v), float>) {
+        [](const auto& v) -> ScalarInput {
+            using V = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<V, float>) {
                 return static_cast<double>(v);
+            } else if constexpr (std::is_same_v<V, plan::Text> || std::is_same_v<V, plan::List>) {
+                return false;  // never asked: composites are checked before
             } else {
                 return v;
             }
@@ -173,7 +177,7 @@ std::optional<WriteRejection> outside_limits(const plan::TagSpec& tag, double eu
 
 /// A write in engineering units: checked against min and max, then made raw.
 Result<plan::Value, WriteRejection> to_scaled_tag(const plan::TagSpec& tag,
-                                                  const WriteInput& input) {
+                                                  const ScalarInput& input) {
     if (std::holds_alternative<bool>(input)) {
         return fail(reject(WriteError::wrong_type, "expected a number"));
     }
@@ -190,11 +194,9 @@ Result<plan::Value, WriteRejection> to_scaled_tag(const plan::TagSpec& tag,
     return fail(std::move(refusal));
 }
 
-}  // namespace
-
-Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
-                                                   const WriteInput& input) {
-    if (!tag.writable) return fail(reject(WriteError::read_only, "tag is read-only"));
+/// A number or boolean for one value of the tag (the tag's, or one element's of an array).
+Result<plan::Value, WriteRejection> validate_scalar(const plan::TagSpec& tag,
+                                                    const ScalarInput& input) {
     if (const auto* d = std::get_if<double>(&input); d != nullptr && !std::isfinite(*d)) {
         return fail(reject(WriteError::not_finite, "not a finite number"));
     }
@@ -215,16 +217,43 @@ Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
     return converted;
 }
 
+}  // namespace
+
+Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
+                                                   const WriteInput& input) {
+    if (!tag.writable) return fail(reject(WriteError::read_only, "tag is read-only"));
+    if (tag.type == TagType::string) return detail::to_string_tag(tag, input);
+    if (tag.is_array()) {
+        return detail::to_array_tag(
+            tag, input, [&tag](const ScalarInput& item) { return validate_scalar(tag, item); });
+    }
+    const auto scalar = detail::as_scalar(input);
+    if (!scalar) return fail(reject(WriteError::wrong_type, detail::not_scalar(input)));
+    return validate_scalar(tag, *scalar);
+}
+
 Result<plan::Value, WriteRejection> validate_raw_write(const plan::TagSpec& tag,
                                                        const plan::Value& raw) {
-    if (!tag.scale()) return validate_write(tag, raw_input(raw));
     if (!tag.writable) return fail(reject(WriteError::read_only, "tag is read-only"));
+    if (std::holds_alternative<plan::Text>(raw)) return raw;  // bytes as they are
+    if (const auto* items = plan::list_items(raw)) {
+        for (const auto& item : *items) {
+            if (auto checked = validate_raw_write(tag, item); !checked) return checked;
+        }
+        return raw;
+    }
+    if (!tag.scale()) return validate_scalar(tag, raw_input(raw));
     if (!std::isfinite(plan::to_double(raw))) {
         return fail(reject(WriteError::not_finite, "not a finite number"));
     }
     const double eu = plan::to_double(plan::to_engineering(raw, *tag.scale()).value);
     if (auto outside = outside_limits(tag, eu)) return fail(std::move(*outside));
     return raw;
+}
+
+std::optional<std::uint16_t> element_of(const WriteInput& input) {
+    if (const auto* element = std::get_if<ElementInput>(&input)) return element->index;
+    return std::nullopt;
 }
 
 std::optional<WriteRejection> overlap_rejection(const plan::ExchangePlan& plan,

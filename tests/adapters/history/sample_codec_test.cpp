@@ -26,6 +26,10 @@ TEST(SampleCodec, EveryKindComesBackAsItWentIn) {
         {6, Value{1.1f}},
         {70000, Value{-2.5e300}},
         {7, Value{std::numeric_limits<double>::quiet_NaN()}},
+        {8, core::plan::make_text("B-\xC3\xA9 17")},
+        {9, core::plan::make_text("")},
+        {10, core::plan::make_list({Value{1.5f}, Value{-2.0f}, Value{0.0f}})},
+        {11, core::plan::make_list({Value{true}, Value{false}})},
     };
     std::string bytes;
     encode_samples(samples, bytes);
@@ -54,6 +58,13 @@ TEST(SampleCodec, BytesThatAreNotOursAreAnError) {
     }
     EXPECT_FALSE(decode_samples(std::string("\x01\x09", 2)).ok());  // unknown kind
     EXPECT_FALSE(decode_samples(std::string(11, '\xff')).ok());     // index over 64 bits
+    EXPECT_FALSE(decode_samples(std::string("\x01\x06\x05"
+                                            "ab",
+                                            5))
+                     .ok());                                                    // text cut short
+    EXPECT_FALSE(decode_samples(std::string("\x01\x07\x02\x00", 4)).ok());      // array cut short
+    EXPECT_FALSE(decode_samples(std::string("\x01\x07\x01\x07\x00", 5)).ok());  // array in one
+    EXPECT_FALSE(decode_samples(std::string("\x01\x07\xff\xff\x7f", 5)).ok());  // huge count
     EXPECT_TRUE(decode_samples("").ok());
 }
 

@@ -93,6 +93,7 @@ exchanges:
     points: points-a.csv
     tags:
       - { name: SPEED, address: 0.0, type: real }
+      - { name: TEXT, address: 10.0, type: string, length: 4, trim: true }
   - name: produced
     direction: produce
     producer_id: 10.0.0.2
@@ -104,6 +105,7 @@ exchanges:
       - name: VALUE
         address: 8.0
         type: dint
+        count: 2
         unit: rpm
         deadband: 0.5
         refresh_s: 60
@@ -265,6 +267,20 @@ inline const std::vector<Edit> edits = {
      "publish_raw: true",
      "publish_raw: false",
      {{"exchanges[produced].publish_raw", Kind::changed}}},
+    {"exchanges[].tags[].length",
+     "length: 4",
+     "length: 6",
+     {{"exchanges[consumed].tags[TEXT].length", Kind::changed}}},
+    {"exchanges[].tags[].trim",
+     "trim: true",
+     "trim: false",
+     {{"exchanges[consumed].tags[TEXT].trim", Kind::changed}}},
+    // `initial: 5` is one value for every element: it has one more.
+    {"exchanges[].tags[].count",
+     "count: 2",
+     "count: 3",
+     {{"exchanges[produced].tags[VALUE].initial", Kind::changed},
+      {"exchanges[produced].tags[VALUE].count", Kind::changed}}},
     {"exchanges[].tags[].name",
      "name: VALUE",
      "name: VALUE2",

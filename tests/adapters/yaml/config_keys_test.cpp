@@ -100,7 +100,7 @@ TEST_F(ConfigKeys, EveryKeyOfTheTableIsEditedHere) {
 TEST_F(ConfigKeys, TheCompleteFileNamesNothingAgainstItself) {
     const auto config = load(complete);
     ASSERT_EQ(config.exchanges.size(), 3u);
-    ASSERT_EQ(config.exchanges[0].tags.size(), 2u);  // SPEED, then the point list's FLOW
+    ASSERT_EQ(config.exchanges[0].tags.size(), 3u);  // SPEED, TEXT, then the point list's FLOW
     EXPECT_TRUE(plan(config, load(complete)).empty());
 }
 

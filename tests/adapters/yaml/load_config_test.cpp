@@ -33,7 +33,7 @@ TEST(LoadConfig, ExampleConfigurationLoadsAndValidates) {
     EXPECT_EQ(turbine.tags.back().marks.node.line, 10);
     std::set<TagType> types;
     for (const auto& tag : config.exchanges[1].tags) types.insert(tag.spec.type);
-    EXPECT_EQ(types.size(), 9u);  // every type
+    EXPECT_EQ(types.size(), 10u);  // every type, string included
     EXPECT_EQ(config.exchanges[2].spec.direction, Direction::produce);
     const auto plans = core::config::make_plans(config);
     EXPECT_EQ(plans[0].tags.size(), 14u);

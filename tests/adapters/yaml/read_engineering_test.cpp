@@ -1,5 +1,6 @@
 // A tag's engineering keys through the loader and the core's checks: scale, type_eu, the
-// percent deadband, publish_raw, and initial in engineering units.
+// percent deadband, publish_raw, initial in engineering units, arrays (count) and strings
+// (length, trim).
 
 #include <gtest/gtest.h>
 
@@ -163,6 +164,77 @@ TEST(ReadEngineering, ALargeValueBeyondTheTypeStaysAnEngineeringValue) {
         good(with_tags("      - { name: t, address: 0.0, type: byte, writable: true, max: 100000,\n"
                        "          scale: { gain: 1000 } }\n"));
     EXPECT_EQ(only_tag(large).max(), 100000);
+}
+
+TEST(ReadArraysAndStrings, TheIssuesExampleLoads) {
+    const auto config = good(with_tags(
+        "      - { name: bearing_temps, address: \"8.0\", type: real, count: 4, unit: \"degC\",\n"
+        "          writable: true, initial: [20, 21, 22, 23.5] }\n"
+        "      - { name: batch_id, address: \"24.0\", type: string, length: 8, writable: true,\n"
+        "          initial: \"B-\u00e9\" }\n"
+        "      - { name: flags, address: \"0.6\", type: bit, count: 4, trim: true }\n",
+        ""));
+    const auto& tags = config.exchanges.at(0).tags;
+    const auto& temps = tags.at(0).spec;
+    EXPECT_EQ(temps.count, 4);
+    EXPECT_TRUE(temps.is_array());
+    EXPECT_EQ(core::plan::to_json(*temps.initial()), "[20.0,21.0,22.0,23.5]");
+    const auto& batch = tags.at(1).spec;
+    EXPECT_EQ(batch.type, core::plan::TagType::string);
+    EXPECT_EQ(batch.count, 8);
+    EXPECT_FALSE(batch.is_array());
+    EXPECT_EQ(core::plan::to_json(*batch.initial()), "\"B-\xC3\xA9\"");
+    EXPECT_EQ(tags.at(2).spec.count, 4);
+}
+
+TEST(ReadArraysAndStrings, OneInitialValueFillsEveryElement) {
+    const auto config = good(with_tags(
+        "      - { name: sp, address: 0.0, type: int, count: 3, writable: true, initial: 7 }\n"));
+    EXPECT_EQ(core::plan::to_json(*only_tag(config).initial()), "[7,7,7]");
+}
+
+TEST(ReadArraysAndStrings, KeepingThePaddingIsTheTagsChoice) {
+    const auto config = good(
+        with_tags("      - { name: s, address: 0.0, type: string, length: 4, trim: false }\n"));
+    EXPECT_FALSE(only_tag(config).trim());
+}
+
+TEST(ReadArraysAndStrings, BadShapesAreRefusedAtTheirLineAndColumn) {
+    expect_error("      - { name: t, address: 30.0, type: int, count: 2 }\n", 9, 20,
+                 "ends at byte 34, past the exchange length 32");
+    expect_error("      - { name: t, address: 0.0, type: int, count: 1 }\n", 9, 45,
+                 "an array has 2 elements or more");
+    expect_error("      - { name: t, address: 0.0, type: lreal, count: 176 }\n", 9, 47,
+                 "at most 175 of lreal fit an exchange");
+    expect_error("      - { name: t, address: 0.0, type: string, length: 0 }\n", 9, 48,
+                 "a string of no bytes");
+    expect_error("      - { name: t, address: 0.0, type: string }\n", 9, 9, "a string of no bytes");
+    expect_error("      - { name: t, address: 0.0, type: string, count: 4 }\n", 9, 48,
+                 "takes length, not count");
+    expect_error("      - { name: t, address: 0.0, type: int, length: 4 }\n", 9, 45,
+                 "only a string has a length");
+    expect_error("      - { name: t, address: 0.0, type: string, length: 4, scale: { gain: 2 } }\n",
+                 9, 59, "a string has no scale");
+    expect_error("      - { name: t, address: 0.0, type: string, length: 4, max: 3 }\n", 9, 59,
+                 "a string: it has no max");
+}
+
+TEST(ReadArraysAndStrings, BadInitialValuesAreRefused) {
+    expect_error(
+        "      - { name: t, address: 0.0, type: int, count: 3, writable: true, initial: [1, 2] }\n",
+        9, 71, "'initial' has 2 values for an array of 3");
+    expect_error(
+        "      - { name: t, address: 0.0, type: string, length: 2, writable: true, initial: abc "
+        "}\n",
+        9, 75, "longer than the string's length 2");
+    expect_error(
+        "      - { name: t, address: 0.0, type: string, length: 4, writable: true,\n"
+        "          initial: \"5 \u20ac\" }\n",
+        10, 11, "Latin-1");
+    expect_error(
+        "      - { name: t, address: 0.0, type: byte, count: 2, writable: true, initial: [1, 300] "
+        "}\n",
+        9, 72, "initial 300 is outside the range of byte");
 }
 
 }  // namespace

@@ -162,6 +162,25 @@ TEST(ImportPoints, AccessTypesOfRealListsAndTopicsWithoutDots) {
     EXPECT_EQ(read->spec.topic, "unit-2");
 }
 
+TEST(ImportPoints, CountAndLengthColumnsBecomeArraysAndStrings) {
+    const CsvFile csv(
+        "TagName,Node,Address,DataType,AccessType,Count,Length\n"
+        "TEMPS,Unit,0.0,Real,R,4,\n"
+        "BATCH,Unit,16.0,String,R,,12\n"
+        "SPEED,Unit,28.0,Real,R,,\n");
+    const auto result = import(csv.path());
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_NE(result.out.find("type: real, count: 4"), std::string::npos) << result.out;
+    EXPECT_NE(result.out.find("type: string, length: 12"), std::string::npos) << result.out;
+    const auto config = adapters::yaml::load_config_text(result.out, "out.yaml");
+    ASSERT_TRUE(config.ok()) << result.out;
+    const auto* unit = find(config.value(), "Unit");
+    ASSERT_NE(unit, nullptr) << result.out;
+    EXPECT_EQ(find_tag(*unit, "TEMPS")->spec.count, 4);
+    EXPECT_EQ(find_tag(*unit, "BATCH")->spec.count, 12);
+    EXPECT_EQ(find_tag(*unit, "SPEED")->spec.count, 1);
+}
+
 TEST(ImportPoints, MixedReadAndWriteIsAnError) {
     const CsvFile csv(
         "TagName,Node,Address,DataType,AccessType\n"

@@ -1,7 +1,7 @@
-// `sim`: the values it sends (bits toggle, integers ramp, reals follow a wave), the datagrams it
-// builds from them stamped with its clock's time, the production that spreads the first sends
-// over the period and then keeps it, what its command port says about the exchanges, which
-// port it answers on, and run_sim's refusals and a short run on loopback.
+// `sim`: the values it sends (bits toggle, integers ramp, reals follow a wave, arrays and
+// strings), the datagrams it builds from them stamped with its clock's time, the production that
+// spreads the first sends over the period and then keeps it, what its command port says about
+// the exchanges, which port it answers on, and run_sim's refusals and a short run on loopback.
 
 #include <gtest/gtest.h>
 
@@ -97,6 +97,18 @@ TEST(SimValues, AScaledTagSweepsItsEngineeringSpanInRawValues) {
     oil.mutable_extras().scale = core::plan::Scaling{
         core::plan::ScaleKind::gain_offset, {}, {}, 0.1, -40, false, std::nullopt};
     EXPECT_EQ(simulated_value(oil, 0, 0), Value{std::int64_t{-1000}});
+}
+
+TEST(SimValues, AnArraysElementsEachMoveAndAStringFitsItsField) {
+    auto temps = test::test_tag("T", 0, TagType::int_);
+    temps.count = 3;
+    EXPECT_EQ(core::plan::to_json(simulated_value(temps, 0, 0)), "[-1000,-997,-994]");
+    auto batch = test::test_tag("B", 0, TagType::string);
+    batch.count = 8;
+    EXPECT_EQ(simulated_value(batch, 0, 0), core::plan::make_text("BATCH-10"));
+    EXPECT_EQ(simulated_value(batch, 50, 0), core::plan::make_text("BATCH-10"));  // cut to 8
+    batch.count = 10;
+    EXPECT_EQ(simulated_value(batch, 50, 0), core::plan::make_text("BATCH-1001"));
 }
 
 class SimTest : public ::testing::Test {

@@ -52,7 +52,7 @@ TEST(PointLists, OlderNamesReadAsBitIntRealLint) {
 }
 
 TEST(DataTypes, UnknownNamesAreRejected) {
-    for (const char* name : {"", "float", "double", "string", " int", "int ", "dint32"}) {
+    for (const char* name : {"", "float", "double", "text", " int", "int ", "dint32"}) {
         EXPECT_EQ(parse_tag_type(name, TypeNaming::yaml), std::nullopt) << name;
         EXPECT_EQ(parse_tag_type(name, TypeNaming::point_list), std::nullopt) << name;
     }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cmath>
 #include <limits>
 
 namespace eip2mqtt::core::plan {
@@ -84,6 +85,46 @@ TEST(SameValue, NanEqualsNan) {
     EXPECT_FALSE(same_value(Value{nan_f}, Value{1.0f}));
     EXPECT_FALSE(same_value(Value{1.0}, Value{nan_d}));
     EXPECT_TRUE(same_value(Value{inf_f}, Value{inf_f}));
+}
+
+TEST(ValueJson, TextIsAnEscapedJsonString) {
+    EXPECT_EQ(to_json(make_text("Batch 7")), "\"Batch 7\"");
+    EXPECT_EQ(to_json(make_text("a\"b\\c")), "\"a\\\"b\\\\c\"");
+    EXPECT_EQ(to_json(make_text(std::string("\n\x01\0", 3))), "\"\\n\\u0001\\u0000\"");
+    EXPECT_EQ(to_json(make_text("\xC2\xB0"
+                                "C")),
+              "\"\xC2\xB0"
+              "C\"");  // UTF-8 as it is
+}
+
+TEST(ValueJson, ListIsAJsonArrayOfItsElements) {
+    EXPECT_EQ(to_json(make_list({Value{1.5f}, Value{nan_f}, Value{std::int64_t{-2}}})),
+              "[1.5,\"NaN\",-2]");
+    EXPECT_EQ(to_json(make_list({Value{true}, Value{false}})), "[true,false]");
+}
+
+TEST(ValueToDouble, TextAndListAreNoNumber) {
+    EXPECT_TRUE(std::isnan(to_double(make_text("1"))));
+    EXPECT_TRUE(std::isnan(to_double(make_list({Value{1.0}, Value{2.0}}))));
+}
+
+TEST(SameValue, TextAndListCompareContents) {
+    EXPECT_TRUE(same_value(make_text("a"), make_text("a")));
+    EXPECT_FALSE(same_value(make_text("a"), make_text("b")));
+    EXPECT_TRUE(
+        same_value(make_list({Value{nan_f}, Value{1.0f}}), make_list({Value{nan_f}, Value{1.0f}})));
+    EXPECT_FALSE(same_value(make_list({Value{1.0f}}), make_list({Value{1.0f}, Value{1.0f}})));
+    EXPECT_FALSE(same_value(make_list({Value{1.0f}}), make_list({Value{2.0f}})));
+    EXPECT_FALSE(same_value(make_text("1"), Value{std::int64_t{1}}));
+}
+
+TEST(Value, StaysSixteenBytes) {
+    // A ReportFilter per consumed tag keeps one: a text or an array is one shared pointer.
+    EXPECT_EQ(sizeof(Value), 16u);
+    const Value text = make_text("shared");
+    const Value copy = text;  // NOLINT(performance-unnecessary-copy-initialization)
+    EXPECT_EQ(&*std::get<Text>(text), &*std::get<Text>(copy));
+    EXPECT_EQ(copy, make_text("shared"));
 }
 
 }  // namespace

@@ -167,6 +167,23 @@ TEST(ReportFilter, EveryQualityIsRecorded) {
     }
 }
 
+TEST(ReportFilter, AnArrayMovesWhenAnyElementMovesBeyondTheBand) {
+    TagFilter tag{0.5, 0s};
+    const auto list = [](float a, float b) { return plan::make_list({Value{a}, Value{b}}); };
+    tag.published(list(10.0f, 20.0f), Quality::good, at(0ms));
+    EXPECT_FALSE(tag.should_publish(list(10.4f, 19.6f), Quality::good, at(1ms)));
+    EXPECT_TRUE(tag.should_publish(list(10.0f, 20.6f), Quality::good, at(1ms)));
+    EXPECT_TRUE(tag.should_publish(list(9.4f, 20.0f), Quality::good, at(1ms)));
+    EXPECT_TRUE(tag.should_publish(plan::make_list({Value{10.0f}}), Quality::good, at(1ms)));
+}
+
+TEST(ReportFilter, ATextChangesOrDoesNot) {
+    TagFilter tag{5.0, 0s};  // a band means nothing to a text
+    tag.published(plan::make_text("B-1"), Quality::good, at(0ms));
+    EXPECT_FALSE(tag.should_publish(plan::make_text("B-1"), Quality::good, at(1ms)));
+    EXPECT_TRUE(tag.should_publish(plan::make_text("B-2"), Quality::good, at(1ms)));
+}
+
 TEST(ReportFilter, FitsThirtyTwoBytes) {
     // One per consumed tag, 100,000 in a large plant (see
     // docs/decisions/0001-configurations-of-100000-tags.md).

@@ -4,8 +4,9 @@
 /// index means something only with the exchange's layout, which the journal keeps beside it.
 ///
 /// Per sample: the tag index (LEB128), one kind byte (bool false/true, int64, uint64, float,
-/// double), then the value: nothing for a bool, zigzag LEB128 for an int64, LEB128 for a uint64,
-/// 4 or 8 little-endian bytes for a float or a double.
+/// double, text, array), then the value: nothing for a bool, zigzag LEB128 for an int64, LEB128
+/// for a uint64, 4 or 8 little-endian bytes for a float or a double, LEB128 size and UTF-8 for
+/// a text, LEB128 count and each element's kind and value for an array.
 
 #include <cstdint>
 #include <span>

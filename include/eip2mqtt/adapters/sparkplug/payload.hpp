@@ -30,11 +30,29 @@ enum class DataType : std::uint32_t {
     float64 = 10,
     boolean = 11,
     string = 12,
+    // Arrays (Sparkplug B 3.0): the elements packed little-endian in bytes_value.
+    int8_array = 22,
+    int16_array = 23,
+    int32_array = 24,
+    int64_array = 25,
+    uint8_array = 26,
+    uint16_array = 27,
+    uint32_array = 28,
+    uint64_array = 29,
+    float_array = 30,
+    double_array = 31,
+    boolean_array = 32,
 };
 
+/// The array type of a scalar type (Int32 -> Int32Array); String for a String.
+DataType array_of(DataType element);
+/// The element type of an array type (Int32Array -> Int32); nullopt for a scalar type.
+std::optional<DataType> element_of(DataType array);
+
 /// bit -> Boolean, byte -> UInt8, int -> Int16, word -> UInt16, dint -> Int32, udint -> UInt32,
-/// lint -> Int64, real -> Float, lreal -> Double.
-DataType datatype_of(core::plan::TagType type);
+/// lint -> Int64, real -> Float, lreal -> Double, string -> String; with `array`, the array
+/// type of each (BooleanArray...).
+DataType datatype_of(core::plan::TagType type, bool array = false);
 
 /// A metric's or a property's value: a tag's, or a text (an exchange's state, a unit).
 using MetricValue = std::variant<core::plan::Value, std::string>;

@@ -190,7 +190,7 @@ inline constexpr std::array<ConfigKey<plan::ExchangeSpec>, 16> exchange{{
 
 /// A tag's keys restart its exchange (a tag is matched by name, as exchanges are). The rows of
 /// a point list are tags too: a changed row shows as the keys it changed.
-inline constexpr std::array<ConfigKey<plan::TagSpec>, 15> tag{{
+inline constexpr std::array<ConfigKey<plan::TagSpec>, 18> tag{{
     {"name", live, differs<&plan::TagSpec::name>},
     {"address", live, differs<&plan::TagSpec::address>},
     {"type", live, differs<&plan::TagSpec::type>},
@@ -224,6 +224,16 @@ inline constexpr std::array<ConfigKey<plan::TagSpec>, 15> tag{{
          return eu_type(a) != eu_type(b);
      }},
     {"publish_raw", live, differs<&plan::TagSpec::publish_raw>},
+    // A string's length is its count of bytes.
+    {"count", live,
+     [](const plan::TagSpec& a, const plan::TagSpec& b) {
+         return a.count != b.count && a.type != plan::TagType::string;
+     }},
+    {"length", live,
+     [](const plan::TagSpec& a, const plan::TagSpec& b) {
+         return a.count != b.count && a.type == plan::TagType::string;
+     }},
+    {"trim", live, differs<&plan::TagSpec::trim>},
 }};
 
 /// A tag's `scale`, compared whole by the tag's `scale` key.

@@ -24,12 +24,15 @@ struct ConsumeCounters {
     /// Datagrams refused because they came from another address than `source` (not counted
     /// in `received`: the exchange never saw them).
     std::uint64_t wrong_source = 0;
+    /// Publications of scaled tags whose raw value lay beyond the scale's raw range (those
+    /// flagged "limit"): a transmitter out of its range, or a scale that does not fit it.
+    std::uint64_t beyond_raw_range = 0;
 };
 
 using ConsumeCounterField = CounterField<ConsumeCounters>;
 
 // clang-format off
-inline constexpr std::array<ConsumeCounterField, 11> consume_counter_fields{{
+inline constexpr std::array<ConsumeCounterField, 12> consume_counter_fields{{
     {"received", &ConsumeCounters::received, in_status | in_prometheus | in_sparkplug,
      "Datagrams received for the exchange"},
     {"accepted", &ConsumeCounters::accepted, in_status | in_prometheus | in_sparkplug,
@@ -52,6 +55,8 @@ inline constexpr std::array<ConsumeCounterField, 11> consume_counter_fields{{
      "Producer restarts (request ids started again while the producer's time went on)"},
     {"wrong_source", &ConsumeCounters::wrong_source, in_prometheus,
      "Datagrams from another address than the configured source"},
+    {"beyond_raw_range", &ConsumeCounters::beyond_raw_range, in_status | in_prometheus,
+     "Publications of scaled tags whose raw value lay beyond the scale's raw range"},
 }};
 // clang-format on
 

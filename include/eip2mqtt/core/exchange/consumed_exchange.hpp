@@ -66,6 +66,8 @@ public:
 
     ConsumeState state() const { return state_; }
     const ConsumeCounters& counters() const { return counters_; }
+    /// A publication of one of its scaled tags carried a value beyond the scale's raw range.
+    void count_beyond_raw_range() { ++counters_.beyond_raw_range; }
     /// The last accepted data; empty until a sample was accepted.
     std::span<const std::byte> image() const;
     bool has_image() const { return has_image_; }

@@ -57,7 +57,8 @@ struct Engineering {
     Limit limit = Limit::none;
 };
 
-/// The engineering value of `raw` (a value decode_value gave; bits are never scaled). NaN
+/// The engineering value of `raw` (a value decode_tag gave; bits and strings are never scaled;
+/// an array's elements each, flagged high if any is high, else low if any is low). NaN
 /// stays NaN. Below `raw.lo` a square root reads `eu.lo`; beyond either end a linear value goes
 /// on along its line unless `clamp` holds it at that end of `eu`. An integer `eu_type`
 /// saturates at its own ends, flagged as a limit.

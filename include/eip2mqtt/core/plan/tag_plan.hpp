@@ -28,6 +28,9 @@ struct TagExtras {
     /// absolute band it makes, which is what reports compare against.
     std::optional<double> deadband_percent;
     bool publish_raw = false;  ///< JSON payloads add the wire's value as "raw"
+    /// Strings: trailing NULs and spaces are removed from what is published (`trim: false`
+    /// keeps them).
+    bool trim = true;
 
     friend bool operator==(const TagExtras&, const TagExtras&) = default;
 };
@@ -40,6 +43,9 @@ struct TagSpec {
     Address address;
     TagType type = TagType::byte;
     bool writable = false;
+    /// `count`: elements of `type` at consecutive offsets (bits at consecutive bits); a
+    /// string's `length` in bytes. 1 is a scalar, which every other tag is.
+    std::uint16_t count = 1;
     double deadband = 0.0;             ///< absolute; 0 publishes any change
     std::chrono::seconds refresh{60};  ///< republish at least this often
 
@@ -52,6 +58,9 @@ struct TagSpec {
     const std::optional<Scaling>& scale() const { return extras_.get().scale; }
     const std::optional<double>& deadband_percent() const { return extras_.get().deadband_percent; }
     bool publish_raw() const { return extras_.get().publish_raw; }
+    bool trim() const { return extras_.get().trim; }
+    /// True for a tag whose value is a List: a `count` of a type other than string.
+    bool is_array() const { return count > 1 && type != TagType::string; }
 
     /// The rarely set settings to write (loaders and tests), allocated on first use.
     TagExtras& mutable_extras() { return extras_.mutable_get(); }

@@ -12,15 +12,16 @@ namespace eip2mqtt::core::plan {
 
 /// The wire types. Every value is little-endian and may start at any byte offset.
 enum class TagType : std::uint8_t {
-    bit,    ///< one bit of a byte; bit 0 is the least significant
-    byte,   ///< u8 (alias usint)
-    int_,   ///< i16 (the spec's `int`; a keyword in C++)
-    word,   ///< u16 (alias uint)
-    dint,   ///< i32
-    udint,  ///< u32 (alias dword)
-    real,   ///< IEEE-754 binary32
-    lint,   ///< i64 (alias long)
-    lreal,  ///< IEEE-754 binary64
+    bit,     ///< one bit of a byte; bit 0 is the least significant
+    byte,    ///< u8 (alias usint)
+    int_,    ///< i16 (the spec's `int`; a keyword in C++)
+    word,    ///< u16 (alias uint)
+    dint,    ///< i32
+    udint,   ///< u32 (alias dword)
+    real,    ///< IEEE-754 binary32
+    lint,    ///< i64 (alias long)
+    lreal,   ///< IEEE-754 binary64
+    string,  ///< a fixed field of Latin-1 bytes (its `length` is the tag's count)
 };
 
 /// Which naming convention a type name comes from: they disagree on `word`.
@@ -41,15 +42,16 @@ std::optional<std::string_view> tag_type_hint(std::string_view unknown);
 inline constexpr std::string_view tag_type_aliases = "bool, usint, uint, dword, long";
 
 /// The canonical §3 names (`int`, `udint`...).
-inline constexpr auto tag_type_names =
-    enum_names<TagType>("bit", "byte", "int", "word", "dint", "udint", "real", "lint", "lreal");
+inline constexpr auto tag_type_names = enum_names<TagType>(
+    "bit", "byte", "int", "word", "dint", "udint", "real", "lint", "lreal", "string");
 
 constexpr std::string_view to_string(TagType type) { return tag_type_names.name_of(type); }
 
-/// Size in bytes a tag of this type occupies (1 for bit: it lives in one byte).
+/// Size in bytes one element of this type occupies (1 for bit: it lives in one byte; 1 for
+/// string: one character).
 std::size_t size_of(TagType type);
 
-/// True for the types whose value is an integer (not bit, real or lreal).
+/// True for the types whose value is an integer (not bit, real, lreal or string).
 bool is_integer(TagType type);
 
 /// The type's own range as doubles, for range checks of configuration and writes (lint's

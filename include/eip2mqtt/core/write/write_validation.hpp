@@ -18,13 +18,30 @@
 
 namespace eip2mqtt::core::write {
 
-/// A JSON scalar as written by the client, before it meets a tag's type: `true`, `-2`,
+/// A JSON number or boolean as written by the client, before it meets a tag's type: `true`, `-2`,
 /// `18446744073709551615`, `12.5`. Integers keep their exact value: every number whose exact
 /// value is an integer of 64 bits comes as int64 or uint64, however it was spelt (`12.0`,
 /// `1e3`), so a double is always a number with a fractional part or one beyond 64 bits. A
 /// double cannot carry that itself: 9007199254740992.5 and -9223372036854775809 both round to
 /// integers.
-using WriteInput = std::variant<bool, std::int64_t, std::uint64_t, double>;
+using ScalarInput = std::variant<bool, std::int64_t, std::uint64_t, double>;
+
+/// A whole array: one scalar per element, as many as the tag's `count`.
+struct ArrayInput {
+    std::vector<ScalarInput> items;
+    friend bool operator==(const ArrayInput&, const ArrayInput&) = default;
+};
+
+/// One element of an array: `{"index": 2, "value": 71.5}`.
+struct ElementInput {
+    std::uint16_t index = 0;
+    ScalarInput value;
+    friend bool operator==(const ElementInput&, const ElementInput&) = default;
+};
+
+/// What a write asks for: a scalar, a string's text (UTF-8), a whole array or one element.
+using WriteInput =
+    std::variant<bool, std::int64_t, std::uint64_t, double, std::string, ArrayInput, ElementInput>;
 
 /// Why a write was rejected. Each value is also a metric label.
 enum class WriteError : std::uint8_t {
@@ -67,7 +84,9 @@ struct WriteRejection {
 /// Checks `input` against the tag (writable, type, the type's range, min/max) and converts it
 /// to the tag's Value. Bits take true/false, and also 0/1. A scaled tag takes its value in
 /// engineering units: checked against min and max, then made raw (plan::to_raw), refused
-/// where it has no raw form.
+/// where it has no raw form. An array takes all its elements (a List) or one (its scalar, the
+/// element named by element_of), each checked as a scalar tag's value; a string takes text with
+/// a Latin-1 form of at most its length.
 Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
                                                    const WriteInput& input);
 
@@ -76,10 +95,15 @@ Result<plan::Value, WriteRejection> validate_write(const plan::TagSpec& tag,
 Result<plan::Value, WriteRejection> validate_raw_write(const plan::TagSpec& tag,
                                                        const plan::Value& raw);
 
-/// One tag's validated new value, by index into the exchange plan's tags.
+/// The element an input writes alone; nullopt for a whole tag.
+std::optional<std::uint16_t> element_of(const WriteInput& input);
+
+/// One tag's validated new value, by index into the exchange plan's tags: the whole tag's, or
+/// one element's of an array.
 struct TagWrite {
     std::size_t tag_index = 0;
     plan::Value value;
+    std::optional<std::uint16_t> element = std::nullopt;
 };
 
 /// A word and one of its bits in one write: which would win? Neither is written

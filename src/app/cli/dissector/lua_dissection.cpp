@@ -146,15 +146,46 @@ local function add_header(root, buf, h)
   root:add_le(hf.reserved, buf(28, 4))
 end
 
--- Every tag the data holds; a tag past the end of a short datagram is left out.
+-- Element i of a tag: its byte range and, for a bit, its value.
+local function element(buf, tag, i)
+  if tag.type ~= "bit" or tag.count == 1 then
+    return buf(32 + tag.offset + i * tag.size, tag.size), nil
+  end
+  local bit = tag.bit + i
+  local range = buf(32 + tag.offset + math.floor(bit / 8), 1)
+  return range, bit32.band(range:uint(), 2 ^ (bit % 8)) ~= 0
+end
+
+-- Where element i of a tag ends, in the data.
+local function element_end(tag, i)
+  if tag.type == "bit" and tag.count > 1 then return tag.offset + math.floor((tag.bit + i) / 8) + 1 end
+  return tag.offset + (i + 1) * tag.size
+end
+
+-- A string's Latin-1 bytes without the NULs and spaces that pad its field.
+local function text(range)
+  return (range:string(ENC_ISO_8859_1):gsub("[%z ]+$", ""))
+end
+
+-- Every tag the data holds; a tag (an element) past the end of a short datagram is left out.
 local function add_tags(root, buf, ex, data_length)
   local tree = root:add(hf.exchange, buf(32), ex.name)
   for _, tag in ipairs(ex.tags) do
-    if tag.offset + tag.size <= data_length then
-      local range = buf(32 + tag.offset, tag.size)
-      tree:add_le(tag.field, range)
+    for i = 0, tag.count - 1 do
+      if element_end(tag, i) > data_length then break end
+      local range, bit = element(buf, tag, i)
+      local item
+      if bit ~= nil then
+        item = tree:add(tag.field, range, bit)
+      elseif tag.type == "string" then
+        item = tree:add(tag.field, range, text(range))
+      else
+        item = tree:add_le(tag.field, range)
+      end
+      if tag.count > 1 then item:prepend_text("[" .. i .. "] ") end
       if tag.scale then
-        tree:add(tag.eu_field, range, engineering(tag.scale, raw_number(range, tag.type)))
+        local eu = tree:add(tag.eu_field, range, engineering(tag.scale, raw_number(range, tag.type)))
+        if tag.count > 1 then eu:prepend_text("[" .. i .. "] ") end
       end
     end
   end

@@ -76,7 +76,9 @@ void append_exchange(const ExchangePlan& plan, const std::string& part, std::str
                ", " + lua_string(tag_label(spec)) + ", \"" +
                std::string(core::plan::to_string(spec.type)) + "\", " +
                std::to_string(spec.address.byte) + ", " + std::to_string(spec.address.bit) +
-               (spec.scale() ? scale_arguments(spec) : std::string()) + ")\n";
+               (spec.scale() ? scale_arguments(spec)
+                             : std::string(spec.count > 1 ? ", nil, nil" : "")) +
+               (spec.count > 1 ? ", " + std::to_string(spec.count) : std::string()) + ")\n";
     }
     out += "end)\n";
 }

@@ -70,6 +70,7 @@ local tag_types = {
   real = { size = 4, make = ProtoField.float },
   lint = { size = 8, make = ProtoField.int64 },
   lreal = { size = 8, make = ProtoField.double },
+  string = { size = 1, make = ProtoField.string },
 }
 
 -- A scaled tag's raw value as a Lua number (lint through Int64, to the nearest double, as the
@@ -100,17 +101,27 @@ end
 
 -- Configured exchanges by "producer id/exchange id"; the first of two with one key decodes it.
 -- A scaled tag shows its raw field and, beside it, its engineering value (`<field>.eu`).
+-- An array (`count`) shows each element as its own item, "[i]" before it; a string is one
+-- field of `count` bytes.
 local exchanges = {}
 local function exchange(ex, define_tags)
   ex.tags = {}
-  define_tags(function(abbr, label, type, offset, bit, scale, eu_label)
+  define_tags(function(abbr, label, type, offset, bit, scale, eu_label, count)
+    count = count or 1
     local f
-    if type == "bit" then
+    if type == "bit" and count > 1 then
+      f = ProtoField.bool(abbr, label)
+    elseif type == "bit" then
       f = ProtoField.bool(abbr, label, 8, nil, 2 ^ bit)
     else
       f = tag_types[type].make(abbr, label)
     end
-    local tag = { field = field(f), offset = offset, size = tag_types[type].size, type = type }
+    local tag = { field = field(f), offset = offset, bit = bit, size = tag_types[type].size,
+                  type = type, count = count }
+    if type == "string" then
+      tag.size = count
+      tag.count = 1
+    end
     if scale then
       tag.scale = scale
       tag.eu_field = field(ProtoField.double(abbr .. ".eu", eu_label))

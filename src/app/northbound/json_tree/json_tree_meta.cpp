@@ -102,6 +102,12 @@ void append_tag(std::string& out, const core::plan::TagPlan& tag) {
     }
     if (spec.scale()) append_scale(out, *spec.scale());
     if (spec.publish_raw()) out += R"(,"publish_raw":true)";
+    if (spec.type == core::plan::TagType::string) {
+        fmt::format_to(std::back_inserter(out), R"(,"length":{})", spec.count);
+        if (!spec.trim()) out += R"(,"trim":false)";
+    } else if (spec.is_array()) {
+        fmt::format_to(std::back_inserter(out), R"(,"count":{})", spec.count);
+    }
     out += '}';
 }
 

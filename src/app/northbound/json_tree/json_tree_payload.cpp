@@ -75,30 +75,6 @@ std::string format_status_payload(const ConsumedStatus& status) {
     return out;
 }
 
-void append_json_string(std::string& out, std::string_view text) {
-    out += '"';
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            // Names refuse control characters; escaped all the same (as JSON libraries write
-            // them), never written raw.
-            constexpr std::string_view shorts = "\b\t\n\f\r";
-            constexpr std::string_view letters = "btnfr";
-            if (const auto at = shorts.find(c); at != std::string_view::npos) {
-                out += '\\';
-                out += letters[at];
-            } else {
-                fmt::format_to(std::back_inserter(out), "\\u{:04x}", static_cast<unsigned>(c));
-            }
-        } else {
-            out += c;
-        }
-    }
-    out += '"';
-}
-
 std::string format_produced_status_payload(const ProducedStatus& status) {
     std::string out;
     auto to = std::back_inserter(out);

@@ -14,6 +14,7 @@
 namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
+using core::write::ScalarInput;
 using core::write::WriteError;
 using core::write::WriteInput;
 using core::write::WriteRejection;
@@ -25,14 +26,15 @@ using Json = nlohmann::ordered_json;
 constexpr std::size_t max_payload_size = 256 * 1024;
 
 const char* const malformed_json = "malformed JSON";
-const char* const expected_scalar = "expected a JSON scalar or {\"value\": ...}";
+const char* const expected_scalar =
+    "expected a JSON scalar, an array, {\"value\": ...} or {\"index\": i, \"value\": ...}";
 
 WriteRejection reject(WriteError error, std::string message) { return {error, std::move(message)}; }
 
 /// The exact integer a JSON number denotes, whatever its spelling (`12.0`, `1e3`,
 /// `-9223372036854775808.0`), or nullopt when it has a fractional part or lies beyond 64 bits.
 /// A double cannot tell: 9007199254740992.5 and -9223372036854775809 both round to integers.
-std::optional<WriteInput> exact_integer(std::string_view text) {
+std::optional<ScalarInput> exact_integer(std::string_view text) {
     std::size_t i = 0;
     const bool negative = i < text.size() && text[i] == '-';
     if (negative) ++i;
@@ -58,7 +60,7 @@ std::optional<WriteInput> exact_integer(std::string_view text) {
         exponent += negative_exponent ? -written : written;
     }
     const auto first = digits.find_first_not_of('0');
-    if (first == std::string::npos) return WriteInput{std::uint64_t{0}};
+    if (first == std::string::npos) return ScalarInput{std::uint64_t{0}};
     digits.erase(0, first);
     while (exponent < 0) {
         if (digits.back() != '0') return std::nullopt;  // a fractional part
@@ -73,16 +75,17 @@ std::optional<WriteInput> exact_integer(std::string_view text) {
     constexpr auto i64_min_magnitude = std::uint64_t{1} << 63;
     if (!negative) {
         if (value > u64_max) return std::nullopt;
-        return WriteInput{static_cast<std::uint64_t>(value)};
+        return ScalarInput{static_cast<std::uint64_t>(value)};
     }
     if (value > i64_min_magnitude) return std::nullopt;
-    return WriteInput{static_cast<std::int64_t>(-static_cast<std::int64_t>(value - 1) - 1)};
+    return ScalarInput{static_cast<std::int64_t>(-static_cast<std::int64_t>(value - 1) - 1)};
 }
 
 /// Builds the JSON of a write with nlohmann's SAX interface rather than its DOM parser, for
 /// two reasons: a number's text is still at hand (see exact_integer), and what no write may
-/// contain is refused before it is built: arrays anywhere, objects below the second level,
-/// duplicate keys (which nlohmann would silently resolve to the last one).
+/// contain is refused before it is built: arrays within arrays or holding objects, objects
+/// below the second level, duplicate keys (which nlohmann would silently resolve to the last
+/// one).
 class WriteBuilder final : public nlohmann::json_sax<Json> {
 public:
     Json root;
@@ -100,8 +103,8 @@ public:
     bool string(string_t& value) override { return put(std::move(value)); }
     bool binary(binary_t&) override { return false; }
     bool start_object(std::size_t) override {
-        // {"tag": {"value": 1}}: two levels at most.
-        if (open_.size() >= 2) return false;
+        // {"tag": {"value": 1}}: two levels at most, and none within an array.
+        if (open_.size() >= 2 || array_ != nullptr) return false;
         Json* object = open_.empty() ? &root : &slot();
         *object = Json::object();
         open_.push_back({object, {}});
@@ -116,8 +119,17 @@ public:
         open_.pop_back();
         return true;
     }
-    bool start_array(std::size_t) override { return false; }
-    bool end_array() override { return false; }
+    bool start_array(std::size_t) override {
+        // An array tag's elements: scalars only.
+        if (array_ != nullptr) return false;
+        array_ = open_.empty() ? &root : &slot();
+        *array_ = Json::array();
+        return true;
+    }
+    bool end_array() override {
+        array_ = nullptr;
+        return true;
+    }
     bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
         return false;
     }
@@ -131,12 +143,17 @@ private:
     Json& slot() { return (*open_.back().object)[key_]; }
     template <class T>
     bool put(T&& value) {
-        (open_.empty() ? root : slot()) = std::forward<T>(value);
+        if (array_ != nullptr) {
+            array_->push_back(std::forward<T>(value));
+        } else {
+            (open_.empty() ? root : slot()) = std::forward<T>(value);
+        }
         return true;
     }
 
     std::vector<Open> open_;
     std::string key_;
+    Json* array_ = nullptr;  ///< the array being filled
 };
 
 /// Parses `payload` without exceptions; a rejection says why it cannot be a write.
@@ -158,18 +175,18 @@ core::Result<Json, WriteRejection> parse(std::string_view payload) {
     return std::move(builder.root);
 }
 
-/// What a client may send where a scalar is expected.
-core::Result<WriteInput, WriteRejection> scalar(const Json& value) {
+/// A number or a boolean.
+core::Result<ScalarInput, WriteRejection> scalar(const Json& value) {
     switch (value.type()) {
         case Json::value_t::boolean:
-            return WriteInput{value.get<bool>()};
+            return ScalarInput{value.get<bool>()};
         case Json::value_t::number_unsigned:
-            return WriteInput{value.get<std::uint64_t>()};
+            return ScalarInput{value.get<std::uint64_t>()};
         case Json::value_t::number_integer:
-            return WriteInput{value.get<std::int64_t>()};
+            return ScalarInput{value.get<std::int64_t>()};
         case Json::value_t::number_float:
             // The parser rejects numbers beyond double's range, so this is finite.
-            return WriteInput{value.get<double>()};
+            return ScalarInput{value.get<double>()};
         case Json::value_t::string:
             return core::fail(
                 reject(WriteError::wrong_type, "expected a number or true/false, got a string"));
@@ -181,15 +198,52 @@ core::Result<WriteInput, WriteRejection> scalar(const Json& value) {
     }
 }
 
-/// A scalar, or {"value": scalar}.
+/// A scalar, a string's text, or an array tag's elements.
+core::Result<WriteInput, WriteRejection> plain_value(const Json& value) {
+    if (value.is_string()) return WriteInput{value.get<std::string>()};
+    if (value.is_array()) {
+        core::write::ArrayInput array;
+        array.items.reserve(value.size());
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            auto item = scalar(value[i]);
+            if (!item) {
+                auto rejection = item.error();
+                rejection.message = "element " + std::to_string(i) + ": " + rejection.message;
+                return core::fail(std::move(rejection));
+            }
+            array.items.push_back(std::move(item).value());
+        }
+        return WriteInput{std::move(array)};
+    }
+    auto one = scalar(value);
+    if (!one) return core::fail(one.error());
+    return std::visit([](auto v) { return WriteInput{v}; }, one.value());
+}
+
+/// {"index": i, "value": scalar}: one element of an array tag.
+core::Result<WriteInput, WriteRejection> element_value(const Json& value) {
+    const auto& index = value.at("index");
+    if (!index.is_number_unsigned() || index.get<std::uint64_t>() > 0xFFFF) {
+        return core::fail(reject(WriteError::wrong_type, "index must be an integer of 0 or more"));
+    }
+    auto one = scalar(value.at("value"));
+    if (!one) return core::fail(one.error());
+    return WriteInput{core::write::ElementInput{
+        static_cast<std::uint16_t>(index.get<std::uint64_t>()), std::move(one).value()}};
+}
+
+/// A plain value, {"value": plain value}, or {"index": i, "value": scalar}.
 core::Result<WriteInput, WriteRejection> tag_value(const Json& value) {
-    if (!value.is_object()) return scalar(value);
+    if (!value.is_object()) return plain_value(value);
+    if (value.size() == 2 && value.contains("index") && value.contains("value")) {
+        return element_value(value);
+    }
     if (value.size() != 1 || !value.contains("value")) {
         return core::fail(reject(WriteError::malformed, expected_scalar));
     }
     const auto& inner = value.at("value");
     if (inner.is_object()) return core::fail(reject(WriteError::malformed, expected_scalar));
-    return scalar(inner);
+    return plain_value(inner);
 }
 
 }  // namespace

@@ -57,7 +57,7 @@ std::optional<WriteRejection> collect_writes(const core::plan::ExchangePlan& pla
             if (!tag_index) rejection.message = tag.name + ": " + rejection.message;
             return rejection;
         }
-        writes.push_back({index, std::move(value).value()});
+        writes.push_back({index, std::move(value).value(), core::write::element_of(input)});
         return std::nullopt;
     };
     if (tag_index) {

@@ -15,7 +15,7 @@ using adapters::sparkplug::Metric;
 using core::plan::Value;
 
 DataType datatype_of(const core::plan::TagSpec& spec) {
-    return adapters::sparkplug::datatype_of(core::plan::published_type(spec));
+    return adapters::sparkplug::datatype_of(core::plan::published_type(spec), spec.is_array());
 }
 
 /// What the metric carries for the raw value `raw`: the tag's published value; is_null where a

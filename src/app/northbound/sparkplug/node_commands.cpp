@@ -40,11 +40,15 @@ bool asks_rebirth(const adapters::sparkplug::CommandMetric& metric) {
 /// an integer as that integer (WriteInput's contract), others as double.
 WriteInput write_input(const Value& value) {
     return std::visit(
-        [](auto v) -> WriteInput {
-            using T = decltype(v);
+        [](const auto& v) -> WriteInput {
+            using T = std::decay_t<decltype(v)>;
             if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::int64_t> ||
                           std::is_same_v<T, std::uint64_t>) {
                 return v;
+            } else if constexpr (std::is_same_v<T, core::plan::Text>) {
+                return *v;
+            } else if constexpr (std::is_same_v<T, core::plan::List>) {
+                return core::write::ArrayInput{};  // commands carry no arrays: refused by shape
             } else {
                 const double d = v;
                 if (std::isfinite(d) && std::trunc(d) == d && d >= -0x1p63 && d < 0x1p63) {

@@ -43,7 +43,7 @@ public:
 
 /// The value of `type` whose Sparkplug encoding is the longest: signed types travel as two's
 /// complement, so -1 takes every byte of its varint.
-Value widest_value(TagType type) {
+Value widest_scalar(TagType type) {
     switch (type) {
         case TagType::bit:
             return Value{true};
@@ -60,9 +60,17 @@ Value widest_value(TagType type) {
         case TagType::int_:
         case TagType::dint:
         case TagType::lint:
+        case TagType::string:
             return Value{std::int64_t{-1}};
     }
     return Value{std::int64_t{-1}};
+}
+
+/// A string's longest text is two UTF-8 bytes for each of its Latin-1 bytes.
+Value widest_value(const core::plan::TagSpec& tag) {
+    if (tag.type == TagType::string) return core::plan::make_text(std::string(2 * tag.count, 'x'));
+    if (!tag.is_array()) return widest_scalar(tag.type);
+    return core::plan::make_list(std::vector<Value>(tag.count, widest_scalar(tag.type)));
 }
 
 }  // namespace
@@ -92,7 +100,7 @@ SparkplugBirthSizes sparkplug_birth_sizes(const SparkplugOptions& options,
     for (const auto& plan : plans) {
         samples.clear();
         for (std::size_t i = 0; i < plan.tags.size(); ++i) {
-            samples.push_back({i, widest_value(plan.tags[i].spec.type)});
+            samples.push_back({i, widest_value(plan.tags[i].spec)});
         }
         publisher.last = 0;
         node.tag_samples({plan, core::quality::Quality::good, widest_time_ms, false, samples});

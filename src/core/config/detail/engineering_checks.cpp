@@ -6,6 +6,7 @@
 
 #include "eip2mqtt/core/plan/scaling.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::core::config::detail {
 namespace {
@@ -42,8 +43,10 @@ void check_ranges(const TagConfig& tag, const plan::Scaling& s,
 void check_scale(const TagConfig& tag, const std::function<std::string()>& what, Diagnostics& out) {
     const auto& s = *tag.spec.scale();
     const auto& marks = tag.marks;
-    if (tag.spec.type == plan::TagType::bit) {
-        out.push_back({marks.of("scale"), what() + " is a bit: a bit has no scale"});
+    if (tag.spec.type == plan::TagType::bit || tag.spec.type == plan::TagType::string) {
+        const std::string type(plan::to_string(tag.spec.type));
+        out.push_back(
+            {marks.of("scale"), what() + " is a " + type + ": a " + type + " has no scale"});
         return;
     }
     if (s.kind != ScaleKind::gain_offset) {
@@ -77,9 +80,47 @@ std::string outside_eu_range(const plan::Scaling& scale, double value) {
     return " is outside the engineering range " + range_text(*span);
 }
 
+void check_shape(const TagConfig& tag, const std::function<std::string()>& what, Diagnostics& out) {
+    const auto& spec = tag.spec;
+    const auto& marks = tag.marks;
+    // A point list's row has no keys: its Count and Length columns are both the count.
+    const bool from_yaml = !marks.keys.empty();
+    if (spec.type == plan::TagType::string) {
+        if (marks.contains("count")) {
+            out.push_back({marks.of("count"), what() + " is a string: it takes length, not count"});
+        } else if (spec.count == 0 || (from_yaml && !marks.contains("length"))) {
+            out.push_back({marks.of("length"), what() + " is a string of no bytes: give it a "
+                                                        "length of 1 or more"});
+        }
+        for (const auto* key : {"min", "max", "deadband"}) {
+            if (marks.contains(key)) {
+                out.push_back({marks.of(key), what() + " is a string: it has no " + key});
+            }
+        }
+        return;
+    }
+    if (marks.contains("length")) {
+        out.push_back(
+            {marks.of("length"), what() + ": only a string has a length (an array has a count)"});
+    }
+    if (!marks.contains("count") && spec.count == 1) return;
+    const auto size = plan::size_of(spec.type);
+    if (spec.count == 0 || (spec.count < 2 && from_yaml)) {
+        out.push_back({marks.of("count"), what() + " has count " + std::to_string(spec.count) +
+                                              ": an array has 2 elements or more (leave count "
+                                              "out for one value)"});
+    } else if (spec.type != plan::TagType::bit && spec.count * size > wire::max_data_size) {
+        out.push_back(
+            {marks.of("count"), what() + " has count " + std::to_string(spec.count) + ": at most " +
+                                    std::to_string(wire::max_data_size / size) + " of " +
+                                    std::string(plan::to_string(spec.type)) + " fit an exchange"});
+    }
+}
+
 void check_engineering(const TagConfig& tag, const std::function<std::string()>& what,
                        Diagnostics& out) {
     const auto& spec = tag.spec;
+    check_shape(tag, what, out);
     if (spec.scale()) check_scale(tag, what, out);
     const auto& percent = spec.deadband_percent();
     if (!percent) return;

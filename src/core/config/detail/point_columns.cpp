@@ -9,8 +9,9 @@
 namespace eip2mqtt::core::config::detail {
 namespace {
 
-constexpr std::array<std::string_view, 7> names{
-    "units", "scaletype", "scalerawlow", "scalerawhigh", "scaleeulow", "scaleeuhigh", "clamp"};
+constexpr std::array<std::string_view, 9> names{"units",        "scaletype",  "scalerawlow",
+                                                "scalerawhigh", "scaleeulow", "scaleeuhigh",
+                                                "clamp",        "count",      "length"};
 
 std::optional<double> number(std::string_view text) {
     double value = 0;
@@ -59,8 +60,26 @@ const CsvField* PointColumns::field(const std::vector<CsvField>& fields, Column 
     return i && *i < fields.size() ? &fields[*i] : nullptr;
 }
 
+bool PointColumns::read_count(const std::vector<CsvField>& fields, const Mark& at,
+                              plan::TagSpec& tag, Diagnostics& errors) const {
+    for (const Column c : {elements, length}) {
+        const auto* f = field(fields, c);
+        if (f == nullptr || f->text.empty()) continue;
+        std::uint16_t n = 0;
+        const auto [end, ec] = std::from_chars(f->text.data(), f->text.data() + f->text.size(), n);
+        if (ec != std::errc{} || end != f->text.data() + f->text.size()) {
+            errors.push_back({Mark{at.file, at.line, f->column},
+                              "expected a count of 0..65535, not " + std::string(f->text)});
+            return false;
+        }
+        tag.count = n;
+    }
+    return true;
+}
+
 bool PointColumns::read(const std::vector<CsvField>& fields, const Mark& at, plan::TagSpec& tag,
                         Diagnostics& errors) const {
+    if (!read_count(fields, at, tag, errors)) return false;
     const auto text = [&](Column c) { return field(fields, c) ? field(fields, c)->text : ""; };
     const auto error = [&](Column c, std::string message) {
         errors.push_back({Mark{at.file, at.line, field(fields, c)->column}, std::move(message)});

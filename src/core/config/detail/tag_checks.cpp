@@ -12,6 +12,7 @@
 #include "eip2mqtt/core/plan/address.hpp"
 #include "eip2mqtt/core/plan/scaling.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
+#include "eip2mqtt/core/plan/value_codec.hpp"
 
 namespace eip2mqtt::core::config::detail {
 namespace {
@@ -19,9 +20,7 @@ namespace {
 using plan::Direction;
 using plan::TagType;
 
-double as_double(const plan::Value& value) {
-    return std::visit([](auto v) { return static_cast<double>(v); }, value);
-}
+double as_double(const plan::Value& value) { return plan::to_double(value); }
 
 }  // namespace
 
@@ -64,9 +63,9 @@ void TagChecks::run(const ExchangeConfig& exchange, std::size_t topic_bytes, Dia
                       " has a bit number but type " + std::string(plan::to_string(t.type)) +
                       " is not bit (use " + std::to_string(t.address.byte) + ".0)");
         }
-        const std::size_t size = plan::size_of(t.type);
-        const std::size_t end = std::size_t{t.address.byte} + size;
-        if (end > limit) {
+        const std::size_t end = std::size_t{t.address.byte} + plan::tag_size(t);
+        // An array too long for any exchange is reported by its count.
+        if (end > limit && plan::tag_size(t) <= wire::max_data_size) {
             error(marks.of("address"),
                   what() + " (" + plan::to_string(t.address) + ", " +
                       std::string(plan::to_string(t.type)) + ") ends at byte " +
@@ -109,10 +108,17 @@ void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& ta
     if (t.deadband < 0) error(marks.of("deadband"), what() + " has a negative deadband");
     if (t.refresh.count() < 0) error(marks.of("refresh_s"), what() + " has a negative refresh_s");
 
+    check_engineering(tag, what, *out_);
+    if (t.type == TagType::string) return;  // no range: its checks are the engineering ones
+    check_limits(tag, what);
+}
+
+void TagChecks::check_limits(const TagConfig& tag, const std::function<std::string()>& what) {
+    const auto& t = tag.spec;
+    const auto& marks = tag.marks;
     const double lo = plan::type_min(t.type);
     const double hi = plan::type_max(t.type);
     const auto type = [&] { return std::string(plan::to_string(t.type)); };
-    check_engineering(tag, what, *out_);
     const auto& scale = t.scale();
     const auto in_range = [&](std::string_view key, double value) {
         // A scaled tag's limits are engineering values; its initial is kept raw.
@@ -140,10 +146,11 @@ void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& ta
         error(marks.of("max"),
               what() + " has min " + number_text(*min) + " above max " + number_text(*max));
     }
-    if (t.initial()) {
-        const double raw = as_double(*t.initial());
+    // An array's initial value is checked element by element; a string's by its reader.
+    const auto check_initial = [&](const plan::Value& value) {
+        const double raw = as_double(value);
         const double initial =
-            scale ? plan::to_double(plan::to_engineering(*t.initial(), *scale).value) : raw;
+            scale ? plan::to_double(plan::to_engineering(value, *scale).value) : raw;
         if (in_range("initial", raw)) {
             if (min && initial < *min) {
                 error(marks.of("initial"), what() + " initial " + number_text(initial) +
@@ -153,6 +160,12 @@ void TagChecks::check_values(const ExchangeConfig& exchange, const TagConfig& ta
                                                " is above max " + number_text(*max));
             }
         }
+    };
+    if (!t.initial() || std::holds_alternative<plan::Text>(*t.initial())) return;
+    if (const auto* items = plan::list_items(*t.initial())) {
+        for (const auto& item : *items) check_initial(item);
+    } else {
+        check_initial(*t.initial());
     }
 }
 

@@ -6,6 +6,7 @@
 /// Module-private to src/core/config.
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -31,6 +32,8 @@ private:
     /// tag (a configuration may hold 100,000 tags).
     void find_repeated_names(const ExchangeConfig& exchange);
     void check_values(const ExchangeConfig& exchange, const TagConfig& tag);
+    /// min, max and initial against the type's range (a scaled tag's against its scale's).
+    void check_limits(const TagConfig& tag, const std::function<std::string()>& what);
 
     Diagnostics* out_ = nullptr;                                     ///< during run()
     std::vector<std::pair<std::string_view, std::size_t>> by_name_;  ///< find_repeated_names

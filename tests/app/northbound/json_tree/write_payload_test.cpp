@@ -98,12 +98,39 @@ TEST(ParseTagWrite, EmptyIsMalformed) {
     EXPECT_EQ(parse_tag_write("").error().message, "malformed JSON");
 }
 
-TEST(ParseTagWrite, StringsAreWrongType) {
-    EXPECT_EQ(rejected(R"("")"), WriteError::wrong_type);
-    EXPECT_EQ(rejected(R"("42")"), WriteError::wrong_type);
-    EXPECT_EQ(rejected(R"({"value":"on"})"), WriteError::wrong_type);
-    EXPECT_EQ(parse_tag_write(R"("42")").error().message,
-              "expected a number or true/false, got a string");
+TEST(ParseTagWrite, StringsAreTextForAStringTag) {
+    // Whether the tag takes a text is validation's to say: "expected a number..." otherwise.
+    EXPECT_EQ(accepted(R"("")"), WriteInput{std::string()});
+    EXPECT_EQ(accepted(R"("42")"), WriteInput{std::string("42")});
+    EXPECT_EQ(accepted(R"({"value":"B-é"})"), WriteInput{std::string("B-\xC3\xA9")});
+}
+
+TEST(ParseTagWrite, ArraysOfScalarsAreAnArrayTagsElements) {
+    using core::write::ArrayInput;
+    EXPECT_EQ(accepted("[]"), WriteInput{ArrayInput{}});
+    const ArrayInput four{{std::uint64_t{42}, std::int64_t{-1}, 2.5, true}};
+    EXPECT_EQ(accepted("[42, -1, 2.5, true]"), WriteInput{four});
+    EXPECT_EQ(accepted(R"({"value":[1.0]})"), WriteInput{ArrayInput{{std::uint64_t{1}}}});
+    EXPECT_EQ(rejected("[[1]]"), WriteError::malformed);
+    EXPECT_EQ(rejected(R"([{"value":1}])"), WriteError::malformed);
+    EXPECT_EQ(rejected("[1,]"), WriteError::malformed);
+    EXPECT_EQ(rejected(R"([1, "a"])"), WriteError::wrong_type);
+    EXPECT_EQ(parse_tag_write("[1, null]").error().message,
+              "element 1: expected a number or true/false, got null");
+}
+
+TEST(ParseTagWrite, AnIndexAndAValueAreOneElement) {
+    using core::write::ElementInput;
+    const ElementInput second{2, 71.5};
+    const ElementInput first{0, true};
+    EXPECT_EQ(accepted(R"({"index": 2, "value": 71.5})"), WriteInput{second});
+    EXPECT_EQ(accepted(R"({"value": true, "index": 0})"), WriteInput{first});
+    EXPECT_EQ(rejected(R"({"index": -1, "value": 1})"), WriteError::wrong_type);
+    EXPECT_EQ(rejected(R"({"index": 1.5, "value": 1})"), WriteError::wrong_type);
+    EXPECT_EQ(rejected(R"({"index": 65536, "value": 1})"), WriteError::wrong_type);
+    EXPECT_EQ(rejected(R"({"index": 1, "value": [1]})"), WriteError::malformed);
+    EXPECT_EQ(rejected(R"({"index": 1, "value": "a"})"), WriteError::wrong_type);
+    EXPECT_EQ(rejected(R"({"index": 1})"), WriteError::malformed);
 }
 
 TEST(ParseTagWrite, NullIsWrongType) {
@@ -125,12 +152,6 @@ TEST(ParseTagWrite, NonFiniteIsMalformed) {
     }
 }
 
-TEST(ParseTagWrite, ArraysAreMalformed) {
-    EXPECT_EQ(rejected("[]"), WriteError::malformed);
-    EXPECT_EQ(rejected("[42]"), WriteError::malformed);
-    EXPECT_EQ(rejected(R"({"value":[42]})"), WriteError::malformed);
-}
-
 TEST(ParseTagWrite, ObjectsOtherThanValueAreMalformed) {
     EXPECT_EQ(rejected("{}"), WriteError::malformed);
     EXPECT_EQ(rejected(R"({"x":2})"), WriteError::malformed);
@@ -139,7 +160,7 @@ TEST(ParseTagWrite, ObjectsOtherThanValueAreMalformed) {
     EXPECT_EQ(rejected(R"({"value":{"value":1}})"), WriteError::malformed);
     EXPECT_EQ(rejected(R"({"value":1,"value":2})"), WriteError::malformed);
     EXPECT_EQ(parse_tag_write(R"({"value":1,"x":2})").error().message,
-              "expected a JSON scalar or {\"value\": ...}");
+              R"(expected a JSON scalar, an array, {"value": ...} or {"index": i, "value": ...})");
 }
 
 TEST(ParseTagWrite, DeepNestingIsMalformed) {
@@ -220,11 +241,11 @@ TEST(ParseExchangeWrite, DuplicateKeysAreMalformed) {
 }
 
 TEST(ParseExchangeWrite, OneBadValueFailsTheWholeWrite) {
-    const auto result = parse_exchange_write(R"({"A":1,"B":"fast"})");
+    const auto result = parse_exchange_write(R"({"A":1,"B":[2,null]})");
     ASSERT_FALSE(result.ok());
     EXPECT_EQ(result.error().error, WriteError::wrong_type);
-    EXPECT_EQ(result.error().message, "B: expected a number or true/false, got a string");
-    EXPECT_EQ(exchange_rejected(R"({"A":1,"B":[2]})"), WriteError::malformed);
+    EXPECT_EQ(result.error().message, "B: element 1: expected a number or true/false, got null");
+    EXPECT_EQ(exchange_rejected(R"({"A":1,"B":[[2]]})"), WriteError::malformed);
     EXPECT_EQ(exchange_rejected(R"({"A":1,"B":{"value":2,"x":1}})"), WriteError::malformed);
     EXPECT_EQ(exchange_rejected(R"({"A":1,"B":{"value":{"value":2}}})"), WriteError::malformed);
     EXPECT_EQ(exchange_rejected(R"({"A":1,"B":null})"), WriteError::wrong_type);

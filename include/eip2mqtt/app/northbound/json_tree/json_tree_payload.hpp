@@ -12,6 +12,7 @@
 
 #include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/json_text.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
 #include "eip2mqtt/core/quality/quality.hpp"
 
@@ -54,6 +55,6 @@ std::string format_write_result_unsaved(std::string_view reason);
 std::string metrics_json(const MetricsSources& sources, std::chrono::seconds uptime);
 
 /// Appends `text` as a JSON string, quoted and escaped: tag names may hold `"` and a backslash.
-void append_json_string(std::string& out, std::string_view text);
+using core::append_json_string;
 
 }  // namespace eip2mqtt::app::northbound::json_tree
