@@ -61,7 +61,16 @@ Int to_int(const Value& value) {
 
 template <class Float>
 Float to_float(const Value& value) {
-    return static_cast<Float>(to_double(value));
+    return std::visit(
+        [](const auto& v) -> Float {
+            using V = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<V, Text> || std::is_same_v<V, List>) {
+                return 0;
+            } else {
+                return static_cast<Float>(v);
+            }
+        },
+        value);
 }
 
 }  // namespace

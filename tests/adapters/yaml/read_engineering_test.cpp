@@ -206,6 +206,8 @@ TEST(ReadArraysAndStrings, BadShapesAreRefusedAtTheirLineAndColumn) {
                  "an array has 2 elements or more");
     expect_error("      - { name: t, address: 0.0, type: lreal, count: 176 }\n", 9, 47,
                  "at most 175 of lreal fit an exchange");
+    expect_error("      - { name: t, address: 0.0, type: bit, count: 11201 }\n", 9, 45,
+                 "at most 11200 of bit fit an exchange");
     expect_error("      - { name: t, address: 0.0, type: string, length: 0 }\n", 9, 48,
                  "a string of no bytes");
     expect_error("      - { name: t, address: 0.0, type: string }\n", 9, 9, "a string of no bytes");

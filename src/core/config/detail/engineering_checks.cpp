@@ -104,16 +104,19 @@ void check_shape(const TagConfig& tag, const std::function<std::string()>& what,
             {marks.of("length"), what() + ": only a string has a length (an array has a count)"});
     }
     if (!marks.contains("count") && spec.count == 1) return;
-    const auto size = plan::size_of(spec.type);
+    // Bits take one bit each: 8 to a byte.
+    const std::size_t most = spec.type == plan::TagType::bit
+                                 ? 8 * wire::max_data_size
+                                 : wire::max_data_size / plan::size_of(spec.type);
     if (spec.count == 0 || (spec.count < 2 && from_yaml)) {
         out.push_back({marks.of("count"), what() + " has count " + std::to_string(spec.count) +
                                               ": an array has 2 elements or more (leave count "
                                               "out for one value)"});
-    } else if (spec.type != plan::TagType::bit && spec.count * size > wire::max_data_size) {
-        out.push_back(
-            {marks.of("count"), what() + " has count " + std::to_string(spec.count) + ": at most " +
-                                    std::to_string(wire::max_data_size / size) + " of " +
-                                    std::string(plan::to_string(spec.type)) + " fit an exchange"});
+    } else if (spec.count > most) {
+        out.push_back({marks.of("count"), what() + " has count " + std::to_string(spec.count) +
+                                              ": at most " + std::to_string(most) + " of " +
+                                              std::string(plan::to_string(spec.type)) +
+                                              " fit an exchange"});
     }
 }
 
