@@ -43,34 +43,36 @@ Int float_to_int(double value) {
     return static_cast<Int>(value);
 }
 
-template <class Int>
-Int to_int(const Value& value) {
+/// `convert` of a scalar alternative; 0 for a Text or a List, which no number encodes.
+template <class T, class Convert>
+T scalar_as(const Value& value, Convert convert) {
     return std::visit(
-        [](const auto& v) -> Int {
+        [&convert](const auto& v) -> T {
             using V = std::decay_t<decltype(v)>;
             if constexpr (std::is_same_v<V, Text> || std::is_same_v<V, List>) {
-                return 0;
-            } else if constexpr (std::is_floating_point_v<V>) {
-                return float_to_int<Int>(static_cast<double>(v));
+                return T{0};
             } else {
-                return static_cast<Int>(v);
+                return convert(v);
             }
         },
         value);
 }
 
+template <class Int>
+Int to_int(const Value& value) {
+    return scalar_as<Int>(value, [](auto v) -> Int {
+        if constexpr (std::is_floating_point_v<decltype(v)>) {
+            return float_to_int<Int>(static_cast<double>(v));
+        } else {
+            return static_cast<Int>(v);
+        }
+    });
+}
+
+// Not through double: a float is written back as it was read, a signalling NaN too.
 template <class Float>
 Float to_float(const Value& value) {
-    return std::visit(
-        [](const auto& v) -> Float {
-            using V = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<V, Text> || std::is_same_v<V, List>) {
-                return 0;
-            } else {
-                return static_cast<Float>(v);
-            }
-        },
-        value);
+    return scalar_as<Float>(value, [](auto v) { return static_cast<Float>(v); });
 }
 
 }  // namespace
