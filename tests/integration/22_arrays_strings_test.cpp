@@ -81,6 +81,19 @@ TEST_F(ArraysStringsTest, ArraysAndStringsArePublishedAsJson) {
     EXPECT_EQ(tags["BATCH"]["length"], 8);
 }
 
+TEST_F(ArraysStringsTest, BatchModeCarriesTheArrayAndTheTextInValues) {
+    start(plant_exchange(), "  batch: true\n");
+    send(plant(1, {71.5f, 70.25f, 69.0f, 72.0f}, "B-1", 0b0001));
+    const auto batch = recorder_->wait_for_message(
+        topic("plant/_values"),
+        [](const std::string& p) { return json::parse(p)["values"].contains("TEMPS"); }, 10s);
+    ASSERT_TRUE(batch.has_value());
+    const auto values = json::parse(batch->payload)["values"];
+    EXPECT_EQ(values["TEMPS"].dump(), "[71.5,70.25,69.0,72.0]");
+    EXPECT_EQ(values["BATCH"], "B-1");
+    EXPECT_EQ(values["FLAGS"].dump(), "[true,false,false,false]");
+}
+
 TEST_F(ArraysStringsTest, OneElementBeyondTheDeadbandPublishesTheWholeArray) {
     start(plant_exchange());
     send_plant(1, {10.0f, 20.0f, 30.0f, 40.0f}, "B-1", 0);

@@ -140,8 +140,10 @@ void print_exchange(const ExchangePlan& plan, std::ostream& out) {
     for (const auto* tag : tags) {
         const auto address = core::plan::to_string(tag->spec.address);
         out << "  " << address << std::string(address.size() < 7 ? 7 - address.size() : 1, ' ')
-            << std::left << std::setw(7) << core::plan::to_string(tag->spec.type) << std::setw(9)
-            << size_text(tag->spec) << plan.tag_topic(*tag);
+            << std::left << std::setw(7) << core::plan::to_string(tag->spec.type);
+        // An array's size is wider than the column: a space still parts it from the topic.
+        const auto size = size_text(tag->spec);
+        out << std::setw(9) << size << (size.size() < 9 ? "" : " ") << plan.tag_topic(*tag);
         if (tag->spec.writable) out << "  writable";
         if (tag->spec.scale()) out << "  " << scale_text(tag->spec);
         out << std::right << "\n";

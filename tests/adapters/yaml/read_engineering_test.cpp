@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 
 #include "tests/adapters/yaml/loading.hpp"
@@ -237,6 +240,33 @@ TEST(ReadArraysAndStrings, BadInitialValuesAreRefused) {
         "      - { name: t, address: 0.0, type: byte, count: 2, writable: true, initial: [1, 300] "
         "}\n",
         9, 72, "initial 300 is outside the range of byte");
+}
+
+TEST(ReadArraysAndStrings, TheReadmesExampleLoadsAsItIsPrinted) {
+    // README.md's Configuration part: its `tags:` block, as a produced exchange's.
+    std::ifstream readme(std::string(EIP2MQTT_SOURCE_DIR) + "/README.md");
+    const std::string text((std::istreambuf_iterator<char>(readme)), {});
+    const auto part = text.find("## Configuration");
+    ASSERT_NE(part, std::string::npos);
+    const auto first = text.find("```yaml\ntags:\n", part);
+    ASSERT_NE(first, std::string::npos);
+    const auto from = first + std::string("```yaml\ntags:\n").size();
+    std::istringstream block(text.substr(from, text.find("```", from) - from));
+    std::string tags;
+    for (std::string line; std::getline(block, line);) tags += "    " + line + "\n";
+    const auto config = good(std::string("exchanges:\n") +
+                             "  - name: ex\n"
+                             "    direction: produce\n"
+                             "    producer_id: 10.0.0.1\n"
+                             "    exchange_id: 1\n"
+                             "    destination: 127.0.0.1\n"
+                             "    tags:\n" +
+                             tags);
+    const auto& loaded = config.exchanges.at(0).tags;
+    ASSERT_EQ(loaded.size(), 5u);
+    EXPECT_TRUE(loaded.at(0).spec.scale());
+    EXPECT_EQ(loaded.at(3).spec.count, 4);
+    EXPECT_EQ(loaded.at(4).spec.type, core::plan::TagType::string);
 }
 
 }  // namespace

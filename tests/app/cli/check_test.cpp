@@ -75,7 +75,7 @@ TEST(CheckByteMap, ArraysAndStringsShowTheBytesTheyTake) {
     std::ostringstream err;
     ASSERT_EQ(run_check(path, out, err), 0) << err.str();
     const auto text = out.str();
-    EXPECT_NE(text.find("real   16 bytes (4 elements)"), std::string::npos) << text;
+    EXPECT_NE(text.find("real   16 bytes (4 elements) "), std::string::npos) << text;
     EXPECT_NE(text.find("string 8 bytes"), std::string::npos) << text;
     EXPECT_NE(text.find("bit    4 bits"), std::string::npos) << text;
     EXPECT_NE(text.find(", 26 bytes, period"), std::string::npos) << text;  // to the last bit
