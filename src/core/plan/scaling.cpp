@@ -83,7 +83,7 @@ Engineering as_eu_type(Engineering eu, std::optional<TagType> type) {
 
 Engineering to_engineering(const Value& raw, const Scaling& scaling) {
     if (const auto* items = list_items(raw)) {
-        // An array's limit is the first element's beyond the raw range, high before low.
+        // An array is high when any element is above the raw range, else low when any is below.
         std::vector<Value> values;
         values.reserve(items->size());
         Limit limit = Limit::none;

@@ -1,10 +1,12 @@
 #include "adapters/sparkplug/detail/array_bytes.hpp"
 
-#include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <type_traits>
 #include <variant>
+
+#include "eip2mqtt/core/plan/value_codec.hpp"
 
 namespace eip2mqtt::adapters::sparkplug::detail {
 namespace {
@@ -39,20 +41,28 @@ Int to_integer(const core::plan::Value& value) {
         value);
 }
 
-std::size_t size_of(DataType element) {
+/// The wire type whose little-endian bytes are the element's: its encoding is the exchange's
+/// (the narrow types keep the low bytes of an integer's two's complement, as Sparkplug does).
+core::plan::TagType wire_type(DataType element) {
+    using core::plan::TagType;
     switch (element) {
         case DataType::int8:
         case DataType::uint8:
-            return 1;
+            return TagType::byte;
         case DataType::int16:
+            return TagType::int_;
         case DataType::uint16:
-            return 2;
+            return TagType::word;
         case DataType::int32:
+            return TagType::dint;
         case DataType::uint32:
+            return TagType::udint;
         case DataType::float32:
-            return 4;
+            return TagType::real;
+        case DataType::float64:
+            return TagType::lreal;
         default:
-            return 8;
+            return TagType::lint;  // int64, uint64
     }
 }
 
@@ -75,19 +85,12 @@ std::uint64_t as_uint64(const core::plan::Value& value) { return to_integer<std:
 
 std::string array_bytes(DataType element, const std::vector<core::plan::Value>& items) {
     if (element == DataType::boolean) return boolean_bytes(items);
-    std::string out;
-    const auto size = size_of(element);
-    out.reserve(items.size() * size);
-    for (const auto& item : items) {
-        if (element == DataType::float32) {
-            put_le(std::bit_cast<std::uint32_t>(static_cast<float>(core::plan::to_double(item))), 4,
-                   out);
-        } else if (element == DataType::float64) {
-            put_le(std::bit_cast<std::uint64_t>(core::plan::to_double(item)), 8, out);
-        } else {
-            // Two's complement: the low bytes of the 64-bit form are the narrower type's.
-            put_le(static_cast<std::uint64_t>(as_int64(item)), size, out);
-        }
+    const auto type = wire_type(element);
+    const auto size = core::plan::size_of(type);
+    std::string out(items.size() * size, '\0');
+    const auto bytes = std::as_writable_bytes(std::span(out.data(), out.size()));
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        core::plan::encode_value(bytes, type, {static_cast<std::uint16_t>(i * size), 0}, items[i]);
     }
     return out;
 }
