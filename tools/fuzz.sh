@@ -11,7 +11,7 @@ seconds=${FUZZ_SECONDS:-30}
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
   targets=(capture_frame command_pdu decode_datagram engineering_value journal_samples load_config
-    point_list sparkplug_command sparkplug_node text_value write_payload write_router)
+    point_list sparkplug_command sparkplug_node text_value topic_template write_payload write_router)
 fi
 
 # Only the fuzz targets (and the libraries they link): not the daemon nor the tools.

@@ -116,6 +116,7 @@ constexpr KeyReader<ExchangeDraft> exchange_rows[]{
      }},
     {"points", [](KeyValue& v, ExchangeDraft& d) { return v.text_to(d.points); }},
     {"publish_raw", [](KeyValue& v, ExchangeDraft& d) { return v.boolean_to(d.spec.publish_raw); }},
+    {"location", [](KeyValue& v, ExchangeDraft& d) { return v.location_to(d.spec.location); }},
     {"tags",
      [](KeyValue& v, ExchangeDraft& d) {
          d.tags_node.emplace(v.node());
@@ -205,6 +206,19 @@ constexpr KeyReader<TagDraft> tag_rows[]{
      [](KeyValue& v, TagDraft& d) { return v.integer_to<std::uint16_t>(d.spec.count, 0); }},
     {"trim", [](KeyValue& v,
                 TagDraft& d) { return extra_to(d, v.boolean(), &core::plan::TagExtras::trim); }},
+    {"location",
+     [](KeyValue& v, TagDraft& d) {
+         auto location = v.location();
+         if (location && !location->empty())
+             d.spec.mutable_extras().location = std::move(*location);
+         return location.has_value();
+     }},
+    {"topic_name",
+     [](KeyValue& v, TagDraft& d) {
+         return extra_to(d, v.text(), &core::plan::TagExtras::topic_name);
+     }},
+    {"topic",
+     [](KeyValue& v, TagDraft& d) { return extra_to(d, v.text(), &core::plan::TagExtras::topic); }},
 };
 constexpr auto tag_readers = bind_keys(keys::tag, tag_rows);
 

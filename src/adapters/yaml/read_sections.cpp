@@ -28,6 +28,7 @@ constexpr KeyReader<GatewaySection> gateway_rows[]{
      [](KeyValue& v, GatewaySection& g) {
          return v.integer_to<long long>(g.exchange_defaults.clock_tolerance, 0);
      }},
+    {"location", [](KeyValue& v, GatewaySection& g) { return v.location_to(g.location); }},
 };
 constexpr auto gateway_readers = bind_keys(keys::gateway, gateway_rows);
 
@@ -92,7 +93,7 @@ bool read_tls(KeyValue& v, MqttSection& m) {
 bool read_payload(KeyValue& v, MqttSection& m) {
     const auto format =
         v.parsed([](std::string_view s) { return core::config::payload_format_names.parse(s); },
-                 "is not json or raw");
+                 "is not json, raw, value, umh or kepware");
     if (format) m.payload = *format;
     return format.has_value();
 }
@@ -141,6 +142,7 @@ constexpr KeyReader<MqttSection> mqtt_rows[]{
     {"password_file", [](KeyValue& v, MqttSection& m) { return v.text_to(m.password_file); }},
     {"tls", read_tls},
     {"base_topic", [](KeyValue& v, MqttSection& m) { return v.text_to(m.base_topic); }},
+    {"topic_template", [](KeyValue& v, MqttSection& m) { return v.text_to(m.topic_template); }},
     {"qos", [](KeyValue& v, MqttSection& m) { return v.integer_to<int>(m.qos); }},
     {"retain", [](KeyValue& v, MqttSection& m) { return v.boolean_to(m.retain); }},
     {"payload", read_payload},

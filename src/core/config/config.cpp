@@ -31,6 +31,10 @@ bool Marks::add(std::string_view key, const Mark& at) {
 Diagnostics validate(const Config& config) { return detail::Validator(config).run(); }
 
 std::vector<plan::ExchangePlan> make_plans(const Config& config) {
+    std::string problem;  // none: the configuration passed validate()
+    const auto topic_template = plan::TopicTemplate::parse(config.mqtt.topic_template, problem);
+    const plan::TopicLayout layout{topic_template ? &*topic_template : nullptr,
+                                   &config.gateway.location};
     std::vector<plan::ExchangePlan> plans;
     plans.reserve(config.exchanges.size());
     for (const auto& exchange : config.exchanges) {
@@ -39,7 +43,7 @@ std::vector<plan::ExchangePlan> make_plans(const Config& config) {
         spec.tags.reserve(exchange.tags.size());
         for (const auto& tag : exchange.tags) spec.tags.push_back(tag.spec);
         plans.push_back(plan::make_exchange_plan(std::move(spec), config.mqtt.base_topic,
-                                                 config.gateway.exchange_defaults));
+                                                 config.gateway.exchange_defaults, layout));
     }
     return plans;
 }

@@ -16,7 +16,48 @@ std::string join(const std::string& base, const std::string& level) {
     return base + "/" + level;
 }
 
+/// Whether `tag`'s topic may differ from {exchange topic}/{name}.
+bool own_topic(const TopicLayout& layout, const TagSpec& tag) {
+    const bool standard = layout.topic_template == nullptr || layout.topic_template->is_standard();
+    return !standard || !tag.topic().empty() || !tag.topic_name().empty();
+}
+
+/// ExchangePlan::tag_topics: left empty while every topic is the default one.
+void fill_tag_topics(ExchangePlan& plan, const ExchangeSpec& spec, const std::string& base_topic,
+                     const TopicLayout& layout) {
+    const auto standard = [&](const TagSpec& tag) { return plan.topic + "/" + tag.name; };
+    for (std::size_t i = 0; i < spec.tags.size(); ++i) {
+        const auto& tag = spec.tags[i];
+        if (plan.tag_topics.empty() && !own_topic(layout, tag)) continue;
+        auto topic = own_topic(layout, tag) ? expand_tag_topic(layout, base_topic, spec, tag)
+                                            : standard(tag);
+        if (plan.tag_topics.empty()) {
+            if (topic == standard(tag)) continue;
+            plan.tag_topics.reserve(spec.tags.size());
+            for (std::size_t j = 0; j < i; ++j) plan.tag_topics.push_back(standard(spec.tags[j]));
+        }
+        plan.tag_topics.push_back(std::move(topic));
+    }
+}
+
 }  // namespace
+
+std::string expand_tag_topic(const TopicLayout& layout, const std::string& base_topic,
+                             const ExchangeSpec& spec, const TagSpec& tag) {
+    if (!tag.topic().empty()) return tag.topic();
+    const auto& tmpl = layout.topic_template ? *layout.topic_template : TopicTemplate::standard();
+    return tmpl.expand([&](std::string_view name) -> std::string_view {
+        if (name == base_placeholder) return base_topic;
+        if (name == exchange_placeholder) return spec.topic;
+        if (name == tag_placeholder) return tag.topic_name().empty() ? tag.name : tag.topic_name();
+        if (const auto* value = tag.location().find(name)) return *value;
+        if (const auto* value = spec.location.find(name)) return *value;
+        if (layout.gateway_location) {
+            if (const auto* value = layout.gateway_location->find(name)) return *value;
+        }
+        return {};
+    });
+}
 
 std::uint16_t resolved_length(const ExchangeSpec& spec) {
     if (spec.length) return *spec.length;
@@ -29,7 +70,7 @@ std::uint16_t resolved_length(const ExchangeSpec& spec) {
 }
 
 ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic,
-                                const ExchangeDefaults& defaults) {
+                                const ExchangeDefaults& defaults, const TopicLayout& layout) {
     ExchangePlan plan;
     plan.length = resolved_length(spec);
     if (spec.direction == Direction::consume) {
@@ -45,6 +86,7 @@ ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic
     plan.set_topic = plan.topic + "/set";
     plan.tags.reserve(spec.tags.size());
     for (const auto& tag : spec.tags) plan.tags.push_back({tag});
+    fill_tag_topics(plan, spec, base_topic, layout);
     plan.spec = std::move(spec);
     return plan;
 }
@@ -57,6 +99,10 @@ std::string ExchangePlan::tag_topic(const TagPlan& tag) const {
 }
 
 void ExchangePlan::tag_topic_into(const TagPlan& tag, std::string& out) const {
+    if (!tag_topics.empty()) {
+        out.assign(tag_topics[static_cast<std::size_t>(&tag - tags.data())]);
+        return;
+    }
     out.assign(topic).append("/").append(tag.spec.name);
 }
 

@@ -19,6 +19,7 @@ inline const std::string complete = R"(gateway:
   log_level: info
   timestamp: auto
   clock_tolerance_ms: 2000
+  location: { enterprise: acme }
 mqtt:
   url: tcp://broker-a:1883
   version: 5
@@ -31,6 +32,7 @@ mqtt:
     key_file: /etc/key-a.pem
     verify: true
   base_topic: plant-a
+  topic_template: "{base}/{enterprise}/{exchange}/{tag}"
   qos: 1
   retain: true
   payload: json
@@ -90,6 +92,7 @@ exchanges:
     clock_tolerance_ms: 500
     source: 10.0.0.7
     topic: area/consumed
+    location: { area: hall }
     points: points-a.csv
     tags:
       - { name: SPEED, address: 0.0, type: real }
@@ -118,6 +121,9 @@ exchanges:
         scale: { gain: 1, offset: 0 }
         type_eu: lreal
         publish_raw: false
+        location: { asset: p1 }
+        topic_name: value
+        topic: plant-a/custom/value
   - { name: spare, direction: consume, producer_id: 10.0.0.4, exchange_id: 4, length: 2 }
 )";
 
@@ -141,6 +147,7 @@ inline const std::vector<Edit> edits = {
     {"gateway.log_level", "log_level: info", "log_level: debug"},
     {"gateway.timestamp", "timestamp: auto", "timestamp: receive"},
     {"gateway.clock_tolerance_ms", "clock_tolerance_ms: 2000", "clock_tolerance_ms: 3000"},
+    {"gateway.location", "enterprise: acme", "enterprise: acme2"},
     {"mqtt.url", "broker-a", "broker-b"},
     {"mqtt.version", "version: 5", "version: 3.1.1"},
     {"mqtt.client_id", "client-a", "client-b"},
@@ -154,7 +161,9 @@ inline const std::vector<Edit> edits = {
     {"mqtt.tls.cert_file", "cert-a.pem", "cert-b.pem"},
     {"mqtt.tls.key_file", "key-a.pem", "key-b.pem"},
     {"mqtt.tls.verify", "verify: true", "verify: false"},
-    {"mqtt.base_topic", "plant-a", "plant-b"},
+    {"mqtt.base_topic", "base_topic: plant-a", "base_topic: plant-b"},
+    {"mqtt.topic_template", "{base}/{enterprise}/{exchange}/{tag}",
+     "{base}/{exchange}/{enterprise}/{tag}"},
     {"mqtt.qos", "qos: 1", "qos: 0"},
     {"mqtt.retain", "retain: true", "retain: false"},
     {"mqtt.payload", "payload: json", "payload: raw"},
@@ -257,6 +266,10 @@ inline const std::vector<Edit> edits = {
      "area/consumed",
      "area/other",
      {{"exchanges[consumed].topic", Kind::changed}}},
+    {"exchanges[].location",
+     "area: hall",
+     "area: yard",
+     {{"exchanges[consumed].location", Kind::changed}}},
     // Another file with the same rows: only the key changed.
     {"exchanges[].points",
      "points-a.csv",
@@ -306,6 +319,9 @@ inline const std::vector<Edit> tag_edits = {
     {"scale", "gain: 1,", "gain: 1.01,"},
     {"type_eu", "type_eu: lreal", "type_eu: dint"},
     {"publish_raw", "publish_raw: false", "publish_raw: true"},
+    {"location", "asset: p1", "asset: p2"},
+    {"topic_name", "topic_name: value", "topic_name: value2"},
+    {"topic", "custom/value", "custom/value2"},
 };
 
 inline std::vector<Edit> every_edit() {

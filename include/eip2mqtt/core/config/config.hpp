@@ -49,6 +49,8 @@ struct GatewaySection {
     std::string log_level = "info";
     /// `timestamp` and `clock_tolerance_ms`: what a consumed exchange takes unless it says.
     plan::ExchangeDefaults exchange_defaults;
+    /// The farthest level of `location`: what an exchange or a tag does not say.
+    plan::Location location;
     Marks marks;
 };
 
@@ -59,9 +61,14 @@ struct TlsSection {
     bool verify = true;
 };
 
-enum class PayloadFormat : std::uint8_t { json, raw };
+/// `mqtt.payload`, the shape of data messages (docs/mqtt-api.md, "Payload profiles"): json
+/// (`{"value","timestamp","quality"}`), raw (the value as JSON), value (the value as text: a
+/// string bare), umh (`{"value","timestamp_ms"}`), kepware (`{"timestamp","values":[{"id","v",
+/// "q","t"}]}`, which publishes `_values` as well).
+enum class PayloadFormat : std::uint8_t { json, raw, value, umh, kepware };
 
-inline constexpr auto payload_format_names = enum_names<PayloadFormat>("json", "raw");
+inline constexpr auto payload_format_names =
+    enum_names<PayloadFormat>("json", "raw", "value", "umh", "kepware");
 
 /// `mqtt.store_and_forward`: while the broker is out of reach, what the exchanges
 /// bring is journaled on disk, then replayed on `{exchange}/_history` once it is back.
@@ -88,6 +95,8 @@ struct MqttSection {
     std::string password_file;
     std::optional<TlsSection> tls;
     std::string base_topic = "eip2mqtt";
+    /// Each tag's topic (plan::TopicTemplate); the default is {base}/{exchange}/{tag}.
+    std::string topic_template{plan::default_topic_template};
     int qos = 1;
     bool retain = true;
     PayloadFormat payload = PayloadFormat::json;

@@ -51,7 +51,7 @@ constexpr bool differs(const Of& a, const Of& b) {
 inline constexpr auto live = ReloadRule::live;
 inline constexpr auto restart = ReloadRule::restart;
 
-inline constexpr std::array<ConfigKey<GatewaySection>, 5> gateway{{
+inline constexpr std::array<ConfigKey<GatewaySection>, 6> gateway{{
     {"id", restart, differs<&GatewaySection::id>},
     {"state_dir", restart, differs<&GatewaySection::state_dir>},
     {"log_level", live, differs<&GatewaySection::log_level>},
@@ -64,11 +64,13 @@ inline constexpr std::array<ConfigKey<GatewaySection>, 5> gateway{{
      [](const GatewaySection& a, const GatewaySection& b) {
          return a.exchange_defaults.clock_tolerance != b.exchange_defaults.clock_tolerance;
      }},
+    // Every tag's topic may move, as with base_topic.
+    {"location", restart, differs<&GatewaySection::location>},
 }};
 
 /// The connection's settings need a restart (a new session); how tags are published is applied
 /// live, the retained state republished in the new form.
-inline constexpr std::array<ConfigKey<MqttSection>, 18> mqtt{{
+inline constexpr std::array<ConfigKey<MqttSection>, 19> mqtt{{
     {"url", restart, differs<&MqttSection::urls>},
     {"version", restart, differs<&MqttSection::version>},
     {"client_id", restart, differs<&MqttSection::client_id>},
@@ -79,6 +81,7 @@ inline constexpr std::array<ConfigKey<MqttSection>, 18> mqtt{{
          return a.tls.has_value() != b.tls.has_value();
      }},
     {"base_topic", restart, differs<&MqttSection::base_topic>},
+    {"topic_template", restart, differs<&MqttSection::topic_template>},
     {"qos", live, differs<&MqttSection::qos>},
     {"retain", live, differs<&MqttSection::retain>},
     {"payload", live, differs<&MqttSection::payload>},
@@ -169,7 +172,7 @@ inline constexpr std::array<ConfigKey<RedundancySection>, 3> redundancy{{
 
 /// An exchange's keys restart that exchange (its name is what matches it: a new name is another
 /// exchange, started, and the old one stopped).
-inline constexpr std::array<ConfigKey<plan::ExchangeSpec>, 16> exchange{{
+inline constexpr std::array<ConfigKey<plan::ExchangeSpec>, 17> exchange{{
     {"name", live, differs<&plan::ExchangeSpec::name>},
     {"direction", live, differs<&plan::ExchangeSpec::direction>},
     {"producer_id", live, differs<&plan::ExchangeSpec::producer_id>},
@@ -185,12 +188,13 @@ inline constexpr std::array<ConfigKey<plan::ExchangeSpec>, 16> exchange{{
     {"topic", live, differs<&plan::ExchangeSpec::topic>},
     {"points", live, differs<&plan::ExchangeSpec::points>},
     {"publish_raw", live, differs<&plan::ExchangeSpec::publish_raw>},
+    {"location", live, differs<&plan::ExchangeSpec::location>},
     {"tags", live, nullptr},
 }};
 
 /// A tag's keys restart its exchange (a tag is matched by name, as exchanges are). The rows of
 /// a point list are tags too: a changed row shows as the keys it changed.
-inline constexpr std::array<ConfigKey<plan::TagSpec>, 18> tag{{
+inline constexpr std::array<ConfigKey<plan::TagSpec>, 21> tag{{
     {"name", live, differs<&plan::TagSpec::name>},
     {"address", live, differs<&plan::TagSpec::address>},
     {"type", live, differs<&plan::TagSpec::type>},
@@ -234,6 +238,9 @@ inline constexpr std::array<ConfigKey<plan::TagSpec>, 18> tag{{
          return a.count != b.count && a.type == plan::TagType::string;
      }},
     {"trim", live, differs<&plan::TagSpec::trim>},
+    {"location", live, differs<&plan::TagSpec::location>},
+    {"topic_name", live, differs<&plan::TagSpec::topic_name>},
+    {"topic", live, differs<&plan::TagSpec::topic>},
 }};
 
 /// A tag's `scale`, compared whole by the tag's `scale` key.

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "eip2mqtt/core/enum_names.hpp"
+#include "eip2mqtt/core/plan/location.hpp"
 #include "eip2mqtt/core/plan/tag_plan.hpp"
+#include "eip2mqtt/core/plan/topic_template.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::core::plan {
@@ -61,6 +63,7 @@ struct ExchangeSpec {
     std::string topic;         ///< under base_topic
     std::string points;        ///< point-list CSV file, relative to the config file
     bool publish_raw = false;  ///< what a tag that does not say takes (TagExtras::publish_raw)
+    Location location;         ///< nearer than the gateway's, farther than a tag's
     std::vector<TagSpec> tags;
 
     friend bool operator==(const ExchangeSpec&, const ExchangeSpec&) = default;
@@ -79,9 +82,13 @@ struct ExchangePlan {
     std::string meta_topic;     ///< topic + "/_meta": the exchange and its tags described, retained
     std::string set_topic;      ///< topic + "/set" (atomic multi-tag writes)
     std::vector<TagPlan> tags;  ///< in configuration order
+    /// Each tag's topic, in the order of `tags`, where one is not {topic}/{tag name} (a
+    /// template, a tag's `topic` or `topic_name`); empty when every tag's is: the default
+    /// layout keeps no topic per tag.
+    std::vector<std::string> tag_topics;
 
     wire::ExchangeKey key() const { return {spec.producer_id, spec.exchange_id}; }
-    /// The topic of `tag`, one of `tags`: {topic}/{tag name}.
+    /// The topic of `tag`, one of `tags`: its entry of tag_topics, else {topic}/{tag name}.
     std::string tag_topic(const TagPlan& tag) const;
     /// The same into `out` (replacing its content, reusing its buffer).
     void tag_topic_into(const TagPlan& tag, std::string& out) const;
@@ -92,10 +99,23 @@ struct ExchangePlan {
 /// Length a spec resolves to: its `length`, else the end of its last tag.
 std::uint16_t resolved_length(const ExchangeSpec& spec);
 
+/// How tags' topics are laid out: mqtt.topic_template and the gateway's location (null: the
+/// default template, no location).
+struct TopicLayout {
+    const TopicTemplate* topic_template = nullptr;
+    const Location* gateway_location = nullptr;
+};
+
+/// The topic of `tag` of the exchange `spec`: its `topic` when it has one, else the template
+/// filled in (a location key from the tag, else the exchange, else the gateway).
+std::string expand_tag_topic(const TopicLayout& layout, const std::string& base_topic,
+                             const ExchangeSpec& spec, const TagSpec& tag);
+
 /// Builds the plan of a spec that passed validation.
 /// Takes the spec by value: a caller done with it moves it in, and its tags are copied once
 /// (into `tags`), not twice.
 ExchangePlan make_exchange_plan(ExchangeSpec spec, const std::string& base_topic,
-                                const ExchangeDefaults& defaults = {});
+                                const ExchangeDefaults& defaults = {},
+                                const TopicLayout& layout = {});
 
 }  // namespace eip2mqtt::core::plan

@@ -7,6 +7,7 @@
 
 #include "eip2mqtt/core/out_of_line.hpp"
 #include "eip2mqtt/core/plan/address.hpp"
+#include "eip2mqtt/core/plan/location.hpp"
 #include "eip2mqtt/core/plan/scaling.hpp"
 #include "eip2mqtt/core/plan/tag_type.hpp"
 #include "eip2mqtt/core/plan/value.hpp"
@@ -31,6 +32,12 @@ struct TagExtras {
     /// Strings: trailing NULs and spaces are removed from what is published (`trim: false`
     /// keeps them).
     bool trim = true;
+    /// What `{tag}` stands for in mqtt.topic_template; empty: the name.
+    std::string topic_name;
+    /// The tag's whole topic, the template left aside; empty: the template's.
+    std::string topic;
+    /// The tag's own location keys, nearer than its exchange's and the gateway's.
+    Location location;
 
     friend bool operator==(const TagExtras&, const TagExtras&) = default;
 };
@@ -59,6 +66,9 @@ struct TagSpec {
     const std::optional<double>& deadband_percent() const { return extras_.get().deadband_percent; }
     bool publish_raw() const { return extras_.get().publish_raw; }
     bool trim() const { return extras_.get().trim; }
+    const std::string& topic_name() const { return extras_.get().topic_name; }
+    const std::string& topic() const { return extras_.get().topic; }
+    const Location& location() const { return extras_.get().location; }
     /// True for a tag whose value is a List: a `count` of a type other than string.
     bool is_array() const { return count > 1 && type != TagType::string; }
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "adapters/yaml/detail/reader.hpp"
+#include "eip2mqtt/core/plan/location.hpp"
 
 namespace eip2mqtt::adapters::yaml::detail {
 
@@ -84,6 +85,35 @@ public:
         if (!first || !second) return std::nullopt;
         return std::array<double, 2>{*first, *second};
     }
+    /// The value as a `location:` mapping of names to texts (null: none), each name and text
+    /// read and reported at its own mark. Whether the names and texts may be topic levels is
+    /// the core's to check.
+    std::optional<core::plan::Location> location() {
+        core::plan::Location out;
+        if (value_.is_null()) return out;
+        if (!value_.is_map()) {
+            error("expected a mapping of names to texts for " + in_quotes(key_) +
+                  ", as { area: turbine-hall }");
+            return std::nullopt;
+        }
+        bool read = true;
+        for (std::size_t i = 0; i < value_.size(); ++i) {
+            const Node name_node = value_.key(i);
+            const Node text_node = value_.value(i);
+            auto name = reader_.text(name_node, key_, reader_.mark(name_node));
+            auto text = reader_.text(text_node, key_, reader_.mark(text_node));
+            if (name && out.find(*name)) {
+                error_at(reader_.mark(name_node),
+                         "location key " + in_quotes(*name) + " is written twice");
+                name.reset();
+            }
+            read = read && name && text;
+            if (name && text) out.levels.emplace_back(std::move(*name), std::move(*text));
+        }
+        return read ? std::optional(std::move(out)) : std::nullopt;
+    }
+    bool location_to(core::plan::Location& field) { return store(field, location()); }
+
     /// Reports `message` at `at` (an item's mark, from texts()).
     void error_at(const Mark& at, std::string message) { reader_.error(at, std::move(message)); }
 

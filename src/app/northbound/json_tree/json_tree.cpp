@@ -9,8 +9,10 @@ namespace eip2mqtt::app::northbound::json_tree {
 
 JsonTreeOptions json_tree_options(const core::config::Config& config) {
     const auto& mqtt = config.mqtt;
-    return {{mqtt.qos, mqtt.retain, mqtt.payload, mqtt.batch},
-            {mqtt.base_topic, mqtt.allow_response_topics_under_base},
+    // Kepware's consumers read one message per exchange: its profile publishes `_values`.
+    const bool batch = mqtt.batch || mqtt.payload == core::config::PayloadFormat::kepware;
+    return {{mqtt.qos, mqtt.retain, mqtt.payload, batch},
+            {mqtt.base_topic, mqtt.allow_response_topics_under_base, mqtt.payload},
             mqtt.base_topic + "/_gateway/" + config.gateway.id + "/metrics"};
 }
 
@@ -149,8 +151,8 @@ void JsonTree::tag_samples(const SampleBatch& batch) {
         // Filled in place and handed over: the publisher gives back buffers of an earlier
         // publication, so a tag's publication allocates nothing here.
         plan.tag_topic_into(plan.tags[sample.tag], message_.topic);
-        format_tag_payload(message_.payload, plan.tags[sample.tag].spec, sample.value,
-                           batch.quality, batch.timestamp_ms, settings.format);
+        format_tag_payload(message_.payload, plan.spec.name, plan.tags[sample.tag].spec,
+                           sample.value, batch.quality, batch.timestamp_ms, settings.format);
         message_.qos = settings.qos;
         message_.retain = settings.retain;
         if (!values && &sample == &batch.samples.back()) message_.ack_token = token;
@@ -158,7 +160,7 @@ void JsonTree::tag_samples(const SampleBatch& batch) {
     }
     if (values) {
         message_.topic = plan.values_topic;
-        format_values_payload(message_.payload, batch);
+        format_values_payload(message_.payload, batch, settings.format);
         message_.qos = settings.qos;
         message_.coalesce = false;
         message_.batch_lane = true;

@@ -82,11 +82,16 @@ void append_scale(std::string& out, const core::plan::Scaling& scale) {
                    core::plan::to_string(scale.eu_type.value_or(core::plan::TagType::lreal)));
 }
 
-void append_tag(std::string& out, const core::plan::TagPlan& tag) {
+void append_tag(std::string& out, const core::plan::ExchangePlan& plan,
+                const core::plan::TagPlan& tag, std::string& topic) {
     const auto& spec = tag.spec;
     append_text(out, spec.name);
-    fmt::format_to(std::back_inserter(out), R"(:{{"type":"{}","address":"{}","unit":)",
+    fmt::format_to(std::back_inserter(out), R"(:{{"type":"{}","address":"{}","topic":)",
                    core::plan::to_string(spec.type), core::plan::to_string(spec.address));
+    // Where a consumer finds it, laid out by a template or not.
+    plan.tag_topic_into(tag, topic);
+    append_text(out, topic);
+    out += R"(,"unit":)";
     append_text_or_null(out, spec.unit());
     out += R"(,"description":)";
     append_text_or_null(out, spec.description());
@@ -117,7 +122,7 @@ std::string format_meta_payload(const core::plan::ExchangePlan& plan) {
     const auto& spec = plan.spec;
     const bool consumed = spec.direction == Direction::consume;
     std::string out;
-    out.reserve(256 + plan.tags.size() * 160);
+    out.reserve(256 + plan.tags.size() * (160 + plan.topic.size()));
     out += R"({"exchange":)";
     append_text(out, spec.name);
     fmt::format_to(std::back_inserter(out),
@@ -140,9 +145,10 @@ std::string format_meta_payload(const core::plan::ExchangePlan& plan) {
         append_text(out, spec.destination);
     }
     out += R"(,"tags":{)";
+    std::string topic;
     for (std::size_t i = 0; i < plan.tags.size(); ++i) {
         if (i > 0) out += ',';
-        append_tag(out, plan.tags[i]);
+        append_tag(out, plan, plan.tags[i], topic);
     }
     out += "}}";
     return out;

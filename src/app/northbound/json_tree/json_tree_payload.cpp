@@ -12,16 +12,56 @@
 
 namespace eip2mqtt::app::northbound::json_tree {
 
-void format_tag_payload(std::string& out, const core::plan::TagSpec& tag,
+namespace {
+
+using core::config::PayloadFormat;
+
+/// One entry of Kepware's `values`: `{"id":"exchange.tag","v":…,"q":true,"t":…}`.
+void append_kepware_value(std::string& out, std::string_view exchange, std::string_view tag,
+                          const core::plan::Value& value, core::quality::Quality quality,
+                          std::int64_t timestamp_ms) {
+    std::string id;
+    id.reserve(exchange.size() + 1 + tag.size());
+    id.append(exchange).append(".").append(tag);
+    out += R"({"id":)";
+    append_json_string(out, id);
+    fmt::format_to(std::back_inserter(out), R"(,"v":{},"q":{},"t":{}}})",
+                   core::plan::to_json(value),
+                   quality == core::quality::Quality::good ? "true" : "false", timestamp_ms);
+}
+
+}  // namespace
+
+void format_tag_payload(std::string& out, std::string_view exchange, const core::plan::TagSpec& tag,
                         const core::plan::Value& raw, core::quality::Quality quality,
-                        std::int64_t timestamp_ms, core::config::PayloadFormat format) {
+                        std::int64_t timestamp_ms, PayloadFormat format) {
     out.clear();
     const auto published = core::plan::published_value(tag, raw);
-    if (format == core::config::PayloadFormat::raw) {
-        out = core::plan::to_json(published.value);
-        return;
-    }
     auto to = std::back_inserter(out);
+    switch (format) {
+        case PayloadFormat::raw:
+            out = core::plan::to_json(published.value);
+            return;
+        case PayloadFormat::value:
+            // Text as it is: a dashboard shows `B-12`, not `"B-12"`.
+            if (const auto* text = std::get_if<core::plan::Text>(&published.value)) {
+                out = **text;
+            } else {
+                out = core::plan::to_json(published.value);
+            }
+            return;
+        case PayloadFormat::umh:
+            fmt::format_to(to, R"({{"value":{},"timestamp_ms":{}}})",
+                           core::plan::to_json(published.value), timestamp_ms);
+            return;
+        case PayloadFormat::kepware:
+            fmt::format_to(to, R"({{"timestamp":{},"values":[)", timestamp_ms);
+            append_kepware_value(out, exchange, tag.name, published.value, quality, timestamp_ms);
+            out += "]}";
+            return;
+        case PayloadFormat::json:
+            break;
+    }
     fmt::format_to(to, R"({{"value":{},"timestamp":{},"quality":"{}")",
                    core::plan::to_json(published.value), timestamp_ms,
                    core::quality::to_string(quality));
@@ -32,8 +72,23 @@ void format_tag_payload(std::string& out, const core::plan::TagSpec& tag,
     out += '}';
 }
 
-void format_values_payload(std::string& out, const SampleBatch& batch) {
+void format_values_payload(std::string& out, const SampleBatch& batch, PayloadFormat format) {
     out.clear();
+    if (format == PayloadFormat::kepware) {
+        fmt::format_to(std::back_inserter(out), R"({{"timestamp":{},"values":[)",
+                       batch.timestamp_ms);
+        bool first = true;
+        for (const auto& sample : batch.samples) {
+            if (!first) out += ',';
+            first = false;
+            const auto& tag = batch.exchange.tags[sample.tag].spec;
+            append_kepware_value(out, batch.exchange.spec.name, tag.name,
+                                 core::plan::published_value(tag, sample.value).value,
+                                 batch.quality, batch.timestamp_ms);
+        }
+        out += "]}";
+        return;
+    }
     fmt::format_to(std::back_inserter(out), R"({{"timestamp":{},"quality":"{}","values":{{)",
                    batch.timestamp_ms, core::quality::to_string(batch.quality));
     bool first = true;

@@ -14,6 +14,7 @@
 namespace eip2mqtt::app::northbound::json_tree {
 namespace {
 
+using core::config::PayloadFormat;
 using core::write::ScalarInput;
 using core::write::WriteError;
 using core::write::WriteInput;
@@ -88,6 +89,9 @@ std::optional<ScalarInput> exact_integer(std::string_view text) {
 /// one).
 class WriteBuilder final : public nlohmann::json_sax<Json> {
 public:
+    /// `records`: a top-level array may hold flat objects (Kepware's `[{"id":…,"v":…}]`).
+    explicit WriteBuilder(bool records = false) : records_(records) {}
+
     Json root;
 
     bool null() override { return put(nullptr); }
@@ -103,8 +107,16 @@ public:
     bool string(string_t& value) override { return put(std::move(value)); }
     bool binary(binary_t&) override { return false; }
     bool start_object(std::size_t) override {
-        // {"tag": {"value": 1}}: two levels at most, and none within an array.
-        if (open_.size() >= 2 || array_ != nullptr) return false;
+        if (array_ != nullptr) {
+            // A record of a top-level array, holding no object or array itself.
+            if (!records_ || array_ != &root || record_ != nullptr) return false;
+            array_->push_back(Json::object());
+            record_ = &array_->back();
+            open_.push_back({record_, {}});
+            return true;
+        }
+        // {"tag": {"value": 1}}: two levels at most.
+        if (open_.size() >= 2) return false;
         Json* object = open_.empty() ? &root : &slot();
         *object = Json::object();
         open_.push_back({object, {}});
@@ -117,6 +129,7 @@ public:
     }
     bool end_object() override {
         open_.pop_back();
+        if (open_.empty()) record_ = nullptr;
         return true;
     }
     bool start_array(std::size_t) override {
@@ -143,7 +156,7 @@ private:
     Json& slot() { return (*open_.back().object)[key_]; }
     template <class T>
     bool put(T&& value) {
-        if (array_ != nullptr) {
+        if (array_ != nullptr && record_ == nullptr) {
             array_->push_back(std::forward<T>(value));
         } else {
             (open_.empty() ? root : slot()) = std::forward<T>(value);
@@ -154,10 +167,12 @@ private:
     std::vector<Open> open_;
     std::string key_;
     Json* array_ = nullptr;  ///< the array being filled
+    bool records_ = false;
+    Json* record_ = nullptr;  ///< the record of `array_` being filled
 };
 
 /// Parses `payload` without exceptions; a rejection says why it cannot be a write.
-core::Result<Json, WriteRejection> parse(std::string_view payload) {
+core::Result<Json, WriteRejection> parse(std::string_view payload, bool records = false) {
     if (payload.size() > max_payload_size) {
         return core::fail(reject(WriteError::too_large,
                                  "payload too large (" + std::to_string(payload.size()) +
@@ -168,7 +183,7 @@ core::Result<Json, WriteRejection> parse(std::string_view payload) {
     if (payload.find('\0') != std::string_view::npos) {
         return core::fail(reject(WriteError::malformed, malformed_json));
     }
-    WriteBuilder builder;
+    WriteBuilder builder(records);
     if (!Json::sax_parse(payload.begin(), payload.end(), &builder)) {
         return core::fail(reject(WriteError::malformed, malformed_json));
     }
@@ -246,19 +261,63 @@ core::Result<WriteInput, WriteRejection> tag_value(const Json& value) {
     return plain_value(inner);
 }
 
-}  // namespace
-
-core::Result<WriteInput, WriteRejection> parse_tag_write(std::string_view payload) {
-    const auto json = parse(payload);
-    if (!json) return core::fail(json.error());
-    return tag_value(json.value());
+/// A profile's own form of one tag's write, as the json profile's: umh's
+/// `{"value":…,"timestamp_ms":…}` (the time is the gateway's to give) and Kepware's `{"v":…}`.
+Json in_json_form(Json value, PayloadFormat profile) {
+    if (!value.is_object()) return value;
+    if (profile == PayloadFormat::umh && value.size() == 2 && value.contains("value") &&
+        value.contains("timestamp_ms") && value.at("timestamp_ms").is_number()) {
+        value.erase("timestamp_ms");
+    } else if (profile == PayloadFormat::kepware && value.size() == 1 && value.contains("v")) {
+        return Json{{"value", std::move(value.at("v"))}};
+    }
+    return value;
 }
 
-core::Result<std::vector<NamedWrite>, WriteRejection> parse_exchange_write(
-    std::string_view payload) {
-    const auto parsed = parse(payload);
+/// Kepware's write: `[{"id":"exchange.tag","v":…},…]`, each id as it was written.
+core::Result<std::vector<NamedWrite>, WriteRejection> kepware_records(const Json& records) {
+    if (records.empty()) return core::fail(reject(WriteError::empty, "no tag to write"));
+    std::vector<NamedWrite> writes;
+    writes.reserve(records.size());
+    for (const auto& record : records) {
+        if (!record.is_object() || record.size() != 2 || !record.contains("id") ||
+            !record.at("id").is_string() || !record.contains("v")) {
+            return core::fail(reject(WriteError::malformed,
+                                     "expected [{\"id\": \"exchange.tag\", \"v\": value}, …]"));
+        }
+        auto input = plain_value(record.at("v"));
+        const auto& id = record.at("id").get_ref<const std::string&>();
+        if (!input) {
+            return core::fail(reject(input.error().error, id + ": " + input.error().message));
+        }
+        writes.emplace_back(id, std::move(input).value());
+    }
+    return writes;
+}
+
+}  // namespace
+
+core::Result<WriteInput, WriteRejection> parse_tag_write(std::string_view payload,
+                                                         PayloadFormat profile) {
+    auto json = parse(payload);
+    if (!json) {
+        // The value profile publishes a string bare, and takes it back so.
+        if (profile == PayloadFormat::value && json.error().error == WriteError::malformed &&
+            !payload.empty() && payload.find('\0') == std::string_view::npos) {
+            return WriteInput{std::string(payload)};
+        }
+        return core::fail(json.error());
+    }
+    return tag_value(in_json_form(std::move(json).value(), profile));
+}
+
+core::Result<std::vector<NamedWrite>, WriteRejection> parse_exchange_write(std::string_view payload,
+                                                                           PayloadFormat profile) {
+    const bool kepware = profile == PayloadFormat::kepware;
+    const auto parsed = parse(payload, kepware);
     if (!parsed) return core::fail(parsed.error());
     const Json* json = &parsed.value();
+    if (kepware && json->is_array()) return kepware_records(*json);
     if (!json->is_object()) {
         return core::fail(
             reject(WriteError::malformed,
@@ -268,7 +327,7 @@ core::Result<std::vector<NamedWrite>, WriteRejection> parse_exchange_write(
     std::vector<NamedWrite> writes;
     writes.reserve(json->size());
     for (const auto& [name, value] : json->items()) {
-        auto input = tag_value(value);
+        auto input = tag_value(in_json_form(value, profile));
         if (!input) {
             return core::fail(reject(input.error().error, name + ": " + input.error().message));
         }

@@ -46,6 +46,7 @@ std::optional<std::size_t> find_tag(const core::plan::ExchangePlan& plan, std::s
 std::optional<WriteRejection> collect_writes(const core::plan::ExchangePlan& plan,
                                              std::optional<std::size_t> tag_index,
                                              const std::string& payload,
+                                             core::config::PayloadFormat profile,
                                              std::vector<core::write::TagWrite>& writes) {
     // One tag's input against its spec; a multi-tag write's messages name the tag.
     const auto add = [&](std::size_t index,
@@ -61,16 +62,22 @@ std::optional<WriteRejection> collect_writes(const core::plan::ExchangePlan& pla
         return std::nullopt;
     };
     if (tag_index) {
-        const auto input = parse_tag_write(payload);
+        const auto input = parse_tag_write(payload, profile);
         if (!input) return WriteRejection{input.error().error, input.error().message};
         return add(*tag_index, input.value());
     }
-    const auto inputs = parse_exchange_write(payload);
+    const auto inputs = parse_exchange_write(payload, profile);
     if (!inputs) return WriteRejection{inputs.error().error, inputs.error().message};
     for (const auto& entry : inputs.value()) {
         // Not a structured binding: clang 14 (the fuzz build) cannot capture one.
         const auto& name = entry.first;
-        const auto index = find_tag(plan, name);
+        auto index = find_tag(plan, name);
+        // Kepware names a tag `{exchange}.{tag}`.
+        const auto& exchange = plan.spec.name;
+        if (!index && name.size() > exchange.size() && name.starts_with(exchange) &&
+            name[exchange.size()] == '.') {
+            index = find_tag(plan, std::string_view(name).substr(exchange.size() + 1));
+        }
         if (!index) {
             return WriteRejection{WriteError::unknown_tag,
                                   "unknown tag " + name + " in exchange " + plan.spec.name};
@@ -84,13 +91,32 @@ std::optional<WriteRejection> collect_writes(const core::plan::ExchangePlan& pla
 
 WriteRouter::WriteRouter(WriteRouterOptions options) : options_(std::move(options)) {}
 
-void WriteRouter::clear() { exchanges_.clear(); }
+void WriteRouter::clear() {
+    exchanges_.clear();
+    tags_.clear();
+}
 
 void WriteRouter::add(const core::plan::ExchangePlan& plan) {
-    exchanges_[plan.topic] = Route{&plan};
+    const auto& route = exchanges_[plan.topic] = Route{&plan};
+    for (std::size_t i = 0; i < plan.tag_topics.size(); ++i) {
+        tags_[plan.tag_topics[i]] = TagRoute{&route, i};
+    }
+}
+
+std::vector<std::string> WriteRouter::exact_subscriptions() const {
+    std::vector<std::string> filters;
+    for (const auto& [topic, route] : exchanges_) {
+        filters.push_back(topic + std::string(set_suffix));
+        const auto& plan = *route.plan;
+        if (plan.spec.direction != core::plan::Direction::produce) continue;
+        for (const auto& tag : plan.tags) filters.push_back(plan.tag_topic(tag) + "/set");
+    }
+    std::sort(filters.begin(), filters.end());
+    return filters;
 }
 
 std::vector<std::string> WriteRouter::subscriptions() const {
+    if (!tags_.empty()) return exact_subscriptions();
     // None of our own publications match these filters, since tag names cannot be `set`.
     const auto& base = options_.base_topic;
     const auto base_levels = std::count(base.begin(), base.end(), '/') + 1;
@@ -126,15 +152,22 @@ std::string WriteRouter::response_topic_problem(const std::string& topic) const 
 }
 
 std::optional<WriteRouter::Target> WriteRouter::find_target(std::string_view stem) const {
-    if (const auto it = exchanges_.find(std::string(stem)); it != exchanges_.end()) {
+    const std::string key(stem);
+    if (const auto it = exchanges_.find(key); it != exchanges_.end()) {
         return Target{&it->second, std::nullopt, {}};
+    }
+    if (const auto it = tags_.find(key); it != tags_.end()) {
+        return Target{it->second.route, it->second.tag_index, {}};
     }
     // `{exchange topic}/{name}/set`: tag names hold no '/', so the exchange topic is what comes
     // before the last level, and the tag is found by its name in that exchange.
     const auto slash = stem.rfind('/');
     if (slash == std::string_view::npos) return std::nullopt;
     const auto exchange = exchanges_.find(std::string(stem.substr(0, slash)));
-    if (exchange == exchanges_.end()) return std::nullopt;
+    // An exchange whose tags have topics of their own is not written by tag name.
+    if (exchange == exchanges_.end() || !exchange->second.plan->tag_topics.empty()) {
+        return std::nullopt;
+    }
     const auto name = stem.substr(slash + 1);
     Target target{&exchange->second, find_tag(*exchange->second.plan, name), {}};
     if (!target.tag_index) target.unknown_tag = std::string(name);
@@ -188,7 +221,8 @@ std::optional<WriteDecision> WriteRouter::route(const adapters::mqtt::Incoming& 
                       "exchange " + plan.spec.name + " is consumed: its tags are read-only");
     }
     ExchangeWrite routed{&plan, {}};
-    auto rejection = collect_writes(plan, target->tag_index, message.payload, routed.writes);
+    auto rejection =
+        collect_writes(plan, target->tag_index, message.payload, options_.profile, routed.writes);
     if (!rejection) rejection = core::write::overlap_rejection(plan, routed.writes);
     if (rejection) return refuse(rejection->error, std::move(rejection->message));
     decision.outcome = std::move(routed);

@@ -1,5 +1,6 @@
 #include "core/config/detail/topic_collisions.hpp"
 
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -7,6 +8,7 @@
 #include <unordered_set>
 
 #include "core/config/detail/config_names.hpp"
+#include "core/config/detail/topic_layout_check.hpp"
 
 namespace eip2mqtt::core::config::detail {
 namespace {
@@ -67,10 +69,17 @@ private:
 struct Owner {
     const ExchangeConfig* exchange = nullptr;
     const TagConfig* tag = nullptr;  ///< null: the exchange itself
+    const Mark* at = nullptr;        ///< where it was written
 
     std::string describe() const {
         const std::string of = "exchange " + in_quotes(exchange->spec.name);
         return tag ? "tag " + in_quotes(tag->spec.name) + " of " + of : of;
+    }
+    /// describe(), with its line and column: the first owner of a topic claimed twice.
+    std::string describe_where() const {
+        if (at == nullptr || at->line == 0) return describe();
+        return describe() + " (line " + std::to_string(at->line) + ", column " +
+               std::to_string(at->column) + ")";
     }
 };
 
@@ -81,14 +90,15 @@ public:
 
     /// Claims `topic` and each `topic`/`suffix` in turn, stopping at the first one taken.
     void claim(const std::string& topic, std::initializer_list<std::string_view> suffixes,
-               const Owner& owner, const Mark& mark) {
+               Owner owner, const Mark& mark) {
+        owner.at = &mark;
         std::string claimed;
         for (const auto suffix : suffixes) {
             claimed.assign(topic).append(suffix);
             const auto [it, fresh] = owners_.try_emplace(claimed, owner);
             if (!fresh) {
                 out_.push_back({mark, owner.describe() + " uses topic " + in_quotes(it->first) +
-                                          ", already used by " + it->second.describe()});
+                                          ", already used by " + it->second.describe_where()});
                 return;
             }
         }
@@ -99,16 +109,21 @@ private:
     std::unordered_map<std::string, Owner> owners_;
 };
 
-void claim_tags(Claims& claims, const ExchangeConfig& exchange, const std::string& topic) {
+/// A tag's topic: the layout's when it has one (a template, the tag's own `topic`).
+using TagTopic = std::function<void(const ExchangeConfig&, const std::string& exchange_topic,
+                                    const TagConfig&, std::string&)>;
+
+void claim_tags(Claims& claims, const ExchangeConfig& exchange, const std::string& topic,
+                const TagTopic& topic_of) {
     std::unordered_set<std::string_view> seen;  // views of the tags' own names
     seen.reserve(exchange.tags.size());
     std::string tag_topic;
     for (const auto& tag : exchange.tags) {
         if (!tag_name_problem(tag.spec.name).empty()) continue;
         if (!seen.insert(tag.spec.name).second) continue;  // reported as a duplicate
-        tag_topic.assign(topic).append("/").append(tag.spec.name);
-        claims.claim(tag_topic, {"", "/set", "/set/result"}, Owner{&exchange, &tag},
-                     tag.marks.of("name"));
+        topic_of(exchange, topic, tag, tag_topic);
+        const auto& at = tag.marks.contains("topic") ? tag.marks.of("topic") : tag.marks.of("name");
+        claims.claim(tag_topic, {"", "/set", "/set/result"}, Owner{&exchange, &tag}, at);
     }
 }
 
@@ -118,6 +133,19 @@ void check_topic_collisions(const Config& config, const std::set<const ExchangeC
                             Diagnostics& out) {
     const ExchangeTopics topics(config);
     Claims claims(out);
+    // Laid out by a template or a tag's own topic, a tag's topic may be anywhere: each is
+    // claimed. Otherwise only those under nested exchange topics can meet another's (above).
+    const auto tmpl = topic_template_of(config);  // nullopt: reported by check_topic_layout
+    const bool anywhere = tmpl && laid_out(config);
+    const plan::TopicLayout layout{tmpl ? &*tmpl : nullptr, &config.gateway.location};
+    const TagTopic topic_of = [&](const ExchangeConfig& exchange, const std::string& topic,
+                                  const TagConfig& tag, std::string& out) {
+        if (anywhere) {
+            out = plan::expand_tag_topic(layout, config.mqtt.base_topic, exchange.spec, tag.spec);
+        } else {
+            out.assign(topic).append("/").append(tag.spec.name);
+        }
+    };
     for (const auto& exchange : config.exchanges) {
         if (skip.contains(&exchange)) continue;
         if (!topic_problem(exchange.spec.topic).empty()) continue;
@@ -126,7 +154,7 @@ void check_topic_collisions(const Config& config, const std::set<const ExchangeC
                                                                   : exchange.marks.of("name");
         claims.claim(topic, {"/_status", "/_values", "/_history", "/set", "/set/result"},
                      Owner{&exchange, nullptr}, topic_mark);
-        if (topics.nested(topic)) claim_tags(claims, exchange, topic);
+        if (anywhere || topics.nested(topic)) claim_tags(claims, exchange, topic, topic_of);
     }
 }
 

@@ -9,6 +9,7 @@
 #include "core/config/detail/config_names.hpp"
 #include "core/config/detail/redundancy_check.hpp"
 #include "core/config/detail/sparkplug_check.hpp"
+#include "core/config/detail/topic_layout_check.hpp"
 
 namespace eip2mqtt::core::config::detail {
 
@@ -22,6 +23,7 @@ Diagnostics Validator::run() {
     check_mqtt();
     check_gateway_topics();
     check_exchanges();
+    detail::check_topic_layout(config_, out_);
     detail::check_sparkplug(config_, out_);
     detail::check_redundancy(config_, out_);
     std::stable_sort(out_.begin(), out_.end(), [this](const Diagnostic& a, const Diagnostic& b) {

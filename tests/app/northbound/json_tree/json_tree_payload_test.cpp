@@ -95,7 +95,7 @@ core::plan::TagSpec level_tag(bool publish_raw) {
 std::string tag_payload(const core::plan::TagSpec& tag, const Value& raw,
                         core::config::PayloadFormat format = core::config::PayloadFormat::json) {
     std::string out = "left over";
-    format_tag_payload(out, tag, raw, Quality::good, 1700000000000, format);
+    format_tag_payload(out, "turbine1", tag, raw, Quality::good, 1700000000000, format);
     return out;
 }
 
@@ -123,6 +123,37 @@ TEST(TagPayload, AnUnscaledTagIsAsBefore) {
     tag.type = TagType::real;
     EXPECT_EQ(tag_payload(tag, Value{1.5f}),
               R"({"value":1.5,"timestamp":1700000000000,"quality":"good"})");
+}
+
+TEST(TagPayload, EachProfileHasItsShapeAndItsSchema) {
+    using core::config::PayloadFormat;
+    const auto tag = level_tag(false);
+    const Value raw{std::int64_t{8000}};
+    EXPECT_EQ(tag_payload(tag, raw, PayloadFormat::value), "25.0");
+    const auto umh = tag_payload(tag, raw, PayloadFormat::umh);
+    EXPECT_EQ(umh, R"({"value":25.0,"timestamp_ms":1700000000000})");
+    const auto kepware = tag_payload(tag, raw, PayloadFormat::kepware);
+    EXPECT_EQ(kepware, R"({"timestamp":1700000000000,"values":[{"id":"turbine1.level","v":25.0,)"
+                       R"("q":true,"t":1700000000000}]})");
+    const auto problems =
+        test::schema_problems({{test::schema_file("tag-value-umh.json"), umh},
+                               {test::schema_file("kepware.json"), kepware},
+                               {test::schema_file("tag-value-bare.json"), "25.0"}});
+    for (const auto& problem : problems) EXPECT_EQ(problem, "");
+}
+
+TEST(TagPayload, TheValueProfilePublishesAStringBareAndKepwareSaysAStaleValueIsNotGood) {
+    using core::config::PayloadFormat;
+    core::plan::TagSpec text;
+    text.name = "BATCH";
+    text.type = TagType::string;
+    text.count = 8;
+    EXPECT_EQ(tag_payload(text, Value{core::plan::Text("B-12")}, PayloadFormat::value), "B-12");
+    EXPECT_EQ(tag_payload(text, Value{core::plan::Text("B-12")}, PayloadFormat::raw), "\"B-12\"");
+    std::string out;
+    format_tag_payload(out, "x", text, Value{core::plan::Text("a\"b")}, Quality::stale, 5,
+                       PayloadFormat::kepware);
+    EXPECT_EQ(out, R"({"timestamp":5,"values":[{"id":"x.BATCH","v":"a\"b","q":false,"t":5}]})");
 }
 
 }  // namespace

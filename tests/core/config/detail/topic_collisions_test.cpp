@@ -62,7 +62,9 @@ TEST(Validate, AnExchangesResultTopicCollidesWithATagNamedResultUnderItsSetLevel
     EXPECT_EQ(d[1].mark.line, c.exchanges.back().tags[0].marks.of("name").line);
     EXPECT_EQ(d[1].message,
               "tag 'result' of exchange 'result_holder' uses topic "
-              "'acme/site/turbine1/set/result', already used by exchange 'turbine1'");
+              "'acme/site/turbine1/set/result', already used by exchange 'turbine1' (line " +
+                  std::to_string(c.exchanges[0].marks.of("topic").line) + ", column " +
+                  std::to_string(c.exchanges[0].marks.of("topic").column) + ")");
 
     // The other way round: the exchange's own claim is the one refused.
     c = valid();
@@ -72,7 +74,9 @@ TEST(Validate, AnExchangesResultTopicCollidesWithATagNamedResultUnderItsSetLevel
     EXPECT_EQ(d[0].mark.line, c.exchanges[1].marks.of("topic").line);  // turbine1's topic
     EXPECT_EQ(d[0].message,
               "exchange 'turbine1' uses topic 'acme/site/turbine1/set/result', already used by "
-              "tag 'result' of exchange 'result_holder'");
+              "tag 'result' of exchange 'result_holder' (line " +
+                  std::to_string(c.exchanges[0].tags[0].marks.of("name").line) + ", column " +
+                  std::to_string(c.exchanges[0].tags[0].marks.of("name").column) + ")");
     EXPECT_TRUE(mentions(d[1], "has a level 'set'")) << d[1].message;
 }
 
@@ -87,7 +91,9 @@ TEST(Validate, ATagsResultTopicCollidesWithATagNamedResultTwoLevelsBelow) {
     EXPECT_EQ(d[1].message,
               "tag 'result' of exchange 'result_holder' uses topic "
               "'acme/site/turbine1/PRESSAO/set/result', already used by tag 'PRESSAO' of exchange "
-              "'turbine1'");
+              "'turbine1' (line " +
+                  std::to_string(c.exchanges[0].tags[1].marks.of("name").line) + ", column " +
+                  std::to_string(c.exchanges[0].tags[1].marks.of("name").column) + ")");
 }
 
 TEST(Validate, NestedExchangeTopicsWithoutACommonTopicAreValid) {

@@ -18,16 +18,21 @@
 
 namespace eip2mqtt::app::northbound::json_tree {
 
-/// `{"value":90,"timestamp":1695231678000,"quality":"good"}`, or `90` with payload: raw, for
-/// the raw sample `raw` of `tag`: a scaled tag's value is its engineering value, followed by
-/// `"limit":"low"|"high"` when the raw value left its range and by `"raw":…` with publish_raw.
-void format_tag_payload(std::string& out, const core::plan::TagSpec& tag,
+/// The data message of the raw sample `raw` of `tag` of exchange `exchange`, in the profile
+/// `format`: json `{"value":90,"timestamp":1695231678000,"quality":"good"}` (followed by
+/// `"limit":"low"|"high"` when the raw value left its range and by `"raw":…` with publish_raw),
+/// raw `90`, value `90` (a string bare), umh `{"value":90,"timestamp_ms":…}`, kepware
+/// `{"timestamp":…,"values":[{"id":"exchange.tag","v":90,"q":true,"t":…}]}`. A scaled tag's value
+/// is its engineering value.
+void format_tag_payload(std::string& out, std::string_view exchange, const core::plan::TagSpec& tag,
                         const core::plan::Value& raw, core::quality::Quality quality,
                         std::int64_t timestamp_ms, core::config::PayloadFormat format);
 
 /// Batch mode's `_values`: `{"timestamp":…,"quality":"good","values":{"A":1,"B":2.5}}` with the
-/// batch's samples as published (engineering values), in `out` (cleared first).
-void format_values_payload(std::string& out, const SampleBatch& batch);
+/// batch's samples as published (engineering values), in `out` (cleared first); with kepware,
+/// `{"timestamp":…,"values":[{"id":"exchange.A","v":1,"q":true,"t":…},…]}`.
+void format_values_payload(std::string& out, const SampleBatch& batch,
+                           core::config::PayloadFormat format = core::config::PayloadFormat::json);
 
 /// `{"state":"ok","request_id":…,"received":…,"missed":…,"duplicates":…,"out_of_order":…,
 /// "last_seen":…,"clock":"synced","clock_offset_ms":…}` plus the mismatch, timeout and restart

@@ -10,22 +10,29 @@
 #include <utility>
 #include <vector>
 
+#include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/result.hpp"
 #include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 
 /// One tag's input. Strings and other non-scalars are `wrong_type`; unparsable text, objects
-/// without exactly the key "value", arrays and empty payloads are `malformed`.
+/// without exactly the key "value", arrays and empty payloads are `malformed`. A payload
+/// profile's own forms are taken too: umh `{"value":…,"timestamp_ms":…}`, kepware `{"v":…}`,
+/// and with value, text that is not JSON is a string's text.
 core::Result<core::write::WriteInput, core::write::WriteRejection> parse_tag_write(
-    std::string_view payload);
+    std::string_view payload,
+    core::config::PayloadFormat profile = core::config::PayloadFormat::json);
 
 /// One tag's name with its input.
 using NamedWrite = std::pair<std::string, core::write::WriteInput>;
 
 /// A multi-tag write: tag names with their inputs, in payload order. A non-object, an empty
 /// object, or any value that is not a scalar or {"value": scalar} fails the whole write.
+/// With kepware, Kepware's `[{"id":"exchange.tag","v":…},…]` too, each id as written (the
+/// router takes `exchange.` off).
 core::Result<std::vector<NamedWrite>, core::write::WriteRejection> parse_exchange_write(
-    std::string_view payload);
+    std::string_view payload,
+    core::config::PayloadFormat profile = core::config::PayloadFormat::json);
 
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -16,6 +16,7 @@
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
+#include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 #include "eip2mqtt/core/write/write_validation.hpp"
 
@@ -25,6 +26,8 @@ struct WriteRouterOptions {
     std::string base_topic;
     /// mqtt.allow_response_topics_under_base: see WriteRouter::route.
     bool allow_response_topics_under_base = false;
+    /// mqtt.payload: its profile's write forms are taken beside the json ones.
+    core::config::PayloadFormat profile = core::config::PayloadFormat::json;
 };
 
 /// What a message on one of our `…/set` topics asks: the validated writes (ExchangeWrite, whose
@@ -50,7 +53,9 @@ public:
 
     /// The topic filters to subscribe to: one per depth of `…/set` topic (`{base}/+/+/set`...)
     /// rather than one per tag, so a few SUBSCRIBEs hear every tag's `set` topic whatever the
-    /// configuration's size.
+    /// configuration's size. Tags laid out by a template may be anywhere, and an MQTT 5 broker
+    /// delivers a message once per filter it matches: then each exchange's `set` and each
+    /// produced tag's are subscribed exactly, and none overlaps another.
     std::vector<std::string> subscriptions() const;
 
     /// Decides what `message` asks; nullopt when its topic is not a `set` topic of ours, or
@@ -72,12 +77,19 @@ private:
         std::string unknown_tag;               ///< a tag level naming no tag of the exchange
     };
     std::optional<Target> find_target(std::string_view stem) const;
+    std::vector<std::string> exact_subscriptions() const;
     std::string response_topic_problem(const std::string& topic) const;
 
     WriteRouterOptions options_;
     /// Exchanges by their full topic; a tag's `{exchange topic}/{tag}/set` is resolved through
     /// the exchange and the tag's name, so there is no entry per tag.
     std::unordered_map<std::string, Route> exchanges_;
+    /// Tags whose topic is their own (ExchangePlan::tag_topics), by that topic.
+    struct TagRoute {
+        const Route* route = nullptr;
+        std::size_t tag_index = 0;
+    };
+    std::unordered_map<std::string, TagRoute> tags_;
 };
 
 }  // namespace eip2mqtt::app::northbound::json_tree
