@@ -36,6 +36,7 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
     if (udp_port_ == 0) udp_port_ = free_udp_port();
     udp_ = std::make_unique<UdpClient>();
     std::string url = options_.secure ? broker_->secure_url() : broker_->url();
+    if (options_.url_through) url = options_.url_through(broker_->port());
     if (!options_.more_urls.empty()) {
         url = "[ \"" + url + "\"";
         for (const auto& more : options_.more_urls) url += ", \"" + more + "\"";

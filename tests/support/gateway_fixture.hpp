@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -40,6 +41,8 @@ struct GatewayOptions {
     /// Brokers after the test's own in `mqtt.url` (tcp://127.0.0.1:PORT...): the gateway gets
     /// a list, the test's broker first.
     std::vector<std::string> more_urls;
+    /// When set, the gateway's URL for the broker on `port` (a relay or a proxy in between).
+    std::function<std::string(std::uint16_t port)> url_through;
     std::map<std::string, std::string> env;  ///< added to the gateway's environment
     /// Top-level sections added to the configuration (`sparkplug:` ...), as YAML text.
     std::string sections;

@@ -55,13 +55,20 @@ private:
     std::size_t at_ = 0;
 };
 
-/// MQTT 5 properties: their length, then id/value pairs. Returns Session Expiry Interval (0x11)
-/// when present; skips the rest by their types.
-std::optional<std::uint32_t> read_properties(Body& body) {
+/// The MQTT 5 properties the checks read.
+struct ReadProperties {
+    std::optional<std::uint32_t> session_expiry;  ///< 0x11
+    std::optional<std::uint16_t> topic_alias;     ///< 0x23
+};
+
+/// MQTT 5 properties: their length, then id/value pairs. Returns those of ReadProperties when
+/// present; skips the rest by their types.
+ReadProperties read_properties(Body& body) {
     const auto length = body.varint();
     const auto bytes = body.take(length);  // outlives the cursor over it
     Body properties(bytes);
-    std::optional<std::uint32_t> session_expiry;
+    ReadProperties read;
+    auto& session_expiry = read.session_expiry;
     while (!properties.done()) {
         const auto id = properties.varint();
         switch (id) {
@@ -75,10 +82,12 @@ std::optional<std::uint32_t> read_properties(Body& body) {
             case 0x2A:
                 properties.byte();
                 break;
+            case 0x23:
+                read.topic_alias = properties.u16();
+                break;
             case 0x13:
             case 0x21:
             case 0x22:
-            case 0x23:
                 properties.u16();
                 break;
             case 0x11:
@@ -111,7 +120,7 @@ std::optional<std::uint32_t> read_properties(Body& body) {
                 throw std::runtime_error("unknown property " + std::to_string(id));
         }
     }
-    return session_expiry;
+    return read;
 }
 
 void parse_connect(Body& body, MqttPacket& packet) {
@@ -122,7 +131,7 @@ void parse_connect(Body& body, MqttPacket& packet) {
     packet.clean = (flags & 0x02) != 0;
     body.u16();  // keep alive
     const bool v5 = packet.protocol_level == 5;
-    if (v5) packet.session_expiry = read_properties(body);
+    if (v5) packet.session_expiry = read_properties(body).session_expiry;
     packet.client_id = body.text();
     if ((flags & 0x04) != 0) {
         WillMessage will;
@@ -144,7 +153,7 @@ void parse_publish(std::uint8_t first, int level, Body& body, MqttPacket& packet
     if (packet.qos == 3) throw std::runtime_error("QoS 3");
     packet.topic = body.text();
     if (packet.qos > 0) body.u16();  // packet identifier
-    if (level == 5) read_properties(body);
+    if (level == 5) packet.topic_alias = read_properties(body).topic_alias;
     packet.payload = body.rest();
 }
 
@@ -177,6 +186,7 @@ std::vector<MqttPacket> MqttStreamReader::feed(std::string_view bytes) {
         if (!complete || buffer_.size() < header + length) break;
         packets.push_back(parse(static_cast<std::uint8_t>(buffer_[0]),
                                 std::string_view(buffer_).substr(header, length)));
+        packets.back().wire_bytes = header + length;
         buffer_.erase(0, header + length);
     }
     return packets;

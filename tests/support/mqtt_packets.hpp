@@ -36,7 +36,8 @@ struct WillMessage {
 
 struct MqttPacket {
     PacketType type = PacketType::other;
-    std::string error;  ///< malformed: what is wrong
+    std::string error;           ///< malformed: what is wrong
+    std::size_t wire_bytes = 0;  ///< the whole packet, fixed header included
     // CONNECT
     int protocol_level = 0;                       ///< 4: MQTT 3.1.1, 5: MQTT 5
     bool clean = false;                           ///< Clean Session (3.1.1), Clean Start (5)
@@ -49,6 +50,7 @@ struct MqttPacket {
     int qos = 0;
     bool retain = false;
     bool dup = false;
+    std::optional<std::uint16_t> topic_alias;  ///< MQTT 5 property 0x23, when present
     // SUBSCRIBE
     std::vector<std::string> filters;
     // DISCONNECT (MQTT 5; 0 when the packet has none, as the specification reads it), CONNACK

@@ -54,6 +54,17 @@ struct MqttRecorder::Impl {
             r.correlation_data =
                 ::mqtt::get<std::string>(props, ::mqtt::property::CORRELATION_DATA);
         }
+        if (props.contains(::mqtt::property::CONTENT_TYPE)) {
+            r.content_type = ::mqtt::get<std::string>(props, ::mqtt::property::CONTENT_TYPE);
+        }
+        if (props.contains(::mqtt::property::PAYLOAD_FORMAT_INDICATOR)) {
+            r.payload_format =
+                ::mqtt::get<std::uint8_t>(props, ::mqtt::property::PAYLOAD_FORMAT_INDICATOR);
+        }
+        if (props.contains(::mqtt::property::MESSAGE_EXPIRY_INTERVAL)) {
+            r.message_expiry_s =
+                ::mqtt::get<std::uint32_t>(props, ::mqtt::property::MESSAGE_EXPIRY_INTERVAL);
+        }
         for (std::size_t i = 0; i < props.count(::mqtt::property::USER_PROPERTY); ++i) {
             auto [name, value] =
                 ::mqtt::get<::mqtt::string_pair>(props, ::mqtt::property::USER_PROPERTY, i);

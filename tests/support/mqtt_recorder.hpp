@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -25,6 +26,9 @@ struct Received {
     /// MQTT 5 properties, when present.
     std::string correlation_data;
     std::vector<std::pair<std::string, std::string>> user_properties;
+    std::string content_type;
+    int payload_format = -1;             ///< the payload format indicator; -1 when absent
+    std::int64_t message_expiry_s = -1;  ///< what the broker left of it; -1 when absent
 };
 
 class MqttRecorder {

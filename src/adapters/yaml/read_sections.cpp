@@ -1,5 +1,7 @@
 // The gateway, mqtt, metrics and sparkplug sections of the configuration.
 
+#include <algorithm>
+
 #include "adapters/yaml/detail/key_readers.hpp"
 #include "adapters/yaml/detail/sections.hpp"
 
@@ -90,6 +92,27 @@ bool read_tls(KeyValue& v, MqttSection& m) {
     return true;
 }
 
+/// `properties: [unit, quality]`: each name at its own line and column; a name said twice once.
+bool read_properties(KeyValue& v, MqttSection& m) {
+    std::vector<Mark> marks;
+    const auto names = v.texts(marks);
+    if (!names) return false;
+    bool read = true;
+    m.properties.clear();
+    for (std::size_t i = 0; i < names->size(); ++i) {
+        const auto property = core::config::message_property_names.parse((*names)[i]);
+        if (!property) {
+            v.error_at(marks[i], "unknown property " + in_quotes((*names)[i]) +
+                                     "; expected unit, quality, source_time, exchange or producer");
+            read = false;
+        } else if (std::find(m.properties.begin(), m.properties.end(), *property) ==
+                   m.properties.end()) {
+            m.properties.push_back(*property);
+        }
+    }
+    return read;
+}
+
 bool read_payload(KeyValue& v, MqttSection& m) {
     const auto format =
         v.parsed([](std::string_view s) { return core::config::payload_format_names.parse(s); },
@@ -169,6 +192,10 @@ constexpr KeyReader<MqttSection> mqtt_rows[]{
          section.marks = v.mapping("in mqtt.store_and_forward", store_and_forward_readers, section);
          return true;
      }},
+    {"properties", read_properties},
+    {"message_expiry_s",
+     [](KeyValue& v, MqttSection& m) { return v.integer_to<std::uint32_t>(m.message_expiry, 0); }},
+    {"topic_aliases", [](KeyValue& v, MqttSection& m) { return v.boolean_to(m.topic_aliases); }},
 };
 constexpr auto mqtt_readers = bind_keys(keys::mqtt, mqtt_rows);
 

@@ -200,6 +200,18 @@ void print_commands(const core::config::CommandsSection& commands, std::ostream&
            "'allow' out for the subnets of eip.bind)\n";
 }
 
+/// MQTT 5 metadata that MQTT 3.1.1 cannot carry: said, not refused (a configuration may name
+/// the broker's version before the broker is upgraded).
+void print_mqtt5_only(const core::config::MqttSection& mqtt, std::ostream& out) {
+    if (mqtt.version == 5) return;
+    for (const auto* key : {"properties", "message_expiry_s", "topic_aliases"}) {
+        if (!mqtt.marks.contains(key)) continue;
+        const auto& at = mqtt.marks.of(key);
+        out << at.file.str() << ":" << at.line << ":" << at.column << ": warning: mqtt." << key
+            << " is ignored with MQTT 3.1.1, which has no properties\n";
+    }
+}
+
 }  // namespace
 
 int run_check(const std::string& config_path, std::ostream& out, std::ostream& err) {
@@ -219,6 +231,7 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     out << redundancy::section_summary(config->redundancy);
     print_placeholders(config_path, out);
     print_commands(config->eip.commands, out);
+    print_mqtt5_only(config->mqtt, out);
     const core::plan::WarningContext context{config->mqtt.version == 3};
     const auto& sparkplug = config->sparkplug;
     std::optional<northbound::sparkplug::SparkplugBirthSizes> births;

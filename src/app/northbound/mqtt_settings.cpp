@@ -90,6 +90,11 @@ adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& co
     options.availability_topic = availability_topic;
     options.buffer_max_messages = mqtt.buffer_max_messages;
     options.batch_first = mqtt.batch_first;
+    // MQTT 5 metadata (docs/mqtt-api.md): the gateway's JSON and text say what they are.
+    options.describe_payloads = true;
+    options.message_expiry = mqtt.message_expiry;
+    // Paho re-sends a kept session's publications as they were: aliases need a clean start.
+    options.topic_aliases = mqtt.topic_aliases && options.clean_start;
     return options;
 }
 
@@ -98,6 +103,10 @@ adapters::mqtt::ClientOptions sparkplug_client_options(
     auto options = mqtt_client_options(config, {});
     options.client_id += "-sparkplug";
     options.log_name = "MQTT (Sparkplug)";
+    // Protobuf, described by Sparkplug itself; its births already alias its metrics.
+    options.describe_payloads = false;
+    options.message_expiry = std::chrono::seconds(0);
+    options.topic_aliases = false;
     options.session_expiry = std::chrono::seconds(0);
     options.clean_start = true;
     options.will = std::move(will);

@@ -49,6 +49,8 @@ adapters::mqtt::ClientOptions pair_client_options(const core::config::Config& co
     options.hear_own = true;  // a claim heard back confirms it (core/redundancy/lease.hpp)
     // An image heard back live, not fetched from the store, gives a late answer (PairImages).
     options.retain_as_published = false;
+    // A lease's records are few and short-lived on the wire: named in full.
+    options.topic_aliases = false;
     return options;
 }
 

@@ -133,6 +133,7 @@ void PairLease::publish_role(LeaseRole role) {
     message_.payload = std::string(core::redundancy::to_string(role));
     message_.qos = 1;
     message_.retain = true;
+    message_.text = true;  // `leader` or `standby`
     publisher_.publish(std::move(message_));
 }
 

@@ -44,6 +44,9 @@ mqtt:
   metrics_interval_s: 10
   session_expiry_s: 0
   allow_response_topics_under_base: false
+  properties: [unit, quality]
+  message_expiry_s: 0
+  topic_aliases: false
   store_and_forward:
     enabled: false
     max_mb: 64
@@ -165,6 +168,9 @@ inline const std::vector<Edit> edits = {
     {"mqtt.topic_template", "{base}/{enterprise}/{exchange}/{tag}",
      "{base}/{exchange}/{enterprise}/{tag}"},
     {"mqtt.qos", "qos: 1", "qos: 0"},
+    {"mqtt.properties", "[unit, quality]", "[unit]"},
+    {"mqtt.message_expiry_s", "message_expiry_s: 0", "message_expiry_s: 60"},
+    {"mqtt.topic_aliases", "topic_aliases: false", "topic_aliases: true"},
     {"mqtt.retain", "retain: true", "retain: false"},
     {"mqtt.payload", "payload: json", "payload: raw"},
     {"mqtt.buffer.max_messages", "max_messages: 1000", "max_messages: 2000"},

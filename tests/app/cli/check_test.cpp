@@ -1,5 +1,6 @@
-// `check` names the brokers of a list, in the order the gateway tries them, and shows a scaled
-// tag's scale in its byte map, and an array's or a string's bytes.
+// `check` names the brokers of a list, in the order the gateway tries them, shows a scaled
+// tag's scale in its byte map and an array's or a string's bytes, and says what MQTT 3.1.1
+// cannot carry.
 
 #include <gtest/gtest.h>
 
@@ -79,6 +80,32 @@ TEST(CheckByteMap, ArraysAndStringsShowTheBytesTheyTake) {
     EXPECT_NE(text.find("string 8 bytes"), std::string::npos) << text;
     EXPECT_NE(text.find("bit    4 bits"), std::string::npos) << text;
     EXPECT_NE(text.find(", 26 bytes, period"), std::string::npos) << text;  // to the last bit
+}
+
+}  // namespace
+}  // namespace eip2mqtt::app
+
+namespace eip2mqtt::app {
+namespace {
+
+TEST(CheckMqtt5, MetadataKeysAreSaidToBeIgnoredOverMqtt311) {
+    test::TempDir dir;
+    const auto text = [](const std::string& version) {
+        return "mqtt:\n  version: " + version +
+               "\n  properties: [unit]\n  message_expiry_s: 60\n  topic_aliases: true\n"
+               "exchanges:\n  - { name: ex, producer_id: 10.0.0.1, exchange_id: 1, length: 8 }\n";
+    };
+    std::ostringstream out;
+    std::ostringstream err;
+    const auto v3 = dir.write("v3.yaml", text("3.1.1"));
+    ASSERT_EQ(run_check(v3, out, err), 0) << err.str();
+    EXPECT_NE(out.str().find(v3 + ":3:3: warning: mqtt.properties is ignored with MQTT 3.1.1"),
+              std::string::npos)
+        << out.str();
+    EXPECT_NE(out.str().find("mqtt.topic_aliases is ignored"), std::string::npos);
+    std::ostringstream out5;
+    ASSERT_EQ(run_check(dir.write("v5.yaml", text("5")), out5, err), 0) << err.str();
+    EXPECT_EQ(out5.str().find("is ignored"), std::string::npos) << out5.str();
 }
 
 }  // namespace

@@ -90,6 +90,16 @@ struct ClientOptions {
     /// (on that thread: it must be thread-safe and cheap); false drops it, counted in
     /// `discarded`. A pair's leader that lost its lease says no more as leader, whatever waits.
     std::function<bool(const Message&)> may_send;
+    /// MQTT 5: every publication says its content type (`application/json`, or `text/plain`
+    /// for a Message::text one) and that its payload is UTF-8 (payload format indicator 1).
+    bool describe_payloads = false;
+    /// MQTT 5: a live value (Message::live) expires on the broker this long after it was
+    /// published, for a subscriber that was away; 0: never.
+    std::chrono::seconds message_expiry{0};
+    /// MQTT 5: topics are given aliases, up to the broker's Topic Alias Maximum, and sent by
+    /// alias after their first publication on a connection. Only with clean_start: a kept
+    /// session's publications re-sent by Paho on a new connection would name aliases it lost.
+    bool topic_aliases = false;
 
     std::size_t buffer_max_messages = 100000;
     std::size_t batch_lane_max_messages = 1000;  ///< `_values` waiting; oldest dropped beyond

@@ -85,6 +85,11 @@ struct StoreAndForwardSection {
     }
 };
 
+/// `mqtt.properties`: what MQTT 5 user properties every data message carries.
+enum class MessageProperty : std::uint8_t { unit, quality, source_time, exchange, producer };
+inline constexpr auto message_property_names =
+    enum_names<MessageProperty>("unit", "quality", "source_time", "exchange", "producer");
+
 struct MqttSection {
     /// `url`: one broker, or several tried in turn (the first at start, the next after each
     /// lost connection or failed attempt). Never empty once read.
@@ -110,6 +115,11 @@ struct MqttSection {
     /// Off: a client that may only write `…/set` cannot make the gateway publish on its own
     /// topics (a tag, `_gateway/…/state`).
     bool allow_response_topics_under_base = false;
+    /// MQTT 5 metadata (docs/mqtt-api.md): user properties of data messages, the expiry of live
+    /// values (0: none) and topic aliases; MQTT 3.1.1 has none of them.
+    std::vector<MessageProperty> properties;
+    std::chrono::seconds message_expiry{0};
+    bool topic_aliases = false;
     std::chrono::seconds keepalive{30};
     /// MQTT 5 session expiry: 0 starts clean every time; more keeps the session (and the QoS 1
     /// writes sent to it) on the broker while the gateway is away, up to this long.

@@ -70,7 +70,7 @@ inline constexpr std::array<ConfigKey<GatewaySection>, 6> gateway{{
 
 /// The connection's settings need a restart (a new session); how tags are published is applied
 /// live, the retained state republished in the new form.
-inline constexpr std::array<ConfigKey<MqttSection>, 19> mqtt{{
+inline constexpr std::array<ConfigKey<MqttSection>, 22> mqtt{{
     {"url", restart, differs<&MqttSection::urls>},
     {"version", restart, differs<&MqttSection::version>},
     {"client_id", restart, differs<&MqttSection::client_id>},
@@ -94,6 +94,10 @@ inline constexpr std::array<ConfigKey<MqttSection>, 19> mqtt{{
     {"allow_response_topics_under_base", live,
      differs<&MqttSection::allow_response_topics_under_base>},
     {"store_and_forward", restart, nullptr},
+    // The connection's: how it describes what it sends.
+    {"properties", restart, differs<&MqttSection::properties>},
+    {"message_expiry_s", restart, differs<&MqttSection::message_expiry>},
+    {"topic_aliases", restart, differs<&MqttSection::topic_aliases>},
 }};
 
 /// `mqtt.tls`, compared when both configurations have one (`tls` itself says when one lacks it).

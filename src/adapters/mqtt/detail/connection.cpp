@@ -9,6 +9,7 @@
 #include "adapters/mqtt/detail/connect_options.hpp"
 #include "adapters/mqtt/detail/paho_tokens.hpp"
 #include "adapters/mqtt/detail/publication_check.hpp"
+#include "adapters/mqtt/detail/publish_properties.hpp"
 
 namespace eip2mqtt::adapters::mqtt::detail {
 
@@ -178,6 +179,7 @@ void Connection::apply_broker_limits() {
     // Paho C++ 1.2; the one connect() returned has them.)
     std::size_t receive_maximum = 65535;
     std::optional<std::size_t> max_packet_size;  // kept from the last connection when unread
+    std::uint16_t topic_alias_maximum = 0;       // MQTT 5 §3.2.2.3.8: none when absent
     try {
         // The listener posted on_connect just before Paho marks the token complete and
         // stores the response: wait for that (microseconds; bounded).
@@ -187,6 +189,10 @@ void Connection::apply_broker_limits() {
             if (props.contains(paho::property::RECEIVE_MAXIMUM)) {
                 receive_maximum = paho::get<std::uint16_t>(props, paho::property::RECEIVE_MAXIMUM);
             }
+            if (props.contains(paho::property::TOPIC_ALIAS_MAXIMUM)) {
+                topic_alias_maximum =
+                    paho::get<std::uint16_t>(props, paho::property::TOPIC_ALIAS_MAXIMUM);
+            }
             max_packet_size =
                 props.contains(paho::property::MAXIMUM_PACKET_SIZE)
                     ? paho::get<std::uint32_t>(props, paho::property::MAXIMUM_PACKET_SIZE)
@@ -195,16 +201,15 @@ void Connection::apply_broker_limits() {
     } catch (const std::exception&) {
         // No CONNACK properties (MQTT 3.1.1): no limit beyond ours.
     }
-    sender_.on_connected(receive_maximum, max_packet_size);
+    sender_.on_connected(receive_maximum, max_packet_size, topic_alias_maximum);
 }
 
 void Connection::announce_online() {
     try {
         if (!options_.availability_topic.empty()) {
             const int qos = options_.availability_qos;
-            sender_.publish_own(
-                paho::make_message(options_.availability_topic, "online", qos, true),
-                qos > 0 ? sender_.reserve_own_slot() : 0);
+            sender_.publish_own(availability_message(options_, "online"),
+                                qos > 0 ? sender_.reserve_own_slot() : 0);
         }
     } catch (const paho::exception& e) {
         spdlog::warn("{} cannot publish availability: {}", options_.log_name, e.what());

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "adapters/mqtt/detail/connection.hpp"
+#include "adapters/mqtt/detail/publish_properties.hpp"
 
 namespace mqtt {
 
@@ -186,9 +187,7 @@ paho::delivery_token_ptr Connection::publish_offline(core::MonoTime deadline) {
         sender_.wait_for_own_slots(deadline);
     }
     try {
-        return sender_.publish_own(paho::make_message(options_.availability_topic, "offline",
-                                                      options_.availability_qos, true),
-                                   generation);
+        return sender_.publish_own(availability_message(options_, "offline"), generation);
     } catch (const paho::exception& e) {
         spdlog::warn("{} cannot publish availability: {}", options_.log_name, e.what());
     }

@@ -29,7 +29,8 @@ Sender::Sender(const ClientOptions& options, ::mqtt::async_client& paho, const L
       ledger_(options.buffer_max_messages, options.batch_lane_max_messages, options.batch_first,
               options.max_in_flight),
       log_(options.log_name, *options.clock),
-      max_packet_size_(max_mqtt_packet_size) {}
+      max_packet_size_(max_mqtt_packet_size),
+      properties_(options) {}
 
 Sender::~Sender() { end_thread(); }
 
@@ -71,8 +72,11 @@ void Sender::add_stats(ClientStats& stats) const {
 
 // --- the connection's events ---------------------------------------------------------------
 
-void Sender::on_connected(std::size_t receive_maximum, std::optional<std::size_t> max_packet_size) {
+void Sender::on_connected(std::size_t receive_maximum, std::optional<std::size_t> max_packet_size,
+                          std::uint16_t topic_alias_maximum) {
     if (max_packet_size) max_packet_size_ = *max_packet_size;
+    // Before the thread may send on this connection (set_sending): no alias of the last one.
+    properties_.on_connected(topic_alias_maximum);
     std::lock_guard lock(mutex_);
     ledger_.set_acknowledged_limit(receive_maximum);
     ledger_.new_connection();

@@ -35,6 +35,7 @@
 
 #include "adapters/mqtt/detail/loop_post.hpp"
 #include "adapters/mqtt/detail/paho_tokens.hpp"
+#include "adapters/mqtt/detail/publish_properties.hpp"
 #include "adapters/mqtt/detail/send_ledger.hpp"
 #include "adapters/mqtt/detail/sender_counters.hpp"
 #include "adapters/mqtt/detail/sender_log.hpp"
@@ -77,7 +78,10 @@ public:
     void set_on_acknowledged(AcknowledgedHandler handler) { on_acknowledged_ = std::move(handler); }
     /// A connect: the broker's Receive Maximum and Maximum Packet Size (unchanged when the
     /// CONNACK could not be read), and a fresh count of the own publications' slots.
-    void on_connected(std::size_t receive_maximum, std::optional<std::size_t> max_packet_size);
+    void on_connected(std::size_t receive_maximum, std::optional<std::size_t> max_packet_size,
+                      std::uint16_t topic_alias_maximum = 0);
+    /// Publications sent by topic alias alone (ClientOptions::topic_aliases).
+    std::uint64_t aliased() const { return properties_.aliased(); }
     /// Lets the thread hand publications to Paho (once announced), or stops it.
     void set_sending(bool enabled);
     /// What was in flight is sent again (QoS >= 1, a clean session) or counted as failed; a
@@ -146,7 +150,7 @@ private:
     /// Under mutex_: into the window, in order; returns whether the window stopped a backlog.
     bool admit_burst(std::vector<Taken>& taken, std::vector<Outgoing>& burst);
     void send(std::uint64_t id, const ::mqtt::message_ptr& message);
-    ::mqtt::message_ptr to_paho(const Message& message) const;
+    ::mqtt::message_ptr to_paho(const Message& message);
 
     // sender_publish.cpp: what Paho answers
     /// Publication `id` completed with Paho return code `rc` and, when the broker refused it
@@ -192,6 +196,7 @@ private:
     std::atomic<bool> stopping_{false};
     std::atomic<std::size_t> max_packet_size_;
     SenderCounters counters_;
+    PublishProperties properties_;  ///< the sender thread's, but for on_connected
 
     PublishListener publish_listener_{*this};
     OwnPublicationListener own_publication_listener_{*this};

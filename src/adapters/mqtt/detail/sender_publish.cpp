@@ -90,7 +90,12 @@ void Sender::take_burst(std::vector<Taken>& taken) {
 }
 
 void Sender::prepare_burst(std::vector<Taken>& taken) {
-    const std::size_t max_packet_size = max_packet_size_;
+    // Room for what describing a payload adds (content type, expiry, an alias).
+    const std::size_t described =
+        options_.describe_payloads || options_.message_expiry.count() > 0 || options_.topic_aliases
+            ? described_payload_bytes
+            : 0;
+    const std::size_t max_packet_size = max_packet_size_ - described;
     for (auto& next : taken) {
         if (auto problem = publication_problem(next.message, max_packet_size); !problem.empty()) {
             SenderCounters::bump(counters_.refused);
@@ -116,20 +121,7 @@ bool Sender::admit_burst(std::vector<Taken>& taken, std::vector<Outgoing>& burst
     return ledger_.end_burst();
 }
 
-::mqtt::message_ptr Sender::to_paho(const Message& message) const {
-    auto out = ::mqtt::make_message(message.topic, message.payload, message.qos, message.retain);
-    if (options_.version == 5 && (!message.correlation_data.empty() || message.historical)) {
-        ::mqtt::properties properties;
-        if (!message.correlation_data.empty()) {
-            properties.add({::mqtt::property::CORRELATION_DATA, message.correlation_data});
-        }
-        if (message.historical) {
-            properties.add({::mqtt::property::USER_PROPERTY, "historical", "true"});
-        }
-        out->set_properties(std::move(properties));
-    }
-    return out;
-}
+::mqtt::message_ptr Sender::to_paho(const Message& message) { return properties_.to_paho(message); }
 
 void Sender::send(std::uint64_t id, const ::mqtt::message_ptr& message) {
     try {

@@ -11,7 +11,9 @@ JsonTreeOptions json_tree_options(const core::config::Config& config) {
     const auto& mqtt = config.mqtt;
     // Kepware's consumers read one message per exchange: its profile publishes `_values`.
     const bool batch = mqtt.batch || mqtt.payload == core::config::PayloadFormat::kepware;
-    return {{mqtt.qos, mqtt.retain, mqtt.payload, batch},
+    auto properties =
+        mqtt.version == 5 ? mqtt.properties : std::vector<core::config::MessageProperty>{};
+    return {{mqtt.qos, mqtt.retain, mqtt.payload, batch, std::move(properties)},
             {mqtt.base_topic, mqtt.allow_response_topics_under_base, mqtt.payload},
             mqtt.base_topic + "/_gateway/" + config.gateway.id + "/metrics"};
 }
@@ -155,6 +157,10 @@ void JsonTree::tag_samples(const SampleBatch& batch) {
                            sample.value, batch.quality, batch.timestamp_ms, settings.format);
         message_.qos = settings.qos;
         message_.retain = settings.retain;
+        message_.live = true;
+        message_.text = settings.format == core::config::PayloadFormat::value;
+        add_data_properties(message_, settings.properties, plan, &plan.tags[sample.tag].spec,
+                            batch.quality, batch.timestamp_ms);
         if (!values && &sample == &batch.samples.back()) message_.ack_token = token;
         mqtt_.publish(std::move(message_));  // leaves message_ blank (Publisher)
     }
@@ -162,6 +168,9 @@ void JsonTree::tag_samples(const SampleBatch& batch) {
         message_.topic = plan.values_topic;
         format_values_payload(message_.payload, batch, settings.format);
         message_.qos = settings.qos;
+        message_.live = true;
+        add_data_properties(message_, settings.properties, plan, nullptr, batch.quality,
+                            batch.timestamp_ms);
         message_.coalesce = false;
         message_.batch_lane = true;
         message_.ack_token = token;
@@ -173,6 +182,8 @@ bool JsonTree::replay(const SampleBatch& batch, std::uint64_t ack_token) {
     message_.topic.assign(batch.exchange.topic).append("/_history");
     format_values_payload(message_.payload, batch);
     message_.qos = 1;  // an entry leaves the journal on its PUBACK
+    add_data_properties(message_, options_.publish.properties, batch.exchange, nullptr,
+                        batch.quality, batch.timestamp_ms);
     message_.coalesce = false;
     message_.historical = true;
     message_.ack_token = ack_token;

@@ -9,6 +9,7 @@
 #include "eip2mqtt/app/northbound/json_tree/counter_json.hpp"
 #include "eip2mqtt/app/redundancy/role_metrics.hpp"
 #include "eip2mqtt/core/plan/published_value.hpp"
+#include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 
@@ -101,6 +102,36 @@ void format_values_payload(std::string& out, const SampleBatch& batch, PayloadFo
         out += core::plan::to_json(core::plan::published_value(tag, sample.value).value);
     }
     out += "}}";
+}
+
+void add_data_properties(adapters::mqtt::Message& message,
+                         std::span<const core::config::MessageProperty> chosen,
+                         const core::plan::ExchangePlan& plan, const core::plan::TagSpec* tag,
+                         core::quality::Quality quality, std::int64_t timestamp_ms) {
+    using core::config::MessageProperty;
+    for (const auto property : chosen) {
+        const auto name = core::config::message_property_names.name_of(property);
+        switch (property) {
+            case MessageProperty::unit:
+                if (tag && !tag->unit().empty()) {
+                    adapters::mqtt::add_user_property(message, name, tag->unit());
+                }
+                break;
+            case MessageProperty::quality:
+                adapters::mqtt::add_user_property(message, name, core::quality::to_string(quality));
+                break;
+            case MessageProperty::source_time:
+                adapters::mqtt::add_user_property(message, name, std::to_string(timestamp_ms));
+                break;
+            case MessageProperty::exchange:
+                adapters::mqtt::add_user_property(message, name, plan.spec.name);
+                break;
+            case MessageProperty::producer:
+                adapters::mqtt::add_user_property(message, name,
+                                                  core::wire::to_string(plan.spec.producer_id));
+                break;
+        }
+    }
 }
 
 std::string format_status_payload(const ConsumedStatus& status) {

@@ -26,6 +26,8 @@ struct PublishSettings {
     bool retain = true;
     core::config::PayloadFormat format = core::config::PayloadFormat::json;
     bool batch = false;
+    /// MQTT 5 user properties of data messages (mqtt.properties; none over MQTT 3.1.1).
+    std::vector<core::config::MessageProperty> properties = {};
 
     friend bool operator==(const PublishSettings&, const PublishSettings&) = default;
 };

@@ -7,9 +7,11 @@
 #include <chrono>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
+#include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/config/config.hpp"
 #include "eip2mqtt/core/json_text.hpp"
@@ -33,6 +35,15 @@ void format_tag_payload(std::string& out, std::string_view exchange, const core:
 /// `{"timestamp":…,"values":[{"id":"exchange.A","v":1,"q":true,"t":…},…]}`.
 void format_values_payload(std::string& out, const SampleBatch& batch,
                            core::config::PayloadFormat format = core::config::PayloadFormat::json);
+
+/// Adds to `message` the MQTT 5 user properties `chosen` (mqtt.properties) of a data message:
+/// of tag `tag` of `plan`, or of the exchange's `_values` (`tag` null, no `unit`): `unit` (when
+/// the tag has one), `quality`, `source_time` (milliseconds since 1970, as the payloads'),
+/// `exchange` (its name) and `producer` (its producer id).
+void add_data_properties(adapters::mqtt::Message& message,
+                         std::span<const core::config::MessageProperty> chosen,
+                         const core::plan::ExchangePlan& plan, const core::plan::TagSpec* tag,
+                         core::quality::Quality quality, std::int64_t timestamp_ms);
 
 /// `{"state":"ok","request_id":…,"received":…,"missed":…,"duplicates":…,"out_of_order":…,
 /// "last_seen":…,"clock":"synced","clock_offset_ms":…}` plus the mismatch, timeout and restart
