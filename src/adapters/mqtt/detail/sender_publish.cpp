@@ -95,7 +95,8 @@ void Sender::prepare_burst(std::vector<Taken>& taken) {
         options_.describe_payloads || options_.message_expiry.count() > 0 || options_.topic_aliases
             ? described_payload_bytes
             : 0;
-    const std::size_t max_packet_size = max_packet_size_ - described;
+    const std::size_t limit = max_packet_size_;
+    const std::size_t max_packet_size = limit > described ? limit - described : 0;
     for (auto& next : taken) {
         if (auto problem = publication_problem(next.message, max_packet_size); !problem.empty()) {
             SenderCounters::bump(counters_.refused);

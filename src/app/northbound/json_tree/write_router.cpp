@@ -143,6 +143,8 @@ std::string WriteRouter::response_topic_problem(const std::string& topic) const 
     const bool under_base =
         topic == base ||
         (topic.starts_with(base) && topic.size() > base.size() && topic[base.size()] == '/');
+    // A tag laid out by a template may be outside the base topic: never answered on either.
+    if (tags_.contains(topic)) return "is a tag's topic";
     if (under_base && !options_.allow_response_topics_under_base &&
         !below_a_set_level(std::string_view(topic).substr(base.size()))) {
         return "lies under the base topic " + base +

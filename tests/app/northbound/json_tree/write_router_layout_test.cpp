@@ -87,6 +87,20 @@ TEST_F(WriteRouterLayoutTest, AConsumedTagOnItsAssetPathIsReadOnly) {
     EXPECT_EQ(refused->error, core::write::WriteError::read_only);
 }
 
+TEST_F(WriteRouterLayoutTest, AResponseTopicThatIsATagsTopicIsRefused) {
+    adapters::mqtt::Incoming message;
+    message.topic = "acme/hall/t1/SPEED/set";
+    message.payload = "1";
+    message.response_topic = "acme/hall/t1/lube-pump/pressure";
+    const auto decision = router_.route(message);
+    ASSERT_TRUE(decision.has_value());
+    const auto* refused = std::get_if<core::write::WriteRejection>(&decision->outcome);
+    ASSERT_NE(refused, nullptr);
+    EXPECT_EQ(refused->error, core::write::WriteError::bad_response_topic);
+    EXPECT_EQ(decision->response_topic_problem, "is a tag's topic");
+    EXPECT_EQ(decision->reply.topic, "acme/hall/t1/SPEED/set/result");
+}
+
 TEST_F(WriteRouterLayoutTest, EachSetTopicIsSubscribedExactlyAndNoFilterOverlapsAnother) {
     EXPECT_EQ(
         router_.subscriptions(),
