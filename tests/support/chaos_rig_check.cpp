@@ -187,6 +187,16 @@ std::string ChaosRig::story() const {
         out << "--- unit " << unit << " ---\n" << earlier_logs_[unit];
         if (gateways_[unit]) out << gateways_[unit]->output();
     }
+    // Where each answer went, as the broker saw it: received from a unit, sent on to the
+    // recorder, or dropped for a client that fell behind.
+    out << "--- broker: answers and drops ---\n";
+    std::istringstream log(broker_.log());
+    for (std::string line; std::getline(log, line);) {
+        if (line.find("answers/chaos") != std::string::npos ||
+            line.find("dropped") != std::string::npos) {
+            out << line << "\n";
+        }
+    }
     return out.str();
 }
 
