@@ -19,6 +19,17 @@ std::string topic_problem(std::string_view topic) {
     return std::string(plan::text_problem(topic));
 }
 
+std::string_view reserved_level(std::string_view topic, std::size_t from) {
+    std::size_t start = from;
+    while (start <= topic.size()) {
+        const auto end = std::min(topic.find('/', start), topic.size());
+        const auto level = topic.substr(start, end - start);
+        if (level == "set" || (!level.empty() && level.front() == '_')) return level;
+        start = end + 1;
+    }
+    return {};
+}
+
 std::string tag_name_problem(std::string_view name) {
     if (name.empty()) return "a tag has an empty name";
     // A loop rather than find_first_of("/+#"), which searches the set for every character:

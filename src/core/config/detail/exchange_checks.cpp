@@ -115,27 +115,18 @@ std::size_t Validator::check_exchange_topic(const ExchangeConfig& exchange,
             error(marks.of("topic"), what + " topic " + in_quotes(spec.topic) + " " + problem);
         }
     } else {
-        std::size_t start = 0;
-        while (start <= spec.topic.size()) {
-            const auto end = std::min(spec.topic.find('/', start), spec.topic.size());
-            const auto level = std::string_view(spec.topic).substr(start, end - start);
-            if (level.front() == '_') {
-                error(marks.of("topic"),
-                      what + " topic " + in_quotes(spec.topic) +
-                          " has a level starting with '_' (reserved for the gateway)");
-                break;
-            }
-            // Like a tag name: under a topic with a `set` level, an exchange's own topics
-            // would be another's write topics, or share their /set/result.
-            if (level == "set") {
-                error(marks.of("topic"),
-                      what + " topic " + in_quotes(spec.topic) +
-                          " has a level 'set', reserved for writes: the gateway takes "
-                          "{topic}/set and {topic}/{tag}/set as write requests and answers "
-                          "on their /set/result");
-                break;
-            }
-            start = end + 1;
+        // Like a tag name: under a topic with a `set` level, an exchange's own topics would be
+        // another's write topics, or share their /set/result.
+        if (const auto level = reserved_level(spec.topic); level == "set") {
+            error(marks.of("topic"),
+                  what + " topic " + in_quotes(spec.topic) +
+                      " has a level 'set', reserved for writes: the gateway takes "
+                      "{topic}/set and {topic}/{tag}/set as write requests and answers "
+                      "on their /set/result");
+        } else if (!level.empty()) {
+            error(marks.of("topic"),
+                  what + " topic " + in_quotes(spec.topic) +
+                      " has a level starting with '_' (reserved for the gateway)");
         }
         if (base_ok_) {
             topic_bytes = config_.mqtt.base_topic.size() + 1 + spec.topic.size();

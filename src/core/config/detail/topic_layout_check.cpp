@@ -30,18 +30,6 @@ std::string location_value_problem(std::string_view value) {
     return value.empty() ? std::string() : topic_problem(value);
 }
 
-/// The first level of `topic` (after `skip` bytes) that the gateway keeps for its own topics.
-std::string reserved_level(std::string_view topic, std::size_t skip) {
-    std::size_t start = skip;
-    while (start <= topic.size()) {
-        const auto end = std::min(topic.find('/', start), topic.size());
-        const auto level = topic.substr(start, end - start);
-        if (level == "set" || (!level.empty() && level.front() == '_')) return std::string(level);
-        start = end + 1;
-    }
-    return {};
-}
-
 class LayoutCheck {
 public:
     LayoutCheck(const Config& config, Diagnostics& out) : config_(config), out_(out) {}
@@ -146,7 +134,8 @@ void LayoutCheck::check_tag(const ExchangeConfig& exchange, const TagConfig& tag
     const auto& base = config_.mqtt.base_topic;
     const bool under_base =
         topic.starts_with(base) && topic.size() > base.size() && topic[base.size()] == '/';
-    if (auto level = reserved_level(topic, under_base ? base.size() + 1 : 0); !level.empty()) {
+    if (const auto level = reserved_level(topic, under_base ? base.size() + 1 : 0);
+        !level.empty()) {
         return says("has a level " + in_quotes(level) +
                     ", kept for the gateway's own topics ('set' and levels starting with '_')");
     }
