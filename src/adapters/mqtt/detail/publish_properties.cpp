@@ -38,7 +38,12 @@ std::uint16_t PublishProperties::alias_of(const std::string& topic, bool& known)
 }
 
 ::mqtt::message_ptr PublishProperties::to_paho(const Message& message) {
-    if (options_.version != 5) {
+    const bool expires = message.live && options_.message_expiry.count() > 0;
+    // Most of Sparkplug's and the pair's publications carry no property: no list built.
+    const bool described = !message.correlation_data.empty() || message.historical ||
+                           !message.user_properties.empty() || options_.describe_payloads ||
+                           expires || options_.topic_aliases;
+    if (options_.version != 5 || !described) {
         return ::mqtt::make_message(message.topic, message.payload, message.qos, message.retain);
     }
     ::mqtt::properties properties;
@@ -63,7 +68,7 @@ std::uint16_t PublishProperties::alias_of(const std::string& topic, bool& known)
             {::mqtt::property::CONTENT_TYPE, message.text ? "text/plain" : "application/json"});
         properties.add({::mqtt::property::PAYLOAD_FORMAT_INDICATOR, 1});
     }
-    if (message.live && options_.message_expiry.count() > 0) {
+    if (expires) {
         properties.add({::mqtt::property::MESSAGE_EXPIRY_INTERVAL,
                         static_cast<int>(options_.message_expiry.count())});
     }
