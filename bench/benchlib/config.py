@@ -32,10 +32,12 @@ def flow_map(keys):
 
 
 def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
-               store_and_forward, log_level, commands=None, link_mbps=None, redundancy=None):
+               store_and_forward, log_level, commands=None, link_mbps=None, redundancy=None,
+               location=None, mqtt_keys=None):
     """Everything above `exchanges:`."""
+    where = f", location: {flow_map(location)}" if location else ""
     lines = [
-        f"gateway: {{ id: {name}, state_dir: {state}, log_level: {log_level} }}",
+        f"gateway: {{ id: {name}, state_dir: {state}, log_level: {log_level}{where} }}",
         "mqtt:",
         f"  url: tcp://{HOST}:{broker_port}",
         "  base_topic: b",
@@ -44,6 +46,7 @@ def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, promet
         "  metrics_interval_s: 1",
         "  buffer: { max_messages: 250000 }",  # above any scenario's topic count
     ]
+    lines += [f"  {key}: {value}" for key, value in (mqtt_keys or {}).items()]
     if batch:
         lines.append("  batch: true")
     if batch == "first":
@@ -109,7 +112,7 @@ def produced_lines(produced):
 def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=False,
                  udp_port=0, point_list=False, sparkplug=False, prometheus=0,
                  store_and_forward=None, log_level="warn", state_suffix="", commands=None,
-                 link_mbps=None, redundancy=None, scaled=False):
+                 link_mbps=None, redundancy=None, scaled=False, location=None, mqtt_keys=None):
     """consumed: list of (exchange_id, tags); produced: list of (exchange_id, tags, period_ms,
     destination). With point_list, the consumed tags are rows of one CSV ({name}.csv, a SCADA
     point list whose Node column names the exchange) that every consumed exchange names in
@@ -118,12 +121,14 @@ def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=
     `eip.commands` keys ({key: YAML text}), for the command responder. link_mbps: the
     `eip.link_mbps` to write (None: none). redundancy: the `redundancy` keys ({key: YAML
     text}), for a unit of a hot-standby pair. scaled: every consumed tag written inline gets
-    SCALE."""
+    SCALE. location: the gateway's `location` ({key: YAML text}); mqtt_keys: more `mqtt` keys
+    ({key: YAML text})."""
     path = os.path.join(tmp, name + ".yaml")
     state = os.path.join(tmp, name + "-state" + state_suffix)
     os.makedirs(state, exist_ok=True)
     lines = head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, prometheus,
-                       store_and_forward, log_level, commands, link_mbps, redundancy)
+                       store_and_forward, log_level, commands, link_mbps, redundancy,
+                       location, mqtt_keys)
     lines.append("exchanges:")
     consumed_yaml, rows = consumed_lines(name, consumed, point_list, scaled)
     lines += consumed_yaml + produced_lines(produced)

@@ -26,6 +26,7 @@ class Processes:
                 "max_inflight_messages 1000\n"
                 "max_queued_messages 1000000\n"
                 "max_queued_bytes 0\n"
+                "max_topic_alias 65535\n"  # every topic's alias (scenario 15)
             )
         self.spawn_broker("tuned", ["mosquitto", "-c", conf], port)
         # No configuration file: Mosquitto 2.0's defaults, listening on the loopback only.

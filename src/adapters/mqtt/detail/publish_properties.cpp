@@ -72,8 +72,10 @@ std::uint16_t PublishProperties::alias_of(const std::string& topic, bool& known)
         properties.add({::mqtt::property::MESSAGE_EXPIRY_INTERVAL,
                         static_cast<int>(options_.message_expiry.count())});
     }
+    // Only live values repeat often enough to earn one of the broker's few aliases (Mosquitto
+    // grants 10): the state, `_status` and `_meta` sent first would otherwise take them all.
     bool known = false;
-    const auto alias = options_.topic_aliases ? alias_of(message.topic, known) : 0;
+    const auto alias = options_.topic_aliases && message.live ? alias_of(message.topic, known) : 0;
     if (alias != 0) properties.add({::mqtt::property::TOPIC_ALIAS, alias});
     if (known) aliased_.fetch_add(1, std::memory_order_relaxed);
     auto out = ::mqtt::make_message(known ? std::string() : message.topic, message.payload,

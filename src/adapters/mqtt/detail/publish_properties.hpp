@@ -2,7 +2,8 @@
 /// The MQTT 5 properties of each publication (docs/mqtt-api.md, "MQTT 5 metadata"): correlation
 /// data, the `historical` mark and the user properties a message carries, the content type and
 /// payload format indicator of a client that describes its payloads, the expiry of live values,
-/// and topic aliases, assigned per connection up to the broker's Topic Alias Maximum.
+/// and topic aliases, assigned to live values per connection up to the broker's Topic Alias
+/// Maximum.
 
 #include <mqtt/message.h>
 

@@ -1,7 +1,7 @@
 // The MQTT 5 properties of a publication (docs/mqtt-api.md, "MQTT 5 metadata"), as handed to
 // Paho: nothing over MQTT 3.1.1, a content type and format indicator when the client describes
-// its payloads, user properties and expiry as the message asks, and a topic's alias given on
-// its first publication of a connection and sent alone after it.
+// its payloads, user properties and expiry as the message asks, and a live value's topic given
+// an alias on its first publication of a connection and sent alone after it.
 
 #include "adapters/mqtt/detail/publish_properties.hpp"
 
@@ -92,6 +92,23 @@ TEST(PublishProperties, ATopicIsNamedOnceThenSentByItsAliasUpToTheBrokersMaximum
     const auto renewed = properties.to_paho(data("plant/area/asset/SPEED"));
     EXPECT_EQ(renewed->get_topic(), "plant/area/asset/SPEED");
     EXPECT_EQ(alias_of(renewed), 1);
+}
+
+TEST(PublishProperties, OnlyLiveValuesTakeTheBrokersFewAliases) {
+    ClientOptions options;
+    options.topic_aliases = true;
+    PublishProperties properties(options);
+    properties.on_connected(1);
+    // The state and `_status`, sent before any value, leave the one alias to the value.
+    for (const char* topic : {"b/_gateway/g/state", "b/e1/_status", "b/e1/_status"}) {
+        auto said = data(topic);
+        said.live = false;
+        const auto out = properties.to_paho(said);
+        EXPECT_EQ(out->get_topic(), topic);
+        EXPECT_EQ(alias_of(out), 0);
+    }
+    EXPECT_EQ(alias_of(properties.to_paho(data("plant/area/asset/SPEED"))), 1);
+    EXPECT_EQ(properties.to_paho(data("plant/area/asset/SPEED"))->get_topic(), "");
 }
 
 TEST(PublishProperties, NoAliasWhereTheBrokerTakesNone) {
