@@ -107,6 +107,21 @@ TEST(LeaderKept, AHealthyLeaderDeposedByAStaleClaimIsCaught) {
     EXPECT_THAT(leader_kept(renewals, roles, {{"", {2000ms, 3000ms}}}, 500ms, 5000ms), IsEmpty());
 }
 
+TEST(LeaderKept, ALeaderWhoseRenewalsStalledWithNoFaultInjectedMayStandDown) {
+    // gw-a renews every 250 ms until 1,000 ms; the next two reach the broker together at
+    // 1,735 ms, with its standby: its lease was not acknowledged in time.
+    auto renewals = renewing("gw-a", 5, 0ms, 1000ms);
+    renewals.push_back({"gw-a", 5, 1735ms});
+    renewals.push_back({"gw-a", 5, 1735ms});
+    const std::vector<Role> roles{{"gw-a", true, 0ms}, {"gw-a", false, 1735ms}};
+    EXPECT_THAT(leader_kept(renewals, roles, {}, 500ms, 5000ms), IsEmpty());
+    // On time throughout, it stands down for nothing of its own: caught.
+    auto steady = renewing("gw-a", 5, 0ms, 1750ms);
+    EXPECT_THAT(
+        leader_kept(steady, {{"gw-a", true, 0ms}, {"gw-a", false, 1750ms}}, {}, 500ms, 5000ms),
+        ElementsAre(HasSubstr("gw-a stood down at 1750 ms while renewing")));
+}
+
 std::vector<Sent> sent_upto(std::int64_t last) {
     std::vector<Sent> out;
     for (std::int64_t n = 1; n <= last; ++n) {
@@ -226,6 +241,34 @@ TEST(WritesAnsweredOnce, AWriteLostWithAKilledBrokerIsExcusedFromAnAnswerNotFrom
                 ElementsAre(HasSubstr("write w1 (1001.000000, at 300 ms) never answered"),
                             HasSubstr("write w4 (1004.000000, at 2700 ms) never answered"),
                             HasSubstr("write w5 (1005.000000, at 900 ms) answered 2 times")));
+}
+
+TEST(WritesAnsweredOnce, TheKillsExcuseReachesAsFarBackAsTheRunsOwnPaceAdds) {
+    // Mosquitto killed from 10,000 to 12,000 ms; the horizon is 2,100 ms. Away from the kill,
+    // w1 took 300 ms to be answered: the machine's pace this run.
+    const std::vector<Write> writes{
+        {"w1", 1001, 1000ms}, {"w2", 1002, 7700ms}, {"w3", 1003, 7500ms}};
+    const std::vector<Answer> answers{{"w1", false, "standby", 1300ms}};
+    const std::vector<Span> killed{{10000ms, 12000ms}};
+    // w2, 2,300 ms before the kill, is within 2,100 + 300; w3, 2,500 ms before, is not.
+    EXPECT_THAT(writes_answered_once(writes, answers, {}, 100ms, killed, 2100ms),
+                ElementsAre(HasSubstr("write w3 (1003.000000, at 7500 ms) never answered")));
+}
+
+TEST(WritesAnsweredOnce, TheSameAnswerAgainAcrossACutIsQosOnesRepeatNothingElseIs) {
+    // The path to the broker cut from 1,000 to 1,500 ms; an answer is due within 500 ms.
+    const std::vector<Write> writes{
+        {"w1", 1001, 800ms}, {"w2", 1002, 100ms}, {"w3", 1003, 850ms}, {"w4", 1004, 1600ms}};
+    const std::vector<Answer> answers{
+        {"w1", false, "standby", 900ms},  {"w1", false, "standby", 1600ms},    // in flight: excused
+        {"w2", false, "standby", 200ms},  {"w2", false, "standby", 1700ms},    // long before it
+        {"w3", false, "standby", 950ms},  {"w3", false, "above max", 1650ms},  // disagrees
+        {"w4", false, "standby", 1700ms}, {"w4", false, "standby", 1800ms}};   // after it
+    const std::vector<Span> cut{{1000ms, 1500ms}};
+    EXPECT_THAT(writes_answered_once(writes, answers, {}, 100ms, {}, 500ms, cut),
+                ElementsAre(HasSubstr("write w2 (1002.000000, at 100 ms) answered 2 times"),
+                            HasSubstr("write w3 (1003.000000, at 850 ms) contradicted"),
+                            HasSubstr("write w4 (1004.000000, at 1600 ms) answered 2 times")));
 }
 
 TEST(Report, NamesTheCheckerOnEachLine) {

@@ -166,7 +166,7 @@ std::map<std::string, std::string> ChaosRig::check() const {
     // takes over's worth more (the pair's write horizon, app/redundancy/pair_writes.hpp).
     add("writes answered once",
         writes_answered_once(writes_, answers, capture, settings_.takeover, broker_lost_,
-                             2 * settings_.takeover + 2 * settings_.produce_period));
+                             2 * settings_.takeover + 2 * settings_.produce_period, disrupted_));
     return out;
 }
 

@@ -39,7 +39,8 @@ Exchanges::Exchanges(boost::asio::any_io_executor loop, ExchangesOptions options
       northbound_(northbound),
       totals_(totals),
       clock_(clock),
-      image_store_(options_.state_dir) {}
+      image_store_(options_.state_dir),
+      router_(clock) {}
 
 Exchanges::~Exchanges() = default;
 
