@@ -15,6 +15,7 @@
 #include "eip2mqtt/app/northbound/northbounds.hpp"
 #include "eip2mqtt/app/redundancy/role.hpp"
 #include "eip2mqtt/app/reload/reload_check.hpp"
+#include "eip2mqtt/app/status/status_module.hpp"
 
 namespace eip2mqtt::app {
 
@@ -54,6 +55,9 @@ std::vector<std::unique_ptr<Module>> Gateway::compose(ExchangesModule*& exchange
         config_, loop, clock_, south->exchanges(), south->north(),
         [this] { return metrics_sources(); },
         [this](const MetricsSources& sources) { notifier_.status(status_line(sources)); });
+    auto status =
+        status::make_status_module(config_, loop, clock_, south->exchanges(), metrics->endpoint(),
+                                   [this] { return metrics_sources(); });
     exchanges = south.get();
     // Stopped in reverse: the inputs first, the lease before the connections it fences, the
     // gateway's main connection (its `offline`) last.
@@ -62,6 +66,7 @@ std::vector<std::unique_ptr<Module>> Gateway::compose(ExchangesModule*& exchange
     modules.push_back(std::move(south));
     modules.push_back(std::move(commands));  // null without eip.commands: the list drops it
     modules.push_back(std::move(metrics));
+    modules.push_back(std::move(status));  // null without metrics.listen
     modules.push_back(std::make_unique<Watchdog>(loop, notifier_));
     return modules;
 }

@@ -14,6 +14,10 @@
 namespace eip2mqtt::test {
 
 std::string http_get(std::uint16_t port, const std::string& path) {
+    return http_request(port, "GET", path);
+}
+
+std::string http_request(std::uint16_t port, const std::string& method, const std::string& path) {
     const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
     if (fd < 0) return {};
     timeval timeout{5, 0};
@@ -21,7 +25,7 @@ std::string http_get(std::uint16_t port, const std::string& path) {
     const auto address = loopback(port);
     std::string response;
     if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0) {
-        const std::string request = "GET " + path + " HTTP/1.0\r\nHost: localhost\r\n\r\n";
+        const std::string request = method + " " + path + " HTTP/1.0\r\nHost: localhost\r\n\r\n";
         if (::send(fd, request.data(), request.size(), 0) == static_cast<ssize_t>(request.size())) {
             char buffer[4096];
             for (;;) {

@@ -9,6 +9,8 @@ namespace eip2mqtt::test {
 /// GET `path` over a plain HTTP/1.0 connection to 127.0.0.1:`port`; the whole response, or
 /// an empty string when nothing answered within 5 s.
 std::string http_get(std::uint16_t port, const std::string& path);
+/// The same with another method (`HEAD`, `POST`...).
+std::string http_request(std::uint16_t port, const std::string& method, const std::string& path);
 
 /// A client that connects to 127.0.0.1:`port`, sends `sent` (nothing, or part of a request)
 /// and then nothing more, until destroyed: what a slow or hostile client does to a server.

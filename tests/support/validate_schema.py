@@ -14,7 +14,9 @@ other parsers refuse them. The schema itself is checked against its metaschema f
 """
 
 import json
+import pathlib
 import sys
+import warnings
 
 import jsonschema
 
@@ -27,7 +29,12 @@ def _validator(schema_path):
             schema = json.load(f)
         cls = jsonschema.validators.validator_for(schema)
         cls.check_schema(schema)
-        _validators[schema_path] = cls(schema)
+        # A "$ref" to another file ("status.json#/$defs/consumed") is read beside this one.
+        base = pathlib.Path(schema_path).absolute().as_uri()
+        with warnings.catch_warnings():  # deprecated in newer jsonschema, not yet removed
+            warnings.simplefilter("ignore", DeprecationWarning)
+            resolver = jsonschema.RefResolver(base_uri=base, referrer=schema)
+        _validators[schema_path] = cls(schema, resolver=resolver)
     return _validators[schema_path]
 
 

@@ -14,7 +14,7 @@
 #include <string_view>
 #include <utility>
 
-#include "adapters/metrics/detail/health_pages.hpp"
+#include "adapters/metrics/detail/listener_routes.hpp"
 
 namespace eip2mqtt::adapters::metrics {
 namespace {
@@ -304,7 +304,7 @@ PrometheusEndpoint::PrometheusEndpoint(const std::string& listen,
     impl_->health = std::make_shared<HealthState>(liveness_timeout, clock);
     try {
         impl_->exposer = std::make_unique<prometheus::Exposer>(detail::server_options(listen),
-                                                               &detail::health_callbacks());
+                                                               &detail::listener_callbacks());
     } catch (const std::exception& e) {
         // civetweb's CivetException: typically the port is taken or the address is not ours.
         throw std::runtime_error("cannot listen for metrics on " + listen + ": " + e.what());
@@ -315,12 +315,17 @@ PrometheusEndpoint::PrometheusEndpoint(const std::string& listen,
 }
 
 PrometheusEndpoint::~PrometheusEndpoint() {
-    for (const int port : impl_->ports) detail::unregister_health(port);
+    for (const int port : impl_->ports) detail::unregister_port(port);
 }
 
 void PrometheusEndpoint::update(const MetricsSnapshot& snapshot) {
     impl_->collectable->set(to_families(snapshot));
     impl_->health->update(snapshot, impl_->health->clock().monotonic());
+}
+
+void PrometheusEndpoint::serve_pages(PageHandler pages) {
+    auto shared = pages ? std::make_shared<const PageHandler>(std::move(pages)) : nullptr;
+    for (const int port : impl_->ports) detail::register_pages(port, shared);
 }
 
 std::uint16_t PrometheusEndpoint::port() const {

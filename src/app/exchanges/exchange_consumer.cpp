@@ -233,7 +233,7 @@ void ExchangeConsumer::report_tags(core::MonoTime now, bool all,
 }
 
 void ExchangeConsumer::report_status(core::MonoTime now, bool periodic) {
-    northbound_.consumed_status({plan_, exchange_, last_seen_ms_, clock_});
+    northbound_.consumed_status(status());
     if (periodic) {
         status_grid_.reported_on_grid(now);
     } else {

@@ -291,8 +291,7 @@ void ExchangeProducer::on_tick(core::MonoTime now) {
     report_status();
 }
 
-void ExchangeProducer::report_status() {
-    status_.last_sent = counters_.sent;
+ProducedStatus ExchangeProducer::status() const {
     ProducedStatus status;
     status.paused = failing_;
     status.request_id = image_.next_request_id();
@@ -300,7 +299,12 @@ void ExchangeProducer::report_status() {
     status.writes_pending = image_.pending();
     status.saved = save_.saved();
     status.save_error = save_.error();
-    northbound_.produced_status(*plan_, status);
+    return status;
+}
+
+void ExchangeProducer::report_status() {
+    status_.last_sent = counters_.sent;
+    northbound_.produced_status(*plan_, status());
 }
 
 void ExchangeProducer::republish(core::WallTime wall) {

@@ -12,7 +12,8 @@ std::unique_ptr<adapters::metrics::PrometheusEndpoint> make_endpoint(
         config.metrics.listen, adapters::metrics::PrometheusEndpoint::default_liveness_timeout,
         clock);
     spdlog::info(
-        "Prometheus metrics on http://{0}/metrics, health on http://{0}/healthz and /readyz",
+        "Prometheus metrics on http://{0}/metrics, health on http://{0}/healthz and /readyz, "
+        "status on http://{0}/api/status",
         config.metrics.listen);
     return endpoint;
 }

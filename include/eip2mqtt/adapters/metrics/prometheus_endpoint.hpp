@@ -1,7 +1,8 @@
 #pragma once
 /// The optional Prometheus endpoint (`metrics.listen`): serves GET /metrics in the text
 /// exposition format from the last MetricsSnapshot it was given (prometheus-cpp's civetweb
-/// server, on threads of its own), and beside it /healthz and /readyz (health.hpp).
+/// server, on threads of its own), and beside it /healthz and /readyz (health.hpp) and the
+/// status API (page_handler.hpp).
 ///
 /// Metrics, all prefixed `eip2mqtt_` (counters end in `_total`):
 ///   exchange_state{exchange,direction,state}            gauge, 1 for the current state, 0 for
@@ -42,6 +43,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/clock/system_clock.hpp"
+#include "eip2mqtt/adapters/metrics/page_handler.hpp"
 #include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/command/command_counters.hpp"
 #include "eip2mqtt/core/exchange/consume_counters.hpp"
@@ -131,6 +133,10 @@ public:
 
     /// The port actually listened on.
     std::uint16_t port() const;
+
+    /// Answers what `pages` serves (under /api/) from now on; an empty handler stops, after
+    /// which a request already in `pages` may still finish. Any thread.
+    void serve_pages(PageHandler pages);
 
 private:
     struct Impl;

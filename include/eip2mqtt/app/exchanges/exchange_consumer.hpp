@@ -67,6 +67,10 @@ public:
     std::uint64_t wrong_source() const { return exchange_.counters().wrong_source; }
     /// When this exchange's configuration took effect (the consumer was made).
     core::WallTime configured_at() const { return configured_at_; }
+    /// What its `_status` says, now.
+    ConsumedStatus status() const { return {plan_, exchange_, last_seen_ms_, clock_}; }
+    /// The timestamp of the values its tags report (ms since 1970).
+    std::int64_t timestamp_ms() const { return timestamp_ms_; }
 
 private:
     /// `key` names the sample (SampleBatch::key); none for a refresh or a republish.

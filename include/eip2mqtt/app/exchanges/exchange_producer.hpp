@@ -132,6 +132,8 @@ public:
     /// True when the file holds the image being produced, or a newer one.
     bool saved() const { return save_.saved(); }
     const core::exchange::ProducedImage& image() const { return image_; }
+    /// What its `_status` says, now.
+    ProducedStatus status() const;
     /// When the last datagram left; nullopt before the first.
     std::optional<core::WallTime> last_sent() const { return last_sent_; }
     /// When this exchange's configuration took effect (the producer was made).

@@ -36,6 +36,8 @@ public:
     void start(core::MonoTime now) override;
     void tick(const TickTimes& times) override;
     void stop() override { timer_.cancel(); }
+    /// The listener of `metrics.listen`; null without one.
+    adapters::metrics::PrometheusEndpoint* endpoint() { return prometheus_.get(); }
     /// A new interval applies at once: the wait under way was for the old one.
     void apply(const core::config::Config& next) override;
 

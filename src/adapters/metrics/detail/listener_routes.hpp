@@ -1,7 +1,8 @@
 #pragma once
-/// /healthz and /readyz on the metrics listener: civetweb's begin_request callback answers them
-/// before prometheus-cpp's handlers see the request. The callback is a plain function of the
-/// connection, so it finds the HealthState of the listener a request came to by its port.
+/// What the metrics listener answers besides prometheus-cpp's /metrics: /healthz and /readyz,
+/// and the status API under /api/. civetweb's begin_request callback answers them before
+/// prometheus-cpp's handlers see the request. The callback is a plain function of the
+/// connection, so it finds what the listener a request came to serves by its port.
 
 #include <CivetServer.h>
 
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/metrics/health.hpp"
+#include "eip2mqtt/adapters/metrics/page_handler.hpp"
 
 namespace eip2mqtt::adapters::metrics::detail {
 
@@ -26,10 +28,13 @@ inline constexpr int request_timeout_ms = 2000;
 std::vector<std::string> server_options(const std::string& listen);
 
 /// The callbacks to hand prometheus::Exposer; they live as long as the process.
-const CivetCallbacks& health_callbacks();
+const CivetCallbacks& listener_callbacks();
 
-/// Requests to `port` are answered from `state` until unregister_health(port). Thread-safe.
+/// Requests to `port` are answered from `state` until unregister_port(port). Thread-safe.
 void register_health(int port, std::shared_ptr<const HealthState> state);
-void unregister_health(int port);
+/// Requests under /api/ to `port` go to `pages` (null: none, 404). Thread-safe.
+void register_pages(int port, std::shared_ptr<const PageHandler> pages);
+/// Nothing more is answered for `port`.
+void unregister_port(int port);
 
 }  // namespace eip2mqtt::adapters::metrics::detail

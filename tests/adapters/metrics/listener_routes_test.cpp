@@ -1,6 +1,7 @@
-// /healthz and /readyz served beside /metrics on the endpoint's own listener.
+// /healthz, /readyz and the status API's pages served beside /metrics on the endpoint's own
+// listener.
 
-#include "adapters/metrics/detail/health_pages.hpp"
+#include "adapters/metrics/detail/listener_routes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,6 +19,7 @@ namespace {
 
 using namespace std::chrono_literals;
 using test::http_get;
+using test::http_request;
 
 MetricsSnapshot snapshot(bool connected, const std::string& state) {
     MetricsSnapshot s;
@@ -119,6 +121,43 @@ TEST(HealthPages, AClientThatSendsNoRequestIsDisconnectedAfterTheRequestTimeout)
     // civetweb's default held them 30 s; the bound leaves room for a busy machine.
     EXPECT_TRUE(silent.closed_by_server(detail::request_timeout_ms + 8000));
     EXPECT_TRUE(half.closed_by_server(detail::request_timeout_ms + 8000));
+}
+
+TEST(StatusPages, AreServedUnderApiReadOnlyWithTheirSecurityHeaders) {
+    PrometheusEndpoint endpoint("127.0.0.1:0");
+    EXPECT_EQ(status_and_body(http_get(endpoint.port(), "/api/status")).first, "404");
+    std::vector<std::string> asked;
+    endpoint.serve_pages([&](std::string_view path) -> std::optional<HttpAnswer> {
+        asked.emplace_back(path);
+        if (path != "/api/status") return std::nullopt;
+        return HttpAnswer{200, "application/json", R"({"up":true})"};
+    });
+    const auto response = http_get(endpoint.port(), "/api/status?x=1");
+    EXPECT_EQ(status_and_body(response),
+              std::make_pair(std::string("200"), std::string(R"({"up":true})")));
+    for (const auto* header :
+         {"Content-Type: application/json", "Cache-Control: no-store",
+          "X-Content-Type-Options: nosniff", "X-Frame-Options: DENY",
+          "Content-Security-Policy: default-src 'self'; frame-ancestors 'none'"}) {
+        EXPECT_NE(response.find(header), std::string::npos) << header << " in " << response;
+    }
+    EXPECT_EQ(status_and_body(http_get(endpoint.port(), "/api/nothing")).first, "404");
+    // HEAD: the headers alone. Anything else is refused before the handler is asked.
+    EXPECT_EQ(status_and_body(http_request(endpoint.port(), "HEAD", "/api/status")),
+              std::make_pair(std::string("200"), std::string()));
+    for (const auto* method : {"POST", "PUT", "DELETE"}) {
+        const auto refused = http_request(endpoint.port(), method, "/api/status");
+        EXPECT_EQ(status_and_body(refused).first, "405") << method;
+        EXPECT_NE(refused.find("Allow: GET, HEAD"), std::string::npos) << refused;
+    }
+    EXPECT_EQ(asked, (std::vector<std::string>{"/api/status", "/api/nothing", "/api/status"}));
+    // The health probes and the metrics are the listener's as before.
+    endpoint.update(snapshot(true, "ok"));
+    EXPECT_EQ(status_and_body(http_get(endpoint.port(), "/healthz")).first, "200");
+    EXPECT_NE(http_get(endpoint.port(), "/metrics").find("eip2mqtt_mqtt_connected 1"),
+              std::string::npos);
+    endpoint.serve_pages(nullptr);
+    EXPECT_EQ(status_and_body(http_get(endpoint.port(), "/api/status")).first, "404");
 }
 
 }  // namespace

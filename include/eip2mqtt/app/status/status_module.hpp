@@ -1,0 +1,64 @@
+#pragma once
+/// The status API on the metrics listener (docs/operations.md, "Status API"): GET /api/status
+/// and /api/exchanges/{name}, read-only. The HTTP server's threads never touch the gateway's
+/// state: each request is handed to the loop, which builds the document between two events,
+/// and the thread waits for it (request_wait at most: a loop that does not answer is
+/// answered 503).
+///
+/// Threading: the module on the loop; its page handler on the server's threads.
+
+#include <boost/asio/any_io_executor.hpp>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string_view>
+
+#include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
+#include "eip2mqtt/app/module.hpp"
+#include "eip2mqtt/app/status/status_documents.hpp"
+#include "eip2mqtt/core/clock.hpp"
+#include "eip2mqtt/core/config/config.hpp"
+
+namespace eip2mqtt::app::status {
+
+class StatusModule final : public Module {
+public:
+    using Sources = std::function<MetricsSources()>;
+
+    /// How long a request waits for the loop before it is answered 503.
+    static constexpr std::chrono::milliseconds request_wait{2000};
+
+    /// Serves on `endpoint` from start() to stop(). The endpoint may go before the module
+    /// (the modules die in their order, the metrics first): only stop() touches it after start.
+    StatusModule(const core::config::Config& config, boost::asio::any_io_executor loop,
+                 const core::Clock& clock, const Exchanges& exchanges,
+                 adapters::metrics::PrometheusEndpoint& endpoint, Sources sources);
+
+    void start(core::MonoTime now) override;
+    void stop() override;
+    void apply(const core::config::Config& next) override;
+
+private:
+    /// The answer to GET `path`, on the loop.
+    std::optional<adapters::metrics::HttpAnswer> answer(std::string_view path);
+
+    boost::asio::any_io_executor loop_;
+    const core::Clock& clock_;
+    const Exchanges& exchanges_;
+    adapters::metrics::PrometheusEndpoint& endpoint_;
+    Sources sources_;
+    GatewayFacts facts_;
+    /// What the handler's posted requests reach: gone with the module, so that a request
+    /// still queued on the loop then finds nothing to ask.
+    std::shared_ptr<StatusModule*> self_;
+};
+
+/// The status API on `endpoint` (metrics.listen's listener); null without one.
+std::unique_ptr<Module> make_status_module(const core::config::Config& config,
+                                           boost::asio::any_io_executor loop,
+                                           const core::Clock& clock, const Exchanges& exchanges,
+                                           adapters::metrics::PrometheusEndpoint* endpoint,
+                                           StatusModule::Sources sources);
+
+}  // namespace eip2mqtt::app::status
