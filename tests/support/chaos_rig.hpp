@@ -117,11 +117,12 @@ private:
     std::chrono::milliseconds end_{0};
 
     std::vector<promises::Write> writes_;
-    std::vector<promises::Span> disrupted_;         ///< broker paths down (QoS 1 repeats excused)
-    std::vector<promises::Span> unreachable_;       ///< no unit could reach the broker
-    std::vector<promises::Span> broker_lost_;       ///< Mosquitto killed, until back
-    std::vector<promises::Span> faulted_;           ///< every fault, for the required samples
-    std::vector<promises::UnitFault> unit_faults_;  ///< by unit ("": the broker's)
+    std::vector<promises::Span> disrupted_;          ///< broker paths down (QoS 1 repeats excused)
+    std::vector<promises::Span> unreachable_;        ///< no unit could reach the broker
+    std::vector<promises::Span> broker_lost_;        ///< Mosquitto killed, until back
+    std::vector<promises::UnitFault> units_killed_;  ///< a unit killed, until restarted
+    std::vector<promises::Span> faulted_;            ///< every fault, for the required samples
+    std::vector<promises::UnitFault> unit_faults_;   ///< by unit ("": the broker's)
     std::array<std::vector<promises::Span>, 2> down_;  ///< a unit's path or process down
     std::vector<std::chrono::milliseconds> begun_;     ///< each schedule fault's start
     std::vector<std::string> story_;

@@ -131,6 +131,16 @@ std::pair<std::vector<promises::Renewal>, std::vector<promises::Role>> lease_of(
     return {renewals, roles};
 }
 
+/// Whether `unit` led at `at`: the last role it said before then was `leader`.
+bool led_at(const std::vector<promises::Role>& roles, const std::string& unit,
+            promises::Millis at) {
+    bool led = false;
+    for (const auto& role : roles) {
+        if (role.unit == unit && role.at <= at) led = role.leader;
+    }
+    return led;
+}
+
 }  // namespace
 
 std::map<std::string, std::string> ChaosRig::check() const {
@@ -162,10 +172,17 @@ std::map<std::string, std::string> ChaosRig::check() const {
     add("published was sent", published_was_sent(sent_samples, samples));
     add("samples once, in order",
         samples_once_in_order(sent_samples, required(), samples, disrupted_, lapse));
+    // What may have been lost with a write: a killed broker's unsaved messages, and a killed
+    // leader's answer, which it had not sent when the broker took the image listing it (the
+    // unit taking over reads the write answered: docs/redundancy.md, "What is left").
+    auto lost = broker_lost_;
+    for (const auto& kill : units_killed_) {
+        if (led_at(roles, kill.unit, kill.span.from)) lost.push_back(kill.span);
+    }
     // A live leader answers within a production, a save and a broker round trip; a cut one
     // takes over's worth more (the pair's write horizon, app/redundancy/pair_writes.hpp).
     add("writes answered once",
-        writes_answered_once(writes_, answers, capture, settings_.takeover, broker_lost_,
+        writes_answered_once(writes_, answers, capture, settings_.takeover, lost,
                              2 * settings_.takeover + 2 * settings_.produce_period, disrupted_));
     return out;
 }

@@ -102,6 +102,8 @@ void ChaosRig::heal(const ChaosFault& fault, std::size_t index) {
     if (path_down) disrupted_.push_back({span.from, path_back});
     if (of_broker(fault.kind)) unreachable_.push_back(span);
     if (fault.kind == ChaosKind::kill_broker) broker_lost_.push_back(span);
+    if (fault.kind == ChaosKind::kill_unit)
+        units_killed_.push_back({chaos_unit_ids[fault.unit], span});
     if (takes_unit_away(fault.kind)) down_[fault.unit].push_back(span);
     unit_faults_.push_back({of_broker(fault.kind) ? "" : chaos_unit_ids[fault.unit], span});
 }

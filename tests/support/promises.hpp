@@ -135,7 +135,8 @@ struct Answer {
 /// that arrive together are applied to one production, the last value of a tag winning).
 /// Excused: a write never answered that was sent less than `answer_within` before a span of
 /// `broker_lost` began, or during it (Mosquitto killed, with what it had not saved: the write,
-/// its answer or the image its answer waited for may have been lost with it). A loaded machine
+/// its answer or the image its answer waited for may have been lost with it; or the leader
+/// killed, with an answer it had not sent when the broker took the image listing it). A loaded machine
 /// is slower than the horizon: the longest the run took to answer a write away from every
 /// span (its own pace) is added to `answer_within`. Excused too, as
 /// docs/mqtt-api.md allows: the same answer again when the earlier copy arrived during a span
