@@ -136,8 +136,8 @@ struct Answer {
 /// Excused: a write never answered that was sent less than `answer_within` before a span of
 /// `broker_lost` began, or during it (Mosquitto killed, with what it had not saved: the write,
 /// its answer or the image its answer waited for may have been lost with it; or the leader
-/// killed, with an answer it had not sent when the broker took the image listing it). A loaded machine
-/// is slower than the horizon: the longest the run took to answer a write away from every
+/// killed, with an answer it had not sent when the broker took the image listing it). A loaded
+/// machine is slower than the horizon: the longest the run took to answer a write away from every
 /// span (its own pace) is added to `answer_within`. Excused too, as
 /// docs/mqtt-api.md allows: the same answer again when the earlier copy arrived during a span
 /// of `disrupted` or less than `answer_within` before it began, and this one after it began
