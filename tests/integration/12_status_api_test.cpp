@@ -137,5 +137,42 @@ TEST_F(StatusApiTest, SaysWhenTheConfigurationWasReloaded) {
     EXPECT_GE(config["loaded_at"].get<std::int64_t>(), before.get<std::int64_t>());
 }
 
+/// The `data:` of the first event named `name` in an event stream's text, parsed (null: none).
+json event_data(const std::string& stream, const std::string& name) {
+    const auto at = stream.find("event: " + name + "\ndata: ");
+    if (at == std::string::npos) return json();
+    const auto from = at + name.size() + 14;
+    return json::parse(stream.substr(from, stream.find('\n', from) - from), nullptr, false);
+}
+
+TEST_F(StatusApiTest, ThePageAndItsEventStreamFollowTheDatagramsLive) {
+    const auto page = http_get(port_, "/");
+    EXPECT_EQ(status_and_body(page).first, "200");
+    EXPECT_NE(page.find("Content-Type: text/html"), std::string::npos) << page;
+    EXPECT_NE(page.find(R"(src="/status.js")"), std::string::npos) << page;
+    EXPECT_EQ(status_and_body(http_get(port_, "/status.js")).first, "200");
+
+    send(DatagramBuilder("10.0.0.2", 7, 8).request_id(1).set("0.0", TagType::dint, 100).build());
+    expect_field(topic("pump/SPEED"), "value", "100");
+    const auto stream =
+        http_read_until(port_, "/api/events?open=pump,nothing", "event: exchange", 10000);
+    EXPECT_NE(stream.find("Content-Type: text/event-stream"), std::string::npos) << stream;
+    const auto status = event_data(stream, "status");
+    const auto pump = event_data(stream, "exchange");
+    ASSERT_TRUE(pump.is_object()) << stream;
+    EXPECT_EQ(pump["tags"][0]["sample"]["value"], 100);
+    EXPECT_EQ(schema_problem(schema_file("api-status.json"), status.dump()), "");
+    EXPECT_EQ(schema_problem(schema_file("api-exchange.json"), pump.dump()), "");
+
+    // A new value reaches an open stream; then the exchange, silent, turns stale in it.
+    send(DatagramBuilder("10.0.0.2", 7, 8).request_id(2).set("0.0", TagType::dint, 200).build());
+    EXPECT_NE(http_read_until(port_, "/api/events?open=pump", R"("value":200)", 10000)
+                  .find(R"("value":200)"),
+              std::string::npos);
+    EXPECT_NE(http_read_until(port_, "/api/events", R"("state":"stale")", 20000)
+                  .find(R"("state":"stale")"),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace eip2mqtt::test

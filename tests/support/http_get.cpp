@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 
 #include "tests/support/loopback.hpp"
 
@@ -33,6 +34,31 @@ std::string http_request(std::uint16_t port, const std::string& method, const st
                 if (n <= 0) break;
                 response.append(buffer, static_cast<std::size_t>(n));
             }
+        }
+    }
+    ::close(fd);
+    return response;
+}
+
+std::string http_read_until(std::uint16_t port, const std::string& path, const std::string& needle,
+                            int timeout_ms) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    if (fd < 0) return {};
+    const auto address = loopback(port);
+    std::string response;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+    if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0) {
+        const std::string request = "GET " + path + " HTTP/1.0\r\nHost: localhost\r\n\r\n";
+        ::send(fd, request.data(), request.size(), 0);
+        while (response.find(needle) == std::string::npos) {
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                deadline - std::chrono::steady_clock::now());
+            pollfd entry{fd, POLLIN, 0};
+            if (left.count() <= 0 || ::poll(&entry, 1, static_cast<int>(left.count())) <= 0) break;
+            char buffer[4096];
+            const auto n = ::recv(fd, buffer, sizeof buffer, 0);
+            if (n <= 0) break;
+            response.append(buffer, static_cast<std::size_t>(n));
         }
     }
     ::close(fd);

@@ -9,6 +9,10 @@ namespace eip2mqtt::test {
 /// GET `path` over a plain HTTP/1.0 connection to 127.0.0.1:`port`; the whole response, or
 /// an empty string when nothing answered within 5 s.
 std::string http_get(std::uint16_t port, const std::string& path);
+/// GET `path` and read the response until it holds `needle` (a stream that does not end: an
+/// event stream), at most `timeout_ms`; what was read, whether or not it holds it.
+std::string http_read_until(std::uint16_t port, const std::string& path, const std::string& needle,
+                            int timeout_ms);
 /// The same with another method (`HEAD`, `POST`...).
 std::string http_request(std::uint16_t port, const std::string& method, const std::string& path);
 

@@ -323,9 +323,10 @@ void PrometheusEndpoint::update(const MetricsSnapshot& snapshot) {
     impl_->health->update(snapshot, impl_->health->clock().monotonic());
 }
 
-void PrometheusEndpoint::serve_pages(PageHandler pages) {
+void PrometheusEndpoint::serve_pages(PageHandler pages, EventSource events) {
     auto shared = pages ? std::make_shared<const PageHandler>(std::move(pages)) : nullptr;
-    for (const int port : impl_->ports) detail::register_pages(port, shared);
+    auto stream = events ? std::make_shared<const EventSource>(std::move(events)) : nullptr;
+    for (const int port : impl_->ports) detail::register_pages(port, shared, stream);
 }
 
 std::uint16_t PrometheusEndpoint::port() const {

@@ -4,6 +4,8 @@
 #include <future>
 #include <string>
 
+#include "eip2mqtt/app/status/status_page.hpp"
+
 namespace eip2mqtt::app::status {
 namespace {
 
@@ -16,6 +18,25 @@ HttpAnswer json_answer(std::string body) { return {200, "application/json", std:
 HttpAnswer unavailable() {
     return {503, "application/json",
             R"({"error":"the gateway's loop did not answer in time: it is busy or stopping"})"};
+}
+
+/// What `ask(module)` returns, asked on `loop` by a server thread that waits for it (wait at
+/// most: then `late`). A module gone, or a loop that ended with the question unasked, is late.
+template <typename T, typename Ask>
+T on_loop(const boost::asio::any_io_executor& loop, const std::weak_ptr<StatusModule*>& self,
+          Ask ask, T late) {
+    auto asked = std::make_shared<std::promise<T>>();
+    auto answered = asked->get_future();
+    boost::asio::post(loop, [asked, self, ask = std::move(ask), late] {
+        const auto module = self.lock();
+        asked->set_value(module ? ask(**module) : late);
+    });
+    if (answered.wait_for(StatusModule::request_wait) != std::future_status::ready) return late;
+    try {
+        return answered.get();
+    } catch (const std::future_error&) {
+        return late;
+    }
 }
 
 }  // namespace
@@ -37,22 +58,21 @@ StatusModule::StatusModule(const core::config::Config& config, boost::asio::any_
 void StatusModule::start(core::MonoTime now) {
     facts_.started_mono = now;
     facts_.started_at = facts_.loaded_at = clock_.wall();
-    // A server thread posts the request and waits; the loop answers between two events.
-    endpoint_.serve_pages([loop = loop_, self = std::weak_ptr<StatusModule*>(self_)](
-                              std::string_view path) -> std::optional<HttpAnswer> {
-        auto asked = std::make_shared<std::promise<std::optional<HttpAnswer>>>();
-        auto answered = asked->get_future();
-        boost::asio::post(loop, [asked, self, path = std::string(path)] {
-            const auto module = self.lock();
-            asked->set_value(module ? (*module)->answer(path) : std::optional(unavailable()));
+    const std::weak_ptr<StatusModule*> self = self_;
+    endpoint_.serve_pages(
+        [loop = loop_, self](std::string_view path) {
+            return on_loop(
+                loop, self, [path = std::string(path)](StatusModule& m) { return m.answer(path); },
+                std::optional(unavailable()));
+        },
+        [loop = loop_, self](const std::vector<std::string>& open) {
+            // A page whose loop does not answer is told so, and stays open.
+            return on_loop(
+                loop, self, [open](StatusModule& m) { return std::optional(m.events(open)); },
+                std::optional<std::string>(
+                    "event: unavailable\ndata: {\"error\":\"the gateway's loop did not answer "
+                    "in time\"}\n\n"));
         });
-        if (answered.wait_for(request_wait) != std::future_status::ready) return unavailable();
-        try {
-            return answered.get();
-        } catch (const std::future_error&) {  // the loop ended with the request unanswered
-            return unavailable();
-        }
-    });
 }
 
 void StatusModule::stop() { endpoint_.serve_pages(nullptr); }
@@ -62,20 +82,41 @@ void StatusModule::apply(const core::config::Config& next) {
     facts_.brokers = next.mqtt.urls;
     facts_.loaded_at = clock_.wall();
     ++facts_.reloads;
+    status_at_.reset();
+}
+
+const std::string& StatusModule::status_now() {
+    const auto now = clock_.monotonic();
+    if (!status_at_ || now - *status_at_ >= status_reuse) {
+        status_ = status_document(facts_, sources_(), exchanges_, now, clock_.wall());
+        status_at_ = now;
+    }
+    return status_;
+}
+
+std::string StatusModule::events(const std::vector<std::string>& open) {
+    std::string out = "event: status\ndata: " + status_now() + "\n\n";
+    for (const auto& name : open) {
+        if (auto document =
+                exchange_document(exchanges_, name, clock_.monotonic(), clock_.wall())) {
+            out += "event: exchange\ndata: " + *document + "\n\n";
+        }
+    }
+    return out;
 }
 
 std::optional<HttpAnswer> StatusModule::answer(std::string_view path) {
-    const auto now = clock_.monotonic();
-    const auto wall = clock_.wall();
-    if (path == "/api/status") {
-        return json_answer(status_document(facts_, sources_(), exchanges_, now, wall));
-    }
+    if (path == "/api/status") return json_answer(status_now());
     if (path.starts_with(exchanges_prefix)) {
         const auto name = path.substr(exchanges_prefix.size());
-        if (auto document = exchange_document(exchanges_, name, now, wall)) {
+        if (auto document =
+                exchange_document(exchanges_, name, clock_.monotonic(), clock_.wall())) {
             return json_answer(std::move(*document));
         }
         return HttpAnswer{404, "application/json", R"({"error":"no such exchange"})"};
+    }
+    if (const auto* resource = page_resource(path)) {
+        return HttpAnswer{200, std::string(resource->content_type), std::string(resource->text)};
     }
     return std::nullopt;
 }

@@ -5,12 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "adapters/metrics/detail/event_stream.hpp"
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "tests/support/http_get.hpp"
 
@@ -158,6 +161,43 @@ TEST(StatusPages, AreServedUnderApiReadOnlyWithTheirSecurityHeaders) {
               std::string::npos);
     endpoint.serve_pages(nullptr);
     EXPECT_EQ(status_and_body(http_get(endpoint.port(), "/api/status")).first, "404");
+}
+
+TEST(EventStream, TheOpenParameterIsDecodedIntoNames) {
+    EXPECT_EQ(detail::open_names(nullptr), std::vector<std::string>{});
+    EXPECT_EQ(detail::open_names("x=1"), std::vector<std::string>{});
+    EXPECT_EQ(detail::open_names("open=pump,turbine%201,,x%2Cy"),
+              (std::vector<std::string>{"pump", "turbine 1", "x", "y"}));
+}
+
+TEST(EventStream, StreamsWhatItsSourceGivesUntilThePagesStop) {
+    PrometheusEndpoint endpoint("127.0.0.1:0");
+    std::atomic<int> batches{0};
+    std::vector<std::string> asked_open;
+    std::mutex mutex;
+    endpoint.serve_pages([](std::string_view) { return std::optional<HttpAnswer>(); },
+                         [&](const std::vector<std::string>& open) {
+                             std::lock_guard lock(mutex);
+                             asked_open = open;
+                             return std::optional<std::string>(
+                                 "event: beat\ndata: " + std::to_string(++batches) + "\n\n");
+                         });
+    const auto stream =
+        test::http_read_until(endpoint.port(), "/api/events?open=a,b", "data: 2\n\n", 10000);
+    EXPECT_NE(stream.find("Content-Type: text/event-stream"), std::string::npos) << stream;
+    EXPECT_NE(stream.find("X-Frame-Options: DENY"), std::string::npos) << stream;
+    EXPECT_NE(stream.find("event: beat\ndata: 1\n\nevent: beat\ndata: 2\n\n"), std::string::npos)
+        << stream;
+    {
+        std::lock_guard lock(mutex);
+        EXPECT_EQ(asked_open, (std::vector<std::string>{"a", "b"}));
+    }
+    // An open stream ends once the pages are no longer served.
+    test::SilentClient page(endpoint.port(), "GET /api/events HTTP/1.0\r\n\r\n");
+    ASSERT_TRUE(page.connected());
+    EXPECT_EQ(status_and_body(http_request(endpoint.port(), "POST", "/api/events")).first, "405");
+    endpoint.serve_pages(nullptr);
+    EXPECT_TRUE(page.closed_by_server(10000));
 }
 
 }  // namespace

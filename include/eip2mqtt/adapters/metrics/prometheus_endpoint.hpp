@@ -134,9 +134,11 @@ public:
     /// The port actually listened on.
     std::uint16_t port() const;
 
-    /// Answers what `pages` serves (under /api/) from now on; an empty handler stops, after
-    /// which a request already in `pages` may still finish. Any thread.
-    void serve_pages(PageHandler pages);
+    /// Answers what `pages` serves (`/`, its script and style, and under /api/) and streams
+    /// what `events` gives (/api/events) from now on; empty handlers stop, after which a
+    /// request already in them may still finish, and each stream ends within a second. Any
+    /// thread.
+    void serve_pages(PageHandler pages, EventSource events = nullptr);
 
 private:
     struct Impl;

@@ -1,6 +1,7 @@
 #pragma once
-/// The status API on the metrics listener (docs/operations.md, "Status API"): GET /api/status
-/// and /api/exchanges/{name}, read-only. The HTTP server's threads never touch the gateway's
+/// The status page and its API on the metrics listener (docs/operations.md, "Status API"):
+/// GET /, /api/status, /api/exchanges/{name} and the page's event stream /api/events,
+/// read-only. The HTTP server's threads never touch the gateway's
 /// state: each request is handed to the loop, which builds the document between two events,
 /// and the thread waits for it (request_wait at most: a loop that does not answer is
 /// answered 503).
@@ -12,7 +13,9 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "eip2mqtt/app/module.hpp"
@@ -39,9 +42,17 @@ public:
     void stop() override;
     void apply(const core::config::Config& next) override;
 
-private:
+    /// How long a status document is served again before it is built anew: ten pages open
+    /// build it about once a second between them, not ten times.
+    static constexpr std::chrono::milliseconds status_reuse{500};
+
     /// The answer to GET `path`, on the loop.
     std::optional<adapters::metrics::HttpAnswer> answer(std::string_view path);
+    /// The events of a page's stream: the status, and each exchange of `open`. On the loop.
+    std::string events(const std::vector<std::string>& open);
+
+private:
+    const std::string& status_now();
 
     boost::asio::any_io_executor loop_;
     const core::Clock& clock_;
@@ -49,6 +60,8 @@ private:
     adapters::metrics::PrometheusEndpoint& endpoint_;
     Sources sources_;
     GatewayFacts facts_;
+    std::string status_;  ///< the last status document, built at status_at_
+    std::optional<core::MonoTime> status_at_;
     /// What the handler's posted requests reach: gone with the module, so that a request
     /// still queued on the loop then finds nothing to ask.
     std::shared_ptr<StatusModule*> self_;

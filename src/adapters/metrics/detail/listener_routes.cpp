@@ -7,13 +7,32 @@
 #include <string>
 #include <string_view>
 
+#include "adapters/metrics/detail/event_stream.hpp"
+
 namespace eip2mqtt::adapters::metrics::detail {
 namespace {
 
 struct Routes {
     std::shared_ptr<const HealthState> health;
     std::shared_ptr<const PageHandler> pages;
+    std::shared_ptr<const EventSource> events;
 };
+
+/// Every answer's headers besides its type and length: never cached, and nothing on the page
+/// is sniffed, framed or loaded from another origin.
+constexpr std::pair<const char*, const char*> common_headers[] = {
+    {"Cache-Control", "no-store"},
+    {"X-Content-Type-Options", "nosniff"},
+    {"X-Frame-Options", "DENY"},
+    {"Content-Security-Policy", "default-src 'self'; frame-ancestors 'none'"},
+};
+
+std::string header_lines() {
+    std::string out;
+    for (const auto& [name, value] : common_headers)
+        out += std::string(name) + ": " + value + "\r\n";
+    return out;
+}
 
 struct Registry {
     std::mutex mutex;
@@ -36,12 +55,9 @@ int answer(mg_connection* connection, const HttpAnswer& out, bool head = false) 
     const auto length = std::to_string(out.body.size());
     mg_response_header_start(connection, out.status);
     mg_response_header_add(connection, "Content-Type", out.content_type.c_str(), -1);
-    mg_response_header_add(connection, "Cache-Control", "no-store", -1);
-    // Nothing here is meant to be framed, sniffed or loaded from another origin.
-    mg_response_header_add(connection, "X-Content-Type-Options", "nosniff", -1);
-    mg_response_header_add(connection, "X-Frame-Options", "DENY", -1);
-    mg_response_header_add(connection, "Content-Security-Policy",
-                           "default-src 'self'; frame-ancestors 'none'", -1);
+    for (const auto& [name, value] : common_headers) {
+        mg_response_header_add(connection, name, value, -1);
+    }
     if (out.status == 405) mg_response_header_add(connection, "Allow", "GET, HEAD", -1);
     mg_response_header_add(connection, "Content-Length", length.c_str(), -1);
     mg_response_header_send(connection);
@@ -60,13 +76,25 @@ HttpAnswer api_error(int status, std::string_view text) {
     return {status, "application/json", R"({"error":")" + std::string(text) + "\"}"};
 }
 
-/// The status API: read-only, GET and HEAD alone.
+bool is_page(std::string_view path) {
+    return path == "/" || path == "/status.js" || path == "/status.css" ||
+           path.starts_with("/api/");
+}
+
+/// The status page and its API: read-only, GET and HEAD alone.
 int answer_api(mg_connection* connection, const mg_request_info& request, std::string_view path,
-               const PageHandler* pages) {
+               const Routes& routes) {
     const std::string_view method = request.request_method ? request.request_method : "";
     if (method != "GET" && method != "HEAD") {
         return answer(connection, api_error(405, "read-only: GET or HEAD"));
     }
+    if (path == "/api/events" && method == "GET" && routes.events) {
+        const int port = request.server_port;
+        static const std::string headers = header_lines();
+        return stream_events(connection, request.query_string, headers,
+                             [port] { return routes_for(port).events; });
+    }
+    const auto* pages = routes.pages.get();
     std::optional<HttpAnswer> out;
     if (pages != nullptr) out = (*pages)(path);
     return answer(connection, out ? *out : api_error(404, "no such page"), method == "HEAD");
@@ -80,8 +108,7 @@ int begin_request(mg_connection* connection) {
     if ((path == "/healthz" || path == "/readyz") && routes.health) {
         return answer_health(connection, path, *routes.health);
     }
-    if (path.starts_with("/api/"))
-        return answer_api(connection, *request, path, routes.pages.get());
+    if (is_page(path)) return answer_api(connection, *request, path, routes);
     return 0;
 }
 
@@ -111,10 +138,12 @@ void register_health(int port, std::shared_ptr<const HealthState> state) {
     r.ports[port].health = std::move(state);
 }
 
-void register_pages(int port, std::shared_ptr<const PageHandler> pages) {
+void register_pages(int port, std::shared_ptr<const PageHandler> pages,
+                    std::shared_ptr<const EventSource> events) {
     auto& r = registry();
     std::lock_guard lock(r.mutex);
     r.ports[port].pages = std::move(pages);
+    r.ports[port].events = std::move(events);
 }
 
 void unregister_port(int port) {

@@ -1,6 +1,7 @@
 #pragma once
 /// What the metrics listener answers besides prometheus-cpp's /metrics: /healthz and /readyz,
-/// and the status API under /api/. civetweb's begin_request callback answers them before
+/// and the status page with its API (/, /status.js, /status.css, /api/...). civetweb's
+/// begin_request callback answers them before
 /// prometheus-cpp's handlers see the request. The callback is a plain function of the
 /// connection, so it finds what the listener a request came to serves by its port.
 
@@ -17,7 +18,10 @@ namespace eip2mqtt::adapters::metrics::detail {
 
 /// Worker threads of the listener: each serves one connection at a time, so this many slow or
 /// silent clients at once are needed before a probe waits.
-inline constexpr int server_threads = 16;
+inline constexpr int server_threads = 24;
+/// Event streams open at once, over every listener: each holds a worker for as long as its page
+/// is open, and the probes must always find one (a stream beyond is answered 503).
+inline constexpr int max_event_streams = 16;
 /// How long a connection may take to send its request (and each write to it may take): a
 /// client that connects and sends nothing, or half a request line, holds a worker this long,
 /// not civetweb's default 30 s. Scrapes and probes send their request at once.
@@ -32,8 +36,10 @@ const CivetCallbacks& listener_callbacks();
 
 /// Requests to `port` are answered from `state` until unregister_port(port). Thread-safe.
 void register_health(int port, std::shared_ptr<const HealthState> state);
-/// Requests under /api/ to `port` go to `pages` (null: none, 404). Thread-safe.
-void register_pages(int port, std::shared_ptr<const PageHandler> pages);
+/// Requests for the status pages on `port` go to `pages`, event streams to `events` (null:
+/// none, 404). Thread-safe.
+void register_pages(int port, std::shared_ptr<const PageHandler> pages,
+                    std::shared_ptr<const EventSource> events);
 /// Nothing more is answered for `port`.
 void unregister_port(int port);
 

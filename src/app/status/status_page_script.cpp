@@ -1,0 +1,183 @@
+// The status page's script: it reads the gateway's event stream (/api/events, the status once
+// a second and the tags of each open exchange) and draws the page from it, with text nodes only
+// (names come from the configuration and must never be read as markup).
+
+#include "eip2mqtt/app/status/status_page.hpp"
+
+namespace eip2mqtt::app::status::detail {
+
+const std::string_view page_script = R"js("use strict";
+const PAGE_SIZE = 100;
+const state = { status: null, open: new Map(), sort: "name", up: true, page: 0, stream: null };
+
+function el(tag, text, cls) {
+  const node = document.createElement(tag);
+  if (text !== undefined && text !== null) node.textContent = String(text);
+  if (cls) node.className = cls;
+  return node;
+}
+
+function ageText(ms) {
+  if (ms === null || ms === undefined) return "never";
+  return ms < 10000 ? (ms / 1000).toFixed(1) + " s ago" : Math.round(ms / 1000) + " s ago";
+}
+
+function timeText(ms) {
+  return ms ? new Date(ms).toLocaleString() : "-";
+}
+
+function valueText(value) {
+  if (Array.isArray(value)) return "[" + value.map(valueText).join(", ") + "]";
+  if (typeof value === "number" && !Number.isInteger(value)) return value.toPrecision(6);
+  return String(value);
+}
+
+function row(exchange) {
+  const s = exchange.status || {};
+  return {
+    name: exchange.name, direction: exchange.direction, state: s.state || "",
+    rate: exchange.datagrams_per_s || 0,
+    age: exchange.last_seen_age_ms === undefined ? -1 : exchange.last_seen_age_ms,
+    missed: s.missed || 0, restarts: s.restarts || 0, clock: s.clock || "", exchange: exchange
+  };
+}
+
+function connect() {
+  if (state.stream) state.stream.close();
+  const names = Array.from(state.open.keys()).map(encodeURIComponent).join(",");
+  const stream = new EventSource("/api/events" + (names ? "?open=" + names : ""));
+  state.stream = stream;
+  const live = document.getElementById("live");
+  stream.addEventListener("status", (event) => {
+    state.status = JSON.parse(event.data);
+    live.textContent = "live";
+    live.className = "live";
+    draw();
+  });
+  stream.addEventListener("exchange", (event) => {
+    const exchange = JSON.parse(event.data);
+    if (state.open.has(exchange.name)) state.open.set(exchange.name, exchange);
+    draw();
+  });
+  stream.addEventListener("unavailable", () => {
+    live.textContent = "gateway busy";
+    live.className = "live off";
+  });
+  stream.onerror = () => {
+    live.textContent = "disconnected";
+    live.className = "live off";
+  };
+}
+
+function drawFacts(gateway) {
+  document.getElementById("gateway-id").textContent = gateway.id;
+  const m = gateway.metrics || {};
+  const facts = [
+    ["version", gateway.version],
+    ["uptime", (m.uptime_s || 0) + " s"],
+    ["configuration", gateway.config.file + " (loaded " + timeText(gateway.config.loaded_at) +
+      ", " + gateway.config.reloads + " reload(s))"],
+    ["MQTT", (gateway.mqtt.connected ? "connected to " + m.broker : "not connected") +
+      " (brokers: " + gateway.mqtt.brokers.join(", ") + ")"],
+    ["publications", (m.published || 0) + " made, " + (m.buffered || 0) + " waiting"]
+  ];
+  if (m.history) facts.push(["store and forward", m.history.entries + " entries waiting"]);
+  if (m.sparkplug) facts.push(["Sparkplug", m.sparkplug.node_births + " node birth(s)"]);
+  const list = document.getElementById("facts");
+  list.replaceChildren();
+  for (const [name, value] of facts) {
+    list.append(el("dt", name), el("dd", value));
+  }
+}
+
+function tagTable(exchange) {
+  const table = el("table");
+  const head = el("tr");
+  for (const name of ["tag", "value", "unit", "quality", "time"]) head.append(el("th", name));
+  table.append(head);
+  for (const tag of exchange.tags || []) {
+    const line = el("tr");
+    const sample = tag.sample;
+    line.append(el("td", tag.name), el("td", sample ? valueText(sample.value) : "-", "number"),
+      el("td", tag.unit || ""),
+      el("td", sample ? sample.quality : "no value", sample ? "quality-" + sample.quality : ""),
+      el("td", sample ? timeText(sample.timestamp) : "-"));
+    table.append(line);
+  }
+  return table;
+}
+
+function sortedRows() {
+  const search = document.getElementById("search").value.toLowerCase();
+  const rows = (state.status ? state.status.exchanges : []).map(row)
+    .filter((r) => r.name.toLowerCase().includes(search));
+  const key = state.sort;
+  rows.sort((a, b) => (a[key] < b[key] ? -1 : a[key] > b[key] ? 1 : 0) * (state.up ? 1 : -1));
+  return rows;
+}
+
+function drawExchanges() {
+  const rows = sortedRows();
+  const pages = Math.max(1, Math.ceil(rows.length / PAGE_SIZE));
+  state.page = Math.min(state.page, pages - 1);
+  document.getElementById("count").textContent = rows.length + " exchange(s)";
+  document.getElementById("page").textContent = "page " + (state.page + 1) + " of " + pages;
+  const body = document.querySelector("#exchange-table tbody");
+  body.replaceChildren();
+  for (const r of rows.slice(state.page * PAGE_SIZE, (state.page + 1) * PAGE_SIZE)) {
+    const line = el("tr", null, "exchange " + (r.state === "ok" || r.state === "producing" ? "ok"
+      : r.state === "waiting" ? "waiting" : "bad"));
+    line.dataset.name = r.name;
+    line.append(el("td", r.name), el("td", r.direction), el("td", r.state, "state"),
+      el("td", r.rate.toFixed(1), "number"),
+      el("td", r.direction === "consume" ? ageText(r.exchange.last_seen_age_ms) : "-"),
+      el("td", r.missed, "number"), el("td", r.restarts, "number"), el("td", r.clock));
+    line.addEventListener("click", () => toggle(r.name));
+    body.append(line);
+    const open = state.open.get(r.name);
+    if (open) {
+      const cell = el("td");
+      cell.colSpan = 8;
+      cell.append(tagTable(open));
+      const tags = el("tr", null, "tags");
+      tags.append(cell);
+      body.append(tags);
+    }
+  }
+}
+
+function draw() {
+  if (!state.status) return;
+  drawFacts(state.status.gateway);
+  drawExchanges();
+}
+
+function toggle(name) {
+  if (state.open.has(name)) state.open.delete(name);
+  else state.open.set(name, { name: name, tags: [] });
+  connect();
+  draw();
+}
+
+document.addEventListener("DOMContentLoaded", () => {
+  for (const th of document.querySelectorAll("#exchange-table th")) {
+    th.addEventListener("click", () => {
+      state.up = state.sort === th.dataset.key ? !state.up : true;
+      state.sort = th.dataset.key;
+      for (const other of document.querySelectorAll("#exchange-table th")) {
+        other.className = other === th ? (state.up ? "sorted up" : "sorted") : "";
+      }
+      draw();
+    });
+  }
+  document.getElementById("search").addEventListener("input", () => { state.page = 0; draw(); });
+  document.getElementById("previous").addEventListener("click", () => {
+    state.page = Math.max(0, state.page - 1);
+    draw();
+  });
+  document.getElementById("next").addEventListener("click", () => { state.page += 1; draw(); });
+  connect();
+});
+)js";
+
+}  // namespace eip2mqtt::app::status::detail
