@@ -155,8 +155,19 @@ function draw() {
 function toggle(name) {
   if (state.open.has(name)) state.open.delete(name);
   else state.open.set(name, { name: name, tags: [] });
+  // The open exchanges are the page's address too: a link opens them again.
+  const names = Array.from(state.open.keys()).map(encodeURIComponent).join(",");
+  history.replaceState(null, "", names ? "#open=" + names : location.pathname);
   connect();
   draw();
+}
+
+function openFromAddress() {
+  const match = /^#open=(.*)$/.exec(location.hash);
+  if (!match) return;
+  for (const name of match[1].split(",")) {
+    if (name) state.open.set(decodeURIComponent(name), { name: decodeURIComponent(name), tags: [] });
+  }
 }
 
 document.addEventListener("DOMContentLoaded", () => {
@@ -176,6 +187,7 @@ document.addEventListener("DOMContentLoaded", () => {
     draw();
   });
   document.getElementById("next").addEventListener("click", () => { state.page += 1; draw(); });
+  openFromAddress();
   connect();
 });
 )js";
