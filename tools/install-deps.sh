@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages eip2mqtt builds, runs and tests with, and the npm packages of
-# one test tool and of the benchmark's Node-RED peer. Idempotent: installs only what is missing,
+# two test tools and of the benchmark's Node-RED peer. Idempotent: installs only what is missing,
 # and runs apt-get update only when something is.
 set -euo pipefail
 
@@ -13,7 +13,7 @@ packages=(
   mosquitto mosquitto-clients
   clang libclang-rt-14-dev tshark systemd openssl iproute2 iptables
   python3 python3-jsonschema nodejs universal-ctags
-  lintian stress-ng
+  lintian stress-ng chromium
 )
 
 missing=()
@@ -45,6 +45,14 @@ tahu="$root/tests/support/tahu"
 if [ ! -d "$tahu/node_modules/sparkplug-payload" ]; then
   need_npm
   npm ci --prefix "$tahu" --no-audit --no-fund --ignore-scripts --loglevel=error
+fi
+
+# puppeteer-core, for the status page's browser test: it drives Debian's chromium (no browser
+# of its own is downloaded; versions pinned by its lock file).
+browser="$root/tests/support/browser"
+if [ ! -d "$browser/node_modules/puppeteer-core" ]; then
+  need_npm
+  npm ci --prefix "$browser" --no-audit --no-fund --ignore-scripts --loglevel=error
 fi
 
 # Node-RED, for the benchmark's peer row (bench/README.md, scenario 14): the flow a user would

@@ -11,6 +11,7 @@ const std::string_view page_html = R"html(<!DOCTYPE html>
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>eip2mqtt</title>
 <link rel="stylesheet" href="/status.css">
+<link rel="icon" href="/favicon.svg" type="image/svg+xml">
 <script src="/status.js" defer></script>
 </head>
 <body>

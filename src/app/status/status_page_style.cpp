@@ -30,4 +30,9 @@ tr.tags table th { cursor: default; }
 footer { margin-top: 2em; color: #5f6b76; }
 )css";
 
+const std::string_view page_icon =
+    R"svg(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 16 16">)svg"
+    R"svg(<rect width="16" height="16" rx="3" fill="#2e7d32"/>)svg"
+    R"svg(<path d="M3 11h3l2-6 2 6h3" stroke="#fff" stroke-width="1.6" fill="none"/></svg>)svg";
+
 }  // namespace eip2mqtt::app::status::detail

@@ -29,6 +29,9 @@ TEST(StatusPage, ServesThePageItsScriptAndItsStyleAndNothingElse) {
     EXPECT_EQ(page_resource("/status.js")->text.find("innerHTML"), std::string::npos);
     ASSERT_NE(page_resource("/status.css"), nullptr);
     EXPECT_EQ(page_resource("/status.css")->content_type, "text/css; charset=utf-8");
+    ASSERT_NE(page_resource("/favicon.svg"), nullptr);
+    EXPECT_EQ(page_resource("/favicon.svg")->content_type, "image/svg+xml");
+    EXPECT_NE(html->text.find(R"(<link rel="icon" href="/favicon.svg")"), std::string::npos);
     EXPECT_EQ(page_resource("/index.html"), nullptr);
     EXPECT_EQ(page_resource("/api/status"), nullptr);
 }

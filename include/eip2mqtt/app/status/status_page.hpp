@@ -11,13 +11,14 @@ struct PageResource {
     std::string_view text;
 };
 
-/// The page's resource at `path` (`/`, `/status.js`, `/status.css`), or null.
+/// The page's resource at `path` (`/`, `/status.js`, `/status.css`, `/favicon.svg`), or null.
 const PageResource* page_resource(std::string_view path);
 
 namespace detail {
 extern const std::string_view page_html;
 extern const std::string_view page_script;
 extern const std::string_view page_style;
+extern const std::string_view page_icon;
 }  // namespace detail
 
 }  // namespace eip2mqtt::app::status

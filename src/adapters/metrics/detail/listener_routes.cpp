@@ -77,7 +77,7 @@ HttpAnswer api_error(int status, std::string_view text) {
 }
 
 bool is_page(std::string_view path) {
-    return path == "/" || path == "/status.js" || path == "/status.css" ||
+    return path == "/" || path == "/status.js" || path == "/status.css" || path == "/favicon.svg" ||
            path.starts_with("/api/");
 }
 

@@ -1,0 +1,80 @@
+// The status page in a real browser: Debian's chromium, driven by puppeteer-core
+// (tests/support/browser/status_page.js), on a gateway fed datagrams. The page shows every
+// exchange, a tag's value changes on screen while datagrams come, the exchange turns stale
+// once they stop, and the console has no error. The screenshot is kept in the build tree
+// (test-artifacts/status-page.png). How long the change took is printed, never judged.
+
+#include <atomic>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "tests/support/child_process.hpp"
+#include "tests/support/datagram_builder.hpp"
+#include "tests/support/exchange_yaml.hpp"
+#include "tests/support/free_port.hpp"
+#include "tests/support/gateway_fixture.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using core::plan::TagType;
+using json = nlohmann::json;
+using namespace std::chrono_literals;
+
+/// The last line of the driver's output that is its `step`, parsed (null: none).
+json step(const std::string& output, const std::string& name) {
+    const auto at = output.rfind(R"({"step":")" + name + "\"");
+    if (at == std::string::npos) return json();
+    return json::parse(output.substr(at, output.find('\n', at) - at), nullptr, false);
+}
+
+class StatusPageBrowserTest : public GatewayTest {};
+
+TEST_F(StatusPageBrowserTest, ShowsEveryExchangeFollowsTheValuesAndTurnsStaleWithNoConsoleError) {
+    const auto port = free_tcp_port();
+    GatewayOptions options;
+    options.sections = "metrics:\n  listen: 127.0.0.1:" + std::to_string(port) + "\n";
+    start(ExchangeYaml::consume("pump", "10.0.0.2", 7).length(4).tag("SPEED", "0.0", "dint").str() +
+              ExchangeYaml::consume("fan", "10.0.0.3", 8).length(4).tag("RPM", "0.0", "dint").str(),
+          "", options);
+    // Datagrams every 100 ms with a new SPEED each, until the page saw one change (bounded).
+    std::atomic<bool> sending{true};
+    std::thread sender([&] {
+        for (std::uint16_t rid = 1; rid <= 600 && sending; ++rid) {
+            send(DatagramBuilder("10.0.0.2", 7, 4)
+                     .request_id(rid)
+                     .set("0.0", TagType::dint, std::int64_t{1000 + rid})
+                     .build());
+            std::this_thread::sleep_for(100ms);
+        }
+    });
+    const auto artifacts = std::filesystem::path(EIP2MQTT_TEST_ARTIFACTS);
+    std::filesystem::create_directories(artifacts);
+    const auto screenshot = (artifacts / "status-page.png").string();
+    std::filesystem::remove(screenshot);
+    ChildProcess browser({EIP2MQTT_NODE, EIP2MQTT_BROWSER_SCRIPT, EIP2MQTT_CHROMIUM,
+                          "http://127.0.0.1:" + std::to_string(port) + "/", "pump", "SPEED", "2",
+                          screenshot});
+    const bool changed = browser.wait_for_output(R"({"step":"changed")", 120s);
+    sending = false;
+    sender.join();
+    ASSERT_TRUE(changed) << browser.output();
+    ASSERT_TRUE(browser.wait_for_output(R"({"step":"done")", 120s)) << browser.output();
+    EXPECT_EQ(browser.wait(30s), 0) << browser.output();
+
+    const auto output = browser.output();
+    // Sorted by name, the page's first order.
+    EXPECT_EQ(step(output, "shown")["exchanges"], json::array({"fan", "pump"})) << output;
+    const auto change = step(output, "changed");
+    EXPECT_NE(change["first"], change["second"]) << output;
+    std::cout << "status page: SPEED changed on screen " << change["ms"]
+              << " ms after it was first read\n";
+    EXPECT_EQ(step(output, "stale")["state"], "stale") << output;
+    EXPECT_EQ(step(output, "done")["errors"], json::array()) << output;
+    EXPECT_TRUE(std::filesystem::exists(screenshot));
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test

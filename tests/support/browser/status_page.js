@@ -1,0 +1,68 @@
+// Drives Debian's chromium through the gateway's status page (puppeteer-core over the DevTools
+// protocol) for tests/integration/12_status_page_browser_test.cpp, and says what it saw, one
+// JSON line per step: the page showing every exchange, a tag's value changing on screen, the
+// exchange turning stale once its datagrams stop, and every console error. Each wait is on
+// the page's content, bounded in time.
+//
+//   node status_page.js CHROMIUM URL EXCHANGE TAG EXCHANGE_COUNT SCREENSHOT
+"use strict";
+const puppeteer = require("puppeteer-core");
+
+const [chromium, url, exchange, tag, count, screenshot] = process.argv.slice(2);
+const say = (line) => process.stdout.write(JSON.stringify(line) + "\n");
+
+/// The text of `tag`'s value cell in the open exchange's tags table, or null.
+function valueOf(tagName) {
+  for (const row of document.querySelectorAll("tr.tags tr")) {
+    const cells = row.querySelectorAll("td");
+    if (cells.length > 1 && cells[0].textContent === tagName) return cells[1].textContent;
+  }
+  return null;
+}
+
+async function main() {
+  const errors = [];
+  const browser = await puppeteer.launch({
+    executablePath: chromium,
+    headless: true,
+    args: ["--no-sandbox", "--disable-gpu", "--window-size=1200,900"],
+  });
+  try {
+    const page = await browser.newPage();
+    await page.setViewport({ width: 1200, height: 900 });
+    page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
+    page.on("pageerror", (e) => errors.push(String(e)));
+    await page.goto(url + "#open=" + encodeURIComponent(exchange));
+    await page.waitForFunction((n) => document.querySelectorAll("tr.exchange").length === n,
+      { timeout: 30000 }, Number(count));
+    const names = await page.$$eval("tr.exchange", (rows) => rows.map((r) => r.dataset.name));
+    say({ step: "shown", exchanges: names });
+
+    await page.evaluate(`window.valueOfTag = ${valueOf.toString()}`);
+    await page.waitForFunction((t) => window.valueOfTag(t) !== null, { timeout: 30000 }, tag);
+    const first = await page.evaluate((t) => window.valueOfTag(t), tag);
+    const since = Date.now();
+    // Bounded: a page that never changes says so with the same value twice.
+    await page.waitForFunction((t, v) => window.valueOfTag(t) !== v, { timeout: 30000 }, tag,
+      first).catch(() => null);
+    const second = await page.evaluate((t) => window.valueOfTag(t), tag);
+    say({ step: "changed", first: first, second: second, ms: Date.now() - since });
+
+    await page.waitForFunction((name) => {
+      const row = document.querySelector(`tr.exchange[data-name="${name}"]`);
+      return row !== null && row.classList.contains("bad");
+    }, { timeout: 60000 }, exchange);
+    const state = await page.$eval(`tr.exchange[data-name="${exchange}"] td.state`,
+      (cell) => cell.textContent);
+    say({ step: "stale", state: state });
+    await page.screenshot({ path: screenshot });
+  } finally {
+    await browser.close();
+  }
+  say({ step: "done", errors: errors });
+}
+
+main().catch((e) => {
+  say({ step: "failed", error: String(e && e.stack || e) });
+  process.exit(1);
+});
