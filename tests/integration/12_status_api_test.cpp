@@ -21,14 +21,6 @@ using core::plan::TagType;
 using json = nlohmann::json;
 using namespace std::chrono_literals;
 
-/// The status line's code and the body of an HTTP response.
-std::pair<std::string, std::string> status_and_body(const std::string& response) {
-    const auto space = response.find(' ');
-    const auto body = response.find("\r\n\r\n");
-    if (space == std::string::npos || body == std::string::npos) return {"", response};
-    return {response.substr(space + 1, 3), response.substr(body + 4)};
-}
-
 class StatusApiTest : public GatewayTest {
 protected:
     void SetUp() override {

@@ -18,23 +18,36 @@ std::string http_get(std::uint16_t port, const std::string& path) {
     return http_request(port, "GET", path);
 }
 
-std::string http_request(std::uint16_t port, const std::string& method, const std::string& path) {
+namespace {
+
+/// A socket connected to 127.0.0.1:`port` that sent `method path` (HTTP/1.0), reads timing out
+/// after 5 s; -1 when it could not connect.
+int send_request(std::uint16_t port, const std::string& method, const std::string& path) {
     const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    if (fd < 0) return {};
+    if (fd < 0) return -1;
     timeval timeout{5, 0};
     ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
     const auto address = loopback(port);
+    const std::string request = method + " " + path + " HTTP/1.0\r\nHost: localhost\r\n\r\n";
+    if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0 ||
+        ::send(fd, request.data(), request.size(), 0) != static_cast<ssize_t>(request.size())) {
+        ::close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+}  // namespace
+
+std::string http_request(std::uint16_t port, const std::string& method, const std::string& path) {
+    const int fd = send_request(port, method, path);
+    if (fd < 0) return {};
     std::string response;
-    if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0) {
-        const std::string request = method + " " + path + " HTTP/1.0\r\nHost: localhost\r\n\r\n";
-        if (::send(fd, request.data(), request.size(), 0) == static_cast<ssize_t>(request.size())) {
-            char buffer[4096];
-            for (;;) {
-                const auto n = ::recv(fd, buffer, sizeof buffer, 0);
-                if (n <= 0) break;
-                response.append(buffer, static_cast<std::size_t>(n));
-            }
-        }
+    char buffer[4096];
+    for (;;) {
+        const auto n = ::recv(fd, buffer, sizeof buffer, 0);
+        if (n <= 0) break;
+        response.append(buffer, static_cast<std::size_t>(n));
     }
     ::close(fd);
     return response;
@@ -42,27 +55,29 @@ std::string http_request(std::uint16_t port, const std::string& method, const st
 
 std::string http_read_until(std::uint16_t port, const std::string& path, const std::string& needle,
                             int timeout_ms) {
-    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    const int fd = send_request(port, "GET", path);
     if (fd < 0) return {};
-    const auto address = loopback(port);
     std::string response;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
-    if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0) {
-        const std::string request = "GET " + path + " HTTP/1.0\r\nHost: localhost\r\n\r\n";
-        ::send(fd, request.data(), request.size(), 0);
-        while (response.find(needle) == std::string::npos) {
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                deadline - std::chrono::steady_clock::now());
-            pollfd entry{fd, POLLIN, 0};
-            if (left.count() <= 0 || ::poll(&entry, 1, static_cast<int>(left.count())) <= 0) break;
-            char buffer[4096];
-            const auto n = ::recv(fd, buffer, sizeof buffer, 0);
-            if (n <= 0) break;
-            response.append(buffer, static_cast<std::size_t>(n));
-        }
+    while (response.find(needle) == std::string::npos) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        pollfd entry{fd, POLLIN, 0};
+        if (left.count() <= 0 || ::poll(&entry, 1, static_cast<int>(left.count())) <= 0) break;
+        char buffer[4096];
+        const auto n = ::recv(fd, buffer, sizeof buffer, 0);
+        if (n <= 0) break;
+        response.append(buffer, static_cast<std::size_t>(n));
     }
     ::close(fd);
     return response;
+}
+
+std::pair<std::string, std::string> status_and_body(const std::string& response) {
+    const auto space = response.find(' ');
+    const auto body = response.find("\r\n\r\n");
+    if (space == std::string::npos || body == std::string::npos) return {"", response};
+    return {response.substr(space + 1, 3), response.substr(body + 4)};
 }
 
 SilentClient::SilentClient(std::uint16_t port, const std::string& sent)

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 
 namespace eip2mqtt::test {
 
@@ -15,6 +16,9 @@ std::string http_read_until(std::uint16_t port, const std::string& path, const s
                             int timeout_ms);
 /// The same with another method (`HEAD`, `POST`...).
 std::string http_request(std::uint16_t port, const std::string& method, const std::string& path);
+
+/// The status line's code and the body of an HTTP response (`{"", response}` when it is none).
+std::pair<std::string, std::string> status_and_body(const std::string& response);
 
 /// A client that connects to 127.0.0.1:`port`, sends `sent` (nothing, or part of a request)
 /// and then nothing more, until destroyed: what a slow or hostile client does to a server.

@@ -28,4 +28,9 @@ constexpr WireTime wire_time(WallTime wall) {
             std::chrono::duration_cast<std::chrono::nanoseconds>(since_epoch - seconds).count())};
 }
 
+/// A wall time as the payloads carry it: milliseconds since 1970 UTC.
+constexpr std::int64_t to_ms(WallTime wall) {
+    return std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch()).count();
+}
+
 }  // namespace eip2mqtt::core

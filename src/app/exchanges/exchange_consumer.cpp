@@ -8,16 +8,6 @@
 #include "eip2mqtt/core/plan/value_codec.hpp"
 
 namespace eip2mqtt::app {
-namespace {
-
-using std::chrono::duration_cast;
-using std::chrono::milliseconds;
-
-std::int64_t to_ms(core::WallTime wall) {
-    return duration_cast<milliseconds>(wall.time_since_epoch()).count();
-}
-
-}  // namespace
 
 ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, Northbound& northbound,
                                    const core::Clock& clock)
@@ -33,7 +23,7 @@ ExchangeConsumer::ExchangeConsumer(core::plan::ExchangePlan plan, Northbound& no
 std::int64_t ExchangeConsumer::sample_time(core::MonoTime now, core::WallTime wall) {
     const auto& header = exchange_.last_header();
     const auto before = clock_.state();
-    const auto timestamp = clock_.on_datagram(header.time_s, header.time_ns, to_ms(wall));
+    const auto timestamp = clock_.on_datagram(header.time_s, header.time_ns, core::to_ms(wall));
     if (clock_.state() != before || !clock_seen_) log_clock(!clock_seen_, now);
     clock_seen_ = true;
     return timestamp;
@@ -121,7 +111,7 @@ core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::D
     if (outcome.state_changed) log_state_change(state_before, now, &datagram);
     if (outcome.accepted()) {
         arrivals_.on_arrival(now);
-        last_seen_ms_ = to_ms(wall);
+        last_seen_ms_ = core::to_ms(wall);
         timestamp_ms_ = sample_time(now, wall);
         const auto& header = exchange_.last_header();
         key_ = {header.request_id, header.time_s, header.time_ns, 0};
@@ -129,7 +119,7 @@ core::exchange::ConsumeOutcome ExchangeConsumer::on_datagram(const core::wire::D
         if (exchange_.state() == reported_state_) report_tags(now, false, key_);
     } else if (outcome.state_changed) {
         // Entering signature or length mismatch: the last values are to be reported as bad.
-        timestamp_ms_ = to_ms(wall);
+        timestamp_ms_ = core::to_ms(wall);
     }
     if (!(outcome.state_changed || clock_.state() != clock_before) || !settle(now)) {
         status_dirty_ = true;
@@ -170,7 +160,7 @@ void ExchangeConsumer::on_tick(core::MonoTime now, core::WallTime wall, bool ref
         log_state_change(state_before, now);
         // docs/protocol.md §4 rule 8: every tag of a stale exchange is reported again as
         // stale, keeping its last value; the timestamp says when it was found stale.
-        timestamp_ms_ = to_ms(wall);
+        timestamp_ms_ = core::to_ms(wall);
         settle(now);
         return;
     }

@@ -17,10 +17,6 @@ std::vector<std::byte> restored_data(const std::optional<ImageHandover>& handove
     return file.loaded().value_or(std::vector<std::byte>{});
 }
 
-std::int64_t to_ms(core::WallTime wall) {
-    return std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch()).count();
-}
-
 }  // namespace
 
 ExchangeProducer::ExchangeProducer(core::plan::ExchangePlan plan,
@@ -279,7 +275,8 @@ void ExchangeProducer::report_echo(core::WallTime wall, bool all) {
     }
     echoed_.assign(data.begin(), data.end());
     if (samples.empty()) return;
-    northbound_.tag_samples({*plan_, core::quality::Quality::good, to_ms(wall), all, samples});
+    northbound_.tag_samples(
+        {*plan_, core::quality::Quality::good, core::to_ms(wall), all, samples});
 }
 
 void ExchangeProducer::on_tick(core::MonoTime now) {

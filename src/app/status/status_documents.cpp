@@ -16,10 +16,6 @@ namespace {
 namespace json_tree = northbound::json_tree;
 using core::append_json_string;
 
-std::int64_t ms_since_1970(core::WallTime wall) {
-    return std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch()).count();
-}
-
 /// `,"name":"text"`
 void append_field(std::string& out, std::string_view name, std::string_view text) {
     fmt::format_to(std::back_inserter(out), R"(,"{}":)", name);
@@ -45,7 +41,7 @@ void append_consumer(std::string& out, const ExchangeConsumer& consumer, core::M
     fmt::format_to(std::back_inserter(out), R"(,"timeout_ms":{},"datagrams_per_s":{:.3f})",
                    consumer.plan().timeout.count(), consumer.arrivals().rate(now));
     out += R"(,"last_seen_age_ms":)";
-    out += status.last_seen_ms ? std::to_string(ms_since_1970(wall) - *status.last_seen_ms)
+    out += status.last_seen_ms ? std::to_string(core::to_ms(wall) - *status.last_seen_ms)
                                : std::string("null");
     out += R"(,"status":)";
     out += json_tree::format_status_payload(status);
@@ -94,12 +90,12 @@ std::string status_document(const GatewayFacts& facts, const MetricsSources& sou
     std::string out = R"({"gateway":{"id":)";
     append_json_string(out, facts.id);
     append_field(out, "version", EIP2MQTT_VERSION);
-    fmt::format_to(std::back_inserter(out), R"(,"time":{},"started_at":{})", ms_since_1970(wall),
-                   ms_since_1970(facts.started_at));
+    fmt::format_to(std::back_inserter(out), R"(,"time":{},"started_at":{})", core::to_ms(wall),
+                   core::to_ms(facts.started_at));
     out += R"(,"config":{"file":)";
     append_json_string(out, facts.config_file);
     fmt::format_to(std::back_inserter(out), R"(,"loaded_at":{},"reloads":{}}})",
-                   ms_since_1970(facts.loaded_at), facts.reloads);
+                   core::to_ms(facts.loaded_at), facts.reloads);
     fmt::format_to(std::back_inserter(out), R"(,"mqtt":{{"connected":{},"brokers":[)",
                    sources.mqtt.connected);
     for (std::size_t i = 0; i < facts.brokers.size(); ++i) {
@@ -141,7 +137,7 @@ std::optional<std::string> exchange_document(const Exchanges& exchanges, std::st
         if (producer->plan().spec.name != name) continue;
         append_producer(out, *producer);
         append_tags(out, producer->plan(), producer->image().data(), core::quality::Quality::good,
-                    ms_since_1970(wall));
+                    core::to_ms(wall));
         return out + '}';
     }
     return std::nullopt;

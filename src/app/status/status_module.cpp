@@ -96,9 +96,10 @@ const std::string& StatusModule::status_now() {
 
 std::string StatusModule::events(const std::vector<std::string>& open) {
     std::string out = "event: status\ndata: " + status_now() + "\n\n";
+    const auto now = clock_.monotonic();
+    const auto wall = clock_.wall();
     for (const auto& name : open) {
-        if (auto document =
-                exchange_document(exchanges_, name, clock_.monotonic(), clock_.wall())) {
+        if (auto document = exchange_document(exchanges_, name, now, wall)) {
             out += "event: exchange\ndata: " + *document + "\n\n";
         }
     }

@@ -23,6 +23,7 @@ namespace {
 using namespace std::chrono_literals;
 using test::http_get;
 using test::http_request;
+using test::status_and_body;
 
 MetricsSnapshot snapshot(bool connected, const std::string& state) {
     MetricsSnapshot s;
@@ -33,14 +34,6 @@ MetricsSnapshot snapshot(bool connected, const std::string& state) {
     pump.state = state;
     s.exchanges.push_back(pump);
     return s;
-}
-
-/// The status line's code and the body of an HTTP response.
-std::pair<std::string, std::string> status_and_body(const std::string& response) {
-    const auto space = response.find(' ');
-    const auto body = response.find("\r\n\r\n");
-    if (space == std::string::npos || body == std::string::npos) return {"", response};
-    return {response.substr(space + 1, 3), response.substr(body + 4)};
 }
 
 TEST(HealthPages, AnswerFromTheLastUpdateBesideTheMetrics) {

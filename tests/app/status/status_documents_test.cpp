@@ -6,22 +6,19 @@
 #include "eip2mqtt/app/status/status_documents.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <boost/asio/io_context.hpp>
 #include <chrono>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "tests/app/support/test_exchanges.hpp"
 #include "tests/app/support/test_plan.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
-#include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app::status {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using core::plan::Direction;
 using core::plan::TagType;
@@ -29,17 +26,7 @@ using json = nlohmann::json;
 
 class StatusDocumentsTest : public ::testing::Test {
 protected:
-    StatusDocumentsTest()
-        : dir_(fs::temp_directory_path() /
-               ("eip2mqtt_status_documents_" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-                std::to_string(::getpid()))) {
-        fs::create_directories(dir_);
-        ExchangesOptions options;
-        options.sender.bind = "127.0.0.1";
-        options.state_dir = dir_.string();
-        exchanges_ = std::make_unique<Exchanges>(loop_.get_executor(), std::move(options),
-                                                 northbound_, totals_, clock_);
+    StatusDocumentsTest() {
         auto speed = test::test_tag("SPEED", 0, TagType::dint);
         speed.mutable_extras().unit = "rpm";
         core::plan::Scaling scale;
@@ -57,10 +44,6 @@ protected:
         facts_.brokers = {"tcp://a:1883", "tcp://b:1883"};
         facts_.started_at = facts_.loaded_at = clock_.wall();
         facts_.started_mono = clock_.monotonic();
-    }
-    ~StatusDocumentsTest() override {
-        exchanges_.reset();
-        fs::remove_all(dir_);
     }
     void receive(std::uint16_t request_id, std::int64_t speed) {
         const auto datagram = test::DatagramBuilder("10.0.0.1", 1, 8)
@@ -80,12 +63,9 @@ protected:
         return text ? json::parse(*text) : json();
     }
 
-    fs::path dir_;
     boost::asio::io_context loop_;
     test::FakeClock clock_;
-    test::RecordingNorthbound northbound_;
-    ImageSaveTotals totals_;
-    std::unique_ptr<Exchanges> exchanges_;
+    test::TestExchanges exchanges_{loop_, clock_, "eip2mqtt_status_documents"};
     GatewayFacts facts_;
     core::write::WriteCounters writes_;
     adapters::mqtt::ClientStats mqtt_;

@@ -5,46 +5,25 @@
 #include "eip2mqtt/app/status/status_module.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
-#include <filesystem>
 #include <future>
 #include <nlohmann/json.hpp>
 
+#include "tests/app/support/test_exchanges.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
-#include "tests/support/fakes/recording_northbound.hpp"
 #include "tests/support/http_get.hpp"
 
 namespace eip2mqtt::app::status {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using json = nlohmann::json;
 
-/// The status line's code and the body of an HTTP response.
-std::pair<std::string, std::string> status_and_body(const std::string& response) {
-    const auto space = response.find(' ');
-    const auto body = response.find("\r\n\r\n");
-    if (space == std::string::npos || body == std::string::npos) return {"", response};
-    return {response.substr(space + 1, 3), response.substr(body + 4)};
-}
-
 class StatusModuleTest : public ::testing::Test {
 protected:
-    StatusModuleTest()
-        : dir_(fs::temp_directory_path() /
-               ("eip2mqtt_status_module_" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-                std::to_string(::getpid()))),
-          endpoint_("127.0.0.1:0") {
-        fs::create_directories(dir_);
-        ExchangesOptions options;
-        options.state_dir = dir_.string();
-        exchanges_ = std::make_unique<Exchanges>(loop_.get_executor(), std::move(options),
-                                                 northbound_, totals_, clock_);
+    StatusModuleTest() : endpoint_("127.0.0.1:0") {
         config_.gateway.id = "gw";
         config_.file = "/etc/a.yaml";
         module_ = make_status_module(
@@ -53,11 +32,7 @@ protected:
             });
         module_->start(clock_.monotonic());
     }
-    ~StatusModuleTest() override {
-        module_.reset();
-        exchanges_.reset();
-        fs::remove_all(dir_);
-    }
+    ~StatusModuleTest() override { module_.reset(); }
     /// GET `path` on a thread of its own while the loop runs here until it is answered.
     std::pair<std::string, std::string> get_with_loop(const std::string& path) {
         auto response = std::async(std::launch::async,
@@ -65,18 +40,15 @@ protected:
         while (response.wait_for(0s) != std::future_status::ready) {
             loop_.run_one_for(10ms);
         }
-        return status_and_body(response.get());
+        return test::status_and_body(response.get());
     }
 
-    fs::path dir_;
     boost::asio::io_context loop_;
     /// The loop has work while nothing is posted: run_one_for waits rather than stop it.
     boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_{
         loop_.get_executor()};
     test::FakeClock clock_;
-    test::RecordingNorthbound northbound_;
-    ImageSaveTotals totals_;
-    std::unique_ptr<Exchanges> exchanges_;
+    test::TestExchanges exchanges_{loop_, clock_, "eip2mqtt_status_module"};
     core::config::Config config_;
     core::write::WriteCounters writes_;
     adapters::mqtt::ClientStats mqtt_;
@@ -107,7 +79,8 @@ TEST_F(StatusModuleTest, TheLoopAnswersEachRequestAndAReloadShows) {
 
 TEST_F(StatusModuleTest, ALoopThatDoesNotTurnIsAnswered503AndAStoppedModuleNothing) {
     // Nobody runs the loop: the request waits its bound, then says why.
-    const auto [code, body] = status_and_body(test::http_get(endpoint_.port(), "/api/status"));
+    const auto [code, body] =
+        test::status_and_body(test::http_get(endpoint_.port(), "/api/status"));
     EXPECT_EQ(code, "503");
     EXPECT_NE(body.find("did not answer"), std::string::npos) << body;
     module_->stop();

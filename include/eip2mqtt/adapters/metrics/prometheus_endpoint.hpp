@@ -134,7 +134,7 @@ public:
     /// The port actually listened on.
     std::uint16_t port() const;
 
-    /// Answers what `pages` serves (`/`, its script and style, and under /api/) and streams
+    /// Answers every path but /metrics, /healthz and /readyz from `pages` and streams
     /// what `events` gives (/api/events) from now on; empty handlers stop, after which a
     /// request already in them may still finish, and each stream ends within a second. Any
     /// thread.

@@ -76,11 +76,6 @@ HttpAnswer api_error(int status, std::string_view text) {
     return {status, "application/json", R"({"error":")" + std::string(text) + "\"}"};
 }
 
-bool is_page(std::string_view path) {
-    return path == "/" || path == "/status.js" || path == "/status.css" || path == "/favicon.svg" ||
-           path.starts_with("/api/");
-}
-
 /// The status page and its API: read-only, GET and HEAD alone.
 int answer_api(mg_connection* connection, const mg_request_info& request, std::string_view path,
                const Routes& routes) {
@@ -108,7 +103,8 @@ int begin_request(mg_connection* connection) {
     if ((path == "/healthz" || path == "/readyz") && routes.health) {
         return answer_health(connection, path, *routes.health);
     }
-    if (is_page(path)) return answer_api(connection, *request, path, routes);
+    // Every other path but prometheus-cpp's is the pages': they say which they serve.
+    if (routes.pages && path != "/metrics") return answer_api(connection, *request, path, routes);
     return 0;
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 /// What the metrics listener answers besides prometheus-cpp's /metrics: /healthz and /readyz,
-/// and the status page with its API (/, /status.js, /status.css, /api/...). civetweb's
-/// begin_request callback answers them before
-/// prometheus-cpp's handlers see the request. The callback is a plain function of the
-/// connection, so it finds what the listener a request came to serves by its port.
+/// and, while the gateway serves its pages, every other path (the pages say which they serve).
+/// civetweb's begin_request callback answers them before prometheus-cpp's handlers see the
+/// request. The callback is a plain function of the connection, so it finds what the listener
+/// a request came to serves by its port.
 
 #include <CivetServer.h>
 
