@@ -257,13 +257,19 @@ TEST(WritesAnsweredOnce, TheKillsExcuseReachesAsFarBackAsTheRunsOwnPaceAdds) {
 
 TEST(WritesAnsweredOnce, TheSameAnswerAgainAcrossACutIsQosOnesRepeatNothingElseIs) {
     // The path to the broker cut from 1,000 to 1,500 ms; an answer is due within 500 ms.
-    const std::vector<Write> writes{
-        {"w1", 1001, 800ms}, {"w2", 1002, 100ms}, {"w3", 1003, 850ms}, {"w4", 1004, 1600ms}};
+    // w5: the new leader answers again what the cut leader's image listed, after the cut; the
+    // cut leader's own answer comes later still, its connection back (chaos seed 15).
+    const std::vector<Write> writes{{"w1", 1001, 800ms},
+                                    {"w2", 1002, 100ms},
+                                    {"w3", 1003, 850ms},
+                                    {"w4", 1004, 1600ms},
+                                    {"w5", 1005, 950ms}};
     const std::vector<Answer> answers{
         {"w1", false, "standby", 900ms},  {"w1", false, "standby", 1600ms},    // in flight: excused
         {"w2", false, "standby", 200ms},  {"w2", false, "standby", 1700ms},    // long before it
         {"w3", false, "standby", 950ms},  {"w3", false, "above max", 1650ms},  // disagrees
-        {"w4", false, "standby", 1700ms}, {"w4", false, "standby", 1800ms}};   // after it
+        {"w4", false, "standby", 1700ms}, {"w4", false, "standby", 1800ms},    // after it
+        {"w5", false, "standby", 1550ms}, {"w5", false, "standby", 1900ms}};   // excused
     const std::vector<Span> cut{{1000ms, 1500ms}};
     EXPECT_THAT(writes_answered_once(writes, answers, {}, 100ms, {}, 500ms, cut),
                 ElementsAre(HasSubstr("write w2 (1002.000000, at 100 ms) answered 2 times"),

@@ -217,10 +217,9 @@ std::vector<std::string> writes_answered_once(const std::vector<Write>& writes,
         const bool agree = std::all_of(got.begin(), got.end(), [&](const Answer* a) {
             return a->ok == got[0]->ok && a->error == got[0]->error;
         });
-        const auto repeated = [&](std::size_t i) {  // copy i sent again across a cut
+        const auto repeated = [&](std::size_t i) {  // copy i sent again around a disruption
             return std::any_of(disrupted.begin(), disrupted.end(), [&](const Span& d) {
-                const auto before = got[i - 1]->at;
-                return before + answer_within >= d.from && before <= d.to && d.from <= got[i]->at;
+                return w.at + answer_within >= d.from && w.at <= d.to && d.from <= got[i]->at;
             });
         };
         std::size_t excused = 0;

@@ -135,13 +135,14 @@ struct Answer {
 /// that arrive together are applied to one production, the last value of a tag winning).
 /// Excused: a write never answered that was sent less than `answer_within` before a span of
 /// `broker_lost` began, or during it (Mosquitto killed, with what it had not saved: the write,
-/// its answer or the image its answer waited for may have been lost with it; or the leader
-/// killed, with an answer it had not sent when the broker took the image listing it). A loaded
+/// its answer or the image its answer waited for may have been lost with it). A loaded
 /// machine is slower than the horizon: the longest the run took to answer a write away from every
 /// span (its own pace) is added to `answer_within`. Excused too, as
-/// docs/mqtt-api.md allows: the same answer again when the earlier copy arrived during a span
-/// of `disrupted` or less than `answer_within` before it began, and this one after it began
-/// (the answer was in flight, its acknowledgement lost with the path: QoS 1's repeat).
+/// docs/mqtt-api.md allows: the same answer again, arrived after a span of `disrupted` began,
+/// for a write sent during it or less than `answer_within` before it began (the answer was in
+/// flight, its acknowledgement lost with the path: QoS 1's repeat; or the unit taking over
+/// answered again what the old leader's image listed, the old leader's answer killed with it
+/// or held in its cut connection until the path came back).
 std::vector<std::string> writes_answered_once(const std::vector<Write>& writes,
                                               const std::vector<Answer>& answers,
                                               const std::vector<Produced>& capture, Millis reach,

@@ -58,21 +58,31 @@ std::optional<std::uint64_t> from_hex16(std::string_view text) {
     return layout;
 }
 
-/// `answers`, absent from an image of a unit that answered none (or of an older release): an
-/// empty list. nullopt when present and not a list of keys.
-std::optional<std::vector<std::uint64_t>> answers_of(const nlohmann::json& json) {
-    std::vector<std::uint64_t> answers;
-    const auto found = json.find("answers");
-    if (found == json.end()) return answers;
-    if (!found->is_array()) return std::nullopt;
-    answers.reserve(found->size());
+/// The keys listed under `name` (`answers`, `refused`): nullopt when absent (an image of a unit
+/// that answered none, or of an older release); `bad` set when present and not a list of keys.
+std::optional<std::vector<std::uint64_t>> keys_at(const nlohmann::json& json, const char* name,
+                                                  bool& bad) {
+    const auto found = json.find(name);
+    if (found == json.end()) return std::nullopt;
+    std::vector<std::uint64_t> keys;
+    if (!found->is_array()) bad = true;
+    if (bad) return keys;
+    keys.reserve(found->size());
     for (const auto& item : *found) {
         const auto key =
             item.is_string() ? from_hex16(item.get_ref<const std::string&>()) : std::nullopt;
-        if (!key) return std::nullopt;
-        answers.push_back(*key);
+        if (!key) {
+            bad = true;
+            break;
+        }
+        keys.push_back(*key);
     }
-    return answers;
+    return keys;
+}
+
+void put_keys(nlohmann::json& json, const char* name, const std::vector<std::uint64_t>& keys) {
+    auto& list = json[name] = nlohmann::json::array();
+    for (const auto key : keys) list.push_back(hex16(key));
 }
 
 const std::string* string_at(const nlohmann::json& json, const char* key) {
@@ -88,8 +98,8 @@ std::string encode_image_message(const core::redundancy::ImageMessage& image) {
                         {"layout", hex16(image.layout)},
                         {"data", to_hex(image.data)}};
     if (!image.answers.empty()) {
-        auto& answers = json["answers"] = nlohmann::json::array();
-        for (const auto key : image.answers) answers.push_back(hex16(key));
+        put_keys(json, "answers", image.answers);
+        if (image.refused) put_keys(json, "refused", *image.refused);
     }
     if (image.seq != 0) json["seq"] = image.seq;
     return json.dump();
@@ -108,16 +118,19 @@ std::optional<core::redundancy::ImageMessage> decode_image_message(std::string_v
     }
     const auto layout = from_hex16(*layout_text);
     auto data = from_hex(*data_text);
-    auto answers = answers_of(json);
+    bool bad_keys = false;
+    auto answers = keys_at(json, "answers", bad_keys);
+    auto refused = keys_at(json, "refused", bad_keys);
     const auto seq = json.find("seq");
     const bool seq_ok = seq == json.end() || seq->is_number_unsigned();
-    if (!layout || !data || !answers || !seq_ok) return std::nullopt;
+    if (!layout || !data || bad_keys || !seq_ok) return std::nullopt;
     return core::redundancy::ImageMessage{*id,
                                           epoch->get<std::uint64_t>(),
                                           *layout,
                                           std::move(*data),
-                                          std::move(*answers),
-                                          seq == json.end() ? 0 : seq->get<std::uint64_t>()};
+                                          std::move(answers).value_or(std::vector<std::uint64_t>{}),
+                                          seq == json.end() ? 0 : seq->get<std::uint64_t>(),
+                                          std::move(refused)};
 }
 
 }  // namespace eip2mqtt::app::redundancy

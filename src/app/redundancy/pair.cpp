@@ -232,8 +232,10 @@ void Pair::settle_left_writes(core::MonoTime now) {
     // left to it, nor those this unit withheld when it last stood down (answered now if not).
     const auto listed = images_->take_leader_answers();
     images_->answer_withheld(listed, now, lease_->others_renewed_epoch());
+    auto taken = writes_->take_unanswered(now, listed);
+    for (const auto& write : taken.listed) repeat_answer(write);
     // The others are settled by the image as it stands: the one the old leader last published.
-    for (auto& request : writes_->take_unanswered(now, listed)) {
+    for (auto& request : taken.unanswered) {
         const auto* write = std::get_if<ExchangeWrite>(&request.outcome);
         const auto* plan = write != nullptr ? write->producer : nullptr;
         const auto key =
@@ -241,6 +243,22 @@ void Pair::settle_left_writes(core::MonoTime now) {
         // A refusal is listed in the images as well: whoever leads next answers it no more.
         if (!parts_->writes.settle(std::move(request)) && plan)
             images_->list_refusal(*plan, key, now);
+    }
+}
+
+void Pair::repeat_answer(const ListedWrite& write) {
+    // The old leader's answer was not heard here: it may never have left (the leader died
+    // between the broker's acknowledgement of the image and its answer). Its client may get
+    // the same answer twice, never two different ones.
+    const auto& reply = write.request.reply;
+    if (reply.origin == nullptr) return;
+    switch (write.result) {
+        case core::redundancy::ListedResult::ok:
+            return reply.origin->write_result(reply, std::nullopt);
+        case core::redundancy::ListedResult::refused:
+            return reply.origin->write_result(reply, admission_->refusal().message);
+        case core::redundancy::ListedResult::unknown:
+            return;  // an older release's image: it does not say which answer to repeat
     }
 }
 

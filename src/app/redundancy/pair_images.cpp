@@ -51,7 +51,11 @@ void PairImages::publish(const ExchangeProducer& producer, std::uint64_t epoch) 
     const auto data = producer.image().data();
     core::redundancy::ImageMessage image{
         id_, epoch, layout_of(producer).fingerprint, {data.begin(), data.end()}, {}};
-    for (const auto& answered : answers_[message_.topic]) image.answers.push_back(answered.key);
+    image.refused.emplace();
+    for (const auto& answered : answers_[message_.topic]) {
+        image.answers.push_back(answered.key);
+        if (answered.refused) image.refused->push_back(answered.key);
+    }
     const auto number = ++next_image_;
     image.seq = number;
     message_.payload = encode_image_message(image);
@@ -66,7 +70,7 @@ void PairImages::publish(const ExchangeProducer& producer, std::uint64_t epoch) 
 }
 
 bool PairImages::list_answer(const std::string& topic, std::uint64_t write_id, std::uint64_t key,
-                             core::MonoTime now) {
+                             core::MonoTime now, bool refused) {
     auto& answers = answers_[topic];
     while (!answers.empty() &&
            (now - answers.front().at > answers_kept_ || answers.size() >= max_answers)) {
@@ -77,7 +81,7 @@ bool PairImages::list_answer(const std::string& topic, std::uint64_t write_id, s
     const bool listed = std::any_of(answers.begin(), answers.end(), [&](const Answered& answered) {
         return answered.write_id == write_id;
     });
-    if (!listed) answers.push_back({write_id, key, now});
+    if (!listed) answers.push_back({write_id, key, now, refused});
     return !listed;
 }
 
@@ -86,7 +90,7 @@ void PairImages::answer_after_image(const ExchangeProducer& producer, std::uint6
                                     std::function<void()> answer) {
     auto topic = topic_of(producer.plan());
     const auto key = key_of(reply);
-    if (list_answer(topic, write_id, key, now)) publish(producer, epoch_);
+    if (list_answer(topic, write_id, key, now, false)) publish(producer, epoch_);
     // An image the broker never acknowledges (its connection dropped it) holds nothing forever.
     while (!waiting_.empty() && now - waiting_.front().since > answers_kept_) {
         withhold(std::move(waiting_.front()));
@@ -174,10 +178,10 @@ void PairImages::withhold(Waiting&& waiting) {
     withheld_.push_back(std::move(waiting));
 }
 
-void PairImages::answer_withheld(std::span<const std::uint64_t> listed, core::MonoTime now,
-                                 std::uint64_t others_led) {
+void PairImages::answer_withheld(std::span<const core::redundancy::ListedAnswer> listed,
+                                 core::MonoTime now, std::uint64_t others_led) {
     std::unordered_map<std::uint64_t, std::size_t> answered;
-    for (const auto key : listed) ++answered[key];
+    for (const auto& answer : listed) ++answered[answer.key];
     auto withheld = std::move(withheld_);
     withheld_.clear();
     for (auto& waiting : withheld) {
@@ -196,7 +200,7 @@ void PairImages::answer_withheld(std::span<const std::uint64_t> listed, core::Mo
 
 void PairImages::list_refusal(const core::plan::ExchangePlan& plan, std::uint64_t key,
                               core::MonoTime now) {
-    list_answer(topic_of(plan), next_refusal_++, key, now);
+    list_answer(topic_of(plan), next_refusal_++, key, now, true);
 }
 
 void PairImages::reconnected() {
@@ -227,15 +231,15 @@ std::optional<FollowVerdict> PairImages::on_message(
     // claim (read before the claim came back): a deposed leader's too, which gives them late
     // exactly then (other_leads).
     if (verdict != FollowVerdict::leading && !lease.claim_heard && image->id != id_) {
-        heard_answers_[message.topic] = std::move(image->answers);
+        heard_answers_[message.topic] = core::redundancy::listed_answers(*image);
     }
     if (verdict == FollowVerdict::apply && !producer->follow_image(image->data)) return verdict;
     count(verdict, producer, *image);
     return verdict;
 }
 
-std::vector<std::uint64_t> PairImages::take_leader_answers() {
-    std::vector<std::uint64_t> answers;
+std::vector<core::redundancy::ListedAnswer> PairImages::take_leader_answers() {
+    std::vector<core::redundancy::ListedAnswer> answers;
     for (const auto& [topic, keys] : heard_answers_) {
         answers.insert(answers.end(), keys.begin(), keys.end());
     }

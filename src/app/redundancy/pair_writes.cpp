@@ -46,29 +46,32 @@ std::vector<std::string> PairWrites::response_topics() const {
     return topics;
 }
 
-std::vector<WriteRequest> PairWrites::take_unanswered(core::MonoTime now,
-                                                      std::span<const std::uint64_t> listed) {
+TakenWrites PairWrites::take_unanswered(core::MonoTime now,
+                                        std::span<const core::redundancy::ListedAnswer> listed) {
+    using core::redundancy::ListedResult;
     forget_older(now);
-    std::unordered_map<std::uint64_t, std::size_t> answered;
-    for (const auto key : listed) ++answered[key];
-    std::vector<WriteRequest> unanswered;
-    unanswered.reserve(left_.size());
+    std::unordered_map<std::uint64_t, std::deque<ListedResult>> answered;
+    for (const auto& answer : listed) answered[answer.key].push_back(answer.result);
+    TakenWrites taken;
+    taken.unanswered.reserve(left_.size());
     for (auto& left : left_) {
         const auto& reply = left.request.reply;
         const auto found =
             answered.find(core::redundancy::answer_key(reply.topic, reply.correlation_data));
-        if (found != answered.end() && found->second > 0) {
-            --found->second;
-            ++counters_.answers_listed;
+        if (found == answered.end() || found->second.empty()) {
+            taken.unanswered.push_back(std::move(left.request));
             continue;
         }
-        unanswered.push_back(std::move(left.request));
+        ++counters_.answers_listed;
+        if (found->second.front() != ListedResult::unknown) ++counters_.answers_repeated;
+        taken.listed.push_back({std::move(left.request), found->second.front()});
+        found->second.pop_front();
     }
     left_.clear();
     const bool had_topics = !topics_.empty();
     topics_.clear();
     if (had_topics && topics_changed_) topics_changed_();
-    return unanswered;
+    return taken;
 }
 
 void PairWrites::forget_older(core::MonoTime now) {

@@ -52,6 +52,24 @@ TEST(ImageMessage, ListsTheAnswersOfItsWritesAsSixteenHexDigitsEach) {
     EXPECT_EQ(decode_image_message(encode_image_message(sample()))->answers.size(), 0u);
 }
 
+TEST(ImageMessage, SaysWhichOfItsAnswersWereRefusals) {
+    auto image = sample();
+    image.answers = {1, 2};
+    image.refused = std::vector<std::uint64_t>{2};
+    const auto payload = encode_image_message(image);
+    EXPECT_EQ(nlohmann::json::parse(payload)["refused"], nlohmann::json({"0000000000000002"}));
+    EXPECT_EQ(test::schema_problem(test::schema_file("pair-image.json"), payload), "");
+    EXPECT_EQ(decode_image_message(payload), image);
+    // None refused is said too: what tells an image that says from an older release's.
+    image.refused->clear();
+    EXPECT_EQ(nlohmann::json::parse(encode_image_message(image))["refused"],
+              nlohmann::json::array());
+    EXPECT_EQ(decode_image_message(encode_image_message(image)), image);
+    image.refused.reset();
+    EXPECT_FALSE(nlohmann::json::parse(encode_image_message(image)).contains("refused"));
+    EXPECT_EQ(decode_image_message(encode_image_message(image)), image);
+}
+
 TEST(ImageMessage, CarriesItsNumberWhenItHasOne) {
     auto image = sample();
     image.seq = 42;
@@ -75,7 +93,9 @@ TEST(ImageMessage, WhatIsNoImageDecodesToNothing) {
           R"({"id":"a","epoch":1,"layout":"0000000000000001"})",
           R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","answers":"01"})",
           R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","answers":[1]})",
-          R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","answers":["01"]})"}) {
+          R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","answers":["01"]})",
+          R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","refused":{}})",
+          R"({"id":"a","epoch":1,"layout":"0000000000000001","data":"00","refused":[2]})"}) {
         EXPECT_FALSE(decode_image_message(payload).has_value()) << payload;
     }
 }

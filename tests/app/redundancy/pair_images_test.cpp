@@ -27,6 +27,8 @@ namespace {
 namespace fs = std::filesystem;
 using core::redundancy::FollowVerdict;
 using core::redundancy::ImageMessage;
+using core::redundancy::ListedAnswer;
+using core::redundancy::ListedResult;
 using namespace std::chrono_literals;
 
 const std::string prefix = "acme/_gateway/_pair/turbine/image";
@@ -58,6 +60,12 @@ protected:
     }
     static std::uint64_t key(const std::string& correlation) {
         return core::redundancy::answer_key("reply/" + correlation, correlation);
+    }
+    /// `keys` as an older release's image lists them: not saying what each was answered.
+    static std::vector<ListedAnswer> unknown(std::initializer_list<std::uint64_t> keys) {
+        std::vector<ListedAnswer> listed;
+        for (const auto k : keys) listed.push_back({k, ListedResult::unknown});
+        return listed;
     }
     std::vector<std::uint64_t> listed_in(const adapters::mqtt::Message& message) {
         return decode_image_message(message.payload)->answers;
@@ -296,7 +304,7 @@ TEST_F(PairImagesTest, LeadingAgainAnswersWhatItWithheldUnlessTheOtherUnitAnswer
     hear_back(false, 8);
     EXPECT_TRUE(answered.empty());
     // The other unit led meanwhile and answered `b` (settled it by its image: it lists it).
-    images_.answer_withheld(std::vector<std::uint64_t>{key("b")}, t0_ + 5s, 0);
+    images_.answer_withheld(std::vector<ListedAnswer>{{key("b"), ListedResult::ok}}, t0_ + 5s, 0);
     EXPECT_EQ(answered, (std::vector<std::string>{"a", "c"}));
     EXPECT_EQ(images_.counters().answers_late, 2u);
     // Given once: leading again later answers nothing more.
@@ -328,6 +336,11 @@ TEST_F(PairImagesTest, ARefusalSettledByANewLeaderIsListedInItsNextImage) {
     images_.list_refusal(producer().plan(), key("r"), t0_);
     images_.publish(producer(), 9);
     EXPECT_EQ(listed_in(publisher_.published.back()), std::vector<std::uint64_t>{key("r")});
+    // Said a refusal, where the writes it answered `ok` are not.
+    images_.answer_after_image(producer(), 1, reply("a"), t0_, [] {});
+    const auto image = decode_image_message(publisher_.published.back().payload);
+    EXPECT_EQ(image->answers, (std::vector<std::uint64_t>{key("r"), key("a")}));
+    EXPECT_EQ(image->refused, std::vector<std::uint64_t>{key("r")});
 }
 
 TEST_F(PairImagesTest, ATakeoverTakesTheAnswersTheOtherUnitsNewestImagesList) {
@@ -338,7 +351,7 @@ TEST_F(PairImagesTest, ATakeoverTakesTheAnswersTheOtherUnitsNewestImagesList) {
     // This unit's own image is not heard, nor one read as leader.
     read({"gw-b", 3, layout(), image(), {key("d")}});
     read({"gw-a", 3, layout(), image(), {key("e")}}, true);
-    EXPECT_EQ(images_.take_leader_answers(), (std::vector<std::uint64_t>{key("a"), key("b")}));
+    EXPECT_EQ(images_.take_leader_answers(), unknown({key("a"), key("b")}));
     // A deposed leader's, read late, is: it answers those late if its image came before the
     // claim that stood, which is this unit's, taking them now.
     read({"gw-a", 2, layout(), image(), {key("c")}});
@@ -346,8 +359,17 @@ TEST_F(PairImagesTest, ATakeoverTakesTheAnswersTheOtherUnitsNewestImagesList) {
     // what it lists, and leaves it to this unit.
     images_.on_message(incoming({"gw-a", 2, layout(), image(), {key("f")}}), producers_,
                        {false, 3, 0, true});
-    EXPECT_EQ(images_.take_leader_answers(), (std::vector<std::uint64_t>{key("c")}));
+    EXPECT_EQ(images_.take_leader_answers(), unknown({key("c")}));
     EXPECT_TRUE(images_.take_leader_answers().empty());
+}
+
+TEST_F(PairImagesTest, ATakeoverTakesWhatTheImagesSayEachWriteWasAnswered) {
+    ImageMessage leader{"gw-a", 3, layout(), image(), {key("a"), key("r")}};
+    leader.refused = std::vector<std::uint64_t>{key("r")};
+    read(leader);
+    EXPECT_EQ(images_.take_leader_answers(),
+              (std::vector<ListedAnswer>{{key("a"), ListedResult::ok},
+                                         {key("r"), ListedResult::refused}}));
 }
 
 }  // namespace

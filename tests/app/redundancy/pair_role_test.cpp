@@ -2,7 +2,8 @@
 // the claim after the takeover and the lead once the claim is heard back, the fence of the
 // sender threads (may_send) opening and closing with the lease, the order of a takeover (fence,
 // images, republish, then the Sparkplug session with the bdSeq heard), the step-down on a newer
-// epoch of the other unit, and a lease that lapses by the clock alone. The pair's parts are real
+// epoch of the other unit, a lease that lapses by the clock alone, and the left writes a new
+// leader answers again as the old leader's image lists them. The pair's parts are real
 // (the exchanges module on loopback with one produced exchange, a JSON tree over a recording
 // publisher); the loop never runs. With T = 2000 ms and R = 500 ms (core/redundancy/lease.hpp):
 // a standby claims T - R after it last heard a record, its claim stands R after it was sent, and
@@ -19,14 +20,17 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
+#include "eip2mqtt/adapters/state/image_store.hpp"
 #include "eip2mqtt/app/exchanges/exchanges_module.hpp"
 #include "eip2mqtt/app/northbound/json_tree/json_tree.hpp"
 #include "eip2mqtt/app/redundancy/image_message.hpp"
 #include "eip2mqtt/app/redundancy/leader_record.hpp"
 #include "eip2mqtt/app/redundancy/pair.hpp"
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/redundancy/answer_key.hpp"
 #include "tests/app/support/test_plan.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/fake_pair_connection.hpp"
@@ -87,6 +91,7 @@ protected:
         pair_.wire({config_, [] { return std::uint64_t{0}; }, *tree_, south_->writes(),
                     south_->exchanges(), south_->north(), std::move(session),
                     [this] { on_republish(); }});
+        south_->north().add(*tree_);  // learns the exchange: it takes writes to its tags
         south_->apply_plans({test::test_produced_plan()});
         ASSERT_NE(connection_, nullptr);
         pair_.start();
@@ -299,6 +304,34 @@ TEST_F(PairRoleTest, ImagesArePublishedByTheLeaderUnderItsEpochNotByAStandby) {
         EXPECT_EQ(image->id, "gw-a");
         EXPECT_EQ(image->epoch, 4u);
     }
+}
+
+TEST_F(PairRoleTest, TakingTheLeadItAnswersAgainTheLeftWritesTheOldLeadersImageListsUnheard) {
+    // The other unit leads; two writes come, left to it; its image lists the first answered
+    // `ok` and the second refused, and it dies before either answer leaves.
+    hear_other({"gw-b", 3, 0});
+    tree_->on_message({"acme/sp/VALUE/set", "5", false, "client/replies", "w1", -1});
+    tree_->on_message({"acme/sp/VALUE/set", "6", false, "client/replies", "w2", -1});
+    const auto& producer = *south_->exchanges().producers().front();
+    core::redundancy::ImageMessage image{
+        "gw-b", 3, adapters::state::layout_fingerprint(producer.plan()),
+        std::vector<std::byte>(producer.plan().length, std::byte{0})};
+    image.answers = {core::redundancy::answer_key("client/replies", "w1"),
+                     core::redundancy::answer_key("client/replies", "w2")};
+    image.refused = std::vector<std::uint64_t>{image.answers[1]};
+    connection_->deliver({image_prefix + "sp", encode_image_message(image)});
+    EXPECT_TRUE(tree_publisher_.on("client/replies").empty());
+
+    advance(claim_after);
+    acknowledge_and_echo_last();
+    advance(renewal);
+    ASSERT_TRUE(pair_.leads());
+    std::vector<std::pair<std::string, std::string>> answers;
+    for (const auto& m : tree_publisher_.published) {
+        if (m.topic == "client/replies") answers.emplace_back(m.correlation_data, m.payload);
+    }
+    EXPECT_EQ(answers, (std::vector<std::pair<std::string, std::string>>{
+                           {"w1", R"({"ok":true})"}, {"w2", R"({"error":"standby","ok":false})"}}));
 }
 
 TEST_F(PairRoleTest, StopStopsItsConnection) {

@@ -51,7 +51,7 @@ TEST_F(PairWritesTest, AnAnswerHeardTakesTheOldestWriteOfItsTopic) {
     writes_.leave(write(2), t0_ + 1ms);
     writes_.heard(answer("acme/sp/SPEED_SP/set/result"));
     EXPECT_EQ(writes_.counters().answers_heard, 1u);
-    const auto unanswered = writes_.take_unanswered(t0_ + 2ms, {});
+    const auto unanswered = writes_.take_unanswered(t0_ + 2ms, {}).unanswered;
     ASSERT_EQ(unanswered.size(), 1u);
     EXPECT_EQ(value_of(unanswered[0]), 2.0);
 }
@@ -62,7 +62,7 @@ TEST_F(PairWritesTest, CorrelationDataTellsWritesOnOneResponseTopicApart) {
     writes_.heard(answer("client/replies", "b"));
     writes_.heard(answer("client/replies", "c"));  // no write of ours: ignored
     writes_.heard(answer("elsewhere", "a"));
-    const auto unanswered = writes_.take_unanswered(t0_, {});
+    const auto unanswered = writes_.take_unanswered(t0_, {}).unanswered;
     ASSERT_EQ(unanswered.size(), 1u);
     EXPECT_EQ(value_of(unanswered[0]), 1.0);
     EXPECT_EQ(writes_.counters().answers_heard, 1u);
@@ -97,7 +97,7 @@ TEST_F(PairWritesTest, AResponseTopicStaysListenedToBetweenOneWritesAnswerAndThe
     }
     EXPECT_EQ(topics_changed_, 1);  // subscribed once, before the first answer could come
     EXPECT_EQ(writes_.counters().answers_heard, 8u);
-    EXPECT_TRUE(writes_.take_unanswered(t0_ + 2s, {}).empty());
+    EXPECT_TRUE(writes_.take_unanswered(t0_ + 2s, {}).unanswered.empty());
 }
 
 TEST_F(PairWritesTest, AResponseTopicLapsesAfterTheLingerAndTheBoundKeepsTheLatest) {
@@ -128,14 +128,14 @@ TEST_F(PairWritesTest, ATakeoverTakesOnlyWritesWithinTheHorizonAndKeepsNone) {
     writes_.leave(write(1, "client/replies"), t0_);
     writes_.leave(write(2), t0_ + 5s);
     EXPECT_EQ(topics_changed_, 1);
-    const auto unanswered = writes_.take_unanswered(t0_ + 12s, {});
+    const auto unanswered = writes_.take_unanswered(t0_ + 12s, {}).unanswered;
     ASSERT_EQ(unanswered.size(), 1u);
     EXPECT_EQ(value_of(unanswered[0]), 2.0);
     EXPECT_EQ(writes_.counters().forgotten, 1u);
     EXPECT_EQ(writes_.size(), 0u);
     EXPECT_TRUE(writes_.response_topics().empty());
     EXPECT_EQ(topics_changed_, 2);  // the forgotten write's response topic is left
-    EXPECT_TRUE(writes_.take_unanswered(t0_ + 12s, {}).empty());
+    EXPECT_TRUE(writes_.take_unanswered(t0_ + 12s, {}).unanswered.empty());
 }
 
 TEST_F(PairWritesTest, TheBoundForgetsTheOldest) {
@@ -144,26 +144,37 @@ TEST_F(PairWritesTest, TheBoundForgetsTheOldest) {
     }
     EXPECT_EQ(writes_.size(), PairWrites::max_left);
     EXPECT_EQ(writes_.counters().forgotten, 1u);
-    EXPECT_EQ(value_of(writes_.take_unanswered(t0_, {}).front()), 1.0);
+    EXPECT_EQ(value_of(writes_.take_unanswered(t0_, {}).unanswered.front()), 1.0);
 }
 
-TEST_F(PairWritesTest, WritesTheOldLeadersImagesListAsAnsweredAreNotSettledAgain) {
+TEST_F(PairWritesTest, WritesTheOldLeadersImagesListAsAnsweredAreNotSettledAgainButAnswered) {
     // Left unheard: the answers went while this unit's connection was down, or before its
-    // subscription to a new response topic reached the broker.
+    // subscription to a new response topic reached the broker, or never (the leader died
+    // after the broker took the image listing them, before its answer left).
+    using core::redundancy::ListedResult;
     writes_.leave(write(1, "client/replies", "a"), t0_);
     writes_.leave(write(2, "client/replies", "b"), t0_);
     writes_.leave(write(3), t0_);
     writes_.leave(write(4), t0_);
-    const std::vector<std::uint64_t> listed{
-        core::redundancy::answer_key("client/replies", "b"),
-        core::redundancy::answer_key("acme/sp/SPEED_SP/set/result", ""),
-        core::redundancy::answer_key("client/replies", "c")};
-    const auto unanswered = writes_.take_unanswered(t0_ + 1ms, listed);
-    // One listing of a key shared by two writes (no correlation data) drops one of them.
-    ASSERT_EQ(unanswered.size(), 2u);
-    EXPECT_EQ(value_of(unanswered[0]), 1.0);
-    EXPECT_EQ(value_of(unanswered[1]), 4.0);
-    EXPECT_EQ(writes_.counters().answers_listed, 2u);
+    writes_.leave(write(5, "client/replies", "d"), t0_);
+    const std::vector<core::redundancy::ListedAnswer> listed{
+        {core::redundancy::answer_key("client/replies", "b"), ListedResult::ok},
+        {core::redundancy::answer_key("acme/sp/SPEED_SP/set/result", ""), ListedResult::refused},
+        {core::redundancy::answer_key("client/replies", "c"), ListedResult::ok},
+        {core::redundancy::answer_key("client/replies", "d"), ListedResult::unknown}};
+    const auto taken = writes_.take_unanswered(t0_ + 1ms, listed);
+    // One listing of a key shared by two writes (no correlation data) takes one of them.
+    ASSERT_EQ(taken.unanswered.size(), 2u);
+    EXPECT_EQ(value_of(taken.unanswered[0]), 1.0);
+    EXPECT_EQ(value_of(taken.unanswered[1]), 4.0);
+    ASSERT_EQ(taken.listed.size(), 3u);
+    EXPECT_EQ(value_of(taken.listed[0].request), 2.0);
+    EXPECT_EQ(taken.listed[0].result, ListedResult::ok);
+    EXPECT_EQ(value_of(taken.listed[1].request), 3.0);
+    EXPECT_EQ(taken.listed[1].result, ListedResult::refused);
+    EXPECT_EQ(taken.listed[2].result, ListedResult::unknown);
+    EXPECT_EQ(writes_.counters().answers_listed, 3u);
+    EXPECT_EQ(writes_.counters().answers_repeated, 2u) << "an older release's listing is not";
 }
 
 }  // namespace

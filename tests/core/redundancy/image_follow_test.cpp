@@ -49,6 +49,24 @@ TEST(ImageFollow, AnImageOfANewerEpochOrReadBeforeAnyLeaderIsTaken) {
     EXPECT_EQ(judge_image(image(4), standby(3)), FollowVerdict::apply);
 }
 
+TEST(ImageFollow, EachListedAnswerSaysItsResultWhereTheImageSaysThem) {
+    auto listing = image(3);
+    listing.answers = {7, 8, 7, 9};
+    EXPECT_EQ(listed_answers(listing), (std::vector<ListedAnswer>{{7, ListedResult::unknown},
+                                                                  {8, ListedResult::unknown},
+                                                                  {7, ListedResult::unknown},
+                                                                  {9, ListedResult::unknown}}))
+        << "an older release's image does not say";
+    // A key shared by two writes (no correlation data) and refused once: its first listing.
+    listing.refused = std::vector<std::uint64_t>{7};
+    EXPECT_EQ(listed_answers(listing), (std::vector<ListedAnswer>{{7, ListedResult::refused},
+                                                                  {8, ListedResult::ok},
+                                                                  {7, ListedResult::ok},
+                                                                  {9, ListedResult::ok}}));
+    listing.refused->push_back(5);  // a refusal not among the answers lists nothing
+    EXPECT_EQ(listed_answers(listing).size(), 4u);
+}
+
 TEST(ImageFollow, RequestIdsContinueAfterTheLastHeardAndWrap) {
     EXPECT_EQ(request_id_after(41), 42);
     EXPECT_EQ(request_id_after(65535), 0);

@@ -11,9 +11,9 @@
 namespace eip2mqtt::app::redundancy {
 
 /// `{"id":"gw-a","epoch":3,"layout":"8c1f0e5a2b3d4c6e","data":"00803b45",
-/// "answers":["5d2a…"]}`: the layout fingerprint and each answer key as 16 hex digits (a JSON
-/// number loses precision above 2^53), the data bytes in hex, two digits each; `answers` only
-/// when there is one.
+/// "answers":["5d2a…"],"refused":[]}`: the layout fingerprint and each answer key as 16 hex
+/// digits (a JSON number loses precision above 2^53), the data bytes in hex, two digits each;
+/// `answers` only when there is one, and `refused` with them when the image says it.
 std::string encode_image_message(const core::redundancy::ImageMessage& image);
 
 /// The image of a payload; nullopt for an empty one (a topic cleared by hand) or one that does

@@ -167,6 +167,8 @@ private:
     void on_role(core::redundancy::Role role);
     /// Taking the lead: the writes left to the old leader and the answers this unit withheld.
     void settle_left_writes(core::MonoTime now);
+    /// Answers again a left write the old leader's images list as answered, as they list it.
+    void repeat_answer(const ListedWrite& write);
     /// Stepping down: the answers and the queued writes of this unit as leader.
     void step_down_writes(core::MonoTime now);
     /// After each event of the lease: leading_until_ from it.

@@ -31,7 +31,7 @@ struct PairCounters {
 };
 
 // clang-format off
-inline constexpr std::array<core::GatewayCounterField<PairCounters>, 12> pair_counter_fields{{
+inline constexpr std::array<core::GatewayCounterField<PairCounters>, 13> pair_counter_fields{{
     {"images_published", [](const PairCounters& c) { return core::one(c.images.published); },
      core::in_metrics_topic, ""},
     {"images_followed", [](const PairCounters& c) { return core::one(c.images.followed); },
@@ -61,6 +61,8 @@ inline constexpr std::array<core::GatewayCounterField<PairCounters>, 12> pair_co
     {"answers_heard", [](const PairCounters& c) { return core::one(c.writes.answers_heard); },
      core::in_metrics_topic, ""},
     {"answers_listed", [](const PairCounters& c) { return core::one(c.writes.answers_listed); },
+     core::in_metrics_topic, ""},
+    {"answers_repeated", [](const PairCounters& c) { return core::one(c.writes.answers_repeated); },
      core::in_metrics_topic, ""},
     {"left_writes_forgotten", [](const PairCounters& c) { return core::one(c.writes.forgotten); },
      core::in_metrics_topic, ""},

@@ -11,7 +11,9 @@
 /// write among its `answers` (answer_after_image; each image lists those of the write horizon
 /// before it): a standby that takes over then has that image, and settles none of them again
 /// (take_leader_answers(), PairWrites::take_unanswered), or the old leader never said `ok`
-/// (the new one settles the write).
+/// (the new one settles the write). The images say which answers were refusals, so the unit
+/// taking over answers again, alike, a listed write whose answer it did not hear: the leader
+/// may have died between the image's acknowledgement and its answer.
 ///
 /// Threading: the loop only.
 
@@ -134,7 +136,7 @@ public:
     /// listing stands for one write), and those older than the horizon at `now` if the other
     /// unit led since (its images no longer say whether it settled them): `others_led` is the
     /// highest epoch the other unit was heard leading under (PairLease::others_renewed_epoch).
-    void answer_withheld(std::span<const std::uint64_t> listed, core::MonoTime now,
+    void answer_withheld(std::span<const core::redundancy::ListedAnswer> listed, core::MonoTime now,
                          std::uint64_t others_led);
     /// The leader settled a write left to the old one by refusing it (WriteDispatcher::settle):
     /// its images list that answer too, `key`, so that no unit answers the write again.
@@ -144,9 +146,9 @@ public:
     void reconnected();
 
     /// Taking the lead: the answers listed by the other unit's newest image of each exchange,
-    /// as this unit heard them, forgotten here (its own images, read back retained, are not
-    /// heard: they list answers it may have withheld).
-    std::vector<std::uint64_t> take_leader_answers();
+    /// with their results, as this unit heard them, forgotten here (its own images, read back
+    /// retained, are not heard: they list answers it may have withheld).
+    std::vector<core::redundancy::ListedAnswer> take_leader_answers();
 
     const PairImageCounters& counters() const { return counters_; }
 
@@ -174,6 +176,7 @@ private:
         std::uint64_t write_id = 0;  ///< in its producer: the answers are an exchange's
         std::uint64_t key = 0;
         core::MonoTime at;
+        bool refused = false;  ///< `standby` (list_refusal), else `ok`
     };
 
     void count(core::redundancy::FollowVerdict verdict, const ExchangeProducer* producer,
@@ -181,7 +184,7 @@ private:
     /// Lists write `write_id`'s answer, `key`, among `topic`'s at `now`; false when it was
     /// already.
     bool list_answer(const std::string& topic, std::uint64_t write_id, std::uint64_t key,
-                     core::MonoTime now);
+                     core::MonoTime now, bool refused);
     /// The answers waiting for `topic`'s images up to `through`: each given, kept waiting or
     /// withheld as `decide(Waiting&) -> Release` says (defined where it is used: the .cpp).
     enum class Release : std::uint8_t { answer, late, wait, withhold };
@@ -209,7 +212,7 @@ private:
     std::uint64_t epoch_ = 0;  ///< of the last image published
     std::uint64_t stand_downs_ = 0;
     /// The standby: image topic -> the answers of the other unit's newest image of it.
-    std::unordered_map<std::string, std::vector<std::uint64_t>> heard_answers_;
+    std::unordered_map<std::string, std::vector<core::redundancy::ListedAnswer>> heard_answers_;
 };
 
 }  // namespace eip2mqtt::app::redundancy

@@ -13,6 +13,9 @@
 /// leader's images do not list as answered: the old leader died, hung or was cut off before
 /// answering them, or never had them (WriteDispatcher::settle). The images are what a unit cut
 /// off from the answers still hears: retained, the newest lists the answers of the horizon.
+/// A write they list whose answer it did not hear, it answers again as listed: the old leader
+/// may have died after the broker took the image and before its answer left, and a client
+/// may get the same answer twice rather than none.
 ///
 /// An answer is matched to the oldest write left with its topic and correlation data: writes to
 /// one topic without correlation data cannot be told apart by their client either.
@@ -31,6 +34,7 @@
 
 #include "eip2mqtt/adapters/mqtt/message.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
+#include "eip2mqtt/core/redundancy/image_follow.hpp"
 #include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::app::redundancy {
@@ -39,8 +43,24 @@ struct PairWriteCounters {
     std::uint64_t answers_heard = 0;  ///< the leader's answers to writes this unit left
     /// Left writes the old leader's images listed as answered when this unit took the lead.
     std::uint64_t answers_listed = 0;
+    /// Of those, the ones whose answer this unit gives again, as listed (ListedWrite).
+    std::uint64_t answers_repeated = 0;
     /// Left writes forgotten unanswered: older than the horizon, or beyond the bound.
     std::uint64_t forgotten = 0;
+};
+
+/// A left write the old leader's images list as answered, with what they say it was answered.
+struct ListedWrite {
+    WriteRequest request;
+    core::redundancy::ListedResult result = core::redundancy::ListedResult::unknown;
+};
+
+/// What a unit taking the lead does with the writes it left unanswered.
+struct TakenWrites {
+    std::vector<WriteRequest> unanswered;  ///< to settle (WriteDispatcher::settle)
+    /// Listed as answered: answered again alike, unless the result is `unknown` (an older
+    /// release's image).
+    std::vector<ListedWrite> listed;
 };
 
 class PairWrites {
@@ -68,11 +88,11 @@ public:
     /// latest), to listen on besides `{set}/result`.
     std::vector<std::string> response_topics() const;
     /// This unit takes the lead: the writes kept that are within the horizon at `now` and were
-    /// heard unanswered, oldest first, less those the old leader's images list as answered
-    /// (`listed`: answer keys, PairImages::take_leader_answers; a key listed n times drops n
-    /// writes). None is kept afterwards, and no topic listened to.
-    std::vector<WriteRequest> take_unanswered(core::MonoTime now,
-                                              std::span<const std::uint64_t> listed);
+    /// heard unanswered, oldest first, apart as the old leader's images list them answered or
+    /// not (`listed`: PairImages::take_leader_answers; a key listed n times takes n writes, in
+    /// order). None is kept afterwards, and no topic listened to.
+    TakenWrites take_unanswered(core::MonoTime now,
+                                std::span<const core::redundancy::ListedAnswer> listed);
 
     std::size_t size() const { return left_.size(); }
     const PairWriteCounters& counters() const { return counters_; }

@@ -28,9 +28,32 @@ struct ImageMessage {
     /// The image's number among those its publisher published since it started (0: none, an
     /// older release's): the publisher knows its own image when the broker sends it back.
     std::uint64_t seq = 0;
+    /// Those of `answers` that were refusals (`standby`: a write a new leader settled without
+    /// holding it), a key once per refusal; the others were `ok`. nullopt in an older
+    /// release's image, which does not say.
+    std::optional<std::vector<std::uint64_t>> refused;
 
     friend bool operator==(const ImageMessage&, const ImageMessage&) = default;
 };
+
+/// What an image says a write listed in its `answers` was answered.
+enum class ListedResult : std::uint8_t {
+    ok,
+    refused,  ///< `standby`
+    unknown,  ///< an older release's image
+};
+
+/// One write an image lists as answered: its answer key and what it was answered.
+struct ListedAnswer {
+    std::uint64_t key = 0;
+    ListedResult result = ListedResult::unknown;
+
+    friend bool operator==(const ListedAnswer&, const ListedAnswer&) = default;
+};
+
+/// Each of `image`'s answers with its result, in the image's order: a key listed n times in
+/// `refused` makes its first n listings refusals.
+std::vector<ListedAnswer> listed_answers(const ImageMessage& image);
 
 /// What the bytes of this unit's own image of the exchange mean.
 struct ImageLayout {
