@@ -43,10 +43,14 @@ const std::vector<std::uint64_t> ci_seeds{
         // leader kept
     15,  // one producer: a standby cut off claimed; its claim's acknowledgement overtook the
          // leader's renewals the broker held for it, and it led 14 ms beside the leader (a
-         // claim now stands once heard back); writes answered once: ok twice, from both
+         // claim now stands once heard back); writes answered once: ok twice, from both;
+         // later ok twice again: the new leader repeated what the cut leader's image listed,
+         // then the cut leader's own answer came, its path back (excused, as around a cut)
     24,  // writes answered once: standby (new leader), then ok (old one), around a broker stop
     // Schedule version 2: the broker killed, faults overlapping.
-    1003,  // a unit's broker path cut while Mosquitto is killed and comes back empty
+    1003,  // a unit's broker path cut while Mosquitto is killed and comes back empty; writes
+           // answered once: a write never answered, its leader killed after the broker took
+           // the image listing its ok and before the ok left (the new leader repeats it now)
     1005,  // one unit's broker path stalled while the other is stopped (both away at once); a
            // unit stopped while Mosquitto is killed
     1016,  // one producer, samples once: as 15 (a claim standing on an acknowledgement)
