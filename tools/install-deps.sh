@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config clang-format
   libboost-dev libpaho-mqttpp-dev libpaho-mqtt-dev nlohmann-json3-dev libyaml-cpp-dev
   libspdlog-dev libfmt-dev libcli11-dev libsystemd-dev prometheus-cpp-dev libmosquitto-dev
-  libprotobuf-dev protobuf-compiler libsqlite3-dev libpcap-dev
+  libprotobuf-dev protobuf-compiler libsqlite3-dev libpcap-dev libssl-dev
   libgtest-dev libgmock-dev
   mosquitto mosquitto-clients
   clang libclang-rt-14-dev tshark systemd openssl iproute2 iptables

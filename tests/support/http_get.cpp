@@ -9,6 +9,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 
 #include "tests/support/loopback.hpp"
 
@@ -22,13 +23,15 @@ namespace {
 
 /// A socket connected to 127.0.0.1:`port` that sent `method path` (HTTP/1.0), reads timing out
 /// after 5 s; -1 when it could not connect.
-int send_request(std::uint16_t port, const std::string& method, const std::string& path) {
+int send_request(std::uint16_t port, const std::string& method, const std::string& path,
+                 const std::string& headers = "") {
     const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
     if (fd < 0) return -1;
     timeval timeout{5, 0};
     ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
     const auto address = loopback(port);
-    const std::string request = method + " " + path + " HTTP/1.0\r\nHost: localhost\r\n\r\n";
+    const std::string request =
+        method + " " + path + " HTTP/1.0\r\nHost: localhost\r\n" + headers + "\r\n";
     if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0 ||
         ::send(fd, request.data(), request.size(), 0) != static_cast<ssize_t>(request.size())) {
         ::close(fd);
@@ -37,10 +40,26 @@ int send_request(std::uint16_t port, const std::string& method, const std::strin
     return fd;
 }
 
+/// `text` with each CR and LF written as printf's %b reads them back.
+std::string escaped(const std::string& text) {
+    std::string out;
+    for (const char c : text) {
+        if (c == '\r') {
+            out += "\\r";
+        } else if (c == '\n') {
+            out += "\\n";
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
-std::string http_request(std::uint16_t port, const std::string& method, const std::string& path) {
-    const int fd = send_request(port, method, path);
+std::string http_request(std::uint16_t port, const std::string& method, const std::string& path,
+                         const std::string& headers) {
+    const int fd = send_request(port, method, path, headers);
     if (fd < 0) return {};
     std::string response;
     char buffer[4096];
@@ -104,6 +123,25 @@ bool SilentClient::closed_by_server(int timeout_ms) const {
         if (n < 0) return errno != EAGAIN && errno != EWOULDBLOCK;
         if (::poll(&entry, 1, timeout_ms) <= 0) return false;
     }
+}
+
+std::pair<bool, std::string> https_get(std::uint16_t port, const std::string& path,
+                                       const std::string& ca_file, const std::string& headers) {
+    const std::string request = "GET " + path + " HTTP/1.0\r\nHost: localhost\r\n" + headers;
+    // printf's %b expands the \r\n escapes; the request is ours, without a quote in it.
+    const std::string command = "printf '%b\\r\\n' '" + escaped(request) +
+                                "' | timeout 10 openssl s_client -quiet -verify_return_error "
+                                "-servername localhost -CAfile '" +
+                                ca_file + "' -connect 127.0.0.1:" + std::to_string(port) +
+                                " 2>/dev/null";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (pipe == nullptr) return {false, ""};
+    std::string out;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+        out.append(buffer, n);
+    const int status = ::pclose(pipe);
+    return {status == 0 && !out.empty(), out};
 }
 
 }  // namespace eip2mqtt::test

@@ -14,8 +14,14 @@ std::string http_get(std::uint16_t port, const std::string& path);
 /// event stream), at most `timeout_ms`; what was read, whether or not it holds it.
 std::string http_read_until(std::uint16_t port, const std::string& path, const std::string& needle,
                             int timeout_ms);
-/// The same with another method (`HEAD`, `POST`...).
-std::string http_request(std::uint16_t port, const std::string& method, const std::string& path);
+/// The same with another method (`HEAD`, `POST`...), and `headers` (whole lines, each ending in
+/// CR LF) besides Host.
+std::string http_request(std::uint16_t port, const std::string& method, const std::string& path,
+                         const std::string& headers = "");
+/// GET `path` over HTTPS to 127.0.0.1:`port` (`openssl s_client`, name localhost), trusting only
+/// `ca_file`, with `headers` as above: whether the handshake verified and the whole response.
+std::pair<bool, std::string> https_get(std::uint16_t port, const std::string& path,
+                                       const std::string& ca_file, const std::string& headers = "");
 
 /// The status line's code and the body of an HTTP response (`{"", response}` when it is none).
 std::pair<std::string, std::string> status_and_body(const std::string& response);

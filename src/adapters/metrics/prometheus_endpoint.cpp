@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "adapters/metrics/detail/listener_routes.hpp"
+#include "adapters/metrics/detail/tls_front.hpp"
 
 namespace eip2mqtt::adapters::metrics {
 namespace {
@@ -294,24 +295,34 @@ struct PrometheusEndpoint::Impl {
         std::make_shared<detail::SnapshotCollectable>();
     std::shared_ptr<HealthState> health;
     std::unique_ptr<prometheus::Exposer> exposer;
-    std::vector<int> ports;
+    std::vector<int> ports;                   ///< civetweb's
+    std::unique_ptr<detail::TlsFront> front;  ///< with TLS; stops before civetweb does
 };
 
 PrometheusEndpoint::PrometheusEndpoint(const std::string& listen,
                                        std::chrono::milliseconds liveness_timeout,
-                                       const core::Clock& clock)
+                                       const core::Clock& clock, const ListenerAccess& access)
     : impl_(std::make_unique<Impl>()) {
     impl_->health = std::make_shared<HealthState>(liveness_timeout, clock);
+    const bool tls = !access.tls_cert.empty();
     try {
-        impl_->exposer = std::make_unique<prometheus::Exposer>(detail::server_options(listen),
-                                                               &detail::listener_callbacks());
+        // With TLS, civetweb listens on loopback alone, behind the front (tls_front.hpp).
+        impl_->exposer = std::make_unique<prometheus::Exposer>(
+            detail::server_options(tls ? "127.0.0.1:0" : listen), &detail::listener_callbacks());
+        impl_->ports = impl_->exposer->GetListeningPorts();
+        if (tls) {
+            impl_->front = std::make_unique<detail::TlsFront>(
+                listen, access.tls_cert, access.tls_key,
+                static_cast<std::uint16_t>(impl_->ports.front()));
+        }
     } catch (const std::exception& e) {
         // civetweb's CivetException: typically the port is taken or the address is not ours.
         throw std::runtime_error("cannot listen for metrics on " + listen + ": " + e.what());
     }
     impl_->exposer->RegisterCollectable(impl_->collectable);
-    impl_->ports = impl_->exposer->GetListeningPorts();
-    for (const int port : impl_->ports) detail::register_health(port, impl_->health);
+    for (const int port : impl_->ports) {
+        detail::register_port(port, access.authorization, impl_->health);
+    }
 }
 
 PrometheusEndpoint::~PrometheusEndpoint() {
@@ -330,6 +341,7 @@ void PrometheusEndpoint::serve_pages(PageHandler pages, EventSource events) {
 }
 
 std::uint16_t PrometheusEndpoint::port() const {
+    if (impl_->front) return impl_->front->port();
     const auto ports = impl_->exposer->GetListeningPorts();
     return ports.empty() ? 0 : static_cast<std::uint16_t>(ports.front());
 }

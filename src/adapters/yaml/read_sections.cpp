@@ -199,6 +199,41 @@ constexpr KeyReader<MqttSection> mqtt_rows[]{
 };
 constexpr auto mqtt_readers = bind_keys(keys::mqtt, mqtt_rows);
 
+/// `metrics.auth`
+constexpr KeyReader<MetricsAuth> metrics_auth_rows[]{
+    {"username", [](KeyValue& v, MetricsAuth& a) { return v.text_to(a.username); }},
+    {"password_file", [](KeyValue& v, MetricsAuth& a) { return v.text_to(a.password_file); }},
+};
+constexpr auto metrics_auth_readers = bind_keys(keys::metrics_auth, metrics_auth_rows);
+
+/// `metrics.tls`
+constexpr KeyReader<MetricsTls> metrics_tls_rows[]{
+    {"cert", [](KeyValue& v, MetricsTls& t) { return v.text_to(t.cert); }},
+    {"key", [](KeyValue& v, MetricsTls& t) { return v.text_to(t.key); }},
+};
+constexpr auto metrics_tls_readers = bind_keys(keys::metrics_tls, metrics_tls_rows);
+
+/// A mapping of `what` whose keys must all be given (`fields`: each key's name and value):
+/// read into `out`, or an error naming the missing ones.
+template <class Section, class Readers>
+bool read_whole(KeyValue& v, const char* what, const Readers& readers,
+                std::initializer_list<std::pair<const char*, std::string Section::*>> fields,
+                std::optional<Section>& out) {
+    Section section;
+    v.mapping(std::string("in ") + what, readers, section);
+    if (v.node().is_null()) return true;
+    std::string missing;
+    for (const auto& [name, field] : fields) {
+        if ((section.*field).empty()) missing += (missing.empty() ? "" : " and ") + in_quotes(name);
+    }
+    if (!missing.empty()) {
+        v.error(std::string(what) + " needs " + missing);
+        return false;
+    }
+    out = std::move(section);
+    return true;
+}
+
 /// `metrics`
 constexpr KeyReader<MetricsSection> metrics_rows[]{
     {"listen",
@@ -212,6 +247,18 @@ constexpr KeyReader<MetricsSection> metrics_rows[]{
          }
          m.listen = *s;
          return true;
+     }},
+    {"auth",
+     [](KeyValue& v, MetricsSection& m) {
+         return read_whole(
+             v, "metrics.auth", metrics_auth_readers,
+             {{"username", &MetricsAuth::username}, {"password_file", &MetricsAuth::password_file}},
+             m.auth);
+     }},
+    {"tls",
+     [](KeyValue& v, MetricsSection& m) {
+         return read_whole(v, "metrics.tls", metrics_tls_readers,
+                           {{"cert", &MetricsTls::cert}, {"key", &MetricsTls::key}}, m.tls);
      }},
 };
 constexpr auto metrics_readers = bind_keys(keys::metrics, metrics_rows);

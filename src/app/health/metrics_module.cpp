@@ -2,19 +2,40 @@
 
 #include <spdlog/spdlog.h>
 
+#include "app/detail/secret_file.hpp"
+#include "eip2mqtt/core/net/basic_auth.hpp"
+
 namespace eip2mqtt::app {
 namespace {
 
+/// Who may read the listener: the password read now, from its credential or file.
+adapters::metrics::ListenerAccess listener_access(const core::config::MetricsSection& metrics) {
+    adapters::metrics::ListenerAccess access;
+    if (metrics.auth) {
+        const auto password =
+            detail::read_secret_file(metrics.auth->password_file, "metrics.auth.password_file");
+        access.authorization = core::net::basic_authorization(metrics.auth->username, password);
+    }
+    if (metrics.tls) {
+        access.tls_cert = metrics.tls->cert;
+        access.tls_key = metrics.tls->key;
+    }
+    return access;
+}
+
 std::unique_ptr<adapters::metrics::PrometheusEndpoint> make_endpoint(
     const core::config::Config& config, const core::Clock& clock) {
-    if (config.metrics.listen.empty()) return nullptr;
+    const auto& metrics = config.metrics;
+    if (metrics.listen.empty()) return nullptr;
     auto endpoint = std::make_unique<adapters::metrics::PrometheusEndpoint>(
-        config.metrics.listen, adapters::metrics::PrometheusEndpoint::default_liveness_timeout,
-        clock);
+        metrics.listen, adapters::metrics::PrometheusEndpoint::default_liveness_timeout, clock,
+        listener_access(metrics));
+    const auto scheme = metrics.tls ? "https" : "http";
     spdlog::info(
-        "Prometheus metrics on http://{0}/metrics, health on http://{0}/healthz and /readyz, "
-        "status on http://{0}/api/status",
-        config.metrics.listen);
+        "Prometheus metrics on {0}://{1}/metrics, health on {0}://{1}/healthz and /readyz, "
+        "status on {0}://{1}/{2}",
+        scheme, metrics.listen,
+        metrics.auth ? " (all but health asking for user " + metrics.auth->username + ")" : "");
     return endpoint;
 }
 

@@ -1,62 +1,24 @@
 #include "eip2mqtt/app/northbound/mqtt_settings.hpp"
 
-#include <spdlog/spdlog.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdlib>
-#include <fstream>
-#include <stdexcept>
+
+#include "app/detail/secret_file.hpp"
 
 namespace eip2mqtt::app {
-namespace {
-
-std::string first_line(const std::string& path, const std::string& what) {
-    std::ifstream file(path);
-    if (!file) throw std::runtime_error("cannot read " + what);
-    std::string line;
-    std::getline(file, line);
-    return line;
-}
-
-/// Where systemd put the unit's credentials (LoadCredential=); empty outside such a unit.
-std::string credentials_directory() {
-    const char* directory = std::getenv("CREDENTIALS_DIRECTORY");
-    return directory != nullptr ? directory : "";
-}
-
-std::string read_password_file(const std::string& path) {
-    struct stat info {};
-    if (::stat(path.c_str(), &info) == 0 && (info.st_mode & S_IROTH) != 0) {
-        spdlog::warn("password file {} is readable by others; chmod o-r it", path);
-    }
-    std::string what = "mqtt.password_file " + path;
-    if (path.find('/') == std::string::npos) {
-        what +=
-            " (a name without a slash is a systemd credential only where $CREDENTIALS_DIRECTORY "
-            "is set, in a unit with LoadCredential=" +
-            path + ")";
-    }
-    return first_line(path, what);
-}
-
-}  // namespace
 
 std::string read_mqtt_password(const core::config::MqttSection& mqtt) {
-    const auto credentials = credentials_directory();
-    const auto& file = mqtt.password_file;
-    if (!file.empty() && !credentials.empty() && file.find('/') == std::string::npos) {
-        const auto path = credentials + "/" + file;
-        return first_line(path, "mqtt.password_file: the systemd credential " + file + " (" + path +
-                                    "); the unit needs LoadCredential=" + file);
+    if (!mqtt.password_file.empty()) {
+        return detail::read_secret_file(mqtt.password_file, "mqtt.password_file");
     }
-    if (!file.empty()) return read_password_file(file);
+    const auto credentials = detail::credentials_directory();
     if (!credentials.empty()) {
         const auto path = credentials + "/" + std::string(default_password_credential);
         if (::access(path.c_str(), F_OK) == 0) {
-            return first_line(path, "the systemd credential " +
-                                        std::string(default_password_credential) + " (" + path +
-                                        ")");
+            return detail::first_line(path, "the systemd credential " +
+                                                std::string(default_password_credential) + " (" +
+                                                path + ")");
         }
     }
     if (const char* env = std::getenv("EIP2MQTT_MQTT_PASSWORD")) return env;

@@ -71,6 +71,8 @@ eip:
     max_requests_per_s_per_source: 20
 metrics:
   listen: 127.0.0.1:9108
+  auth: { username: ops-a, password_file: status-password }
+  tls: { cert: /etc/status-a.pem, key: /etc/status-a.key }
 sparkplug:
   group_id: plant
   edge_node_id: node-a
@@ -208,6 +210,8 @@ inline const std::vector<Edit> edits = {
     {"eip.commands.max_requests_per_s_per_source", "max_requests_per_s_per_source: 20",
      "max_requests_per_s_per_source: 30"},
     {"metrics.listen", "127.0.0.1:9108", "127.0.0.1:9109"},
+    {"metrics.auth", "ops-a", "ops-b"},
+    {"metrics.tls", "status-a.pem", "status-b.pem"},
     {"sparkplug.group_id", "group_id: plant", "group_id: plant-b"},
     {"sparkplug.edge_node_id", "node-a", "node-b"},
     {"sparkplug.primary_host_id", "scada-a", "scada-b"},

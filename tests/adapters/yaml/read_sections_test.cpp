@@ -288,5 +288,30 @@ TEST(LoadConfig, MetricsListenIsOneHostPortNotAList) {
               "localhost:9108");
 }
 
+TEST(LoadConfig, MetricsAuthAndTlsAreReadWholeOrRefused) {
+    const auto config = good(
+        "metrics:\n  listen: 127.0.0.1:9108\n"
+        "  auth: { username: ops, password_file: status-password }\n"
+        "  tls: { cert: /etc/eip2mqtt/status.pem, key: /etc/eip2mqtt/status.key }\n" +
+        minimal_exchange);
+    ASSERT_TRUE(config.metrics.auth.has_value());
+    EXPECT_EQ(config.metrics.auth->username, "ops");
+    EXPECT_EQ(config.metrics.auth->password_file, "status-password");
+    ASSERT_TRUE(config.metrics.tls.has_value());
+    EXPECT_EQ(config.metrics.tls->cert, "/etc/eip2mqtt/status.pem");
+    EXPECT_EQ(config.metrics.tls->key, "/etc/eip2mqtt/status.key");
+    const auto plain = good("metrics: { listen: 127.0.0.1:9108 }\n" + minimal_exchange);
+    EXPECT_FALSE(plain.metrics.auth || plain.metrics.tls);
+
+    auto text = dump(
+        bad("metrics:\n  listen: 127.0.0.1:9108\n  auth: { username: ops }\n" + minimal_exchange));
+    EXPECT_NE(text.find("test.yaml:3:3: metrics.auth needs 'password_file'"), std::string::npos)
+        << text;
+    text = dump(bad("metrics:\n  listen: 127.0.0.1:9108\n  tls: { }\n" + minimal_exchange));
+    EXPECT_NE(text.find("metrics.tls needs 'cert' and 'key'"), std::string::npos) << text;
+    text = dump(bad("metrics:\n  auth: { username: ops, password: x }\n" + minimal_exchange));
+    EXPECT_NE(text.find("password"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace eip2mqtt::adapters::yaml

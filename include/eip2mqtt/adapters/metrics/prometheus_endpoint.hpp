@@ -108,6 +108,16 @@ struct MetricsSnapshot {
     GatewayMetrics gateway;
 };
 
+/// Who may read the listener, and over what (metrics.auth, metrics.tls): /healthz and /readyz
+/// never ask for the password.
+struct ListenerAccess {
+    /// The `Authorization` header every other request must carry
+    /// (core::net::basic_authorization); empty: none asked.
+    std::string authorization;
+    std::string tls_cert;  ///< PEM, intermediates after it; empty: plain HTTP
+    std::string tls_key;   ///< PEM
+};
+
 class PrometheusEndpoint {
 public:
     /// The loop updates about once a second; ten seconds without one is a loop that no longer
@@ -121,7 +131,8 @@ public:
     explicit PrometheusEndpoint(
         const std::string& listen,
         std::chrono::milliseconds liveness_timeout = default_liveness_timeout,
-        const core::Clock& clock = adapters::clock::system_clock());
+        const core::Clock& clock = adapters::clock::system_clock(),
+        const ListenerAccess& access = {});
     /// Stops the server; civetweb's listener polls, so this can take up to about 2 s.
     ~PrometheusEndpoint();
     PrometheusEndpoint(const PrometheusEndpoint&) = delete;

@@ -178,8 +178,26 @@ struct EipSection {
 /// The largest `eip.link_mbps` accepted: 400 Gbit/s, the fastest Ethernet sold.
 inline constexpr double max_link_mbps = 400000;
 
+/// `metrics.auth`: HTTP basic authentication on the listener (/healthz and /readyz excepted).
+struct MetricsAuth {
+    std::string username;
+    std::string password_file;  ///< a systemd credential's name, or a path
+
+    friend bool operator==(const MetricsAuth&, const MetricsAuth&) = default;
+};
+
+/// `metrics.tls`: the listener speaks HTTPS with this certificate and key (PEM files).
+struct MetricsTls {
+    std::string cert;  ///< the certificate, and any intermediates after it
+    std::string key;
+
+    friend bool operator==(const MetricsTls&, const MetricsTls&) = default;
+};
+
 struct MetricsSection {
     std::string listen;  ///< host:port of the Prometheus endpoint; empty: off
+    std::optional<MetricsAuth> auth;
+    std::optional<MetricsTls> tls;
     Marks marks;
 };
 

@@ -152,8 +152,21 @@ inline constexpr std::array<ConfigKey<MulticastGroup>, 2> multicast{{
     {"interface", live, nullptr},
 }};
 
-inline constexpr std::array<ConfigKey<MetricsSection>, 1> metrics{{
+/// The listener is made at start, with who may read it and how.
+inline constexpr std::array<ConfigKey<MetricsSection>, 3> metrics{{
     {"listen", restart, differs<&MetricsSection::listen>},
+    {"auth", restart, differs<&MetricsSection::auth>},
+    {"tls", restart, differs<&MetricsSection::tls>},
+}};
+
+inline constexpr std::array<ConfigKey<MetricsAuth>, 2> metrics_auth{{
+    {"username", restart, nullptr},
+    {"password_file", restart, nullptr},
+}};
+
+inline constexpr std::array<ConfigKey<MetricsTls>, 2> metrics_tls{{
+    {"cert", restart, nullptr},
+    {"key", restart, nullptr},
 }};
 
 /// The edge node's identity and births are made at start.

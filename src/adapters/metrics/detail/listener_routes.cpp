@@ -8,11 +8,14 @@
 #include <string_view>
 
 #include "adapters/metrics/detail/event_stream.hpp"
+#include "eip2mqtt/core/net/basic_auth.hpp"
 
 namespace eip2mqtt::adapters::metrics::detail {
 namespace {
 
 struct Routes {
+    bool registered = false;    ///< the listener on this port is ours, and set up
+    std::string authorization;  ///< the `Authorization` header required; empty: none
     std::shared_ptr<const HealthState> health;
     std::shared_ptr<const PageHandler> pages;
     std::shared_ptr<const EventSource> events;
@@ -59,6 +62,10 @@ int answer(mg_connection* connection, const HttpAnswer& out, bool head = false) 
         mg_response_header_add(connection, name, value, -1);
     }
     if (out.status == 405) mg_response_header_add(connection, "Allow", "GET, HEAD", -1);
+    if (out.status == 401) {
+        mg_response_header_add(connection, "WWW-Authenticate",
+                               R"(Basic realm="eip2mqtt", charset="UTF-8")", -1);
+    }
     mg_response_header_add(connection, "Content-Length", length.c_str(), -1);
     mg_response_header_send(connection);
     if (!head) mg_write(connection, out.body.data(), out.body.size());
@@ -100,8 +107,17 @@ int begin_request(mg_connection* connection) {
     if (request == nullptr || request->local_uri == nullptr) return 0;
     const std::string_view path = request->local_uri;
     const auto routes = routes_for(request->server_port);
+    // Between civetweb's start and the endpoint's registration: not knowing whether the
+    // listener asks for a password, it answers nothing yet.
+    if (!routes.registered) return answer(connection, {503, "text/plain", "starting\n"});
     if ((path == "/healthz" || path == "/readyz") && routes.health) {
         return answer_health(connection, path, *routes.health);
+    }
+    if (!routes.authorization.empty()) {
+        const char* given = mg_get_header(connection, "Authorization");
+        if (given == nullptr || !core::net::same_secret(given, routes.authorization)) {
+            return answer(connection, {401, "text/plain", "authentication required\n"});
+        }
     }
     // Every other path but prometheus-cpp's is the pages': they say which they serve.
     if (routes.pages && path != "/metrics") return answer_api(connection, *request, path, routes);
@@ -128,10 +144,13 @@ const CivetCallbacks& listener_callbacks() {
     return callbacks;
 }
 
-void register_health(int port, std::shared_ptr<const HealthState> state) {
+void register_port(int port, std::string authorization, std::shared_ptr<const HealthState> state) {
     auto& r = registry();
     std::lock_guard lock(r.mutex);
-    r.ports[port].health = std::move(state);
+    auto& routes = r.ports[port];
+    routes.registered = true;
+    routes.authorization = std::move(authorization);
+    routes.health = std::move(state);
 }
 
 void register_pages(int port, std::shared_ptr<const PageHandler> pages,

@@ -1,6 +1,8 @@
 #pragma once
 /// What the metrics listener answers besides prometheus-cpp's /metrics: /healthz and /readyz,
 /// and, while the gateway serves its pages, every other path (the pages say which they serve).
+/// With a password set (metrics.auth), every path but /healthz and /readyz asks for it, /metrics
+/// too: 401 without it.
 /// civetweb's begin_request callback answers them before prometheus-cpp's handlers see the
 /// request. The callback is a plain function of the connection, so it finds what the listener
 /// a request came to serves by its port.
@@ -34,8 +36,10 @@ std::vector<std::string> server_options(const std::string& listen);
 /// The callbacks to hand prometheus::Exposer; they live as long as the process.
 const CivetCallbacks& listener_callbacks();
 
-/// Requests to `port` are answered from `state` until unregister_port(port). Thread-safe.
-void register_health(int port, std::shared_ptr<const HealthState> state);
+/// Requests to `port` are answered, until unregister_port(port), from `state`, once they carry
+/// `authorization` (the `Authorization` header's value; empty: none asked). Until then, 503.
+/// Thread-safe.
+void register_port(int port, std::string authorization, std::shared_ptr<const HealthState> state);
 /// Requests for the status pages on `port` go to `pages`, event streams to `events` (null:
 /// none, 404). Thread-safe.
 void register_pages(int port, std::shared_ptr<const PageHandler> pages,
