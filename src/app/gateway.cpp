@@ -55,9 +55,8 @@ std::vector<std::unique_ptr<Module>> Gateway::compose(ExchangesModule*& exchange
         config_, loop, clock_, south->exchanges(), south->north(),
         [this] { return metrics_sources(); },
         [this](const MetricsSources& sources) { notifier_.status(status_line(sources)); });
-    auto status =
-        status::make_status_module(config_, loop, clock_, south->exchanges(), metrics->endpoint(),
-                                   [this] { return metrics_sources(); });
+    auto status = status::make_status_module(config_, loop, clock_, *south, metrics->endpoint(),
+                                             [this] { return metrics_sources(); });
     exchanges = south.get();
     // Stopped in reverse: the inputs first, the lease before the connections it fences, the
     // gateway's main connection (its `offline`) last.

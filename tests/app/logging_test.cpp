@@ -79,5 +79,21 @@ TEST_F(LoggingTest, KnownLevelsAreSetOffIncluded) {
     EXPECT_EQ(spdlog::get_level(), spdlog::level::off);
 }
 
+TEST_F(LoggingTest, TheLastWarningsAndErrorsAreKeptForTheStatusPage) {
+    testing::internal::CaptureStderr();
+    setup_logging("info");
+    spdlog::info("not kept");
+    for (int i = 1; i <= 60; ++i) spdlog::warn("warning {}", i);
+    spdlog::error("an error");
+    (void)testing::internal::GetCapturedStderr();
+    const auto kept = recent_warnings();
+    ASSERT_EQ(kept.size(), kept_warnings);
+    EXPECT_THAT(kept.front(), testing::EndsWith("Z warning: warning 12"));
+    EXPECT_THAT(kept[kept.size() - 2], testing::EndsWith("Z warning: warning 60"));
+    EXPECT_THAT(
+        kept.back(),
+        testing::MatchesRegex("[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9:]{8}\\.[0-9]{3}Z error: an error"));
+}
+
 }  // namespace
 }  // namespace eip2mqtt::app

@@ -1,8 +1,9 @@
 // The status page in a real browser: Debian's chromium, driven by puppeteer-core
 // (tests/support/browser/status_page.js), on a gateway fed datagrams. The page shows every
-// exchange, a tag's value changes on screen while datagrams come, the exchange turns stale
-// once they stop, and the console has no error. The screenshot is kept in the build tree
-// (test-artifacts/status-page.png). How long the change took is printed, never judged.
+// exchange, a tag's value changes on screen while datagrams come, the write log shows an MQTT
+// write and its result, the exchange turns stale once they stop, and the console has no error. The
+// screenshot is kept in the build tree (test-artifacts/status-page.png). How long the change took
+// is printed, never judged.
 
 #include <atomic>
 #include <filesystem>
@@ -32,13 +33,20 @@ json step(const std::string& output, const std::string& name) {
 
 class StatusPageBrowserTest : public GatewayTest {};
 
-TEST_F(StatusPageBrowserTest, ShowsEveryExchangeFollowsTheValuesAndTurnsStaleWithNoConsoleError) {
+TEST_F(StatusPageBrowserTest,
+       ShowsEveryExchangeFollowsTheValuesLogsAWriteAndTurnsStaleWithNoConsoleError) {
     const auto port = free_tcp_port();
     GatewayOptions options;
     options.sections = "metrics:\n  listen: 127.0.0.1:" + std::to_string(port) + "\n";
-    start(ExchangeYaml::consume("pump", "10.0.0.2", 7).length(4).tag("SPEED", "0.0", "dint").str() +
-              ExchangeYaml::consume("fan", "10.0.0.3", 8).length(4).tag("RPM", "0.0", "dint").str(),
-          "", options);
+    start(
+        ExchangeYaml::consume("pump", "10.0.0.2", 7).length(4).tag("SPEED", "0.0", "dint").str() +
+            ExchangeYaml::consume("fan", "10.0.0.3", 8).length(4).tag("RPM", "0.0", "dint").str() +
+            ExchangeYaml::produce("cmd", "10.0.0.9", 9, "127.0.0.1:9")
+                .length(4)
+                .period_ms(100)
+                .tag("SETPOINT", "0.0", "dint", "writable: true, initial: 42")
+                .str(),
+        "", options);
     // Datagrams every 100 ms with a new SPEED each, until the page saw one change (bounded).
     std::atomic<bool> sending{true};
     std::thread sender([&] {
@@ -55,22 +63,29 @@ TEST_F(StatusPageBrowserTest, ShowsEveryExchangeFollowsTheValuesAndTurnsStaleWit
     const auto screenshot = (artifacts / "status-page.png").string();
     std::filesystem::remove(screenshot);
     ChildProcess browser({EIP2MQTT_NODE, EIP2MQTT_BROWSER_SCRIPT, EIP2MQTT_CHROMIUM,
-                          "http://127.0.0.1:" + std::to_string(port) + "/", "pump", "SPEED", "2",
-                          screenshot});
+                          "http://127.0.0.1:" + std::to_string(port) + "/", "pump", "SPEED", "3",
+                          screenshot, "SETPOINT=7"});
     const bool changed = browser.wait_for_output(R"({"step":"changed")", 120s);
     sending = false;
     sender.join();
     ASSERT_TRUE(changed) << browser.output();
+    EXPECT_EQ(write_result("cmd/SETPOINT/set", "7"), R"({"ok":true})");
     ASSERT_TRUE(browser.wait_for_output(R"({"step":"done")", 120s)) << browser.output();
     EXPECT_EQ(browser.wait(30s), 0) << browser.output();
 
     const auto output = browser.output();
     // Sorted by name, the page's first order.
-    EXPECT_EQ(step(output, "shown")["exchanges"], json::array({"fan", "pump"})) << output;
+    EXPECT_EQ(step(output, "shown")["exchanges"], json::array({"cmd", "fan", "pump"})) << output;
+    const auto write = step(output, "write");
+    EXPECT_EQ(write["origin"], "mqtt") << output;
+    EXPECT_EQ(write["target"], topic("cmd/SETPOINT/set")) << output;
+    EXPECT_EQ(write["result"], "ok") << output;
     const auto change = step(output, "changed");
     EXPECT_NE(change["first"], change["second"]) << output;
     std::cout << "status page: SPEED changed on screen " << change["ms"]
               << " ms after it was first read\n";
+    // SPEED's sparkline is drawn from its values so far.
+    EXPECT_EQ(step(output, "sparkline")["drawn"], 1) << output;
     EXPECT_EQ(step(output, "stale")["state"], "stale") << output;
     EXPECT_EQ(step(output, "done")["errors"], json::array()) << output;
     EXPECT_TRUE(std::filesystem::exists(screenshot));

@@ -46,7 +46,9 @@ ExchangesModule::ExchangesModule(const core::config::Config& config,
               clock),
       exchanges_(loop, with_socket(config, std::move(options)), north_, writes_.image_saves(),
                  clock),
-      receiver_(loop, receiver_options(config.eip, clock)) {}
+      receiver_(loop, receiver_options(config.eip, clock)) {
+    north_.set_write_log(writes_.write_log(), clock);
+}
 
 std::string ExchangesModule::apply_plans(std::vector<core::plan::ExchangePlan> plans) {
     const auto report = exchanges_.apply(std::move(plans), clock_.monotonic(), clock_.wall());

@@ -22,6 +22,7 @@ bool WriteDispatcher::admitted(WriteRequest& request) {
         case WriteTurn::apply:
             return true;
         case WriteTurn::taken:
+            write_log_.answered(request.reply.log_id, "handed to the other unit", clock_.wall());
             return false;
         case WriteTurn::refused:
             break;
@@ -41,6 +42,10 @@ bool WriteDispatcher::settle(WriteRequest&& request) {
 }
 
 void WriteDispatcher::on_write(WriteRequest&& request) {
+    // A write settled on taking the lead was logged as it arrived, and left.
+    if (request.reply.log_id == 0) {
+        request.reply.log_id = write_log_.arrived(request, clock_.wall());
+    }
     if (!admitted(request)) return;
     if (const auto* rejection = std::get_if<core::write::WriteRejection>(&request.outcome)) {
         return reject(request, *rejection);
@@ -56,6 +61,7 @@ void WriteDispatcher::on_write(WriteRequest&& request) {
 void WriteDispatcher::reject(const WriteRequest& request,
                              const core::write::WriteRejection& rejection) {
     ++counters_.writes_rejected[static_cast<std::size_t>(rejection.error)];
+    write_log_.answered(request.reply.log_id, rejection.message, clock_.wall());
     if (request.reply.origin) request.reply.origin->write_result(request.reply, rejection.message);
     const auto count = log_.record(clock_.monotonic());
     if (count == 0) return;

@@ -32,11 +32,16 @@ void FanOut::exchange_state(const core::plan::ExchangePlan& exchange,
 }
 
 void FanOut::write_result(const WriteReply& reply, std::optional<std::string_view> error) {
+    if (write_log_ != nullptr)
+        write_log_->answered(reply.log_id, error.value_or("ok"), clock_->wall());
     // Answered in the protocol it was asked in: a DCMD's result is not a JSON topic's business.
     if (reply.origin != nullptr && reply.origin != this) reply.origin->write_result(reply, error);
 }
 
 void FanOut::write_result_unsaved(const WriteReply& reply, std::string_view reason) {
+    if (write_log_ != nullptr) {
+        write_log_->answered(reply.log_id, "ok, not saved: " + std::string(reason), clock_->wall());
+    }
     if (reply.origin != nullptr && reply.origin != this) {
         reply.origin->write_result_unsaved(reply, reason);
     }

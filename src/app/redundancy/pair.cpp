@@ -1,8 +1,10 @@
 #include "eip2mqtt/app/redundancy/pair.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <iterator>
 #include <utility>
 
 #include "eip2mqtt/app/exchanges/write_dispatcher.hpp"
@@ -11,6 +13,7 @@
 #include "eip2mqtt/app/redundancy/leader_publisher.hpp"
 #include "eip2mqtt/app/redundancy/pair_lease.hpp"
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/json_text.hpp"
 #include "eip2mqtt/core/redundancy/answer_key.hpp"
 
 namespace eip2mqtt::app::redundancy {
@@ -88,6 +91,22 @@ std::unique_ptr<adapters::mqtt::Publisher> Pair::leader_only(adapters::mqtt::Pub
 bool Pair::leading(core::MonoTime now) const { return lease_->leading(now); }
 
 bool Pair::may_produce(core::MonoTime now) const { return lease_->may_produce(now); }
+
+std::string Pair::status_json() const {
+    if (!lease_ || !parts_) return "null";
+    const auto now = clock_.monotonic();
+    const bool leads_now = leading(now);
+    std::string out = R"({"pair":)";
+    core::append_json_string(out, parts_->config.redundancy.pair);
+    fmt::format_to(std::back_inserter(out), R"(,"role":"{}","epoch":{},"lease_left_ms":)",
+                   leads_now ? "leader" : "standby", lease_->lease().epoch());
+    const auto until = lease_->lease().leading_until();
+    out += leads_now && until
+               ? std::to_string(
+                     std::chrono::duration_cast<std::chrono::milliseconds>(*until - now).count())
+               : std::string("null");
+    return out + '}';
+}
 
 void Pair::wire(PairParts parts) {
     const auto& parts_ref = parts_.emplace(std::move(parts));

@@ -81,6 +81,7 @@ public:
         sources.pair_images = &pair_.image_counters();
         sources.pair_history = pair_.history_counters();
         sources.pair_writes = &pair_.write_counters();
+        sources.role = &pair_;
     }
 
 private:

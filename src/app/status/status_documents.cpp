@@ -59,7 +59,7 @@ void append_producer(std::string& out, const ExchangeProducer& producer) {
 /// `,"tags":[...]`: each tag of `plan` with its sample from `image` (none: null).
 void append_tags(std::string& out, const core::plan::ExchangePlan& plan,
                  std::span<const std::byte> image, std::optional<core::quality::Quality> quality,
-                 std::int64_t timestamp_ms) {
+                 std::int64_t timestamp_ms, const Sparklines* sparklines, std::int64_t now_ms) {
     out += R"(,"tags":[)";
     std::string sample;
     for (std::size_t i = 0; i < plan.tags.size(); ++i) {
@@ -78,6 +78,7 @@ void append_tags(std::string& out, const core::plan::ExchangePlan& plan,
         } else {
             out += "null";
         }
+        if (sparklines != nullptr) sparklines->append_json(out, plan, i, now_ms);
         out += '}';
     }
     out += ']';
@@ -86,7 +87,8 @@ void append_tags(std::string& out, const core::plan::ExchangePlan& plan,
 }  // namespace
 
 std::string status_document(const GatewayFacts& facts, const MetricsSources& sources,
-                            const Exchanges& exchanges, core::MonoTime now, core::WallTime wall) {
+                            const Exchanges& exchanges, core::MonoTime now, core::WallTime wall,
+                            const WriteLog* writes, std::span<const std::string> warnings) {
     std::string out = R"({"gateway":{"id":)";
     append_json_string(out, facts.id);
     append_field(out, "version", EIP2MQTT_VERSION);
@@ -102,7 +104,9 @@ std::string status_document(const GatewayFacts& facts, const MetricsSources& sou
         if (i != 0) out += ',';
         append_json_string(out, facts.brokers[i]);
     }
-    out += R"(]},"metrics":)";
+    out += R"(]},"role":)";
+    out += sources.role != nullptr ? sources.role->status_json() : std::string("null");
+    out += R"(,"metrics":)";
     out += json_tree::metrics_json(
         sources, std::chrono::duration_cast<std::chrono::seconds>(now - facts.started_mono));
     out += R"(},"exchanges":[)";
@@ -117,12 +121,24 @@ std::string status_document(const GatewayFacts& facts, const MetricsSources& sou
         append_producer(out, *producer);
         out += '}';
     }
-    out += "]}";
+    out += ']';
+    if (writes != nullptr) {
+        out += R"(,"writes":)";
+        writes->append_json(out);
+        out += R"(,"warnings":[)";
+        for (std::size_t i = 0; i < warnings.size(); ++i) {
+            if (i != 0) out += ',';
+            append_json_string(out, warnings[i]);
+        }
+        out += ']';
+    }
+    out += '}';
     return out;
 }
 
 std::optional<std::string> exchange_document(const Exchanges& exchanges, std::string_view name,
-                                             core::MonoTime now, core::WallTime wall) {
+                                             core::MonoTime now, core::WallTime wall,
+                                             const Sparklines* sparklines) {
     std::string out;
     for (const auto& consumer : exchanges.consumers()) {
         if (consumer->plan().spec.name != name) continue;
@@ -130,14 +146,15 @@ std::optional<std::string> exchange_document(const Exchanges& exchanges, std::st
         const auto& exchange = consumer->exchange();
         append_tags(out, consumer->plan(),
                     exchange.has_image() ? exchange.image() : std::span<const std::byte>{},
-                    core::quality::quality_of(exchange.state()), consumer->timestamp_ms());
+                    core::quality::quality_of(exchange.state()), consumer->timestamp_ms(),
+                    sparklines, core::to_ms(wall));
         return out + '}';
     }
     for (const auto& producer : exchanges.producers()) {
         if (producer->plan().spec.name != name) continue;
         append_producer(out, *producer);
         append_tags(out, producer->plan(), producer->image().data(), core::quality::Quality::good,
-                    core::to_ms(wall));
+                    core::to_ms(wall), nullptr, 0);
         return out + '}';
     }
     return std::nullopt;

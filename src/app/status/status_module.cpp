@@ -4,6 +4,7 @@
 #include <future>
 #include <string>
 
+#include "eip2mqtt/app/logging.hpp"
 #include "eip2mqtt/app/status/status_page.hpp"
 
 namespace eip2mqtt::app::status {
@@ -42,17 +43,20 @@ T on_loop(const boost::asio::any_io_executor& loop, const std::weak_ptr<StatusMo
 }  // namespace
 
 StatusModule::StatusModule(const core::config::Config& config, boost::asio::any_io_executor loop,
-                           const core::Clock& clock, const Exchanges& exchanges,
+                           const core::Clock& clock, ExchangesModule& south,
                            adapters::metrics::PrometheusEndpoint& endpoint, Sources sources)
     : loop_(std::move(loop)),
       clock_(clock),
-      exchanges_(exchanges),
+      exchanges_(south.exchanges()),
+      writes_(south.writes().write_log()),
+      sparklines_(clock),
       endpoint_(endpoint),
       sources_(std::move(sources)),
       self_(std::make_shared<StatusModule*>(this)) {
     facts_.id = config.gateway.id;
     facts_.config_file = config.file;
     facts_.brokers = config.mqtt.urls;
+    south.north().add(sparklines_);
 }
 
 void StatusModule::start(core::MonoTime now) {
@@ -88,7 +92,9 @@ void StatusModule::apply(const core::config::Config& next) {
 const std::string& StatusModule::status_now() {
     const auto now = clock_.monotonic();
     if (!status_at_ || now - *status_at_ >= status_reuse) {
-        status_ = status_document(facts_, sources_(), exchanges_, now, clock_.wall());
+        const auto warnings = recent_warnings();
+        status_ =
+            status_document(facts_, sources_(), exchanges_, now, clock_.wall(), &writes_, warnings);
         status_at_ = now;
     }
     return status_;
@@ -99,7 +105,7 @@ std::string StatusModule::events(const std::vector<std::string>& open) {
     const auto now = clock_.monotonic();
     const auto wall = clock_.wall();
     for (const auto& name : open) {
-        if (auto document = exchange_document(exchanges_, name, now, wall)) {
+        if (auto document = exchange_document(exchanges_, name, now, wall, &sparklines_)) {
             out += "event: exchange\ndata: " + *document + "\n\n";
         }
     }
@@ -110,8 +116,8 @@ std::optional<HttpAnswer> StatusModule::answer(std::string_view path) {
     if (path == "/api/status") return json_answer(status_now());
     if (path.starts_with(exchanges_prefix)) {
         const auto name = path.substr(exchanges_prefix.size());
-        if (auto document =
-                exchange_document(exchanges_, name, clock_.monotonic(), clock_.wall())) {
+        if (auto document = exchange_document(exchanges_, name, clock_.monotonic(), clock_.wall(),
+                                              &sparklines_)) {
             return json_answer(std::move(*document));
         }
         return HttpAnswer{404, "application/json", R"({"error":"no such exchange"})"};
@@ -124,11 +130,11 @@ std::optional<HttpAnswer> StatusModule::answer(std::string_view path) {
 
 std::unique_ptr<Module> make_status_module(const core::config::Config& config,
                                            boost::asio::any_io_executor loop,
-                                           const core::Clock& clock, const Exchanges& exchanges,
+                                           const core::Clock& clock, ExchangesModule& south,
                                            adapters::metrics::PrometheusEndpoint* endpoint,
                                            StatusModule::Sources sources) {
     if (endpoint == nullptr) return nullptr;
-    return std::make_unique<StatusModule>(config, std::move(loop), clock, exchanges, *endpoint,
+    return std::make_unique<StatusModule>(config, std::move(loop), clock, south, *endpoint,
                                           std::move(sources));
 }
 

@@ -38,6 +38,19 @@ const std::string_view page_html = R"html(<!DOCTYPE html>
     <tbody></tbody>
   </table>
 </section>
+<section id="writes">
+  <h2>Last writes</h2>
+  <table id="write-table">
+    <thead><tr>
+      <th>time</th><th>origin</th><th>target</th><th>values</th><th>result</th>
+    </tr></thead>
+    <tbody></tbody>
+  </table>
+</section>
+<section id="warnings">
+  <h2>Last warnings</h2>
+  <ol id="warning-list"></ol>
+</section>
 <footer>Read-only: writes go over MQTT. <a href="/api/status">/api/status</a></footer>
 </body>
 </html>

@@ -83,6 +83,11 @@ function drawFacts(gateway) {
   ];
   if (m.history) facts.push(["store and forward", m.history.entries + " entries waiting"]);
   if (m.sparkplug) facts.push(["Sparkplug", m.sparkplug.node_births + " node birth(s)"]);
+  const r = gateway.role;
+  if (r) {
+    facts.push(["hot-standby pair", r.pair + ": " + r.role + ", epoch " + r.epoch +
+      (r.lease_left_ms === null ? "" : ", lease " + (r.lease_left_ms / 1000).toFixed(1) + " s left")]);
+  }
   const list = document.getElementById("facts");
   list.replaceChildren();
   for (const [name, value] of facts) {
@@ -90,10 +95,41 @@ function drawFacts(gateway) {
   }
 }
 
+/// The last 10 minutes of a tag, drawn between their lowest and highest value.
+function sparkline(points) {
+  const ns = "http://www.w3.org/2000/svg";
+  const svg = document.createElementNS(ns, "svg");
+  svg.setAttribute("width", "120");
+  svg.setAttribute("height", "24");
+  svg.setAttribute("class", "spark");
+  const values = points.filter((v) => v !== null);
+  if (values.length === 0) return svg;
+  const low = Math.min(...values);
+  const high = Math.max(...values);
+  const span = high - low || 1;
+  const xy = [];
+  points.forEach((v, i) => {
+    if (v !== null) {
+      xy.push((i * 118 / (points.length - 1) + 1).toFixed(1) + "," +
+        (22 - (v - low) / span * 20).toFixed(1));
+    }
+  });
+  const line = document.createElementNS(ns, "polyline");
+  line.setAttribute("points", xy.join(" "));
+  line.setAttribute("fill", "none");
+  line.setAttribute("stroke", "currentColor");
+  const title = document.createElementNS(ns, "title");
+  title.textContent = "last 10 min: " + valueText(low) + " to " + valueText(high);
+  svg.append(line, title);
+  return svg;
+}
+
 function tagTable(exchange) {
   const table = el("table");
   const head = el("tr");
-  for (const name of ["tag", "value", "unit", "quality", "time"]) head.append(el("th", name));
+  for (const name of ["tag", "value", "unit", "quality", "time", "last 10 min"]) {
+    head.append(el("th", name));
+  }
   table.append(head);
   for (const tag of exchange.tags || []) {
     const line = el("tr");
@@ -102,6 +138,9 @@ function tagTable(exchange) {
       el("td", tag.unit || ""),
       el("td", sample ? sample.quality : "no value", sample ? "quality-" + sample.quality : ""),
       el("td", sample ? timeText(sample.timestamp) : "-"));
+    const spark = el("td", tag.sparkline ? null : "-");
+    if (tag.sparkline) spark.append(sparkline(tag.sparkline));
+    line.append(spark);
     table.append(line);
   }
   return table;
@@ -146,10 +185,31 @@ function drawExchanges() {
   }
 }
 
+function drawWrites(writes) {
+  const body = document.querySelector("#write-table tbody");
+  body.replaceChildren();
+  for (const w of writes) {
+    const result = w.result === null ? "pending" : w.result;
+    const line = el("tr", null, "write " + (result === "ok" || result.startsWith("ok,") ? "ok"
+      : result === "pending" || result === "handed to the other unit" ? "waiting" : "bad"));
+    line.append(el("td", timeText(w.time)), el("td", w.origin), el("td", w.target),
+      el("td", w.values), el("td", result, "result"));
+    body.append(line);
+  }
+}
+
+function drawWarnings(warnings) {
+  const list = document.getElementById("warning-list");
+  list.replaceChildren();
+  for (const line of warnings) list.append(el("li", line));
+}
+
 function draw() {
   if (!state.status) return;
   drawFacts(state.status.gateway);
   drawExchanges();
+  drawWrites(state.status.writes || []);
+  drawWarnings(state.status.warnings || []);
 }
 
 function toggle(name) {

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -332,6 +333,23 @@ TEST_F(PairRoleTest, TakingTheLeadItAnswersAgainTheLeftWritesTheOldLeadersImageL
     }
     EXPECT_EQ(answers, (std::vector<std::pair<std::string, std::string>>{
                            {"w1", R"({"ok":true})"}, {"w2", R"({"error":"standby","ok":false})"}}));
+}
+
+TEST_F(PairRoleTest, ItsStatusSaysItsRoleEpochAndWhatIsLeftOfItsLease) {
+    auto shown = nlohmann::json::parse(pair_.status_json());
+    EXPECT_EQ(shown, nlohmann::json::parse(
+                         R"({"pair":"turbine","role":"standby","epoch":0,"lease_left_ms":null})"));
+    take_the_lead();
+    acknowledge_and_echo_last();  // the renewal sent as it took the lead: fenced T - 3R/2 on
+    shown = nlohmann::json::parse(pair_.status_json());
+    EXPECT_EQ(shown["role"], "leader");
+    EXPECT_EQ(shown["epoch"], 1);
+    EXPECT_EQ(shown["lease_left_ms"], fenced_after.count());
+    hear_other({"gw-b", 2, 0});
+    shown = nlohmann::json::parse(pair_.status_json());
+    EXPECT_EQ(shown["role"], "standby");
+    EXPECT_EQ(shown["epoch"], 2);
+    EXPECT_TRUE(shown["lease_left_ms"].is_null());
 }
 
 TEST_F(PairRoleTest, StopStopsItsConnection) {

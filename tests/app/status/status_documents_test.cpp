@@ -99,6 +99,25 @@ TEST_F(StatusDocumentsTest, TheGatewayAndEachExchangeInOneLineWithoutTags) {
     EXPECT_EQ(cmd["status"]["state"], "producing");
 }
 
+TEST_F(StatusDocumentsTest, TheLastWritesAndWarningsFollowWhenGiven) {
+    EXPECT_FALSE(status().contains("writes"));
+    WriteLog log;
+    const auto id = log.arrived({{"r", "", nullptr, WriteOrigin::mqtt},
+                                 "acme/cmd/SP/set",
+                                 core::write::WriteRejection{core::write::WriteError::empty, ""},
+                                 {}},
+                                clock_.wall());
+    log.answered(id, "empty", clock_.wall());
+    const std::vector<std::string> warnings{"2026-11-30T16:00:00.000Z warning: \"quoted\""};
+    const MetricsSources sources{exchanges_->datagram_counters(), writes_, mqtt_};
+    const auto doc = json::parse(status_document(facts_, sources, *exchanges_, clock_.monotonic(),
+                                                 clock_.wall(), &log, warnings));
+    ASSERT_EQ(doc["writes"].size(), 1u);
+    EXPECT_EQ(doc["writes"][0]["target"], "acme/cmd/SP/set");
+    EXPECT_EQ(doc["writes"][0]["result"], "empty");
+    EXPECT_EQ(doc["warnings"], json(warnings));
+}
+
 TEST_F(StatusDocumentsTest, AConsumedExchangesTagsInEngineeringUnitsAndItsAge) {
     // Before a datagram: the tags are there, without a sample.
     auto pump = exchange("pump \"1\"");

@@ -5,13 +5,14 @@
 #include "eip2mqtt/app/status/status_module.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
+#include <filesystem>
 #include <future>
 #include <nlohmann/json.hpp>
 
-#include "tests/app/support/test_exchanges.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/http_get.hpp"
 
@@ -24,15 +25,27 @@ using json = nlohmann::json;
 class StatusModuleTest : public ::testing::Test {
 protected:
     StatusModuleTest() : endpoint_("127.0.0.1:0") {
-        config_.gateway.id = "gw";
-        config_.file = "/etc/a.yaml";
-        module_ = make_status_module(
-            config_, loop_.get_executor(), clock_, *exchanges_, &endpoint_, [this] {
-                return MetricsSources{exchanges_->datagram_counters(), writes_, mqtt_};
+        module_ =
+            make_status_module(config_, loop_.get_executor(), clock_, south_, &endpoint_, [this] {
+                return MetricsSources{south_.exchanges().datagram_counters(), writes_, mqtt_};
             });
         module_->start(clock_.monotonic());
     }
-    ~StatusModuleTest() override { module_.reset(); }
+    ~StatusModuleTest() override {
+        module_.reset();
+        std::error_code ignored;
+        std::filesystem::remove_all(dir_, ignored);
+    }
+    /// A gateway `gw` of `/etc/a.yaml`, its state in `dir`, its data port any free one.
+    static core::config::Config config_in(const std::filesystem::path& dir) {
+        core::config::Config config;
+        config.gateway.id = "gw";
+        config.file = "/etc/a.yaml";
+        config.gateway.state_dir = dir.string();
+        config.eip.bind = "127.0.0.1";
+        config.eip.port = 0;
+        return config;
+    }
     /// GET `path` on a thread of its own while the loop runs here until it is answered.
     std::pair<std::string, std::string> get_with_loop(const std::string& path) {
         auto response = std::async(std::launch::async,
@@ -48,8 +61,13 @@ protected:
     boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_{
         loop_.get_executor()};
     test::FakeClock clock_;
-    test::TestExchanges exchanges_{loop_, clock_, "eip2mqtt_status_module"};
-    core::config::Config config_;
+    std::filesystem::path dir_ =
+        std::filesystem::temp_directory_path() /
+        ("eip2mqtt_status_module_" +
+         std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+         std::to_string(::getpid()));
+    core::config::Config config_ = config_in(dir_);
+    ExchangesModule south_{config_, loop_.get_executor(), clock_, {}};
     core::write::WriteCounters writes_;
     adapters::mqtt::ClientStats mqtt_;
     adapters::metrics::PrometheusEndpoint endpoint_;

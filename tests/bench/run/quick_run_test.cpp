@@ -141,26 +141,28 @@ std::vector<std::string> expected_figures() {
         }
     }
     for (const auto* figure : {
-             "resident memory, 1,000 x 100 consumed + 100 produced",   // 6, inline YAML
-             "start-up to READY, same configuration, inline YAML",     // 6
-             "resident memory, 1,000 x 100 consumed + 100 produced",   // 6, point lists
-             "start-up to READY, same configuration, point lists",     // 6
-             "produced period, 100 x 10 ms: mean error",               // 7
-             "produced period, 100 x 10 ms: p99 jitter",               // 7
-             "produced period, 1000 x 10 ms: mean error",              // 7
-             "produced period, 1000 x 10 ms: p99 jitter",              // 7
-             "overload 5 x ceiling: RSS growth",                       // 8
-             "overload: newest value of each tag wins",                // 8
-             "overload: datagrams accepted / sent",                    // 8
-             "overload: largest publish queue seen",                   // 8
-             "write latency /set -> datagram p99 (ms), 1 exchange",    // 9
-             "write latency /set -> datagram p99 (ms), 1 + 100",       // 9
-             "datagrams/s accepted, zero loss, journaling",            // 10
-             "history replay rate",                                    // 10
-             "journal disk bytes per journaled tag update",            // 10
-             "command requests/s answered, zero loss",                 // 11
-             "datagrams/s accepted, zero loss, command port flooded",  // 11
-             "s for tshark to decode",                                 // 12
+             "resident memory, 1,000 x 100 consumed + 100 produced",  // 6, inline YAML
+             "start-up to READY, same configuration, inline YAML",    // 6
+             "resident memory, 1,000 x 100 consumed + 100 produced",  // 6, point lists
+             "start-up to READY, same configuration, point lists",    // 6
+             "resident memory, 1,000 x 100 consumed + 100 produced",  // 6, status page on
+             "start-up to READY, same configuration, point lists, status page on",          // 6
+             "produced period, 100 x 10 ms: mean error",                                    // 7
+             "produced period, 100 x 10 ms: p99 jitter",                                    // 7
+             "produced period, 1000 x 10 ms: mean error",                                   // 7
+             "produced period, 1000 x 10 ms: p99 jitter",                                   // 7
+             "overload 5 x ceiling: RSS growth",                                            // 8
+             "overload: newest value of each tag wins",                                     // 8
+             "overload: datagrams accepted / sent",                                         // 8
+             "overload: largest publish queue seen",                                        // 8
+             "write latency /set -> datagram p99 (ms), 1 exchange",                         // 9
+             "write latency /set -> datagram p99 (ms), 1 + 100",                            // 9
+             "datagrams/s accepted, zero loss, journaling",                                 // 10
+             "history replay rate",                                                         // 10
+             "journal disk bytes per journaled tag update",                                 // 10
+             "command requests/s answered, zero loss",                                      // 11
+             "datagrams/s accepted, zero loss, command port flooded",                       // 11
+             "s for tshark to decode",                                                      // 12
              "failover: SIGKILL of the leader -> first datagram of the new leader",         // 13
              "failover: SIGKILL of the leader -> first tag publication of the new leader",  // 13
          }) {

@@ -1,14 +1,15 @@
 // Drives Debian's chromium through the gateway's status page (puppeteer-core over the DevTools
 // protocol) for tests/integration/12_status_page_browser_test.cpp, and says what it saw, one
 // JSON line per step: the page showing every exchange, a tag's value changing on screen, the
-// exchange turning stale once its datagrams stop, and every console error. Each wait is on
-// the page's content, bounded in time.
+// write log showing a write to WRITTEN (its values and result), the exchange turning stale
+// once its datagrams stop, and every console error. Each wait is on the page's content,
+// bounded in time.
 //
-//   node status_page.js CHROMIUM URL EXCHANGE TAG EXCHANGE_COUNT SCREENSHOT
+//   node status_page.js CHROMIUM URL EXCHANGE TAG EXCHANGE_COUNT SCREENSHOT WRITTEN
 "use strict";
 const puppeteer = require("puppeteer-core");
 
-const [chromium, url, exchange, tag, count, screenshot] = process.argv.slice(2);
+const [chromium, url, exchange, tag, count, screenshot, written] = process.argv.slice(2);
 const say = (line) => process.stdout.write(JSON.stringify(line) + "\n");
 
 /// The text of `tag`'s value cell in the open exchange's tags table, or null.
@@ -47,6 +48,20 @@ async function main() {
       first).catch(() => null);
     const second = await page.evaluate((t) => window.valueOfTag(t), tag);
     say({ step: "changed", first: first, second: second, ms: Date.now() - since });
+    const points = await page.$$eval("tr.tags svg.spark polyline",
+      (lines) => lines.map((l) => l.getAttribute("points")));
+    say({ step: "sparkline", lines: points.length, drawn: points.filter((p) => p !== "").length });
+
+    // The test writes once it reads "changed"; the log shows the write once answered.
+    await page.waitForFunction((values) => Array.from(document.querySelectorAll("tr.write"))
+      .some((r) => r.cells[3].textContent === values && r.cells[4].textContent !== "pending"),
+    { timeout: 60000 }, written);
+    const write = await page.$$eval("tr.write", (rows, values) => {
+      const r = rows.find((x) => x.cells[3].textContent === values);
+      return { origin: r.cells[1].textContent, target: r.cells[2].textContent,
+        values: r.cells[3].textContent, result: r.cells[4].textContent };
+    }, written);
+    say(Object.assign({ step: "write" }, write));
 
     await page.waitForFunction((name) => {
       const row = document.querySelector(`tr.exchange[data-name="${name}"]`);

@@ -10,6 +10,7 @@
 #include <optional>
 #include <utility>
 
+#include "eip2mqtt/app/exchanges/write_log.hpp"
 #include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/app/redundancy/unit_role.hpp"
@@ -47,6 +48,10 @@ public:
     /// Where the produced exchanges count their image saves (ExchangeProducer).
     ImageSaveTotals& image_saves() { return counters_.image_saves; }
     const WriteCounters& counters() const { return counters_; }
+    /// The last writes and their results (the status page); FanOut logs the results that
+    /// come back through the northbounds.
+    WriteLog& write_log() { return write_log_; }
+    const WriteLog& write_log() const { return write_log_; }
 
 private:
     /// False when the write stops here (taken by the role, moved from `request`; or refused).
@@ -58,6 +63,7 @@ private:
     redundancy::WriteRole* role_ = &redundancy::always_leads();
     WriteCounters counters_;
     core::ThrottledLog log_;
+    WriteLog write_log_;
 };
 
 }  // namespace eip2mqtt::app

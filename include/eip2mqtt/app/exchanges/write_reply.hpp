@@ -1,6 +1,7 @@
 #pragma once
 /// Where a write's result goes.
 
+#include <cstdint>
 #include <string>
 
 #include "eip2mqtt/core/write/write_origin.hpp"
@@ -18,6 +19,7 @@ struct WriteReply {
     std::string correlation_data;
     Northbound* origin = nullptr;  ///< nullptr: nobody to answer
     WriteOrigin via = WriteOrigin::mqtt;
+    std::uint64_t log_id = 0;  ///< its entry in the write log (WriteLog); 0: none
 };
 
 }  // namespace eip2mqtt::app

@@ -40,6 +40,7 @@ struct MetricsSources {
     const redundancy::PairImageCounters* pair_images = nullptr;     ///< with `redundancy:`
     const redundancy::PairHistoryCounters* pair_history = nullptr;  ///< with pair_images
     const redundancy::PairWriteCounters* pair_writes = nullptr;     ///< with pair_images
+    const redundancy::UnitRole* role = nullptr;  ///< with `redundancy:`: its state, for the page
 };
 
 /// The one line systemd shows for the service (sd_notify STATUS=): datagrams, publications and

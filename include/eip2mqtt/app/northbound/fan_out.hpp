@@ -7,8 +7,10 @@
 
 #include <vector>
 
+#include "eip2mqtt/app/exchanges/write_log.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/app/redundancy/unit_role.hpp"
+#include "eip2mqtt/core/clock.hpp"
 
 namespace eip2mqtt::app::northbound {
 
@@ -25,6 +27,12 @@ public:
     /// northbounds: the window of samples of a redundant unit (app/redundancy/pair_history),
     /// kept while it does not lead so that it can publish what was missed once it does.
     void set_tap(Northbound& tap) { tap_ = &tap; }
+    /// Where each write result passing here is noted, stamped by `clock` (both must outlive
+    /// the fan-out's use of them).
+    void set_write_log(WriteLog& log, const core::Clock& clock) {
+        write_log_ = &log;
+        clock_ = &clock;
+    }
 
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
@@ -43,6 +51,8 @@ private:
 
     std::vector<Northbound*> northbounds_;
     const redundancy::UnitRole* role_ = &redundancy::always_leads();
+    WriteLog* write_log_ = nullptr;
+    const core::Clock* clock_ = nullptr;
     Northbound* tap_ = nullptr;
 };
 

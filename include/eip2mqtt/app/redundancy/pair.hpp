@@ -128,6 +128,9 @@ public:
     bool leading(core::MonoTime now) const;
     /// Whether it leads now, by its clock.
     bool leads() const override { return leading(clock_.monotonic()); }
+    /// `{"pair":"turbine","role":"leader","epoch":4,"lease_left_ms":1250}`: the lease as this
+    /// unit holds it now; `lease_left_ms` null while it does not lead.
+    std::string status_json() const override;
     bool may_produce(core::MonoTime now) const override;
     /// The other unit sends what this one produces while this one stands by.
     bool hears_produced() const override { return true; }

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "eip2mqtt/core/time.hpp"
 #include "eip2mqtt/core/write/write_counters.hpp"
@@ -70,6 +71,8 @@ public:
     /// runs now, or once the role lets it.
     virtual void answer_write(const ExchangeProducer& producer, std::uint64_t write_id,
                               const WriteReply& reply, std::function<void()> answer) = 0;
+    /// The role as the status page shows it, JSON: `null` for a unit alone.
+    virtual std::string status_json() const { return "null"; }
 
 protected:
     UnitRole() = default;

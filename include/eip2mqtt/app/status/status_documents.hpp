@@ -8,12 +8,15 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "eip2mqtt/app/exchanges/exchanges.hpp"
+#include "eip2mqtt/app/exchanges/write_log.hpp"
 #include "eip2mqtt/app/health/metrics.hpp"
+#include "eip2mqtt/app/status/sparklines.hpp"
 #include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::app::status {
@@ -31,13 +34,18 @@ struct GatewayFacts {
 };
 
 /// GET /api/status (docs/schema/api-status.json): the gateway, then every exchange in one
-/// line each, without its tags.
+/// line each, without its tags; then, when given, the last writes (newest first) and the last
+/// warnings of the log (oldest first).
 std::string status_document(const GatewayFacts& facts, const MetricsSources& sources,
-                            const Exchanges& exchanges, core::MonoTime now, core::WallTime wall);
+                            const Exchanges& exchanges, core::MonoTime now, core::WallTime wall,
+                            const WriteLog* writes = nullptr,
+                            std::span<const std::string> warnings = {});
 
 /// GET /api/exchanges/{name} (docs/schema/api-exchange.json): the exchange's line and each of
 /// its tags with its value; nullopt when no exchange has that name.
+/// With `sparklines`, each numeric tag that has one carries it (`sparkline`).
 std::optional<std::string> exchange_document(const Exchanges& exchanges, std::string_view name,
-                                             core::MonoTime now, core::WallTime wall);
+                                             core::MonoTime now, core::WallTime wall,
+                                             const Sparklines* sparklines = nullptr);
 
 }  // namespace eip2mqtt::app::status

@@ -18,7 +18,9 @@
 #include <vector>
 
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
+#include "eip2mqtt/app/exchanges/exchanges_module.hpp"
 #include "eip2mqtt/app/module.hpp"
+#include "eip2mqtt/app/status/sparklines.hpp"
 #include "eip2mqtt/app/status/status_documents.hpp"
 #include "eip2mqtt/core/clock.hpp"
 #include "eip2mqtt/core/config/config.hpp"
@@ -34,8 +36,10 @@ public:
 
     /// Serves on `endpoint` from start() to stop(). The endpoint may go before the module
     /// (the modules die in their order, the metrics first): only stop() touches it after start.
+    /// It reads `south`'s exchanges and write log, and keeps the sparklines of what its
+    /// fan-out reports (added to it now); `south` outlives the module's use of it.
     StatusModule(const core::config::Config& config, boost::asio::any_io_executor loop,
-                 const core::Clock& clock, const Exchanges& exchanges,
+                 const core::Clock& clock, ExchangesModule& south,
                  adapters::metrics::PrometheusEndpoint& endpoint, Sources sources);
 
     void start(core::MonoTime now) override;
@@ -57,6 +61,8 @@ private:
     boost::asio::any_io_executor loop_;
     const core::Clock& clock_;
     const Exchanges& exchanges_;
+    const WriteLog& writes_;
+    Sparklines sparklines_;
     adapters::metrics::PrometheusEndpoint& endpoint_;
     Sources sources_;
     GatewayFacts facts_;
@@ -70,7 +76,7 @@ private:
 /// The status API on `endpoint` (metrics.listen's listener); null without one.
 std::unique_ptr<Module> make_status_module(const core::config::Config& config,
                                            boost::asio::any_io_executor loop,
-                                           const core::Clock& clock, const Exchanges& exchanges,
+                                           const core::Clock& clock, ExchangesModule& south,
                                            adapters::metrics::PrometheusEndpoint* endpoint,
                                            StatusModule::Sources sources);
 
