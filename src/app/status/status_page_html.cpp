@@ -40,12 +40,8 @@ const std::string_view page_html = R"html(<!DOCTYPE html>
 </section>
 <section id="writes">
   <h2>Last writes</h2>
-  <table id="write-table">
-    <thead><tr>
-      <th>time</th><th>origin</th><th>target</th><th>values</th><th>result</th>
-    </tr></thead>
-    <tbody></tbody>
-  </table>
+  <table id="write-table"><thead><tr><th>time</th><th>origin</th><th>target</th>
+    <th>values</th><th>result</th></tr></thead><tbody></tbody></table>
 </section>
 <section id="warnings">
   <h2>Last warnings</h2>
