@@ -268,14 +268,14 @@ void Pair::settle_left_writes(core::MonoTime now) {
 void Pair::repeat_answer(const ListedWrite& write) {
     // The old leader's answer was not heard here: it may never have left (the leader died
     // between the broker's acknowledgement of the image and its answer). Its client may get
-    // the same answer twice, never two different ones.
+    // the same answer twice, never two different ones. Through the fan-out, as every result:
+    // the write log notes it too.
     const auto& reply = write.request.reply;
-    if (reply.origin == nullptr) return;
     switch (write.result) {
         case core::redundancy::ListedResult::ok:
-            return reply.origin->write_result(reply, std::nullopt);
+            return parts_->north.write_result(reply, std::nullopt);
         case core::redundancy::ListedResult::refused:
-            return reply.origin->write_result(reply, admission_->refusal().message);
+            return parts_->north.write_result(reply, admission_->refusal().message);
         case core::redundancy::ListedResult::unknown:
             return;  // an older release's image: it does not say which answer to repeat
     }
@@ -300,7 +300,7 @@ void Pair::step_down_writes(core::MonoTime now) {
             if (request.reply.via == core::write::WriteOrigin::mqtt) {
                 writes_->leave(std::move(request), now);
             } else if (request.reply.origin) {
-                request.reply.origin->write_result(request.reply, "standby");
+                parts_->north.write_result(request.reply, "standby");
             }
         }
     }
