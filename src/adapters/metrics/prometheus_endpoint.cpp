@@ -270,22 +270,29 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
 // Named, not anonymous: PrometheusEndpoint::Impl holds one.
 namespace detail {
 
-/// Serves the families built by the last update; scrapes copy them under the lock.
+/// Serves the last update's snapshot, built into families on each scrape: with 1,000 exchanges,
+/// families kept between scrapes held 4 MB (a label pair of strings per series), the snapshot
+/// a fraction of it, and the loop no longer builds them every second for nobody.
 class SnapshotCollectable : public prometheus::Collectable {
 public:
     std::vector<MetricFamily> Collect() const override {
-        std::lock_guard lock(mutex_);
-        return families_;
+        std::shared_ptr<const MetricsSnapshot> snapshot;
+        {
+            std::lock_guard lock(mutex_);
+            snapshot = snapshot_;
+        }
+        return snapshot ? to_families(*snapshot) : std::vector<MetricFamily>{};
     }
 
-    void set(std::vector<MetricFamily> families) {
+    void set(MetricsSnapshot snapshot) {
+        auto next = std::make_shared<const MetricsSnapshot>(std::move(snapshot));
         std::lock_guard lock(mutex_);
-        families_.swap(families);
-    }  // the lock is released before the parameter, now holding the old families, is freed
+        snapshot_.swap(next);
+    }  // the lock is released before `next`, now holding the old snapshot, is freed
 
 private:
     mutable std::mutex mutex_;
-    std::vector<MetricFamily> families_;
+    std::shared_ptr<const MetricsSnapshot> snapshot_;
 };
 
 }  // namespace detail
@@ -329,9 +336,9 @@ PrometheusEndpoint::~PrometheusEndpoint() {
     for (const int port : impl_->ports) detail::unregister_port(port);
 }
 
-void PrometheusEndpoint::update(const MetricsSnapshot& snapshot) {
-    impl_->collectable->set(to_families(snapshot));
+void PrometheusEndpoint::update(MetricsSnapshot snapshot) {
     impl_->health->update(snapshot, impl_->health->clock().monotonic());
+    impl_->collectable->set(std::move(snapshot));
 }
 
 void PrometheusEndpoint::serve_pages(PageHandler pages, EventSource events) {

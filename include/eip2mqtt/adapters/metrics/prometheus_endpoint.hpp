@@ -140,7 +140,7 @@ public:
 
     /// Replaces what scrapes and health checks see. Called from the loop, about once a second;
     /// safe against concurrent scrapes (one short lock).
-    void update(const MetricsSnapshot& snapshot);
+    void update(MetricsSnapshot snapshot);
 
     /// The port actually listened on.
     std::uint16_t port() const;
