@@ -19,7 +19,7 @@ from benchlib.util import GATEWAY, tool
 from scenarios import (s01_udp, s02_s03_publications, s04_batch, s05_latency, s06_memory,
                        s07_periods, s08_overload, s09_write_latency, s10_store_and_forward,
                        s11_commands, s12_dissector, s13_failover, s14_overload_rate,
-                       s15_topic_aliases)
+                       s15_topic_aliases, s16_status_page)
 
 # (the scenario numbers a module answers to in --only, its module), in the order they run:
 # later scenarios take their load from scenario 2's figures.
@@ -38,13 +38,14 @@ SCENARIOS = (
     ((13,), s13_failover),
     ((14,), s14_overload_rate),
     ((15,), s15_topic_aliases),
+    ((16,), s16_status_page),
 )
 
 
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
-    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-15)")
+    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-16)")
     parser.add_argument("--rounds", type=int, default=0, metavar="N",
                         help="paired rounds of the repeated scenarios (default 3, 1 with --quick)")
     parser.add_argument("--against-binary", default="", metavar="PATH",
@@ -67,6 +68,10 @@ def command_line(args):
 def check_programs(args, only):
     if not only or 14 in only:  # the Node-RED peer row: installed by tools/install-deps.sh
         node_red.require_installed()
+    if not only or 16 in only:  # the page's render: chromium and puppeteer-core, as its test
+        for path in (s16_status_page.CHROMIUM, s16_status_page.PUPPETEER):
+            if not os.path.exists(path):
+                sys.exit(f"missing {path}: run tools/install-deps.sh")
     for path in (GATEWAY, tool("load_generator"), tool("mqtt_counter"), tool("yaml_parse"),
                  tool("write_latency")) + ((args.against_binary,) if args.against_binary else ()):
         if not os.access(path, os.X_OK):

@@ -1,9 +1,11 @@
 """Measurements more than one scenario takes: bare Paho's rate, a gateway's rate under a
 load, the zero-loss rate of a receiver, and how rounds are written in a row."""
 
+import contextlib
 import socket
 import subprocess
 
+from benchlib.builds import NotInBuild
 from benchlib.cpu import PERIOD_S, CpuSampler
 from benchlib.util import (HOST, PAHO_WINDOW, TAGS, consumed_list, free_port, last_json,
                            offered_datagrams, stop, tool)
@@ -123,21 +125,30 @@ class Measures:
 
     def gateway_rate(self, name, qos, change, ceiling, batch=False, exchanges=1, sparkplug=False,
                      tags=TAGS, build=None, sample=False, datagrams=None, threads=False,
-                     scaled=False):
+                     scaled=False, prometheus=0, during=None):
         """`build`'s gateway offered 1.5 x `ceiling` tag updates/s (or `datagrams`/s): the
         counter's JSON, with the run's CPU per publication as "cpu" when `sample` (the
         gateway's thread by thread too with `threads`); `scaled`: every tag with an engineering
-        scale."""
+        scale; `prometheus`: its listener's port; `during(build)`: a context the load runs
+        in, entered once the gateway is online."""
         gw, udp_port = self.launch_gateway(name, consumed_list(exchanges, tags), qos, batch=batch,
-                                           sparkplug=sparkplug, build=build, scaled=scaled)
+                                           sparkplug=sparkplug, build=build, scaled=scaled,
+                                           prometheus=prometheus)
         counter = self.rate_counter(qos, batch, sparkplug)
         per_datagram = max(1, round(change * tags))
-        gen, sampler = self.run_load(
-            self.generator_args(udp_port, exchanges,
-                                datagrams or offered_datagrams(ceiling, change, tags),
-                                duration=self.d, change=change, tags=tags),
-            self.d + 60, "load generator", {"gateway": [gw.pid], "subscriber": [counter.pid]},
-            sample, ("gateway",) if threads else ())
+        try:
+            with during(build or self.build) if during else contextlib.nullcontext():
+                gen, sampler = self.run_load(
+                    self.generator_args(udp_port, exchanges,
+                                        datagrams or offered_datagrams(ceiling, change, tags),
+                                        duration=self.d, change=change, tags=tags),
+                    self.d + 60, "load generator",
+                    {"gateway": [gw.pid], "subscriber": [counter.pid]}, sample,
+                    ("gateway",) if threads else ())
+        except NotInBuild:
+            stop(counter)
+            stop(gw)
+            raise
         got = self.finish(counter)
         got["cpu"] = sampler and sampler.per_publication(got["rate"], self.d)
         # For the log line only (uns: false has no metrics topic).
