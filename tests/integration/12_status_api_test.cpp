@@ -26,7 +26,9 @@ protected:
     void SetUp() override {
         port_ = free_tcp_port();
         GatewayOptions options;
-        options.sections = "metrics:\n  listen: 127.0.0.1:" + std::to_string(port_) + "\n";
+        // Sparkplug on, so that its session is on the page too.
+        options.sections = "metrics:\n  listen: 127.0.0.1:" + std::to_string(port_) +
+                           "\nsparkplug:\n  group_id: plant1\n";
         start(ExchangeYaml::consume("pump", "10.0.0.2", 7)
                       .length(8)
                       .tag("SPEED", "0.0", "dint", "unit: rpm")
@@ -67,6 +69,10 @@ TEST_F(StatusApiTest, ShowTheGatewayEachExchangeAndItsTagsAsTheirSchemasSay) {
     EXPECT_EQ(status["gateway"]["config"]["file"], config_path_);
     EXPECT_EQ(status["gateway"]["config"]["reloads"], 0);
     EXPECT_EQ(status["gateway"]["mqtt"]["connected"], true);
+    ASSERT_EQ(status["gateway"]["mqtt"]["brokers"].size(), 1u) << bodies_.back();
+    EXPECT_EQ(status["gateway"]["mqtt"]["brokers"][0]["connected"], true);
+    EXPECT_EQ(status["gateway"]["sparkplug"]["group_id"], "plant1");
+    EXPECT_EQ(status["gateway"]["sparkplug"]["devices"], 2);  // one per exchange
     ASSERT_EQ(status["exchanges"].size(), 2u) << bodies_.back();
     const auto& pump = status["exchanges"][0];
     EXPECT_EQ(pump["name"], "pump");

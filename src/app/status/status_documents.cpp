@@ -84,6 +84,42 @@ void append_tags(std::string& out, const core::plan::ExchangePlan& plan,
     out += ']';
 }
 
+/// `,"mqtt":{…}`: the main connection, and each broker of its list with whether it is the one
+/// connected to.
+void append_mqtt(std::string& out, std::span<const std::string> brokers,
+                 const adapters::mqtt::ClientStats& mqtt) {
+    fmt::format_to(std::back_inserter(out),
+                   R"(,"mqtt":{{"connected":{},"connects":{},"connection_losses":{},"brokers":[)",
+                   mqtt.connected, mqtt.connects, mqtt.connection_losses);
+    for (std::size_t i = 0; i < brokers.size(); ++i) {
+        out += i != 0 ? R"(,{"url":)" : R"({"url":)";
+        append_json_string(out, brokers[i]);
+        fmt::format_to(std::back_inserter(out), R"(,"connected":{}}})",
+                       mqtt.connected && mqtt.broker == brokers[i]);
+    }
+    out += "]}";
+}
+
+void append_sparkplug(std::string& out, const northbound::sparkplug::SparkplugStats& stats) {
+    const auto& session = stats.session;
+    out += R"({"group_id":)";
+    append_json_string(out, session.group_id);
+    append_field(out, "edge_node_id", session.edge_node_id);
+    // A node without a primary host waits for none: neither its name nor its state.
+    out += R"(,"primary_host":)";
+    if (session.primary_host_id.empty()) {
+        out += R"(null,"host_online":null)";
+    } else {
+        append_json_string(out, session.primary_host_id);
+        fmt::format_to(std::back_inserter(out), R"(,"host_online":{})", session.host_online);
+    }
+    fmt::format_to(std::back_inserter(out), R"(,"born":{},"bd_seq":{},"devices":{},)", session.born,
+                   session.bd_seq ? std::to_string(*session.bd_seq) : "null", session.devices);
+    fmt::format_to(std::back_inserter(out),
+                   R"("devices_born":{},"node_births":{},"rebirth_requests":{}}})",
+                   session.devices_born, stats.node_births, stats.rebirth_requests);
+}
+
 }  // namespace
 
 std::string status_document(const GatewayFacts& facts, const MetricsSources& sources,
@@ -98,13 +134,14 @@ std::string status_document(const GatewayFacts& facts, const MetricsSources& sou
     append_json_string(out, facts.config_file);
     fmt::format_to(std::back_inserter(out), R"(,"loaded_at":{},"reloads":{}}})",
                    core::to_ms(facts.loaded_at), facts.reloads);
-    fmt::format_to(std::back_inserter(out), R"(,"mqtt":{{"connected":{},"brokers":[)",
-                   sources.mqtt.connected);
-    for (std::size_t i = 0; i < facts.brokers.size(); ++i) {
-        if (i != 0) out += ',';
-        append_json_string(out, facts.brokers[i]);
+    append_mqtt(out, facts.brokers, sources.mqtt);
+    out += R"(,"sparkplug":)";
+    if (sources.sparkplug != nullptr) {
+        append_sparkplug(out, *sources.sparkplug);
+    } else {
+        out += "null";
     }
-    out += R"(]},"role":)";
+    out += R"(,"role":)";
     out += sources.role != nullptr ? sources.role->status_json() : std::string("null");
     out += R"(,"metrics":)";
     out += json_tree::metrics_json(

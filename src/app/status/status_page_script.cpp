@@ -77,12 +77,21 @@ function drawFacts(gateway) {
     ["uptime", (m.uptime_s || 0) + " s"],
     ["configuration", gateway.config.file + " (loaded " + timeText(gateway.config.loaded_at) +
       ", " + gateway.config.reloads + " reload(s))"],
-    ["MQTT", (gateway.mqtt.connected ? "connected to " + m.broker : "not connected") +
-      " (brokers: " + gateway.mqtt.brokers.join(", ") + ")"],
+    ["MQTT", (gateway.mqtt.connected ? "connected" : "not connected") + ", " +
+      gateway.mqtt.connects + " connection(s) made, " + gateway.mqtt.connection_losses + " lost"],
+    ["brokers", gateway.mqtt.brokers.map((b) => b.url + (b.connected ? " (connected)" : ""))
+      .join(", ")],
     ["publications", (m.published || 0) + " made, " + (m.buffered || 0) + " waiting"]
   ];
   if (m.history) facts.push(["store and forward", m.history.entries + " entries waiting"]);
-  if (m.sparkplug) facts.push(["Sparkplug", m.sparkplug.node_births + " node birth(s)"]);
+  const sp = gateway.sparkplug;
+  if (sp) {
+    facts.push(["Sparkplug", sp.group_id + "/" + sp.edge_node_id + ": " +
+      (sp.born ? "born" : "not born") + (sp.bd_seq === null ? "" : ", bdSeq " + sp.bd_seq) +
+      ", " + sp.devices_born + " of " + sp.devices + " devices born" +
+      (sp.primary_host === null ? "" : ", host " + sp.primary_host + " " +
+        (sp.host_online ? "online" : "offline")) + ", " + sp.node_births + " node birth(s)"]);
+  }
   const r = gateway.role;
   if (r) {
     facts.push(["hot-standby pair", r.pair + ": " + r.role + ", epoch " + r.epoch +

@@ -73,12 +73,20 @@ protected:
 
 TEST_F(StatusDocumentsTest, TheGatewayAndEachExchangeInOneLineWithoutTags) {
     mqtt_.connected = true;
+    mqtt_.broker = "tcp://b:1883";
+    mqtt_.connects = 2;
+    mqtt_.connection_losses = 1;
     clock_.advance(90s);
     const auto doc = status();
     EXPECT_EQ(doc["gateway"]["id"], "gw");
     EXPECT_EQ(doc["gateway"]["config"]["file"], "/etc/eip2mqtt/eip2mqtt.yaml");
-    EXPECT_EQ(doc["gateway"]["mqtt"]["brokers"], json::array({"tcp://a:1883", "tcp://b:1883"}));
+    EXPECT_EQ(doc["gateway"]["mqtt"]["brokers"],
+              json::parse(R"([{"url":"tcp://a:1883","connected":false},)"
+                          R"({"url":"tcp://b:1883","connected":true}])"));
     EXPECT_EQ(doc["gateway"]["mqtt"]["connected"], true);
+    EXPECT_EQ(doc["gateway"]["mqtt"]["connects"], 2);
+    EXPECT_EQ(doc["gateway"]["mqtt"]["connection_losses"], 1);
+    EXPECT_TRUE(doc["gateway"]["sparkplug"].is_null());
     EXPECT_EQ(doc["gateway"]["metrics"]["uptime_s"], 90);
     EXPECT_EQ(doc["gateway"]["time"].get<std::int64_t>() -
                   doc["gateway"]["started_at"].get<std::int64_t>(),
@@ -97,6 +105,28 @@ TEST_F(StatusDocumentsTest, TheGatewayAndEachExchangeInOneLineWithoutTags) {
     EXPECT_EQ(cmd["direction"], "produce");
     EXPECT_EQ(cmd["destination"], "127.0.0.1");
     EXPECT_EQ(cmd["status"]["state"], "producing");
+}
+
+TEST_F(StatusDocumentsTest, TheSparkplugSessionAsTheNodeLastSaidIt) {
+    northbound::sparkplug::SparkplugStats stats;
+    stats.node_births = 3;
+    stats.session = {"plant", "gw", "scada", true, true, 7, 2, 1};
+    MetricsSources sources{exchanges_->datagram_counters(), writes_, mqtt_};
+    sources.sparkplug = &stats;
+    const auto doc = json::parse(
+        status_document(facts_, sources, *exchanges_, clock_.monotonic(), clock_.wall()));
+    EXPECT_EQ(doc["gateway"]["sparkplug"],
+              json::parse(R"({"group_id":"plant","edge_node_id":"gw","primary_host":"scada",)"
+                          R"("host_online":true,"born":true,"bd_seq":7,"devices":2,)"
+                          R"("devices_born":1,"node_births":3,"rebirth_requests":0})"));
+    // No primary host: none named, no state of one; no will yet: no bdSeq.
+    stats.session = {"plant", "gw", "", false, false, std::nullopt, 2, 0};
+    const auto before = json::parse(
+        status_document(facts_, sources, *exchanges_, clock_.monotonic(), clock_.wall()));
+    EXPECT_TRUE(before["gateway"]["sparkplug"]["primary_host"].is_null());
+    EXPECT_TRUE(before["gateway"]["sparkplug"]["host_online"].is_null());
+    EXPECT_TRUE(before["gateway"]["sparkplug"]["bd_seq"].is_null());
+    EXPECT_EQ(before["gateway"]["sparkplug"]["born"], false);
 }
 
 TEST_F(StatusDocumentsTest, TheLastWritesAndWarningsFollowWhenGiven) {

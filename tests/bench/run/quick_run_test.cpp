@@ -176,8 +176,8 @@ std::vector<std::string> expected_figures() {
     }
     figures.push_back(bytes + "MQTT 5 (content type, format indicator)");  // 15
     const std::string watched = "status page, 10 event streams open against none: ";
-    figures.push_back(watched + "datagrams/s accepted, zero loss");  // 16
-    figures.push_back(watched + "tag publications/s");               // 16
+    figures.push_back(watched + "datagrams/s accepted, zero loss");               // 16
+    figures.push_back(watched + "tag publications/s");                            // 16
     figures.push_back("status page, time to first render in headless chromium");  // 16
     return figures;
 }

@@ -101,7 +101,10 @@ void SparkplugModule::apply(const core::config::Config& next) {
     client_->set_batch_first(next.mqtt.batch_first);
 }
 
-void SparkplugModule::add_metrics(MetricsSources& sources) { sources.sparkplug = &node_->stats(); }
+void SparkplugModule::add_metrics(MetricsSources& sources) {
+    node_->refresh_session();
+    sources.sparkplug = &node_->stats();
+}
 
 void SparkplugModule::open_session(std::optional<std::uint8_t> heard_bd_seq) {
     node_->begin_session(heard_bd_seq);

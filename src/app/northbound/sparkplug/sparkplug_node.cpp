@@ -4,6 +4,7 @@
 
 #include "eip2mqtt/app/northbound/sparkplug/sparkplug_node.hpp"
 
+#include <algorithm>
 #include <string_view>
 
 namespace eip2mqtt::app::northbound::sparkplug {
@@ -152,6 +153,20 @@ void SparkplugNode::data_refused() {
 }
 
 void SparkplugNode::publish_counters() { metrics_.stats(stats_); }
+
+void SparkplugNode::refresh_session() {
+    auto& session = stats_.session;
+    session.group_id = options_.group_id;
+    session.edge_node_id = options_.edge_node_id;
+    session.primary_host_id = options_.primary_host_id;
+    session.host_online = session_.host_online();
+    session.born = session_.born();
+    session.bd_seq = session_.session_bd_seq();
+    const auto devices = devices_.devices();
+    session.devices = devices.size();
+    session.devices_born = static_cast<std::size_t>(
+        std::count_if(devices.begin(), devices.end(), [](const Device& d) { return d.born; }));
+}
 
 void SparkplugNode::widen_node_metrics_for_sizing() { metrics_.widen_for_sizing(); }
 

@@ -339,6 +339,25 @@ TEST_F(SparkplugPrimaryHostTest, BirthsWaitForThePrimaryHostToBeOnline) {
     EXPECT_EQ(decoded(publisher_.published.at(3)).metrics(0).int_value(), 9u);
 }
 
+TEST_F(SparkplugPrimaryHostTest, ItsSessionSaysWhatItWaitsForAndWhatIsBorn) {
+    const auto session = [this] {
+        node_.refresh_session();
+        return node_.stats().session;
+    };
+    EXPECT_EQ(session().bd_seq, std::nullopt);  // no will made yet
+    EXPECT_EQ(session().primary_host_id, "scada");
+    EXPECT_EQ(session().devices, 2u);
+    node_.next_will();
+    node_.on_connected();
+    first_datagram();
+    EXPECT_FALSE(session().born);  // the host is not online yet
+    EXPECT_EQ(session().bd_seq, node_.bd_seq());
+    state(R"({"online":true,"timestamp":200})");
+    EXPECT_TRUE(session().host_online);
+    EXPECT_TRUE(session().born);
+    EXPECT_EQ(session().devices_born, 1u);  // the consumed one; the produced waits for values
+}
+
 TEST_F(SparkplugNodeTest, ARebirthRequestStopsDataUntilItsBirths) {
     node_.next_will();
     node_.on_connected();

@@ -117,6 +117,8 @@ public:
     bool may_send_data() const { return session_.may_send_data(); }
     std::uint8_t bd_seq() const { return session_.bd_seq(); }
     const SparkplugStats& stats() const { return stats_; }
+    /// The session's state into stats().session, for whoever reads it next.
+    void refresh_session();
     /// Every counter at its largest and every state at its longest, so that the next NBIRTH is
     /// as large as it can grow (sparkplug_birth_sizes).
     void widen_node_metrics_for_sizing();
