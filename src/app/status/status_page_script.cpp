@@ -32,10 +32,24 @@ function valueText(value) {
   return String(value);
 }
 
+/// Why a consumed exchange is not ok, in a few words; "" when it is.
+function reasonOf(state, exchange) {
+  const timeout = exchange.timeout_ms ? " (timeout " + exchange.timeout_ms / 1000 + " s)" : "";
+  switch (state) {
+    case "waiting": return "no datagram yet" + timeout;
+    case "stale": return "no datagram for " + ageText(exchange.last_seen_age_ms).replace(" ago", "") +
+      timeout;
+    case "signature_mismatch": return "the producer's configuration signature is not the one configured";
+    case "length_mismatch": return "its datagrams' length is not the one configured";
+    default: return "";
+  }
+}
+
 function row(exchange) {
   const s = exchange.status || {};
   return {
     name: exchange.name, direction: exchange.direction, state: s.state || "",
+    reason: reasonOf(s.state, exchange),
     rate: exchange.datagrams_per_s || 0,
     age: exchange.last_seen_age_ms === undefined ? -1 : exchange.last_seen_age_ms,
     missed: s.missed || 0, restarts: s.restarts || 0, clock: s.clock || "", exchange: exchange
@@ -176,7 +190,7 @@ function drawExchanges() {
     const line = el("tr", null, "exchange " + (r.state === "ok" || r.state === "producing" ? "ok"
       : r.state === "waiting" ? "waiting" : "bad"));
     line.dataset.name = r.name;
-    line.append(el("td", r.name), el("td", r.direction), el("td", r.state, "state"),
+    line.append(el("td", r.name), el("td", r.direction), el("td", r.state + (r.reason ? ": " + r.reason : ""), "state"),
       el("td", r.rate.toFixed(1), "number"),
       el("td", r.direction === "consume" ? ageText(r.exchange.last_seen_age_ms) : "-"),
       el("td", r.missed, "number"), el("td", r.restarts, "number"), el("td", r.clock));
