@@ -34,11 +34,7 @@ protected:
                       .tag("SPEED", "0.0", "dint", "unit: rpm")
                       .tag("FLOW", "4.0", "real")
                       .str() +
-                  ExchangeYaml::produce("cmd", "10.0.0.9", 9, "127.0.0.1:9")
-                      .length(4)
-                      .period_ms(100)
-                      .tag("SETPOINT", "0.0", "dint", "writable: true, initial: 42")
-                      .str(),
+                  ExchangeYaml::setpoint_command(),
               "", options);
     }
 

@@ -41,11 +41,7 @@ TEST_F(StatusPageBrowserTest,
     start(
         ExchangeYaml::consume("pump", "10.0.0.2", 7).length(4).tag("SPEED", "0.0", "dint").str() +
             ExchangeYaml::consume("fan", "10.0.0.3", 8).length(4).tag("RPM", "0.0", "dint").str() +
-            ExchangeYaml::produce("cmd", "10.0.0.9", 9, "127.0.0.1:9")
-                .length(4)
-                .period_ms(100)
-                .tag("SETPOINT", "0.0", "dint", "writable: true, initial: 42")
-                .str(),
+            ExchangeYaml::setpoint_command(),
         "", options);
     // Datagrams every 100 ms with a new SPEED each, until the page saw one change (bounded).
     std::atomic<bool> sending{true};

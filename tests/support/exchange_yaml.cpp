@@ -58,4 +58,12 @@ std::string ExchangeYaml::str() const {
     return out;
 }
 
+std::string ExchangeYaml::setpoint_command() {
+    return produce("cmd", "10.0.0.9", 9, "127.0.0.1:9")
+        .length(4)
+        .period_ms(100)
+        .tag("SETPOINT", "0.0", "dint", "writable: true, initial: 42")
+        .str();
+}
+
 }  // namespace eip2mqtt::test

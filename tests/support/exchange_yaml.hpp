@@ -38,6 +38,11 @@ public:
     /// The list item, indented for the `exchanges:` list, ending with a newline.
     std::string str() const;
 
+    /// The produced `cmd` exchange (producer 10.0.0.9, id 9) of one writable dint, SETPOINT
+    /// (initially 42), sent every 100 ms to a port nobody reads: the write target of the tests
+    /// that need one and care about nothing else in it.
+    static std::string setpoint_command();
+
 private:
     ExchangeYaml() = default;
 
