@@ -1,6 +1,7 @@
 """Browsers watching the status page, as the gateway sees them: N event streams
 (/api/events?open=NAME, what the page's script opens), each read to its end by a thread of its
-own that counts the events it got. A build without the page is NotInBuild."""
+own that counts the events it got; a stream that got none fails the run. A build without the
+page is NotInBuild."""
 
 import socket
 import threading
@@ -23,7 +24,7 @@ class EventStreams:
             s.sendall(f"GET /api/events?open={name} HTTP/1.1\r\nHost: {HOST}\r\n\r\n".encode())
             head = s.recv(4096)
             if not head.startswith(b"HTTP/1.1 200") or b"text/event-stream" not in head:
-                self.__exit__(None, None, None)
+                self.close()
                 raise NotInBuild(self.build, "no status page event stream: " +
                                  head.split(b"\r\n", 1)[0].decode(errors="replace"))
             self.events[i] += head.count(b"event: ")
@@ -40,7 +41,7 @@ class EventStreams:
         except OSError:  # closed by __exit__, or no event for 5 s: the count says so
             pass
 
-    def __exit__(self, *exc):
+    def close(self):
         for s in self.sockets:
             try:
                 s.shutdown(socket.SHUT_RDWR)
@@ -49,8 +50,11 @@ class EventStreams:
             s.close()
         for thread in self.threads:
             thread.join(timeout=10)
-        return False
 
-    def fewest(self):
-        """The fewest events a stream got: each stream was live if it got any."""
-        return min(self.events) if self.events else 0
+    def __exit__(self, exc_type, *exc):
+        """Closes every stream; a stream that got no event fails the run (it was not live)."""
+        self.close()
+        if exc_type is None and min(self.events, default=0) == 0:
+            raise RuntimeError(f"an event stream on port {self.port} got no event: "
+                               f"{self.events}")
+        return False

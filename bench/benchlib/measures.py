@@ -129,15 +129,15 @@ class Measures:
         """`build`'s gateway offered 1.5 x `ceiling` tag updates/s (or `datagrams`/s): the
         counter's JSON, with the run's CPU per publication as "cpu" when `sample` (the
         gateway's thread by thread too with `threads`); `scaled`: every tag with an engineering
-        scale; `prometheus`: its listener's port; `during(build)`: a context the load runs
-        in, entered once the gateway is online."""
+        scale; `prometheus`: its listener's port; `during`: a context the load runs in,
+        entered once the gateway is online."""
         gw, udp_port = self.launch_gateway(name, consumed_list(exchanges, tags), qos, batch=batch,
                                            sparkplug=sparkplug, build=build, scaled=scaled,
                                            prometheus=prometheus)
         counter = self.rate_counter(qos, batch, sparkplug)
         per_datagram = max(1, round(change * tags))
         try:
-            with during(build or self.build) if during else contextlib.nullcontext():
+            with during or contextlib.nullcontext():
                 gen, sampler = self.run_load(
                     self.generator_args(udp_port, exchanges,
                                         datagrams or offered_datagrams(ceiling, change, tags),

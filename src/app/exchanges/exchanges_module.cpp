@@ -43,7 +43,7 @@ ExchangesModule::ExchangesModule(const core::config::Config& config,
       multicast_(config.eip.multicast),
       writes_([this](ExchangeWrite&& write, const WriteReply& reply,
                      core::MonoTime now) { return exchanges_.stage(std::move(write), reply, now); },
-              clock),
+              north_, clock),
       exchanges_(loop, with_socket(config, std::move(options)), north_, writes_.image_saves(),
                  clock),
       receiver_(loop, receiver_options(config.eip, clock)) {

@@ -13,8 +13,8 @@
 
 namespace eip2mqtt::app {
 
-WriteDispatcher::WriteDispatcher(StageWrite stage, const core::Clock& clock)
-    : stage_(std::move(stage)), clock_(clock) {}
+WriteDispatcher::WriteDispatcher(StageWrite stage, Northbound& results, const core::Clock& clock)
+    : stage_(std::move(stage)), results_(results), clock_(clock) {}
 
 bool WriteDispatcher::admitted(WriteRequest& request) {
     using redundancy::WriteTurn;
@@ -61,8 +61,7 @@ void WriteDispatcher::on_write(WriteRequest&& request) {
 void WriteDispatcher::reject(const WriteRequest& request,
                              const core::write::WriteRejection& rejection) {
     ++counters_.writes_rejected[static_cast<std::size_t>(rejection.error)];
-    write_log_.answered(request.reply.log_id, rejection.message, clock_.wall());
-    if (request.reply.origin) request.reply.origin->write_result(request.reply, rejection.message);
+    results_.write_result(request.reply, rejection.message);
     const auto count = log_.record(clock_.monotonic());
     if (count == 0) return;
     std::uint64_t total = 0;

@@ -17,9 +17,13 @@ function el(tag, text, cls) {
   return node;
 }
 
+function durationText(ms) {
+  return ms < 10000 ? (ms / 1000).toFixed(1) + " s" : Math.round(ms / 1000) + " s";
+}
+
 function ageText(ms) {
   if (ms === null || ms === undefined) return "never";
-  return ms < 10000 ? (ms / 1000).toFixed(1) + " s ago" : Math.round(ms / 1000) + " s ago";
+  return durationText(ms) + " ago";
 }
 
 function timeText(ms) {
@@ -37,8 +41,7 @@ function reasonOf(state, exchange) {
   const timeout = exchange.timeout_ms ? " (timeout " + exchange.timeout_ms / 1000 + " s)" : "";
   switch (state) {
     case "waiting": return "no datagram yet" + timeout;
-    case "stale": return "no datagram for " + ageText(exchange.last_seen_age_ms).replace(" ago", "") +
-      timeout;
+    case "stale": return "no datagram for " + durationText(exchange.last_seen_age_ms) + timeout;
     case "signature_mismatch": return "the producer's configuration signature is not the one configured";
     case "length_mismatch": return "its datagrams' length is not the one configured";
     default: return "";
@@ -190,7 +193,8 @@ function drawExchanges() {
     const line = el("tr", null, "exchange " + (r.state === "ok" || r.state === "producing" ? "ok"
       : r.state === "waiting" ? "waiting" : "bad"));
     line.dataset.name = r.name;
-    line.append(el("td", r.name), el("td", r.direction), el("td", r.state + (r.reason ? ": " + r.reason : ""), "state"),
+    const stateText = r.state + (r.reason ? ": " + r.reason : "");
+    line.append(el("td", r.name), el("td", r.direction), el("td", stateText, "state"),
       el("td", r.rate.toFixed(1), "number"),
       el("td", r.direction === "consume" ? ageText(r.exchange.last_seen_age_ms) : "-"),
       el("td", r.missed, "number"), el("td", r.restarts, "number"), el("td", r.clock));

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <vector>
 
+#include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/log_capture.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
@@ -33,6 +34,9 @@ protected:
     std::vector<ProducerHandle> staged_;  ///< the producer of each staged write
     std::optional<WriteRejection> exchange_refuses_;
     test::FakeClock clock_;
+    /// Where refusals are answered, as in the gateway: the fan-out, which hands each to its
+    /// origin.
+    northbound::FanOut results_;
     WriteDispatcher dispatcher_{[this](ExchangeWrite&& write, const WriteReply& reply,
                                        core::MonoTime now) -> std::optional<WriteRejection> {
                                     EXPECT_EQ(reply.topic, "reply/topic");
@@ -41,7 +45,7 @@ protected:
                                     staged_.push_back(write.producer);
                                     return std::nullopt;
                                 },
-                                clock_};
+                                results_, clock_};
 };
 
 TEST_F(WriteDispatcherTest, AnAcceptedWriteIsStagedOnItsExchangeAndCountedNotAnswered) {
@@ -63,6 +67,16 @@ TEST_F(WriteDispatcherTest, AcceptedWritesAreCountedByTheProtocolTheyCameBy) {
     EXPECT_EQ(by_origin[static_cast<std::size_t>(WriteOrigin::commands)], 1u);
     EXPECT_EQ(by_origin[static_cast<std::size_t>(WriteOrigin::mqtt)], 1u);
     EXPECT_EQ(by_origin[static_cast<std::size_t>(WriteOrigin::sparkplug)], 0u);
+}
+
+TEST_F(WriteDispatcherTest, ARefusalPassesTheFanOutWhichNotesItsReasonInTheWriteLog) {
+    results_.set_write_log(dispatcher_.write_log(), clock_);
+    dispatcher_.on_write(request(WriteRejection{WriteError::read_only, "read-only"}));
+    std::string logged;
+    dispatcher_.write_log().append_json(logged);
+    EXPECT_NE(logged.find(R"("target":"acme/t1/out/set")"), std::string::npos) << logged;
+    EXPECT_NE(logged.find(R"("result":"read-only")"), std::string::npos) << logged;
+    ASSERT_EQ(origin_.results.size(), 1u);  // and answered by its origin, once
 }
 
 TEST_F(WriteDispatcherTest, ARefusalIsCountedUnderItsErrorAndAnsweredByItsOrigin) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "eip2mqtt/app/exchanges/write_dispatcher.hpp"
+#include "eip2mqtt/app/northbound/fan_out.hpp"
 #include "tests/support/fakes/fake_clock.hpp"
 #include "tests/support/fakes/recording_northbound.hpp"
 
@@ -60,12 +61,15 @@ protected:
         {[this] { return policy_; },
          [this](WriteRequest&& request) { left_.push_back(std::move(request)); },
          [this](const ExchangeWrite&) { return holds_; }}};
+    /// Where refusals are answered, as in the gateway: the fan-out, which hands each to its
+    /// origin.
+    northbound::FanOut results_;
     WriteDispatcher dispatcher_{[this](ExchangeWrite&&, const WriteReply&,
                                        core::MonoTime) -> std::optional<WriteRejection> {
                                     ++staged_;
                                     return std::nullopt;
                                 },
-                                clock_};
+                                results_, clock_};
 };
 
 TEST_F(PairAdmissionTest, TheLeaderStagesAsEver) {

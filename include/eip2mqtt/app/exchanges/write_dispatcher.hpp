@@ -1,7 +1,9 @@
 #pragma once
 /// Where every northbound's writes go (the Gateway's WriteHandler): a decoded write is staged on
-/// its produced exchange, or refused; every refusal is counted, answered through the northbound
-/// the write came from, and logged (throttled: a client may flood). Time is injected.
+/// its produced exchange, or refused; every refusal is counted, answered through `results` as
+/// every other result is (the fan-out: it notes the result in the write log, then answers the
+/// northbound the write came from), and logged (throttled: a client may flood). Time is
+/// injected.
 ///
 /// Threading: the loop only.
 
@@ -27,8 +29,9 @@ using StageWrite = std::function<std::optional<core::write::WriteRejection>(
 
 class WriteDispatcher final : public WriteHandler {
 public:
-    /// `clock` (when a write arrives, for its rate limit) must outlive the dispatcher.
-    WriteDispatcher(StageWrite stage, const core::Clock& clock);
+    /// `results` (where refusals are answered) and `clock` (when a write arrives, for its rate
+    /// limit) must outlive the dispatcher.
+    WriteDispatcher(StageWrite stage, Northbound& results, const core::Clock& clock);
 
     void on_write(WriteRequest&& request) override;
 
@@ -48,8 +51,8 @@ public:
     /// Where the produced exchanges count their image saves (ExchangeProducer).
     ImageSaveTotals& image_saves() { return counters_.image_saves; }
     const WriteCounters& counters() const { return counters_; }
-    /// The last writes and their results (the status page); FanOut logs the results that
-    /// come back through the northbounds.
+    /// The last writes and their results (the status page): noted here as each arrives, and by
+    /// the fan-out as each result passes it.
     WriteLog& write_log() { return write_log_; }
     const WriteLog& write_log() const { return write_log_; }
 
@@ -59,6 +62,7 @@ private:
     void reject(const WriteRequest& request, const core::write::WriteRejection& rejection);
 
     StageWrite stage_;
+    Northbound& results_;
     const core::Clock& clock_;
     redundancy::WriteRole* role_ = &redundancy::always_leads();
     WriteCounters counters_;
