@@ -1,9 +1,10 @@
 // The status page in a real browser: Debian's chromium, driven by puppeteer-core
 // (tests/support/browser/status_page.js), on a gateway fed datagrams. The page shows every
 // exchange, a tag's value changes on screen while datagrams come, the write log shows an MQTT
-// write and its result, the exchange turns stale once they stop, and the console has no error. The
-// screenshot is kept in the build tree (test-artifacts/status-page.png). How long the change took
-// is printed, never judged.
+// write and its result, the exchange turns stale once they stop and the log's warning of it is
+// listed, and the console has no error. The screenshot is kept in the build tree
+// (test-artifacts/status-page.png). How long the change took is printed, never judged. And the list
+// of 105 exchanges (status_list.js): paged 100 at a time, searched, sorted by a column.
 
 #include <atomic>
 #include <filesystem>
@@ -86,8 +87,49 @@ TEST_F(StatusPageBrowserTest,
     const std::string stale = step(output, "stale")["state"];
     EXPECT_EQ(stale.rfind("stale: no datagram for ", 0), 0u) << output;
     EXPECT_NE(stale.find(" s (timeout 3 s)"), std::string::npos) << output;
+    // The log's warning that it went stale is among the last warnings the page lists.
+    bool warned = false;
+    const auto warnings = step(output, "warnings");
+    for (const auto& line : warnings["lines"]) {
+        warned =
+            warned || line.get<std::string>().find("exchange pump is stale") != std::string::npos;
+    }
+    EXPECT_TRUE(warned) << output;
     EXPECT_EQ(step(output, "done")["errors"], json::array()) << output;
     EXPECT_TRUE(std::filesystem::exists(screenshot));
+}
+
+TEST_F(StatusPageBrowserTest, ListsExchangesAHundredToAPageSearchedAndSortedByAColumn) {
+    const auto port = free_tcp_port();
+    GatewayOptions options;
+    options.sections = "metrics:\n  listen: 127.0.0.1:" + std::to_string(port) + "\n";
+    std::string exchanges;
+    for (std::uint32_t n = 0; n < 105; ++n) {
+        const auto digits = std::to_string(1000 + n).substr(1);  // x000 to x104
+        exchanges += ExchangeYaml::consume("x" + digits, "10.0.0.2", n + 1)
+                         .length(4)
+                         .tag("V", "0.0", "dint")
+                         .str();
+    }
+    start(exchanges, "", options);
+    ChildProcess browser({EIP2MQTT_NODE, EIP2MQTT_BROWSER_LIST_SCRIPT, EIP2MQTT_CHROMIUM,
+                          "http://127.0.0.1:" + std::to_string(port) + "/", "5"});
+    ASSERT_EQ(browser.wait(120s), 0) << browser.output();
+    const auto output = browser.output();
+    const auto seen = json::parse(output.substr(output.rfind("{\"count\"")), nullptr, false);
+    ASSERT_TRUE(seen.is_object()) << output;
+    EXPECT_EQ(seen["count"], "105 exchange(s)") << output;
+    ASSERT_EQ(seen["first_page"].size(), 100u) << output;
+    EXPECT_EQ(seen["first_page"][0], "x000") << output;
+    EXPECT_EQ(seen["first_page"][99], "x099") << output;
+    EXPECT_EQ(seen["next_page"], json::array({"x100", "x101", "x102", "x103", "x104"})) << output;
+    // The names with a 5: x005, x015 ... x095 and x050 to x059, back on the first page.
+    ASSERT_EQ(seen["searched"].size(), 19u) << output;
+    EXPECT_EQ(seen["searched"][0], "x005") << output;
+    EXPECT_EQ(seen["searched"][18], "x095") << output;
+    // Sorted by name already: a click on its column sorts the other way.
+    EXPECT_EQ(seen["sorted_first"], "x095") << output;
+    EXPECT_EQ(seen["errors"], json::array()) << output;
 }
 
 }  // namespace

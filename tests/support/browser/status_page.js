@@ -70,6 +70,12 @@ async function main() {
     const state = await page.$eval(`tr.exchange[data-name="${exchange}"] td.state`,
       (cell) => cell.textContent);
     say({ step: "stale", state: state });
+    // The log's warning of it, among the last warnings below the tables.
+    await page.waitForFunction((name) => Array.from(document.querySelectorAll("#warning-list li"))
+      .some((li) => li.textContent.includes("exchange " + name + " is stale")),
+    { timeout: 30000 }, exchange).catch(() => null);
+    say({ step: "warnings", lines: await page.$$eval("#warning-list li",
+      (items) => items.map((li) => li.textContent)) });
     await page.screenshot({ path: screenshot });
   } finally {
     await browser.close();
