@@ -6,22 +6,16 @@
 //
 //   node status_list.js CHROMIUM URL SEARCH
 "use strict";
-const puppeteer = require("puppeteer-core");
+const { launch, watchedPage } = require("./headless");
 
 const [chromium, url, search] = process.argv.slice(2);
 
 async function main() {
   const errors = [];
-  const browser = await puppeteer.launch({
-    executablePath: chromium,
-    headless: true,
-    args: ["--no-sandbox", "--disable-gpu", "--window-size=1200,900"],
-  });
+  const browser = await launch(chromium);
   const seen = {};
   try {
-    const page = await browser.newPage();
-    page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
-    page.on("pageerror", (e) => errors.push(String(e)));
+    const page = await watchedPage(browser, errors);
     await page.goto(url);
     const rows = () => page.$$eval("tr.exchange", (r) => r.map((x) => x.dataset.name));
     await page.waitForFunction(() => document.querySelectorAll("tr.exchange").length > 0,

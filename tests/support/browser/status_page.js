@@ -7,7 +7,7 @@
 //
 //   node status_page.js CHROMIUM URL EXCHANGE TAG EXCHANGE_COUNT SCREENSHOT WRITTEN
 "use strict";
-const puppeteer = require("puppeteer-core");
+const { launch, watchedPage } = require("./headless");
 
 const [chromium, url, exchange, tag, count, screenshot, written] = process.argv.slice(2);
 const say = (line) => process.stdout.write(JSON.stringify(line) + "\n");
@@ -23,16 +23,9 @@ function valueOf(tagName) {
 
 async function main() {
   const errors = [];
-  const browser = await puppeteer.launch({
-    executablePath: chromium,
-    headless: true,
-    args: ["--no-sandbox", "--disable-gpu", "--window-size=1200,900"],
-  });
+  const browser = await launch(chromium);
   try {
-    const page = await browser.newPage();
-    await page.setViewport({ width: 1200, height: 900 });
-    page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
-    page.on("pageerror", (e) => errors.push(String(e)));
+    const page = await watchedPage(browser, errors);
     await page.goto(url + "#open=" + encodeURIComponent(exchange));
     await page.waitForFunction((n) => document.querySelectorAll("tr.exchange").length === n,
       { timeout: 30000 }, Number(count));
