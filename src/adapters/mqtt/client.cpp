@@ -4,9 +4,11 @@
 #include "eip2mqtt/adapters/mqtt/client.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "adapters/mqtt/detail/client_impl.hpp"
+#include "adapters/mqtt/detail/paho_trace.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
 
@@ -16,6 +18,7 @@ std::unique_ptr<::mqtt::async_client> make_paho_client(const ClientOptions& opti
     if (options.urls.empty()) {
         throw std::invalid_argument(options.log_name + " client without a broker URL");
     }
+    detail::quiet_paho_trace(std::getenv("MQTT_C_CLIENT_TRACE"));
     ::mqtt::create_options create(options.version == 5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
     // Paho C refuses commands beyond maxBufferedMessages (default 100) even while connected:
     // room for max_in_flight publications, availability, subscribes and the disconnect.
