@@ -11,6 +11,8 @@ received (`ss -tin`); with --syscalls, the system calls of each gateway thread (
 Then the medians per build and the paired ratios of every build to the first.
 
     bench/overload_probe.py new=build-bench/eip2mqtt old=PATH/eip2mqtt --rounds 8
+    bench/overload_probe.py a=build-bench/eip2mqtt b=build-bench/eip2mqtt \
+        --mqtt 'b=describe_payloads: false' --tuned    # one binary, a setting apart
 
 Needs bench/run.sh's build tree (build-bench, or EIP2MQTT_BENCH_BUILD) for the instruments.
 """
@@ -26,6 +28,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from benchlib.processes import tuned_broker_config  # noqa: E402
 from benchlib.util import BUILD, free_port  # noqa: E402
 
 TOOLS = os.path.join(BUILD, "bench")
@@ -62,10 +65,11 @@ def segments(pid, broker_port):
     return out
 
 
-def config(path, name, state, broker_port, udp_port):
+def config(path, name, state, broker_port, udp_port, mqtt_extra=()):
     lines = [f"gateway: {{ id: {name}, state_dir: {state}, log_level: warn }}",
              "mqtt:", f"  url: tcp://127.0.0.1:{broker_port}", "  base_topic: b", "  qos: 1",
-             "  retain: false", f"eip: {{ bind: 127.0.0.1, port: {udp_port} }}", "exchanges:"]
+             "  retain: false", *(f"  {line}" for line in mqtt_extra),
+             f"eip: {{ bind: 127.0.0.1, port: {udp_port} }}", "exchanges:"]
     for e in range(1, 101):
         lines += [f"  - name: e{e}", "    direction: consume", "    producer_id: 10.0.0.1",
                   f"    exchange_id: {e}", "    length: 48", "    period_ms: 1000",
@@ -97,12 +101,12 @@ def sample(procs, gateway, broker_port):
     return ({k: ticks(p.pid) for k, p in procs.items()}, segments(gateway.pid, broker_port))
 
 
-def one_run(args, tmp, broker, broker_port, name, binary):
+def one_run(args, tmp, broker, broker_port, name, label, binary):
     state = os.path.join(tmp, name)
     os.makedirs(state)
     udp_port = free_port(socket.SOCK_DGRAM)
     path = os.path.join(tmp, name + ".yaml")
-    config(path, name, state, broker_port, udp_port)
+    config(path, name, state, broker_port, udp_port, args.mqtt_extra.get(label, ()))
     log = open(os.path.join(tmp, name + ".log"), "w")
     procs = {"gateway": subprocess.Popen([binary, "run", "-c", path], stdout=log, stderr=log),
              "broker": broker}
@@ -198,19 +202,34 @@ def main():
     parser.add_argument("--rate", type=int, default=6000, help="datagrams/s")
     parser.add_argument("--seconds", type=float, default=8.0, help="of load per run")
     parser.add_argument("--syscalls", action="store_true")
+    parser.add_argument("--tuned", action="store_true",
+                        help="the bench's tuned broker (1,000 in flight, 65,535 topic aliases)")
+    parser.add_argument("--mqtt", action="append", default=[], metavar="LABEL=LINE",
+                        help="a line added to that build's mqtt section, e.g. "
+                             "'off=describe_payloads: false' (repeatable)")
     args = parser.parse_args()
+    args.mqtt_extra = {}
+    for item in args.mqtt:
+        label, line = item.split("=", 1)
+        args.mqtt_extra.setdefault(label, []).append(line)
     builds = [tuple(b.split("=", 1)) for b in args.builds]
     tmp = tempfile.mkdtemp(prefix="eip2mqtt-probe-")
     broker_port = free_port()
-    broker = subprocess.Popen(["mosquitto", "-p", str(broker_port)], stdout=subprocess.DEVNULL,
-                              stderr=subprocess.DEVNULL)
+    command = ["mosquitto", "-p", str(broker_port)]
+    if args.tuned:
+        conf = os.path.join(tmp, "tuned.conf")
+        with open(conf, "w") as f:
+            f.write(tuned_broker_config(broker_port))
+        command = ["mosquitto", "-c", conf]
+    broker = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     rounds = []
     try:
         wait_for(lambda: listening(broker_port), 10, "the broker")
         for r in range(args.rounds):
             results = {}
             for label, binary in (builds if r % 2 == 0 else builds[::-1]):
-                results[label] = one_run(args, tmp, broker, broker_port, f"p{r}{label}", binary)
+                results[label] = one_run(args, tmp, broker, broker_port, f"p{r}{label}", label,
+                                         binary)
                 print(json.dumps({"round": r + 1, "build": label, **results[label]}), flush=True)
             rounds.append(results)
     finally:

@@ -11,23 +11,28 @@ import time
 from benchlib.util import HOST, TAGS, last_json, run_json, stop, tool, wait_file, free_port
 
 
+def tuned_broker_config(port):
+    """mosquitto.conf of the tuned broker, listening on `port` of the loopback."""
+    return (
+        f"listener {port} {HOST}\n"
+        "allow_anonymous true\n"
+        "persistence false\n"
+        "log_dest none\n"
+        "set_tcp_nodelay true\n"
+        "max_inflight_messages 1000\n"
+        "max_queued_messages 1000000\n"
+        "max_queued_bytes 0\n"
+        "max_topic_alias 65535\n"  # every topic's alias (scenario 15)
+    )
+
+
 class Processes:
     def start_broker(self):
         """Starts both brokers; the tuned one is used unless a scenario says otherwise."""
         port = free_port()
         conf = os.path.join(self.tmp, "mosquitto.conf")
         with open(conf, "w") as f:
-            f.write(
-                f"listener {port} {HOST}\n"
-                "allow_anonymous true\n"
-                "persistence false\n"
-                "log_dest none\n"
-                "set_tcp_nodelay true\n"
-                "max_inflight_messages 1000\n"
-                "max_queued_messages 1000000\n"
-                "max_queued_bytes 0\n"
-                "max_topic_alias 65535\n"  # every topic's alias (scenario 15)
-            )
+            f.write(tuned_broker_config(port))
         self.spawn_broker("tuned", ["mosquitto", "-c", conf], port)
         # No configuration file: Mosquitto 2.0's defaults, listening on the loopback only.
         port = free_port()

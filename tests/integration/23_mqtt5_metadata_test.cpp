@@ -72,6 +72,20 @@ TEST_F(Mqtt5MetadataTest, DataMessagesCarryTheChosenPropertiesTheirTypeAndExpiry
     EXPECT_EQ(state->content_type, "text/plain");
 }
 
+TEST_F(Mqtt5MetadataTest, DescribePayloadsOffSendsNoContentTypeNorFormatButTheOtherProperties) {
+    start(line_exchange(), "  describe_payloads: false\n  properties: [unit]\n");
+    send(line(1, 3000));
+    const auto speed = recorder_->wait_for_message(topic("line/SPEED"), nullptr, 10s);
+    ASSERT_TRUE(speed.has_value());
+    EXPECT_EQ(speed->content_type, "");
+    EXPECT_EQ(speed->payload_format, -1);
+    EXPECT_EQ(speed->user_properties,
+              (std::vector<std::pair<std::string, std::string>>{{"unit", "rpm"}}));
+    const auto state = recorder_->wait_for_message(availability_topic(), nullptr, 10s);
+    ASSERT_TRUE(state.has_value());
+    EXPECT_EQ(state->content_type, "");
+}
+
 TEST_F(Mqtt5MetadataTest, ATopicIsNamedOncePerConnectionThenSentByItsAlias) {
     std::unique_ptr<MqttRelay> relay;
     GatewayOptions options;

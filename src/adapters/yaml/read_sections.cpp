@@ -192,6 +192,8 @@ constexpr KeyReader<MqttSection> mqtt_rows[]{
          section.marks = v.mapping("in mqtt.store_and_forward", store_and_forward_readers, section);
          return true;
      }},
+    {"describe_payloads",
+     [](KeyValue& v, MqttSection& m) { return v.boolean_to(m.describe_payloads); }},
     {"properties", read_properties},
     {"message_expiry_s",
      [](KeyValue& v, MqttSection& m) { return v.integer_to<std::uint32_t>(m.message_expiry, 0); }},

@@ -204,7 +204,8 @@ void print_commands(const core::config::CommandsSection& commands, std::ostream&
 /// the broker's version before the broker is upgraded).
 void print_mqtt5_only(const core::config::MqttSection& mqtt, std::ostream& out) {
     if (mqtt.version == 5) return;
-    for (const auto* key : {"properties", "message_expiry_s", "topic_aliases"}) {
+    for (const auto* key :
+         {"describe_payloads", "properties", "message_expiry_s", "topic_aliases"}) {
         if (!mqtt.marks.contains(key)) continue;
         const auto& at = mqtt.marks.of(key);
         out << at.file.str() << ":" << at.line << ":" << at.column << ": warning: mqtt." << key

@@ -52,8 +52,9 @@ adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& co
     options.availability_topic = availability_topic;
     options.buffer_max_messages = mqtt.buffer_max_messages;
     options.batch_first = mqtt.batch_first;
-    // MQTT 5 metadata (docs/mqtt-api.md): the gateway's JSON and text say what they are.
-    options.describe_payloads = true;
+    // MQTT 5 metadata (docs/mqtt-api.md): the gateway's JSON and text say what they are,
+    // unless the plant gives that up for throughput (docs/performance.md).
+    options.describe_payloads = mqtt.describe_payloads;
     options.message_expiry = mqtt.message_expiry;
     // Paho re-sends a kept session's publications as they were: aliases need a clean start.
     options.topic_aliases = mqtt.topic_aliases && options.clean_start;

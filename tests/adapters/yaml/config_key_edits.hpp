@@ -47,6 +47,7 @@ mqtt:
   properties: [unit, quality]
   message_expiry_s: 0
   topic_aliases: false
+  describe_payloads: true
   store_and_forward:
     enabled: false
     max_mb: 64
@@ -173,6 +174,7 @@ inline const std::vector<Edit> edits = {
     {"mqtt.properties", "[unit, quality]", "[unit]"},
     {"mqtt.message_expiry_s", "message_expiry_s: 0", "message_expiry_s: 60"},
     {"mqtt.topic_aliases", "topic_aliases: false", "topic_aliases: true"},
+    {"mqtt.describe_payloads", "describe_payloads: true", "describe_payloads: false"},
     {"mqtt.retain", "retain: true", "retain: false"},
     {"mqtt.payload", "payload: json", "payload: raw"},
     {"mqtt.buffer.max_messages", "max_messages: 1000", "max_messages: 2000"},

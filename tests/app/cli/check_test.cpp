@@ -93,6 +93,7 @@ TEST(CheckMqtt5, MetadataKeysAreSaidToBeIgnoredOverMqtt311) {
     const auto text = [](const std::string& version) {
         return "mqtt:\n  version: " + version +
                "\n  properties: [unit]\n  message_expiry_s: 60\n  topic_aliases: true\n"
+               "  describe_payloads: false\n"
                "exchanges:\n  - { name: ex, producer_id: 10.0.0.1, exchange_id: 1, length: 8 }\n";
     };
     std::ostringstream out;
@@ -103,6 +104,7 @@ TEST(CheckMqtt5, MetadataKeysAreSaidToBeIgnoredOverMqtt311) {
               std::string::npos)
         << out.str();
     EXPECT_NE(out.str().find("mqtt.topic_aliases is ignored"), std::string::npos);
+    EXPECT_NE(out.str().find("mqtt.describe_payloads is ignored"), std::string::npos);
     std::ostringstream out5;
     ASSERT_EQ(run_check(dir.write("v5.yaml", text("5")), out5, err), 0) << err.str();
     EXPECT_EQ(out5.str().find("is ignored"), std::string::npos) << out5.str();

@@ -115,8 +115,10 @@ struct MqttSection {
     /// Off: a client that may only write `…/set` cannot make the gateway publish on its own
     /// topics (a tag, `_gateway/…/state`).
     bool allow_response_topics_under_base = false;
-    /// MQTT 5 metadata (docs/mqtt-api.md): user properties of data messages, the expiry of live
-    /// values (0: none) and topic aliases; MQTT 3.1.1 has none of them.
+    /// MQTT 5 metadata (docs/mqtt-api.md): the content type and payload format indicator of
+    /// every JSON and text message, user properties of data messages, the expiry of live values
+    /// (0: none) and topic aliases; MQTT 3.1.1 has none of them.
+    bool describe_payloads = true;
     std::vector<MessageProperty> properties;
     std::chrono::seconds message_expiry{0};
     bool topic_aliases = false;

@@ -70,7 +70,7 @@ inline constexpr std::array<ConfigKey<GatewaySection>, 6> gateway{{
 
 /// The connection's settings need a restart (a new session); how tags are published is applied
 /// live, the retained state republished in the new form.
-inline constexpr std::array<ConfigKey<MqttSection>, 22> mqtt{{
+inline constexpr std::array<ConfigKey<MqttSection>, 23> mqtt{{
     {"url", restart, differs<&MqttSection::urls>},
     {"version", restart, differs<&MqttSection::version>},
     {"client_id", restart, differs<&MqttSection::client_id>},
@@ -95,6 +95,7 @@ inline constexpr std::array<ConfigKey<MqttSection>, 22> mqtt{{
      differs<&MqttSection::allow_response_topics_under_base>},
     {"store_and_forward", restart, nullptr},
     // The connection's: how it describes what it sends.
+    {"describe_payloads", restart, differs<&MqttSection::describe_payloads>},
     {"properties", restart, differs<&MqttSection::properties>},
     {"message_expiry_s", restart, differs<&MqttSection::message_expiry>},
     {"topic_aliases", restart, differs<&MqttSection::topic_aliases>},
