@@ -61,6 +61,16 @@ TEST_F(MqttSettingsTest, TheClientIdDefaultsToTheGatewaysId) {
     EXPECT_EQ(mqtt_client_options(c, "a").client_id, "scada-gw");
 }
 
+TEST_F(MqttSettingsTest, PayloadsAreDescribedUnlessThePlantTradesItForThroughput) {
+    auto c = config();
+    EXPECT_TRUE(mqtt_client_options(c, "a").describe_payloads);
+    c.mqtt.describe_payloads = false;
+    EXPECT_FALSE(mqtt_client_options(c, "a").describe_payloads);
+    // Sparkplug's protobuf is never described, whatever the setting.
+    c.mqtt.describe_payloads = true;
+    EXPECT_FALSE(sparkplug_client_options(c, {}).describe_payloads);
+}
+
 TEST_F(MqttSettingsTest, TheBrokerListReadsInItsOrder) {
     EXPECT_EQ(broker_list({"tcp://a:1883"}), "tcp://a:1883");
     EXPECT_EQ(broker_list({"tcp://a:1883", "tcp://b:1883", "tcp://c:1883"}),
