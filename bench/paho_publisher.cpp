@@ -2,8 +2,9 @@
 // the gateway's ({"value":V,"timestamp":MS,"quality":"good"} on {base}/e1/t{i}) at a chosen QoS
 // to the same Mosquitto, with a window of publications in flight (like the gateway's
 // max_in_flight, within the broker's Receive Maximum at QoS >= 1), so that Paho's own queue
-// stays bounded. Nothing else: no TCP_NODELAY, no coalescing; this is what a plain Paho
-// application gets.
+// stays bounded. Nothing else: no TCP_NODELAY, no coalescing, and Paho C's in-memory trace at
+// the level Debian's build starts it with, which the gateway turns down to errors
+// (adapters/mqtt/detail/paho_trace.hpp); this is what a plain Paho application gets.
 //
 // --rate 0 publishes as fast as the window allows; --rate R paces in 1 ms batches against
 // absolute deadlines. --stamp puts CLOCK_REALTIME ns in every value (for latency, read by
