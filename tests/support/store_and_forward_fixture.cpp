@@ -5,12 +5,11 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
-#include "tests/support/http_get.hpp"
+#include "tests/support/prometheus_page.hpp"
 
 namespace eip2mqtt::test {
 
@@ -220,22 +219,13 @@ bool StoreAndForwardTest::wait_output_count(const std::string& text, std::size_t
 }
 
 std::optional<double> StoreAndForwardTest::metric(const std::string& name) const {
-    std::istringstream page(http_get(prometheus_port_, "/metrics"));
-    for (std::string line; std::getline(page, line);) {
-        if (line.rfind(name + " ", 0) == 0) return std::stod(line.substr(name.size() + 1));
-    }
-    return std::nullopt;
+    return prometheus_figure(prometheus_port_, name);
 }
 
 bool StoreAndForwardTest::wait_metric(const std::string& name,
                                       const std::function<bool(double)>& pred,
                                       std::chrono::seconds timeout) const {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-        if (const auto v = metric(name); v && pred(*v)) return true;
-        std::this_thread::sleep_for(100ms);
-    }
-    return false;
+    return wait_prometheus_figure(prometheus_port_, name, pred, timeout);
 }
 
 }  // namespace eip2mqtt::test
