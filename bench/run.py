@@ -19,7 +19,7 @@ from benchlib.util import GATEWAY, tool
 from scenarios import (s01_udp, s02_s03_publications, s04_batch, s05_latency, s06_memory,
                        s07_periods, s08_overload, s09_write_latency, s10_store_and_forward,
                        s11_commands, s12_dissector, s13_failover, s14_overload_rate,
-                       s15_topic_aliases, s16_status_page)
+                       s15_topic_aliases, s16_status_page, s17_broker_move)
 
 # (the scenario numbers a module answers to in --only, its module), in the order they run:
 # later scenarios take their load from scenario 2's figures.
@@ -39,13 +39,14 @@ SCENARIOS = (
     ((14,), s14_overload_rate),
     ((15,), s15_topic_aliases),
     ((16,), s16_status_page),
+    ((17,), s17_broker_move),
 )
 
 
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
-    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-16)")
+    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-17)")
     parser.add_argument("--rounds", type=int, default=0, metavar="N",
                         help="paired rounds of the repeated scenarios (default 3, 1 with --quick)")
     parser.add_argument("--against-binary", default="", metavar="PATH",

@@ -36,17 +36,19 @@ def head_lines(name, state, broker_port, qos, batch, udp_port, sparkplug, promet
                location=None, mqtt_keys=None):
     """Everything above `exchanges:`."""
     where = f", location: {flow_map(location)}" if location else ""
+    mqtt_keys = mqtt_keys or {}
+    url = [] if "url" in mqtt_keys else [f"  url: tcp://{HOST}:{broker_port}"]
     lines = [
         f"gateway: {{ id: {name}, state_dir: {state}, log_level: {log_level}{where} }}",
         "mqtt:",
-        f"  url: tcp://{HOST}:{broker_port}",
+    ] + url + [
         "  base_topic: b",
         f"  qos: {qos}",
         "  retain: false",
         "  metrics_interval_s: 1",
         "  buffer: { max_messages: 250000 }",  # above any scenario's topic count
     ]
-    lines += [f"  {key}: {value}" for key, value in (mqtt_keys or {}).items()]
+    lines += [f"  {key}: {value}" for key, value in mqtt_keys.items()]
     if batch:
         lines.append("  batch: true")
     if batch == "first":
@@ -122,7 +124,7 @@ def write_config(tmp, name, broker_port, consumed=(), produced=(), qos=1, batch=
     `eip.link_mbps` to write (None: none). redundancy: the `redundancy` keys ({key: YAML
     text}), for a unit of a hot-standby pair. scaled: every consumed tag written inline gets
     SCALE. location: the gateway's `location` ({key: YAML text}); mqtt_keys: more `mqtt` keys
-    ({key: YAML text})."""
+    ({key: YAML text}), `url` among them instead of `broker_port`'s."""
     path = os.path.join(tmp, name + ".yaml")
     state = os.path.join(tmp, name + "-state" + state_suffix)
     os.makedirs(state, exist_ok=True)

@@ -111,6 +111,16 @@ protected:
         }
         return false;
     }
+    /// Pauses the producer once the gateway took every datagram sent: one still in the
+    /// socket's buffer at a stop would be neither live nor journaled, and look like an entry
+    /// the journal lost.
+    void pause_once_taken() {
+        const auto sent = producer_->pause();
+        ASSERT_TRUE(
+            wait_prometheus_figure(metrics_port_, "eip2mqtt_datagrams_accepted_total",
+                                   [&](double v) { return v >= static_cast<double>(sent); }))
+            << http_get(metrics_port_, "/metrics");
+    }
     /// Waits for a metrics message saying the journal is empty and no replay runs.
     bool wait_replayed(std::chrono::seconds timeout) {
         const auto from = recorder_->count();
@@ -212,12 +222,7 @@ TEST_F(HistoryOutagesTest, AFullDiskKeepsTheNewestThroughTwoOutagesAndARestart) 
     stop_broker();
     std::this_thread::sleep_for(10s);  // the scenario: the second outage
     // A restart in the middle of it, on the full disk; nothing is sent while it is down.
-    // Every datagram sent is taken first: one still in the socket's buffer at the stop would
-    // be neither live nor journaled, and look like an entry the journal lost.
-    const auto sent = producer_->pause();
-    ASSERT_TRUE(wait_prometheus_figure(metrics_port_, "eip2mqtt_datagrams_accepted_total",
-                                       [&](double v) { return v >= static_cast<double>(sent); }))
-        << http_get(metrics_port_, "/metrics");
+    ASSERT_NO_FATAL_FAILURE(pause_once_taken());
     gateway_->signal(SIGTERM);
     ASSERT_TRUE(gateway_->wait(10s).has_value());
     options_.wait_online = false;

@@ -186,6 +186,8 @@ std::vector<std::string> expected_figures() {
     }
     for (const auto& figure : overload_figures()) figures.push_back(figure);       // 14
     for (const auto& figure : wire_and_page_figures()) figures.push_back(figure);  // 15, 16
+    figures.push_back(
+        "broker move: SIGKILL of the broker in use -> `connected to` the next");  // 17
     return figures;
 }
 
