@@ -64,4 +64,18 @@ std::uint16_t free_port(int type) {
 std::uint16_t free_tcp_port() { return free_port(SOCK_STREAM); }
 std::uint16_t free_udp_port() { return free_port(SOCK_DGRAM); }
 
+bool accepts_connections(std::uint16_t port) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) {
+        return false;
+    }
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    addr.sin_port = htons(port);
+    const bool ok = ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0;
+    ::close(fd);
+    return ok;
+}
+
 }  // namespace eip2mqtt::test

@@ -33,20 +33,6 @@ constexpr auto kPollInterval = std::chrono::milliseconds(10);
 constexpr auto kTermResendInterval = std::chrono::seconds(2);
 constexpr auto kStopDeadline = std::chrono::seconds(30);
 
-bool accepts_connections(std::uint16_t port) {
-    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    if (fd < 0) {
-        return false;
-    }
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    addr.sin_port = htons(port);
-    const bool ok = ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0;
-    ::close(fd);
-    return ok;
-}
-
 std::string read_file(const std::string& path) {
     std::ifstream in(path);
     std::stringstream ss;

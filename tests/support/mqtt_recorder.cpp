@@ -91,7 +91,7 @@ struct MqttRecorder::Impl {
 };
 
 MqttRecorder::MqttRecorder(const std::string& url, const std::vector<std::string>& filters,
-                           const std::string& client_id)
+                           const std::string& client_id, const MqttLogin& login)
     : impl_(std::make_unique<Impl>(url, client_id.empty() ? unique_client_id() : client_id,
                                    filters)) {
     auto& cli = impl_->client;
@@ -110,8 +110,14 @@ MqttRecorder::MqttRecorder(const std::string& url, const std::vector<std::string
     // generated id is new to the broker: its first connect is clean already, and skipping the
     // extra round saves Paho's one-second pause between a disconnect and the next connect.
     ::mqtt::properties props{{::mqtt::property::SESSION_EXPIRY_INTERVAL, kSessionExpiry_s}};
+    const auto log_in = [&login](::mqtt::connect_options& options) {
+        if (login.username.empty()) return;
+        options.set_user_name(login.username);
+        options.set_password(login.password);
+    };
     if (!client_id.empty()) {
         ::mqtt::connect_options clean;
+        log_in(clean);
         clean.set_mqtt_version(MQTTVERSION_5);
         clean.set_clean_start(true);
         clean.set_properties(props);
@@ -120,6 +126,7 @@ MqttRecorder::MqttRecorder(const std::string& url, const std::vector<std::string
     }
 
     ::mqtt::connect_options resume;
+    log_in(resume);
     resume.set_mqtt_version(MQTTVERSION_5);
     resume.set_clean_start(false);
     resume.set_properties(props);

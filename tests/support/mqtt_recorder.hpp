@@ -31,12 +31,18 @@ struct Received {
     std::int64_t message_expiry_s = -1;  ///< what the broker left of it; -1 when absent
 };
 
+/// A user name and password for brokers that want one (none when `username` is empty).
+struct MqttLogin {
+    std::string username;
+    std::string password;
+};
+
 class MqttRecorder {
 public:
     /// Connects (MQTT 5, clean start) to `url` and subscribes to each filter at QoS 1;
     /// returns once subscribed.
     MqttRecorder(const std::string& url, const std::vector<std::string>& filters,
-                 const std::string& client_id = "");
+                 const std::string& client_id = "", const MqttLogin& login = {});
     ~MqttRecorder();
 
     using Predicate = std::function<bool(const std::vector<Received>&)>;

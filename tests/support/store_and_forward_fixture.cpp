@@ -60,13 +60,21 @@ void StoreAndForwardTest::start_gateway_with(const std::string& store_and_forwar
         options.sections +=
             "metrics:\n  listen: 127.0.0.1:" + std::to_string(prometheus_port_) + "\n";
     }
+    start_gateway_with(store_and_forward, std::move(options), "", nullptr);
+}
+
+void StoreAndForwardTest::start_gateway_with(const std::string& store_and_forward,
+                                             GatewayOptions options, const std::string& mqtt_extra,
+                                             const std::function<void()>& before_counter) {
     start(ExchangeYaml::consume("line", "10.0.0.2", 7)
               .length(4)
               .period_ms(10)
               .timeout_ms(0)
               .tag("COUNTER", "0.0", "udint")
               .str(),
-          "  batch: true\n  store_and_forward:\n" + store_and_forward, std::move(options));
+          "  batch: true\n" + mqtt_extra + "  store_and_forward:\n" + store_and_forward,
+          std::move(options));
+    if (before_counter) before_counter();
     counter_ = std::make_unique<PacedProducer>(
         counter_datagram, [this](const auto& d) { send(d); }, 10ms);
 }

@@ -24,6 +24,11 @@ protected:
     /// and the counter; with `prometheus`, the metrics endpoint on prometheus_port_.
     void start_gateway_with(const std::string& store_and_forward, bool prometheus = false,
                             const std::string& sections = "");
+    /// The same with `options` as they are, and `before_counter` run once the gateway started
+    /// and before the counter sends its first datagram (a recorder of the test's own, say).
+    void start_gateway_with(const std::string& store_and_forward, GatewayOptions options,
+                            const std::string& mqtt_extra,
+                            const std::function<void()>& before_counter);
 
     /// The publications on `_values` (live) or `_history` as the gateway made them, in
     /// arrival order. When the broker restarts, it sends the recorder's unacknowledged
