@@ -1,26 +1,56 @@
 // The gateway on a real broker cluster: three ejabberd nodes on this machine, all three in
-// `mqtt.url`, QoS 1, `batch` and store and forward on; the node in use is killed (SIGKILL).
-// What a subscriber on a surviving node receives, and what a fresh one finds retained on each
-// node, is what docs/brokers.md and docs/scale-out.md say of ejabberd.
+// `mqtt.url`, QoS 1; the node in use is killed (SIGKILL). With `batch` and store and forward, a
+// counter; with a produced exchange, a write sent through the node the gateway never used.
+// What a subscriber on a surviving node receives (the will of the killed node's session
+// included), and what a fresh one finds retained on each node, is what docs/brokers.md and
+// docs/scale-out.md say of ejabberd.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "eip2mqtt/core/plan/value_codec.hpp"
 #include "tests/support/ejabberd_cluster.hpp"
+#include "tests/support/exchange_yaml.hpp"
 #include "tests/support/store_and_forward_fixture.hpp"
 
 namespace eip2mqtt::test {
 namespace {
 
+using core::plan::TagType;
+using core::plan::Value;
+using nlohmann::json;
 using namespace std::chrono_literals;
+
+/// A gateway's options on `cluster`: every node in `mqtt.url`, the first first, and the
+/// password of EjabberdCluster::login() (its user name goes in the mqtt section: login_key()).
+GatewayOptions on_cluster(const EjabberdCluster& cluster) {
+    GatewayOptions options;
+    options.wait_online = false;
+    std::string urls = "[ \"" + cluster.url(0) + "\"";
+    for (int i = 1; i < cluster.size(); ++i) urls += ", \"" + cluster.url(i) + "\"";
+    urls += " ]";
+    options.url_through = [urls](std::uint16_t) { return urls; };
+    options.env["EIP2MQTT_MQTT_PASSWORD"] = EjabberdCluster::login().password;
+    return options;
+}
+
+std::string login_key() { return "  username: " + EjabberdCluster::login().username + "\n"; }
+
+/// Starts a three-node cluster for the test, or skips it where ejabberd is not installed.
+std::unique_ptr<EjabberdCluster> start_cluster() {
+    if (!EjabberdCluster::available()) return nullptr;
+    return std::make_unique<EjabberdCluster>(3);
+}
 
 class EjabberdClusterTest : public StoreAndForwardTest {
 protected:
     void SetUp() override {
-        if (!EjabberdCluster::available()) GTEST_SKIP() << "ejabberd is not installed";
-        cluster_ = std::make_unique<EjabberdCluster>(3);
+        cluster_ = start_cluster();
+        if (!cluster_) GTEST_SKIP() << "ejabberd is not installed";
         ASSERT_TRUE(cluster_->ready());
     }
     void TearDown() override {
@@ -28,26 +58,17 @@ protected:
         cluster_.reset();
     }
 
-    /// The gateway with the three nodes in `mqtt.url`, the first in use; a watcher on `node`
-    /// records everything from before the counter's first datagram on.
+    /// The gateway on the cluster, node 0 in use; a watcher on `watched` records everything
+    /// from before the counter's first datagram on.
     void start_on_cluster(int watched) {
-        GatewayOptions options;
-        options.wait_online = false;
-        std::string urls = "[ \"" + cluster_->url(0) + "\"";
-        for (int i = 1; i < cluster_->size(); ++i) urls += ", \"" + cluster_->url(i) + "\"";
-        urls += " ]";
-        options.url_through = [urls](std::uint16_t) { return urls; };
-        options.env["EIP2MQTT_MQTT_PASSWORD"] = EjabberdCluster::login().password;
-        start_gateway_with(
-            "    enabled: true\n", std::move(options),
-            "  username: " + EjabberdCluster::login().username + "\n", [&] {
-                ASSERT_TRUE(gateway_->wait_for_output("MQTT connected to " + cluster_->url(0), 90s))
-                    << gateway_->output();
-                // The fixture's checks read recorder_: the watcher takes its place.
-                recorder_ = std::make_unique<MqttRecorder>(cluster_->url(watched),
-                                                           std::vector<std::string>{topic("#")}, "",
-                                                           EjabberdCluster::login());
-            });
+        start_gateway_with("    enabled: true\n", on_cluster(*cluster_), login_key(), [&] {
+            ASSERT_TRUE(gateway_->wait_for_output("MQTT connected to " + cluster_->url(0), 90s))
+                << gateway_->output();
+            // The fixture's checks read recorder_: the watcher takes its place.
+            recorder_ = std::make_unique<MqttRecorder>(cluster_->url(watched),
+                                                       std::vector<std::string>{topic("#")}, "",
+                                                       EjabberdCluster::login());
+        });
     }
     /// Whether a subscriber made now on `node` is given the retained COUNTER at once.
     bool retained_on(int node) {
@@ -82,11 +103,82 @@ TEST_F(EjabberdClusterTest, TheGatewayMovesToASurvivingNodeAndItsSubscribersMiss
     ASSERT_TRUE(wait_all_received(last)) << gateway_->output();
     expect_each_value_once(last);
 
+    // The will of the connection to node 0 died with node 0: nobody was told `offline`; the
+    // connect to node 1 said `online`.
+    const auto states = recorder_->messages_on(availability_topic());
+    EXPECT_TRUE(std::none_of(states.begin(), states.end(), [](const Received& m) {
+        return m.payload == "offline";
+    })) << "ejabberd now publishes the will of a session whose node died: the docs say otherwise";
+    EXPECT_TRUE(std::any_of(states.begin(), states.end(),
+                            [](const Received& m) { return m.payload == "online"; }));
+
     // Retained messages are kept per node: the node the gateway moved to has the tree again
     // (its connect republishes it); a node it never used has none of it.
     EXPECT_TRUE(retained_on(1)) << "no retained COUNTER on the node the gateway moved to";
     EXPECT_FALSE(retained_on(2)) << "ejabberd now shares retained messages between nodes: "
                                     "docs/brokers.md and docs/scale-out.md say otherwise";
+}
+
+/// A write sent through a node the gateway never used, after the gateway's node was killed.
+class EjabberdClusterWriteTest : public GatewayTest {
+protected:
+    void SetUp() override {
+        cluster_ = start_cluster();
+        if (!cluster_) GTEST_SKIP() << "ejabberd is not installed";
+        ASSERT_TRUE(cluster_->ready());
+        capture_ = std::make_unique<UdpClient>();
+        start(ExchangeYaml::produce("sp", "10.1.2.3", 10,
+                                    "127.0.0.1:" + std::to_string(capture_->port()))
+                  .period_ms(20)
+                  .tag("SPEED_SP", "0.0", "real", "writable: true, min: 0, max: 4000")
+                  .str(),
+              login_key(), on_cluster(*cluster_));
+        ASSERT_TRUE(gateway_->wait_for_output("MQTT connected to " + cluster_->url(0), 90s))
+            << gateway_->output();
+    }
+    void TearDown() override {
+        GatewayTest::TearDown();
+        cluster_.reset();
+    }
+    /// SPEED_SP in the next datagram the gateway sends.
+    Value next_speed() {
+        while (capture_->receive(0ms)) {
+        }
+        const auto bytes = capture_->receive(5s);
+        if (!bytes) return Value{false};
+        return core::plan::decode_value(std::span(*bytes).subspan(32), TagType::real,
+                                        core::plan::parse_address("0.0").value());
+    }
+
+    std::unique_ptr<EjabberdCluster> cluster_;
+    std::unique_ptr<UdpClient> capture_;
+};
+
+TEST_F(EjabberdClusterWriteTest, AWriteThroughASurvivingNodeIsAppliedAndAnsweredOnce) {
+    const auto result_topic = topic("sp/SPEED_SP/set/result");
+    MqttRecorder writer(cluster_->url(2), {result_topic, availability_topic()}, "",
+                        EjabberdCluster::login());
+    cluster_->kill(0);
+    // `online` from the node the gateway moved to: its write topics are subscribed there (the
+    // node takes one connection's packets in order, the SUBSCRIBE before it).
+    ASSERT_TRUE(writer.wait_for_message(
+        availability_topic(), [](const std::string& p) { return p == "online"; }, 60s))
+        << gateway_->output();
+    ASSERT_NE(gateway_->output().find("MQTT connected to " + cluster_->url(1)), std::string::npos)
+        << gateway_->output();
+
+    auto from = writer.count();
+    writer.publish(topic("sp/SPEED_SP/set"), "1234.5");
+    const auto answer = writer.wait_for_message(result_topic, nullptr, 10s, from);
+    ASSERT_TRUE(answer.has_value()) << gateway_->output();
+    EXPECT_EQ(json::parse(answer->payload), json({{"ok", true}}));
+    EXPECT_EQ(next_speed(), Value{1234.5F});
+    // A second write, answered after the first: one answer each, none repeated before it.
+    from = writer.count();
+    writer.publish(topic("sp/SPEED_SP/set"), "2345.5");
+    ASSERT_TRUE(writer.wait_for_message(result_topic, nullptr, 10s, from).has_value());
+    EXPECT_EQ(writer.messages_on(result_topic).size(), 2u);
+    EXPECT_EQ(next_speed(), Value{2345.5F});
 }
 
 }  // namespace
