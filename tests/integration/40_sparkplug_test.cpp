@@ -28,15 +28,7 @@ std::string device_topic(const std::string& type, const std::string& device) {
 }
 
 /// The metric of `payload` named `name` (births); an empty object, and a failure, without one.
-json metric(const json& payload, const std::string& name) {
-    if (payload.is_object() && payload.contains("metrics") && payload["metrics"].is_array()) {
-        for (const auto& m : payload["metrics"]) {
-            if (m.is_object() && m.value("name", "") == name) return m;
-        }
-    }
-    ADD_FAILURE() << "no metric " << name << " in " << payload.dump();
-    return json::object();
-}
+json metric(const json& payload, const std::string& name) { return tahu_metric(payload, name); }
 
 class SparkplugTest : public GatewayTest {
 protected:

@@ -1,6 +1,7 @@
 // The gateway on a real broker cluster: three ejabberd nodes on this machine, all three in
 // `mqtt.url`, QoS 1; the node in use is killed (SIGKILL). With `batch` and store and forward, a
-// counter; with a produced exchange, a write sent through the node the gateway never used.
+// counter; with a produced exchange, a write sent through the node the gateway never used; with
+// Sparkplug, the edge node's next session.
 // What a subscriber on a surviving node receives (the will of the killed node's session
 // included), and what a fresh one finds retained on each node, is what docs/brokers.md and
 // docs/scale-out.md say of ejabberd.
@@ -16,6 +17,7 @@
 #include "tests/support/ejabberd_cluster.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/store_and_forward_fixture.hpp"
+#include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test {
 namespace {
@@ -119,26 +121,33 @@ TEST_F(EjabberdClusterTest, TheGatewayMovesToASurvivingNodeAndItsSubscribersMiss
                                     "docs/brokers.md and docs/scale-out.md say otherwise";
 }
 
-/// A write sent through a node the gateway never used, after the gateway's node was killed.
-class EjabberdClusterWriteTest : public GatewayTest {
+/// The gateway on the cluster with one produced exchange (`sp`, a writable SPEED_SP), a device
+/// that always has values.
+class EjabberdClusterProducingTest : public GatewayTest {
 protected:
     void SetUp() override {
         cluster_ = start_cluster();
         if (!cluster_) GTEST_SKIP() << "ejabberd is not installed";
         ASSERT_TRUE(cluster_->ready());
         capture_ = std::make_unique<UdpClient>();
-        start(ExchangeYaml::produce("sp", "10.1.2.3", 10,
-                                    "127.0.0.1:" + std::to_string(capture_->port()))
-                  .period_ms(20)
-                  .tag("SPEED_SP", "0.0", "real", "writable: true, min: 0, max: 4000")
-                  .str(),
-              login_key(), on_cluster(*cluster_));
-        ASSERT_TRUE(gateway_->wait_for_output("MQTT connected to " + cluster_->url(0), 90s))
-            << gateway_->output();
     }
     void TearDown() override {
         GatewayTest::TearDown();
         cluster_.reset();
+    }
+    /// Starts the gateway with `sections` and waits until its connection `log_name` is on node 0.
+    void start_producing(const std::string& sections, const std::string& log_name) {
+        auto options = on_cluster(*cluster_);
+        options.sections = sections;
+        start(
+            ExchangeYaml::produce("sp", "10.1.2.3", 10,
+                                  "127.0.0.1:" + std::to_string(capture_->port()))
+                .period_ms(20)
+                .tag("SPEED_SP", "0.0", "real", "writable: true, min: 0, max: 4000, initial: 3000")
+                .str(),
+            login_key(), std::move(options));
+        ASSERT_TRUE(gateway_->wait_for_output(log_name + " connected to " + cluster_->url(0), 90s))
+            << gateway_->output();
     }
     /// SPEED_SP in the next datagram the gateway sends.
     Value next_speed() {
@@ -154,7 +163,9 @@ protected:
     std::unique_ptr<UdpClient> capture_;
 };
 
-TEST_F(EjabberdClusterWriteTest, AWriteThroughASurvivingNodeIsAppliedAndAnsweredOnce) {
+// A write sent through a node the gateway never used, after the gateway's node was killed.
+TEST_F(EjabberdClusterProducingTest, AWriteThroughASurvivingNodeIsAppliedAndAnsweredOnce) {
+    ASSERT_NO_FATAL_FAILURE(start_producing("", "MQTT"));
     const auto result_topic = topic("sp/SPEED_SP/set/result");
     MqttRecorder writer(cluster_->url(2), {result_topic, availability_topic()}, "",
                         EjabberdCluster::login());
@@ -179,6 +190,28 @@ TEST_F(EjabberdClusterWriteTest, AWriteThroughASurvivingNodeIsAppliedAndAnswered
     ASSERT_TRUE(writer.wait_for_message(result_topic, nullptr, 10s, from).has_value());
     EXPECT_EQ(writer.messages_on(result_topic).size(), 2u);
     EXPECT_EQ(next_speed(), Value{2345.5F});
+}
+
+// The Sparkplug edge node (its own connection, the same list of nodes) after its node was killed.
+TEST_F(EjabberdClusterProducingTest, TheEdgeNodeIsBornAgainOnTheNextNodeWithTheNextBdSeq) {
+    ASSERT_NO_FATAL_FAILURE(
+        start_producing("sparkplug:\n  group_id: plant1\n", "MQTT (Sparkplug)"));
+    const std::string node = "spBv1.0/plant1/NBIRTH/test-gw";
+    MqttRecorder host(cluster_->url(2), {"spBv1.0/plant1/#"}, "", EjabberdCluster::login());
+    cluster_->kill(0);
+    ASSERT_TRUE(gateway_->wait_for_output("MQTT (Sparkplug) connected to " + cluster_->url(1), 60s))
+        << gateway_->output();
+    const auto nbirth = host.wait_for_message(node, nullptr, 30s);
+    ASSERT_TRUE(nbirth.has_value()) << "no NBIRTH from the node the gateway moved to";
+    const auto birth = tahu_decode(nbirth->payload);
+    EXPECT_EQ(birth["seq"], "0");
+    EXPECT_EQ(tahu_metric(birth, "bdSeq")["value"], "1") << "a new session, the next bdSeq";
+    const auto dbirth = host.wait_for_message("spBv1.0/plant1/DBIRTH/test-gw/sp", nullptr, 30s);
+    ASSERT_TRUE(dbirth.has_value());
+    EXPECT_EQ(tahu_metric(tahu_decode(dbirth->payload), "SPEED_SP")["value"], 3000);
+    // The first session's NDEATH was its will on the killed node: it died with it.
+    EXPECT_TRUE(host.messages_on("spBv1.0/plant1/NDEATH/test-gw").empty())
+        << "ejabberd now publishes the will of a session whose node died: the docs say otherwise";
 }
 
 }  // namespace

@@ -119,12 +119,13 @@ void EjabberdCluster::start_node(Node& node) {
                    std::to_string(node.port) +
                    "\n    ip: \"127.0.0.1\"\n    module: mod_mqtt\n    backlog: 1000\n"
                    "modules:\n  mod_mqtt: {}\n");
-    // ejabberdctl reads this file after its arguments: the node's own pid file, and the
-    // cluster's epmd for the node and for every command sent to it.
+    // ejabberdctl reads this file after its arguments: the node's own pid file, and for the node
+    // and every command sent to it the cluster's epmd and cookie (not the ejabberd user's cookie
+    // file: two tests' clusters starting at once on a fresh machine would race to create it).
     write_file(node.dir + "/ejabberdctl.cfg",
-               "EJABBERD_PID_PATH=" + node.dir +
-                   "/pid\nERL_OPTIONS=\"-env ERL_CRASH_DUMP_BYTES 0\"\n" +
-                   "ERL_EPMD_PORT=" + std::to_string(epmd_port_) + "\nexport ERL_EPMD_PORT\n");
+               "EJABBERD_PID_PATH=" + node.dir + "/pid\nERL_OPTIONS=\"-env ERL_CRASH_DUMP_BYTES 0" +
+                   " -setcookie eip2mqtt" + std::to_string(::getpid()) +
+                   "\"\nERL_EPMD_PORT=" + std::to_string(epmd_port_) + "\nexport ERL_EPMD_PORT\n");
     give_to_ejabberd(node.dir);
     auto argv = ctl(node);
     argv.push_back("foreground");

@@ -4,8 +4,8 @@
 ///
 /// Each node has its own directory (configuration, spool, logs), its own MQTT port on the
 /// loopback and a name of its own (`eip2mqtt<pid>n<i>@localhost`); the nodes find each other
-/// through an epmd the cluster starts on a free port, so nothing outlives the test, and run as
-/// the `ejabberd` user, whose Erlang cookie they share. MQTT clients log in with `login()`
+/// through an epmd the cluster starts on a free port, so nothing outlives the test, share a
+/// cookie of the cluster's own, and run as the `ejabberd` user. MQTT clients log in with `login()`
 /// (anonymous authentication: any name, a non-empty password).
 
 #include <sys/types.h>

@@ -87,4 +87,14 @@ std::string tahu_encode(const nlohmann::json& payload) {
     return bytes.str();
 }
 
+nlohmann::json tahu_metric(const nlohmann::json& payload, const std::string& name) {
+    if (payload.is_object() && payload.contains("metrics") && payload["metrics"].is_array()) {
+        for (const auto& m : payload["metrics"]) {
+            if (m.is_object() && m.value("name", "") == name) return m;
+        }
+    }
+    ADD_FAILURE() << "no metric " << name << " in " << payload.dump();
+    return nlohmann::json::object();
+}
+
 }  // namespace eip2mqtt::test

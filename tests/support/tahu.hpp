@@ -18,6 +18,10 @@ nlohmann::json tahu_decode(const std::string& bytes);
 /// (empty objects, the test failed, when Tahu could not decode them all).
 std::vector<nlohmann::json> tahu_decode_all(const std::vector<std::string>& payloads);
 
+/// The metric `name` of a decoded payload; an empty object, and a failure of the test, without
+/// one.
+nlohmann::json tahu_metric(const nlohmann::json& payload, const std::string& name);
+
 /// The protobuf bytes Tahu encodes for `payload` ({"timestamp": ms, "metrics": [{"name",
 /// "alias", "type", "value"}..]}).
 std::string tahu_encode(const nlohmann::json& payload);
