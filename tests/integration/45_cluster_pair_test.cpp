@@ -1,0 +1,68 @@
+// A hot-standby pair on a real broker cluster: its two units on two different ejabberd nodes
+// (gw-a on node 0, gw-b on node 1, each with all three in `mqtt.url`). The leader killed
+// (SIGKILL): the standby hears its lease run out through the cluster, and takes over.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+
+#include <memory>
+#include <string>
+
+#include "tests/support/ejabberd_cluster.hpp"
+#include "tests/support/pair_fixture.hpp"
+
+namespace eip2mqtt::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+class EjabberdClusterPairTest : public PairTest {
+protected:
+    void SetUp() override {
+        if (!EjabberdCluster::available()) GTEST_SKIP() << "ejabberd is not installed";
+        cluster_ = std::make_unique<EjabberdCluster>(3);
+        ASSERT_TRUE(cluster_->ready());
+        // Every role as a subscriber on node 2, which neither unit uses, hears it.
+        recorder_ = std::make_unique<MqttRecorder>(
+            cluster_->url(2), std::vector<std::string>{"test/#"}, "", EjabberdCluster::login());
+        const auto password = dir_.write("password", EjabberdCluster::login().password);
+        ::chmod(password.c_str(), 0600);
+        start_units([&](const std::string& id, std::uint16_t port) {
+            const int first = id == "gw-a" ? 0 : 1;
+            std::string urls = "[";
+            for (int i = 0; i < cluster_->size(); ++i) {
+                urls += std::string(i == 0 ? "\"" : ", \"") +
+                        cluster_->url((first + i) % cluster_->size()) + "\"";
+            }
+            urls += "]";
+            auto config = pair_config(id, "NODES", port, 100);
+            config.replace(config.find("\"NODES\""), 7, urls);
+            const auto mqtt = config.find("base_topic: test");
+            config.insert(mqtt, "username: " + EjabberdCluster::login().username +
+                                    ", password_file: " + password + ", ");
+            return config;
+        });
+    }
+    void TearDown() override {
+        PairTest::TearDown();
+        cluster_.reset();
+    }
+
+    std::unique_ptr<EjabberdCluster> cluster_;
+};
+
+TEST_F(EjabberdClusterPairTest, TheStandbyOnAnotherNodeTakesOverFromAKilledLeader) {
+    const auto leader = first_leader();
+    ASSERT_FALSE(leader.empty()) << "no unit said leader";
+    const auto from = recorder_->count();
+    gateways_[leader]->signal(SIGKILL);
+    EXPECT_TRUE(says(other(leader), "leader", from, 60s))
+        << "the unit on the other node did not take over";
+    while (capture_.receive(0ms)) {
+    }
+    EXPECT_TRUE(capture_.receive(10s).has_value()) << "nothing produced after the takeover";
+}
+
+}  // namespace
+}  // namespace eip2mqtt::test
