@@ -20,7 +20,8 @@ using namespace std::chrono_literals;
 class EjabberdClusterPairTest : public PairTest {
 protected:
     void SetUp() override {
-        if (!EjabberdCluster::available()) GTEST_SKIP() << "ejabberd is not installed";
+        if (!EjabberdCluster::available())
+            GTEST_SKIP() << "ejabberd is not installed, or the tests do not run as root";
         cluster_ = std::make_unique<EjabberdCluster>(3);
         ASSERT_TRUE(cluster_->ready());
         // Every role as a subscriber on node 2, which neither unit uses, hears it.

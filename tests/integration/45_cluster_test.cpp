@@ -52,7 +52,7 @@ class EjabberdClusterTest : public StoreAndForwardTest {
 protected:
     void SetUp() override {
         cluster_ = start_cluster();
-        if (!cluster_) GTEST_SKIP() << "ejabberd is not installed";
+        if (!cluster_) GTEST_SKIP() << "ejabberd is not installed, or the tests do not run as root";
         ASSERT_TRUE(cluster_->ready());
     }
     void TearDown() override {
@@ -127,7 +127,7 @@ class EjabberdClusterProducingTest : public GatewayTest {
 protected:
     void SetUp() override {
         cluster_ = start_cluster();
-        if (!cluster_) GTEST_SKIP() << "ejabberd is not installed";
+        if (!cluster_) GTEST_SKIP() << "ejabberd is not installed, or the tests do not run as root";
         ASSERT_TRUE(cluster_->ready());
         capture_ = std::make_unique<UdpClient>();
     }

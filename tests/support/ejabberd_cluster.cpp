@@ -66,7 +66,10 @@ struct EjabberdCluster::Node {
     pid_t vm = -1;                          ///< the Erlang VM, from its pid file
 };
 
-bool EjabberdCluster::available() { return ::access(kEjabberdctl, X_OK) == 0; }
+bool EjabberdCluster::available() {
+    // ejabberdctl runs its nodes as the ejabberd user only when started by root.
+    return ::access(kEjabberdctl, X_OK) == 0 && ::geteuid() == 0;
+}
 
 EjabberdCluster::EjabberdCluster(int nodes) {
     char name[] = "/tmp/eip2mqtt-ejabberd-XXXXXX";

@@ -22,7 +22,8 @@ namespace eip2mqtt::test {
 
 class EjabberdCluster {
 public:
-    /// Whether ejabberd is installed (tools/install-deps.sh installs it).
+    /// Whether ejabberd is installed (tools/install-deps.sh installs it) and the tests run as
+    /// root, who may start nodes as the ejabberd user.
     static bool available();
 
     /// Starts `nodes` nodes and joins them into one cluster; returns once every node accepts
