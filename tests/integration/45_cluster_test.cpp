@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -104,6 +105,9 @@ TEST_F(EjabberdClusterTest, TheGatewayMovesToASurvivingNodeAndItsSubscribersMiss
     const auto last = counter_->pause();
     ASSERT_TRUE(wait_all_received(last)) << gateway_->output();
     expect_each_value_once(last);
+    // How long the move held samples back shows here: what waited went on `_history`.
+    std::cout << "the move: " << values_on("_history").size() << " of " << last
+              << " values replayed on _history, the rest live\n";
 
     // The will of the connection to node 0 died with node 0: nobody was told `offline`; the
     // connect to node 1 said `online`.
