@@ -27,9 +27,6 @@ std::string device_topic(const std::string& type, const std::string& device) {
     return node_topic(type) + "/" + device;
 }
 
-/// The metric of `payload` named `name` (births); an empty object, and a failure, without one.
-json metric(const json& payload, const std::string& name) { return tahu_metric(payload, name); }
-
 class SparkplugTest : public GatewayTest {
 protected:
     /// `timeout_ms` of the consumed exchange: long enough by default that no test but the one
@@ -116,17 +113,17 @@ TEST_F(SparkplugTest, BirthsThenDataByAliasWithSeqCountingEveryMessage) {
     start_node();
     const auto nbirth = next_on(node_topic("NBIRTH"), 0);
     EXPECT_EQ(nbirth["seq"], "0");
-    EXPECT_EQ(metric(nbirth, "bdSeq")["value"], "0");
-    EXPECT_EQ(metric(nbirth, "bdSeq")["type"], "Int64");
-    EXPECT_EQ(metric(nbirth, "Node Control/Rebirth")["value"], false);
-    EXPECT_EQ(metric(nbirth, "Exchanges/plant/state")["type"], "String");
+    EXPECT_EQ(tahu_metric(nbirth, "bdSeq")["value"], "0");
+    EXPECT_EQ(tahu_metric(nbirth, "bdSeq")["type"], "Int64");
+    EXPECT_EQ(tahu_metric(nbirth, "Node Control/Rebirth")["value"], false);
+    EXPECT_EQ(tahu_metric(nbirth, "Exchanges/plant/state")["type"], "String");
 
     // The produced exchange is born with its first datagram.
     const auto sp = next_on(device_topic("DBIRTH", "sp"), 0);
-    EXPECT_EQ(metric(sp, "SPEED_SP")["type"], "Float");
-    EXPECT_EQ(metric(sp, "SPEED_SP")["value"], 3000);
-    EXPECT_EQ(metric(sp, "START")["type"], "Boolean");
-    const auto props = metric(sp, "SPEED_SP")["properties"];
+    EXPECT_EQ(tahu_metric(sp, "SPEED_SP")["type"], "Float");
+    EXPECT_EQ(tahu_metric(sp, "SPEED_SP")["value"], 3000);
+    EXPECT_EQ(tahu_metric(sp, "START")["type"], "Boolean");
+    const auto props = tahu_metric(sp, "SPEED_SP")["properties"];
     EXPECT_EQ(props["writable"]["value"], true);
     EXPECT_EQ(props["max"]["value"], 4000);
     EXPECT_EQ(props["max"]["type"], "Double");
@@ -134,12 +131,12 @@ TEST_F(SparkplugTest, BirthsThenDataByAliasWithSeqCountingEveryMessage) {
     // The consumed exchange is born with its first datagram, every tag with its datatype.
     send_plant(1, -12, 2.5f);
     const auto plant = next_on(device_topic("DBIRTH", "plant"), 0);
-    const auto pv = metric(plant, "PV");
+    const auto pv = tahu_metric(plant, "PV");
     EXPECT_EQ(pv["type"], "Int16");
     EXPECT_EQ(pv["value"], -12);
     EXPECT_EQ(pv["properties"]["engUnit"]["value"], "bar");
     EXPECT_EQ(pv["properties"]["Documentation"]["value"], "drum pressure");
-    EXPECT_EQ(metric(plant, "FLOW")["value"], 2.5);
+    EXPECT_EQ(tahu_metric(plant, "FLOW")["value"], 2.5);
 
     // A change: DDATA with that tag alone, by alias.
     const auto from = recorder_->count();
@@ -147,7 +144,7 @@ TEST_F(SparkplugTest, BirthsThenDataByAliasWithSeqCountingEveryMessage) {
     const auto data = next_on(device_topic("DDATA", "plant"), from);
     ASSERT_EQ(data["metrics"].size(), 1u);
     EXPECT_FALSE(data["metrics"][0].contains("name") && !data["metrics"][0]["name"].is_null());
-    EXPECT_EQ(data["metrics"][0]["alias"], metric(plant, "FLOW")["alias"]);
+    EXPECT_EQ(data["metrics"][0]["alias"], tahu_metric(plant, "FLOW")["alias"]);
     EXPECT_EQ(data["metrics"][0]["value"], 3.5);
 
     // seq counts every message of the node from the NBIRTH's 0, with no gap. One Tahu run for
@@ -185,7 +182,7 @@ TEST_F(SparkplugTest, AStaleExchangeDiesAndIsBornAgainWithItsNextDatagram) {
     EXPECT_TRUE(death["metrics"].empty());
     send_plant(2, 6, 1.0f);
     const auto reborn = next_on(device_topic("DBIRTH", "plant"), died);
-    EXPECT_EQ(metric(reborn, "PV").value("value", json()), 6);
+    EXPECT_EQ(tahu_metric(reborn, "PV").value("value", json()), 6);
 }
 
 TEST_F(SparkplugTest, NcmdRebirthBringsEveryBirthAgain) {
@@ -199,8 +196,8 @@ TEST_F(SparkplugTest, NcmdRebirthBringsEveryBirthAgain) {
         json::array({{{"name", "Node Control/Rebirth"}, {"type", "Boolean"}, {"value", true}}}));
     const auto nbirth = next_on(node_topic("NBIRTH"), from);
     EXPECT_EQ(nbirth["seq"], "0");
-    EXPECT_EQ(metric(nbirth, "bdSeq")["value"], "0");  // same connection, same bdSeq
-    EXPECT_EQ(metric(next_on(device_topic("DBIRTH", "plant"), from), "PV")["value"], 5);
+    EXPECT_EQ(tahu_metric(nbirth, "bdSeq")["value"], "0");  // same connection, same bdSeq
+    EXPECT_EQ(tahu_metric(next_on(device_topic("DBIRTH", "plant"), from), "PV")["value"], 5);
     next_on(device_topic("DBIRTH", "sp"), from);
 }
 
@@ -209,11 +206,11 @@ TEST_F(SparkplugTest, ADcmdIsWrittenInOneDatagramAndEchoedByDdata) {
     const auto birth = next_on(device_topic("DBIRTH", "sp"), 0);
     const auto from = recorder_->count();
     // By alias, as hosts write after a birth.
-    command(
-        device_topic("DCMD", "sp"),
-        json::array({{{"alias", std::stoull(metric(birth, "SPEED_SP")["alias"].get<std::string>())},
-                      {"type", "Float"},
-                      {"value", 1234.5}}}));
+    command(device_topic("DCMD", "sp"),
+            json::array({{{"alias",
+                           std::stoull(tahu_metric(birth, "SPEED_SP")["alias"].get<std::string>())},
+                          {"type", "Float"},
+                          {"value", 1234.5}}}));
     EXPECT_TRUE(next_speed_sp(1234.5f).has_value());
     const auto echo = next_on(device_topic("DDATA", "sp"), from);
     ASSERT_EQ(echo["metrics"].size(), 1u);
@@ -263,7 +260,7 @@ TEST_F(SparkplugTest, BirthsWaitForThePrimaryHostAndFollowItAcrossABrokerRestart
     expect_field(topic("plant/_status"), "state", "\"ok\"");
     EXPECT_TRUE(recorder_->messages_on(node_topic("NBIRTH")).empty());
     recorder_->publish("spBv1.0/STATE/scada", R"({"online":true,"timestamp":1})", true);
-    EXPECT_EQ(metric(next_on(node_topic("NBIRTH"), 0), "bdSeq")["value"], "0");
+    EXPECT_EQ(tahu_metric(next_on(node_topic("NBIRTH"), 0), "bdSeq")["value"], "0");
 
     // The broker restarts: a new connection, a new bdSeq, every birth again once the host is
     // back online.
@@ -273,11 +270,11 @@ TEST_F(SparkplugTest, BirthsWaitForThePrimaryHostAndFollowItAcrossABrokerRestart
     recorder_ = std::make_unique<MqttRecorder>(broker_->url(), std::vector<std::string>{"#"});
     recorder_->publish("spBv1.0/STATE/scada", R"({"online":true,"timestamp":2})", true);
     const auto nbirth = next_on(node_topic("NBIRTH"), 0, 30s);
-    EXPECT_EQ(metric(nbirth, "bdSeq")["value"], "1");
+    EXPECT_EQ(tahu_metric(nbirth, "bdSeq")["value"], "1");
     EXPECT_EQ(nbirth["seq"], "0");
     // Every device is born again with it, with the values it had.
     next_on(device_topic("DBIRTH", "sp"), 0);
-    EXPECT_EQ(metric(next_on(device_topic("DBIRTH", "plant"), 0), "PV")["value"], 5);
+    EXPECT_EQ(tahu_metric(next_on(device_topic("DBIRTH", "plant"), 0), "PV")["value"], 5);
     send_plant(2, 7, 1.0f);
     EXPECT_EQ(next_on(device_topic("DDATA", "plant"), 0)["metrics"][0]["value"], 7);
 
@@ -285,10 +282,10 @@ TEST_F(SparkplugTest, BirthsWaitForThePrimaryHostAndFollowItAcrossABrokerRestart
     // list has one), with a new will; births once the host is back.
     const auto from = recorder_->count();
     recorder_->publish("spBv1.0/STATE/scada", R"({"online":false,"timestamp":3})", true);
-    EXPECT_EQ(metric(next_on(node_topic("NDEATH"), from), "bdSeq")["value"], "1");
+    EXPECT_EQ(tahu_metric(next_on(node_topic("NDEATH"), from), "bdSeq")["value"], "1");
     EXPECT_TRUE(gateway_->wait_for_output("MQTT (Sparkplug) session ended with", 10s));
     recorder_->publish("spBv1.0/STATE/scada", R"({"online":true,"timestamp":4})", true);
-    EXPECT_EQ(metric(next_on(node_topic("NBIRTH"), from, 30s), "bdSeq")["value"], "2");
+    EXPECT_EQ(tahu_metric(next_on(node_topic("NBIRTH"), from, 30s), "bdSeq")["value"], "2");
 }
 
 TEST_F(SparkplugTest, ACleanStopEndsWithNdeathAndAKillLeavesTheWill) {
@@ -298,19 +295,19 @@ TEST_F(SparkplugTest, ACleanStopEndsWithNdeathAndAKillLeavesTheWill) {
     ::kill(gateway_->pid(), SIGTERM);
     EXPECT_EQ(gateway_->wait(10s), 0);
     const auto death = next_on(node_topic("NDEATH"), from);
-    EXPECT_EQ(metric(death, "bdSeq")["value"], metric(nbirth, "bdSeq")["value"]);
+    EXPECT_EQ(tahu_metric(death, "bdSeq")["value"], tahu_metric(nbirth, "bdSeq")["value"]);
 
     start_gateway();
     const auto second = next_on(node_topic("NBIRTH"), from);
     // The state directory keeps the bdSeq: the new process's first will takes the next one.
-    EXPECT_EQ(std::stoi(metric(second, "bdSeq")["value"].get<std::string>()),
-              std::stoi(metric(nbirth, "bdSeq")["value"].get<std::string>()) + 1);
+    EXPECT_EQ(std::stoi(tahu_metric(second, "bdSeq")["value"].get<std::string>()),
+              std::stoi(tahu_metric(nbirth, "bdSeq")["value"].get<std::string>()) + 1);
     from = recorder_->count();
     ::kill(gateway_->pid(), SIGKILL);
     gateway_->wait(10s);
     // The broker publishes the will once it notices (keepalive at most 1.5 x 30 s).
     const auto will = next_on(node_topic("NDEATH"), from, 60s);
-    EXPECT_EQ(metric(will, "bdSeq")["value"], metric(second, "bdSeq")["value"]);
+    EXPECT_EQ(tahu_metric(will, "bdSeq")["value"], tahu_metric(second, "bdSeq")["value"]);
 }
 
 }  // namespace

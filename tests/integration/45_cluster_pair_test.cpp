@@ -29,20 +29,11 @@ protected:
             cluster_->url(2), std::vector<std::string>{"test/#"}, "", EjabberdCluster::login());
         const auto password = dir_.write("password", EjabberdCluster::login().password);
         ::chmod(password.c_str(), 0600);
+        const auto login =
+            ", username: " + EjabberdCluster::login().username + ", password_file: " + password;
         start_units([&](const std::string& id, std::uint16_t port) {
-            const int first = id == "gw-a" ? 0 : 1;
-            std::string urls = "[";
-            for (int i = 0; i < cluster_->size(); ++i) {
-                urls += std::string(i == 0 ? "\"" : ", \"") +
-                        cluster_->url((first + i) % cluster_->size()) + "\"";
-            }
-            urls += "]";
-            auto config = pair_config(id, "NODES", port, 100);
-            config.replace(config.find("\"NODES\""), 7, urls);
-            const auto mqtt = config.find("base_topic: test");
-            config.insert(mqtt, "username: " + EjabberdCluster::login().username +
-                                    ", password_file: " + password + ", ");
-            return config;
+            return pair_config(id, cluster_->url_list(id == "gw-a" ? 0 : 1), port, 100, "", "",
+                               login);
         });
     }
     void TearDown() override {

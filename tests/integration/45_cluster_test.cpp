@@ -33,10 +33,7 @@ using namespace std::chrono_literals;
 GatewayOptions on_cluster(const EjabberdCluster& cluster) {
     GatewayOptions options;
     options.wait_online = false;
-    std::string urls = "[ \"" + cluster.url(0) + "\"";
-    for (int i = 1; i < cluster.size(); ++i) urls += ", \"" + cluster.url(i) + "\"";
-    urls += " ]";
-    options.url_through = [urls](std::uint16_t) { return urls; };
+    options.url_through = [urls = cluster.url_list()](std::uint16_t) { return urls; };
     options.env["EIP2MQTT_MQTT_PASSWORD"] = EjabberdCluster::login().password;
     return options;
 }

@@ -7,11 +7,10 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <thread>
 
 #include "tests/support/free_port.hpp"
+#include "tests/support/text_file.hpp"
 
 namespace eip2mqtt::test {
 namespace {
@@ -24,17 +23,6 @@ constexpr const char* kEpmd = "/usr/bin/epmd";
 // An Erlang VM and ejabberd start in a few seconds on an idle machine; far more on a loaded one.
 constexpr auto kStartDeadline = 90s;
 constexpr auto kCommandDeadline = 90s;
-
-std::string read_file(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-void write_file(const std::string& path, const std::string& content) {
-    std::ofstream(path) << content;
-}
 
 /// Hands `path` and everything under it to the `ejabberd` user, as which the nodes run.
 void give_to_ejabberd(const fs::path& path) {
@@ -116,19 +104,20 @@ void EjabberdCluster::start_node(Node& node) {
     fs::create_directories(node.dir + "/logs");
     fs::create_directories(node.dir + "/spool");
     // Only the MQTT listener: no XMPP port to collide with another node's.
-    write_file(node.dir + "/ejabberd.yml",
-               "hosts: [localhost]\nloglevel: info\nauth_method: [anonymous]\n"
-               "anonymous_protocol: login_anon\nlisten:\n  - port: " +
-                   std::to_string(node.port) +
-                   "\n    ip: \"127.0.0.1\"\n    module: mod_mqtt\n    backlog: 1000\n"
-                   "modules:\n  mod_mqtt: {}\n");
+    write_text_file(node.dir + "/ejabberd.yml",
+                    "hosts: [localhost]\nloglevel: info\nauth_method: [anonymous]\n"
+                    "anonymous_protocol: login_anon\nlisten:\n  - port: " +
+                        std::to_string(node.port) +
+                        "\n    ip: \"127.0.0.1\"\n    module: mod_mqtt\n    backlog: 1000\n"
+                        "modules:\n  mod_mqtt: {}\n");
     // ejabberdctl reads this file after its arguments: the node's own pid file, and for the node
     // and every command sent to it the cluster's epmd and cookie (not the ejabberd user's cookie
     // file: two tests' clusters starting at once on a fresh machine would race to create it).
-    write_file(node.dir + "/ejabberdctl.cfg",
-               "EJABBERD_PID_PATH=" + node.dir + "/pid\nERL_OPTIONS=\"-env ERL_CRASH_DUMP_BYTES 0" +
-                   " -setcookie eip2mqtt" + std::to_string(::getpid()) +
-                   "\"\nERL_EPMD_PORT=" + std::to_string(epmd_port_) + "\nexport ERL_EPMD_PORT\n");
+    write_text_file(
+        node.dir + "/ejabberdctl.cfg",
+        "EJABBERD_PID_PATH=" + node.dir + "/pid\nERL_OPTIONS=\"-env ERL_CRASH_DUMP_BYTES 0" +
+            " -setcookie eip2mqtt" + std::to_string(::getpid()) +
+            "\"\nERL_EPMD_PORT=" + std::to_string(epmd_port_) + "\nexport ERL_EPMD_PORT\n");
     give_to_ejabberd(node.dir);
     auto argv = ctl(node);
     argv.push_back("foreground");
@@ -136,7 +125,7 @@ void EjabberdCluster::start_node(Node& node) {
         argv, std::map<std::string, std::string>{{"ERL_EPMD_PORT", std::to_string(epmd_port_)}});
     const bool started = wait_until(
         [&] {
-            const auto pid = read_file(node.dir + "/pid");
+            const auto pid = read_text_file(node.dir + "/pid");
             if (!pid.empty()) node.vm = static_cast<pid_t>(std::stol(pid));
             return node.vm > 0 && accepts_connections(node.port);
         },
@@ -179,6 +168,14 @@ std::string EjabberdCluster::url(int node) const {
     return "tcp://127.0.0.1:" + std::to_string(port(node));
 }
 
+std::string EjabberdCluster::url_list(int first) const {
+    std::string list;
+    for (int i = 0; i < size(); ++i) {
+        list += (i == 0 ? "[ \"" : ", \"") + url((first + i) % size()) + "\"";
+    }
+    return list + " ]";
+}
+
 void EjabberdCluster::kill(int node) {
     auto& killed = *nodes_.at(node);
     if (killed.vm <= 0) return;
@@ -191,7 +188,7 @@ void EjabberdCluster::kill(int node) {
 
 std::string EjabberdCluster::log(int node) const {
     const auto& logged = *nodes_.at(node);
-    return read_file(logged.dir + "/logs/ejabberd.log") + logged.process->output();
+    return read_text_file(logged.dir + "/logs/ejabberd.log") + logged.process->output();
 }
 
 std::string EjabberdCluster::members() const {

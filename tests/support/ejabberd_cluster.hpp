@@ -39,6 +39,8 @@ public:
     int size() const { return static_cast<int>(nodes_.size()); }
     std::uint16_t port(int node) const;
     std::string url(int node) const;  ///< tcp://127.0.0.1:PORT
+    /// Every node's URL as a YAML flow list for `mqtt.url`, from node `first` on, round.
+    std::string url_list(int first = 0) const;
     static MqttLogin login() { return {"eip2mqtt", "cluster"}; }
 
     /// SIGKILL of the node's Erlang VM, as a crash would; returns once its port is closed.

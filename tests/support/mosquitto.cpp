@@ -14,13 +14,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
 #include "tests/support/child_process.hpp"
 #include "tests/support/free_port.hpp"
+#include "tests/support/text_file.hpp"
 
 namespace eip2mqtt::test {
 namespace {
@@ -32,13 +32,6 @@ constexpr auto kPollInterval = std::chrono::milliseconds(10);
 // How long a broker told to stop has before it is told again, and before it is killed.
 constexpr auto kTermResendInterval = std::chrono::seconds(2);
 constexpr auto kStopDeadline = std::chrono::seconds(30);
-
-std::string read_file(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 std::string current_user() {
     if (const passwd* pw = ::getpwuid(::geteuid())) {
@@ -147,7 +140,7 @@ std::string Mosquitto::secure_url() const {
     return (options_.tls ? "ssl://127.0.0.1:" : "tcp://127.0.0.1:") + std::to_string(secure_port_);
 }
 
-std::string Mosquitto::log() const { return read_file(dir_ + "/mosquitto.log"); }
+std::string Mosquitto::log() const { return read_text_file(dir_ + "/mosquitto.log"); }
 
 void Mosquitto::start() {
     if (pid_ > 0) {
@@ -181,12 +174,12 @@ void Mosquitto::start() {
         if (::waitpid(pid_, &status, WNOHANG) == pid_) {
             pid_ = -1;
             throw std::runtime_error("mosquitto exited at start-up; log:\n" +
-                                     read_file(dir_ + "/mosquitto.log"));
+                                     read_text_file(dir_ + "/mosquitto.log"));
         }
         if (std::chrono::steady_clock::now() > deadline) {
             stop();
             throw std::runtime_error("mosquitto did not accept connections within 10 s; log:\n" +
-                                     read_file(dir_ + "/mosquitto.log"));
+                                     read_text_file(dir_ + "/mosquitto.log"));
         }
         std::this_thread::sleep_for(kPollInterval);
     }

@@ -12,7 +12,8 @@ namespace eip2mqtt::test {
 
 std::string PairTest::pair_config(const std::string& id, const std::string& broker_url,
                                   std::uint16_t port, std::uint32_t period_ms,
-                                  const std::string& sections, const std::string& exchanges) const {
+                                  const std::string& sections, const std::string& exchanges,
+                                  const std::string& mqtt) const {
     return unit_config(
         id, broker_url, port,
         ExchangeYaml::produce("sp", "10.1.2.3", 10, "127.0.0.1:" + std::to_string(capture_.port()))
@@ -20,16 +21,17 @@ std::string PairTest::pair_config(const std::string& id, const std::string& brok
                 .tag("SPEED_SP", "0.0", "real", "writable: true, initial: 3000")
                 .str() +
             exchanges,
-        "", sections);
+        mqtt, sections);
 }
 
 std::string PairTest::unit_config(const std::string& id, const std::string& broker_url,
                                   std::uint16_t port, const std::string& exchanges,
                                   const std::string& mqtt, const std::string& sections) const {
+    const auto url = broker_url.front() == '[' ? broker_url : "\"" + broker_url + "\"";
     return "gateway: { id: " + id + ", state_dir: " + dir_.path() + "/" + id +
            ", log_level: debug }\n"
-           "mqtt: { url: \"" +
-           broker_url + "\", base_topic: test, qos: 1, metrics_interval_s: 1" + mqtt +
+           "mqtt: { url: " +
+           url + ", base_topic: test, qos: 1, metrics_interval_s: 1" + mqtt +
            " }\n"
            "eip: { bind: 127.0.0.1, port: " +
            std::to_string(port) +

@@ -27,14 +27,15 @@ protected:
     static std::string other(const std::string& id) { return id == "gw-a" ? "gw-b" : "gw-a"; }
 
     /// Unit `id`'s configuration: the broker at `broker_url`, EIP on `port`, the produced
-    /// exchange every `period_ms`; `sections` (YAML sections, `sparkplug:` say) and
-    /// `exchanges` (more of them, as ExchangeYaml writes them) added.
+    /// exchange every `period_ms`; `sections` (YAML sections, `sparkplug:` say), `exchanges`
+    /// (more of them, as ExchangeYaml writes them) and `mqtt` (as unit_config takes it) added.
     std::string pair_config(const std::string& id, const std::string& broker_url,
                             std::uint16_t port, std::uint32_t period_ms,
-                            const std::string& sections = "",
-                            const std::string& exchanges = "") const;
+                            const std::string& sections = "", const std::string& exchanges = "",
+                            const std::string& mqtt = "") const;
     /// A unit's configuration with `exchanges` alone (items of the list, ExchangeYaml), `mqtt`
-    /// (more keys of the `mqtt:` flow mapping: ", batch: true") and `sections`.
+    /// (more keys of the `mqtt:` flow mapping: ", batch: true") and `sections`. `broker_url`
+    /// is one URL, or a YAML flow list of them (`[ "tcp://...", ... ]`).
     std::string unit_config(const std::string& id, const std::string& broker_url,
                             std::uint16_t port, const std::string& exchanges,
                             const std::string& mqtt = "", const std::string& sections = "") const;
