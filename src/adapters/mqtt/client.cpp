@@ -20,8 +20,9 @@ std::unique_ptr<::mqtt::async_client> make_paho_client(const ClientOptions& opti
         throw std::invalid_argument(options.log_name + " client without a broker URL");
     }
     detail::quiet_paho_trace(std::getenv("MQTT_C_CLIENT_TRACE"));
-    // Paho's connects end in its send thread, CONNECT and CONNACK at once (paho_connect.hpp).
-    static_cast<void>(detail::paho_connects_at_once());
+    // Paho's connects end in its send thread, CONNECT and CONNACK at once, TLS's aside
+    // (paho_connect.hpp).
+    static_cast<void>(detail::paho_connects_at_once(options.urls));
     ::mqtt::create_options create(options.version == 5 ? MQTTVERSION_5 : MQTTVERSION_3_1_1);
     // Paho C refuses commands beyond maxBufferedMessages (default 100) even while connected:
     // room for max_in_flight publications, availability, subscribes and the disconnect.

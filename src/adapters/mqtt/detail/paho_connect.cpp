@@ -4,16 +4,21 @@
 #include "adapters/mqtt/detail/paho_connect.hpp"
 
 #include <dlfcn.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <pthread.h>
 #include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
 
+#include <array>
+#include <atomic>
 #include <cerrno>
 #include <condition_variable>
 #include <cstring>
 #include <mutex>
+
+#include "adapters/mqtt/detail/broker_url.hpp"
 
 namespace eip2mqtt::adapters::mqtt::detail {
 namespace {
@@ -35,6 +40,22 @@ struct SocketNotice {
 SocketNotice& socket_notice() {
     static SocketNotice notice;
     return notice;
+}
+
+/// One bit a port; read by every connect of the process, so without a lock.
+std::array<std::atomic<std::uint64_t>, 65536 / 64>& tls_ports() {
+    static std::array<std::atomic<std::uint64_t>, 65536 / 64> ports{};
+    return ports;
+}
+
+std::uint16_t port_of(const sockaddr* address, socklen_t length) {
+    if (address->sa_family == AF_INET && length >= sizeof(sockaddr_in)) {
+        return ntohs(reinterpret_cast<const sockaddr_in*>(address)->sin_port);
+    }
+    if (address->sa_family == AF_INET6 && length >= sizeof(sockaddr_in6)) {
+        return ntohs(reinterpret_cast<const sockaddr_in6*>(address)->sin6_port);
+    }
+    return 0;
 }
 
 }  // namespace
@@ -79,7 +100,21 @@ bool sleep_until_paho_socket(std::chrono::microseconds limit) {
     return woken;
 }
 
-std::chrono::milliseconds paho_connects_at_once() { return paho_connect_wait; }
+void paho_tls_port(std::uint16_t port) {
+    tls_ports()[port / 64].fetch_or(std::uint64_t{1} << (port % 64), std::memory_order_relaxed);
+}
+
+bool is_paho_tls_port(std::uint16_t port) {
+    return (tls_ports()[port / 64].load(std::memory_order_relaxed) >> (port % 64)) & 1;
+}
+
+std::chrono::milliseconds paho_connects_at_once(const std::vector<std::string>& urls) {
+    for (const auto& url : urls) {
+        const auto endpoint = parse_broker_url(url);
+        if (endpoint && endpoint->tls) paho_tls_port(endpoint->port);
+    }
+    return paho_connect_wait;
+}
 
 }  // namespace eip2mqtt::adapters::mqtt::detail
 
@@ -92,7 +127,8 @@ extern "C" int connect(int fd, const sockaddr* address, socklen_t length) {
     }
     int rc = function(fd, address, length);
     const int error = errno;
-    if ((rc == 0 || error == EINPROGRESS) && detail::in_paho_thread("MQTTAsync_send")) {
+    if ((rc == 0 || error == EINPROGRESS) && detail::in_paho_thread("MQTTAsync_send") &&
+        !detail::is_paho_tls_port(detail::port_of(address, length))) {
         if (rc != 0) rc = detail::finish_connect(fd, detail::paho_connect_wait);
         const int outcome = errno;
         if (rc == 0 || outcome == EINPROGRESS) detail::paho_socket_added();

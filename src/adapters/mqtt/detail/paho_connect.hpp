@@ -16,9 +16,16 @@
 /// thread has a socket for it to read. Every other caller, a connect slower than the wait, and a
 /// Paho that names its threads otherwise get the C library's behaviour unchanged.
 ///
+/// Not for TLS: a connect Paho finds done at once takes another path through its TLS start,
+/// which lost the broker's answer to CONNECT (a refused login reported as a bare failure, 5 of
+/// 12 runs under AddressSanitizer). Connects to the port of a TLS broker are left as they are.
+///
 /// Module-private (src/adapters/mqtt/detail).
 
 #include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 namespace eip2mqtt::adapters::mqtt::detail {
 
@@ -42,8 +49,14 @@ void paho_socket_added();
 /// most `limit`. Whether it ended early.
 bool sleep_until_paho_socket(std::chrono::microseconds limit);
 
-/// Keeps this file's `connect` and `usleep` in every program that makes a Paho client (a static
-/// library's member is linked only when something it defines is used); returns the wait.
-std::chrono::milliseconds paho_connects_at_once();
+/// Marks `port` as a TLS broker's: Paho's connects to it keep the C library's behaviour.
+void paho_tls_port(std::uint16_t port);
+/// Whether a connect to `port` is left as it is (paho_tls_port).
+bool is_paho_tls_port(std::uint16_t port);
+
+/// Marks the TLS brokers' ports among `urls` (paho_tls_port), and keeps this file's `connect`
+/// and `usleep` in every program that makes a Paho client (a static library's member is linked
+/// only when something it defines is used); returns the wait.
+std::chrono::milliseconds paho_connects_at_once(const std::vector<std::string>& urls);
 
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -107,6 +107,19 @@ TEST(PahoConnectTest, InPahosSendThreadARefusedConnectSaysWhy) {
     EXPECT_EQ(outcome.error, ECONNREFUSED);
 }
 
+// A TLS broker's port, marked from the client's URLs: its connects take Paho's own path.
+TEST(PahoConnectTest, AConnectToATlsBrokersPortIsLeftToPaho) {
+    const Listener listener;
+    const auto port = ntohs(listener.address.sin_port);
+    EXPECT_FALSE(is_paho_tls_port(port));
+    paho_connects_at_once({"tcp://127.0.0.1:1", "ssl://127.0.0.1:" + std::to_string(port)});
+    EXPECT_TRUE(is_paho_tls_port(port));
+    EXPECT_FALSE(is_paho_tls_port(1));
+    const auto outcome = connect_from("MQTTAsync_send", listener.address);
+    EXPECT_EQ(outcome.rc, -1);
+    EXPECT_EQ(outcome.error, EINPROGRESS);
+}
+
 TEST(PahoConnectTest, AnyOtherThreadGetsTheCLibrarysAnswerUnchanged) {
     const Listener listener;
     const auto outcome = connect_from("eip2mqtt-loop", listener.address);
