@@ -14,7 +14,7 @@ packages=(
   clang libclang-rt-14-dev tshark systemd openssl iproute2 iptables
   python3 python3-jsonschema nodejs universal-ctags
   lintian stress-ng chromium
-  ejabberd
+  ejabberd rabbitmq-server
 )
 
 missing=()
@@ -32,12 +32,14 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get update -qq
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-# ejabberd is a broker cluster for the tests, which start their own nodes on free ports
-# (tests/support/ejabberd_cluster.hpp): the system's own service, which Debian starts on
-# install, is not used, so it is stopped and kept off.
-if command -v systemctl >/dev/null && systemctl is-enabled --quiet ejabberd 2>/dev/null; then
-  "${sudo_cmd[@]}" systemctl disable --now --quiet ejabberd 2>/dev/null || true
-fi
+# ejabberd and RabbitMQ are broker clusters for the tests, which start their own nodes on free
+# ports (tests/support/broker_cluster.hpp): the system's own services, which Debian starts on
+# install, are not used, so they are stopped and kept off.
+for service in ejabberd rabbitmq-server; do
+  if command -v systemctl >/dev/null && systemctl is-enabled --quiet "$service" 2>/dev/null; then
+    "${sudo_cmd[@]}" systemctl disable --now --quiet "$service" 2>/dev/null || true
+  fi
+done
 
 # Eclipse Tahu's Sparkplug B payload library, from npm, for the tests that decode what the
 # gateway publishes with an implementation we did not write (versions pinned by its lock file).

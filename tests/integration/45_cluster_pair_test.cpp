@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "tests/support/ejabberd_cluster.hpp"
+#include "tests/support/broker_cluster.hpp"
 #include "tests/support/pair_fixture.hpp"
 
 namespace eip2mqtt::test {
@@ -20,17 +20,16 @@ using namespace std::chrono_literals;
 class EjabberdClusterPairTest : public PairTest {
 protected:
     void SetUp() override {
-        if (!EjabberdCluster::available())
-            GTEST_SKIP() << "ejabberd is not installed, or the tests do not run as root";
-        cluster_ = std::make_unique<EjabberdCluster>(3);
+        cluster_ = BrokerCluster::start(BrokerCluster::Kind::ejabberd, 3);
+        if (!cluster_) GTEST_SKIP() << "ejabberd is not installed, or the tests do not run as root";
         ASSERT_TRUE(cluster_->ready());
         // Every role as a subscriber on node 2, which neither unit uses, hears it.
         recorder_ = std::make_unique<MqttRecorder>(
-            cluster_->url(2), std::vector<std::string>{"test/#"}, "", EjabberdCluster::login());
-        const auto password = dir_.write("password", EjabberdCluster::login().password);
+            cluster_->url(2), std::vector<std::string>{"test/#"}, "", cluster_->login());
+        const auto password = dir_.write("password", cluster_->login().password);
         ::chmod(password.c_str(), 0600);
         const auto login =
-            ", username: " + EjabberdCluster::login().username + ", password_file: " + password;
+            ", username: " + cluster_->login().username + ", password_file: " + password;
         start_units([&](const std::string& id, std::uint16_t port) {
             return pair_config(id, cluster_->url_list(id == "gw-a" ? 0 : 1), port, 100, "", "",
                                login);
@@ -41,7 +40,7 @@ protected:
         cluster_.reset();
     }
 
-    std::unique_ptr<EjabberdCluster> cluster_;
+    std::unique_ptr<BrokerCluster> cluster_;
 };
 
 TEST_F(EjabberdClusterPairTest, TheStandbyOnAnotherNodeTakesOverFromAKilledLeader) {

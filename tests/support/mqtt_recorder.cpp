@@ -28,14 +28,36 @@ void wait_ok(const ::mqtt::token_ptr& tok, const char* what) {
     tok->get_return_code();
 }
 
+/// Connect options for `login`'s protocol: a session that outlives a connection by an hour over
+/// MQTT 5, a persistent session over 3.1.1 (which has no expiry).
+::mqtt::connect_options connect_options_for(const MqttLogin& login, bool clean) {
+    ::mqtt::connect_options options;
+    if (!login.username.empty()) {
+        options.set_user_name(login.username);
+        options.set_password(login.password);
+    }
+    options.set_mqtt_version(login.version);
+    if (login.version >= MQTTVERSION_5) {
+        options.set_clean_start(clean);
+        options.set_properties({{::mqtt::property::SESSION_EXPIRY_INTERVAL, kSessionExpiry_s}});
+    } else {
+        options.set_clean_session(clean);
+    }
+    return options;
+}
+
 }  // namespace
 
 struct MqttRecorder::Impl {
-    Impl(const std::string& url, const std::string& id, std::vector<std::string> filters)
-        : client(url, id, ::mqtt::create_options(MQTTVERSION_5)), filters(std::move(filters)) {}
+    Impl(const std::string& url, const std::string& id, std::vector<std::string> filters,
+         int version)
+        : client(url, id, ::mqtt::create_options(version)),
+          filters(std::move(filters)),
+          version(version) {}
 
     ::mqtt::async_client client;
     std::vector<std::string> filters;
+    int version;
     std::atomic<bool> subscribed_once{false};
 
     mutable std::mutex mutex;
@@ -85,15 +107,18 @@ struct MqttRecorder::Impl {
         // Paho C++ 1.2's collection overload leaves unset, and its many-topic one crashed in
         // MQTTAsync_subscribeMany. They complete in order: the last token says all are done.
         ::mqtt::token_ptr last;
-        for (const auto& filter : filters) last = client.subscribe(filter, 1, opt);
+        for (const auto& filter : filters) {
+            last = version >= MQTTVERSION_5 ? client.subscribe(filter, 1, opt)
+                                            : client.subscribe(filter, 1);
+        }
         return last;
     }
 };
 
 MqttRecorder::MqttRecorder(const std::string& url, const std::vector<std::string>& filters,
                            const std::string& client_id, const MqttLogin& login)
-    : impl_(std::make_unique<Impl>(url, client_id.empty() ? unique_client_id() : client_id,
-                                   filters)) {
+    : impl_(std::make_unique<Impl>(url, client_id.empty() ? unique_client_id() : client_id, filters,
+                                   login.version)) {
     auto& cli = impl_->client;
     Impl* impl = impl_.get();
     cli.set_message_callback([impl](::mqtt::const_message_ptr msg) { impl->record(msg); });
@@ -109,27 +134,12 @@ MqttRecorder::MqttRecorder(const std::string& url, const std::vector<std::string
     // a broker restart) keep the subscriptions and the QoS 1 messages queued meanwhile. A
     // generated id is new to the broker: its first connect is clean already, and skipping the
     // extra round saves Paho's one-second pause between a disconnect and the next connect.
-    ::mqtt::properties props{{::mqtt::property::SESSION_EXPIRY_INTERVAL, kSessionExpiry_s}};
-    const auto log_in = [&login](::mqtt::connect_options& options) {
-        if (login.username.empty()) return;
-        options.set_user_name(login.username);
-        options.set_password(login.password);
-    };
     if (!client_id.empty()) {
-        ::mqtt::connect_options clean;
-        log_in(clean);
-        clean.set_mqtt_version(MQTTVERSION_5);
-        clean.set_clean_start(true);
-        clean.set_properties(props);
-        wait_ok(cli.connect(clean), "connect");
+        wait_ok(cli.connect(connect_options_for(login, true)), "connect");
         wait_ok(cli.disconnect(), "disconnect");
     }
 
-    ::mqtt::connect_options resume;
-    log_in(resume);
-    resume.set_mqtt_version(MQTTVERSION_5);
-    resume.set_clean_start(false);
-    resume.set_properties(props);
+    auto resume = connect_options_for(login, false);
     resume.set_automatic_reconnect(std::chrono::seconds(1), std::chrono::seconds(1));
     wait_ok(cli.connect(resume), "connect");
     if (!filters.empty()) {
@@ -146,7 +156,10 @@ MqttRecorder::~MqttRecorder() {
         if (cli.is_connected()) {
             // End the session on the broker with the connection.
             ::mqtt::disconnect_options opts;
-            opts.set_properties(::mqtt::properties{{::mqtt::property::SESSION_EXPIRY_INTERVAL, 0}});
+            if (impl_->version >= MQTTVERSION_5) {
+                opts.set_properties(
+                    ::mqtt::properties{{::mqtt::property::SESSION_EXPIRY_INTERVAL, 0}});
+            }
             cli.disconnect(opts)->wait_for(std::chrono::seconds(2));
         }
     } catch (const ::mqtt::exception&) {

@@ -31,10 +31,12 @@ struct Received {
     std::int64_t message_expiry_s = -1;  ///< what the broker left of it; -1 when absent
 };
 
-/// A user name and password for brokers that want one (none when `username` is empty).
+/// A user name and password for brokers that want one (none when `username` is empty), and the
+/// protocol version for those that speak no MQTT 5.
 struct MqttLogin {
     std::string username;
     std::string password;
+    int version = 5;  ///< 5, or 4: MQTT 3.1.1 (no properties, no retain handling)
 };
 
 class MqttRecorder {

@@ -49,6 +49,13 @@ adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& co
     options.keepalive = mqtt.keepalive;
     options.session_expiry = mqtt.session_expiry;
     options.clean_start = mqtt.session_expiry.count() == 0;
+    // A clean session gains nothing from QoS 1 on the way in: what a lost connection held is
+    // dropped with the session either way. RabbitMQ before 3.13 (MQTT 3.1.1 only) keeps a QoS 1
+    // subscription in a durable queue on the node the client used, clean session or not; once
+    // that node is down, every other node of its cluster closes a connection of the same
+    // client id as it subscribes again (docs/brokers.md). So over 3.1.1 a clean session
+    // subscribes at QoS 0.
+    options.subscription_qos = mqtt.version == 3 && options.clean_start ? 0 : 1;
     options.availability_topic = availability_topic;
     options.buffer_max_messages = mqtt.buffer_max_messages;
     options.batch_first = mqtt.batch_first;
@@ -72,6 +79,9 @@ adapters::mqtt::ClientOptions sparkplug_client_options(
     options.topic_aliases = false;
     options.session_expiry = std::chrono::seconds(0);
     options.clean_start = true;
+    // Its commands and its host's STATE keep QoS 1 over 3.1.1 too: on a RabbitMQ cluster before
+    // 3.13 it waits for its node to return (docs/brokers.md).
+    options.subscription_qos = 1;
     options.will = std::move(will);
     // Sparkplug B 3.0 over MQTT 5: a DISCONNECT says the NDEATH too.
     options.disconnect_with_will = true;

@@ -90,6 +90,18 @@ TEST_F(MqttSettingsTest, ASessionThatDoesNotExpireIsACleanStart) {
     EXPECT_EQ(kept.session_expiry, 3600s);
 }
 
+// RabbitMQ before 3.13 keeps a QoS 1 subscription on its node: a clean 3.1.1 session subscribes
+// at QoS 0 (it loses nothing by it); a kept session, MQTT 5 and Sparkplug's connection keep 1.
+TEST_F(MqttSettingsTest, ACleanSessionOverMqtt311SubscribesAtQos0) {
+    auto c = config();
+    EXPECT_EQ(mqtt_client_options(c, "a").subscription_qos, 1);
+    c.mqtt.version = 3;
+    EXPECT_EQ(mqtt_client_options(c, "a").subscription_qos, 0);
+    EXPECT_EQ(sparkplug_client_options(c, {}).subscription_qos, 1);
+    c.mqtt.session_expiry = 3600s;
+    EXPECT_EQ(mqtt_client_options(c, "a").subscription_qos, 1);
+}
+
 TEST_F(MqttSettingsTest, TlsFilesAndVerificationAreCarriedOver) {
     auto c = config();
     EXPECT_FALSE(mqtt_client_options(c, "a").tls.has_value());

@@ -36,6 +36,11 @@ TEST(PairConnectionTest, ItsOwnCleanSessionBoundConnectionThatHearsItself) {
     EXPECT_TRUE(options.hear_own);
     EXPECT_FALSE(options.retain_as_published);
     EXPECT_TRUE(options.availability_topic.empty());
+    EXPECT_EQ(options.subscription_qos, 1);
+    auto over_311 = config();
+    over_311.mqtt.version = 3;
+    over_311.mqtt.session_expiry = 3600s;  // the user's session; the pair's is always clean
+    EXPECT_EQ(pair_client_options(over_311, will).subscription_qos, 0);
     ASSERT_TRUE(options.will);
     const auto made = options.will();
     EXPECT_EQ(made.topic, will.topic);

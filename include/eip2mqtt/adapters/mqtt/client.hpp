@@ -86,6 +86,8 @@ struct ClientOptions {
     /// broker's store says retained: a pair tells its own image sent back live from a copy of
     /// it stored before a restart or a reconnect.
     bool retain_as_published = true;
+    /// The QoS of every subscription (writes, commands, a pair's lease): 1, or 0.
+    int subscription_qos = 1;
     /// When set, asked of each publication as the sender thread takes it to hand it to Paho
     /// (on that thread: it must be thread-safe and cheap); false drops it, counted in
     /// `discarded`. A pair's leader that lost its lease says no more as leader, whatever waits.

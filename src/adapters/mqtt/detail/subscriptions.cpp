@@ -50,7 +50,7 @@ void Subscriptions::subscribe(const std::vector<std::string>& filters) {
         // MQTTAsync_subscribeMany when given subscribe options, and its one-topic overload is
         // the only one that passes them on.
         for (const auto& filter : filters) {
-            paho_.subscribe(filter, 1, nullptr, listener_, opt);
+            paho_.subscribe(filter, options_.subscription_qos, nullptr, listener_, opt);
         }
     } catch (const paho::exception& e) {
         spdlog::warn("{} subscribe failed on {}: {}", options_.log_name, brokers_.url(), e.what());
