@@ -13,7 +13,7 @@
 namespace eip2mqtt::app {
 namespace {
 
-std::string checked(const std::string& url) {
+std::string checked_brokers(const std::string& url) {
     test::TempDir dir;
     const auto path = dir.write(
         "brokers.yaml", "mqtt:\n  url: " + url +
@@ -26,14 +26,14 @@ std::string checked(const std::string& url) {
 }
 
 TEST(CheckBrokers, AListIsPrintedInItsOrder) {
-    const auto out = checked("[ tcp://b:1883, tcp://a:1883 ]");
+    const auto out = checked_brokers("[ tcp://b:1883, tcp://a:1883 ]");
     EXPECT_NE(out.find("brokers, tried in turn: tcp://b:1883, then tcp://a:1883\n"),
               std::string::npos)
         << out;
 }
 
 TEST(CheckBrokers, OneBrokerAddsNoLine) {
-    const auto out = checked("tcp://a:1883");
+    const auto out = checked_brokers("tcp://a:1883");
     EXPECT_EQ(out.find("tried in turn"), std::string::npos) << out;
 }
 

@@ -44,8 +44,8 @@ namespace {
 using namespace std::chrono_literals;
 using core::redundancy::LeaderRecord;
 
-const std::string leader_topic = "acme/_gateway/_pair/turbine/leader";
-const std::string role_topic = "acme/_gateway/gw-a/role";
+const std::string pair_leader_topic = "acme/_gateway/_pair/turbine/leader";
+const std::string unit_role_topic = "acme/_gateway/gw-a/role";
 const std::string image_prefix = "acme/_gateway/_pair/turbine/image/";
 constexpr auto takeover = 2000ms;
 constexpr auto claim_after = 1500ms;   // T - R
@@ -121,10 +121,10 @@ protected:
     /// The last record the pair published on the leader topic.
     const adapters::mqtt::Message& last_record() const {
         for (auto it = connection_->published.rbegin(); it != connection_->published.rend(); ++it)
-            if (it->topic == leader_topic) return *it;
+            if (it->topic == pair_leader_topic) return *it;
         throw std::logic_error("nothing published on the leader topic");
     }
-    std::size_t records() const { return connection_->on(leader_topic).size(); }
+    std::size_t records() const { return connection_->on(pair_leader_topic).size(); }
     /// The broker acknowledges the pair's last record and sends it back to it.
     void acknowledge_and_echo_last() {
         const auto record = last_record();
@@ -133,7 +133,7 @@ protected:
     }
     /// The other unit's record, heard now.
     void hear_other(LeaderRecord record) {
-        connection_->deliver({leader_topic, encode_leader_record(record, takeover)});
+        connection_->deliver({pair_leader_topic, encode_leader_record(record, takeover)});
     }
     /// From the start: the claim after the takeover, acknowledged, heard back; leads R later.
     void take_the_lead() {
@@ -149,7 +149,7 @@ protected:
     boost::asio::io_context loop_;
     test::FakePairConnection* connection_ = nullptr;
     Pair pair_{clock_, [this](const core::config::Config&, adapters::mqtt::Message will) {
-                   EXPECT_EQ(will.topic, leader_topic);
+                   EXPECT_EQ(will.topic, pair_leader_topic);
                    auto connection = std::make_unique<test::FakePairConnection>();
                    connection_ = connection.get();
                    return connection;
@@ -166,8 +166,8 @@ protected:
 
 TEST_F(PairRoleTest, ItSubscribesAndSaysStandbyOnConnect) {
     EXPECT_EQ(connection_->subscriptions,
-              (std::vector<std::string>{leader_topic, image_prefix + "#"}));
-    EXPECT_EQ(connection_->on(role_topic), std::vector<std::string>{"standby"});
+              (std::vector<std::string>{pair_leader_topic, image_prefix + "#"}));
+    EXPECT_EQ(connection_->on(unit_role_topic), std::vector<std::string>{"standby"});
     EXPECT_FALSE(pair_.leads());
     EXPECT_FALSE(fence_(any_message()));
 }
@@ -191,13 +191,13 @@ TEST_F(PairRoleTest, NoOtherLeaderItClaimsAfterTheTakeoverAndLeadsOnceItsClaimIs
     EXPECT_FALSE(fence_(any_message()));
     EXPECT_TRUE(events_.empty());
 
-    connection_->deliver({leader_topic, connection_->on(leader_topic).front()});
+    connection_->deliver({pair_leader_topic, connection_->on(pair_leader_topic).front()});
     advance(1ms);
     EXPECT_TRUE(pair_.leads());
     EXPECT_TRUE(pair_.may_produce(clock_.monotonic()));
     EXPECT_TRUE(fence_(any_message()));
     EXPECT_FALSE(pair_.follows_produced(clock_.monotonic()));
-    EXPECT_EQ(connection_->on(role_topic), (std::vector<std::string>{"standby", "leader"}));
+    EXPECT_EQ(connection_->on(unit_role_topic), (std::vector<std::string>{"standby", "leader"}));
 }
 
 TEST_F(PairRoleTest, NoClaimWhileItsConnectionIsDown) {
@@ -251,7 +251,7 @@ TEST_F(PairRoleTest, ANewerEpochOfTheOtherUnitStepsItDownAndShutsTheFenceAtOnce)
     EXPECT_FALSE(pair_.may_produce(clock_.monotonic()));
     EXPECT_TRUE(pair_.follows_produced(clock_.monotonic()));
     EXPECT_EQ(events_, std::vector<std::string>{"end"});
-    EXPECT_EQ(connection_->on(role_topic),
+    EXPECT_EQ(connection_->on(unit_role_topic),
               (std::vector<std::string>{"standby", "leader", "standby"}));
     // Standing by, it neither claims nor renews while the other unit renews.
     const auto before = records();
@@ -280,7 +280,7 @@ TEST_F(PairRoleTest, ALeaseNotRenewedLapsesByTheClockAlone) {
     EXPECT_TRUE(events_.empty()) << "the session ends on the loop's next tick";
     advance(0ms);
     EXPECT_EQ(events_, std::vector<std::string>{"end"});
-    EXPECT_EQ(connection_->on(role_topic).back(), "standby");
+    EXPECT_EQ(connection_->on(unit_role_topic).back(), "standby");
 }
 
 TEST_F(PairRoleTest, ImagesArePublishedByTheLeaderUnderItsEpochNotByAStandby) {
