@@ -25,9 +25,9 @@ constexpr const char* kEpmd = "/usr/bin/epmd";
 // far more with three starting at once on a loaded one.
 constexpr auto kStartDeadline = 180s;
 
-}  // namespace
-
-bool poll_until(const std::function<bool()>& done, std::chrono::milliseconds deadline) {
+/// Polls `done` every 50 ms until it holds (true) or `deadline` passes (false).
+template <class Condition>
+bool poll_until(Condition done, std::chrono::milliseconds deadline) {
     const auto until = std::chrono::steady_clock::now() + deadline;
     while (!done()) {
         if (std::chrono::steady_clock::now() > until) return false;
@@ -35,6 +35,8 @@ bool poll_until(const std::function<bool()>& done, std::chrono::milliseconds dea
     }
     return true;
 }
+
+}  // namespace
 
 std::string BrokerCluster::name(Kind kind) {
     return kind == Kind::ejabberd ? "ejabberd" : "rabbitmq";

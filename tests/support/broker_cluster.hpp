@@ -12,7 +12,6 @@
 
 #include <chrono>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -93,8 +92,5 @@ private:
     std::vector<std::unique_ptr<Node>> nodes_;
     bool ready_ = false;
 };
-
-/// Polls `done` every 50 ms until it holds (true) or `deadline` passes (false).
-bool poll_until(const std::function<bool()>& done, std::chrono::milliseconds deadline);
 
 }  // namespace eip2mqtt::test
