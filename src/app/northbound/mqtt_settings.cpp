@@ -33,6 +33,13 @@ std::string broker_list(const std::vector<std::string>& urls) {
     return out;
 }
 
+// A clean session gains nothing from QoS 1 on the way in: what a lost connection held is
+// dropped with the session either way. RabbitMQ before 3.13 (MQTT 3.1.1 only) keeps a QoS 1
+// subscription in a durable queue on the node the client used, clean session or not; once that
+// node is down, every other node of its cluster closes a connection of the same client id as it
+// subscribes again (docs/brokers.md). So over 3.1.1 a clean session subscribes at QoS 0.
+int subscription_qos(int version, bool clean_start) { return version == 3 && clean_start ? 0 : 1; }
+
 adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& config,
                                                   const std::string& availability_topic) {
     const auto& mqtt = config.mqtt;
@@ -49,13 +56,7 @@ adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& co
     options.keepalive = mqtt.keepalive;
     options.session_expiry = mqtt.session_expiry;
     options.clean_start = mqtt.session_expiry.count() == 0;
-    // A clean session gains nothing from QoS 1 on the way in: what a lost connection held is
-    // dropped with the session either way. RabbitMQ before 3.13 (MQTT 3.1.1 only) keeps a QoS 1
-    // subscription in a durable queue on the node the client used, clean session or not; once
-    // that node is down, every other node of its cluster closes a connection of the same
-    // client id as it subscribes again (docs/brokers.md). So over 3.1.1 a clean session
-    // subscribes at QoS 0.
-    options.subscription_qos = mqtt.version == 3 && options.clean_start ? 0 : 1;
+    options.subscription_qos = subscription_qos(mqtt.version, options.clean_start);
     options.availability_topic = availability_topic;
     options.buffer_max_messages = mqtt.buffer_max_messages;
     options.batch_first = mqtt.batch_first;

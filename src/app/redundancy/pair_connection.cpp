@@ -44,7 +44,7 @@ adapters::mqtt::ClientOptions pair_client_options(const core::config::Config& co
     options.log_name = "MQTT (pair)";
     options.session_expiry = std::chrono::seconds(0);
     options.clean_start = true;
-    options.subscription_qos = config.mqtt.version == 3 ? 0 : 1;  // as mqtt_client_options'
+    options.subscription_qos = subscription_qos(config.mqtt.version, options.clean_start);
     options.will = [will = std::move(will)] { return will; };
     options.session_bound = true;
     options.hear_own = true;  // a claim heard back confirms it (core/redundancy/lease.hpp)

@@ -33,6 +33,10 @@ std::string read_mqtt_password(const core::config::MqttSection& mqtt);
 /// "tcp://a:1883, then tcp://b:1883" when there are several.
 std::string broker_list(const std::vector<std::string>& urls);
 
+/// The QoS a connection subscribes at: 0 for a clean session over MQTT 3.1.1 (`version` 3),
+/// else 1 (mqtt_settings.cpp says why).
+int subscription_qos(int version, bool clean_start);
+
 /// Options of the gateway's MQTT client; `availability_topic` carries its will.
 adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& config,
                                                   const std::string& availability_topic);
