@@ -104,7 +104,7 @@ void Gateway::start() {
         "eip2mqtt {} listening on UDP {}:{}: {} consumed and {} produced exchange(s); MQTT {}",
         config_.gateway.id, config_.eip.bind, exchanges_->local_port(),
         exchanges_->exchanges().consumers().size(), exchanges_->exchanges().producers().size(),
-        broker_list(config_.mqtt.urls));
+        brokers_line(config_));
     // Sockets are bound and the first connection attempt is under way.
     ready();
 }

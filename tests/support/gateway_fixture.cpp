@@ -29,6 +29,22 @@ std::string TempDir::write(const std::string& name, const std::string& content) 
     return file;
 }
 
+namespace {
+
+/// A mapping's keys (indented by two spaces, the first by none) as the item of a list.
+std::string as_list_item(const std::string& keys) {
+    std::string out = "  - ";
+    for (std::size_t at = 0; at < keys.size();) {
+        const auto end = keys.find('\n', at);
+        const auto line = keys.substr(at, end == std::string::npos ? end : end - at + 1);
+        out += (at == 0 ? "" : "  ") + line;
+        at = end == std::string::npos ? keys.size() : end + 1;
+    }
+    return out;
+}
+
+}  // namespace
+
 void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mqtt_extra,
                         GatewayOptions options) {
     options_ = std::move(options);
@@ -42,6 +58,12 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
         for (const auto& more : options_.more_urls) url += ", \"" + more + "\"";
         url += " ]";
     }
+    const std::string mqtt = "  url: " + url +
+                             "\n"
+                             "  base_topic: test\n"
+                             "  qos: 1\n"
+                             "  metrics_interval_s: 1\n" +
+                             mqtt_extra;
     const std::string config =
         "gateway:\n"
         "  id: test-gw\n"
@@ -49,14 +71,10 @@ void GatewayTest::start(const std::string& exchanges_yaml, const std::string& mq
         dir_.path() +
         "/state\n"
         "  log_level: debug\n"
-        "mqtt:\n"
-        "  url: " +
-        url +
-        "\n"
-        "  base_topic: test\n"
-        "  qos: 1\n"
-        "  metrics_interval_s: 1\n" +
-        mqtt_extra +
+        "mqtt:\n" +
+        (options_.more_connections.empty()
+             ? mqtt
+             : as_list_item("name: site\n" + mqtt) + options_.more_connections) +
         "eip:\n"
         "  bind: 127.0.0.1\n"
         "  port: " +

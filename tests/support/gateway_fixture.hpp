@@ -41,6 +41,9 @@ struct GatewayOptions {
     /// Brokers after the test's own in `mqtt.url` (tcp://127.0.0.1:PORT...): the gateway gets
     /// a list, the test's broker first.
     std::vector<std::string> more_urls;
+    /// Connections after the test's own (`mqtt` as a list): list items, `  - name: …` and
+    /// their keys indented by four spaces. The test's own connection is named `site`.
+    std::string more_connections;
     /// When set, the gateway's URL for the broker on `port` (a relay or a proxy in between).
     std::function<std::string(std::uint16_t port)> url_through;
     std::map<std::string, std::string> env;  ///< added to the gateway's environment

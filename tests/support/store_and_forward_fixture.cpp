@@ -127,13 +127,19 @@ bool StoreAndForwardTest::wait_all_received(std::uint64_t last, std::chrono::sec
 }
 
 void StoreAndForwardTest::expect_each_value_once(std::uint64_t last, int outages) {
+    expect_each_value_once(*recorder_, base_topic, last, outages);
+}
+
+void StoreAndForwardTest::expect_each_value_once(MqttRecorder& recorder, const std::string& base,
+                                                 std::uint64_t last, int outages) {
     std::map<std::uint64_t, int> count;
     std::map<std::uint64_t, std::set<std::string>> payloads;
     bool unsorted = false;
-    const auto all = recorder_->messages();
+    const auto all = recorder.messages();
+    const auto line = [&base](const char* suffix) { return base + "/line/" + suffix; };
     for (const auto* suffix : {"_values", "_history"}) {
         std::vector<std::uint64_t> arrivals;
-        for (const auto* m : deliveries_on(suffix, all)) {
+        for (const auto* m : deliveries(line(suffix), all, 0)) {
             const auto v = counter_of(*m);
             ++count[v];
             payloads[v].insert(suffix + m->payload);
@@ -158,7 +164,8 @@ void StoreAndForwardTest::expect_each_value_once(std::uint64_t last, int outages
     if (unsorted || !missing.empty() || twice.size() > 5u * static_cast<std::size_t>(outages)) {
         for (const auto* suffix : {"_values", "_history"}) {
             std::ostringstream ranges;  // runs of consecutive values, to see what is where
-            const auto values = values_on(suffix, all);
+            std::vector<std::uint64_t> values;
+            for (const auto* m : deliveries(line(suffix), all, 0)) values.push_back(counter_of(*m));
             for (std::size_t i = 0; i < values.size(); ++i) {
                 if (i == 0 || values[i] != values[i - 1] + 1) {
                     ranges << (i ? "-" + std::to_string(values[i - 1]) + " " : "") << values[i];
@@ -166,7 +173,7 @@ void StoreAndForwardTest::expect_each_value_once(std::uint64_t last, int outages
             }
             if (!values.empty()) ranges << "-" << values.back();
             std::ostringstream repeated;  // every delivery flagged DUP, counted or not
-            const auto wanted = topic(std::string("line/") + suffix);
+            const auto wanted = line(suffix);
             for (const auto& m : all) {
                 if (m.duplicate && m.topic == wanted) {
                     repeated << " " << counter_of(m);

@@ -62,6 +62,9 @@ protected:
     /// restarted broker first sends what it kept), so the order asked for is that of one delivery
     /// of each value.
     void expect_each_value_once(std::uint64_t last, int outages = 1);
+    /// The same of what `recorder` received under `base` (another connection's broker).
+    void expect_each_value_once(MqttRecorder& recorder, const std::string& base, std::uint64_t last,
+                                int outages = 1);
 
     /// Pauses the counter once live `_values` delivered its last value: nothing is queued.
     std::uint64_t pause_when_delivered();

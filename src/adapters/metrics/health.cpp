@@ -24,8 +24,20 @@ std::string stale_exchanges(const MetricsSnapshot& snapshot) {
     return text + (stale.size() == 1 ? " is stale" : " are stale");
 }
 
+/// With several connections, each one down is named: one broker's outage is not the others'.
+std::string mqtt_down(const GatewayMetrics& gateway) {
+    if (gateway.connections.empty()) return gateway.mqtt_connected ? "" : "MQTT is not connected";
+    std::string down;
+    for (const auto& connection : gateway.connections) {
+        if (!connection.connected) down += (down.empty() ? "" : ", ") + connection.name;
+    }
+    if (down.empty()) return {};
+    return "MQTT connection " + down + (down.find(',') == std::string::npos ? " is" : " are") +
+           " not connected";
+}
+
 std::string not_ready_reason(const MetricsSnapshot& snapshot) {
-    std::string reason = snapshot.gateway.mqtt_connected ? "" : "MQTT is not connected";
+    std::string reason = mqtt_down(snapshot.gateway);
     if (auto stale = stale_exchanges(snapshot); !stale.empty()) {
         reason += (reason.empty() ? "" : "; ") + stale;
     }

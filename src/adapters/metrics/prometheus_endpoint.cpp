@@ -14,12 +14,16 @@
 #include <string_view>
 #include <utility>
 
+#include "adapters/metrics/detail/connection_families.hpp"
+#include "adapters/metrics/detail/families.hpp"
 #include "adapters/metrics/detail/listener_routes.hpp"
 #include "adapters/metrics/detail/tls_front.hpp"
 
 namespace eip2mqtt::adapters::metrics {
 namespace {
 
+using detail::family;
+using detail::sample;
 using prometheus::ClientMetric;
 using prometheus::MetricFamily;
 using prometheus::MetricType;
@@ -28,26 +32,6 @@ constexpr std::array<std::string_view, 5> consume_states{"waiting", "ok", "stale
                                                          "signature_mismatch", "length_mismatch"};
 constexpr std::array<std::string_view, 2> produce_states{"producing", "paused"};
 constexpr std::array<std::string_view, 3> clock_states{"none", "synced", "unsynced"};
-
-MetricFamily family(std::string name, std::string help, MetricType type) {
-    MetricFamily result;
-    result.name = "eip2mqtt_" + std::move(name);
-    result.help = std::move(help);
-    result.type = type;
-    return result;
-}
-
-/// Labels in name order, as prometheus-cpp's own families print them.
-ClientMetric sample(MetricType type, double value, std::vector<ClientMetric::Label> labels = {}) {
-    ClientMetric metric;
-    metric.label = std::move(labels);
-    if (type == MetricType::Counter) {
-        metric.counter.value = value;
-    } else {
-        metric.gauge.value = value;
-    }
-    return metric;
-}
 
 std::vector<ClientMetric::Label> exchange_labels(const ExchangeMetrics& exchange) {
     return {{"direction", exchange.direction}, {"exchange", exchange.name}};
@@ -258,6 +242,7 @@ std::vector<MetricFamily> to_families(const MetricsSnapshot& snapshot) {
     add_clock_families(out, snapshot);
     add_gateway_families(out, snapshot);
     if (snapshot.gateway.history) add_history_families(out, *snapshot.gateway.history);
+    detail::add_connection_families(out, snapshot.gateway.connections);
     if (snapshot.gateway.commands) {
         add_counter_set(out, core::command::command_counters_name,
                         core::command::command_counter_fields, *snapshot.gateway.commands);

@@ -158,6 +158,14 @@ bool read_urls(KeyValue& v, MqttSection& m) {
 
 /// `mqtt`
 constexpr KeyReader<MqttSection> mqtt_rows[]{
+    {"name", [](KeyValue& v, MqttSection& m) { return v.text_to(m.name); }},
+    {"writes",
+     [](KeyValue& v, MqttSection& m) {
+         bool writes = false;
+         if (!v.boolean_to(writes)) return false;
+         m.writes = writes;
+         return true;
+     }},
     {"url", read_urls},
     {"version", read_version},
     {"client_id", [](KeyValue& v, MqttSection& m) { return v.text_to(m.client_id); }},
@@ -272,6 +280,7 @@ constexpr KeyReader<SparkplugSection> sparkplug_rows[]{
     {"primary_host_id",
      [](KeyValue& v, SparkplugSection& s) { return v.text_to(s.primary_host_id); }},
     {"uns", [](KeyValue& v, SparkplugSection& s) { return v.boolean_to(s.uns); }},
+    {"connection", [](KeyValue& v, SparkplugSection& s) { return v.text_to(s.connection); }},
     {"qos",
      [](KeyValue& v, SparkplugSection& s) {
          if (!v.integer_to<int>(s.qos)) return false;
@@ -297,8 +306,24 @@ void read_gateway(Reader& reader, const Node& node, const Mark& at, Config& conf
         reader.read_keys(node, at, "gateway", "in gateway", gateway_readers, config.gateway);
 }
 
+/// `mqtt:` one connection's mapping, or a list of them (the first the main one).
 void read_mqtt(Reader& reader, const Node& node, const Mark& at, Config& config) {
-    config.mqtt.marks = reader.read_keys(node, at, "mqtt", "in mqtt", mqtt_readers, config.mqtt);
+    if (!node.is_sequence()) {
+        config.mqtt.marks =
+            reader.read_keys(node, at, "mqtt", "in mqtt", mqtt_readers, config.mqtt);
+        return;
+    }
+    if (node.size() == 0) {
+        reader.error(at, "mqtt is an empty list: give at least one connection");
+        return;
+    }
+    for (std::size_t i = 0; i < node.size(); ++i) {
+        auto& section = i == 0 ? config.mqtt : config.more_mqtt.emplace_back();
+        const auto item = node.item(i);
+        const std::string what = "mqtt connection " + std::to_string(i + 1);
+        section.marks =
+            reader.read_keys(item, reader.mark(item), what, "in " + what, mqtt_readers, section);
+    }
 }
 
 void read_metrics(Reader& reader, const Node& node, const Mark& at, Config& config) {

@@ -226,9 +226,7 @@ int run_check(const std::string& config_path, std::ostream& out, std::ostream& e
     out << config_path << ": valid, " << plans.size()
         << (plans.size() == 1 ? " exchange" : " exchanges") << ", base topic "
         << config->mqtt.base_topic << "\n";
-    if (config->mqtt.urls.size() > 1) {
-        out << "brokers, tried in turn: " << broker_list(config->mqtt.urls) << "\n";
-    }
+    out << connections_summary(*config);
     out << redundancy::section_summary(config->redundancy);
     print_placeholders(config_path, out);
     print_commands(config->eip.commands, out);

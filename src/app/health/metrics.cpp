@@ -87,14 +87,34 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     g.writes = sources.writes;
     if (sources.history) g.history = history_metrics(*sources.history);
     if (sources.commands) g.commands = *sources.commands;
+    if (!sources.more_connections.empty()) {
+        g.connections.push_back(
+            connection_metrics({sources.mqtt_name, sources.mqtt, sources.history}));
+        for (const auto& more : sources.more_connections) {
+            g.connections.push_back(connection_metrics(more));
+        }
+    }
     return snapshot;
 }
 
 std::string status_line(const MetricsSources& sources) {
-    return std::to_string(sources.datagrams.datagrams) + " datagrams, " +
-           std::to_string(sources.datagrams.accepted) + " accepted, " +
-           std::to_string(sources.mqtt.published) + " published, MQTT " +
-           (sources.mqtt.connected ? "connected" : "disconnected");
+    auto line = std::to_string(sources.datagrams.datagrams) + " datagrams, " +
+                std::to_string(sources.datagrams.accepted) + " accepted, " +
+                std::to_string(sources.mqtt.published) + " published, MQTT " +
+                (sources.mqtt.connected ? "connected" : "disconnected");
+    for (const auto& more : sources.more_connections) {
+        line += ", " + more.name + " " + (more.mqtt.connected ? "connected" : "disconnected");
+    }
+    return line;
+}
+
+adapters::metrics::ConnectionMetrics connection_metrics(const ConnectionSources& sources) {
+    adapters::metrics::ConnectionMetrics out{sources.name,         sources.mqtt.connected,
+                                             sources.mqtt.broker,  sources.mqtt.published,
+                                             sources.mqtt.queued,  sources.mqtt.dropped_overflow,
+                                             sources.mqtt.refused, std::nullopt};
+    if (sources.history) out.history = history_metrics(*sources.history);
+    return out;
 }
 
 }  // namespace eip2mqtt::app

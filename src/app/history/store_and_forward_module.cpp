@@ -22,6 +22,20 @@ LinkProbe tree_link(adapters::mqtt::Client& client) {
             }};
 }
 
+const core::config::StoreAndForwardSection& settings(
+    const core::config::Config& config, const northbound::json_tree::JsonTreeModule& tree) {
+    return core::config::mqtt_connection(config, tree.connection()).store_and_forward;
+}
+
+/// The first connection's journal is `history.sqlite`, as it was before connections were
+/// several; another's is `history-{name}.sqlite`.
+std::string journal_file(const core::config::Config& config, std::size_t connection) {
+    if (connection == 0) return "history.sqlite";
+    return "history-" +
+           core::config::connection_name(core::config::mqtt_connection(config, connection)) +
+           ".sqlite";
+}
+
 }  // namespace
 
 StoreAndForwardModule::StoreAndForwardModule(std::unique_ptr<adapters::history::Journal> journal,
@@ -29,10 +43,11 @@ StoreAndForwardModule::StoreAndForwardModule(std::unique_ptr<adapters::history::
                                              const northbound::NorthboundParts& parts,
                                              northbound::json_tree::JsonTreeModule& tree)
     : store_(std::move(journal),
-             StoreAndForwardOptions{.replay_rate = config.mqtt.store_and_forward.replay_rate,
-                                    .fsync_interval = config.mqtt.store_and_forward.fsync_interval,
+             StoreAndForwardOptions{.replay_rate = settings(config, tree).replay_rate,
+                                    .fsync_interval = settings(config, tree).fsync_interval,
                                     .clock = &parts.clock},
-             tree_link(tree.client()), tree.tree()) {
+             tree_link(tree.client()), tree.tree()),
+      connection_(tree.connection()) {
     auto& client = tree.client();
     tree.tree().set_store_and_forward([&client] { return client.connected(); });
     tree.on_connected([this](core::MonoTime now) { store_.on_connected(now); });
@@ -44,17 +59,23 @@ StoreAndForwardModule::StoreAndForwardModule(std::unique_ptr<adapters::history::
 
 void StoreAndForwardModule::add_metrics(MetricsSources& sources) {
     stats_ = store_.stats();
-    sources.history = &*stats_;
+    if (connection_ == 0) {
+        sources.history = &*stats_;
+    } else if (connection_ <= sources.more_connections.size()) {
+        sources.more_connections[connection_ - 1].history = &*stats_;
+    }
 }
 
 std::unique_ptr<StoreAndForwardModule> make_store_and_forward(
     const core::config::Config& config, const northbound::NorthboundParts& parts,
     northbound::json_tree::JsonTreeModule& tree) {
-    const auto& settings = config.mqtt.store_and_forward;
-    if (!settings.enabled) return nullptr;
+    const auto& section = settings(config, tree);
+    if (!section.enabled) return nullptr;
     adapters::history::JournalOptions options;
-    options.path = (std::filesystem::path(config.gateway.state_dir) / "history.sqlite").string();
-    options.max_bytes = settings.max_mb << 20;
+    options.path =
+        (std::filesystem::path(config.gateway.state_dir) / journal_file(config, tree.connection()))
+            .string();
+    options.max_bytes = section.max_mb << 20;
     options.clock = &parts.clock;
     std::unique_ptr<adapters::history::Journal> journal;
     try {
@@ -72,7 +93,7 @@ std::unique_ptr<StoreAndForwardModule> make_store_and_forward(
     auto module = std::make_unique<StoreAndForwardModule>(std::move(journal), config, parts, tree);
     const auto stats = module->store().stats();
     spdlog::info("store and forward: journal {} ({} entries, bound {} MB)", options.path,
-                 stats.journal.entries, settings.max_mb);
+                 stats.journal.entries, section.max_mb);
     return module;
 }
 

@@ -33,6 +33,31 @@ std::string broker_list(const std::vector<std::string>& urls) {
     return out;
 }
 
+std::string brokers_line(const core::config::Config& config) {
+    auto line = broker_list(config.mqtt.urls);
+    if (!config.more_mqtt.empty()) {
+        line += " and " + std::to_string(config.more_mqtt.size()) + " more connection(s)";
+    }
+    return line;
+}
+
+std::string connections_summary(const core::config::Config& config) {
+    const auto connections = core::config::mqtt_connections(config);
+    if (connections.size() == 1) {
+        const auto& urls = config.mqtt.urls;
+        return urls.size() > 1 ? "brokers, tried in turn: " + broker_list(urls) + "\n" : "";
+    }
+    std::string out;
+    for (std::size_t i = 0; i < connections.size(); ++i) {
+        const auto& mqtt = *connections[i];
+        out += "mqtt connection " + core::config::connection_name(mqtt) + ": " +
+               broker_list(mqtt.urls) + ", base topic " + mqtt.base_topic +
+               (core::config::takes_writes(mqtt, i) ? ", takes writes" : "") +
+               (mqtt.store_and_forward.enabled ? ", store and forward" : "") + "\n";
+    }
+    return out;
+}
+
 // A clean session gains nothing from QoS 1 on the way in: what a lost connection held is
 // dropped with the session either way. RabbitMQ before 3.13 (MQTT 3.1.1 only) keeps a QoS 1
 // subscription in a durable queue on the node the client used, clean session or not; once that
@@ -40,12 +65,25 @@ std::string broker_list(const std::vector<std::string>& urls) {
 // subscribes again (docs/brokers.md). So over 3.1.1 a clean session subscribes at QoS 0.
 int subscription_qos(int version, bool clean_start) { return version == 3 && clean_start ? 0 : 1; }
 
+std::string default_client_id(const core::config::Config& config, std::size_t connection) {
+    auto id = "eip2mqtt-" + config.gateway.id;
+    // Two connections of one gateway may reach one broker: each needs an id of its own.
+    if (connection > 0)
+        id +=
+            "-" + core::config::connection_name(core::config::mqtt_connection(config, connection));
+    return id;
+}
+
 adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& config,
-                                                  const std::string& availability_topic) {
-    const auto& mqtt = config.mqtt;
+                                                  const std::string& availability_topic,
+                                                  std::size_t connection) {
+    const auto& mqtt = core::config::mqtt_connection(config, connection);
     adapters::mqtt::ClientOptions options;
     options.urls = mqtt.urls;
-    options.client_id = mqtt.client_id.empty() ? "eip2mqtt-" + config.gateway.id : mqtt.client_id;
+    options.client_id =
+        mqtt.client_id.empty() ? default_client_id(config, connection) : mqtt.client_id;
+    if (!config.more_mqtt.empty())
+        options.log_name = "MQTT [" + core::config::connection_name(mqtt) + "]";
     options.version = mqtt.version;
     options.username = mqtt.username;
     options.password = read_mqtt_password(mqtt);
@@ -71,7 +109,9 @@ adapters::mqtt::ClientOptions mqtt_client_options(const core::config::Config& co
 
 adapters::mqtt::ClientOptions sparkplug_client_options(
     const core::config::Config& config, std::function<adapters::mqtt::Message()> will) {
-    auto options = mqtt_client_options(config, {});
+    const auto connection = core::config::sparkplug_connection(config);
+    auto options = mqtt_client_options(config, {}, connection);
+    // The connection's id, given or not: a given one is its JSON tree's already.
     options.client_id += "-sparkplug";
     options.log_name = "MQTT (Sparkplug)";
     // Protobuf, described by Sparkplug itself; its births already alias its metrics.

@@ -100,6 +100,31 @@ void append_mqtt(std::string& out, std::span<const std::string> brokers,
     out += "]}";
 }
 
+void append_connection(std::string& out, const adapters::metrics::ConnectionMetrics& connection) {
+    out += R"({"name":)";
+    append_json_string(out, connection.name);
+    fmt::format_to(std::back_inserter(out), R"(,"connected":{},"broker":)", connection.connected);
+    append_json_string(out, connection.broker);
+    fmt::format_to(std::back_inserter(out), R"(,"published":{},"buffered":{},"journaled":)",
+                   connection.published, connection.buffered);
+    out += connection.history ? std::to_string(connection.history->entries) : "null";
+    out += '}';
+}
+
+/// `,"connections":[…]`: with several MQTT connections, each one's state; empty with one.
+void append_connections(std::string& out, const MetricsSources& sources) {
+    out += R"(,"connections":[)";
+    if (!sources.more_connections.empty()) {
+        append_connection(out,
+                          connection_metrics({sources.mqtt_name, sources.mqtt, sources.history}));
+        for (const auto& more : sources.more_connections) {
+            out += ',';
+            append_connection(out, connection_metrics(more));
+        }
+    }
+    out += ']';
+}
+
 void append_sparkplug(std::string& out, const northbound::sparkplug::SparkplugStats& stats) {
     const auto& session = stats.session;
     out += R"({"group_id":)";
@@ -135,6 +160,7 @@ std::string status_document(const GatewayFacts& facts, const MetricsSources& sou
     fmt::format_to(std::back_inserter(out), R"(,"loaded_at":{},"reloads":{}}})",
                    core::to_ms(facts.loaded_at), facts.reloads);
     append_mqtt(out, facts.brokers, sources.mqtt);
+    append_connections(out, sources);
     out += R"(,"sparkplug":)";
     if (sources.sparkplug != nullptr) {
         append_sparkplug(out, *sources.sparkplug);

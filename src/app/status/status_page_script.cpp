@@ -101,6 +101,11 @@ function drawFacts(gateway) {
     ["publications", (m.published || 0) + " made, " + (m.buffered || 0) + " waiting"]
   ];
   if (m.history) facts.push(["store and forward", m.history.entries + " entries waiting"]);
+  for (const c of gateway.connections || []) {
+    facts.push(["MQTT " + c.name, (c.connected ? "connected to " + c.broker : "not connected") +
+      ", " + c.published + " published, " + c.buffered + " waiting" +
+      (c.journaled === null ? "" : ", " + c.journaled + " journaled")]);
+  }
   const sp = gateway.sparkplug;
   if (sp) {
     facts.push(["Sparkplug", sp.group_id + "/" + sp.edge_node_id + ": " +

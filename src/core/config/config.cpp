@@ -20,6 +20,15 @@ const Mark& Marks::of(std::string_view key) const {
     return it == keys.end() ? node : it->second;
 }
 
+std::size_t sparkplug_connection(const Config& config) {
+    if (config.sparkplug.connection.empty()) return 0;
+    const auto connections = mqtt_connections(config);
+    for (std::size_t i = 0; i < connections.size(); ++i) {
+        if (connection_name(*connections[i]) == config.sparkplug.connection) return i;
+    }
+    return 0;
+}
+
 bool Marks::contains(std::string_view key) const { return find_key(keys, key) != keys.end(); }
 
 bool Marks::add(std::string_view key, const Mark& at) {

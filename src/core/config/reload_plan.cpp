@@ -38,13 +38,32 @@ private:
     ReloadPlan& plan_;
 };
 
+void compare_connection(Collector& out, const std::string& prefix, const MqttSection& a,
+                        const MqttSection& b) {
+    out.compare(prefix, keys::mqtt, a, b);
+    if (a.tls && b.tls) out.compare(prefix + "tls.", keys::tls, *a.tls, *b.tls);
+    out.compare(prefix + "buffer.", keys::buffer, a, b);
+    out.compare(prefix + "store_and_forward.", keys::store_and_forward, a.store_and_forward,
+                b.store_and_forward);
+}
+
+/// The first connection's keys as `mqtt.…`, the others' as `mqtt[name].…`; another number of
+/// connections restarts the gateway (each is a connection, a journal and a tree of its own).
+void compare_connections(Collector& out, const Config& a, const Config& b) {
+    compare_connection(out, "mqtt.", a.mqtt, b.mqtt);
+    if (a.more_mqtt.size() != b.more_mqtt.size()) {
+        out.add("mqtt", ReloadRule::restart);
+        return;
+    }
+    for (std::size_t i = 0; i < a.more_mqtt.size(); ++i) {
+        compare_connection(out, "mqtt[" + connection_name(b.more_mqtt[i]) + "].", a.more_mqtt[i],
+                           b.more_mqtt[i]);
+    }
+}
+
 void compare_sections(Collector& out, const Config& a, const Config& b) {
     out.compare("gateway.", keys::gateway, a.gateway, b.gateway);
-    out.compare("mqtt.", keys::mqtt, a.mqtt, b.mqtt);
-    if (a.mqtt.tls && b.mqtt.tls) out.compare("mqtt.tls.", keys::tls, *a.mqtt.tls, *b.mqtt.tls);
-    out.compare("mqtt.buffer.", keys::buffer, a.mqtt, b.mqtt);
-    out.compare("mqtt.store_and_forward.", keys::store_and_forward, a.mqtt.store_and_forward,
-                b.mqtt.store_and_forward);
+    compare_connections(out, a, b);
     out.compare("eip.", keys::eip, a.eip, b.eip);
     out.compare("eip.commands.", keys::commands, a.eip.commands, b.eip.commands);
     out.compare("metrics.", keys::metrics, a.metrics, b.metrics);

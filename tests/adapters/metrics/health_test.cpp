@@ -47,6 +47,23 @@ TEST(HealthState, ConnectedAndFreshIsReady) {
     EXPECT_EQ(health.readiness(t0 + 1s).body, "ready\n");
 }
 
+TEST(HealthState, WithSeveralConnectionsEachOneDownIsNamed) {
+    HealthState health(10s);
+    auto s = snapshot(true, {exchange("pump", "ok")});
+    s.gateway.connections = {{"site", true, "tcp://a:1883", 0, 0, 0, 0, std::nullopt},
+                             {"enterprise", false, "", 0, 0, 0, 0, std::nullopt}};
+    health.update(s, t0);
+    EXPECT_EQ(health.readiness(t0).body,
+              "not ready: MQTT connection enterprise is not connected\n");
+    s.gateway.connections[0].connected = false;
+    health.update(s, t0);
+    EXPECT_EQ(health.readiness(t0).body,
+              "not ready: MQTT connection site, enterprise are not connected\n");
+    s.gateway.connections[0].connected = s.gateway.connections[1].connected = true;
+    health.update(s, t0);
+    EXPECT_EQ(health.readiness(t0).status, 200);
+}
+
 TEST(HealthState, NotConnectedOrStaleIsLiveButNotReadyAndSaysWhy) {
     HealthState health(10s);
     health.update(snapshot(false, {exchange("pump", "ok")}), t0);

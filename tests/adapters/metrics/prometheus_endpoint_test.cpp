@@ -153,6 +153,32 @@ TEST(PrometheusEndpoint, TheCommandResponderHasItsFamiliesOnlyWhenEnabled) {
     }
 }
 
+TEST(PrometheusEndpoint, SeveralConnectionsHaveASeriesEachLabelledByName) {
+    PrometheusEndpoint endpoint("127.0.0.1:0");
+    auto s = snapshot(42);
+    endpoint.update(s);
+    EXPECT_EQ(http_get(endpoint.port(), "/metrics").find("eip2mqtt_connection_"),
+              std::string::npos);
+    s.gateway.connections = {{"site", true, "tcp://a:1883", 10, 0, 0, 0, std::nullopt},
+                             {"enterprise", false, "", 4, 6, 1, 0, HistoryMetrics{}}};
+    s.gateway.connections[1].history->journaled = 6;
+    endpoint.update(s);
+    const auto page = http_get(endpoint.port(), "/metrics");
+    for (const auto* line : {
+             R"(eip2mqtt_connection_mqtt_connected{connection="site"} 1)",
+             R"(eip2mqtt_connection_mqtt_connected{connection="enterprise"} 0)",
+             R"(eip2mqtt_connection_mqtt_published_total{connection="site"} 10)",
+             R"(eip2mqtt_connection_mqtt_buffered{connection="enterprise"} 6)",
+             R"(eip2mqtt_connection_mqtt_publications_dropped_total{connection="enterprise"} 1)",
+             R"(eip2mqtt_connection_history_journaled_total{connection="enterprise"} 6)",
+         }) {
+        EXPECT_TRUE(has_line(page, line)) << "missing: " << line << "\nin:\n" << page;
+    }
+    // A connection without a journal has no journal series.
+    EXPECT_EQ(page.find(R"(eip2mqtt_connection_history_entries{connection="site"})"),
+              std::string::npos);
+}
+
 TEST(PrometheusEndpoint, AnUpdateReplacesTheValues) {
     PrometheusEndpoint endpoint("127.0.0.1:0");
     endpoint.update(snapshot(42));

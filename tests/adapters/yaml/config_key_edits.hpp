@@ -79,6 +79,7 @@ sparkplug:
   edge_node_id: node-a
   primary_host_id: scada-a
   uns: true
+  connection: mqtt
   qos: 0
   max_packet_bytes: 65536
 redundancy:
@@ -154,6 +155,8 @@ inline const std::vector<Edit> edits = {
     {"gateway.timestamp", "timestamp: auto", "timestamp: receive"},
     {"gateway.clock_tolerance_ms", "clock_tolerance_ms: 2000", "clock_tolerance_ms: 3000"},
     {"gateway.location", "enterprise: acme", "enterprise: acme2"},
+    {"mqtt.name", "mqtt:\n  url:", "mqtt:\n  name: mqtt\n  url:"},
+    {"mqtt.writes", "  retain: true\n", "  retain: true\n  writes: false\n"},
     {"mqtt.url", "broker-a", "broker-b"},
     {"mqtt.version", "version: 5", "version: 3.1.1"},
     {"mqtt.client_id", "client-a", "client-b"},
@@ -218,6 +221,7 @@ inline const std::vector<Edit> edits = {
     {"sparkplug.edge_node_id", "node-a", "node-b"},
     {"sparkplug.primary_host_id", "scada-a", "scada-b"},
     {"sparkplug.uns", "uns: true", "uns: false"},
+    {"sparkplug.connection", "connection: mqtt", "connection: \"\""},
     {"sparkplug.qos", "qos: 0", "qos: 1", {}, "sparkplug qos 1: Sparkplug B 3.0 publishes"},
     {"sparkplug.max_packet_bytes", "max_packet_bytes: 65536", "max_packet_bytes: 32768"},
     {"redundancy.pair", "pair: turbine-gw", "pair: boiler-gw"},

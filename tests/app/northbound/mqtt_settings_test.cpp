@@ -61,6 +61,29 @@ TEST_F(MqttSettingsTest, TheClientIdDefaultsToTheGatewaysId) {
     EXPECT_EQ(mqtt_client_options(c, "a").client_id, "scada-gw");
 }
 
+TEST_F(MqttSettingsTest, AnotherConnectionHasItsOwnBrokersIdAndLogNameAndMaySparkplug) {
+    auto c = config();
+    c.mqtt.name = "site";
+    c.more_mqtt.push_back({});
+    c.more_mqtt[0].name = "enterprise";
+    c.more_mqtt[0].urls = {"ssl://uns:8883"};
+    const auto enterprise = mqtt_client_options(c, "a", 1);
+    EXPECT_EQ(enterprise.urls, std::vector<std::string>{"ssl://uns:8883"});
+    EXPECT_EQ(enterprise.client_id, "eip2mqtt-plant1-enterprise");
+    EXPECT_EQ(enterprise.log_name, "MQTT [enterprise]");
+    EXPECT_EQ(mqtt_client_options(c, "a").log_name, "MQTT [site]");
+    EXPECT_EQ(sparkplug_client_options(c, {}).client_id, "eip2mqtt-plant1-sparkplug");
+    c.sparkplug.connection = "enterprise";
+    EXPECT_EQ(sparkplug_client_options(c, {}).client_id, "eip2mqtt-plant1-enterprise-sparkplug");
+    EXPECT_EQ(sparkplug_client_options(c, {}).urls, std::vector<std::string>{"ssl://uns:8883"});
+    EXPECT_EQ(connections_summary(c),
+              "mqtt connection site: tcp://broker:1883, then tcp://standby:1883, base topic "
+              "eip2mqtt, takes writes\n"
+              "mqtt connection enterprise: ssl://uns:8883, base topic eip2mqtt\n");
+    EXPECT_EQ(brokers_line(c),
+              "tcp://broker:1883, then tcp://standby:1883 and 1 more connection(s)");
+}
+
 TEST_F(MqttSettingsTest, PayloadsAreDescribedUnlessThePlantTradesItForThroughput) {
     auto c = config();
     EXPECT_TRUE(mqtt_client_options(c, "a").describe_payloads);

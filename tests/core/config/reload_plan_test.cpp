@@ -63,6 +63,23 @@ TEST(ReloadPlan, ASectionKeyIsNamedWithItsRule) {
     EXPECT_EQ(plan.describe(ReloadRule::live), "mqtt.qos");
 }
 
+TEST(ReloadPlan, AnotherConnectionsKeysAreNamedByItsName) {
+    Config running;
+    running.more_mqtt.push_back({});
+    running.more_mqtt[0].name = "enterprise";
+    Config next = running;
+    next.more_mqtt[0].qos = 0;
+    next.more_mqtt[0].base_topic = "acme";
+    const auto plan = plan_of(running, {}, next, {});
+    EXPECT_EQ(plan.changes,
+              (std::vector<KeyChange>{{"mqtt[enterprise].base_topic", ReloadRule::restart},
+                                      {"mqtt[enterprise].qos", ReloadRule::live}}));
+    // A connection more or less is a restart.
+    const auto added = plan_of(Config{}, {}, running, {});
+    EXPECT_EQ(added.changes, (std::vector<KeyChange>{{"mqtt", ReloadRule::restart}}));
+    EXPECT_TRUE(added.needs_restart);
+}
+
 TEST(ReloadPlan, TlsIsNamedWholeWhenAddedAndByKeyWhenBothHaveIt) {
     Config with_tls;
     with_tls.mqtt.tls = TlsSection{"/etc/ca.pem", "", "", true};

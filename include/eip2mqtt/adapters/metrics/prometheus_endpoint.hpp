@@ -85,6 +85,18 @@ struct HistoryMetrics {
     bool replaying = false;
 };
 
+/// One MQTT connection's figures, with several (`mqtt` as a list).
+struct ConnectionMetrics {
+    std::string name;
+    bool connected = false;
+    std::string broker;  ///< the current broker's URL; empty while none
+    std::uint64_t published = 0;
+    std::uint64_t buffered = 0;
+    std::uint64_t publications_dropped = 0;
+    std::uint64_t publications_refused = 0;
+    std::optional<HistoryMetrics> history;  ///< with its store and forward
+};
+
 /// What the gateway as a whole reports.
 struct GatewayMetrics {
     std::uint64_t datagrams = 0;  ///< received on the EIP socket
@@ -99,6 +111,9 @@ struct GatewayMetrics {
     core::write::WriteCounters writes;
     std::optional<HistoryMetrics> history;
     std::optional<core::command::CommandCounters> commands;  ///< the responder on UDP 7937
+    /// Every MQTT connection, the first first, when there are several; empty with one (whose
+    /// figures are the mqtt_* above).
+    std::vector<ConnectionMetrics> connections;
 };
 
 /// Everything the endpoint serves, as plain values: the gateway loop fills one and hands it

@@ -10,6 +10,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "eip2mqtt/adapters/metrics/prometheus_endpoint.hpp"
 #include "eip2mqtt/adapters/mqtt/client.hpp"
@@ -29,6 +30,13 @@ namespace eip2mqtt::app {
 using core::write::WriteCounters;
 
 /// Everything the metrics are made of, borrowed for one call.
+/// The figures of one MQTT connection after the first (`mqtt` as a list).
+struct ConnectionSources {
+    std::string name;
+    adapters::mqtt::ClientStats mqtt;
+    const history::HistoryStats* history = nullptr;  ///< with its store and forward
+};
+
 struct MetricsSources {
     const DatagramCounters& datagrams;
     const WriteCounters& writes;
@@ -41,11 +49,17 @@ struct MetricsSources {
     const redundancy::PairHistoryCounters* pair_history = nullptr;  ///< with pair_images
     const redundancy::PairWriteCounters* pair_writes = nullptr;     ///< with pair_images
     const redundancy::UnitRole* role = nullptr;  ///< with `redundancy:`: its state, for the page
+    /// The connections after the first, in the order of `mqtt`.
+    std::vector<ConnectionSources> more_connections = {};
+    std::string mqtt_name = "mqtt";  ///< the main connection's name (core::config::connection_name)
 };
 
 /// The one line systemd shows for the service (sd_notify STATUS=): datagrams, publications and
 /// the main connection.
 std::string status_line(const MetricsSources& sources);
+
+/// One connection's figures for Prometheus and /readyz.
+adapters::metrics::ConnectionMetrics connection_metrics(const ConnectionSources& sources);
 
 /// Store and forward's figures for Prometheus and the metrics topic.
 adapters::metrics::HistoryMetrics history_metrics(const history::HistoryStats& stats);

@@ -32,11 +32,13 @@ public:
 
 private:
     StoreAndForward store_;
+    std::size_t connection_;             ///< the MQTT connection whose samples it keeps
     std::optional<HistoryStats> stats_;  ///< the last figures add_metrics lent
 };
 
-/// Store and forward with `mqtt.store_and_forward`, else null. A journal that cannot be opened
-/// is logged and the gateway runs without it (null too).
+/// Store and forward of `tree`'s connection with its `store_and_forward`, else null: a journal
+/// per connection (`history.sqlite` for the first, `history-{name}.sqlite` for the others). A
+/// journal that cannot be opened is logged and the gateway runs without it (null too).
 std::unique_ptr<StoreAndForwardModule> make_store_and_forward(
     const core::config::Config& config, const northbound::NorthboundParts& parts,
     northbound::json_tree::JsonTreeModule& tree);

@@ -5,6 +5,8 @@
 ///
 /// Threading: the loop only.
 
+#include <functional>
+#include <span>
 #include <vector>
 
 #include "eip2mqtt/app/exchanges/write_log.hpp"
@@ -34,6 +36,11 @@ public:
         clock_ = &clock;
     }
 
+    /// Runs `run` with the events it makes kept from `skipped` (which outlives the call): one
+    /// MQTT connection that connects again says the retained state again, and the topic
+    /// trees of the other connections, which said it already, do not repeat it.
+    void excluding(std::span<Northbound* const> skipped, const std::function<void()>& run);
+
     void exchanges_changed(const ExchangeSet& running,
                            std::span<const std::string> retired_topics) override;
     void tag_samples(const SampleBatch& batch) override;
@@ -48,12 +55,14 @@ public:
 
 private:
     bool closed() const { return !role_->leads(); }
+    bool skipped(const Northbound* northbound) const;
 
     std::vector<Northbound*> northbounds_;
     const redundancy::UnitRole* role_ = &redundancy::always_leads();
     WriteLog* write_log_ = nullptr;
     const core::Clock* clock_ = nullptr;
     Northbound* tap_ = nullptr;
+    std::span<Northbound* const> skipped_;
 };
 
 }  // namespace eip2mqtt::app::northbound

@@ -1,7 +1,8 @@
 #pragma once
-/// The northbound modules a configuration makes, in dependency order: the JSON topic tree on the
-/// gateway's main connection (always: it carries the gateway's own topics), store and forward
-/// with `mqtt.store_and_forward`, the Sparkplug B edge node with `sparkplug:`. Each joins the
+/// The northbound modules a configuration makes, in dependency order: for each MQTT connection
+/// (one, or each of a list), its JSON topic tree (always: it carries the gateway's own topics)
+/// and its store and forward with its `store_and_forward`; then the Sparkplug B edge node with
+/// `sparkplug:`, on the connection `sparkplug.connection` names. Each joins the
 /// exchanges' fan-out (the JSON tree unless `sparkplug.uns: false`) and hands its writes to the
 /// WriteDispatcher. The next protocol is one more module made here.
 
@@ -43,7 +44,9 @@ struct NorthboundParts {
 struct Northbounds {
     /// Owned, in dependency order: started in it, stopped in reverse.
     std::vector<std::unique_ptr<Module>> modules;
-    json_tree::JsonTreeModule* tree = nullptr;   ///< always
+    json_tree::JsonTreeModule* tree = nullptr;  ///< always: the first connection's
+    /// Every MQTT connection's tree, the first first (`mqtt` as a list).
+    std::vector<json_tree::JsonTreeModule*> trees;
     sparkplug::SparkplugModule* node = nullptr;  ///< with `sparkplug:`
 };
 

@@ -91,6 +91,13 @@ inline constexpr auto message_property_names =
     enum_names<MessageProperty>("unit", "quality", "source_time", "exchange", "producer");
 
 struct MqttSection {
+    /// A connection's name (`mqtt` may list several, docs/configuration.md): its label in logs,
+    /// metrics, `/readyz` and the status page, and its journal's file name. Required in a list
+    /// of two or more; a lone connection's default is "mqtt".
+    std::string name;
+    /// Whether writes are taken from this broker's clients (and answered on it); unset: the
+    /// first connection only.
+    std::optional<bool> writes;
     /// `url`: one broker, or several tried in turn (the first at start, the next after each
     /// lost connection or failed attempt). Never empty once read.
     std::vector<std::string> urls{"tcp://localhost:1883"};
@@ -217,6 +224,8 @@ struct SparkplugSection {
     /// Packet Size); 0: the broker's alone. `check` warns of a birth larger than this (or
     /// than 128 KiB when 0).
     std::size_t max_packet_bytes = 0;
+    /// The `mqtt` connection (by name) whose brokers carry the edge node; empty: the first.
+    std::string connection;
     Marks marks;
 
     bool enabled() const { return !group_id.empty(); }
@@ -241,7 +250,12 @@ inline constexpr long long max_takeover_ms = 600000;
 struct Config {
     std::string file;  ///< path it was loaded from
     GatewaySection gateway;
+    /// The first (or only) MQTT connection: the gateway's main one, which the redundant pair,
+    /// the metrics topic and the gateway's own state use.
     MqttSection mqtt;
+    /// The connections after the first when `mqtt` is a list: each its own brokers, session,
+    /// buffer, journal and topic tree, carrying the same exchanges (docs/configuration.md).
+    std::vector<MqttSection> more_mqtt;
     EipSection eip;
     MetricsSection metrics;
     SparkplugSection sparkplug;
@@ -255,6 +269,33 @@ inline const std::string& sparkplug_node_id(const Config& config) {
     if (!config.sparkplug.edge_node_id.empty()) return config.sparkplug.edge_node_id;
     return config.redundancy.enabled() ? config.redundancy.pair : config.gateway.id;
 }
+
+/// Every MQTT connection, the first one first: its section and its place (0: `mqtt`).
+inline std::vector<const MqttSection*> mqtt_connections(const Config& config) {
+    std::vector<const MqttSection*> out{&config.mqtt};
+    for (const auto& more : config.more_mqtt) out.push_back(&more);
+    return out;
+}
+
+/// Connection `index` of mqtt_connections(); the first when there is no such connection.
+inline const MqttSection& mqtt_connection(const Config& config, std::size_t index) {
+    return index == 0 || index > config.more_mqtt.size() ? config.mqtt
+                                                         : config.more_mqtt[index - 1];
+}
+
+/// A connection's name: its `name`, else "mqtt".
+inline std::string connection_name(const MqttSection& mqtt) {
+    return mqtt.name.empty() ? "mqtt" : mqtt.name;
+}
+
+/// Whether connection `index` takes writes: its `writes`, else only the first does.
+inline bool takes_writes(const MqttSection& mqtt, std::size_t index) {
+    return mqtt.writes.value_or(index == 0);
+}
+
+/// The place, in mqtt_connections(), of the connection that carries Sparkplug B:
+/// `sparkplug.connection` by name, else the first (validate() refuses an unknown name).
+std::size_t sparkplug_connection(const Config& config);
 
 /// Semantic checks across the whole model (tags may overlap: plan::find_overlaps): tags past
 /// the end, lengths over 1400, bit addresses on non-bit types, duplicate names and (producer,

@@ -70,7 +70,9 @@ inline constexpr std::array<ConfigKey<GatewaySection>, 6> gateway{{
 
 /// The connection's settings need a restart (a new session); how tags are published is applied
 /// live, the retained state republished in the new form.
-inline constexpr std::array<ConfigKey<MqttSection>, 23> mqtt{{
+inline constexpr std::array<ConfigKey<MqttSection>, 25> mqtt{{
+    {"name", restart, differs<&MqttSection::name>},
+    {"writes", restart, differs<&MqttSection::writes>},
     {"url", restart, differs<&MqttSection::urls>},
     {"version", restart, differs<&MqttSection::version>},
     {"client_id", restart, differs<&MqttSection::client_id>},
@@ -171,11 +173,12 @@ inline constexpr std::array<ConfigKey<MetricsTls>, 2> metrics_tls{{
 }};
 
 /// The edge node's identity and births are made at start.
-inline constexpr std::array<ConfigKey<SparkplugSection>, 6> sparkplug{{
+inline constexpr std::array<ConfigKey<SparkplugSection>, 7> sparkplug{{
     {"group_id", restart, differs<&SparkplugSection::group_id>},
     {"edge_node_id", restart, differs<&SparkplugSection::edge_node_id>},
     {"primary_host_id", restart, differs<&SparkplugSection::primary_host_id>},
     {"uns", restart, differs<&SparkplugSection::uns>},
+    {"connection", restart, differs<&SparkplugSection::connection>},
     {"qos", restart, differs<&SparkplugSection::qos>},
     // The node takes its packet limit when it connects, with the broker's.
     {"max_packet_bytes", restart, differs<&SparkplugSection::max_packet_bytes>},

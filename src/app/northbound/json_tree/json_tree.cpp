@@ -7,15 +7,18 @@
 
 namespace eip2mqtt::app::northbound::json_tree {
 
-JsonTreeOptions json_tree_options(const core::config::Config& config) {
-    const auto& mqtt = config.mqtt;
+JsonTreeOptions json_tree_options(const core::config::Config& config, std::size_t connection) {
+    const auto& mqtt = core::config::mqtt_connection(config, connection);
     // Kepware's consumers read one message per exchange: its profile publishes `_values`.
     const bool batch = mqtt.batch || mqtt.payload == core::config::PayloadFormat::kepware;
     auto properties =
         mqtt.version == 5 ? mqtt.properties : std::vector<core::config::MessageProperty>{};
     return {{mqtt.qos, mqtt.retain, mqtt.payload, batch, std::move(properties)},
             {mqtt.base_topic, mqtt.allow_response_topics_under_base, mqtt.payload},
-            mqtt.base_topic + "/_gateway/" + config.gateway.id + "/metrics"};
+            mqtt.base_topic + "/_gateway/" + config.gateway.id + "/metrics",
+            core::config::takes_writes(mqtt, connection),
+            connection == 0 ? std::string() : core::config::connection_name(mqtt),
+            core::plan::TopicRebase(config.mqtt.base_topic, mqtt.base_topic)};
 }
 
 JsonTree::JsonTree(JsonTreeOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes)
@@ -48,7 +51,7 @@ void JsonTree::set_answer_listener(AnswerHeard heard, AnswerTopics topics) {
 }
 
 void JsonTree::subscribe() {
-    auto filters = router_.subscriptions();
+    auto filters = options_.take_writes ? router_.subscriptions() : std::vector<std::string>{};
     if (answer_heard_) {
         // `{base}/+/set` and the like: `{set topic}/result` lies under each one's `/result`.
         const auto writes = filters.size();
@@ -96,7 +99,7 @@ std::size_t JsonTree::describe_changed(std::size_t units) {
     // A kept or unchanged exchange's `_meta` stays as the broker has it.
     for (; used < units && next < described_.size(); ++next) {
         const auto& plan = *described_[next];
-        auto payload = format_meta_payload(plan);
+        auto payload = format_meta_payload(plan, options_.rebase);
         const auto digest = std::hash<std::string>{}(payload);
         const auto old = meta_digests_.find(plan.meta_topic);
         if (old == meta_digests_.end() || old->second != digest) {
@@ -123,7 +126,7 @@ void JsonTree::publish_due_meta() {
     auto& next = *next_due_meta_;
     for (std::size_t sent = 0; sent < meta_per_call && next < described_.size(); ++sent, ++next) {
         const auto& plan = *described_[next];
-        auto payload = format_meta_payload(plan);
+        auto payload = format_meta_payload(plan, options_.rebase);
         meta_digests_[plan.meta_topic] = std::hash<std::string>{}(payload);
         mqtt_.publish({plan.meta_topic, std::move(payload), options_.publish.qos, true, true});
     }
@@ -219,11 +222,23 @@ void JsonTree::publish_result(const WriteReply& reply, std::string payload) {
 }
 
 void JsonTree::gateway_metrics(const MetricsSources& sources, std::chrono::seconds uptime) {
+    if (!options_.more_connection.empty()) {
+        // Another connection's topic tells of that connection: its broker, its queue.
+        for (const auto& more : sources.more_connections) {
+            if (more.name != options_.more_connection) continue;
+            auto own = sources;
+            own.mqtt = more.mqtt;
+            own.history = more.history;
+            own.mqtt_name = more.name;
+            return mqtt_.publish(
+                {options_.metrics_topic, metrics_json(own, uptime), 0, false, true});
+        }
+    }
     mqtt_.publish({options_.metrics_topic, metrics_json(sources, uptime), 0, false, true});
 }
 
 void JsonTree::on_message(const adapters::mqtt::Incoming& message) {
-    auto decision = router_.route(message);
+    auto decision = options_.take_writes ? router_.route(message) : std::nullopt;
     if (!decision) {
         if (answer_heard_) answer_heard_(message);  // no write: maybe an answer to one
         return;

@@ -83,13 +83,15 @@ void append_scale(std::string& out, const core::plan::Scaling& scale) {
 }
 
 void append_tag(std::string& out, const core::plan::ExchangePlan& plan,
-                const core::plan::TagPlan& tag, std::string& topic) {
+                const core::plan::TagPlan& tag, const core::plan::TopicRebase& rebase,
+                std::string& topic) {
     const auto& spec = tag.spec;
     append_text(out, spec.name);
     fmt::format_to(std::back_inserter(out), R"(:{{"type":"{}","address":"{}","topic":)",
                    core::plan::to_string(spec.type), core::plan::to_string(spec.address));
     // Where a consumer finds it, laid out by a template or not.
     plan.tag_topic_into(tag, topic);
+    rebase.outward(topic);
     append_text(out, topic);
     out += R"(,"unit":)";
     append_text_or_null(out, spec.unit());
@@ -118,7 +120,8 @@ void append_tag(std::string& out, const core::plan::ExchangePlan& plan,
 
 }  // namespace
 
-std::string format_meta_payload(const core::plan::ExchangePlan& plan) {
+std::string format_meta_payload(const core::plan::ExchangePlan& plan,
+                                const core::plan::TopicRebase& rebase) {
     const auto& spec = plan.spec;
     const bool consumed = spec.direction == Direction::consume;
     std::string out;
@@ -148,7 +151,7 @@ std::string format_meta_payload(const core::plan::ExchangePlan& plan) {
     std::string topic;
     for (std::size_t i = 0; i < plan.tags.size(); ++i) {
         if (i > 0) out += ',';
-        append_tag(out, plan, plan.tags[i], topic);
+        append_tag(out, plan, plan.tags[i], rebase, topic);
     }
     out += "}}";
     return out;

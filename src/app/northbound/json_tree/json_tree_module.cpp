@@ -35,26 +35,48 @@ redundancy::Role::MaySend role_topics(const std::string& base_topic) {
 }
 
 adapters::mqtt::ClientOptions client_options(const core::config::Config& config,
-                                             redundancy::Role& role) {
-    auto options = mqtt_client_options(
-        config, config.mqtt.base_topic + "/_gateway/" + config.gateway.id + "/state");
-    options.may_send = role.may_send(role_topics(config.mqtt.base_topic));
+                                             std::size_t connection, redundancy::Role& role) {
+    const auto& base = core::config::mqtt_connection(config, connection).base_topic;
+    auto options =
+        mqtt_client_options(config, base + "/_gateway/" + config.gateway.id + "/state", connection);
+    options.may_send = role.may_send(role_topics(base));
     return options;
+}
+
+/// The publisher of a connection whose base_topic is not the first's; null for the others.
+std::unique_ptr<RebasedPublisher> rebased(const core::config::Config& config,
+                                          std::size_t connection,
+                                          adapters::mqtt::Publisher& client) {
+    core::plan::TopicRebase rebase(config.mqtt.base_topic,
+                                   core::config::mqtt_connection(config, connection).base_topic);
+    if (rebase.identity()) return nullptr;
+    return std::make_unique<RebasedPublisher>(client, std::move(rebase));
 }
 
 }  // namespace
 
-JsonTreeModule::JsonTreeModule(const core::config::Config& config, const NorthboundParts& parts)
+JsonTreeModule::JsonTreeModule(const core::config::Config& config, const NorthboundParts& parts,
+                               std::size_t connection)
     : clock_(parts.clock),
       exchanges_(parts.exchanges),
-      buffer_max_messages_(config.mqtt.buffer_max_messages),
-      client_(
-          std::make_unique<adapters::mqtt::Client>(parts.loop, client_options(config, parts.role))),
-      tree_(json_tree_options(config), *client_, parts.writes) {}
+      connection_(connection),
+      name_(core::config::connection_name(core::config::mqtt_connection(config, connection))),
+      buffer_max_messages_(core::config::mqtt_connection(config, connection).buffer_max_messages),
+      client_(std::make_unique<adapters::mqtt::Client>(
+          parts.loop, client_options(config, connection, parts.role))),
+      rebased_(rebased(config, connection, *client_)),
+      tree_(json_tree_options(config, connection),
+            rebased_ ? static_cast<adapters::mqtt::Publisher&>(*rebased_) : *client_,
+            parts.writes) {}
 
 void JsonTreeModule::republish() {
     tree_.republish_meta();
-    exchanges_.republish(clock_.monotonic(), clock_.wall());
+    const auto again = [this] { exchanges_.republish(clock_.monotonic(), clock_.wall()); };
+    if (republish_scope_) {
+        republish_scope_(again);
+    } else {
+        again();
+    }
 }
 
 void JsonTreeModule::start(core::MonoTime /*now*/) {
@@ -62,8 +84,10 @@ void JsonTreeModule::start(core::MonoTime /*now*/) {
     if (!takers_.empty()) {
         client_->set_on_acknowledged([this](std::uint64_t token) { acknowledged(token); });
     }
-    client_->set_on_message(
-        [this](const adapters::mqtt::Incoming& message) { tree_.on_message(message); });
+    client_->set_on_message([this](const adapters::mqtt::Incoming& message) {
+        if (rebased_) return tree_.on_message(rebased_->inward(message));
+        tree_.on_message(message);
+    });
     client_->start();
 }
 
@@ -89,10 +113,11 @@ void JsonTreeModule::stop() {
 }
 
 void JsonTreeModule::apply(const core::config::Config& next) {
-    client_->set_buffer_capacity(next.mqtt.buffer_max_messages);
-    client_->set_batch_first(next.mqtt.batch_first);
-    buffer_max_messages_ = next.mqtt.buffer_max_messages;
-    auto options = json_tree_options(next);
+    const auto& mqtt = core::config::mqtt_connection(next, connection_);
+    client_->set_buffer_capacity(mqtt.buffer_max_messages);
+    client_->set_batch_first(mqtt.batch_first);
+    buffer_max_messages_ = mqtt.buffer_max_messages;
+    auto options = json_tree_options(next, connection_);
     republish_due_ = options.publish != tree_.options().publish;
     // Response topics and the like take effect at once; tags are published in the new form
     // from their next sample, and their retained state once the reload is applied.
@@ -110,6 +135,13 @@ std::optional<core::config::PublishQueueRoom> JsonTreeModule::queue_room() const
     return core::config::PublishQueueRoom{stats.queued, buffer_max_messages_, stats.connected};
 }
 
-void JsonTreeModule::add_metrics(MetricsSources& sources) { sources.mqtt = client_->stats(); }
+void JsonTreeModule::add_metrics(MetricsSources& sources) {
+    if (connection_ == 0) {
+        sources.mqtt = client_->stats();
+        sources.mqtt_name = name_;
+    } else {
+        sources.more_connections.push_back({name_, client_->stats()});
+    }
+}
 
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -97,8 +97,10 @@ void SparkplugModule::on_event(bool connection, const std::function<void()>& eve
 void SparkplugModule::stop() { client_->stop(stop_flush_timeout); }
 
 void SparkplugModule::apply(const core::config::Config& next) {
-    client_->set_buffer_capacity(next.mqtt.buffer_max_messages);
-    client_->set_batch_first(next.mqtt.batch_first);
+    const auto& mqtt =
+        core::config::mqtt_connection(next, core::config::sparkplug_connection(next));
+    client_->set_buffer_capacity(mqtt.buffer_max_messages);
+    client_->set_batch_first(mqtt.batch_first);
 }
 
 void SparkplugModule::add_metrics(MetricsSources& sources) {

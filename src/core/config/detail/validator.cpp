@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/config/detail/config_names.hpp"
+#include "core/config/detail/connection_list_check.hpp"
 #include "core/config/detail/redundancy_check.hpp"
 #include "core/config/detail/sparkplug_check.hpp"
 #include "core/config/detail/topic_layout_check.hpp"
@@ -59,7 +60,12 @@ void Validator::check_gateway() {
 }
 
 void Validator::check_mqtt() {
-    const auto& mqtt = config_.mqtt;
+    base_ok_ = check_connection(config_.mqtt);
+    for (const auto& more : config_.more_mqtt) check_connection(more);
+    detail::check_connection_list(config_, out_);
+}
+
+bool Validator::check_connection(const MqttSection& mqtt) {
     if (mqtt.version != 5 && mqtt.version != 3) {
         error(mqtt.marks.of("version"), "mqtt version must be 5 or 3.1.1");
     }
@@ -67,14 +73,23 @@ void Validator::check_mqtt() {
         error(mqtt.marks.of("qos"), "mqtt qos " + std::to_string(mqtt.qos) + " is not 0, 1 or 2");
     }
     const auto base_problem = topic_problem(mqtt.base_topic);
-    base_ok_ = base_problem.empty();
-    if (!base_ok_) {
+    bool base_ok = base_problem.empty();
+    if (!base_ok) {
         error(mqtt.marks.of("base_topic"),
               "base_topic " + in_quotes(mqtt.base_topic) + " " + base_problem);
     } else if (mqtt.base_topic.front() == '$') {
         error(mqtt.marks.of("base_topic"), "base_topic " + in_quotes(mqtt.base_topic) +
                                                " starts with '$' (reserved by brokers)");
     }
+    check_client_id(mqtt);
+    check_connection_keys(mqtt);
+    if (mqtt.metrics_interval.count() <= 0) {
+        error(mqtt.marks.of("metrics_interval_s"), "metrics_interval_s must be at least 1");
+    }
+    return base_ok;
+}
+
+void Validator::check_client_id(const MqttSection& mqtt) {
     // Only a written one: the default, eip2mqtt-{gateway.id}, is as good as gateway.id.
     if (mqtt.marks.contains("client_id")) {
         if (const auto problem = plan::text_problem(mqtt.client_id); !problem.empty()) {
@@ -86,6 +101,9 @@ void Validator::check_mqtt() {
                       " bytes long (MQTT allows " + std::to_string(max_string_bytes) + ")");
         }
     }
+}
+
+void Validator::check_connection_keys(const MqttSection& mqtt) {
     if (mqtt.urls.empty() ||
         std::any_of(mqtt.urls.begin(), mqtt.urls.end(), [](const auto& u) { return u.empty(); })) {
         error(mqtt.marks.of("url"), "mqtt url is empty");
@@ -99,9 +117,6 @@ void Validator::check_mqtt() {
     }
     if (mqtt.keepalive.count() <= 0) {
         error(mqtt.marks.of("keepalive_s"), "keepalive_s must be at least 1");
-    }
-    if (mqtt.metrics_interval.count() <= 0) {
-        error(mqtt.marks.of("metrics_interval_s"), "metrics_interval_s must be at least 1");
     }
 }
 

@@ -47,7 +47,12 @@ private:
     }
 
     void check_gateway();
+    /// Every connection of `mqtt`, then the list as a whole (connection_list_check.hpp).
     void check_mqtt();
+    /// One connection's keys; returns whether its base_topic is a valid topic.
+    bool check_connection(const MqttSection& mqtt);
+    void check_client_id(const MqttSection& mqtt);
+    void check_connection_keys(const MqttSection& mqtt);
     /// The gateway's own topics fit MQTT's length. A base_topic too long for any of them is
     /// said once, here, and the lengths of exchange and tag topics are not checked then.
     void check_gateway_topics();

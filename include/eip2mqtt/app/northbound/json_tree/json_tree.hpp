@@ -17,6 +17,7 @@
 #include "eip2mqtt/app/northbound/json_tree/write_router.hpp"
 #include "eip2mqtt/app/northbound/northbound.hpp"
 #include "eip2mqtt/core/config/config.hpp"
+#include "eip2mqtt/core/plan/topic_rebase.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 
@@ -36,10 +37,18 @@ struct JsonTreeOptions {
     PublishSettings publish;
     WriteRouterOptions writes;
     std::string metrics_topic;  ///< `{base}/_gateway/{id}/metrics`
+    /// Whether it subscribes to the write topics (`mqtt.writes`).
+    bool take_writes = true;
+    /// A connection after the first: its name (its figures are the metrics topic's) and how
+    /// its topics differ from the plans' (the tags' topics `_meta` names). Empty, identity:
+    /// the first connection.
+    std::string more_connection;
+    core::plan::TopicRebase rebase = {};
 };
 
-/// The options of `config`'s `mqtt:` and `gateway:` sections.
-JsonTreeOptions json_tree_options(const core::config::Config& config);
+/// The options of `config`'s `gateway:` section and of its MQTT connection `connection`
+/// (core::config::mqtt_connection; the first by default).
+JsonTreeOptions json_tree_options(const core::config::Config& config, std::size_t connection = 0);
 
 class JsonTree final : public Northbound, public history::HistorySink {
 public:

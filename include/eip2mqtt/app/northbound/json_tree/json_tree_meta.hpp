@@ -11,10 +11,13 @@
 #include <string>
 
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
+#include "eip2mqtt/core/plan/topic_rebase.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
 
-/// The payload of `plan.meta_topic`: one JSON object, tags in configuration order, keyed by name.
-std::string format_meta_payload(const core::plan::ExchangePlan& plan);
+/// The payload of `plan.meta_topic`: one JSON object, tags in configuration order, keyed by name;
+/// each tag's topic as the connection says it (`rebase`).
+std::string format_meta_payload(const core::plan::ExchangePlan& plan,
+                                const core::plan::TopicRebase& rebase = {});
 
 }  // namespace eip2mqtt::app::northbound::json_tree
