@@ -18,6 +18,7 @@
 // --skip-ms N: latency samples stamped within N ms of the first stamp are left out (counted as
 // latency_skipped): the load's first moments, when every process comes out of idle.
 // --dump FILE: every latency sample as "ms since the first, latency us", to see where a tail lies.
+// --username U --password P: the login, for a broker that wants one (scenario 18's ejabberd).
 // Stops after --idle-ms without a counted message (once one arrived), at --expect messages, or
 // after --max-s. Prints one JSON line.
 
@@ -267,7 +268,8 @@ int main(int argc, char** argv) {
     const bench::Options opt(
         argc, argv,
         {"host", "port", "filter", "qos", "batch", "sparkplug", "stamp-tag", "stamp-all", "skip-ms",
-         "expect-last", "expect-topics", "expect", "idle-ms", "max-s", "ready-file", "id", "dump"});
+         "expect-last", "expect-topics", "expect", "idle-ms", "max-s", "ready-file", "id", "dump",
+         "username", "password"});
     State s;
     Stop stop;
     read_settings(opt, s, stop);

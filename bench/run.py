@@ -4,8 +4,9 @@
 Starts its own Mosquitto on a free loopback port, runs every scenario against the gateway built
 from this repository and against its same-run baseline (and, with --against-binary, against an
 earlier build in alternating rounds), and writes one markdown table to bench/results/latest.md
-(also printed). Every wait is bounded in time; only 127.0.0.1 is used. The harness is in
-bench/benchlib/, one module per scenario in bench/scenarios/.
+(also printed). Every wait is bounded in time; only 127.0.0.1 is used (and, by scenario 18,
+network namespaces it makes itself). The harness is in bench/benchlib/, one module per
+scenario in bench/scenarios/.
 """
 
 import argparse
@@ -19,7 +20,7 @@ from benchlib.util import GATEWAY, tool
 from scenarios import (s01_udp, s02_s03_publications, s04_batch, s05_latency, s06_memory,
                        s07_periods, s08_overload, s09_write_latency, s10_store_and_forward,
                        s11_commands, s12_dissector, s13_failover, s14_overload_rate,
-                       s15_topic_aliases, s16_status_page, s17_broker_move)
+                       s15_topic_aliases, s16_status_page, s17_broker_move, s18_fleet)
 
 # (the scenario numbers a module answers to in --only, its module), in the order they run:
 # later scenarios take their load from scenario 2's figures.
@@ -40,13 +41,19 @@ SCENARIOS = (
     ((15,), s15_topic_aliases),
     ((16,), s16_status_page),
     ((17,), s17_broker_move),
+    ((18,), s18_fleet),
 )
+# Scenarios that run only when --only names them, never in a run of every scenario: 18 needs
+# root, network namespaces and ejabberd (and the quick run's test counts the rows of a run of
+# every scenario).
+ONLY_WHEN_ASKED = {18}
 
 
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="short runs, to check it works")
-    parser.add_argument("--only", default="", help="comma-separated scenario numbers (1-17)")
+    parser.add_argument("--only", default="",
+                        help="comma-separated scenario numbers (1-18; 18 runs only when named)")
     parser.add_argument("--rounds", type=int, default=0, metavar="N",
                         help="paired rounds of the repeated scenarios (default 3, 1 with --quick)")
     parser.add_argument("--against-binary", default="", metavar="PATH",
@@ -69,6 +76,8 @@ def command_line(args):
 def check_programs(args, only):
     if not only or 14 in only:  # the Node-RED peer row: installed by tools/install-deps.sh
         node_red.require_installed()
+    if 18 in only and s18_fleet.unavailable():  # namespaces and an ejabberd cluster
+        sys.exit(f"scenario 18: {s18_fleet.unavailable()}")
     if not only or 16 in only:  # the page's render: chromium and puppeteer-core, as its test
         for path in (s16_status_page.CHROMIUM, s16_status_page.PUPPETEER):
             if not os.path.exists(path):
@@ -81,7 +90,7 @@ def check_programs(args, only):
 
 def run_scenarios(bench):
     for numbers, scenario in SCENARIOS:
-        if any(bench.wanted(n) for n in numbers):
+        if any(n in bench.only if n in ONLY_WHEN_ASKED else bench.wanted(n) for n in numbers):
             start = time.monotonic()
             scenario.run(bench)
             print(f"    (scenario {','.join(map(str, numbers))}: "
