@@ -4,6 +4,8 @@
 // subscriber gets every sample live all along, and the enterprise's gets the minute replayed on
 // its return. A write is taken and answered on the connection it came through.
 
+#include <algorithm>
+#include <chrono>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -109,6 +111,15 @@ TEST_F(SeveralBrokersTest, OneBrokerDownForAMinuteHoldsUpNothingAndGetsItsReplay
     // The site: every value once, live, nothing replayed (it never lost its broker).
     expect_each_value_once(last, 0);
     EXPECT_TRUE(recorder_->messages_on(topic("line/_history")).empty());
+    // Told, not asserted (a duration is the machine's): the longest wait between two of the
+    // site's live values while the enterprise broker was down.
+    const auto live = recorder_->messages_on(topic("line/_values"));
+    std::chrono::steady_clock::duration longest{};
+    for (std::size_t i = 1; i < live.size(); ++i)
+        longest = std::max(longest, live[i].at - live[i - 1].at);
+    RecordProperty(
+        "site_longest_gap_ms",
+        static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(longest).count()));
     // The enterprise: every value once, the minute through its own journal.
     ASSERT_TRUE(wait_values(
         second_.recorder, {"ent/line/_values", "ent/line/_history"},
