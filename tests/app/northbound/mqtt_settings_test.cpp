@@ -67,7 +67,15 @@ TEST_F(MqttSettingsTest, AnotherConnectionHasItsOwnBrokersIdAndLogNameAndMaySpar
     c.more_mqtt.push_back({});
     c.more_mqtt[0].name = "enterprise";
     c.more_mqtt[0].urls = {"ssl://uns:8883"};
+    c.more_mqtt[0].username = "corp";
+    c.more_mqtt[0].tls = core::config::TlsSection{"corp-ca.pem", "", "", true};
+    c.more_mqtt[0].buffer_max_messages = 500;
     const auto enterprise = mqtt_client_options(c, "a", 1);
+    EXPECT_EQ(enterprise.username, "corp");
+    ASSERT_TRUE(enterprise.tls.has_value());
+    EXPECT_EQ(enterprise.tls->ca_file, "corp-ca.pem");
+    EXPECT_EQ(enterprise.buffer_max_messages, 500u);
+    EXPECT_FALSE(mqtt_client_options(c, "a").tls.has_value());  // the first's: none
     EXPECT_EQ(enterprise.urls, std::vector<std::string>{"ssl://uns:8883"});
     EXPECT_EQ(enterprise.client_id, "eip2mqtt-plant1-enterprise");
     EXPECT_EQ(enterprise.log_name, "MQTT [enterprise]");

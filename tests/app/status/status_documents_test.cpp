@@ -129,6 +129,27 @@ TEST_F(StatusDocumentsTest, TheSparkplugSessionAsTheNodeLastSaidIt) {
     EXPECT_EQ(before["gateway"]["sparkplug"]["born"], false);
 }
 
+TEST_F(StatusDocumentsTest, SeveralConnectionsAreListedEachWithItsState) {
+    EXPECT_EQ(status()["gateway"]["connections"], json::array());  // one connection: none
+    mqtt_.connected = true;
+    mqtt_.broker = "tcp://a:1883";
+    mqtt_.published = 12;
+    history::HistoryStats journal;
+    journal.journal.entries = 40;
+    MetricsSources sources{exchanges_->datagram_counters(), writes_, mqtt_};
+    sources.mqtt_name = "site";
+    adapters::mqtt::ClientStats enterprise;
+    enterprise.queued = 5;
+    sources.more_connections.push_back({"enterprise", enterprise, &journal});
+    const auto doc = json::parse(
+        status_document(facts_, sources, *exchanges_, clock_.monotonic(), clock_.wall()));
+    EXPECT_EQ(doc["gateway"]["connections"],
+              json::parse(R"([{"name":"site","connected":true,"broker":"tcp://a:1883",)"
+                          R"("published":12,"buffered":0,"journaled":null},)"
+                          R"({"name":"enterprise","connected":false,"broker":"",)"
+                          R"("published":0,"buffered":5,"journaled":40}])"));
+}
+
 TEST_F(StatusDocumentsTest, TheLastWritesAndWarningsFollowWhenGiven) {
     EXPECT_FALSE(status().contains("writes"));
     WriteLog log;

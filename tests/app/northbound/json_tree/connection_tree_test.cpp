@@ -28,6 +28,7 @@ core::config::Config two_connections() {
     enterprise.name = "enterprise";
     enterprise.base_topic = "corp/plant1";
     enterprise.payload = core::config::PayloadFormat::value;
+    enterprise.qos = 0;
     return config;
 }
 
@@ -57,6 +58,8 @@ TEST_F(ConnectionTreeTest, ItsOptionsAreItsOwnSections) {
     const auto enterprise = json_tree_options(config, 1);
     EXPECT_FALSE(enterprise.take_writes);  // the first connection's alone, by default
     EXPECT_EQ(enterprise.publish.format, core::config::PayloadFormat::value);
+    EXPECT_EQ(enterprise.publish.qos, 0);
+    EXPECT_EQ(first.publish.qos, 1);
     EXPECT_EQ(enterprise.metrics_topic, "corp/plant1/_gateway/gw/metrics");
     EXPECT_EQ(enterprise.more_connection, "enterprise");
 }
