@@ -87,13 +87,7 @@ adapters::metrics::MetricsSnapshot metrics_snapshot(
     g.writes = sources.writes;
     if (sources.history) g.history = history_metrics(*sources.history);
     if (sources.commands) g.commands = *sources.commands;
-    if (!sources.more_connections.empty()) {
-        g.connections.push_back(
-            connection_metrics({sources.mqtt_name, sources.mqtt, sources.history}));
-        for (const auto& more : sources.more_connections) {
-            g.connections.push_back(connection_metrics(more));
-        }
-    }
+    g.connections = connections_metrics(sources);
     return snapshot;
 }
 
@@ -108,12 +102,25 @@ std::string status_line(const MetricsSources& sources) {
     return line;
 }
 
+namespace {
+
 adapters::metrics::ConnectionMetrics connection_metrics(const ConnectionSources& sources) {
     adapters::metrics::ConnectionMetrics out{sources.name,         sources.mqtt.connected,
                                              sources.mqtt.broker,  sources.mqtt.published,
                                              sources.mqtt.queued,  sources.mqtt.dropped_overflow,
                                              sources.mqtt.refused, std::nullopt};
     if (sources.history) out.history = history_metrics(*sources.history);
+    return out;
+}
+
+}  // namespace
+
+std::vector<adapters::metrics::ConnectionMetrics> connections_metrics(
+    const MetricsSources& sources) {
+    std::vector<adapters::metrics::ConnectionMetrics> out;
+    if (sources.more_connections.empty()) return out;
+    out.push_back(connection_metrics({sources.mqtt_name, sources.mqtt, sources.history}));
+    for (const auto& more : sources.more_connections) out.push_back(connection_metrics(more));
     return out;
 }
 

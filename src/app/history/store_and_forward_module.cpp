@@ -59,6 +59,8 @@ StoreAndForwardModule::StoreAndForwardModule(std::unique_ptr<adapters::history::
 
 void StoreAndForwardModule::add_metrics(MetricsSources& sources) {
     stats_ = store_.stats();
+    // A connection's entry is its tree's, made before this (make_northbounds puts each journal
+    // after its tree).
     if (connection_ == 0) {
         sources.history = &*stats_;
     } else if (connection_ <= sources.more_connections.size()) {

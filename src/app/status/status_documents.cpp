@@ -114,13 +114,10 @@ void append_connection(std::string& out, const adapters::metrics::ConnectionMetr
 /// `,"connections":[…]`: with several MQTT connections, each one's state; empty with one.
 void append_connections(std::string& out, const MetricsSources& sources) {
     out += R"(,"connections":[)";
-    if (!sources.more_connections.empty()) {
-        append_connection(out,
-                          connection_metrics({sources.mqtt_name, sources.mqtt, sources.history}));
-        for (const auto& more : sources.more_connections) {
-            out += ',';
-            append_connection(out, connection_metrics(more));
-        }
+    bool first = true;
+    for (const auto& connection : connections_metrics(sources)) {
+        if (!std::exchange(first, false)) out += ',';
+        append_connection(out, connection);
     }
     out += ']';
 }

@@ -58,8 +58,10 @@ struct MetricsSources {
 /// the main connection.
 std::string status_line(const MetricsSources& sources);
 
-/// One connection's figures for Prometheus and /readyz.
-adapters::metrics::ConnectionMetrics connection_metrics(const ConnectionSources& sources);
+/// Every MQTT connection's figures, the first first, when there are several (for Prometheus,
+/// /readyz and the status page); empty with one, whose figures are the gateway's own.
+std::vector<adapters::metrics::ConnectionMetrics> connections_metrics(
+    const MetricsSources& sources);
 
 /// Store and forward's figures for Prometheus and the metrics topic.
 adapters::metrics::HistoryMetrics history_metrics(const history::HistoryStats& stats);

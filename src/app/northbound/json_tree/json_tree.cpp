@@ -18,7 +18,12 @@ JsonTreeOptions json_tree_options(const core::config::Config& config, std::size_
             mqtt.base_topic + "/_gateway/" + config.gateway.id + "/metrics",
             core::config::takes_writes(mqtt, connection),
             connection == 0 ? std::string() : core::config::connection_name(mqtt),
-            core::plan::TopicRebase(config.mqtt.base_topic, mqtt.base_topic)};
+            connection_rebase(config, connection)};
+}
+
+core::plan::TopicRebase connection_rebase(const core::config::Config& config,
+                                          std::size_t connection) {
+    return {config.mqtt.base_topic, core::config::mqtt_connection(config, connection).base_topic};
 }
 
 JsonTree::JsonTree(JsonTreeOptions options, adapters::mqtt::Publisher& mqtt, WriteHandler& writes)

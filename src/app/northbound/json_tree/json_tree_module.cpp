@@ -47,8 +47,7 @@ adapters::mqtt::ClientOptions client_options(const core::config::Config& config,
 std::unique_ptr<RebasedPublisher> rebased(const core::config::Config& config,
                                           std::size_t connection,
                                           adapters::mqtt::Publisher& client) {
-    core::plan::TopicRebase rebase(config.mqtt.base_topic,
-                                   core::config::mqtt_connection(config, connection).base_topic);
+    auto rebase = connection_rebase(config, connection);
     if (rebase.identity()) return nullptr;
     return std::make_unique<RebasedPublisher>(client, std::move(rebase));
 }

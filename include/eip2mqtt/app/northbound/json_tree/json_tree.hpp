@@ -50,6 +50,10 @@ struct JsonTreeOptions {
 /// (core::config::mqtt_connection; the first by default).
 JsonTreeOptions json_tree_options(const core::config::Config& config, std::size_t connection = 0);
 
+/// How connection `connection` says the plans' topics: its base_topic for the first's.
+core::plan::TopicRebase connection_rebase(const core::config::Config& config,
+                                          std::size_t connection);
+
 class JsonTree final : public Northbound, public history::HistorySink {
 public:
     /// `mqtt` and `writes` must outlive the northbound.
