@@ -17,7 +17,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -125,5 +125,5 @@ TEST_F(GatewayTest, AModuleThatCannotTakeAReloadRefusesItWhole) {
               (std::vector<std::string>{"prepare A debug", "prepare B debug"}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

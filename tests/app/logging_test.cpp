@@ -11,7 +11,7 @@
 #include <string>
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// Runs each test on a fresh "eip2mqtt" logger and gives the earlier default one back after.
 class LoggingTest : public testing::Test {
@@ -95,5 +95,5 @@ TEST_F(LoggingTest, TheLastWarningsAndErrorsAreKeptForTheStatusPage) {
         testing::MatchesRegex("[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9:]{8}\\.[0-9]{3}Z error: an error"));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -10,7 +10,7 @@
 #include "tests/support/fakes/fake_module.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::FakeBehaviour;
 using test::FakeModule;
@@ -71,5 +71,5 @@ TEST(ModuleList, ModulesWithoutAQueueHaveNoRoomAndNoChanges) {
     EXPECT_FALSE(list.changes_pending());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

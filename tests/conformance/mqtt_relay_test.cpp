@@ -13,7 +13,7 @@
 #include "tests/support/mosquitto.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -143,5 +143,5 @@ TEST(MqttRelay, RecordsWhatARealClientSendsAndTheBrokersAnswers) {
     EXPECT_EQ(sent[4].reason, 0x00);  // Paho's plain DISCONNECT: Normal disconnection
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -17,7 +17,7 @@
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test::conformance {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using nlohmann::json;
@@ -146,5 +146,5 @@ TEST(SparkplugConformance, Mqtt311ACleanStopSaysTheNdeathBeforeItsDisconnect) {
     expect_tahu_reads_every_payload(run);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test::conformance

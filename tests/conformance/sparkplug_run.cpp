@@ -12,6 +12,7 @@
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test::conformance {
@@ -96,7 +97,7 @@ SparkplugRun::~SparkplugRun() {
 
 void SparkplugRun::start_gateway() {
     gateway_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", config_path_});
+        std::vector<std::string>{gateway_binary(), "run", "-c", config_path_});
 }
 
 int SparkplugRun::stop_gateway() {

@@ -14,7 +14,7 @@
 #include "tests/conformance/sparkplug_requirements.hpp"
 
 namespace eip2mqtt::test::conformance {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 std::vector<std::string> specification_ids() {
     std::ifstream in(std::string(EIP2MQTT_TEST_DATA) + "/sparkplug_tck_ids.txt");
@@ -81,5 +81,5 @@ TEST(SparkplugConformanceTable, TheDocsTableSaysWhatTheSuiteJudges) {
         << expected;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test::conformance

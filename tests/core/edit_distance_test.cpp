@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(EditDistance, CountsInsertionsRemovalsAndReplacements) {
     EXPECT_EQ(edit_distance("real", "real"), 0u);
@@ -15,5 +15,5 @@ TEST(EditDistance, CountsInsertionsRemovalsAndReplacements) {
     EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core

@@ -22,7 +22,7 @@
 #include "tests/support/enumerators.hpp"
 
 namespace eip2mqtt::core {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 enum class Colour : std::uint8_t { red, green, blue };
 constexpr auto colour_names = enum_names<Colour>("red", "green", "blue");
@@ -67,5 +67,5 @@ TEST(EnumNames, EveryCoreEnumeratorHasAName) {
     test::expect_every_value_named(redundancy::follow_verdict_names);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core

@@ -6,7 +6,7 @@
 #include <utility>
 
 namespace eip2mqtt::core {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 struct Settings {
     std::string unit;
@@ -71,5 +71,5 @@ TEST(OutOfLine, EqualityComparesContents) {
     EXPECT_NE(a, empty);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core

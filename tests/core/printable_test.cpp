@@ -5,7 +5,7 @@
 #include <string>
 
 namespace eip2mqtt::core {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Printable, ControlBytesAreEscapedAndLongTextIsCut) {
     EXPECT_EQ(printable("plain/topic"), "plain/topic");
@@ -27,5 +27,5 @@ TEST(Printable, TextANodeToldKeepsOnlyPrintableAscii) {
     EXPECT_EQ(printable_ascii(shown), shown);  // escaping twice changes nothing
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core

@@ -5,7 +5,7 @@
 #include <string>
 
 namespace eip2mqtt::core {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Ring, FirstInFirstOutAcrossTheWrap) {
     Ring<int> ring;
@@ -75,5 +75,5 @@ TEST(Ring, CopiesAndMovesKeepTheElementsInOrder) {
     EXPECT_EQ(copy.back(), "element number 29");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core

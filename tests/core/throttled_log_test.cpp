@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -39,5 +39,5 @@ TEST(ThrottledLog, ResetMakesTheNextOneAFirst) {
     EXPECT_EQ(log.flush(t0 + 100s), 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core

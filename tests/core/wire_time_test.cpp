@@ -5,7 +5,7 @@
 #include "eip2mqtt/core/time.hpp"
 
 namespace eip2mqtt::core {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(WireTime, SplitsIntoWholeSecondsAndTheNanosecondsPastThem) {
     const WallTime wall{std::chrono::seconds(1700000000) + std::chrono::nanoseconds(123456789)};
@@ -27,5 +27,5 @@ TEST(WireTime, TheLastNanosecondOfASecondStaysInIt) {
     EXPECT_EQ(t.nanoseconds, 999999999u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core

@@ -19,7 +19,7 @@
 #include "tests/support/mosquitto.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// Whether `pid` still runs: a zombie nobody reaped (the machine's init may not) has ended.
 bool running(pid_t pid) {
@@ -91,5 +91,5 @@ TEST(Harness, AKeyAMessageLacksFailsOneTestInsteadOfAbortingTheProgram) {
 }
 #endif
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -8,7 +8,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -177,5 +177,5 @@ TEST_F(ConsumeTest, DuplicatesAndGapsAreCountedInStatus) {
     EXPECT_EQ(j["request_id"], 3);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

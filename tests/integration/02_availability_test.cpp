@@ -9,7 +9,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 
@@ -89,5 +89,5 @@ TEST_F(AvailabilityTest, MetricsArePublishedPeriodically) {
     EXPECT_GE(j["published"].get<int>(), 1);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -11,10 +11,11 @@
 
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::TagType;
@@ -52,7 +53,7 @@ TEST_F(PortOwnerTest, ASecondGatewayOnThePortIsRefusedAndNamesTheFirst) {
     config.replace(state, 7, "/state-second\n");
     const auto second = dir_.write("second.yaml", config);
 
-    const auto refused = run_command({EIP2MQTT_BINARY, "run", "-c", second}, 30s);
+    const auto refused = run_command({gateway_binary(), "run", "-c", second}, 30s);
     EXPECT_EQ(refused.status, 1) << refused.output;
     const auto expected = "cannot bind UDP 127.0.0.1:" + std::to_string(udp_port_) +
                           ": Address already in use, held by process " +
@@ -72,5 +73,5 @@ TEST_F(PortOwnerTest, ASecondGatewayOnThePortIsRefusedAndNamesTheFirst) {
     EXPECT_EQ(gateway_->output().find("lost"), std::string::npos) << gateway_->output();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

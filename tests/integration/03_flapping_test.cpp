@@ -14,7 +14,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -100,5 +100,5 @@ TEST_F(FlappingTest, AlternatingGoodAndShortDatagramsArePublishedOncePerPeriodAn
     EXPECT_NE(log.find("too many to log each"), std::string::npos) << log;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

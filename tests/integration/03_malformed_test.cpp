@@ -7,7 +7,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -83,5 +83,5 @@ TEST_F(MalformedTest, LengthMismatchIsCountedAndNotConsumed) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

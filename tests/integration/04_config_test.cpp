@@ -7,10 +7,11 @@
 #include <filesystem>
 
 #include "tests/support/child_process.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -36,7 +37,7 @@ exchanges:
 TEST(CheckCommand, ReportsBitOnIntPastEndAndUnknownKeyWithLineAndColumn) {
     TempDir dir;
     const auto path = dir.write("bad.yaml", bad_config);
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    const auto result = run_command({gateway_binary(), "check", "-c", path}, 10s);
     EXPECT_EQ(result.status, 1) << result.output;
     EXPECT_NE(result.output.find(path + ":13:5:"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find("colour"), std::string::npos) << result.output;
@@ -62,7 +63,7 @@ TEST(CheckCommand, RefusesPointListsThatAreNoRegularFilesOrTooBigAtTheirKeyWitho
                 "\n    length: 8\n    points: " + points + "\n";
     }
     const auto path = dir.write("points.yaml", yaml);
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    const auto result = run_command({gateway_binary(), "check", "-c", path}, 10s);
     EXPECT_EQ(result.status, 1) << result.output;
     for (const std::string& expected :
          {path + ":6:5: error: point list '" + dir.path() +
@@ -80,7 +81,7 @@ TEST(CheckCommand, RefusesPointListsThatAreNoRegularFilesOrTooBigAtTheirKeyWitho
 
 TEST(CheckCommand, RefusesAConfigurationThatIsADirectory) {
     TempDir dir;
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", dir.path()}, 10s);
+    const auto result = run_command({gateway_binary(), "check", "-c", dir.path()}, 10s);
     EXPECT_EQ(result.status, 1) << result.output;
     EXPECT_NE(result.output.find(dir.path() +
                                  ": error: the configuration is not a regular file (a directory)"),
@@ -102,7 +103,7 @@ TEST(CheckCommand, RefusesTopicsTooLongControlCharactersAndSetLevelsWithLineAndC
                                 "      - { name: \"A\\0x\", address: 0, type: int }\n"
                                 "      - { name: " +
                                     long_name + ", address: 2, type: int }\n");
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    const auto result = run_command({gateway_binary(), "check", "-c", path}, 10s);
     EXPECT_EQ(result.status, 1) << result.output;
     for (const std::string& expected :
          {path +
@@ -127,7 +128,7 @@ TEST(CheckCommand, ReportsAPointListFieldRunningOntoTheNextLineAtItsQuote) {
         dir.write("p.yaml",
                   "exchanges:\n"
                   "  - { name: ex, producer_id: 10.0.0.1, exchange_id: 1, points: p.csv }\n");
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    const auto result = run_command({gateway_binary(), "check", "-c", path}, 10s);
     EXPECT_EQ(result.status, 1) << result.output;
     EXPECT_NE(result.output.find(csv + ":3:1: error: a quoted field runs past the end of the line, "
                                        "to line 4 (newlines inside fields are not supported)\n1 "
@@ -164,7 +165,7 @@ exchanges:
     tags:
       - { name: COUNTER, address: "0.0", type: dint }
 )");
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    const auto result = run_command({gateway_binary(), "check", "-c", path}, 10s);
     EXPECT_EQ(result.status, 0) << result.output;
     const auto warning = result.output.find("  warning: timeout_ms is 0");
     ASSERT_NE(warning, std::string::npos) << result.output;
@@ -192,7 +193,7 @@ exchanges:
       - { name: SPEED, address: "0.0", type: int }
       - { name: speed, address: "2.0", type: int }
 )");
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    const auto result = run_command({gateway_binary(), "check", "-c", path}, 10s);
     EXPECT_EQ(result.status, 0) << result.output;
     const auto& out = result.output;
     EXPECT_NE(out.find(path + ":10:5: warning: producer_id is still a placeholder"),
@@ -210,7 +211,7 @@ exchanges:
 TEST(RunCommand, RefusesToStartOnAnInvalidConfiguration) {
     TempDir dir;
     const auto path = dir.write("bad.yaml", bad_config);
-    const auto result = run_command({EIP2MQTT_BINARY, "run", "-c", path}, 10s);
+    const auto result = run_command({gateway_binary(), "run", "-c", path}, 10s);
     EXPECT_EQ(result.status, 1) << result.output;
     EXPECT_NE(result.output.find("colour"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find("not starting"), std::string::npos) << result.output;
@@ -218,7 +219,7 @@ TEST(RunCommand, RefusesToStartOnAnInvalidConfiguration) {
 
 TEST(CheckCommand, ExampleConfigurationIsValidAndShowsItsLayout) {
     const std::string path = std::string(EIP2MQTT_SOURCE_DIR) + "/etc/eip2mqtt/eip2mqtt.yaml";
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    const auto result = run_command({gateway_binary(), "check", "-c", path}, 10s);
     EXPECT_EQ(result.status, 0) << result.output;
     EXPECT_NE(result.output.find("PRESSAO"), std::string::npos) << result.output;
     EXPECT_NE(result.output.find("acme/demo/turbine1/PRESSAO"), std::string::npos) << result.output;
@@ -232,7 +233,7 @@ TEST(CheckCommand, NamesARawNulByteAndABidirectionalOverrideAtTheirLineAndColumn
         dir.write("nul.yaml", std::string("exchanges:\n  - name: ex\n    topic: a") + '\0' +
                                   "b\n    producer_id: 10.0.0.1\n    exchange_id: 1\n    tags:\n"
                                   "      - { name: \"A\\x00\", address: \"0.0\", type: dint }\n");
-    auto result = run_command({EIP2MQTT_BINARY, "check", "-c", nul}, 10s);
+    auto result = run_command({gateway_binary(), "check", "-c", nul}, 10s);
     EXPECT_EQ(result.status, 1) << result.output;
     EXPECT_NE(result.output.find(nul + ":3:13: error: YAML syntax error: a NUL byte (\\x00)"),
               std::string::npos)
@@ -241,7 +242,7 @@ TEST(CheckCommand, NamesARawNulByteAndABidirectionalOverrideAtTheirLineAndColumn
                                "exchanges:\n  - name: ex\n    topic: area/\xE2\x80\xAEtes/1t\n"
                                "    producer_id: 10.0.0.1\n    exchange_id: 1\n    tags:\n"
                                "      - { name: \"A\\x00\", address: \"0.0\", type: dint }\n");
-    result = run_command({EIP2MQTT_BINARY, "check", "-c", rlo}, 10s);
+    result = run_command({gateway_binary(), "check", "-c", rlo}, 10s);
     EXPECT_EQ(result.status, 1) << result.output;
     EXPECT_NE(result.output.find(rlo + ":3:5: error: exchange 'ex' topic 'area/\\u202Etes/1t' "
                                        "contains a bidirectional control character"),
@@ -251,5 +252,5 @@ TEST(CheckCommand, NamesARawNulByteAndABidirectionalOverrideAtTheirLineAndColumn
         << result.output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

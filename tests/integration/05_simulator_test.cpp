@@ -5,10 +5,11 @@
 #include <set>
 
 #include "tests/support/exchange_yaml.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 const std::string sim_exchange = ExchangeYaml::consume("sim", "10.0.0.9", 3)
                                      .period_ms(20)
@@ -27,7 +28,7 @@ class SimulatorTest : public GatewayTest {};
 
 TEST_F(SimulatorTest, SimulatedValuesOfEveryTypeFlowAndChange) {
     start(sim_exchange);
-    ChildProcess sim({EIP2MQTT_BINARY, "sim", "-c", config_path_, "--duration", "20"});
+    ChildProcess sim({gateway_binary(), "sim", "-c", config_path_, "--duration", "20"});
     for (const auto* tag : {"B", "U8", "I16", "U16", "I32", "U32", "F32", "I64", "F64"}) {
         const std::string t = topic(std::string("sim/") + tag);
         // At least two distinct values: the simulator changes them.
@@ -44,5 +45,5 @@ TEST_F(SimulatorTest, SimulatedValuesOfEveryTypeFlowAndChange) {
     EXPECT_EQ(sim.wait(std::chrono::seconds(5)), 0);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

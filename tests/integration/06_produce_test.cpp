@@ -12,7 +12,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -131,5 +131,5 @@ TEST_F(ProduceTest, EchoTopicsCarryTheProducedValues) {
     expect_field(topic("sp/_status"), "state", "\"producing\"");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

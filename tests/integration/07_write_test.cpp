@@ -11,7 +11,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -168,5 +168,5 @@ TEST_F(WriteTest, RestartProducesTheLastWrittenValues) {
     EXPECT_EQ(tag(*first, "5.0", TagType::int_), Value{std::int64_t{-7}});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

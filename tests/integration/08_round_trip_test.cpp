@@ -8,7 +8,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 class RoundTripTest : public GatewayTest {};
 
@@ -32,5 +32,5 @@ TEST_F(RoundTripTest, WriteComesBackAsTheConsumedValue) {
     expect_field(topic("back/ENABLE"), "value", "true");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -8,11 +8,12 @@
 #include <sstream>
 
 #include "tests/support/exchange_yaml.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/notify_socket.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -55,7 +56,7 @@ TEST(SystemdUnit, SystemdAnalyzeVerifyAcceptsTheUnit) {
     unit << in.rdbuf();
     std::string text = unit.str();
     for (std::size_t at; (at = text.find("/usr/local/bin/eip2mqtt")) != std::string::npos;) {
-        text.replace(at, std::string("/usr/local/bin/eip2mqtt").size(), EIP2MQTT_BINARY);
+        text.replace(at, std::string("/usr/local/bin/eip2mqtt").size(), gateway_binary());
     }
     for (const auto* key :
          {"Type=notify", "WatchdogSec=", "ExecReload=", "Restart=on-failure",
@@ -72,7 +73,7 @@ TEST(SystemdUnit, SystemdAnalyzeVerifyAcceptsTheUnit) {
 
 TEST(Install, CmakeInstallPutsBinaryUnitAndExampleConfig) {
     TempDir dir;
-    const std::string build_dir = std::filesystem::path(EIP2MQTT_BINARY).parent_path();
+    const std::string build_dir = std::filesystem::path(gateway_binary()).parent_path();
     const auto result = run_command(
         {"/usr/bin/cmake", "--install", build_dir, "--prefix", dir.path() + "/usr"}, 60s);
     ASSERT_EQ(result.status, 0) << result.output;
@@ -104,7 +105,7 @@ std::string read_text(const std::string& path) {
 // As dpkg does with a conffile: an edited configuration is kept, the new example put beside it.
 TEST(Install, CmakeInstallKeepsAnEditedConfiguration) {
     TempDir dir;
-    const std::string build_dir = std::filesystem::path(EIP2MQTT_BINARY).parent_path();
+    const std::string build_dir = std::filesystem::path(gateway_binary()).parent_path();
     const std::vector<std::string> install{"/usr/bin/cmake", "--install", build_dir, "--prefix",
                                            dir.path() + "/usr"};
     ASSERT_EQ(run_command(install, 60s).status, 0);
@@ -126,5 +127,5 @@ TEST(Install, CmakeInstallKeepsAnEditedConfiguration) {
     EXPECT_NE(result.output.find("Kept: " + config), std::string::npos) << result.output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -9,10 +9,11 @@
 #include "tests/support/child_process.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::TagType;
@@ -27,7 +28,7 @@ TEST_F(SniffBesideGatewayTest, BothSeeEveryDatagram) {
               .tag("SPEED", "0.0", "real")
               .str());
     constexpr int count = 40;
-    ChildProcess sniff({EIP2MQTT_BINARY, "sniff", "-c", config_path_, "--count",
+    ChildProcess sniff({gateway_binary(), "sniff", "-c", config_path_, "--count",
                         std::to_string(count), "--duration", "60", "--interval", "0.5"});
     ASSERT_TRUE(sniff.wait_for_output("sniffing", 30s)) << sniff.output();
 
@@ -57,5 +58,5 @@ TEST_F(SniffBesideGatewayTest, BothSeeEveryDatagram) {
     EXPECT_NE(output.find("[pump] SPEED=40.0"), std::string::npos) << output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

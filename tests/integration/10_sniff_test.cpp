@@ -13,11 +13,12 @@
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 
@@ -101,8 +102,8 @@ TEST(Sniff, DecodesHeadersAndTagsAndCountsGapsAndDuplicates) {
     TempDir dir;
     const auto port = free_udp_port();
     const auto path = dir.write("sniff.yaml", config(port));
-    ChildProcess sniff({EIP2MQTT_BINARY, "sniff", "--port", std::to_string(port), "--duration", "3",
-                        "--interval", "0.5", "-c", path});
+    ChildProcess sniff({gateway_binary(), "sniff", "--port", std::to_string(port), "--duration",
+                        "3", "--interval", "0.5", "-c", path});
     ASSERT_TRUE(sniff.wait_for_output("sniffing")) << sniff.output();
 
     UdpClient udp;
@@ -153,7 +154,7 @@ TEST(Sniff, DecodesHeadersAndTagsAndCountsGapsAndDuplicates) {
 TEST(Sniff, StopsOnSigterm) {
     const auto port = free_udp_port();
     ChildProcess sniff(
-        {EIP2MQTT_BINARY, "sniff", "--port", std::to_string(port), "--bind", "127.0.0.1"});
+        {gateway_binary(), "sniff", "--port", std::to_string(port), "--bind", "127.0.0.1"});
     ASSERT_TRUE(sniff.wait_for_output("sniffing 127.0.0.1:" + std::to_string(port)))
         << sniff.output();
     UdpClient udp;
@@ -171,7 +172,7 @@ TEST(Sniff, WithoutThePrivilegeToCaptureSaysHowToGetItAndNeverBindsThePort) {
     if (::access("/usr/bin/setpriv", X_OK) != 0) GTEST_SKIP() << "no /usr/bin/setpriv";
     const auto port = free_udp_port();
     const auto result =
-        run_command({"/usr/bin/setpriv", "--bounding-set", "-net_raw", "--", EIP2MQTT_BINARY,
+        run_command({"/usr/bin/setpriv", "--bounding-set", "-net_raw", "--", gateway_binary(),
                      "sniff", "--port", std::to_string(port), "--duration", "5"},
                     std::chrono::seconds(30));
     EXPECT_EQ(result.status, 1) << result.output;
@@ -184,5 +185,5 @@ TEST(Sniff, WithoutThePrivilegeToCaptureSaysHowToGetItAndNeverBindsThePort) {
     EXPECT_EQ(result.output.find("sniffing"), std::string::npos) << result.output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -11,10 +11,11 @@
 #include "tests/support/child_process.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -48,8 +49,8 @@ std::string offline_config(std::uint16_t port, const std::string& exchanges) {
 /// none); returns its output.
 std::string sniff_yaml(std::uint16_t port, int count, const std::string& config = "") {
     std::vector<std::string> argv{
-        EIP2MQTT_BINARY, "sniff",  "--port",  std::to_string(port), "--bind",
-        "127.0.0.1",     "--yaml", "--count", std::to_string(count)};
+        gateway_binary(), "sniff",  "--port",  std::to_string(port), "--bind",
+        "127.0.0.1",      "--yaml", "--count", std::to_string(count)};
     if (!config.empty()) argv.insert(argv.end(), {"-c", config});
     ChildProcess sniff(argv);
     EXPECT_EQ(sniff.wait(30s), 0) << sniff.output();
@@ -78,7 +79,7 @@ TEST_F(SniffYamlTest, TheSkeletonPassesCheckAndTheGatewayPublishesItsStatus) {
     const auto sim_config =
         dir_.write("sim.yaml", offline_config(port, turbine_exchange + aux_exchange));
     // The simulator plays the undocumented PLC throughout: for sniff, then for the gateway.
-    ChildProcess sim({EIP2MQTT_BINARY, "sim", "-c", sim_config, "--duration", "120"});
+    ChildProcess sim({gateway_binary(), "sim", "-c", sim_config, "--duration", "120"});
     ASSERT_TRUE(sim.wait_for_output("simulating exchange aux")) << sim.output();
 
     const auto output = sniff_yaml(port, 40);
@@ -98,7 +99,7 @@ TEST_F(SniffYamlTest, TheSkeletonPassesCheckAndTheGatewayPublishesItsStatus) {
 
     // check takes it as it is.
     const auto checked = dir_.write("skeleton.yaml", offline_config(port, items_of(skeleton)));
-    const auto check = run_command({EIP2MQTT_BINARY, "check", "-c", checked}, 30s);
+    const auto check = run_command({gateway_binary(), "check", "-c", checked}, 30s);
     EXPECT_EQ(check.status, 0) << check.output;
     EXPECT_TRUE(contains(check.output, "no tags yet: only test/10-0-0-9/3/_status is published"))
         << check.output;
@@ -134,7 +135,7 @@ TEST(SniffYaml, ConfiguredExchangesGetNoSkeleton) {
     TempDir dir;
     const auto port = free_udp_port();
     const auto both = dir.write("both.yaml", offline_config(port, turbine_exchange + aux_exchange));
-    ChildProcess sim({EIP2MQTT_BINARY, "sim", "-c", both, "--duration", "120"});
+    ChildProcess sim({gateway_binary(), "sim", "-c", both, "--duration", "120"});
     ASSERT_TRUE(sim.wait_for_output("simulating exchange aux")) << sim.output();
 
     // The configuration has turbine (10.0.0.9/3): only aux (10.0.0.9/4) gets a skeleton.
@@ -158,5 +159,5 @@ TEST(SniffYaml, ConfiguredExchangesGetNoSkeleton) {
     EXPECT_EQ(sim.wait(10s), 0) << sim.output();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -18,7 +18,7 @@
 #include "tests/support/igmp.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -173,5 +173,5 @@ TEST_F(ReloadKeysTest, ANewMetricsIntervalAppliesAtOnce) {
         metrics_topic(), [](const std::string&) { return true; }, 10s, from));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -15,7 +15,7 @@
 #include "tests/integration/reload_large_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// The plant's topics all start so (`c0/T0`...); the other exchanges' do not.
 constexpr std::string_view plant_prefix = "test/c";
@@ -147,5 +147,5 @@ TEST_F(ReloadLargeTest, AStopWhileAPlantsTopicsAreClearedEndsTheGatewayCleanly) 
         << gateway_->output();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

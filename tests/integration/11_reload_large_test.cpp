@@ -12,7 +12,7 @@
 #include "tests/integration/reload_large_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using Clock = ReloadClock;
@@ -79,5 +79,5 @@ TEST_F(ReloadLargeTest, AStopWhileAFileIsParsedEndsTheGatewayCleanly) {
     EXPECT_EQ(gateway_->output().find("reload refused"), std::string::npos) << gateway_->output();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

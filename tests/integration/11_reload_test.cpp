@@ -20,7 +20,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -280,5 +280,5 @@ TEST_F(ReloadTest, EveryWriteDuringAReloadGetsExactlyOneResult) {
         << cancelled << " cancelled";
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

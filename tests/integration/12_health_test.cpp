@@ -12,7 +12,7 @@
 #include "tests/support/http_get.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using namespace std::chrono_literals;
@@ -104,5 +104,5 @@ TEST_F(HealthTest, HealthzAnswersEveryProbeWhileSlowClientsHoldConnections) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

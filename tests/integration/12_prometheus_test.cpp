@@ -10,11 +10,12 @@
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/http_get.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using namespace std::chrono_literals;
@@ -74,16 +75,16 @@ TEST(PrometheusListen, CheckAndRunRefuseAListOfAddressesAtItsLineAndColumn) {
                                     "\nexchanges:\n"
                                     "  - { name: ex, producer_id: 10.0.0.1, "
                                     "exchange_id: 1, length: 4 }\n");
-    const auto check = run_command({EIP2MQTT_BINARY, "check", "-c", path}, 10s);
+    const auto check = run_command({gateway_binary(), "check", "-c", path}, 10s);
     EXPECT_EQ(check.status, 1) << check.output;
     EXPECT_NE(check.output.find(path + ":4:3: error: listen '127.0.0.1:"), std::string::npos)
         << check.output;
     EXPECT_NE(check.output.find("is not one host:port"), std::string::npos) << check.output;
     // run refuses the file as check does, before it listens on anything.
-    const auto run = run_command({EIP2MQTT_BINARY, "run", "-c", path}, 10s);
+    const auto run = run_command({gateway_binary(), "run", "-c", path}, 10s);
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_NE(run.output.find("is not one host:port"), std::string::npos) << run.output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

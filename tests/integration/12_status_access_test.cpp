@@ -14,7 +14,7 @@
 #include "tests/support/tls_certs.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 class StatusAccessTest : public GatewayTest {
 protected:
@@ -68,5 +68,5 @@ TEST_F(StatusAccessTest, ThePasswordOpensTheApiAndTheMetricsAndHealthNeedsNone) 
     EXPECT_EQ(status_and_body(http_get(port_, "/healthz")).first, "");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -15,7 +15,7 @@
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using json = nlohmann::json;
@@ -168,5 +168,5 @@ TEST_F(StatusApiTest, ThePageAndItsEventStreamFollowTheDatagramsLive) {
               std::string::npos);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -19,7 +19,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using json = nlohmann::json;
@@ -135,5 +135,5 @@ TEST_F(StatusPageBrowserTest, ListsExchangesAHundredToAPageSearchedAndSortedByAC
     EXPECT_EQ(seen["errors"], json::array()) << output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -7,7 +7,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -67,5 +67,5 @@ TEST_F(SourceAndRateLimitTest, WritesBeyondTheTagRateAreRejected) {
         << results[1].dump();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -8,7 +8,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -142,5 +142,5 @@ TEST_F(HostileWriteTest, APayloadOverTheLimitSaysSo) {
               json({{"ok", false}, {"error", "payload too large (307201 bytes, limit 262144)"}}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

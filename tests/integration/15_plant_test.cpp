@@ -8,7 +8,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -164,5 +164,5 @@ TEST_F(PlantTest, NoTimestampIsTheReceiveTimeAndNoTimestampEverDropsADatagram) {
     EXPECT_EQ(status["clock"], "none");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

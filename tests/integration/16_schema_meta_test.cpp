@@ -17,7 +17,7 @@
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using nlohmann::json;
 using namespace std::chrono_literals;
@@ -197,5 +197,5 @@ TEST(Schemas, TheHistorianGuideAndTheApiExamplesMatchTheirSchemas) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

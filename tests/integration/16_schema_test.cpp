@@ -17,7 +17,7 @@
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -395,5 +395,5 @@ TEST(Schemas, RefusePayloadsThatBreakTheDocumentedFormat) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -8,10 +8,11 @@
 #include "tests/support/child_process.hpp"
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -71,7 +72,7 @@ protected:
 };
 
 TEST_F(OverlapTest, CheckNotesEachOverlapInTheByteMap) {
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", config_path_}, 10s);
+    const auto result = run_command({gateway_binary(), "check", "-c", config_path_}, 10s);
     EXPECT_EQ(result.status, 0) << result.output;
     for (const auto* note : {"note: RUN (0.0, bit) overlaps STATUS (0.0, word)",
                              "note: TRIP (1.7, bit) overlaps STATUS (0.0, word)",
@@ -143,5 +144,5 @@ TEST_F(OverlapTest, OneMessageSettingTwoOverlappingTagsChangesNothing) {
     EXPECT_EQ(produced("0.0", TagType::dint), Value{std::int64_t{0x00020000 + 1000}});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -9,10 +9,11 @@
 #include "tests/support/child_process.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -56,11 +57,11 @@ TEST(CommandsDiscover, DiscoverListsWhatTheSimulatorSendsAndItsYamlPassesCheck) 
                           .period_ms(250)
                           .key("signature", "\"2.1\"")
                           .str());
-    ChildProcess sim({EIP2MQTT_BINARY, "sim", "-c", config, "--duration", "120"});
+    ChildProcess sim({gateway_binary(), "sim", "-c", config, "--duration", "120"});
     ASSERT_TRUE(sim.wait_for_output("answering the command protocol", 20s)) << sim.output();
 
     const auto node = "127.0.0.1:" + port_text(commands_port);
-    const auto table = run_command({EIP2MQTT_BINARY, "discover", node}, 60s);
+    const auto table = run_command({gateway_binary(), "discover", node}, 60s);
     EXPECT_EQ(table.status, 0) << table.output;
     EXPECT_TRUE(contains(table.output, node + ": \"eip2mqtt sim ")) << table.output;
     EXPECT_TRUE(contains(table.output, "\", 2 exchanges\n")) << table.output;
@@ -71,11 +72,11 @@ TEST(CommandsDiscover, DiscoverListsWhatTheSimulatorSendsAndItsYamlPassesCheck) 
         has_row(table.output, "10.0.0.9 4 produced 250 16 127.0.0.1 " + data + " 2.1 active"))
         << table.output;
 
-    const auto yaml = run_command({EIP2MQTT_BINARY, "discover", node, "--yaml"}, 60s);
+    const auto yaml = run_command({gateway_binary(), "discover", node, "--yaml"}, 60s);
     EXPECT_EQ(yaml.status, 0) << yaml.output;
     const auto checked =
         dir.write("discovered.yaml", "mqtt: { url: tcp://127.0.0.1:1 }\n" + yaml.output);
-    const auto check = run_command({EIP2MQTT_BINARY, "check", "-c", checked}, 30s);
+    const auto check = run_command({gateway_binary(), "check", "-c", checked}, 30s);
     EXPECT_EQ(check.status, 0) << check.output << yaml.output;
     EXPECT_TRUE(contains(check.output,
                          "exchange 10.0.0.9-4: consume, producer 10.0.0.9, "
@@ -91,7 +92,7 @@ TEST(CommandsDiscover, ANodeThatDoesNotAnswerIsReportedAfterItsAttempts) {
     const auto silent = "127.0.0.1:" + port_text(free_udp_port());
     const auto started = std::chrono::steady_clock::now();
     const auto result = run_command(
-        {EIP2MQTT_BINARY, "discover", silent, "--timeout-ms", "100", "--attempts", "2"}, 30s);
+        {gateway_binary(), "discover", silent, "--timeout-ms", "100", "--attempts", "2"}, 30s);
     EXPECT_EQ(result.status, 1) << result.output;
     EXPECT_TRUE(contains(result.output, silent + ": no answer after 2 attempts of 100 ms"))
         << result.output;
@@ -118,7 +119,7 @@ TEST_F(DaemonDiscoverTest, DiscoverListsEveryConfiguredExchangeOfTheGateway) {
                   .str(),
           "", options);
     const auto node = "127.0.0.1:" + port_text(commands_port);
-    const auto table = run_command({EIP2MQTT_BINARY, "discover", node}, 60s);
+    const auto table = run_command({gateway_binary(), "discover", node}, 60s);
     EXPECT_EQ(table.status, 0) << table.output;
     EXPECT_TRUE(contains(table.output, node + ": \"eip2mqtt ")) << table.output;
     EXPECT_TRUE(contains(table.output, "\", 2 exchanges\n")) << table.output;
@@ -131,5 +132,5 @@ TEST_F(DaemonDiscoverTest, DiscoverListsEveryConfiguredExchangeOfTheGateway) {
         << table.output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -12,11 +12,12 @@
 #include "eip2mqtt/core/command/decode.hpp"
 #include "eip2mqtt/core/command/encode.hpp"
 #include "tests/support/child_process.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::command::PduType;
@@ -135,7 +136,7 @@ std::vector<std::byte> hostile(const core::command::Request& request) {
 
 TEST(CommandsHostileNode, WhatANodeToldIsEscapedOnTheTerminal) {
     FakeNode node(hostile);
-    const auto table = run_command({EIP2MQTT_BINARY, "discover", node.address()}, 60s);
+    const auto table = run_command({gateway_binary(), "discover", node.address()}, 60s);
     EXPECT_EQ(table.status, 1) << table.output;  // exchange 1 was not retrieved
     EXPECT_FALSE(contains(table.output, "\x1b")) << table.output;
     EXPECT_FALSE(contains(table.output, "\x9b")) << table.output;
@@ -147,7 +148,7 @@ TEST(CommandsHostileNode, WhatANodeToldIsEscapedOnTheTerminal) {
 
 TEST(CommandsHostileNode, ANakTextCannotWriteConfigurationIntoTheSkeleton) {
     FakeNode node(hostile);
-    const auto yaml = run_command({EIP2MQTT_BINARY, "discover", node.address(), "--yaml"}, 60s);
+    const auto yaml = run_command({gateway_binary(), "discover", node.address(), "--yaml"}, 60s);
     EXPECT_EQ(yaml.status, 1) << yaml.output;
     EXPECT_FALSE(contains(yaml.output, "\neip:")) << yaml.output;
     EXPECT_TRUE(contains(yaml.output, "): not retrieved: NAK x\\x0aeip: {commands:"))
@@ -156,7 +157,7 @@ TEST(CommandsHostileNode, ANakTextCannotWriteConfigurationIntoTheSkeleton) {
     TempDir dir;
     const auto file = dir.write("discovered.yaml", "mqtt: { url: tcp://127.0.0.1:1 }\n" +
                                                        yaml.output + "eip: { bind: 127.0.0.1 }\n");
-    const auto check = run_command({EIP2MQTT_BINARY, "check", "-c", file}, 30s);
+    const auto check = run_command({gateway_binary(), "check", "-c", file}, 30s);
     EXPECT_EQ(check.status, 0) << check.output << yaml.output;
     EXPECT_TRUE(contains(check.output, "exchange 10.0.0.9-2: consume")) << check.output;
 }
@@ -174,7 +175,7 @@ TEST(CommandsHostileNode, ARetrieveAnswerForAnotherExchangeIsNotTaken) {
                 return {};
         }
     });
-    const auto yaml = run_command({EIP2MQTT_BINARY, "discover", node.address(), "--yaml",
+    const auto yaml = run_command({gateway_binary(), "discover", node.address(), "--yaml",
                                    "--timeout-ms", "200", "--attempts", "2"},
                                   60s);
     EXPECT_EQ(yaml.status, 1) << yaml.output;
@@ -185,5 +186,5 @@ TEST(CommandsHostileNode, ARetrieveAnswerForAnotherExchangeIsNotTaken) {
     EXPECT_TRUE(contains(yaml.output, "answers to another request ignored")) << yaml.output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

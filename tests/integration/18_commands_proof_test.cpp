@@ -13,9 +13,10 @@
 #include "tests/support/child_process.hpp"
 #include "tests/support/command_client.hpp"
 #include "tests/support/exchange_yaml.hpp"
+#include "tests/support/gateway_binary.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::command::CommandStatus;
@@ -136,7 +137,7 @@ TEST_F(CommandsProofTest, AllowWrittenEmptyAnswersNobodyAndCheckSaysSo) {
                           500ms)
                      .has_value());
     commands_metrics([](const json& m) { return m["commands"]["refused"] == 1; });
-    const auto check = run_command({EIP2MQTT_BINARY, "check", "-c", config_path_}, 30s);
+    const auto check = run_command({gateway_binary(), "check", "-c", config_path_}, 30s);
     EXPECT_EQ(check.status, 0) << check.output;
     EXPECT_NE(check.output.find(": warning: eip.commands.allow is empty: the command port answers "
                                 "nobody"),
@@ -158,5 +159,5 @@ TEST_F(CommandsProofTest, AWriteTheValueChecksRefuseIsCountedByItsReason) {
     EXPECT_EQ(read_speed(client), 3000u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -15,7 +15,7 @@
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::command::CommandStatus;
@@ -165,5 +165,5 @@ TEST_F(CommandsTest, AFloodOverTheRateLimitIsBoundedAndCounted) {
     EXPECT_EQ(responses, answered);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

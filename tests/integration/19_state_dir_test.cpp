@@ -11,11 +11,12 @@
 
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/tmpfs.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -33,7 +34,7 @@ std::string configuration(const std::string& id, const std::string& state_dir) {
 }
 
 RunResult run(const std::string& config_path, std::vector<std::string> prefix = {}) {
-    prefix.insert(prefix.end(), {EIP2MQTT_BINARY, "run", "-c", config_path});
+    prefix.insert(prefix.end(), {gateway_binary(), "run", "-c", config_path});
     return run_command(std::move(prefix), 10s);
 }
 
@@ -104,5 +105,5 @@ TEST_F(StateDirTest, AStateDirThatCannotBeCreatedIsRefusedAtStart) {
         << result.output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -13,7 +13,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -324,5 +324,5 @@ TEST_F(FaultsTest, TruncatedDataIsRejectedAsLengthMismatch) {
     for (const auto v : values_of("VALUE")) EXPECT_EQ(v, 1000);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

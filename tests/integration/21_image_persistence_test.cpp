@@ -20,7 +20,7 @@
 #include "tests/support/tmpfs.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using nlohmann::json;
 using namespace std::chrono_literals;
@@ -202,5 +202,5 @@ TEST_F(ImagePersistenceTest, AReloadCarriesTheRunningImageOverWhateverTheFileHol
     EXPECT_EQ(next_value(), 7);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -13,7 +13,7 @@
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -185,5 +185,5 @@ TEST_F(ArrayStringWritesTest, BadShapesTextsAndElementsAreRefusedWithTheirReason
     EXPECT_EQ(field(0, 12), std::string("\0\0\0\0\0\0S-1\0\0\0", 12));  // nothing changed
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

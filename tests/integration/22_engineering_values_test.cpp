@@ -15,7 +15,7 @@
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -212,5 +212,5 @@ TEST_F(EngineeringValuesTest, SparkplugBirthsCarryUnitsAndTheRangeAsDoubles) {
     EXPECT_FALSE(oil["properties"].contains("engLow"));  // gain and offset have no range
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

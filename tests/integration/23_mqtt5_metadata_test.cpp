@@ -11,7 +11,7 @@
 #include "tests/support/mqtt_relay.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -146,5 +146,5 @@ TEST_F(Mqtt5MetadataTest, ATopicIsNamedOncePerConnectionThenSentByItsAlias) {
     EXPECT_FALSE(again[1].first);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -10,7 +10,7 @@
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -109,5 +109,5 @@ TEST_F(PayloadProfilesTest, ValuePublishesTheBareValueAndTakesTextBack) {
     EXPECT_EQ(json::parse(write_result("sp/SPEED_SP/set", "fast"))["ok"], false);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -11,7 +11,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -94,5 +94,5 @@ TEST_F(TopicLayoutTest, AWriteOnAnAssetPathsSetReachesTheProducedDatagram) {
     expect_field(topic("turbine-hall/t1/SPEED_SP"), "value", "2500.0");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

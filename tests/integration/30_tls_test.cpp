@@ -15,7 +15,7 @@
 #include "tests/support/tls_certs.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using namespace std::chrono_literals;
@@ -188,5 +188,5 @@ TEST_F(TlsTest, AReloadThatChangesATlsFileIsRefusedAndNamesIt) {
     expect_field(topic("area/pump/SPEED"), "value", "1451.5");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

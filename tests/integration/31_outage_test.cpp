@@ -17,7 +17,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -247,5 +247,5 @@ TEST_F(OutageTest, ExpiredWriteIsDroppedByTheBroker) {
     EXPECT_EQ(tag(bytes, "4.0", TagType::int_), Value{std::int64_t{17}});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

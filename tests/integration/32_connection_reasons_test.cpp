@@ -12,11 +12,12 @@
 #include "tests/support/child_process.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/scripted_broker.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -36,7 +37,7 @@ ChildProcess gateway_for(const TempDir& dir, const std::string& url,
                             "\n  client_id: shared-id\n  base_topic: test\neip:\n"
                             "  bind: 127.0.0.1\n  port: " +
                             std::to_string(free_udp_port()) + "\nexchanges:\n" + one_exchange);
-    return ChildProcess({EIP2MQTT_BINARY, "run", "-c", config});
+    return ChildProcess({gateway_binary(), "run", "-c", config});
 }
 
 const std::string refused_mqtt5 = "the broker refused MQTT 5";
@@ -96,5 +97,5 @@ TEST_F(SharedClientIdTest, ASecondClientWithTheSameIdIsNamedAsTheCause) {
     twin.wait(10s);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

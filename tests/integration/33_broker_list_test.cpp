@@ -9,7 +9,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -98,5 +98,5 @@ TEST_F(BrokerListTest, TheTreeFollowsTheGatewayToTheNextBrokerAndBack) {
     expect_tree_on(broker_->url(), 2);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

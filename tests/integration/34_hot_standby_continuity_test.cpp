@@ -24,7 +24,7 @@
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using json = nlohmann::json;
@@ -249,5 +249,5 @@ TEST_F(HotStandbyContinuityTest, AWriteInFlightWhenTheLeaderDiesIsAnsweredOnceAn
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

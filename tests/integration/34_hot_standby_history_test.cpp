@@ -26,7 +26,7 @@
 #include "tests/support/tcp_proxy.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using json = nlohmann::json;
@@ -321,5 +321,5 @@ TEST_F(CutOffHistoryTest, AUnitThatLedCutOffNeverReplaysOnceThePathIsBack) {
     expect_historical(recorder_->messages());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -19,7 +19,7 @@
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using json = nlohmann::json;
@@ -226,5 +226,5 @@ TEST_F(HotStandbySparkplugTest, ALeaderThatStepsDownEndsItsSessionWithItsOwnNdea
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -22,7 +22,7 @@
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using json = nlohmann::json;
@@ -354,5 +354,5 @@ TEST_F(CutOffHotStandbyTest, AStandbyCutOffFromTheBrokerNeverDeposesTheLeaderOnc
     EXPECT_LE(runs(), leaderships());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -10,7 +10,7 @@
 #include "tests/support/tcp_proxy.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using json = nlohmann::json;
@@ -86,5 +86,5 @@ TEST_F(CutOffWritesTest, AWriteQueuedOnALeaderCutOffIsAnsweredOnceByTheUnitThatT
         << "the write was answered by both units";
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -15,7 +15,7 @@
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -310,11 +310,11 @@ TEST_F(SparkplugTest, ACleanStopEndsWithNdeathAndAKillLeavesTheWill) {
     EXPECT_EQ(tahu_metric(will, "bdSeq")["value"], tahu_metric(second, "bdSeq")["value"]);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST_F(SparkplugTest, WithoutTheUnsTheJsonTreeIsSilentButAvailabilityStays) {
     start_node("  uns: false\n");
@@ -336,5 +336,5 @@ TEST_F(SparkplugTest, WithoutTheUnsTheJsonTreeIsSilentButAvailabilityStays) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -26,7 +26,7 @@
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -250,5 +250,5 @@ TEST_F(StoreAndForwardTest, ADamagedJournalIsSetAsideAndTheGatewayStarts) {
     expect_each_value_once(last);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -24,7 +24,7 @@
 #include "tests/support/tmpfs.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using nlohmann::json;
@@ -386,5 +386,5 @@ TEST_F(HistoryOutagesSparkplugTest, AnNdeathInTheMiddleOfTheReplayLosesNothing) 
     expect_every_journaled_sample_as_sparkplug_history(300);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -23,7 +23,7 @@
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -364,5 +364,5 @@ TEST_F(SparkplugStormTest, AFlappingPrimaryHostSeesEachNdeathBeforeTheNextNbirth
     EXPECT_FALSE(born);  // the clean stop's NDEATH is the last
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

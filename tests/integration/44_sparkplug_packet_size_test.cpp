@@ -10,12 +10,13 @@
 
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/schema_check.hpp"
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -150,7 +151,7 @@ TEST_F(SparkplugPacketSizeTest, CheckEstimatesEachBirthAndWarnsOfOneOverMaxPacke
                                    "gateway:\n  id: gw\nsparkplug:\n  group_id: plant1\n"
                                    "  max_packet_bytes: 20000\nexchanges:\n" +
                                        big_exchange() + small_exchange());
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", config}, 60s);
+    const auto result = run_command({gateway_binary(), "check", "-c", config}, 60s);
     EXPECT_EQ(result.status, 0) << result.output;
     EXPECT_NE(result.output.find("sparkplug NBIRTH: at most "), std::string::npos);
     EXPECT_NE(result.output.find("warning: the Sparkplug DBIRTH may take "), std::string::npos)
@@ -172,7 +173,7 @@ TEST_F(SparkplugPacketSizeTest, CheckRefusesAnExchangeNameThatMakesASparkplugTop
                                         .topic("short")
                                         .tag("PV", "0.0", "int")
                                         .str());
-    const auto result = run_command({EIP2MQTT_BINARY, "check", "-c", config}, 60s);
+    const auto result = run_command({gateway_binary(), "check", "-c", config}, 60s);
     EXPECT_EQ(result.status, 1) << result.output.substr(0, 2000);
     EXPECT_NE(result.output.find("makes topic 'spBv1.0/{group_id}/DBIRTH/{edge_node_id}/"
                                  "{exchange}' 70025 bytes long (MQTT allows 65535)"),
@@ -180,5 +181,5 @@ TEST_F(SparkplugPacketSizeTest, CheckRefusesAnExchangeNameThatMakesASparkplugTop
         << result.output.substr(0, 2000);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

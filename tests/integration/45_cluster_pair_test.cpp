@@ -18,7 +18,7 @@
 #include "tests/support/pair_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -103,5 +103,5 @@ TEST_F(EjabberdClusterPairTest, TheLeadersNodeKilledOneUnitLeadsOnThroughTheClus
     EXPECT_TRUE(capture_.receive(10s).has_value()) << "nothing produced after the move";
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

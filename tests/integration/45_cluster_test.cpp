@@ -21,7 +21,7 @@
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -243,5 +243,5 @@ TEST_P(ClusterProducingTest, TheEdgeNodeStartsItsNextSessionWhereTheBrokerLetsIt
 INSTANTIATE_TEST_SUITE_P(Brokers, ClusterProducingTest,
                          testing::Values(Kind::ejabberd, Kind::rabbitmq), kind_name);
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -15,7 +15,7 @@
 #include "tests/support/store_and_forward_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using nlohmann::json;
 using namespace std::chrono_literals;
@@ -174,5 +174,5 @@ TEST_F(SeveralBrokersWriteTest, AWriteIsAnsweredOnTheConnectionItCameThrough) {
            }();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -11,10 +11,11 @@
 #include <sstream>
 
 #include "tests/support/child_process.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -42,7 +43,7 @@ RunResult shell(const std::string& command, std::chrono::milliseconds timeout = 
 
 /// The version the binary under test reports: "eip2mqtt 0.1.0".
 std::string binary_version() {
-    const auto result = run_command({EIP2MQTT_BINARY, "--version"}, 10s);
+    const auto result = run_command({gateway_binary(), "--version"}, 10s);
     return result.output.substr(result.output.find(' ') + 1,
                                 result.output.find('\n') - result.output.find(' ') - 1);
 }
@@ -51,7 +52,7 @@ class PackageTest : public ::testing::Test {
 protected:
     /// Builds the package into dir_ and extracts it into dir_/root.
     void SetUp() override {
-        const std::string build_dir = std::filesystem::path(EIP2MQTT_BINARY).parent_path();
+        const std::string build_dir = std::filesystem::path(gateway_binary()).parent_path();
         const auto built =
             run_command({std::string(EIP2MQTT_SOURCE_DIR) + "/tools/package.sh", "--build-dir",
                          build_dir, "--out", dir_.path(), "--no-build"},
@@ -126,7 +127,7 @@ void PackageTest::expect_stripped_binary() const {
     ASSERT_EQ(sections.status, 0) << sections.output;
     EXPECT_EQ(sections.output.find(".debug_"), std::string::npos) << sections.output;
     EXPECT_EQ(sections.output.find(".symtab"), std::string::npos) << sections.output;
-    EXPECT_LT(std::filesystem::file_size(binary), std::filesystem::file_size(EIP2MQTT_BINARY));
+    EXPECT_LT(std::filesystem::file_size(binary), std::filesystem::file_size(gateway_binary()));
     const auto version = run_command({binary, "--version"}, 10s);
     EXPECT_EQ(version.status, 0) << version.output;
     EXPECT_EQ(version.output, "eip2mqtt " + binary_version() + "\n");
@@ -195,5 +196,5 @@ TEST_F(PackageTest, LintianFindsNoErrorAndTheReadmeExplainsEachWarning) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

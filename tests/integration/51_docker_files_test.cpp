@@ -13,9 +13,10 @@
 #include <vector>
 
 #include "tests/support/child_process.hpp"
+#include "tests/support/gateway_binary.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -60,7 +61,7 @@ TEST(DockerFiles, TheRuntimeImageInstallsEveryLibraryTheBinaryLinks) {
     const std::set<std::string> in_base_image{"libc6", "libstdc++6", "libgcc-s1"};
     const std::regex sanitizer_runtime("lib(a|ub|l|t)san\\.so.*");
     std::vector<std::string> libraries;
-    for (const auto& library : needed_libraries(EIP2MQTT_BINARY)) {
+    for (const auto& library : needed_libraries(gateway_binary())) {
         if (!std::regex_match(library, sanitizer_runtime)) libraries.push_back(library);
     }
     ASSERT_FALSE(libraries.empty());
@@ -97,7 +98,7 @@ TEST(DockerFiles, ComposeRunsTheOneExampleConfigurationOnTheHostsNetwork) {
     EXPECT_NE(compose.find("../etc/eip2mqtt:/etc/eip2mqtt:ro"), std::string::npos) << compose;
     EXPECT_NE(compose.find(R"("-c", "/etc/eip2mqtt/eip2mqtt.yaml")"), std::string::npos);
     const auto example = source_dir + "/etc/eip2mqtt/eip2mqtt.yaml";
-    const auto check = run_command({EIP2MQTT_BINARY, "check", "-c", example}, 30s);
+    const auto check = run_command({gateway_binary(), "check", "-c", example}, 30s);
     EXPECT_EQ(check.status, 0) << check.output;
 
     // Broadcast and multicast never cross a bridge: each service on the host's network, and
@@ -140,5 +141,5 @@ TEST(DockerFiles, TheHealthCheckAsksTheExamplesMetricsListener) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -8,14 +8,15 @@
 #include <vector>
 
 #include "tests/support/child_process.hpp"
+#include "tests/support/gateway_binary.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
 TEST(LinkedLibraries, SqliteIsLoadedByTheJournalNotWithTheGateway) {
-    const auto libraries = needed_libraries(EIP2MQTT_BINARY);
+    const auto libraries = needed_libraries(gateway_binary());
     ASSERT_FALSE(libraries.empty());
     for (const auto& library : libraries) {
         EXPECT_EQ(library.find("libsqlite3"), std::string::npos) << library;
@@ -23,7 +24,7 @@ TEST(LinkedLibraries, SqliteIsLoadedByTheJournalNotWithTheGateway) {
 }
 
 TEST(LinkedLibraries, LibpcapIsLoadedBySniffNotWithTheGateway) {
-    const auto libraries = needed_libraries(EIP2MQTT_BINARY);
+    const auto libraries = needed_libraries(gateway_binary());
     ASSERT_FALSE(libraries.empty());
     for (const auto& library : libraries) {
         EXPECT_EQ(library.find("libpcap"), std::string::npos) << library;
@@ -31,5 +32,5 @@ TEST(LinkedLibraries, LibpcapIsLoadedBySniffNotWithTheGateway) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

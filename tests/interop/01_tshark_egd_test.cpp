@@ -13,7 +13,7 @@
 #include "tests/support/pcap_writer.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -94,5 +94,5 @@ TEST_F(TsharkInterop, EgdDissectorDecodesTheProducedHeader) {
     EXPECT_EQ(fields[8], "0");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

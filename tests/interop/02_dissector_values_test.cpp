@@ -15,7 +15,7 @@
 #include "tests/support/tshark.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::TagType;
@@ -185,5 +185,5 @@ TEST_F(DissectorValues, TsharkDecodesTheGatewaysOwnProducedDatagramAsItPublished
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -7,12 +7,13 @@
 #include <vector>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/pcap_writer.hpp"
 #include "tests/support/tshark.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -56,7 +57,7 @@ protected:
         const auto config = dir_.write("expert.yaml", config_text);
         plugin_ = dir_.path() + "/eip2mqtt.lua";
         const auto result =
-            run_command({EIP2MQTT_BINARY, "dissector", "-c", config, "-o", plugin_}, 30s);
+            run_command({gateway_binary(), "dissector", "-c", config, "-o", plugin_}, 30s);
         ASSERT_EQ(result.status, 0) << result.output;
     }
 
@@ -139,5 +140,5 @@ TEST_F(DissectorExpert, AnExchangeNobodyConfigured) {
                   "", "No configured exchange has producer id 10.0.0.9 and exchange id 99"}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -7,12 +7,13 @@
 #include <vector>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/pcap_writer.hpp"
 #include "tests/support/tshark.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -48,7 +49,7 @@ TEST(DissectorStatistics, CountsWhatWasSentPerExchange) {
         "  - { name: pump, producer_id: 10.0.0.9, exchange_id: 5, length: 8, period_ms: 100,\n"
         "      timeout_ms: 0 }\n");
     const auto plugin = dir.path() + "/eip2mqtt.lua";
-    const auto made = run_command({EIP2MQTT_BINARY, "dissector", "-c", config, "-o", plugin}, 30s);
+    const auto made = run_command({gateway_binary(), "dissector", "-c", config, "-o", plugin}, 30s);
     ASSERT_EQ(made.status, 0) << made.output;
 
     // pump: request ids 1-5 every 100 ms, 8 at 700 ms (6 and 7 missed), 8 again at 710 ms (a
@@ -85,5 +86,5 @@ TEST(DissectorStatistics, CountsWhatWasSentPerExchange) {
         << result.output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -9,12 +9,13 @@
 
 #include "tests/core/command/command_vectors.hpp"
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/pcap_writer.hpp"
 #include "tests/support/tshark.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 namespace v = command_vectors;
@@ -100,7 +101,7 @@ TEST(DissectorCommands, DecodesEveryPduOfTheProtocolPage) {
                   "  base_topic: test\nexchanges:\n"
                   "  - { name: any, producer_id: 10.0.0.5, exchange_id: 7, length: 8 }\n");
     const auto plugin = dir.path() + "/eip2mqtt.lua";
-    const auto made = run_command({EIP2MQTT_BINARY, "dissector", "-c", config, "-o", plugin}, 30s);
+    const auto made = run_command({gateway_binary(), "dissector", "-c", config, "-o", plugin}, 30s);
     ASSERT_EQ(made.status, 0) << made.output;
 
     const auto pcap_path = dir.path() + "/commands.pcap";
@@ -129,5 +130,5 @@ TEST(DissectorCommands, DecodesEveryPduOfTheProtocolPage) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -8,12 +8,13 @@
 #include <vector>
 
 #include "tests/support/datagram_builder.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/pcap_writer.hpp"
 #include "tests/support/tshark.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::TagType;
@@ -26,7 +27,7 @@ const std::string header =
 std::string write_plugin(const TempDir& dir, const std::string& config_text) {
     const auto config = dir.write("plant.yaml", config_text);
     const auto plugin = dir.path() + "/eip2mqtt.lua";
-    const auto made = run_command({EIP2MQTT_BINARY, "dissector", "-c", config, "-o", plugin}, 60s);
+    const auto made = run_command({gateway_binary(), "dissector", "-c", config, "-o", plugin}, 60s);
     EXPECT_EQ(made.status, 0) << made.output;
     return plugin;
 }
@@ -127,5 +128,5 @@ TEST(DissectorScale, AThousandExchangesAndAHundredThousandDatagrams) {
     EXPECT_EQ(rows, static_cast<std::size_t>(exchanges));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -12,12 +12,13 @@
 
 #include "tests/support/dissector_values.hpp"
 #include "tests/support/exchange_yaml.hpp"
+#include "tests/support/gateway_binary.hpp"
 #include "tests/support/gateway_fixture.hpp"
 #include "tests/support/pcap_writer.hpp"
 #include "tests/support/tshark.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::TagType;
@@ -61,7 +62,7 @@ protected:
     /// socket of the test's (not to the gateway).
     std::vector<Captured> capture_sim(std::size_t count) {
         UdpClient capture;
-        ChildProcess sim({EIP2MQTT_BINARY, "sim", "-c", config_path_, "--port",
+        ChildProcess sim({gateway_binary(), "sim", "-c", config_path_, "--port",
                           std::to_string(capture.port()), "--commands-port", "0"});
         std::vector<Captured> captured;
         while (captured.size() < count) {
@@ -138,5 +139,5 @@ TEST_F(DissectorSimCapture, TsharkDecodesEveryTagOfTheSimulatorAsTheGatewayPubli
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -19,7 +19,7 @@
 #include "tests/support/tshark.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr std::uint16_t data_port = 18246;
 
@@ -215,5 +215,5 @@ INSTANTIATE_TEST_SUITE_P(DataPort, DissectorVectors, ::testing::ValuesIn(data_ve
 INSTANTIATE_TEST_SUITE_P(Refused, DissectorVectors, ::testing::ValuesIn(refused_vectors()),
                          [](const auto& info) { return info.param.name; });
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

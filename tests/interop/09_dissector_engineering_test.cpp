@@ -14,7 +14,7 @@
 #include "tests/support/tshark.hpp"
 
 namespace eip2mqtt::test {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -138,5 +138,5 @@ TEST_F(DissectorEngineering, TsharkShowsEachElementOfAnArrayAndTheTextOfAString)
     EXPECT_EQ(row[5], "5,10") << decoded.output;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::test

@@ -15,6 +15,7 @@
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/forged_sender.hpp"
+#include "tests/support/gateway_binary.hpp"
 
 namespace eip2mqtt::test {
 namespace {
@@ -131,7 +132,7 @@ void ChaosRig::start_unit(int unit) {
     if (gateways_[unit]) earlier_logs_[unit] += gateways_[unit]->output() + "--- killed ---\n";
     const auto path = dir_.write(chaos_unit_ids[unit] + ".yaml", unit_config(unit));
     gateways_[unit] =
-        std::make_unique<ChildProcess>(units_[unit]->inside({EIP2MQTT_BINARY, "run", "-c", path}));
+        std::make_unique<ChildProcess>(units_[unit]->inside({gateway_binary(), "run", "-c", path}));
 }
 
 std::string ChaosRig::settle() {

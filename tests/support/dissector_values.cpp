@@ -4,13 +4,14 @@
 #include <cstdio>
 
 #include "tests/support/child_process.hpp"
+#include "tests/support/gateway_binary.hpp"
 
 namespace eip2mqtt::test {
 
 std::string write_dissector(const std::string& config_path, const std::string& dir) {
     const auto plugin = dir + "/eip2mqtt.lua";
-    const auto result = run_command({EIP2MQTT_BINARY, "dissector", "-c", config_path, "-o", plugin},
-                                    std::chrono::seconds(30));
+    const auto result = run_command(
+        {gateway_binary(), "dissector", "-c", config_path, "-o", plugin}, std::chrono::seconds(30));
     EXPECT_EQ(result.status, 0) << result.output;
     return plugin;
 }

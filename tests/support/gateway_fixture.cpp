@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "tests/support/free_port.hpp"
+#include "tests/support/gateway_binary.hpp"
 
 namespace eip2mqtt::test {
 
@@ -90,7 +91,7 @@ void GatewayTest::start_gateway() {
     auto env = gateway_env_;
     env.insert(options_.env.begin(), options_.env.end());
     gateway_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", config_path_}, std::move(env));
+        std::vector<std::string>{gateway_binary(), "run", "-c", config_path_}, std::move(env));
     if (options_.wait_online) wait_online(from);
 }
 

@@ -7,6 +7,7 @@
 
 #include "tests/support/exchange_yaml.hpp"
 #include "tests/support/free_port.hpp"
+#include "tests/support/gateway_binary.hpp"
 
 namespace eip2mqtt::test {
 
@@ -51,7 +52,7 @@ void PairTest::start_units(
 void PairTest::start_unit(const std::string& id, const std::string& config) {
     const auto path = dir_.write(id + ".yaml", config);
     gateways_[id] = std::make_unique<ChildProcess>(
-        std::vector<std::string>{EIP2MQTT_BINARY, "run", "-c", path});
+        std::vector<std::string>{gateway_binary(), "run", "-c", path});
 }
 
 bool PairTest::says(const std::string& id, const std::string& role, std::size_t from,

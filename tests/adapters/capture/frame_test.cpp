@@ -11,7 +11,7 @@
 #include "tests/support/enumerators.hpp"
 
 namespace eip2mqtt::adapters::capture {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using Bytes = std::vector<std::byte>;
 
@@ -127,5 +127,5 @@ TEST(CaptureFrame, SaysWhyAFrameHasNoDatagram) {
 
 TEST(FrameSkip, EveryReasonHasAName) { test::expect_every_value_named(frame_skip_names); }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::capture

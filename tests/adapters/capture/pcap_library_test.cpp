@@ -8,7 +8,7 @@
 #include <string>
 
 namespace eip2mqtt::adapters::capture::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(PcapLibrary, TheSonameIsLibpcaps) {
     EXPECT_EQ(std::string(pcap_soname()).rfind("libpcap.so.", 0), 0u) << pcap_soname();
@@ -38,5 +38,5 @@ TEST(PcapLibrary, EveryFunctionACaptureCallsIsResolvedOnce) {
     EXPECT_STREQ(pcap.statustostr(PCAP_ERROR_NO_SUCH_DEVICE), "No such device exists");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::capture::detail

@@ -15,7 +15,7 @@
 #include "tests/support/tmpfs.hpp"
 
 namespace eip2mqtt::adapters::history {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using test::Tmpfs;
@@ -178,5 +178,5 @@ TEST_F(JournalSymlinkTest, ASymbolicLinkBesideTheJournalIsNeverWrittenThrough) {
     EXPECT_EQ(journal->oldest(10).size(), 2u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::history

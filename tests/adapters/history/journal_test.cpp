@@ -15,7 +15,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::history {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 
@@ -185,5 +185,5 @@ TEST_F(JournalTest, AnotherApplicationsDatabaseIsNeverTakenForAJournal) {
     EXPECT_EQ(journal->stats().entries, 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::history

@@ -12,7 +12,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::history {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 
@@ -64,5 +64,5 @@ TEST_F(JournalWriterTest, BatchesAreAppendedInOrderAndSurviveTheWriter) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::history

@@ -11,7 +11,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::history {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::Value;
 
@@ -68,5 +68,5 @@ TEST(SampleCodec, BytesThatAreNotOursAreAnError) {
     EXPECT_TRUE(decode_samples("").ok());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::history

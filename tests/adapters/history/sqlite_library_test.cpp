@@ -8,7 +8,7 @@
 #include <string>
 
 namespace eip2mqtt::adapters::history::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(SqliteLibrary, TheSonameIsSqlites) {
     EXPECT_EQ(std::string(sqlite_soname()).rfind("libsqlite3.so.", 0), 0u) << sqlite_soname();
@@ -34,5 +34,5 @@ TEST(SqliteLibrary, ACallThroughTheTableReachesSqlite) {
     library.close(db);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::history::detail

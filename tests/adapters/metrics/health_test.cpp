@@ -7,7 +7,7 @@
 #include <string>
 
 namespace eip2mqtt::adapters::metrics {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using Clock = HealthState::Clock;
@@ -103,5 +103,5 @@ TEST(HealthState, ALoopThatStopsReportingIsNeitherLiveNorReady) {
     EXPECT_EQ(health.liveness(t0 + 13s).status, 200);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::metrics

@@ -16,7 +16,7 @@
 #include "tests/support/tls_certs.hpp"
 
 namespace eip2mqtt::adapters::metrics {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::http_request;
 using test::status_and_body;
@@ -114,5 +114,5 @@ TEST_F(ListenerTlsTest, AKeyThatIsNotTheCertificatesIsAStartUpErrorThatSaysSo) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::metrics

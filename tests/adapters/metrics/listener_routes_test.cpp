@@ -18,7 +18,7 @@
 #include "tests/support/http_get.hpp"
 
 namespace eip2mqtt::adapters::metrics {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using test::http_get;
@@ -193,5 +193,5 @@ TEST(EventStream, StreamsWhatItsSourceGivesUntilThePagesStop) {
     EXPECT_TRUE(page.closed_by_server(10000));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::metrics

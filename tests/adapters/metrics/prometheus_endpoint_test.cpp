@@ -8,7 +8,7 @@
 #include "tests/support/http_get.hpp"
 
 namespace eip2mqtt::adapters::metrics {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::http_get;
 
@@ -226,5 +226,5 @@ TEST(PrometheusEndpoint, APortInUseIsAClearStartUpError) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::metrics

@@ -4,7 +4,7 @@
 #include "tests/adapters/mqtt/client_fixture.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace test_support;
 
@@ -66,5 +66,5 @@ TEST_F(ClientFixture, NoBrokerWhileDisconnected) {
     EXPECT_EQ(on_loop([&] { return client_->stats(); }).broker, "");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt

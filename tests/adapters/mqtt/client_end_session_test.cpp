@@ -8,7 +8,7 @@
 #include "tests/support/tcp_proxy.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace test_support;
 
@@ -101,5 +101,5 @@ TEST_F(ClientFixture, AnEndedSessionDropsWhatWaitedInsteadOfFlushingIt) {
     EXPECT_LE(recorder.messages_on("gw/data").size(), published - stats.discarded + 1);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt

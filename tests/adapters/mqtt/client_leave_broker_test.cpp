@@ -9,7 +9,7 @@
 #include "tests/adapters/mqtt/client_fixture.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace test_support;
 
@@ -88,5 +88,5 @@ TEST_F(ClientLeaveBrokerTest, LeavingSaysTheWillThereAndConnectsToTheNextBrokerW
     EXPECT_EQ(on_loop([&] { return client_->stats(); }).broker, first.url());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt

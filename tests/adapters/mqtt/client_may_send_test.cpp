@@ -9,7 +9,7 @@
 #include "tests/support/tcp_proxy.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace test_support;
 
@@ -43,5 +43,5 @@ TEST_F(ClientFixture, WhatMaySendNoLongerAllowsIsDroppedWhenTakenEvenIfItWaitedB
     EXPECT_EQ(client_->stats().queued, 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt

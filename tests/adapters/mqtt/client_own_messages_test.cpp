@@ -8,7 +8,7 @@
 #include "tests/adapters/mqtt/client_fixture.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace test_support;
 
@@ -72,5 +72,5 @@ TEST_F(OwnMessagesTest, WithRetainAsPublishedTheLiveCopyKeepsItsFlag) {
     EXPECT_TRUE(heard_back(true).retained);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt

@@ -4,7 +4,7 @@
 #include "tests/adapters/mqtt/client_fixture.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace test_support;
 
@@ -295,5 +295,5 @@ TEST_F(ClientFixture, APublicationTheBrokerClosesTheConnectionOnIsDroppedAfterOn
     EXPECT_TRUE(recorder.messages_on("gw/big").empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt

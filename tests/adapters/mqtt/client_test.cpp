@@ -4,7 +4,7 @@
 #include "tests/adapters/mqtt/client_fixture.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace test_support;
 
@@ -218,5 +218,5 @@ TEST_F(ClientFixture, BuffersWhileBrokerIsDownAndDeliversInOrder) {
     EXPECT_EQ(stats.dropped_overflow, 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt

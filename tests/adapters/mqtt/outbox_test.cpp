@@ -9,7 +9,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 Message message(std::string topic, std::string payload, bool batch = false) {
     Message m;
@@ -145,5 +145,5 @@ TEST(Outbox, MemoryIsGivenBackOnlyOnceABacklogPastTheThresholdHasDrained) {
     EXPECT_FALSE(outbox.release_after_backlog(50));  // once per backlog
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

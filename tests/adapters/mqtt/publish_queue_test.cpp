@@ -6,7 +6,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 Message msg(std::string topic, std::string payload, bool coalesce = true) {
     Message m;
@@ -203,5 +203,5 @@ TEST(PublishQueue, CoalescesShortTopicsAcrossGrowth) {
     EXPECT_EQ(out.back(), "t99=2");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt

@@ -16,7 +16,7 @@
 #include "tests/support/count_allocations.hpp"
 
 namespace eip2mqtt::adapters::mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::allocations_during;
 
@@ -94,5 +94,5 @@ TEST(SteadyState, ClientPublishAllocatesNothingOnceItsTopicsAreQueued) {
     client.stop(std::chrono::milliseconds(0));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt

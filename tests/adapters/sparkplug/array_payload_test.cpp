@@ -11,7 +11,7 @@
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::adapters::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -96,5 +96,5 @@ TEST(SparkplugStrings, TahuReadsAStringTagsText) {
     EXPECT_EQ(tahu["metrics"][0]["value"], "B-\xC3\xA9 17");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::sparkplug

@@ -15,7 +15,7 @@
 #include "tests/support/tahu.hpp"
 
 namespace eip2mqtt::adapters::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::plan::Value;
@@ -198,5 +198,5 @@ TEST(SparkplugCommand, HostileBytesAreAnErrorNotACrash) {
     EXPECT_TRUE(decode_command("").ok());  // an empty payload: no metric
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::sparkplug

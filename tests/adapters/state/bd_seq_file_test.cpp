@@ -13,7 +13,7 @@
 #include <string>
 
 namespace eip2mqtt::adapters::state {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 
@@ -69,5 +69,5 @@ TEST_F(BdSeqFileTest, ADirectoryItCannotWriteInLeavesTheOldValueAndGoesOn) {
     EXPECT_EQ(file.read(), 7);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::state

@@ -20,7 +20,7 @@
 #include "tests/support/tmpfs.hpp"
 
 namespace eip2mqtt::adapters::state {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 
@@ -183,5 +183,5 @@ TEST_F(ImageFileTest, AFileRemovedOnAFullDiskIsWrittenAgainInTheRoomItLeaves) {
     EXPECT_EQ(ImageFile(path, "sp", fingerprint, length).loaded(), image(2));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::state

@@ -18,7 +18,7 @@
 #include "eip2mqtt/core/plan/tag_type.hpp"
 
 namespace eip2mqtt::adapters::state {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 
@@ -166,5 +166,5 @@ TEST_F(ImagePersisterTest, ADetachedOrUnattendedSaveIsHeardByNobodyButStillReach
     EXPECT_EQ(store.load(c), bytes(9, 9, 9, 9));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::state

@@ -16,7 +16,7 @@
 #include "eip2mqtt/core/plan/tag_type.hpp"
 
 namespace eip2mqtt::adapters::state {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using core::plan::TagType;
@@ -220,5 +220,5 @@ TEST_F(ImageStoreTest, SaveFailsNamingTheFileWhenTheDirectoryIsMissing) {
                           ": No such file or directory");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::state

@@ -18,7 +18,7 @@
 #include "tests/support/tmpfs.hpp"
 
 namespace eip2mqtt::adapters::state {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 
@@ -108,5 +108,5 @@ TEST_F(StateDirLockTest, AReadOnlyFileSystemIsRefused) {
                             "the gateway runs as (systemd: StateDirectory=)");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::state

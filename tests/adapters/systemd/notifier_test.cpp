@@ -4,7 +4,7 @@
 #include <stdlib.h>
 
 namespace eip2mqtt::adapters::systemd {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -55,5 +55,5 @@ TEST(Notifier, NoWatchdogWithoutWatchdogSecAndNothingWithoutASocket) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::systemd

@@ -11,7 +11,7 @@
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::adapters::udp {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -82,5 +82,5 @@ TEST(LocalSubnets, LoopbackHoldsItsOwnSubnet) {
     EXPECT_TRUE(local_subnets(0xC6336401).empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::udp

@@ -10,7 +10,7 @@
 #include <string>
 
 namespace eip2mqtt::adapters::udp {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// A UDP socket bound to 127.0.0.1 on an ephemeral port, closed at the end of the scope.
 struct BoundSocket {
@@ -54,5 +54,5 @@ TEST(PortHolders, AFreePortHasNone) {
     EXPECT_EQ(describe_udp_port_holders(port), "");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::udp

@@ -25,7 +25,7 @@
 #include "tests/support/igmp.hpp"
 
 namespace eip2mqtt::adapters::udp {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -224,5 +224,5 @@ TEST(Receiver, SetMulticastThatCannotJoinAGroupChangesNothing) {
     EXPECT_TRUE(test::igmp_joined("lo", second));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::udp

@@ -9,7 +9,7 @@
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::adapters::udp {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -104,5 +104,5 @@ TEST_F(SenderTest, EmptyBatchSendsNothing) {
     EXPECT_EQ(sender_.stats().sent + sender_.stats().errors, 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::udp

@@ -8,7 +8,7 @@
 #include "tests/adapters/yaml/loading.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using Urls = std::vector<std::string>;
 
@@ -79,5 +79,5 @@ TEST(BrokerUrls, AnEntryOfAnotherSchemeIsRefusedAtItsLineAndColumn) {
     EXPECT_EQ(text.find("test.yaml:4:"), std::string::npos) << text;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

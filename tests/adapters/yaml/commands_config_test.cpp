@@ -8,7 +8,7 @@
 #include "eip2mqtt/adapters/yaml/load_config.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 const std::string exchange =
     "exchanges:\n"
@@ -113,5 +113,5 @@ TEST(CommandsConfig, AllowMustBeAList) {
               std::string::npos);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

@@ -20,7 +20,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace keys = core::config::keys;
 using core::config::Config;
@@ -141,5 +141,5 @@ TEST_F(ConfigKeys, AChangeToAnyKeyIsNamedAloneWithItsRule) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

@@ -6,7 +6,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace command = core::command;
 namespace wire = core::wire;
@@ -113,5 +113,5 @@ TEST(DiscoveredSkeleton, WhatANodeToldCannotLeaveItsCommentLine) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

@@ -12,7 +12,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(LoadConfig, ExampleConfigurationLoadsAndValidates) {
     const auto result =
@@ -279,5 +279,5 @@ TEST(LoadConfig, ARawNulByteIsNamedAtItsLineAndColumn) {
     EXPECT_NE(dump(bad(std::string("\0", 1))).find("test.yaml:1:1: "), std::string::npos);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

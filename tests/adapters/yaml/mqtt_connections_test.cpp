@@ -9,7 +9,7 @@
 #include "tests/adapters/yaml/loading.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 const std::string two_connections =
     "mqtt:\n"
@@ -109,5 +109,5 @@ TEST(MqttConnections, AnEmptyListIsRefused) {
     EXPECT_NE(text.find("mqtt is an empty list"), std::string::npos) << text;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

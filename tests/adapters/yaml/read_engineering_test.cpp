@@ -12,7 +12,7 @@
 #include "tests/adapters/yaml/loading.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::ScaleKind;
 using core::plan::ScaleRange;
@@ -269,5 +269,5 @@ TEST(ReadArraysAndStrings, TheReadmesExampleLoadsAsItIsPrinted) {
     EXPECT_EQ(loaded.at(4).spec.type, core::plan::TagType::string);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

@@ -11,7 +11,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(LoadConfig, PointListsMergeByNodeWithMarksInTheCsv) {
     const auto result = load_config(data + "points_exchange.yaml");
@@ -228,5 +228,5 @@ TEST(LoadConfig, AnUnknownTypeSuggestsOursAndListsTheAliases) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

@@ -6,7 +6,7 @@
 #include "tests/adapters/yaml/loading.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -54,5 +54,5 @@ TEST(ReadRedundancy, ASectionWithoutAPairIsAnError) {
     EXPECT_NE(text.find("test.yaml:1:13: redundancy lacks 'pair'"), std::string::npos) << text;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

@@ -11,7 +11,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(LoadConfig, Defaults) {
     const auto config = good(minimal_exchange);
@@ -313,5 +313,5 @@ TEST(LoadConfig, MetricsAuthAndTlsAreReadWholeOrRefused) {
     EXPECT_NE(text.find("password"), std::string::npos) << text;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

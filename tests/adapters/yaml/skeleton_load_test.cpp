@@ -12,7 +12,7 @@
 #include "eip2mqtt/adapters/yaml/skeleton.hpp"
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -106,5 +106,5 @@ TEST(SkeletonLoad, TheSkeletonOfDiscoveredExchangesIsAValidConfiguration) {
     EXPECT_TRUE(core::config::validate(loaded.value()).empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::yaml {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace exchange = core::exchange;
 namespace wire = core::wire;
@@ -123,5 +123,5 @@ TEST(YamlSkeleton, BroadcastUnsyncedAndAPeriodOutsideTheRange) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml

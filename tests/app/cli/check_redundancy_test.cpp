@@ -9,7 +9,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 std::string checked(const std::string& section) {
     test::TempDir dir;
@@ -43,5 +43,5 @@ TEST(CheckRedundancy, NoPairNoLine) {
     EXPECT_EQ(checked("").find("redundancy"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

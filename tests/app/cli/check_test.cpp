@@ -11,7 +11,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 std::string checked_brokers(const std::string& url) {
     test::TempDir dir;
@@ -82,11 +82,11 @@ TEST(CheckByteMap, ArraysAndStringsShowTheBytesTheyTake) {
     EXPECT_NE(text.find(", 26 bytes, period"), std::string::npos) << text;  // to the last bit
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(CheckMqtt5, MetadataKeysAreSaidToBeIgnoredOverMqtt311) {
     test::TempDir dir;
@@ -110,5 +110,5 @@ TEST(CheckMqtt5, MetadataKeysAreSaidToBeIgnoredOverMqtt311) {
     EXPECT_EQ(out5.str().find("is ignored"), std::string::npos) << out5.str();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

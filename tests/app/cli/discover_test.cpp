@@ -12,7 +12,7 @@
 #include "tests/support/free_port.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// run_discover sets up the process's "eip2mqtt" logger: each test gets a fresh one and gives
 /// the earlier default logger back after.
@@ -52,5 +52,5 @@ TEST_F(DiscoverTest, ANodeThatNeverAnswersIsSaidSoAndIsExit1) {
     EXPECT_TRUE(err_.str().empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -11,7 +11,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 const char* two_exchanges =
     "mqtt:\n  url: tcp://a:1883\neip:\n  port: 18300\nexchanges:\n"
@@ -80,5 +80,5 @@ TEST(Dissector, AFileItCannotWriteIsAnError) {
     EXPECT_TRUE(out.str().empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

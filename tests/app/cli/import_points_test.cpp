@@ -15,7 +15,7 @@
 #include "eip2mqtt/core/plan/tag_type.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using core::plan::Direction;
@@ -246,5 +246,5 @@ TEST(ImportPoints, EmptyListIsAnError) {
     EXPECT_NE(result.err.find("no points"), std::string::npos) << result.err;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -12,7 +12,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::app::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 class RunTest : public ::testing::Test {
 protected:
@@ -52,5 +52,5 @@ TEST_F(RunTest, AConfigurationWithErrorsIsRefusedAndTheGatewayNeverBuilt) {
     EXPECT_EQ(run_gateway(options), 1);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::detail

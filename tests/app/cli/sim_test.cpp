@@ -23,7 +23,7 @@
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::app::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::TagType;
@@ -277,5 +277,5 @@ TEST(RunSim, SendsTheConsumedExchangesToTheTargetUntilItsDuration) {
     EXPECT_EQ(header.producer_id, *core::wire::parse_producer_id("10.0.0.1"));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::detail

@@ -18,7 +18,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::app::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::TagType;
@@ -239,5 +239,5 @@ TEST_F(SniffTest, RunSniffRefusesAnIntervalThatIsNotPositiveAndABindThatIsNoAddr
     EXPECT_EQ(out.str(), "");  // never started
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::detail

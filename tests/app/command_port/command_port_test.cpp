@@ -15,7 +15,7 @@
 #include "tests/support/free_port.hpp"
 
 namespace eip2mqtt::app::command_port {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::command::PduType;
@@ -68,5 +68,5 @@ TEST_F(CommandPortTest, ANewPolicyRefusesWhomItNoLongerAllows) {
     EXPECT_FALSE(refused_client.udp().receive(0ms).has_value());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::command_port

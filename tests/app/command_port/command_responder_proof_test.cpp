@@ -16,7 +16,7 @@
 #include "tests/support/fakes/recording_write_handler.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::command::CommandStatus;
@@ -201,5 +201,5 @@ TEST_F(CommandProofTest, AllowWrittenEmptyAnswersNobody) {
     EXPECT_FALSE(command_policy(config).allow.empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -17,7 +17,7 @@
 #include "tests/support/fakes/recording_write_handler.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::command::CommandStatus;
@@ -245,5 +245,5 @@ TEST_F(CommandResponderTest, WithoutAWriteHandlerWritesAreNeverStaged) {
     EXPECT_EQ(last().header.status, static_cast<std::uint8_t>(CommandStatus::not_permitted));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -9,7 +9,7 @@
 #include <vector>
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::command::DestinationType;
 
@@ -38,5 +38,5 @@ TEST(CommandViews, NoExchangesNoViews) {
         command_views({}, {}, CommandViewContext{}, core::MonoTime{}, core::WallTime{}).empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

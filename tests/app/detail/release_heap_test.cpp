@@ -24,7 +24,7 @@
 #endif
 
 namespace eip2mqtt::app::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 #if EIP2MQTT_GLIBC_MALLOC
 /// Allocates and touches `bytes`, in a way the compiler cannot drop as unused.
@@ -66,5 +66,5 @@ TEST(KeepHeapThresholdsTest, AFreedLargeBlockDoesNotMoveTheNextMidSizedOneIntoTh
 #endif
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::detail

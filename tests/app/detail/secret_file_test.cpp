@@ -13,7 +13,7 @@
 #include <string>
 
 namespace eip2mqtt::app::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 
@@ -71,5 +71,5 @@ TEST_F(SecretFileTest, WhatCannotBeReadIsSaidWithItsKey) {
               "LoadCredential=status-password)");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::detail

@@ -20,7 +20,7 @@
 #include "tests/support/fakes/switched_role.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -90,5 +90,5 @@ TEST_F(DatagramRouterFollowedTest, WithoutAPairAProducedExchangeHeardIsUnknown) 
     EXPECT_EQ(router_.counters().dropped_for(DropReason::unknown_exchange), 1u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

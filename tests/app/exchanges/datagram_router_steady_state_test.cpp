@@ -24,7 +24,7 @@
 #include "tests/support/fakes/switched_role.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::TagType;
@@ -165,5 +165,5 @@ TEST(DatagramPathSteadyState, AStandbysDatagramAllocatesNothingOnceWarm) {
     EXPECT_EQ(path.history_.counters().window_overflow, 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -17,7 +17,7 @@
 #include "tests/support/fakes/fake_clock.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::TagType;
@@ -161,5 +161,5 @@ TEST_F(DatagramRouterTest, AfterAReloadOnlyTheNewConsumersAreRouted) {
     EXPECT_EQ(on("plant/new/A").size(), 1u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

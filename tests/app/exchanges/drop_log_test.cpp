@@ -8,7 +8,7 @@
 #include "tests/support/fakes/log_capture.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::wire::DropReason;
@@ -83,5 +83,5 @@ TEST_F(DropLogTest, ReasonsAreSummarisedEachOnItsOwnInterval) {
               std::vector<std::string>{"dropped 2 datagrams (out_of_order) in the last 60 s"});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

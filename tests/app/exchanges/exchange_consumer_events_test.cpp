@@ -21,7 +21,7 @@
 #include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::exchange::ConsumeState;
@@ -240,5 +240,5 @@ TEST_F(ConsumerEvents, AProducerClockFlippingIsReportedAtMostOncePerPeriod) {
     EXPECT_LE(log.lines().size(), core::exchange::ChangeLog::burst + 1);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

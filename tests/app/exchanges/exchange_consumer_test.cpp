@@ -21,7 +21,7 @@
 #include "tests/support/count_allocations.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -137,5 +137,5 @@ TEST(ExchangeConsumerDataPath, BatchModeAddsOneValuesMessagePerDatagram) {
         << next->payload;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

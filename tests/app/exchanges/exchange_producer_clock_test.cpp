@@ -20,7 +20,7 @@
 #include "tests/support/fakes/log_capture.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -94,5 +94,5 @@ TEST_F(ExchangeProducerClockTest, FailedSavesAreSummarisedOnceTheIntervalPassedO
         << lines[0];
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -36,7 +36,7 @@
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -379,5 +379,5 @@ TEST_F(ExchangeProducerTest, AQueuedWriteSavedAheadThenCancelledLeavesTheFile) {
     EXPECT_EQ(results().at("b"), std::vector<json>{reloaded});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

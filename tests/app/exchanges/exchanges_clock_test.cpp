@@ -18,7 +18,7 @@
 #include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -89,5 +89,5 @@ TEST_F(ExchangesClockTest, EachExchangeIsConfiguredAtTheTimeOfItsClock) {
     EXPECT_EQ(exchanges_->producers()[1]->configured_at(), first + 24h);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

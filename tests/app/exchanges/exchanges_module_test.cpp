@@ -22,7 +22,7 @@
 #include "tests/support/udp_client.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -158,5 +158,5 @@ TEST_F(ExchangesModuleTest, ApplyPlansReturnsItsLineAndCountsTheWritesItCancelle
     module_->stop();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -19,7 +19,7 @@
 #include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -159,5 +159,5 @@ TEST_F(ExchangesTest, AHandleNoRunningProducerHasIsRefused) {
     EXPECT_TRUE(northbound_.results.empty());  // the dispatcher answers refusals, not Exchanges
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -18,7 +18,7 @@
 #include "tests/support/fakes/switched_role.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using test::RecordingProducible;
@@ -174,5 +174,5 @@ TEST_F(ProducerSchedulerTest, AClosedGatePassesTheDeadlinesWithoutProducingAnyth
     scheduler_.remove(id);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -13,7 +13,7 @@
 #include "tests/app/support/json_tree_recorder.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -74,5 +74,5 @@ TEST(TaglessConsumer, PublishesOnlyItsStatusWithCountersThatMove) {
     EXPECT_TRUE(has(published[2].payload, R"("length_mismatches":1,)")) << published[2].payload;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -15,7 +15,7 @@
 #include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::write::WriteError;
 using core::write::WriteRejection;
@@ -124,5 +124,5 @@ TEST_F(WriteDispatcherTest, ReloadCancellationsAreCounted) {
     EXPECT_EQ(dispatcher_.counters().writes_cancelled, 4u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -11,7 +11,7 @@
 #include "tests/app/support/test_plan.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using json = nlohmann::json;
 
@@ -65,5 +65,5 @@ TEST_F(WriteLogTest, TheOldestGoesBeyondTheBoundAndItsResultFindsNothing) {
     for (const auto& entry : shown) EXPECT_TRUE(entry["result"].is_null());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -8,7 +8,7 @@
 #include "tests/support/fakes/log_capture.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -37,5 +37,5 @@ TEST(LoopWatch, ATickLateByTenTicksIsAHoldLoggedOnceThenSummarisedAMinuteLater) 
     EXPECT_EQ(watch.holds(), 3u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -20,7 +20,7 @@
 #include "tests/support/http_get.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -143,5 +143,5 @@ TEST_F(MetricsModuleTest, WithoutAnEndpointATickAsksForNothing) {
     module_->stop();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -13,7 +13,7 @@
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::wire::DropReason;
@@ -116,11 +116,11 @@ TEST(MetricsSnapshot, CarriesTheGatewayFiguresAndEachExchange) {
     EXPECT_EQ(snapshot.exchanges[0].state, "waiting");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(HistoryMetrics, TheJournalsFiguresWithTheOldestEntrysAge) {
     const Counters counters;
@@ -151,5 +151,5 @@ TEST(HistoryMetrics, TheJournalsFiguresWithTheOldestEntrysAge) {
     EXPECT_EQ(test::schema_problem(test::schema_file("metrics.json"), payload), "") << payload;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

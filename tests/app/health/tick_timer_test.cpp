@@ -11,7 +11,7 @@
 #include "tests/support/fakes/fake_clock.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -53,5 +53,5 @@ TEST(TickTimer, TheScanIsFlaggedOncePerSecondOfTheClock) {
     EXPECT_EQ(scans, (std::vector<std::size_t>{4, 8, 12}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -17,7 +17,7 @@
 #include "tests/support/notify_socket.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -73,5 +73,5 @@ TEST(Watchdog, SaysNothingWithoutWatchdogSec) {
     EXPECT_FALSE(socket.receive(0ms).has_value());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -11,7 +11,7 @@
 #include "tests/support/fakes/recording_history_sink.hpp"
 
 namespace eip2mqtt::app::history {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -124,5 +124,5 @@ TEST_F(SinkReplayTest, APaceOfTwiceWhatATickThatRanOutOfTimeHanded) {
     EXPECT_EQ(replay_.pace(), SIZE_MAX);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::history

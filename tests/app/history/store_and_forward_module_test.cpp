@@ -19,7 +19,7 @@
 #include "tests/support/mqtt_recorder.hpp"
 
 namespace eip2mqtt::app::history {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr auto store_and_forward_on = "  store_and_forward:\n    enabled: true\n";
 
@@ -112,5 +112,5 @@ TEST_F(StoreAndForwardModuleTest, ItJoinsTheTreesConnectionItsReplayAndItsAcknow
     EXPECT_EQ(sources.history->replayed, 1u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::history

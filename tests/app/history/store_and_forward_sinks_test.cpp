@@ -6,7 +6,7 @@
 #include "tests/app/history/store_and_forward_rig.hpp"
 
 namespace eip2mqtt::app::history {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using namespace test_rig;
@@ -130,5 +130,5 @@ TEST_F(StoreAndForwardTest, AnEntryASinkHasNoUseForIsNotWaitedFor) {
     EXPECT_EQ(entries(), 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::history

@@ -7,7 +7,7 @@
 #include "tests/app/history/store_and_forward_rig.hpp"
 
 namespace eip2mqtt::app::history {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using namespace test_rig;
@@ -189,5 +189,5 @@ TEST_F(StoreAndForwardTest, TheLayoutFingerprintFollowsNamesTypesAndAddresses) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::history

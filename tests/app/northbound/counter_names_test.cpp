@@ -19,7 +19,7 @@
 #include "eip2mqtt/core/write/write_counters.hpp"
 
 namespace eip2mqtt {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using Names = std::vector<std::string>;
 
@@ -145,5 +145,5 @@ TEST(CounterNames, TheGatewaysWriteNodeMetricsAreTheOnesTheSparkplugPageLists) {
     EXPECT_NE(page.find(row + " |"), std::string::npos) << row;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt

@@ -10,7 +10,7 @@
 #include "tests/support/fakes/switched_role.hpp"
 
 namespace eip2mqtt::app::northbound {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// A 4-byte consumed exchange `e1` under `acme`.
 core::plan::ExchangePlan e1_plan() {
@@ -77,5 +77,5 @@ TEST(FanOut, AClosedGateStopsWhatTheExchangesSayButNotTheRunningSetOrTheResultsN
     EXPECT_EQ(tap.events.size(), 4u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound

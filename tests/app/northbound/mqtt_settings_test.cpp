@@ -13,7 +13,7 @@
 #include <string>
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
@@ -212,5 +212,5 @@ TEST_F(MqttSettingsTest, AMissingCredentialIsAnErrorThatNamesTheUnitSetting) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

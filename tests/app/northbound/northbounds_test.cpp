@@ -18,7 +18,7 @@
 #include "tests/app/support/northbound_rig.hpp"
 
 namespace eip2mqtt::app::northbound {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr auto store_and_forward_on = "  store_and_forward:\n    enabled: true\n";
 constexpr auto sparkplug_on = "sparkplug:\n  group_id: plant1\n";
@@ -105,5 +105,5 @@ TEST_F(NorthboundsTest, WithSparkplugBesideItTheTreeStillHearsTheExchanges) {
     EXPECT_GT(queued_by_a_sample(), 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound

@@ -7,7 +7,7 @@
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::redundancy::ImageMessage;
 
@@ -100,5 +100,5 @@ TEST(ImageMessage, WhatIsNoImageDecodesToNothing) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

@@ -7,7 +7,7 @@
 #include "tests/support/fakes/recording_publisher.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 adapters::mqtt::Message message(std::string topic) {
     adapters::mqtt::Message m;
@@ -39,5 +39,5 @@ TEST(LeaderPublisher, SubscriptionsGoToTheConnectionWhateverTheRole) {
     EXPECT_EQ(inner.subscriptions, std::vector<std::string>{"spBv1.0/g/NCMD/n"});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

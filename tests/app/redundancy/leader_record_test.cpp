@@ -8,7 +8,7 @@
 #include <chrono>
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::redundancy::LeaderRecord;
@@ -93,5 +93,5 @@ TEST(LeaderRecordTest, WhatIsNoRecordReadsAsNone) {
     EXPECT_EQ(decode_leader_record(R"({"id":"a","epoch":1,"priority":70000})")->priority, 0);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

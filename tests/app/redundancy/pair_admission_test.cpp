@@ -17,7 +17,7 @@
 #include "tests/support/fakes/recording_northbound.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::redundancy::WritePolicy;
 using core::write::WriteError;
@@ -141,5 +141,5 @@ TEST_F(PairAdmissionTest, ASettledWriteTheImageDoesNotHoldIsRefusedStandbyUnappl
     EXPECT_EQ(dispatcher_.counters().writes_settled_standby, 1u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

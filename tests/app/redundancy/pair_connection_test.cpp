@@ -12,7 +12,7 @@
 #include "eip2mqtt/core/config/config.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -56,5 +56,5 @@ TEST(PairConnectionTest, TheRealConnectorMakesAClientNotConnectedBeforeStart) {
     EXPECT_FALSE(connection->connected());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

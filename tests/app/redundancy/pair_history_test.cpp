@@ -15,7 +15,7 @@
 #include "tests/support/fakes/recording_history_sink.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::quality::Quality;
@@ -227,5 +227,5 @@ TEST(PairHistoryBounds, SamplesPushedOutBeforeTheirTimeAreCounted) {
     EXPECT_EQ(sink.replayed.size(), 3u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

@@ -22,7 +22,7 @@
 #include "tests/support/fakes/recording_publisher.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 namespace fs = std::filesystem;
 using core::redundancy::FollowVerdict;
@@ -372,5 +372,5 @@ TEST_F(PairImagesTest, ATakeoverTakesWhatTheImagesSayEachWriteWasAnswered) {
                                          {key("r"), ListedResult::refused}}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

@@ -12,7 +12,7 @@
 #include "tests/support/fakes/recording_publisher.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::redundancy::LeaderRecord;
@@ -195,5 +195,5 @@ TEST_F(PairLeaseTest, NoClaimWhileThePairConnectionIsDown) {
     EXPECT_EQ(claim->beat, publisher_.published.back().ack_token);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

@@ -39,7 +39,7 @@
 #include "tests/support/fakes/tag_message.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::redundancy::LeaderRecord;
@@ -357,5 +357,5 @@ TEST_F(PairRoleTest, StopStopsItsConnection) {
     EXPECT_EQ(connection_->stopped, 3s);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

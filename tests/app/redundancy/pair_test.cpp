@@ -13,7 +13,7 @@
 #include "tests/support/fakes/tag_message.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::tag_message;
 
@@ -40,5 +40,5 @@ TEST_F(PairTest, WhatALeaderAloneSaysIsFencedTheRestPasses) {
     EXPECT_FALSE(retained_only(tag_message(true)));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

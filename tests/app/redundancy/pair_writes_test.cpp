@@ -13,7 +13,7 @@
 #include "eip2mqtt/core/redundancy/answer_key.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -177,5 +177,5 @@ TEST_F(PairWritesTest, WritesTheOldLeadersImagesListAsAnsweredAreNotSettledAgain
     EXPECT_EQ(writes_.counters().answers_repeated, 2u) << "an older release's listing is not";
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

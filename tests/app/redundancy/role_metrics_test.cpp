@@ -9,7 +9,7 @@
 #include "eip2mqtt/app/health/metrics.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 struct RoleMetricsTest : ::testing::Test {
     DatagramCounters datagrams;
@@ -41,5 +41,5 @@ TEST_F(RoleMetricsTest, APairAddsItsObjectWithTheHeardDatagramsAndTheFencedPubli
     EXPECT_EQ(pair.at("answers_heard"), 0);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

@@ -13,7 +13,7 @@
 #include "tests/support/fakes/tag_message.hpp"
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::tag_message;
 
@@ -67,5 +67,5 @@ TEST_F(RoleTest, APairsSessionsFollowTheRoleAndItSetsTheExchangesOptions) {
     EXPECT_TRUE(options.role->hears_produced());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

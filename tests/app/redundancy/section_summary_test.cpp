@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::app::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(SectionSummary, NamesThePairItsTakeoverAndTheRenewalAQuarterOfIt) {
     core::config::RedundancySection section;
@@ -24,5 +24,5 @@ TEST(SectionSummary, NothingWithoutAPair) {
     EXPECT_EQ(section_summary(core::config::RedundancySection{}), "");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::redundancy

@@ -12,7 +12,7 @@
 #include "eip2mqtt/app/reload/reload_sequence.hpp"
 
 namespace eip2mqtt::app::reload {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// A file with only `id` and `level` set, parsed and planned as a reload does.
 ParseResult file_with(const std::string& id, const std::string& level) {
@@ -62,5 +62,5 @@ TEST(ReloadCheck, RefusesAFileWithErrors) {
     EXPECT_FALSE(accept(broken, running->config, plans_of(running)));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::reload

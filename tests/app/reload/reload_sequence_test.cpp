@@ -11,7 +11,7 @@
 #include "tests/support/fakes/fake_clock.hpp"
 
 namespace eip2mqtt::app::reload {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -114,5 +114,5 @@ TEST(ReloadSequence, ASliceWaitsWhileThePublishQueueIsHalfFullAndGoesOnOnceItDra
     EXPECT_EQ(target.calls.back(), "ready");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::reload

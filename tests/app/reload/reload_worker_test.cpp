@@ -10,7 +10,7 @@
 #include <vector>
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -151,5 +151,5 @@ TEST(ReloadWorker, DestroyingAnIdleWorkerEndsItsThread) {
     EXPECT_TRUE(recorder.parsed().empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

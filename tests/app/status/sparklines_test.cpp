@@ -15,7 +15,7 @@
 #include "tests/support/fakes/fake_clock.hpp"
 
 namespace eip2mqtt::app::status {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::Direction;
 using core::plan::TagType;
@@ -106,5 +106,5 @@ TEST(Sparklines, TheBoundGivesRowsInOrderUntilItIsSpent) {
     EXPECT_TRUE(last.empty()) << "beyond the bound: no sparkline";
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::status

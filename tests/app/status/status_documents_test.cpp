@@ -17,7 +17,7 @@
 #include "tests/support/fakes/fake_clock.hpp"
 
 namespace eip2mqtt::app::status {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using core::plan::Direction;
@@ -202,5 +202,5 @@ TEST_F(StatusDocumentsTest, AProducedExchangesValuesAndNothingForAnUnknownName) 
     EXPECT_FALSE(exchange_document(*exchanges_, "pump", clock_.monotonic(), clock_.wall()));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::status

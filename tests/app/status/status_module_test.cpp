@@ -17,7 +17,7 @@
 #include "tests/support/http_get.hpp"
 
 namespace eip2mqtt::app::status {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using json = nlohmann::json;
@@ -105,5 +105,5 @@ TEST_F(StatusModuleTest, ALoopThatDoesNotTurnIsAnswered503AndAStoppedModuleNothi
     EXPECT_EQ(get_with_loop("/api/status").first, "404");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::status

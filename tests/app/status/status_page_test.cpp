@@ -8,7 +8,7 @@
 #include <string>
 
 namespace eip2mqtt::app::status {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(StatusPage, ServesThePageItsScriptAndItsStyleAndNothingElse) {
     const auto* html = page_resource("/");
@@ -36,5 +36,5 @@ TEST(StatusPage, ServesThePageItsScriptAndItsStyleAndNothingElse) {
     EXPECT_EQ(page_resource("/api/status"), nullptr);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::status

@@ -9,7 +9,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::command {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -81,5 +81,5 @@ TEST(AddressProof, ARequesterCarriesTheTokenInFlagAndRequestId) {
     EXPECT_EQ(header.request_id, 0xCDEF);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::command

@@ -9,7 +9,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::command {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::to_hex;
 
@@ -282,5 +282,5 @@ TEST_F(Answers, WriteResponseEchoesTheExchange) {
     EXPECT_EQ(std::get<DataPdu>(r.body).time_s, 5u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::command

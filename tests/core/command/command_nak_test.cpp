@@ -8,7 +8,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::command {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::from_hex;
 namespace v = test::command_vectors;
@@ -76,5 +76,5 @@ TEST(DecodeErrors, NakCodesAreDistinctAndRoundTrip) {
     EXPECT_FALSE(decode_error_of_nak_code(0).has_value());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::command

@@ -9,7 +9,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::command {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::from_hex;
 namespace v = test::command_vectors;
@@ -236,5 +236,5 @@ TEST(CommandResponses, ReadResponseWithAnErrorStatusCarriesNoCell) {
     EXPECT_TRUE(std::get<DataPdu>(decoded->body).cells.empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::command

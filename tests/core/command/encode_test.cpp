@@ -11,7 +11,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::command {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::from_hex;
 using test::to_hex;
@@ -133,5 +133,5 @@ TEST(DataPdus, MaskedWriteRoundTripsWithOddLengths) {
     EXPECT_EQ(std::get<DataPdu>(decoded->body), pdu);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::command

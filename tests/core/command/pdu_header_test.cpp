@@ -8,7 +8,7 @@
 #include "eip2mqtt/core/command/command_status.hpp"
 
 namespace eip2mqtt::core::command {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(PduTypes, EachRequestIsAnsweredByTheNextType) {
     int requests = 0;
@@ -61,5 +61,5 @@ TEST(CommandStatus, EveryStatusHasANameAndRoundTrips) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::command

@@ -6,7 +6,7 @@
 #include "eip2mqtt/core/command/encode.hpp"
 
 namespace eip2mqtt::core::command {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 const wire::ExchangeKey asked_key{wire::ProducerId{0x0A000009}, 3};
 const wire::ExchangeKey other_key{wire::ProducerId{0x0A000009}, 4};
@@ -67,5 +67,5 @@ TEST(ResponseMatch, ANakMustEchoTheRequest) {
                                  decode_response(encode(nak.header, nak.nak)).value()));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::command

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::command {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -33,5 +33,5 @@ TEST(SourceLimiter, ZeroMeansNoLimit) {
     for (int i = 0; i < 1000; ++i) EXPECT_TRUE(limiter.allow(1, t0));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::command

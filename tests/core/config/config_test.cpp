@@ -5,7 +5,7 @@
 #include "tests/core/config/config_builders.hpp"
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Marks, AddKeepsTheFirstMarkOfAKey) {
     Marks marks;
@@ -41,5 +41,5 @@ TEST(MakePlans, OnePlanPerExchangeWithEveryTag) {
     EXPECT_EQ(plans[1].length, 16);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

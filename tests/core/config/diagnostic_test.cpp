@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Diagnostic, FileLineColumn) {
     const Diagnostic d{{"eip2mqtt.yaml", 12, 5}, "unknown key 'lenght'"};
@@ -82,5 +82,5 @@ TEST(FileName, ComparesByText) {
     EXPECT_EQ(FileName().str(), "");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Placeholders, EachMarkedLineWithItsKeyAndColumn) {
     const auto found = find_placeholders(
@@ -45,5 +45,5 @@ TEST(Placeholders, AReviewedFileHasNone) {
     EXPECT_TRUE(find_placeholders("gateway:\n  id: gw\n", "x.yaml").empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

@@ -6,7 +6,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 std::vector<std::size_t> rows(const PointIndex& index, std::string_view node) {
     const auto span = index.rows_of(node);
@@ -49,5 +49,5 @@ TEST(PointIndex, RowsLeftOutForErrorsAreNotIndexed) {
     EXPECT_EQ(rows(index, "ex1"), (std::vector<std::size_t>{0}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

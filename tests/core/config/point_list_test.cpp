@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using plan::Address;
 using plan::TagType;
@@ -233,5 +233,5 @@ TEST(PointLists, AFloatDataTypeSuggestsReal) {
         << list.errors[0].message;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

@@ -10,7 +10,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using Kind = KeyChange::Kind;
@@ -158,5 +158,5 @@ TEST(ReloadPlan, BeyondTheCapChangesAreCountedNotNamed) {
     EXPECT_EQ(live.substr(live.size() - 13), ", and 11 more");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

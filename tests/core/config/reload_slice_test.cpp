@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(ReloadSlice, AnEmptyQueueTakesAWholeSlice) {
     EXPECT_EQ(slice_units(1000, {0, 100000, true}), 1000u);
@@ -31,5 +31,5 @@ TEST(ReloadSlice, DisconnectedTheReloadDoesNotWaitForTheBroker) {
     EXPECT_EQ(slice_units(1000, {100000, 100000, false}), 1000u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

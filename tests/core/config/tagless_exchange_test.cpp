@@ -7,7 +7,7 @@
 #include "eip2mqtt/core/config/config.hpp"
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -55,5 +55,5 @@ TEST(TaglessExchange, WithoutALengthNothingSaysHowLongItsDatagramsAre) {
     EXPECT_EQ(found[0].mark.line, 2);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

@@ -5,7 +5,7 @@
 #include <chrono>
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -128,5 +128,5 @@ TEST(ArrivalStats, RateStaysBoundedInMemoryAtHighRates) {
     EXPECT_NEAR(stats.rate(now), 1e6, 1e6 * 1e-3);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

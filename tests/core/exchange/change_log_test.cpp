@@ -6,7 +6,7 @@
 #include <cstdint>
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -55,5 +55,5 @@ TEST(ChangeLog, LinesComeBackOnceTheFlappingStoppedForAnInterval) {
     EXPECT_TRUE(log.on_change(t0 + 30s + 61s).single);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

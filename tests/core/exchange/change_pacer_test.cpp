@@ -5,7 +5,7 @@
 #include <chrono>
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -89,5 +89,5 @@ TEST(ChangePacer, AZeroPeriodHoldsNothing) {
     for (int i = 0; i < 5; ++i) EXPECT_TRUE(pacer.on_change(t0));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

@@ -8,7 +8,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(ConsumerRules, Rule4ConfiguredSignatureWithUnsetReceivedIsConsumed) {
     ConsumedExchange exchange(make_plan(15, 3000ms, Signature{2, 5}));
@@ -95,5 +95,5 @@ TEST(ConsumerRules, Rule5WithoutSignaturesDataMayNotGrow) {
     EXPECT_EQ(feed(unset_received, sample(1, 20)).dropped, DropReason::length_mismatch);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

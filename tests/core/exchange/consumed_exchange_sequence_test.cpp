@@ -8,7 +8,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(ConsumerRules, Rule6FirstDatagramResynchronisesWithoutCounting) {
     ConsumedExchange exchange(make_plan());
@@ -164,5 +164,5 @@ TEST(ConsumerRules, Rule6ResynchronisesAfterASignatureMismatch) {
     EXPECT_EQ(exchange.counters().missed, 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

@@ -8,7 +8,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(ConsumedExchange, StartsWaitingWithoutImage) {
     ConsumedExchange exchange(make_plan());
@@ -215,5 +215,5 @@ TEST(SourceCheck, AnotherAddressIsRefusedCountedAndLeavesTheExchangeUntouched) {
     EXPECT_EQ(exchange.state(), ConsumeState::waiting);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

@@ -9,7 +9,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using plan::TagType;
@@ -364,5 +364,5 @@ TEST(ProducedImage, HoldsAWriteWhoseEveryValueIsThereAlreadyAndChangesNothingAsk
     EXPECT_TRUE(image.holds(std::vector<write::TagWrite>{{mode, Value{true}}}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using Due = ProductionQueue::Due;
@@ -236,5 +236,5 @@ TEST(ProductionQueue, IdsAreNeverReused) {
     EXPECT_EQ(ids_of(due), std::vector{b});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

@@ -5,7 +5,7 @@
 #include <chrono>
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -61,5 +61,5 @@ TEST(ProducerRules, StalledLoopSkipsMissedDeadlinesKeepingThePhase) {
     EXPECT_EQ(schedule.deadline(), start + 725ms);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

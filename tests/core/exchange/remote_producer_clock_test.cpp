@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using plan::TimestampSource;
@@ -62,5 +62,5 @@ TEST(RemoteProducerClock, StateNames) {
     EXPECT_EQ(to_string(ClockState::unsynced), "unsynced");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

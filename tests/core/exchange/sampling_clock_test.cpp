@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -43,5 +43,5 @@ TEST(SamplingClock, AWallClockStepBeyondTheToleranceReanchors) {
     EXPECT_EQ(clock.to_wall(mono0 + 3s), wall0 + 1s);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

@@ -16,7 +16,7 @@
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using Ids = std::vector<std::uint64_t>;
@@ -388,5 +388,5 @@ TEST_F(SaveThenAnswerTest, SentWritesStillWaitForTheirSaveWhenTheQueueIsEmptied)
     EXPECT_EQ(saved.answered, Ids{1});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

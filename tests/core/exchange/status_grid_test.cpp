@@ -8,7 +8,7 @@
 #include <set>
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -73,5 +73,5 @@ TEST(StatusGrid, ExchangesStartedTogetherReportInDifferentTicks) {
     EXPECT_EQ(ticks.size(), 100u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

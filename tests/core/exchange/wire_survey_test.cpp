@@ -9,7 +9,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::exchange {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -157,5 +157,5 @@ TEST(WireSurvey, ToleranceIsTheCallers) {
     EXPECT_EQ(s.summary().clock_tolerance, 500ms);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::exchange

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::net {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(BasicAuth, TheHeaderValueOfRfc7617sExample) {
     EXPECT_EQ(basic_authorization("Aladdin", "open sesame"), "Basic QWxhZGRpbjpvcGVuIHNlc2FtZQ==");
@@ -25,5 +25,5 @@ TEST(BasicAuth, TheSameSecretOnlyWhenEveryByteIs) {
     EXPECT_FALSE(same_secret("", "Basic YTo="));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::net

@@ -5,7 +5,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::net {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 std::uint32_t ip(std::string_view dotted) { return parse_subnet(dotted).value().address; }
 
@@ -40,5 +40,5 @@ TEST(Subnet, AllowedIsAnyOfTheList) {
     EXPECT_FALSE(allowed({}, ip("10.9.9.9")));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::net

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Addresses, ByteDotBit) {
     EXPECT_EQ(parse_address("119.5"), (Address{119, 5}));
@@ -35,5 +35,5 @@ TEST(Addresses, PrintsByteDotBit) {
     EXPECT_EQ(to_string(Address{119, 5}), "119.5");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -10,7 +10,7 @@
 #include "eip2mqtt/core/plan/value_codec.hpp"
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TagSpec tag(TagType type, std::uint16_t byte, std::uint8_t bit, std::uint16_t count) {
     TagSpec spec;
@@ -99,5 +99,5 @@ TEST(StringCodec, AFieldWrittenBackAsReadKeepsItsBytes) {
     EXPECT_EQ(copy, data);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -98,5 +98,5 @@ TEST(ExchangePlans, KeyIsTheProducerExchangePair) {
     EXPECT_EQ(key.exchange_id, 2u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -9,7 +9,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 std::vector<std::byte> bytes(const std::string& s) {
     std::vector<std::byte> out;
@@ -65,5 +65,5 @@ TEST(Latin1, EveryByteRoundTrips) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

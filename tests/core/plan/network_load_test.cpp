@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -69,5 +69,5 @@ TEST(NetworkLoad, PhasesSpreadEachProducedExchangeOverItsPeriodAsTheSchedulerDoe
     EXPECT_EQ(load.exchanges[3].phase, 6ms);     // 8 ms x 3 / 4
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -8,7 +8,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TagSpec tag(std::uint16_t byte, std::uint8_t bit, TagType type) {
     TagSpec spec;
@@ -62,5 +62,5 @@ TEST(FindOverlaps, ListsAtMostTheLimitButCountsEveryPair) {
     EXPECT_EQ(find_overlaps(spans(tags), 0).listed.size(), 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

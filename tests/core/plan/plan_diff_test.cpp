@@ -8,7 +8,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -101,5 +101,5 @@ TEST(PlanDiff, TheDescriptionIsBoundedAndSaysNothingForNothing) {
     EXPECT_EQ(describe_diff(diff_plans({}, {}), {}, {}), "nothing");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

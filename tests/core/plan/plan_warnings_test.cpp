@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -78,5 +78,5 @@ TEST(PlanWarnings, DotsInATopicAreWarnedOnlyForMqtt311) {
     EXPECT_TRUE(plan_warnings(consumed({"A"}, 2), {.mqtt_3_1_1 = true}).empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -6,7 +6,7 @@
 #include <limits>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
@@ -191,5 +191,5 @@ TEST(ScalingInverse, EachKindReadsBackWhatWasWritten) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TagSpec pressure() {
     TagSpec spec;
@@ -72,5 +72,5 @@ TEST(TagSpec, EqualityComparesContents) {
     EXPECT_NE(plain, renamed);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -6,7 +6,7 @@
 #include <string>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr std::array all_types{TagType::bit,  TagType::byte, TagType::int_,
                                TagType::word, TagType::dint, TagType::udint,
@@ -123,5 +123,5 @@ TEST(DataTypes, HintsNameOurTypeForOtherLanguagesNamesAndTypos) {
     EXPECT_EQ(tag_type_hint("xyz"), std::nullopt);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -8,7 +8,7 @@
 #include <string>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 std::string out(const TopicRebase& rebase, std::string topic) {
     rebase.outward(topic);
@@ -44,5 +44,5 @@ TEST(TopicRebase, OneBaseIsIdentity) {
     EXPECT_FALSE(TopicRebase("a", "b").identity());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

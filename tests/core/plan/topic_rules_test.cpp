@@ -5,7 +5,7 @@
 #include <string>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(TopicRules, PlainAndMultibyteTextIsAccepted) {
     EXPECT_EQ(text_problem("acme/plant 1/PRESSÃO"), "");
@@ -63,5 +63,5 @@ TEST(TopicRules, TopicNamesHaveNoWildcardAndFitTwoBytesOfLength) {
     EXPECT_EQ(topic_name_problem("a\tb"), "contains a control character");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -11,7 +11,7 @@
 #include "eip2mqtt/core/plan/exchange_plan.hpp"
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TopicTemplate parsed(std::string_view text) {
     std::string problem;
@@ -132,5 +132,5 @@ TEST(TagTopics, OneTagOfItsOwnListsEveryTagsTopic) {
     EXPECT_EQ(plan.tag_topics, (std::vector<std::string>{"acme/t1/A", "acme/t1/bee", "acme/t1/C"}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

@@ -11,7 +11,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::from_hex;
 using test::to_hex;
@@ -236,5 +236,5 @@ TEST(Conversion, FloatingValuesOutOfRangeSaturateAndNanIsZero) {
     EXPECT_EQ(decode_value(data, TagType::int_, at(0)), Value{std::int64_t{0}});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

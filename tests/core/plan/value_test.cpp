@@ -7,7 +7,7 @@
 #include <limits>
 
 namespace eip2mqtt::core::plan {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 constexpr double nan_d = std::numeric_limits<double>::quiet_NaN();
@@ -127,5 +127,5 @@ TEST(Value, StaysSixteenBytes) {
     EXPECT_EQ(copy, make_text("shared"));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::plan

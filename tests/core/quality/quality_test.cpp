@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::quality {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using exchange::ConsumeState;
 
@@ -26,5 +26,5 @@ TEST(Quality, BadDuringMismatch) {
     EXPECT_EQ(quality_of(ConsumeState::length_mismatch), Quality::bad);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::quality

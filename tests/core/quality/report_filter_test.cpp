@@ -6,7 +6,7 @@
 #include <limits>
 
 namespace eip2mqtt::core::quality {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using plan::Value;
@@ -190,5 +190,5 @@ TEST(ReportFilter, FitsThirtyTwoBytes) {
     EXPECT_LE(sizeof(ReportFilter), 32u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::quality

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(AckedWatermarks, TheNewestAcknowledgedSampleOfEachExchange) {
     AckedWatermarks marks;
@@ -75,5 +75,5 @@ TEST(AckedWatermarks, ClearedOrForgottenNothingIsLeft) {
     EXPECT_FALSE(marks.watermark(4).has_value());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::redundancy

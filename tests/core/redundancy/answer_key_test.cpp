@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(AnswerKey, IsFnv1aOfTheTopicANulAndTheCorrelationData) {
     // FNV-1a 64 of "answers/chaos\0w1", computed apart from this code.
@@ -19,5 +19,5 @@ TEST(AnswerKey, TellsTheTopicFromTheCorrelationData) {
     EXPECT_EQ(answer_key("a/b", "x"), answer_key("a/b", "x"));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::redundancy

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(SessionBdSeq, ANewLeaderTakesOneMoreThanTheLastItHeard) {
     EXPECT_EQ(next_session_bd_seq(std::uint8_t{0}, 0), 1);
@@ -23,5 +23,5 @@ TEST(SessionBdSeq, HavingHeardNoneItTakesItsOwnNext) {
     EXPECT_EQ(next_session_bd_seq(std::nullopt, 9), 9);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::redundancy

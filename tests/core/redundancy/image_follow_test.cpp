@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr std::uint64_t layout = 0x1234'5678'9abc'def0ULL;
 
@@ -73,5 +73,5 @@ TEST(ImageFollow, RequestIdsContinueAfterTheLastHeardAndWrap) {
     EXPECT_EQ(request_id_after(0), 1);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::redundancy

@@ -9,7 +9,7 @@
 #include "eip2mqtt/core/redundancy/lease.hpp"
 
 namespace eip2mqtt::core::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -231,5 +231,5 @@ TEST(LeaseTest, RenewedSinceLeadingOnlyOnceARenewalSentAsItLeadsIsAcknowledged) 
     EXPECT_FALSE(lease.renewed_since_leading(t0 + 3250ms));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::redundancy

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -329,5 +329,5 @@ TEST(LeaseTest, AcknowledgementsOfAnEarlierLeadershipDoNotCount) {
     EXPECT_EQ(lease.role(t0 + 5100ms), Role::standby);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::redundancy

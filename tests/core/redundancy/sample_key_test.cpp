@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr SampleKey untimed(std::uint16_t request_id, std::uint8_t change = 0) {
     return {request_id, 0, 0, change};
@@ -43,5 +43,5 @@ TEST(SampleKey, AProducerThatRestartedIsNewerByItsTimestamp) {
     EXPECT_FALSE(comes_after(SampleKey{1, 1700000005, 0}, untimed(1000)));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::redundancy

@@ -5,7 +5,7 @@
 #include <vector>
 
 namespace eip2mqtt::core::redundancy {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using quality::Quality;
@@ -121,5 +121,5 @@ TEST_F(SampleWindowTest, ASampleLargerThanTheWholeBoundIsNotKept) {
     EXPECT_EQ(window_.bytes(), 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::redundancy

@@ -8,7 +8,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::wire {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::from_hex;
 using test::utc_seconds;
@@ -205,5 +205,5 @@ TEST(Header, StatusSignatureAndReservedAreRecordedNotRejected) {
     EXPECT_EQ(result->header.reserved, 0x1F1E1D1Cu);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::wire

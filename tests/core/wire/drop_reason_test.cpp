@@ -6,7 +6,7 @@
 #include <string>
 
 namespace eip2mqtt::core::wire {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(DropReason, NamesAreTheMetricLabels) {
     EXPECT_EQ(to_string(DropReason::too_short), "too_short");
@@ -30,5 +30,5 @@ TEST(DropReason, AllReasonsAreListedOnceWithDistinctNames) {
     EXPECT_EQ(static_cast<std::size_t>(DropReason::out_of_order) + 1, drop_reason_count);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::wire

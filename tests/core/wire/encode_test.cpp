@@ -9,7 +9,7 @@
 #include "tests/core/vectors.hpp"
 
 namespace eip2mqtt::core::wire {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using test::from_hex;
 using test::to_hex;
@@ -76,5 +76,5 @@ TEST(ProducerRules, DatagramIsHeaderPlusExactlyTheData) {
               "03eeeeeeeeee");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::wire

@@ -5,7 +5,7 @@
 #include <unordered_map>
 
 namespace eip2mqtt::core::wire {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(ProducerId, DottedFormIsHeldMostSignificantFirst) {
     EXPECT_EQ(parse_producer_id("172.23.21.176"), ProducerId{0xAC1715B0});
@@ -92,5 +92,5 @@ TEST(Header, ConstantsMatchTheSpec) {
     EXPECT_EQ(default_port, 18246);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::wire

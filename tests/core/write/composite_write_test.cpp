@@ -11,7 +11,7 @@
 #include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::core::write {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using plan::TagType;
 using plan::Value;
@@ -125,5 +125,5 @@ TEST(StringWrite, ARawWriteKeepsItsBytes) {
     EXPECT_EQ(over.error().error, WriteError::above_max);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::write

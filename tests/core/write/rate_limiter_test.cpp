@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::core::write {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 const MonoTime t0{};
@@ -32,5 +32,5 @@ TEST(RateLimiter, BelowOnePerSecondStillAllowsOneWrite) {
     EXPECT_TRUE(limiter.allow(t0 + 2s));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::write

@@ -9,7 +9,7 @@
 #include "eip2mqtt/core/write/write_validation.hpp"
 
 namespace eip2mqtt::core::write {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using plan::ScaleKind;
 using plan::Scaling;
@@ -102,5 +102,5 @@ TEST(ScaledWrite, RawWritesOfUnscaledTagsAreAsBefore) {
     EXPECT_EQ(validate_raw_write(tag, i(101)).error().error, WriteError::above_max);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::write

@@ -9,7 +9,7 @@
 #include <string>
 
 namespace eip2mqtt::core::write {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using plan::TagType;
 using plan::Value;
@@ -271,5 +271,5 @@ TEST(ValidateWrite, TypeChecksComeBeforeLimits) {
     EXPECT_EQ(error_of(spec, true), WriteError::wrong_type);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::write

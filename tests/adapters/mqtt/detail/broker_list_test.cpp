@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(BrokerList, WalksTheUrlsInTurnAndBackToTheFirst) {
     const std::vector<std::string> urls{"tcp://a:1883", "ssl://b:8883"};
@@ -30,5 +30,5 @@ TEST(BrokerList, AnUnknownUrlNamesNoEndpoint) {
     EXPECT_EQ(brokers.url(), "not a url");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

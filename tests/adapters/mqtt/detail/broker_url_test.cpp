@@ -5,7 +5,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(BrokerUrl, HostAndPortOfEachScheme) {
     const auto plain = parse_broker_url("tcp://broker.plant:1884");
@@ -56,5 +56,5 @@ TEST(BrokerUrl, TheNextBrokerWrapsAroundTheList) {
     EXPECT_EQ(tried, (std::vector<std::size_t>{0, 1, 0, 1, 0}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -8,7 +8,7 @@
 #include "tests/support/fakes/fake_clock.hpp"
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -78,5 +78,5 @@ TEST_F(ConnectDiagnosisTest, ASpecificReasonOfAnMqtt311ClientIsKept) {
         "Bad user name or password");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

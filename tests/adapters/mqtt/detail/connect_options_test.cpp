@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -64,5 +64,5 @@ TEST(ConnectOptions, TlsFromTheSchemeWithTheGivenFiles) {
     EXPECT_TRUE(co.get_ssl_options().get_enable_server_cert_auth());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

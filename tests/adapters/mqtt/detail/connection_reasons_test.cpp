@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -90,5 +90,5 @@ TEST(SilentLossPattern, TheExplanationNamesTheClientId) {
     EXPECT_TRUE(contains(text, "same client id 'gw-1'")) << text;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(InFlightWindow, GivesSequentialIdsAndCountsPending) {
     InFlightWindow<std::string> w;
@@ -90,5 +90,5 @@ TEST(InFlightWindow, LongRunStaysConsistent) {
     EXPECT_EQ(w.pending_acknowledged(), acknowledged);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

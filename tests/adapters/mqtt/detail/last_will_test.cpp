@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 Message will(std::string topic) {
     Message message;
@@ -33,5 +33,5 @@ TEST(LastWill, TheNextConnectionsWillReplacesItAndAForgottenOneIsNeverSaid) {
     EXPECT_FALSE(last.take());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -9,7 +9,7 @@
 #include <memory>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(LoopPost, RunsPostedWorkOnTheLoopWhileTheOwnerLives) {
     boost::asio::io_context io;
@@ -77,5 +77,5 @@ TEST(LoopPost, GuardsATimersHandlerAndPassesItsArguments) {
     EXPECT_EQ(fired, 1);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

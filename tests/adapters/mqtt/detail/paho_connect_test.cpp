@@ -21,7 +21,7 @@
 #include "adapters/mqtt/detail/paho_trace.hpp"
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// A loopback TCP listener on a port of its own; the kernel completes handshakes for it
 /// whether or not anything is accepted.
@@ -201,5 +201,5 @@ TEST(PahoConnectTest, PahoSendsConnectWithoutLeavingTheConnectPending) {
     for (const auto& line : traced) EXPECT_EQ(line.find("Connect pending"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 std::mutex traced_mutex;
 std::vector<int> traced_levels;
@@ -73,5 +73,5 @@ TEST(QuietPahoTraceTest, KeepsPahosLevelWhenTheEnvironmentAsksForATrace) {
     quiet_paho_trace(nullptr);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -5,7 +5,7 @@
 #include <string>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 Message message(std::string topic, std::string payload = "1") {
     Message m;
@@ -39,5 +39,5 @@ TEST(PublicationCheck, PacketsOverTheBrokersMaximumAreCaught) {
               "correlation data of 65536 bytes (MQTT allows 65535)");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

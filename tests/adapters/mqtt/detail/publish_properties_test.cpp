@@ -10,7 +10,7 @@
 #include <string>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 Message data(std::string topic) {
     Message m;
@@ -123,5 +123,5 @@ TEST(PublishProperties, NoAliasWhereTheBrokerTakesNone) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

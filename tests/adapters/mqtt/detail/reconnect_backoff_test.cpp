@@ -5,7 +5,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 using Clock = ReconnectBackoff::Clock;
@@ -109,5 +109,5 @@ TEST(ReconnectBackoff, AMinAboveTheMaxIsTheDelay) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -11,7 +11,7 @@
 #include "tests/support/fakes/fake_clock.hpp"
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -55,5 +55,5 @@ TEST(ReconnectTimer, RunsOnDueOnTheLoopUnlessCancelled) {
     EXPECT_EQ(due, 1);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -10,7 +10,7 @@
 #include <vector>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr std::size_t kCapacity = 1000;
 
@@ -315,5 +315,5 @@ TEST(SendLedger, DiscardingDropsTheQueueAndTheRetries) {
     EXPECT_EQ(ledger.queued(), 0u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(SendRoom, TheWindowFillsToItsLimitThenWaitsForAnEighthOfIt) {
     EXPECT_TRUE(has_room(0, 256, false));
@@ -42,5 +42,5 @@ TEST(SendRoom, ASaturatedConnectionRefillsTwoSlotsAtATime) {
     EXPECT_FALSE(has_saturated_room(0, 1, 1));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -10,7 +10,7 @@
 #include <algorithm>
 
 namespace eip2mqtt::adapters::mqtt::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// A connected loopback TCP pair: a listener, the client end and the accepted end.
 struct LoopbackPair {
@@ -85,5 +85,5 @@ TEST(TcpNodelay, RefusedOnAClosedDescriptor) {
     EXPECT_FALSE(set_tcp_nodelay(fd, true));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::mqtt::detail

@@ -7,7 +7,7 @@
 #include <string>
 
 namespace eip2mqtt::adapters::yaml::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(YamlTree, MapsKeepEntriesInDocumentOrder) {
     const auto tree = Tree::parse("b: 1\na: two\nc: '3'\n");
@@ -211,5 +211,5 @@ TEST(YamlTree, UndefinedNodesAnswerEverythingEmpty) {
     EXPECT_FALSE(none.find("a").is_defined());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::adapters::yaml::detail

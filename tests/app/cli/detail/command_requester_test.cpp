@@ -14,7 +14,7 @@
 #include "tests/support/free_port.hpp"
 
 namespace eip2mqtt::app::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -50,5 +50,5 @@ TEST_F(CommandRequesterTest, ANodeThatNeverAnswersIsSaidSoAfterEveryAttempt) {
     EXPECT_EQ(CommandRequester(500ms, 1).no_answer(), "no answer after 1 attempt of 500 ms");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::detail

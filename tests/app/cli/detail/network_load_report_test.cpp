@@ -10,7 +10,7 @@
 #include "tests/support/gateway_fixture.hpp"
 
 namespace eip2mqtt::app {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// Three produced exchanges and a consumed one, which puts nothing on the wire.
 std::string config_with_link(const std::string& link_mbps) {
@@ -101,5 +101,5 @@ TEST(CheckNetworkLoad, TheLinkIs100MbitUnlessConfigured) {
         << out.str();
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app

@@ -11,7 +11,7 @@
 #include <csignal>
 
 namespace eip2mqtt::app::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using namespace std::chrono_literals;
 
@@ -61,5 +61,5 @@ TEST(RunUntilStopped, SigintStopsItBeforeItsDuration) {
     EXPECT_FALSE(watchdog.fired());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::detail

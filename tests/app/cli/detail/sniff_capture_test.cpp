@@ -12,7 +12,7 @@
 #include <string>
 
 namespace eip2mqtt::app::detail {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(SniffCapture, TheFilterTakesDatagramsToThePortAndToTheBoundAddressWhenGiven) {
     EXPECT_EQ(capture_filter(18246, ""), "ip and udp dst port 18246");
@@ -41,5 +41,5 @@ TEST(SniffCapture, ABindThatIsNoIpv4AddressOpensNoCapture) {
     EXPECT_EQ(err.str(), "eip2mqtt sniff: --bind 'gateway.local' is not an IPv4 address\n");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::detail

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace eip2mqtt::app::dissector {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(FieldPart, KeepsWhatWiresharkAcceptsInAFieldName) {
     EXPECT_EQ(field_part("SPEED_SP-2"), "SPEED_SP-2");
@@ -49,5 +49,5 @@ TEST(LuaString, EscapesQuotesBackslashesAndEveryNonAsciiByte) {
               "\"\\195\\1311\"");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::dissector

@@ -7,7 +7,7 @@
 #include "tests/app/support/test_plan.hpp"
 
 namespace eip2mqtt::app::dissector {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::Direction;
 using core::plan::TagType;
@@ -113,5 +113,5 @@ TEST(LuaDissector, IsTheSameTextForTheSamePlans) {
     EXPECT_EQ(lua_dissector({turbine()}, {}), lua_dissector({turbine()}, {}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::dissector

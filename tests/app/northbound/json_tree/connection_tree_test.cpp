@@ -15,7 +15,7 @@
 #include "tests/support/fakes/recording_publisher.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 
@@ -97,5 +97,5 @@ TEST_F(ConnectionTreeTest, ItsTopicsGoOutUnderItsBaseAndWritesComeBackUnderTheFi
         << meta->payload;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::json_tree

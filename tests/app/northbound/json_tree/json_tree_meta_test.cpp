@@ -10,7 +10,7 @@
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::Direction;
 using core::plan::TagType;
@@ -127,5 +127,5 @@ TEST(JsonTreeMeta, AScaledTagSaysItsScaleAndPercentDeadband) {
     EXPECT_FALSE(o.contains("publish_raw"));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -18,7 +18,7 @@
 #include "tests/support/mqtt_recorder.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 adapters::mqtt::Message probe(const std::string& topic, std::uint64_t ack_token = 0) {
     adapters::mqtt::Message m;
@@ -147,5 +147,5 @@ TEST_F(JsonTreeModuleTest, QueueRoomReportsTheClientsQueueAndTheBufferBound) {
     EXPECT_EQ(tree_->queue_room()->capacity, next.mqtt.buffer_max_messages);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -7,7 +7,7 @@
 #include "tests/support/schema_check.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 std::string json_string(std::string_view text) {
     std::string out = "x";  // appended to, never replaced
@@ -156,5 +156,5 @@ TEST(TagPayload, TheValueProfilePublishesAStringBareAndKepwareSaysAStaleValueIsN
     EXPECT_EQ(out, R"({"timestamp":5,"values":[{"id":"x.BATCH","v":"a\"b","q":false,"t":5}]})");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -16,7 +16,7 @@
 #include "tests/app/support/test_plan.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::quality::Quality;
 
@@ -331,5 +331,5 @@ TEST(JsonTreeMetaTest, AReconnectSendsTheDescriptionsAFewAtATimeInConfigurationO
     EXPECT_EQ(published.back().topic, plans[2 * per_call - 1].meta_topic);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::json_tree

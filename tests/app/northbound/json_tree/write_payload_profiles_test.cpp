@@ -9,7 +9,7 @@
 #include "eip2mqtt/app/northbound/json_tree/write_payload.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::config::PayloadFormat;
 using core::write::WriteError;
@@ -76,5 +76,5 @@ TEST(ProfileWrites, ValueTakesTextThatIsNotJsonAsAStringsText) {
               WriteError::malformed);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::json_tree

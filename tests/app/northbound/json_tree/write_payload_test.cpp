@@ -9,7 +9,7 @@
 #include <variant>
 
 namespace eip2mqtt::app::northbound::json_tree {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::write::WriteError;
 using core::write::WriteInput;
@@ -290,5 +290,5 @@ TEST(WriteToLint, IntegersAreExactAndNothingElsePasses) {
     EXPECT_EQ(write_lint("1e300").error().error, WriteError::out_of_range);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -12,7 +12,7 @@
 #include "tests/app/support/test_plan.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::Direction;
 using core::plan::TagType;
@@ -108,5 +108,5 @@ TEST_F(WriteRouterLayoutTest, EachSetTopicIsSubscribedExactlyAndNoFilterOverlaps
                                   "acme/t1/set", "acme/t2/set"}));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -13,7 +13,7 @@
 #include "tests/app/support/test_plan.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::TagType;
 using core::write::WriteError;
@@ -215,5 +215,5 @@ TEST_F(WriteRouterTest, OneFilterPerDepthOfSetTopic) {
     EXPECT_TRUE(router_.subscriptions().empty());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::json_tree

@@ -14,7 +14,7 @@
 #include "tests/app/support/test_plan.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using adapters::sparkplug::CommandMetric;
 using adapters::sparkplug::Payload;
@@ -159,5 +159,5 @@ TEST(DeviceRegistryScaled, AScaledTagIsBornAndReportedInUnitsWithItsRange) {
     EXPECT_EQ(data.metrics[0].value, adapters::sparkplug::MetricValue{Value{std::int64_t{6}}});
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

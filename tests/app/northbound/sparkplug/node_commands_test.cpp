@@ -12,7 +12,7 @@
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using adapters::sparkplug::DataType;
 using core::plan::Direction;
@@ -165,5 +165,5 @@ TEST_F(NodeCommandsTest, ADcmdWithoutDatatypesTakesEachTagsOwn) {
               core::write::WriteError::wrong_type);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

@@ -15,7 +15,7 @@
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using adapters::sparkplug::Payload;
 using core::plan::Direction;
@@ -133,5 +133,5 @@ TEST_F(NodeMetricsTest, WidenedForSizingEveryCounterIsAtItsLargest) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

@@ -8,7 +8,7 @@
 #include "sparkplug_b.pb.h"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 constexpr auto t0 = core::MonoTime{} + std::chrono::hours(24);
 
@@ -123,5 +123,5 @@ TEST_F(NodeSessionTest, TheHostGoingOfflineEndsTheBirthsAndAWaitingRebirth) {
     EXPECT_FALSE(hosted.birth_due());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

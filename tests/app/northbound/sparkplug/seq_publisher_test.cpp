@@ -13,7 +13,7 @@
 #include "tests/support/fakes/recording_publisher.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using adapters::sparkplug::DataType;
 using adapters::sparkplug::Payload;
@@ -85,5 +85,5 @@ TEST_F(SeqPublisherTest, TheConfiguredLimitLowersTheBrokersAndNeverRaisesIt) {
     EXPECT_FALSE(unconfigured.limit_configured());
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

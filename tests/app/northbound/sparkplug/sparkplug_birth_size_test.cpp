@@ -12,7 +12,7 @@
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::Direction;
 using test::sparkplug_plan;
@@ -35,5 +35,5 @@ TEST(SparkplugBirthSizes, OneDbirthPerPlanInOrderAndAnNbirthThatGrowsWithThem) {
     EXPECT_EQ(hosted.devices, both.devices);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

@@ -15,7 +15,7 @@
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::exchange::ConsumeState;
 using core::plan::TagType;
@@ -224,5 +224,5 @@ TEST_F(SparkplugNodeTest, AConnectAttemptThatFailedLeavesTheBdSeqAsItWas) {
     }
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

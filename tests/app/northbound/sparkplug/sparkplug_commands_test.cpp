@@ -11,7 +11,7 @@
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using adapters::sparkplug::DataType;
 using core::plan::Value;
@@ -89,5 +89,5 @@ TEST_F(SparkplugPrimaryHostTest, ANodeNotBornYetWaitsForTheHostOnItsBroker) {
     EXPECT_EQ(count_of("spBv1.0/plant1/NBIRTH/gw1"), 1u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

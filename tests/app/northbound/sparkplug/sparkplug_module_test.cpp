@@ -17,7 +17,7 @@
 #include "tests/support/mqtt_recorder.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// A role whose sessions open when it is taken; it fences nothing, and is never taken here
 /// but by the test's open_session().
@@ -134,5 +134,5 @@ TEST_F(SparkplugModuleTest, TheBdSeqGoesOnFromTheStateDirectoryAfterARestart) {
     EXPECT_EQ(line, "1");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

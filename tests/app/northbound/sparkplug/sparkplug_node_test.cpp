@@ -13,7 +13,7 @@
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using adapters::sparkplug::DataType;
 using core::exchange::ConsumeState;
@@ -375,5 +375,5 @@ TEST_F(SparkplugNodeTest, ARebirthRequestStopsDataUntilItsBirths) {
     EXPECT_EQ(decoded(publisher_.published.at(1)).metrics(0).int_value(), 9u);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

@@ -11,7 +11,7 @@
 #include "tests/app/support/sparkplug_node_fixture.hpp"
 
 namespace eip2mqtt::app::northbound::sparkplug {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using core::plan::Value;
 using core::quality::Quality;
@@ -78,5 +78,5 @@ TEST_F(SparkplugNodeTest, AnEndedSessionPublishesNothingUntilTheNextConnectionsB
     EXPECT_EQ(decoded(publisher_.published[1]).metrics(1).float_value(), 2.5f);
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::app::northbound::sparkplug

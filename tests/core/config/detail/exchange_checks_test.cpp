@@ -9,7 +9,7 @@
 #include "tests/core/config/config_builders.hpp"
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Validate, LengthZeroOrOver1400) {
     auto c = valid();
@@ -187,5 +187,5 @@ TEST(Validate, NoExchanges) {
     only(validate(c));
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

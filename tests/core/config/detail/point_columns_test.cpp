@@ -5,7 +5,7 @@
 #include "eip2mqtt/core/config/point_list.hpp"
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 using plan::ScaleKind;
 using plan::ScaleRange;
@@ -72,5 +72,5 @@ TEST(PointColumns, BadFieldsAreRefusedAtTheirColumn) {
     EXPECT_EQ(list.rows[0].tag.name, "E");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

@@ -9,7 +9,7 @@
 #include "tests/core/config/config_builders.hpp"
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Validate, OverlappingTagsAreValid) {
     // As point lists name them: a word and a bit in it, a byte and its bit 0, one bit twice.
@@ -187,5 +187,5 @@ TEST(Validate, APointListRowWhoseTopicIsTooLongIsRefusedAtItsRow) {
     EXPECT_TRUE(mentions(d, "65536 bytes long")) << d.message;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

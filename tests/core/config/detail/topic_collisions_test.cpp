@@ -9,7 +9,7 @@
 #include "tests/core/config/config_builders.hpp"
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Validate, TwoExchangesOnOneTopic) {
     auto c = valid();
@@ -120,5 +120,5 @@ TEST(Validate, SameTagNameOnTwoExchangesOfOneTopic) {
         << d[1].message;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

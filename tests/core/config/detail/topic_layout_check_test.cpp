@@ -9,7 +9,7 @@
 #include "tests/core/config/config_builders.hpp"
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 /// valid(), its tags laid out by asset: acme/site/{area}/{asset}/{tag}.
 Config by_asset() {
@@ -159,5 +159,5 @@ TEST(TopicLayout, ATopicStartingWithADollarIsRefused) {
     EXPECT_TRUE(mentions(d[0], "starts with '$'")) << d[0].message;
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config

@@ -9,7 +9,7 @@
 #include "tests/core/config/config_builders.hpp"
 
 namespace eip2mqtt::core::config {
-namespace {
+namespace EIP2MQTT_THIS_FILE {
 
 TEST(Validate, ValidConfigHasNoDiagnostics) { EXPECT_TRUE(validate(valid()).empty()); }
 
@@ -99,5 +99,5 @@ TEST(Validate, DiagnosticsComeInFileOrder) {
     EXPECT_EQ(found.back().mark.file, "a.csv");
 }
 
-}  // namespace
+}  // namespace EIP2MQTT_THIS_FILE
 }  // namespace eip2mqtt::core::config
