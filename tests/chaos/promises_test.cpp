@@ -54,20 +54,44 @@ TEST(OneProducer, ANewLeaderLessThanAPeriodAfterTheOldOneIsCaught) {
 
 TEST(LeadershipPresent, ATakeoverWithinTakeoverPlusAPeriodHolds) {
     const auto capture = joined(run_of("a", 0ms, 10), run_of("b", 1450ms, 10));
-    EXPECT_THAT(leadership_present(capture, 1000ms, 50ms, 100ms, {}, 1950ms), IsEmpty());
+    EXPECT_THAT(leadership_present(capture, {}, 1000ms, 50ms, 100ms, {}, 1950ms), IsEmpty());
 }
 
 TEST(LeadershipPresent, ALongerPauseIsCaughtUnlessNoUnitCouldReachTheBroker) {
     // Nobody from 450 ms to 3,000 ms: the stale claims of a unit cut off deposed the leader.
     const auto capture = joined(run_of("a", 0ms, 10), run_of("b", 3000ms, 10));
-    EXPECT_THAT(leadership_present(capture, 1000ms, 50ms, 100ms, {}, 3450ms),
+    EXPECT_THAT(leadership_present(capture, {}, 1000ms, 50ms, 100ms, {}, 3450ms),
                 ElementsAre(HasSubstr("from 450 ms to 3000 ms")));
-    EXPECT_THAT(leadership_present(capture, 1000ms, 50ms, 100ms, {{1000ms, 2000ms}}, 3450ms),
+    EXPECT_THAT(leadership_present(capture, {}, 1000ms, 50ms, 100ms, {{1000ms, 2000ms}}, 3450ms),
                 IsEmpty());
     // A pause at the end counts too, and a run that produced nothing fails.
-    EXPECT_THAT(leadership_present(run_of("a", 0ms, 2), 1000ms, 50ms, 100ms, {}, 5000ms),
+    EXPECT_THAT(leadership_present(run_of("a", 0ms, 2), {}, 1000ms, 50ms, 100ms, {}, 5000ms),
                 ElementsAre(HasSubstr("until the end of the run")));
-    EXPECT_THAT(leadership_present({}, 1000ms, 50ms, 100ms, {}, 5000ms), SizeIs(1));
+    EXPECT_THAT(leadership_present({}, {}, 1000ms, 50ms, 100ms, {}, 5000ms), SizeIs(1));
+}
+
+TEST(LeadershipPresent, ALeaderCutOffCountsFromItsLastRenewalHeardBeforeItStoodDown) {
+    // a's datagrams stop at 450 ms (cut off), its renewal sent in the cut is heard at 700 ms and
+    // it stands down at 720 ms; b leads a takeover later and produces at 1,800 ms.
+    const auto capture = joined(run_of("a", 0ms, 10), run_of("b", 1800ms, 10));
+    const LeaseHeard cut{{{"a", 1, 200ms}, {"a", 1, 700ms}, {"b", 2, 1750ms}},
+                         {{"a", true, 100ms}, {"a", false, 720ms}, {"b", true, 1750ms}}};
+    EXPECT_THAT(leadership_present(capture, cut, 1000ms, 50ms, 100ms, {}, 2250ms), IsEmpty());
+    // Without the renewal the pause is 1,350 ms; a late production after it is caught all the
+    // same, with where it was counted from.
+    EXPECT_THAT(leadership_present(capture, {}, 1000ms, 50ms, 100ms, {}, 2250ms),
+                ElementsAre(HasSubstr("from 450 ms to 1800 ms")));
+    const auto late = joined(run_of("a", 0ms, 10), run_of("b", 2000ms, 10));
+    EXPECT_THAT(leadership_present(late, cut, 1000ms, 50ms, 100ms, {}, 2450ms),
+                ElementsAre(HasSubstr("from 700 ms to 2000 ms (1300 ms, more than takeover + "
+                                      "period + slack = 1150 ms; the last datagram at 450 ms")));
+}
+
+TEST(LeadershipPresent, ALeaderThatRenewsAndNeverProducesIsCaught) {
+    const LeaseHeard renewing{{{"a", 1, 200ms}, {"a", 1, 700ms}, {"a", 1, 1200ms}},
+                              {{"a", true, 100ms}}};
+    EXPECT_THAT(leadership_present(run_of("a", 0ms, 10), renewing, 1000ms, 50ms, 100ms, {}, 3000ms),
+                ElementsAre(HasSubstr("from 450 ms to 3000 ms")));
 }
 
 /// gw-b's renewals every 250 ms from `from` to `to`, epoch `epoch`.

@@ -164,9 +164,10 @@ std::map<std::string, std::string> ChaosRig::check() const {
         out[name] = report(name, found);
     };
     add("one producer", one_producer(capture, period, period / 5));
-    add("leadership present", leadership_present(capture, settings_.takeover, period,
-                                                 settings_.takeover / 4, unreachable_, end_));
     const auto [renewals, roles] = lease_of(recorder_->messages(), epoch_);
+    add("leadership present",
+        leadership_present(capture, {renewals, roles}, settings_.takeover, period,
+                           settings_.takeover / 4, unreachable_, end_));
     add("leader kept",
         leader_kept(renewals, roles, unit_faults_, settings_.takeover / 2, 5 * settings_.takeover));
     add("published was sent", published_was_sent(sent_samples, samples));

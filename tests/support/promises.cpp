@@ -17,6 +17,27 @@ std::vector<Produced> by_time(std::vector<Produced> capture) {
     return capture;
 }
 
+/// When a pause after the datagram at `from` starts counting: at the last renewal of the lease
+/// in force at `from` (the last renewal heard by then) heard before its holder said `standby`,
+/// if it said so before `to`; else at `from`.
+Millis takeover_counted_from(const LeaseHeard& lease, Millis from, Millis to) {
+    const Renewal* in_force = nullptr;
+    for (const auto& r : lease.renewals) {
+        if (r.at <= from) in_force = &r;
+    }
+    if (in_force == nullptr) return from;
+    const auto stood_down =
+        std::find_if(lease.roles.begin(), lease.roles.end(), [&](const Role& r) {
+            return r.unit == in_force->unit && !r.leader && r.at > from && r.at < to;
+        });
+    if (stood_down == lease.roles.end()) return from;
+    Millis last = from;
+    for (const auto& r : lease.renewals) {
+        if (r.epoch == in_force->epoch && r.at > from && r.at <= stood_down->at) last = r.at;
+    }
+    return last;
+}
+
 bool overlaps(Millis from, Millis to, const std::vector<Span>& spans) {
     return std::any_of(spans.begin(), spans.end(),
                        [&](const Span& s) { return s.from < to && from < s.to; });
@@ -52,17 +73,24 @@ std::vector<std::string> one_producer(const std::vector<Produced>& capture, Mill
     return out;
 }
 
-std::vector<std::string> leadership_present(const std::vector<Produced>& capture, Millis takeover,
-                                            Millis period, Millis slack,
-                                            const std::vector<Span>& excused, Millis end) {
+std::vector<std::string> leadership_present(const std::vector<Produced>& capture,
+                                            const LeaseHeard& lease, Millis takeover, Millis period,
+                                            Millis slack, const std::vector<Span>& excused,
+                                            Millis end) {
     std::vector<std::string> out;
     const auto sorted = by_time(capture);
     if (sorted.empty()) return {"nothing was produced at all"};
     const auto bound = takeover + period + slack;
-    const auto pause = [&](Millis from, Millis to, const std::string& what) {
+    const auto pause = [&](Millis last, Millis to, const std::string& what) {
+        const auto from = takeover_counted_from(lease, last, to);
         if (to - from > bound && !overlaps(from, to, excused)) {
             out.push_back("nobody produced from " + ms(from) + " to " + ms(to) + " (" +
                           ms(to - from) + ", more than takeover + period + slack = " + ms(bound) +
+                          (from > last ? "; the last datagram at " + ms(last) +
+                                             ", the lease's "
+                                             "last renewal heard at " +
+                                             ms(from)
+                                       : std::string()) +
                           ") " + what);
         }
     };

@@ -38,14 +38,6 @@ struct Span {
     Millis to{0};
 };
 
-/// Leadership never absent: the produced stream (all units together) never pauses longer than
-/// `takeover + period + slack`, unless the pause overlaps a span of `excused` (no unit could
-/// reach the broker, and the time both take to be back). Measured from the first datagram to
-/// `end` (a pause at the end counts too).
-std::vector<std::string> leadership_present(const std::vector<Produced>& capture, Millis takeover,
-                                            Millis period, Millis slack,
-                                            const std::vector<Span>& excused, Millis end);
-
 /// A renewal on the pair's leader topic (a record without `claim`), and a unit's role message.
 struct Renewal {
     std::string unit;
@@ -57,6 +49,25 @@ struct Role {
     bool leader = false;
     Millis at{0};
 };
+/// What a subscriber heard of the lease, in the order heard.
+struct LeaseHeard {
+    std::vector<Renewal> renewals;
+    std::vector<Role> roles;
+};
+
+/// Leadership never absent: the produced stream (all units together) never pauses longer than
+/// `takeover + period + slack`, unless the pause overlaps a span of `excused` (no unit could
+/// reach the broker, and the time both take to be back). Measured from the first datagram to
+/// `end` (a pause at the end counts too). Where the leader stood down within the pause, it
+/// counts from the last renewal of its lease heard before that, if later than the last
+/// datagram: a standby counts its takeover from the last record it heard (docs/redundancy.md),
+/// and a leader cut off stops reaching the PLCs at once while a renewal it sent in the cut
+/// reaches the broker when its path is back. A leader that renews and never produces is caught.
+std::vector<std::string> leadership_present(const std::vector<Produced>& capture,
+                                            const LeaseHeard& lease, Millis takeover, Millis period,
+                                            Millis slack, const std::vector<Span>& excused,
+                                            Millis end);
+
 /// A fault of one unit's broker path (cut, stalled, delayed, the unit stopped or killed), or of
 /// every unit's (`unit` empty: the broker stopped).
 struct UnitFault {
