@@ -83,16 +83,13 @@ std::vector<std::string> leadership_present(const std::vector<Produced>& capture
     const auto bound = takeover + period + slack;
     const auto pause = [&](Millis last, Millis to, const std::string& what) {
         const auto from = takeover_counted_from(lease, last, to);
-        if (to - from > bound && !overlaps(from, to, excused)) {
-            out.push_back("nobody produced from " + ms(from) + " to " + ms(to) + " (" +
-                          ms(to - from) + ", more than takeover + period + slack = " + ms(bound) +
-                          (from > last ? "; the last datagram at " + ms(last) +
-                                             ", the lease's "
-                                             "last renewal heard at " +
-                                             ms(from)
-                                       : std::string()) +
-                          ") " + what);
-        }
+        if (to - from <= bound || overlaps(from, to, excused)) return;
+        const auto counted = from > last ? "; the last datagram at " + ms(last) +
+                                               ", the lease's last renewal heard at " + ms(from)
+                                         : std::string();
+        out.push_back("nobody produced from " + ms(from) + " to " + ms(to) + " (" + ms(to - from) +
+                      ", more than takeover + period + slack = " + ms(bound) + counted + ") " +
+                      what);
     };
     for (std::size_t i = 1; i < sorted.size(); ++i) {
         pause(sorted[i - 1].at, sorted[i].at,
