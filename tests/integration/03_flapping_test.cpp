@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "tests/support/datagram_builder.hpp"
 #include "tests/support/exchange_yaml.hpp"
@@ -37,6 +38,15 @@ protected:
         return static_cast<std::size_t>(
             std::count_if(all.begin() + static_cast<std::ptrdiff_t>(from), all.end(),
                           [&](const Received& m) { return m.topic == topic(suffix); }));
+    }
+
+    // Whole periods and seconds begun since t0, each rounded up.
+    static std::pair<std::size_t, std::size_t> periods_and_seconds_since(
+        std::chrono::steady_clock::time_point t0) {
+        const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - t0;
+        const auto periods =
+            static_cast<std::size_t>(std::ceil(elapsed / std::chrono::duration<double>(period)));
+        return {periods, static_cast<std::size_t>(std::ceil(elapsed.count()))};
     }
 };
 
@@ -88,11 +98,7 @@ TEST_F(FlappingTest, AlternatingGoodAndShortDatagramsArePublishedOncePerPeriodAn
     const auto speed = count_after("pump/SPEED", from);
     const auto level = count_after("pump/LEVEL", from);
     const auto statuses = count_after("pump/_status", from);
-    const auto elapsed = std::chrono::steady_clock::now() - t0;
-    const auto periods = static_cast<std::size_t>(
-        std::ceil(std::chrono::duration<double>(elapsed) / std::chrono::duration<double>(period)));
-    const auto seconds =
-        static_cast<std::size_t>(std::ceil(std::chrono::duration<double>(elapsed).count()));
+    const auto [periods, seconds] = periods_and_seconds_since(t0);
     EXPECT_LE(speed, periods + 3) << periods << " periods";
     EXPECT_LE(level, periods + 3) << periods << " periods";
     EXPECT_LE(statuses, periods + seconds + 3) << periods << " periods";
