@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <string_view>
 #include <type_traits>
 
 #include "eip2mqtt/core/json_text.hpp"
@@ -15,16 +16,23 @@ namespace {
 // Shortest text that reads back to the same float or double, so a real 1.1f prints "1.1"
 // rather than its binary64 widening 1.100000023841858. JSON has no NaN or infinities.
 template <class Float>
-std::string float_to_json(Float value) {
-    if (std::isnan(value)) return "\"NaN\"";
-    if (std::isinf(value)) return value > 0 ? "\"Infinity\"" : "\"-Infinity\"";
+void append_float(std::string& out, Float value) {
+    if (std::isnan(value)) {
+        out += "\"NaN\"";
+        return;
+    }
+    if (std::isinf(value)) {
+        out += value > 0 ? "\"Infinity\"" : "\"-Infinity\"";
+        return;
+    }
     std::array<char, 64> buffer{};
     const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-    std::string text(buffer.data(), result.ptr);
+    const std::string_view text(buffer.data(),
+                                static_cast<std::size_t>(result.ptr - buffer.data()));
+    out += text;
     // A real stays a JSON float even when integral (65900.0, not 65900), so that consumers
     // which type fields by their first value (InfluxDB, Telegraf) never see it change type.
-    if (text.find_first_of(".e") == std::string::npos) text += ".0";
-    return text;
+    if (text.find_first_of(".e") == std::string_view::npos) out += ".0";
 }
 
 }  // namespace
@@ -51,30 +59,36 @@ double to_double(const Value& value) {
         value);
 }
 
-std::string to_json(const Value& value) {
-    return std::visit(
-        [](const auto& v) -> std::string {
+void append_json(std::string& out, const Value& value) {
+    std::visit(
+        [&out](const auto& v) {
             using V = std::decay_t<decltype(v)>;
             if constexpr (std::is_same_v<V, bool>) {
-                return v ? "true" : "false";
+                out += v ? "true" : "false";
             } else if constexpr (std::is_floating_point_v<V>) {
-                return float_to_json(v);
+                append_float(out, v);
             } else if constexpr (std::is_same_v<V, Text>) {
-                std::string out;
                 append_json_string(out, *v);
-                return out;
             } else if constexpr (std::is_same_v<V, List>) {
-                std::string out = "[";
+                out += '[';
+                bool first = true;
                 for (const auto& item : v->items) {
-                    if (out.size() > 1) out += ',';
-                    out += to_json(item);
+                    if (!first) out += ',';
+                    first = false;
+                    append_json(out, item);
                 }
-                return out + ']';
+                out += ']';
             } else {
-                return std::to_string(v);
+                append_integer(out, v);
             }
         },
         value);
+}
+
+std::string to_json(const Value& value) {
+    std::string out;
+    append_json(out, value);
+    return out;
 }
 
 bool same_value(const Value& a, const Value& b) {

@@ -27,6 +27,16 @@ TEST(ValueJson, IntegersAreExact) {
     EXPECT_EQ(to_json(Value{std::uint64_t{3000000000}}), "3000000000");
 }
 
+TEST(ValueJson, AppendKeepsWhatIsThereAndWritesWhatToJsonWrites) {
+    std::string out = R"({"a":)";
+    append_json(out, Value{std::int64_t{-2}});
+    out += ',';
+    append_json(out, Value{65900.0f});
+    out += ',';
+    append_json(out, make_list({Value{true}, Value{nan_d}, make_text("x\"y")}));
+    EXPECT_EQ(out, R"({"a":-2,65900.0,[true,"NaN","x\"y"])");
+}
+
 TEST(ValueJson, RealsPrintAsWrittenNotWidened) {
     EXPECT_EQ(to_json(Value{1.1f}), "1.1");
     EXPECT_EQ(to_json(Value{-273.15f}), "-273.15");

@@ -46,6 +46,10 @@ double to_double(const Value& value);
 /// JSON lacks, are written as the strings "NaN", "Infinity", "-Infinity".
 std::string to_json(const Value& value);
 
+/// Appends the JSON text of `value` to `out`: `to_json` without a string of its own, for the
+/// payloads formatted for every tag change.
+void append_json(std::string& out, const Value& value);
+
 /// True when both hold the same alternative and equal values (a List element by element); NaN
 /// equals NaN here so that a NaN on the wire is not reported as a change on every datagram.
 bool same_value(const Value& a, const Value& b);

@@ -8,7 +8,9 @@
 #include "eip2mqtt/app/health/metrics.hpp"
 #include "eip2mqtt/app/northbound/json_tree/counter_json.hpp"
 #include "eip2mqtt/app/redundancy/role_metrics.hpp"
+#include "eip2mqtt/core/json_text.hpp"
 #include "eip2mqtt/core/plan/published_value.hpp"
+#include "eip2mqtt/core/plan/value.hpp"
 #include "eip2mqtt/core/wire/header.hpp"
 
 namespace eip2mqtt::app::northbound::json_tree {
@@ -26,9 +28,11 @@ void append_kepware_value(std::string& out, std::string_view exchange, std::stri
     id.append(exchange).append(".").append(tag);
     out += R"({"id":)";
     append_json_string(out, id);
-    fmt::format_to(std::back_inserter(out), R"(,"v":{},"q":{},"t":{}}})",
-                   core::plan::to_json(value),
-                   quality == core::quality::Quality::good ? "true" : "false", timestamp_ms);
+    out += R"(,"v":)";
+    core::plan::append_json(out, value);
+    out += quality == core::quality::Quality::good ? R"(,"q":true,"t":)" : R"(,"q":false,"t":)";
+    core::append_integer(out, timestamp_ms);
+    out += '}';
 }
 
 }  // namespace
@@ -38,7 +42,6 @@ void format_tag_payload(std::string& out, std::string_view exchange, const core:
                         std::int64_t timestamp_ms, PayloadFormat format) {
     out.clear();
     const auto published = core::plan::published_value(tag, raw);
-    auto to = std::back_inserter(out);
     switch (format) {
         case PayloadFormat::raw:
             out = core::plan::to_json(published.value);
@@ -52,24 +55,40 @@ void format_tag_payload(std::string& out, std::string_view exchange, const core:
             }
             return;
         case PayloadFormat::umh:
-            fmt::format_to(to, R"({{"value":{},"timestamp_ms":{}}})",
-                           core::plan::to_json(published.value), timestamp_ms);
+            out += R"({"value":)";
+            core::plan::append_json(out, published.value);
+            out += R"(,"timestamp_ms":)";
+            core::append_integer(out, timestamp_ms);
+            out += '}';
             return;
         case PayloadFormat::kepware:
-            fmt::format_to(to, R"({{"timestamp":{},"values":[)", timestamp_ms);
+            out += R"({"timestamp":)";
+            core::append_integer(out, timestamp_ms);
+            out += R"(,"values":[)";
             append_kepware_value(out, exchange, tag.name, published.value, quality, timestamp_ms);
             out += "]}";
             return;
         case PayloadFormat::json:
             break;
     }
-    fmt::format_to(to, R"({{"value":{},"timestamp":{},"quality":"{}")",
-                   core::plan::to_json(published.value), timestamp_ms,
-                   core::quality::to_string(quality));
+    // Appended piece by piece, not through a format string: under overload this runs for
+    // every tag change, several times for each publication the broker takes.
+    out += R"({"value":)";
+    core::plan::append_json(out, published.value);
+    out += R"(,"timestamp":)";
+    core::append_integer(out, timestamp_ms);
+    out += R"(,"quality":")";
+    out += core::quality::to_string(quality);
+    out += '"';
     if (published.limit != core::plan::Limit::none) {
-        fmt::format_to(to, R"(,"limit":"{}")", core::plan::to_string(published.limit));
+        out += R"(,"limit":")";
+        out += core::plan::to_string(published.limit);
+        out += '"';
     }
-    if (tag.publish_raw()) fmt::format_to(to, R"(,"raw":{})", core::plan::to_json(raw));
+    if (tag.publish_raw()) {
+        out += R"(,"raw":)";
+        core::plan::append_json(out, raw);
+    }
     out += '}';
 }
 
@@ -99,7 +118,7 @@ void format_values_payload(std::string& out, const SampleBatch& batch, PayloadFo
         const auto& tag = batch.exchange.tags[sample.tag].spec;
         append_json_string(out, tag.name);
         out += ':';
-        out += core::plan::to_json(core::plan::published_value(tag, sample.value).value);
+        core::plan::append_json(out, core::plan::published_value(tag, sample.value).value);
     }
     out += "}}";
 }

@@ -42,6 +42,28 @@ TEST(PublishProperties, MqttThreeCarriesNone) {
     EXPECT_TRUE(out->get_properties().empty());
 }
 
+TEST(PublishProperties, TheDefaultSaysOnlyTheTypeOfEachPayload) {
+    ClientOptions options;
+    options.describe_payloads = true;
+    PublishProperties properties(options);
+    const auto out = properties.to_paho(data("a/b"));
+    EXPECT_EQ(out->get_topic(), "a/b");
+    EXPECT_EQ(out->get_payload_str(), R"({"value":1})");
+    EXPECT_EQ(out->get_qos(), 1);
+    const auto& p = out->get_properties();
+    EXPECT_EQ(p.size(), 2u);
+    EXPECT_EQ(::mqtt::get<std::string>(p, ::mqtt::property::CONTENT_TYPE), "application/json");
+    EXPECT_EQ(::mqtt::get<std::uint8_t>(p, ::mqtt::property::PAYLOAD_FORMAT_INDICATOR), 1);
+    auto state = data("a/state");
+    state.text = true;
+    state.retain = true;
+    const auto said = properties.to_paho(state);
+    EXPECT_TRUE(said->is_retained());
+    EXPECT_EQ(said->get_properties().size(), 2u);
+    EXPECT_EQ(::mqtt::get<std::string>(said->get_properties(), ::mqtt::property::CONTENT_TYPE),
+              "text/plain");
+}
+
 TEST(PublishProperties, ADescribedLiveValueSaysItsTypeItsPropertiesAndItsExpiry) {
     ClientOptions options;
     options.describe_payloads = true;
