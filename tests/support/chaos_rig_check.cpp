@@ -110,10 +110,10 @@ std::vector<promises::Published> ChaosRig::published(const std::vector<Received>
 namespace {
 
 /// The pair's renewals and the units' roles among `messages`, times since `epoch`.
-std::pair<std::vector<promises::Renewal>, std::vector<promises::Role>> lease_of(
-    const std::vector<Received>& messages, std::chrono::steady_clock::time_point epoch) {
-    std::vector<promises::Renewal> renewals;
-    std::vector<promises::Role> roles;
+promises::LeaseHeard lease_of(const std::vector<Received>& messages,
+                              std::chrono::steady_clock::time_point epoch) {
+    promises::LeaseHeard out;
+    auto& [renewals, roles] = out;
     const std::string prefix = "test/_gateway/";
     for (const auto& m : messages) {
         const auto at = std::chrono::duration_cast<std::chrono::milliseconds>(m.at - epoch);
@@ -128,7 +128,7 @@ std::pair<std::vector<promises::Renewal>, std::vector<promises::Role>> lease_of(
             roles.push_back({unit, m.payload == "leader", at});
         }
     }
-    return {renewals, roles};
+    return out;
 }
 
 /// Whether `unit` led at `at`: the last role it said before then was `leader`.
@@ -164,10 +164,10 @@ std::map<std::string, std::string> ChaosRig::check() const {
         out[name] = report(name, found);
     };
     add("one producer", one_producer(capture, period, period / 5));
-    const auto [renewals, roles] = lease_of(recorder_->messages(), epoch_);
-    add("leadership present",
-        leadership_present(capture, {renewals, roles}, settings_.takeover, period,
-                           settings_.takeover / 4, unreachable_, end_));
+    const auto lease = lease_of(recorder_->messages(), epoch_);
+    const auto& [renewals, roles] = lease;
+    add("leadership present", leadership_present(capture, lease, settings_.takeover, period,
+                                                 settings_.takeover / 4, unreachable_, end_));
     add("leader kept",
         leader_kept(renewals, roles, unit_faults_, settings_.takeover / 2, 5 * settings_.takeover));
     add("published was sent", published_was_sent(sent_samples, samples));

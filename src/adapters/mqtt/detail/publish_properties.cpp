@@ -14,13 +14,6 @@ namespace eip2mqtt::adapters::mqtt::detail {
     return message;
 }
 
-PublishProperties::PublishProperties(const ClientOptions& options)
-    : options_(options),
-      json_described_{{::mqtt::property::CONTENT_TYPE, "application/json"},
-                      {::mqtt::property::PAYLOAD_FORMAT_INDICATOR, 1}},
-      text_described_{{::mqtt::property::CONTENT_TYPE, "text/plain"},
-                      {::mqtt::property::PAYLOAD_FORMAT_INDICATOR, 1}} {}
-
 void PublishProperties::on_connected(std::uint16_t alias_maximum) {
     alias_maximum_.store(alias_maximum, std::memory_order_relaxed);
     connection_.fetch_add(1, std::memory_order_release);
@@ -52,15 +45,6 @@ std::uint16_t PublishProperties::alias_of(const std::string& topic, bool& known)
                            expires || options_.topic_aliases;
     if (options_.version != 5 || !described) {
         return ::mqtt::make_message(message.topic, message.payload, message.qos, message.retain);
-    }
-    const bool content_type_only =
-        options_.describe_payloads && !expires && !options_.topic_aliases && !message.historical &&
-        message.correlation_data.empty() && message.user_properties.empty();
-    if (content_type_only) {
-        // The default: every data message says only what it holds. One list copied, not
-        // built property by property for each of them.
-        return ::mqtt::message::create(message.topic, message.payload, message.qos, message.retain,
-                                       message.text ? text_described_ : json_described_);
     }
     ::mqtt::properties properties;
     if (!message.correlation_data.empty()) {

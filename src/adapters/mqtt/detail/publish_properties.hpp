@@ -6,7 +6,6 @@
 /// Maximum.
 
 #include <mqtt/message.h>
-#include <mqtt/properties.h>
 
 #include <atomic>
 #include <cstdint>
@@ -24,7 +23,7 @@ namespace eip2mqtt::adapters::mqtt::detail {
 
 class PublishProperties {
 public:
-    explicit PublishProperties(const ClientOptions& options);
+    explicit PublishProperties(const ClientOptions& options) : options_(options) {}
 
     /// A new connection, whose broker takes `alias_maximum` topic aliases (0: none): the
     /// aliases of the last one mean nothing on it. Any thread.
@@ -43,8 +42,6 @@ private:
     std::uint16_t alias_of(const std::string& topic, bool& known);
 
     const ClientOptions& options_;
-    const ::mqtt::properties json_described_;  ///< content type and format of a JSON payload
-    const ::mqtt::properties text_described_;  ///< the same for a text payload
     std::atomic<std::uint32_t> connection_{0};
     std::atomic<std::uint16_t> alias_maximum_{0};
     std::uint32_t aliases_of_ = 0;  ///< the connection `aliases_` were given on

@@ -19,6 +19,13 @@ namespace {
 
 using core::config::PayloadFormat;
 
+/// The opening of a Kepware payload, up to its `values` list: `{"timestamp":…,"values":[`.
+void append_kepware_head(std::string& out, std::int64_t timestamp_ms) {
+    out += R"({"timestamp":)";
+    core::append_integer(out, timestamp_ms);
+    out += R"(,"values":[)";
+}
+
 /// One entry of Kepware's `values`: `{"id":"exchange.tag","v":…,"q":true,"t":…}`.
 void append_kepware_value(std::string& out, std::string_view exchange, std::string_view tag,
                           const core::plan::Value& value, core::quality::Quality quality,
@@ -62,9 +69,7 @@ void format_tag_payload(std::string& out, std::string_view exchange, const core:
             out += '}';
             return;
         case PayloadFormat::kepware:
-            out += R"({"timestamp":)";
-            core::append_integer(out, timestamp_ms);
-            out += R"(,"values":[)";
+            append_kepware_head(out, timestamp_ms);
             append_kepware_value(out, exchange, tag.name, published.value, quality, timestamp_ms);
             out += "]}";
             return;
@@ -95,8 +100,7 @@ void format_tag_payload(std::string& out, std::string_view exchange, const core:
 void format_values_payload(std::string& out, const SampleBatch& batch, PayloadFormat format) {
     out.clear();
     if (format == PayloadFormat::kepware) {
-        fmt::format_to(std::back_inserter(out), R"({{"timestamp":{},"values":[)",
-                       batch.timestamp_ms);
+        append_kepware_head(out, batch.timestamp_ms);
         bool first = true;
         for (const auto& sample : batch.samples) {
             if (!first) out += ',';
