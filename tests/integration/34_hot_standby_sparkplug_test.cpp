@@ -90,9 +90,8 @@ protected:
     /// NBIRTH, `plant` born with a first datagram, and a renewal carrying the session's bdSeq,
     /// which the standby hears as well. An empty leader, and a failure, when that did not come.
     std::pair<std::string, json> leading_session() {
-        const auto leader = first_leader();
-        if (leader.empty() || !says(other(leader), "standby") ||
-            !index_of(node_topic("NBIRTH"), 0)) {
+        const auto leader = leader_beside_standby();
+        if (leader.empty() || !index_of(node_topic("NBIRTH"), 0)) {
             ADD_FAILURE() << "no leader with a Sparkplug session beside a standby";
             return {};
         }

@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <iostream>
+#include <map>
 #include <vector>
 
 #include "tests/support/exchange_yaml.hpp"
@@ -63,17 +64,20 @@ bool PairTest::says(const std::string& id, const std::string& role, std::size_t 
         .has_value();
 }
 
-std::string PairTest::first_leader() {
+std::string PairTest::leader_beside_standby() {
     std::string leader;
     recorder_->wait_for(
         [&](const std::vector<Received>& all) {
+            std::map<std::string, std::string> last;  // unit -> the role it said last
             for (const auto& m : all) {
-                if (m.payload != "leader") continue;
-                if (m.topic == role_topic("gw-a")) leader = "gw-a";
-                if (m.topic == role_topic("gw-b")) leader = "gw-b";
-                if (!leader.empty()) return true;
+                for (const std::string id : {"gw-a", "gw-b"}) {
+                    if (m.topic == role_topic(id)) last[id] = m.payload;
+                }
             }
-            return false;
+            for (const std::string id : {"gw-a", "gw-b"}) {
+                if (last[id] == "leader" && last[other(id)] == "standby") leader = id;
+            }
+            return !leader.empty();
         },
         std::chrono::seconds(30));
     return leader;

@@ -48,8 +48,10 @@ protected:
     /// Waits for `id` to say `role` on its role topic (after message `from`).
     bool says(const std::string& id, const std::string& role, std::size_t from = 0,
               std::chrono::milliseconds wait = std::chrono::seconds(30));
-    /// The first unit to say `leader`; empty when none did.
-    std::string first_leader();
+    /// The unit that said `leader` last while the other said `standby` last: the pair as it
+    /// stands, not merely the first to lead, since a unit stalled on a loaded machine can lose
+    /// its first lease to the other. Empty when the pair did not get there.
+    std::string leader_beside_standby();
     /// Shows each unit's log when the test failed; resumes a stopped one so it can end.
     void TearDown() override;
 
