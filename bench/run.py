@@ -13,6 +13,7 @@ import argparse
 import os
 import sys
 import time
+import traceback
 
 from benchlib import node_red
 from benchlib.harness import Bench
@@ -89,15 +90,25 @@ def check_programs(args, only):
 
 
 def run_scenarios(bench):
+    """Every wanted scenario; one that fails is noted and the others still run, so that a
+    run of an hour keeps what it measured. The scenarios that failed, by number."""
+    failed = []
     for numbers, scenario in SCENARIOS:
         if any(n in bench.only if n in ONLY_WHEN_ASKED else bench.wanted(n) for n in numbers):
+            label = ",".join(map(str, numbers))
             start = time.monotonic()
-            scenario.run(bench)
-            print(f"    (scenario {','.join(map(str, numbers))}: "
-                  f"{time.monotonic() - start:.0f} s)", flush=True)
+            try:
+                scenario.run(bench)
+            except Exception as e:  # noqa: BLE001 (any failure: reported, and the run fails)
+                traceback.print_exc()
+                why = (str(e).splitlines() or [type(e).__name__])[0]
+                bench.notes.append(f"scenario {label} stopped before its last row: {why}")
+                failed.append(label)
+            print(f"    (scenario {label}: {time.monotonic() - start:.0f} s)", flush=True)
     if not bench.paho_rates:  # scenario 2 did not run: the machine is still named by them
         for qos in (0, 1):
             bench.paho_rates[(qos, "tuned broker")] = bench.paho_ceiling(qos)
+    return failed
 
 
 def main():
@@ -112,10 +123,12 @@ def main():
     bench = Bench(args.quick, only, against, args.rounds)
     try:
         bench.start_broker()
-        run_scenarios(bench)
+        failed = run_scenarios(bench)
     finally:
         bench.close()
     bench.report(command_line(args))
+    if failed:
+        sys.exit(f"bench: scenario {', '.join(failed)} failed (the notes of the report say how)")
 
 
 if __name__ == "__main__":

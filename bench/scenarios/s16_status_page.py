@@ -5,8 +5,10 @@ streams open against none, in paired rounds; then the time the page takes, in he
 chromium, to show its exchanges and an open exchange's tags with 1,000 x 100 tags, against the
 same page with 1 x 100."""
 
+import http.client
 import os
 
+from benchlib.builds import NotInBuild
 from benchlib.event_streams import EventStreams
 from benchlib.util import (BENCH_DIR, HOST, consumed_list, free_port, median, ratio_text,
                            run_json, stop)
@@ -77,6 +79,7 @@ def render(bench, exchanges, build):
         bench.generate(udp_port, exchanges, 10000, count=exchanges, change=1.0)
         if not bench.metrics_until(name, lambda m: m["accepted"] >= exchanges, reads=30):
             raise RuntimeError(f"{name}: not every exchange's datagram was accepted")
+        require_page(port, build)
         # e1: on the first page of the list, sorted by name, as a user finds it.
         got = run_json(["node", RENDER, CHROMIUM, f"http://{HOST}:{port}/", "e1", "100",
                         "1" if bench.quick else "3"], timeout=300)
@@ -86,6 +89,20 @@ def render(bench, exchanges, build):
     if any(x["exchanges"] == 0 for x in runs):
         raise RuntimeError(f"{name}: the page showed no exchange")
     return runs[len(runs) // 2]
+
+
+def require_page(port, build):
+    """NotInBuild when `build`'s listener on `port` serves no page at `/` (an earlier build has
+    the metrics alone): chromium would wait for rows that never come."""
+    conn = http.client.HTTPConnection(HOST, port, timeout=10)
+    try:
+        conn.request("GET", "/")
+        response = conn.getresponse()
+        response.read()
+    finally:
+        conn.close()
+    if response.status != 200:
+        raise NotInBuild(build, f"no status page: HTTP {response.status} for /")
 
 
 def render_row(bench):
