@@ -82,8 +82,7 @@ def commands_config(port, limit):
 
 def answered_row(bench, duration, steps):
     """The zero-loss rate of answered requests, the limit set to UNLIMITED, in paired rounds:
-    one ramp a build swings from about 28,000 to 40,000 a second on whether a step loses a few
-    requests or none."""
+    a single ramp is decided by whether one step loses a few requests or none."""
     def measure(build):
         port = commands_port()
         gw, _ = bench.launch_gateway("g11a", consumed_list(16), 1, build=build,
